@@ -1,0 +1,1 @@
+//! Animation along split-and-tweak paths (DESIGN.md 4).

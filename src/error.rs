@@ -1,0 +1,144 @@
+//! Error types. Every failure that comes from a file, the user or the machine's
+//! limits is a typed error with the element ids that caused it; nothing from
+//! outside the crate may panic.
+
+use std::path::Path;
+
+/// A problem found while building a corner table from a triangle list.
+///
+/// Vertex and face ids are those of the input (as read from the file, 0-based),
+/// not of the compacted table.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    /// The mesh has no triangles.
+    #[error("the mesh has no triangles")]
+    Empty,
+    /// A face refers to a vertex that does not exist.
+    #[error("face {face} uses vertex index {index}, but there are only {len} vertices")]
+    IndexOutOfRange { face: usize, index: i64, len: usize },
+    /// A face uses the same vertex twice (it has no area and no valid corners).
+    #[error("face {face} is degenerate: it uses vertex {vertex} twice")]
+    DegenerateFace { face: usize, vertex: u32 },
+    /// A coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate (NaN or infinity)")]
+    NonFinite { vertex: usize },
+    /// More than two faces share an edge.
+    #[error("non-manifold edge ({v0}, {v1}): shared by {faces} faces (faces {examples:?})")]
+    NonManifoldEdge {
+        v0: u32,
+        v1: u32,
+        faces: usize,
+        examples: Vec<usize>,
+    },
+    /// Two faces traverse an edge in the same direction.
+    #[error(
+        "inconsistent orientation: faces {f0} and {f1} both run along edge ({v0} -> {v1}); flip one of them"
+    )]
+    InconsistentOrientation {
+        v0: u32,
+        v1: u32,
+        f0: usize,
+        f1: usize,
+    },
+    /// A vertex joins two or more separate fans of faces ("bowtie").
+    #[error("non-manifold vertex {vertex}: its faces form {fans} separate fans")]
+    NonManifoldVertex { vertex: u32, fans: usize },
+    /// An index or count does not fit the 32-bit corner table.
+    #[error("mesh too large for 32-bit corner ids: {what}")]
+    TooManyElements { what: String },
+    /// The opposite table stored in a file contradicts the triangles.
+    #[error("stored opposite table is inconsistent at corner {corner}: {msg}")]
+    BadOppositeTable { corner: usize, msg: String },
+}
+
+impl MeshError {
+    /// The input face this error is about, when there is exactly one.
+    pub fn face(&self) -> Option<usize> {
+        match self {
+            MeshError::IndexOutOfRange { face, .. } | MeshError::DegenerateFace { face, .. } => {
+                Some(*face)
+            }
+            MeshError::NonManifoldEdge { examples, .. } => examples.first().copied(),
+            MeshError::InconsistentOrientation { f1, .. } => Some(*f1),
+            _ => None,
+        }
+    }
+    /// The input vertex this error is about, when there is exactly one.
+    pub fn vertex(&self) -> Option<usize> {
+        match self {
+            MeshError::NonFinite { vertex } => Some(*vertex),
+            MeshError::NonManifoldVertex { vertex, .. } => Some(*vertex as usize),
+            _ => None,
+        }
+    }
+}
+
+/// Everything the library can fail with.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file could not be parsed.
+    #[error("{file}:{line}: {msg}")]
+    Parse {
+        file: String,
+        line: usize,
+        msg: String,
+    },
+    /// The mesh in a file is not a valid manifold triangle mesh.
+    #[error("{file}{}: {source}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    Mesh {
+        file: String,
+        line: Option<usize>,
+        #[source]
+        source: MeshError,
+    },
+    /// A mesh given in memory is invalid.
+    #[error(transparent)]
+    Invalid(#[from] MeshError),
+    /// The next subdivision level would need more memory than allowed.
+    #[error("level {level} would need about {} but the limit is {} ({faces} faces); use fewer levels or raise --max-memory", human_bytes(*bytes), human_bytes(*limit))]
+    TooLarge {
+        level: u32,
+        faces: u64,
+        bytes: u64,
+        limit: u64,
+    },
+    /// An argument is out of its range.
+    #[error("{0}")]
+    Usage(String),
+}
+
+impl Error {
+    /// An I/O error on `path`.
+    pub fn io(path: &Path, source: std::io::Error) -> Self {
+        Error::Io {
+            path: path.display().to_string(),
+            source,
+        }
+    }
+}
+
+/// `Result` with this crate's [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// Bytes as a short human-readable string (`1.5 GiB`).
+pub fn human_bytes(b: u64) -> String {
+    const U: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut x = b as f64;
+    let mut i = 0;
+    while x >= 1024.0 && i < U.len() - 1 {
+        x /= 1024.0;
+        i += 1;
+    }
+    if i == 0 {
+        format!("{b} B")
+    } else {
+        format!("{x:.1} {}", U[i])
+    }
+}

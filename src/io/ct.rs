@@ -1,0 +1,212 @@
+//! The corner-table text format `.ct` (from the original corner-table
+//! assignment, DESIGN.md 2):
+//!
+//! ```text
+//! k                 vertex count
+//! x y z             k lines
+//! t                 triangle count
+//! a b c             t lines of 0-based vertex ids
+//! o0 o1 o2          optional: t lines of opposite corners, -1 = border
+//! ```
+//! `#` starts a comment. When the O lines are present the reader checks them
+//! (an involution pairing each edge with its reverse) in O(n) and skips the
+//! build; otherwise O is built as for OBJ. Counts in the header are checked
+//! against the file size before anything is allocated.
+
+use super::atomic_write;
+use crate::mesh::{BORDER, CornerTable, Mesh};
+use crate::{Error, MeshError, Result};
+use glam::Vec3;
+use std::io::Write;
+use std::path::Path;
+
+struct Tokens<'a> {
+    lines: std::iter::Enumerate<std::str::Lines<'a>>,
+    cur: std::str::SplitAsciiWhitespace<'a>,
+    line: usize,
+    file: &'a str,
+}
+
+impl<'a> Tokens<'a> {
+    fn new(text: &'a str, file: &'a str) -> Self {
+        Tokens {
+            lines: text.lines().enumerate(),
+            cur: "".split_ascii_whitespace(),
+            line: 0,
+            file,
+        }
+    }
+    fn next_tok(&mut self) -> Option<&'a str> {
+        loop {
+            if let Some(t) = self.cur.next() {
+                return Some(t);
+            }
+            let (i, l) = self.lines.next()?;
+            self.line = i + 1;
+            self.cur = l.split('#').next().unwrap_or("").split_ascii_whitespace();
+        }
+    }
+    fn err(&self, msg: impl Into<String>) -> Error {
+        Error::Parse {
+            file: self.file.to_string(),
+            line: self.line.max(1),
+            msg: msg.into(),
+        }
+    }
+    fn num<T: std::str::FromStr>(&mut self, what: &str) -> Result<T> {
+        let t = self
+            .next_tok()
+            .ok_or_else(|| self.err(format!("file ends where {what} was expected")))?;
+        t.parse()
+            .map_err(|_| self.err(format!("'{t}' is not a valid {what}")))
+    }
+}
+
+/// Parses `.ct` text; `file` names the source in errors.
+///
+/// # Errors
+/// [`Error::Parse`] with the line, or [`Error::Mesh`] for invalid topology.
+pub fn parse(text: &str, file: &str) -> Result<Mesh> {
+    let mut tk = Tokens::new(text, file);
+    let k: u64 = tk.num("vertex count")?;
+    // every vertex needs at least "0 0 0\n" (6 bytes): refuse absurd headers before allocating
+    if k > text.len() as u64 / 6 + 1 {
+        return Err(tk.err(format!(
+            "header claims {k} vertices but the file has only {} bytes",
+            text.len()
+        )));
+    }
+    let mut pos = Vec::with_capacity(k as usize);
+    for i in 0..k {
+        let x: f32 = tk.num("coordinate")?;
+        let y: f32 = tk.num("coordinate")?;
+        let z: f32 = tk.num("coordinate")?;
+        if !(x.is_finite() && y.is_finite() && z.is_finite()) {
+            return Err(Error::Mesh {
+                file: file.into(),
+                line: Some(tk.line),
+                source: MeshError::NonFinite { vertex: i as usize },
+            });
+        }
+        pos.push(Vec3::new(x, y, z));
+    }
+    let t: u64 = tk.num("triangle count")?;
+    if t > text.len() as u64 / 6 + 1 {
+        return Err(tk.err(format!(
+            "header claims {t} triangles but the file has only {} bytes",
+            text.len()
+        )));
+    }
+    let mut tris = Vec::with_capacity(3 * t as usize);
+    let mut tri_lines = Vec::with_capacity(t as usize);
+    for _ in 0..3 * t {
+        let i: i64 = tk.num("vertex id")?;
+        if i < 0 || i as u64 >= k {
+            return Err(Error::Mesh {
+                file: file.into(),
+                line: Some(tk.line),
+                source: MeshError::IndexOutOfRange {
+                    face: tris.len() / 3,
+                    index: i,
+                    len: k as usize,
+                },
+            });
+        }
+        tris.push(i as u32);
+        if tris.len() % 3 == 0 {
+            tri_lines.push(tk.line);
+        }
+    }
+    // optional O table
+    let mut o = Vec::new();
+    if let Some(first) = tk.next_tok() {
+        let mut tok = Some(first);
+        for _ in 0..3 * t {
+            let s = match tok.take() {
+                Some(s) => s,
+                None => tk
+                    .next_tok()
+                    .ok_or_else(|| tk.err("the opposite table ends early"))?,
+            };
+            let x: i64 = s
+                .parse()
+                .map_err(|_| tk.err(format!("'{s}' is not a corner id")))?;
+            if x < -1 || x >= 3 * t as i64 {
+                return Err(tk.err(format!("opposite corner {x} out of range")));
+            }
+            o.push(if x < 0 { BORDER } else { x as u32 });
+        }
+        if let Some(extra) = tk.next_tok() {
+            return Err(tk.err(format!("unexpected '{extra}' after the opposite table")));
+        }
+    }
+    let located = |e: MeshError| {
+        let line = e.face().and_then(|f| tri_lines.get(f).copied());
+        Error::Mesh {
+            file: file.to_string(),
+            line,
+            source: e,
+        }
+    };
+    if o.is_empty() {
+        return Mesh::from_triangles(pos, &tris).map_err(located);
+    }
+    // with O: all vertices must be used (the table is stored compact)
+    let (ct, _, kept) = CornerTable::build(pos.len(), &tris, Some(&pos)).map_err(located)?;
+    if kept.is_some() {
+        return Err(located(MeshError::BadOppositeTable {
+            corner: 0,
+            msg: "unused vertices in a .ct with O".into(),
+        }));
+    }
+    // the stored O must agree with the one built; a mismatch means a corrupt file
+    let ct = CornerTable::from_vo(ct.v, o, pos.len()).map_err(located)?;
+    Ok(Mesh { ct, positions: pos })
+}
+
+/// Loads a `.ct` file.
+///
+/// # Errors
+/// See [`parse`]; I/O errors name the file.
+pub fn load(path: &Path) -> Result<Mesh> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| Error::Parse {
+        file: path.display().to_string(),
+        line: bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1,
+        msg: "not text (invalid UTF-8)".into(),
+    })?;
+    parse(text, &path.display().to_string())
+}
+
+/// Writes `.ct` text including the O table.
+///
+/// # Errors
+/// I/O errors.
+pub fn write(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
+    writeln!(w, "{}", mesh.positions.len())?;
+    for q in &mesh.positions {
+        // Display prints the shortest string that reads back to the same f32
+        writeln!(w, "{} {} {}", q.x, q.y, q.z)?;
+    }
+    writeln!(w, "{}", mesh.ct.num_triangles())?;
+    for tri in mesh.ct.v.chunks_exact(3) {
+        writeln!(w, "{} {} {}", tri[0], tri[1], tri[2])?;
+    }
+    for oo in mesh.ct.o.chunks_exact(3) {
+        let f = |x: u32| if x == BORDER { -1 } else { i64::from(x) };
+        writeln!(w, "{} {} {}", f(oo[0]), f(oo[1]), f(oo[2]))?;
+    }
+    Ok(())
+}
+
+/// Saves `mesh` as `.ct` (atomically).
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+    atomic_write(path, |w| write(w, mesh).map_err(|e| Error::io(path, e)))
+}

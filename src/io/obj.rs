@@ -1,0 +1,323 @@
+//! Wavefront OBJ.
+//!
+//! Reading uses our own streaming parser rather than `tobj`: it keeps vertex
+//! ids global across `o`/`g` groups (tobj renumbers per group, which would cut
+//! a mesh apart at group borders and silently drop unused vertices), supports
+//! negative indices, triangulates polygons as fans, and remembers the line of
+//! every `v` and `f` record so that every error names the line. [`load_tobj`]
+//! reads the same file through tobj; the tests use it as an independent
+//! reference for our parser.
+//!
+//! Writing formats chunks of lines in parallel (shortest round-trip floats).
+
+use super::atomic_write;
+use crate::mesh::Mesh;
+use crate::{Error, MeshError, Result};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::path::Path;
+
+/// What the parser read besides the mesh.
+#[derive(Clone, Debug, Default)]
+pub struct ObjInfo {
+    /// `v` records in the file.
+    pub vertex_records: usize,
+    /// Vertices dropped because no face uses them.
+    pub unreferenced: usize,
+    /// Polygons with more than 3 corners that were split into triangles.
+    pub polygons_triangulated: usize,
+}
+
+/// Raw OBJ content: positions, triangles, and the source line of each.
+#[derive(Clone, Debug, Default)]
+pub struct RawObj {
+    /// Positions of every `v` record.
+    pub positions: Vec<Vec3>,
+    /// Triangles (0-based, global).
+    pub triangles: Vec<u32>,
+    /// Line (1-based) of every `v` record.
+    pub vertex_lines: Vec<u32>,
+    /// Line of the face record of every triangle.
+    pub triangle_lines: Vec<u32>,
+    /// Polygons triangulated.
+    pub polygons: usize,
+}
+
+fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
+    Error::Parse {
+        file: file.to_string(),
+        line,
+        msg: msg.into(),
+    }
+}
+
+/// Parses OBJ text. `file` is only used in error messages.
+///
+/// # Errors
+/// [`Error::Parse`] with the line number for anything that is not valid OBJ.
+pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
+    let mut raw = RawObj::default();
+    let mut poly: Vec<u32> = Vec::with_capacity(8);
+    for (lineno, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let ln = lineno + 1;
+        let line = line.strip_suffix(b"\r").unwrap_or(line);
+        let Ok(line) = std::str::from_utf8(line) else {
+            return Err(parse_err(
+                file,
+                ln,
+                "not text (invalid UTF-8): is this an OBJ file?",
+            ));
+        };
+        let line = line.split('#').next().unwrap_or("");
+        let mut toks = line.split_ascii_whitespace();
+        let Some(key) = toks.next() else { continue };
+        match key {
+            "v" => {
+                let mut xyz = [0f32; 3];
+                for (i, slot) in xyz.iter_mut().enumerate() {
+                    let t = toks.next().ok_or_else(|| {
+                        parse_err(file, ln, format!("vertex has {i} coordinates, expected 3"))
+                    })?;
+                    *slot = t
+                        .parse()
+                        .map_err(|_| parse_err(file, ln, format!("'{t}' is not a number")))?;
+                }
+                if xyz.iter().any(|x| !x.is_finite()) {
+                    return Err(Error::Mesh {
+                        file: file.into(),
+                        line: Some(ln),
+                        source: MeshError::NonFinite {
+                            vertex: raw.positions.len(),
+                        },
+                    });
+                }
+                raw.positions.push(Vec3::from_array(xyz));
+                raw.vertex_lines.push(ln as u32);
+            }
+            "f" => {
+                poly.clear();
+                for t in toks {
+                    let idx = t.split('/').next().unwrap_or("");
+                    let i: i64 = idx
+                        .parse()
+                        .map_err(|_| parse_err(file, ln, format!("'{t}' is not a vertex index")))?;
+                    let n = raw.positions.len() as i64;
+                    // 1-based, or negative = relative to the last vertex so far
+                    let abs = if i < 0 { n + i } else { i - 1 };
+                    if i == 0 || abs < 0 || abs >= u32::MAX as i64 {
+                        return Err(Error::Mesh {
+                            file: file.into(),
+                            line: Some(ln),
+                            source: MeshError::IndexOutOfRange {
+                                face: raw.triangle_lines.len(),
+                                index: i,
+                                len: n as usize,
+                            },
+                        });
+                    }
+                    poly.push(abs as u32);
+                }
+                if poly.len() < 3 {
+                    return Err(parse_err(
+                        file,
+                        ln,
+                        format!("face has {} vertices, needs at least 3", poly.len()),
+                    ));
+                }
+                if poly.len() > 3 {
+                    raw.polygons += 1;
+                }
+                for k in 1..poly.len() - 1 {
+                    raw.triangles
+                        .extend_from_slice(&[poly[0], poly[k], poly[k + 1]]);
+                    raw.triangle_lines.push(ln as u32);
+                }
+            }
+            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "cstype"
+            | "deg" | "curv" | "curv2" | "surf" | "parm" | "trim" | "hole" | "end" | "bmat"
+            | "step" | "mg" | "lod" | "usemap" | "maplib" | "shadow_obj" | "trace_obj"
+            | "ctech" | "stech" | "con" | "sp" => {}
+            other
+                if other
+                    .bytes()
+                    .all(|b| b.is_ascii_alphanumeric() || b == b'_')
+                    && other.len() < 32 => {}
+            other => {
+                let shown: String = other.chars().take(20).collect();
+                return Err(parse_err(
+                    file,
+                    ln,
+                    format!("unexpected '{shown}': is this an OBJ file?"),
+                ));
+            }
+        }
+    }
+    Ok(raw)
+}
+
+/// Loads and validates an OBJ file.
+///
+/// # Errors
+/// I/O errors, [`Error::Parse`], and [`Error::Mesh`] with the line of the
+/// offending face or vertex record.
+pub fn load(path: &Path) -> Result<(Mesh, ObjInfo)> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    from_bytes(&bytes, &path.display().to_string())
+}
+
+/// Parses and validates OBJ bytes (see [`load`]); `file` names the source in errors.
+///
+/// # Errors
+/// See [`load`].
+pub fn from_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, ObjInfo)> {
+    let raw = parse(bytes, file)?;
+    build(raw, file)
+}
+
+/// Validates parsed OBJ content into a mesh, mapping errors to source lines.
+///
+/// # Errors
+/// [`Error::Mesh`] naming the file and line.
+pub fn build(raw: RawObj, file: &str) -> Result<(Mesh, ObjInfo)> {
+    let nrec = raw.positions.len();
+    let polygons = raw.polygons;
+    match Mesh::from_triangles_report(raw.positions, &raw.triangles) {
+        Ok((mesh, rep)) => Ok((
+            mesh,
+            ObjInfo {
+                vertex_records: nrec,
+                unreferenced: rep.unreferenced,
+                polygons_triangulated: polygons,
+            },
+        )),
+        Err(e) => {
+            let line = e
+                .face()
+                .and_then(|f| raw.triangle_lines.get(f))
+                .or_else(|| e.vertex().and_then(|v| raw.vertex_lines.get(v)))
+                .map(|&l| l as usize);
+            Err(Error::Mesh {
+                file: file.to_string(),
+                line,
+                source: e,
+            })
+        }
+    }
+}
+
+/// Reads an OBJ through `tobj` (one model per group, renumbered per group),
+/// returning every model's positions and triangles concatenated. Used as an
+/// independent reference for [`parse`] in tests.
+///
+/// # Errors
+/// tobj's load error as [`Error::Parse`] (without a line: tobj has none).
+pub fn load_tobj(path: &Path) -> Result<(Vec<Vec3>, Vec<u32>)> {
+    let opts = tobj::LoadOptions {
+        triangulate: true,
+        single_index: false,
+        ..Default::default()
+    };
+    let (models, _) = tobj::load_obj(path, &opts)
+        .map_err(|e| parse_err(&path.display().to_string(), 0, e.to_string()))?;
+    let mut pos = Vec::new();
+    let mut tris = Vec::new();
+    for m in models {
+        let base = pos.len() as u32;
+        pos.extend(
+            m.mesh
+                .positions
+                .chunks_exact(3)
+                .map(|c| Vec3::new(c[0], c[1], c[2])),
+        );
+        tris.extend(m.mesh.indices.iter().map(|&i| i + base));
+    }
+    Ok((pos, tris))
+}
+
+fn push_f32(out: &mut Vec<u8>, buf: &mut ryu::Buffer, x: f32) {
+    if x == x.trunc() && x.abs() < 1e7 {
+        // "1" instead of "1.0": shorter and still exact
+        let mut ib = itoa::Buffer::new();
+        out.extend_from_slice(ib.format(x as i64).as_bytes());
+    } else {
+        out.extend_from_slice(buf.format_finite(x).as_bytes());
+    }
+}
+
+/// Formats OBJ text for `mesh` in parallel chunks and passes them, in order,
+/// to `sink`. Memory stays bounded by one batch of chunks.
+///
+/// # Errors
+/// The first error of `sink`.
+pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
+    const ROWS: usize = 1 << 15;
+    const BATCH: usize = 16;
+    let pos = &mesh.positions;
+    sink(
+        format!(
+            "# subdiv: {} vertices, {} triangles\n",
+            pos.len(),
+            mesh.ct.num_triangles()
+        )
+        .as_bytes(),
+    )?;
+    let vchunks: Vec<&[Vec3]> = pos.chunks(ROWS).collect();
+    for batch in vchunks.chunks(BATCH) {
+        let texts: Vec<Vec<u8>> = batch
+            .par_iter()
+            .map(|ch| {
+                let mut out = Vec::with_capacity(ch.len() * 32);
+                let mut rb = ryu::Buffer::new();
+                for q in *ch {
+                    out.extend_from_slice(b"v ");
+                    push_f32(&mut out, &mut rb, q.x);
+                    out.push(b' ');
+                    push_f32(&mut out, &mut rb, q.y);
+                    out.push(b' ');
+                    push_f32(&mut out, &mut rb, q.z);
+                    out.push(b'\n');
+                }
+                out
+            })
+            .collect();
+        for t in texts {
+            sink(&t)?;
+        }
+    }
+    let tchunks: Vec<&[u32]> = mesh.ct.v.chunks(3 * ROWS).collect();
+    for batch in tchunks.chunks(BATCH) {
+        let texts: Vec<Vec<u8>> = batch
+            .par_iter()
+            .map(|ch| {
+                let mut out = Vec::with_capacity(ch.len() * 9);
+                let mut ib = itoa::Buffer::new();
+                for tri in ch.chunks_exact(3) {
+                    out.extend_from_slice(b"f ");
+                    out.extend_from_slice(ib.format(tri[0] + 1).as_bytes());
+                    out.push(b' ');
+                    out.extend_from_slice(ib.format(tri[1] + 1).as_bytes());
+                    out.push(b' ');
+                    out.extend_from_slice(ib.format(tri[2] + 1).as_bytes());
+                    out.push(b'\n');
+                }
+                out
+            })
+            .collect();
+        for t in texts {
+            sink(&t)?;
+        }
+    }
+    Ok(())
+}
+
+/// Saves `mesh` as OBJ (atomically).
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+    atomic_write(path, |w| {
+        write_obj(mesh, &mut |b| {
+            w.write_all(b).map_err(|e| Error::io(path, e))
+        })
+    })
+}

@@ -1,0 +1,40 @@
+//! # subdiv: triangle-mesh subdivision on a corner table
+//!
+//! The library is four layers, data flowing one way:
+//! [`io`] (OBJ, `.ct`, `.paths`) → [`mesh`] (Rossignac's corner table: V, O,
+//! one corner per vertex, valences) → [`subdiv`] (the shared 1-to-4 split with
+//! a linear-time O update, one file of rules per scheme, stencil plans) →
+//! [`anim`] (split-and-tweak paths). The renderer and the window (feature
+//! `viewer`) only see flat arrays.
+//!
+//! ```
+//! use subdiv::{Mesh, Scheme, Options, subdivide};
+//! use glam::Vec3;
+//! // a tetrahedron, faces counter-clockwise seen from outside
+//! let pos = vec![Vec3::new(1., 1., 1.), Vec3::new(1., -1., -1.), Vec3::new(-1., 1., -1.), Vec3::new(-1., -1., 1.)];
+//! let tris = [0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2];
+//! let mesh = Mesh::from_triangles(pos, &tris).unwrap();
+//! let (fine, stats) = subdivide(&mesh, Scheme::Loop, 3, &Options::default()).unwrap();
+//! assert_eq!(fine.ct.num_triangles(), 4 * 4 * 4 * 4);
+//! assert_eq!(stats.faces_per_level, vec![16, 64, 256]);
+//! ```
+//!
+//! Vocabulary (as OpenSubdiv): a *mask* gives a new vertex in terms of the
+//! previous level, a *stencil* in terms of any earlier level; *even* points
+//! are the old vertices' new positions, *odd* points the new edge vertices.
+
+pub mod anim;
+pub mod error;
+pub mod io;
+pub mod mesh;
+pub mod subdiv;
+
+#[cfg(feature = "viewer")]
+pub mod render;
+
+#[cfg(feature = "viewer")]
+pub mod app;
+
+pub use error::{Error, MeshError, Result};
+pub use mesh::{BORDER, CornerTable, Mesh};
+pub use subdiv::{LoopBeta, Options, Scheme, Stats, subdivide};

@@ -1,0 +1,395 @@
+//! The `subdiv` command line: view | subdivide | info | render | animate.
+
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+use subdiv::mesh::topology::topology;
+use subdiv::{Error, LoopBeta, Mesh, Options, Result, Scheme, io};
+
+#[derive(Parser)]
+#[command(name = "subdiv", version, about = "Triangle-mesh subdivision: viewer and command line", long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Option<Cmd>,
+    /// Worker threads (default: all cores).
+    #[arg(long, global = true)]
+    threads: Option<usize>,
+}
+
+#[derive(clap::Args, Clone)]
+struct SchemeArgs {
+    /// Scheme: midpoint, loop, butterfly, modified-butterfly, jarek.
+    #[arg(long, short, default_value = "loop")]
+    scheme: Scheme,
+    /// Use Warren's beta for Loop instead of Loop's.
+    #[arg(long)]
+    warren: bool,
+    /// Modified-butterfly tension w (0 = Zorin's default).
+    #[arg(long, default_value_t = 0.0)]
+    tension: f32,
+    /// Refuse levels predicted to need more than this (e.g. 2G, 500M; default: 80% of available memory).
+    #[arg(long, value_parser = parse_bytes)]
+    max_memory: Option<u64>,
+}
+
+impl SchemeArgs {
+    fn options(&self) -> Options {
+        Options {
+            loop_beta: if self.warren {
+                LoopBeta::Warren
+            } else {
+                LoopBeta::Loop
+            },
+            tension: self.tension,
+            max_memory: self.max_memory,
+        }
+    }
+}
+
+#[derive(Subcommand)]
+enum Cmd {
+    /// Open the viewer (the default when no command is given).
+    View {
+        /// OBJ or .ct file (default: the bundled tetrahedron).
+        model: Option<PathBuf>,
+        #[command(flatten)]
+        scheme: SchemeArgs,
+        /// Initial subdivision level.
+        #[arg(long, short, default_value_t = 0)]
+        level: u32,
+        /// Start with the wireframe shown.
+        #[arg(long)]
+        wireframe: bool,
+        /// Render N frames, then exit (for CI).
+        #[arg(long)]
+        frames: Option<u32>,
+        /// Save the last frame to this PNG (with --frames).
+        #[arg(long)]
+        screenshot: Option<PathBuf>,
+        /// Animation paths (.paths) for the model.
+        #[arg(long)]
+        paths: Option<PathBuf>,
+    },
+    /// Subdivide a mesh and write the result (.obj, .ply or .ct by extension).
+    Subdivide {
+        /// Input OBJ or .ct.
+        input: PathBuf,
+        /// Output .obj, .ply or .ct.
+        output: PathBuf,
+        #[command(flatten)]
+        scheme: SchemeArgs,
+        /// Number of levels.
+        #[arg(long, short = 'n', default_value_t = 1)]
+        levels: u32,
+        /// Print timings: `subdivide_ms=<float>` and per-phase times.
+        #[arg(long)]
+        stats: bool,
+        /// Print the result summary as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Print counts, boundary, components, genus, valences and problems.
+    Info {
+        /// Input OBJ or .ct.
+        input: PathBuf,
+        /// Print as JSON.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Render a mesh offscreen to a PNG.
+    Render {
+        /// Input OBJ or .ct.
+        input: PathBuf,
+        /// Output PNG.
+        output: PathBuf,
+        #[command(flatten)]
+        scheme: SchemeArgs,
+        /// Number of levels.
+        #[arg(long, short = 'n', default_value_t = 0)]
+        levels: u32,
+        /// phong, flat, wire or phong+wire.
+        #[arg(long, default_value = "phong")]
+        shading: String,
+        /// Image size WxH.
+        #[arg(long, default_value = "800x600", value_parser = parse_size)]
+        size: (u32, u32),
+        /// Orthographic projection.
+        #[arg(long)]
+        ortho: bool,
+        /// Overlay the control mesh.
+        #[arg(long)]
+        control: bool,
+    },
+}
+
+fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("'{s}' is not WxH"))?;
+    let w: u32 = w.parse().map_err(|_| format!("bad width in '{s}'"))?;
+    let h: u32 = h.parse().map_err(|_| format!("bad height in '{s}'"))?;
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err(format!("size {w}x{h} out of range (1..16384)"));
+    }
+    Ok((w, h))
+}
+
+fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
+    let s = s.trim();
+    let (num, mult) = match s.chars().last().map(|c| c.to_ascii_uppercase()) {
+        Some('K') => (&s[..s.len() - 1], 1u64 << 10),
+        Some('M') => (&s[..s.len() - 1], 1 << 20),
+        Some('G') => (&s[..s.len() - 1], 1 << 30),
+        Some('T') => (&s[..s.len() - 1], 1 << 40),
+        _ => (s, 1),
+    };
+    let x: f64 = num
+        .parse()
+        .map_err(|_| format!("'{s}' is not a size (e.g. 512M, 2G)"))?;
+    if !(x.is_finite() && x >= 0.0) {
+        return Err(format!("'{s}' is not a size"));
+    }
+    Ok((x * mult as f64) as u64)
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    if let Some(n) = cli.threads {
+        if let Err(e) = rayon::ThreadPoolBuilder::new()
+            .num_threads(n.max(1))
+            .build_global()
+        {
+            eprintln!("subdiv: cannot set {n} threads: {e}");
+            return ExitCode::from(2);
+        }
+    }
+    match run(cli.cmd) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("subdiv: error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(cmd: Option<Cmd>) -> Result<()> {
+    match cmd {
+        None => view(subdiv::app::ViewOptions::default()),
+        Some(Cmd::View {
+            model,
+            scheme,
+            level,
+            wireframe,
+            frames,
+            screenshot,
+            paths,
+        }) => view(subdiv::app::ViewOptions {
+            model,
+            scheme: scheme.scheme,
+            level,
+            wireframe,
+            frames,
+            screenshot,
+            paths,
+        }),
+        Some(Cmd::Subdivide {
+            input,
+            output,
+            scheme,
+            levels,
+            stats,
+            json,
+        }) => subdivide_cmd(&input, &output, &scheme, levels, stats, json),
+        Some(Cmd::Info { input, json }) => info_cmd(&input, json),
+        Some(Cmd::Render {
+            input,
+            output,
+            scheme,
+            levels,
+            shading,
+            size,
+            ortho,
+            control,
+        }) => render_cmd(
+            &input, &output, &scheme, levels, &shading, size, ortho, control,
+        ),
+    }
+}
+
+#[cfg(feature = "viewer")]
+fn view(opts: subdiv::app::ViewOptions) -> Result<()> {
+    subdiv::app::run(opts)
+}
+
+#[cfg(not(feature = "viewer"))]
+fn view(_opts: subdiv::app::ViewOptions) -> Result<()> {
+    Err(Error::Usage("built without the 'viewer' feature: use subdivide / info, or rebuild with default features".into()))
+}
+
+#[cfg(feature = "viewer")]
+#[allow(clippy::too_many_arguments)]
+fn render_cmd(
+    input: &Path,
+    output: &Path,
+    scheme: &SchemeArgs,
+    levels: u32,
+    shading: &str,
+    size: (u32, u32),
+    ortho: bool,
+    control: bool,
+) -> Result<()> {
+    let shading: subdiv::render::Shading = shading.parse().map_err(Error::Usage)?;
+    let mesh = io::load(input)?;
+    let (fine, _) = subdiv::subdivide(&mesh, scheme.scheme, levels, &scheme.options())?;
+    let opts = subdiv::render::RenderOptions {
+        shading,
+        width: size.0,
+        height: size.1,
+        orthographic: ortho,
+    };
+    subdiv::render::render_png(&fine, control.then_some(&mesh), &opts, output)
+}
+
+#[cfg(not(feature = "viewer"))]
+#[allow(clippy::too_many_arguments)]
+fn render_cmd(
+    _: &Path,
+    _: &Path,
+    _: &SchemeArgs,
+    _: u32,
+    _: &str,
+    _: (u32, u32),
+    _: bool,
+    _: bool,
+) -> Result<()> {
+    Err(Error::Usage(
+        "built without the 'viewer' feature: rendering is not available".into(),
+    ))
+}
+
+fn subdivide_cmd(
+    input: &Path,
+    output: &Path,
+    s: &SchemeArgs,
+    levels: u32,
+    stats: bool,
+    json: bool,
+) -> Result<()> {
+    let t0 = Instant::now();
+    let mesh = io::load(input)?;
+    let load_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
+    let t1 = Instant::now();
+    io::save(output, &fine)?;
+    let save_ms = t1.elapsed().as_secs_f64() * 1e3;
+    if stats {
+        println!("subdivide_ms={:.3}", st.total_ms);
+        println!(
+            "phases: split_and_o_ms={:.3} edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={load_ms:.3} save_ms={save_ms:.3} threads={}",
+            st.split_ms,
+            st.edge_ms,
+            st.vertex_ms,
+            rayon::current_num_threads()
+        );
+    }
+    if json {
+        println!(
+            "{{\"scheme\":\"{}\",\"levels\":{levels},\"input_vertices\":{},\"input_faces\":{},\"vertices\":{},\"faces\":{},\"subdivide_ms\":{:.3},\"split_ms\":{:.3},\"edge_ms\":{:.3},\"vertex_ms\":{:.3},\"load_ms\":{load_ms:.3},\"save_ms\":{save_ms:.3}}}",
+            s.scheme,
+            mesh.positions.len(),
+            mesh.ct.num_triangles(),
+            fine.positions.len(),
+            fine.ct.num_triangles(),
+            st.total_ms,
+            st.split_ms,
+            st.edge_ms,
+            st.vertex_ms
+        );
+    } else if !stats {
+        println!(
+            "{} -> {}: {} levels of {}, {} vertices, {} faces",
+            input.display(),
+            output.display(),
+            levels,
+            s.scheme,
+            fine.positions.len(),
+            fine.ct.num_triangles()
+        );
+    }
+    Ok(())
+}
+
+fn info_cmd(input: &Path, json: bool) -> Result<()> {
+    let (mesh, dropped, records): (Mesh, usize, usize) =
+        if input.extension().is_some_and(|e| e == "ct") {
+            let m = io::load(input)?;
+            let n = m.positions.len();
+            (m, 0, n)
+        } else {
+            let bytes = std::fs::read(input).map_err(|e| Error::io(input, e))?;
+            let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
+            (m, inf.unreferenced, inf.vertex_records)
+        };
+    let t = topology(&mesh.ct);
+    let (lo, hi) = mesh.bounds();
+    let hist: Vec<String> = t
+        .valence_histogram
+        .iter()
+        .enumerate()
+        .filter(|&(_, &c)| c > 0)
+        .map(|(k, c)| format!("{k}:{c}"))
+        .collect();
+    if json {
+        println!(
+            "{{\"file\":\"{}\",\"vertices\":{},\"edges\":{},\"faces\":{},\"closed\":{},\"boundary_loops\":{},\"border_edges\":{},\"components\":{},\"euler\":{},\"genus\":{},\"unreferenced_dropped\":{dropped},\"non_manifold_edges\":0,\"non_manifold_vertices\":0,\"valence\":{{{}}}}}",
+            input
+                .display()
+                .to_string()
+                .replace('\\', "\\\\")
+                .replace('"', "\\\""),
+            t.vertices,
+            t.edges,
+            t.faces,
+            t.is_closed(),
+            t.boundary_loops,
+            t.border_edges,
+            t.components,
+            t.euler,
+            t.genus,
+            hist.iter()
+                .map(|h| {
+                    let (k, c) = h.split_once(':').unwrap_or(("0", "0"));
+                    format!("\"{k}\":{c}")
+                })
+                .collect::<Vec<_>>()
+                .join(",")
+        );
+        return Ok(());
+    }
+    println!("file:            {}", input.display());
+    println!(
+        "vertices:        {} ({records} records, {dropped} unreferenced dropped)",
+        t.vertices
+    );
+    println!("edges:           {}", t.edges);
+    println!("faces:           {}", t.faces);
+    println!(
+        "closed:          {}",
+        if t.is_closed() { "yes" } else { "no" }
+    );
+    println!(
+        "boundary loops:  {} ({} border edges)",
+        t.boundary_loops, t.border_edges
+    );
+    println!("components:      {}", t.components);
+    println!("euler:           {}", t.euler);
+    println!("genus:           {}", t.genus);
+    println!("manifold:        yes (0 non-manifold edges, 0 non-manifold vertices)");
+    println!("valence:         {}", hist.join(" "));
+    println!(
+        "bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]",
+        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
+    );
+    Ok(())
+}

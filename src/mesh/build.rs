@@ -1,0 +1,445 @@
+//! Building the O table from a triangle list in expected O(n), and validating
+//! the input (schemes.md 7.3).
+//!
+//! Method: every corner `c` owns the directed half-edge `v(n(c)) -> v(p(c))`
+//! opposite it. Half-edges are bucketed by their start vertex with a counting
+//! sort (O(n), no hashing); the opposite of `c` is the unique corner whose
+//! half-edge runs the other way, found by scanning the (valence-sized) bucket
+//! of `v(p(c))`. A second half-edge in the same direction means inconsistent
+//! orientation; three or more faces on an edge mean a non-manifold edge. A
+//! final pass walks every fan once to find non-manifold vertices and to fill
+//! `C[v]` and the valences.
+
+use super::{BORDER, CornerTable, n, p};
+use crate::MeshError;
+use glam::Vec3;
+
+/// What [`CornerTable::build`] found besides errors.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct BuildReport {
+    /// Vertices of the input that no triangle uses; they were dropped.
+    pub unreferenced: usize,
+    /// The first few dropped vertex ids (input numbering).
+    pub unreferenced_examples: Vec<u32>,
+}
+
+impl CornerTable {
+    /// Builds and validates a corner table for `nv` vertices and the flat
+    /// triangle list `tris`. Vertices no triangle uses are dropped; the third
+    /// return value then maps new vertex ids to input ids.
+    ///
+    /// When `positions` is given, every used position must be finite.
+    ///
+    /// # Errors
+    /// [`MeshError`] naming the input face or vertex ids: empty mesh, index out
+    /// of range, degenerate face, non-finite position, non-manifold edge,
+    /// inconsistent orientation, non-manifold vertex, or a mesh too large for
+    /// 32-bit corner ids.
+    pub fn build(
+        nv: usize,
+        tris: &[u32],
+        positions: Option<&[Vec3]>,
+    ) -> Result<(CornerTable, BuildReport, Option<Vec<u32>>), MeshError> {
+        let nc = tris.len() - tris.len() % 3;
+        if nc == 0 {
+            return Err(MeshError::Empty);
+        }
+        if nc >= (u32::MAX as usize) / 4 || nv >= u32::MAX as usize {
+            return Err(MeshError::TooManyElements {
+                what: format!("{} triangles, {nv} vertices", nc / 3),
+            });
+        }
+        let tris = &tris[..nc];
+        // range and degeneracy
+        for (f, tri) in tris.chunks_exact(3).enumerate() {
+            for &i in tri {
+                if i as usize >= nv {
+                    return Err(MeshError::IndexOutOfRange {
+                        face: f,
+                        index: i as i64,
+                        len: nv,
+                    });
+                }
+            }
+            if tri[0] == tri[1] || tri[0] == tri[2] {
+                return Err(MeshError::DegenerateFace {
+                    face: f,
+                    vertex: tri[0],
+                });
+            }
+            if tri[1] == tri[2] {
+                return Err(MeshError::DegenerateFace {
+                    face: f,
+                    vertex: tri[1],
+                });
+            }
+        }
+        // drop unreferenced vertices
+        let mut new_id = vec![BORDER; nv];
+        for &i in tris {
+            new_id[i as usize] = 0;
+        }
+        let mut kept = Vec::new();
+        let mut report = BuildReport::default();
+        for (i, id) in new_id.iter_mut().enumerate() {
+            if *id == 0 {
+                *id = kept.len() as u32;
+                kept.push(i as u32);
+            } else {
+                report.unreferenced += 1;
+                if report.unreferenced_examples.len() < 10 {
+                    report.unreferenced_examples.push(i as u32);
+                }
+            }
+        }
+        if let Some(pos) = positions {
+            for &k in &kept {
+                if !pos[k as usize].is_finite() {
+                    return Err(MeshError::NonFinite { vertex: k as usize });
+                }
+            }
+        }
+        let (v, kept) = if report.unreferenced == 0 {
+            (tris.to_vec(), None)
+        } else {
+            (
+                tris.iter().map(|&i| new_id[i as usize]).collect(),
+                Some(kept),
+            )
+        };
+        let orig = |x: u32| kept.as_ref().map_or(x, |k| k[x as usize]);
+        let nvk = kept.as_ref().map_or(nv, Vec::len);
+        let o = build_o(&v, nvk).map_err(|e| match e {
+            MeshError::NonManifoldEdge {
+                v0,
+                v1,
+                faces,
+                examples,
+            } => MeshError::NonManifoldEdge {
+                v0: orig(v0),
+                v1: orig(v1),
+                faces,
+                examples,
+            },
+            MeshError::InconsistentOrientation { v0, v1, f0, f1 } => {
+                MeshError::InconsistentOrientation {
+                    v0: orig(v0),
+                    v1: orig(v1),
+                    f0,
+                    f1,
+                }
+            }
+            other => other,
+        })?;
+        let ct = CornerTable::from_vo(v, o, nvk).map_err(|e| match e {
+            MeshError::NonManifoldVertex { vertex, fans } => MeshError::NonManifoldVertex {
+                vertex: orig(vertex),
+                fans,
+            },
+            other => other,
+        })?;
+        Ok((ct, report, kept))
+    }
+
+    /// Completes a table from V and a valid O: fills `C[v]` and valences and
+    /// checks that every vertex has exactly one fan.
+    ///
+    /// # Errors
+    /// [`MeshError::NonManifoldVertex`] or [`MeshError::BadOppositeTable`]
+    /// (when `o` is not an orientation-consistent involution); a vertex id
+    /// that no corner uses gives [`MeshError::TooManyElements`].
+    pub fn from_vo(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
+        let nc = v.len();
+        if o.len() != nc || nc % 3 != 0 {
+            return Err(MeshError::BadOppositeTable {
+                corner: 0,
+                msg: "V and O have different lengths".into(),
+            });
+        }
+        // O must be an involution that pairs the same edge, oppositely oriented.
+        for c in 0..nc as u32 {
+            let x = o[c as usize];
+            if x == BORDER {
+                continue;
+            }
+            let bad = |msg: &str| {
+                Err(MeshError::BadOppositeTable {
+                    corner: c as usize,
+                    msg: msg.into(),
+                })
+            };
+            if x as usize >= nc || x == c {
+                return bad("opposite corner out of range");
+            }
+            if o[x as usize] != c {
+                return bad("o(o(c)) != c");
+            }
+            if v[n(x) as usize] != v[p(c) as usize] || v[p(x) as usize] != v[n(c) as usize] {
+                return bad(
+                    "the opposite corner does not face the same edge in the opposite direction",
+                );
+            }
+        }
+        let mut vc = vec![BORDER; nv];
+        let mut valence = vec![0u32; nv];
+        let mut visited = vec![false; nc];
+        let ct_tmp = CornerTable {
+            v,
+            o,
+            vc: Vec::new(),
+            valence: Vec::new(),
+        };
+        for c0 in 0..nc as u32 {
+            if visited[c0 as usize] {
+                continue;
+            }
+            // unswing to the start of the fan (or all the way round)
+            let mut start = c0;
+            let mut closed = false;
+            loop {
+                match ct_tmp.u(start) {
+                    None => break,
+                    Some(x) if x == c0 => {
+                        closed = true;
+                        break;
+                    }
+                    Some(x) => start = x,
+                }
+            }
+            if closed {
+                start = c0;
+            }
+            let mut count = 0u32;
+            let mut c = start;
+            loop {
+                if visited[c as usize] {
+                    break; // only reachable with a corrupt O; guarded above
+                }
+                visited[c as usize] = true;
+                count += 1;
+                match ct_tmp.s(c) {
+                    Some(x) if x != start => c = x,
+                    _ => break,
+                }
+            }
+            let vert = ct_tmp.v[c0 as usize];
+            if vert as usize >= nv {
+                return Err(MeshError::TooManyElements {
+                    what: format!("vertex id {vert} >= vertex count {nv}"),
+                });
+            }
+            if vc[vert as usize] != BORDER {
+                let fans = count_fans(&ct_tmp, vert);
+                return Err(MeshError::NonManifoldVertex { vertex: vert, fans });
+            }
+            vc[vert as usize] = start;
+            valence[vert as usize] = count + u32::from(!closed);
+        }
+        if let Some(missing) = vc.iter().position(|&x| x == BORDER) {
+            return Err(MeshError::TooManyElements {
+                what: format!("vertex {missing} is used by no triangle"),
+            });
+        }
+        Ok(CornerTable {
+            vc,
+            valence,
+            ..ct_tmp
+        })
+    }
+}
+
+/// Number of separate fans at vertex `vert` (only called on the error path).
+fn count_fans(ct: &CornerTable, vert: u32) -> usize {
+    let corners: Vec<u32> = (0..ct.v.len() as u32)
+        .filter(|&c| ct.v[c as usize] == vert)
+        .collect();
+    let mut seen = vec![false; corners.len()];
+    let mut fans = 0;
+    for i in 0..corners.len() {
+        if seen[i] {
+            continue;
+        }
+        fans += 1;
+        let mut stack = vec![corners[i]];
+        while let Some(c) = stack.pop() {
+            let Some(k) = corners.iter().position(|&x| x == c) else {
+                continue;
+            };
+            if seen[k] {
+                continue;
+            }
+            seen[k] = true;
+            stack.extend(ct.s(c));
+            stack.extend(ct.u(c));
+        }
+    }
+    fans
+}
+
+/// Builds O from V with a counting sort of half-edges by start vertex.
+fn build_o(v: &[u32], nv: usize) -> Result<Vec<u32>, MeshError> {
+    let nc = v.len();
+    // bucket corners by the start vertex of the half-edge opposite them
+    let mut start = vec![0u32; nv + 1];
+    for c in 0..nc as u32 {
+        start[v[n(c) as usize] as usize + 1] += 1;
+    }
+    for i in 0..nv {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut by_start = vec![0u32; nc];
+    for c in 0..nc as u32 {
+        let a = v[n(c) as usize] as usize;
+        by_start[fill[a] as usize] = c;
+        fill[a] += 1;
+    }
+    let bucket = |a: u32| &by_start[start[a as usize] as usize..start[a as usize + 1] as usize];
+    let mut o = vec![BORDER; nc];
+    for c in 0..nc as u32 {
+        let a = v[n(c) as usize];
+        let b = v[p(c) as usize];
+        let mut twin = BORDER;
+        let mut opp = 0usize;
+        for &x in bucket(b) {
+            if v[p(x) as usize] == a {
+                opp += 1;
+                twin = x;
+            }
+        }
+        let same = bucket(a)
+            .iter()
+            .filter(|&&x| x != c && v[p(x) as usize] == b)
+            .count();
+        if same + opp + 1 > 2 {
+            let mut faces: Vec<usize> = bucket(a)
+                .iter()
+                .filter(|&&x| v[p(x) as usize] == b)
+                .chain(bucket(b).iter().filter(|&&x| v[p(x) as usize] == a))
+                .map(|&x| x as usize / 3)
+                .collect();
+            faces.sort_unstable();
+            return Err(MeshError::NonManifoldEdge {
+                v0: a.min(b),
+                v1: a.max(b),
+                faces: faces.len(),
+                examples: faces,
+            });
+        }
+        if same == 1 {
+            let other = bucket(a)
+                .iter()
+                .find(|&&x| x != c && v[p(x) as usize] == b)
+                .copied()
+                .unwrap_or(c);
+            let (f0, f1) = (
+                (c / 3).min(other / 3) as usize,
+                (c / 3).max(other / 3) as usize,
+            );
+            return Err(MeshError::InconsistentOrientation {
+                v0: a,
+                v1: b,
+                f0,
+                f1,
+            });
+        }
+        o[c as usize] = twin;
+    }
+    Ok(o)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tet() -> Vec<u32> {
+        vec![0, 2, 1, 0, 3, 2, 0, 1, 3, 1, 2, 3]
+    }
+
+    #[test]
+    fn tetrahedron_is_closed_valence_3() {
+        let (ct, rep, kept) = CornerTable::build(4, &tet(), None).unwrap();
+        assert!(kept.is_none());
+        assert_eq!(rep.unreferenced, 0);
+        assert!(ct.o.iter().all(|&x| x != BORDER));
+        assert_eq!(ct.valence, vec![3; 4]);
+        for c in 0..12u32 {
+            let x = ct.o(c).unwrap();
+            assert_eq!(ct.o(x), Some(c));
+            assert_eq!(ct.vtx(n(x)), ct.vtx(p(c)));
+            assert_eq!(ct.vtx(ct.s(c).unwrap()), ct.vtx(c));
+            assert_eq!(ct.u(ct.s(c).unwrap()), Some(c));
+        }
+    }
+
+    #[test]
+    fn errors_are_typed() {
+        assert_eq!(
+            CornerTable::build(3, &[], None).unwrap_err(),
+            MeshError::Empty
+        );
+        assert!(matches!(
+            CornerTable::build(3, &[0, 1, 5], None).unwrap_err(),
+            MeshError::IndexOutOfRange {
+                face: 0,
+                index: 5,
+                len: 3
+            }
+        ));
+        assert!(matches!(
+            CornerTable::build(3, &[0, 1, 1], None).unwrap_err(),
+            MeshError::DegenerateFace { face: 0, .. }
+        ));
+        // fin: three triangles on edge (0,1)
+        let fin = [0, 1, 2, 1, 0, 3, 0, 1, 4];
+        assert!(matches!(
+            CornerTable::build(5, &fin, None).unwrap_err(),
+            MeshError::NonManifoldEdge {
+                v0: 0,
+                v1: 1,
+                faces: 3,
+                ..
+            }
+        ));
+        // two faces with the same orientation on an edge
+        let flip = [0, 1, 2, 0, 1, 3];
+        assert!(matches!(
+            CornerTable::build(4, &flip, None).unwrap_err(),
+            MeshError::InconsistentOrientation { .. }
+        ));
+        // bowtie: two triangles sharing vertex 2 only
+        let bow = [0, 1, 2, 2, 3, 4];
+        assert_eq!(
+            CornerTable::build(5, &bow, None).unwrap_err(),
+            MeshError::NonManifoldVertex { vertex: 2, fans: 2 }
+        );
+        let nan = [Vec3::ZERO, Vec3::X, Vec3::new(f32::NAN, 0.0, 0.0)];
+        assert_eq!(
+            CornerTable::build(3, &[0, 1, 2], Some(&nan)).unwrap_err(),
+            MeshError::NonFinite { vertex: 2 }
+        );
+    }
+
+    #[test]
+    fn unreferenced_vertices_are_dropped() {
+        let (ct, rep, kept) = CornerTable::build(6, &[0, 2, 4], None).unwrap();
+        assert_eq!(rep.unreferenced, 3);
+        assert_eq!(kept.unwrap(), vec![0, 2, 4]);
+        assert_eq!(ct.v, vec![0, 1, 2]);
+        assert_eq!(ct.valence, vec![2, 2, 2]);
+    }
+
+    #[test]
+    fn boundary_fan_starts_at_border() {
+        // a square split in two: 0-1-2, 0-2-3
+        let (ct, _, _) = CornerTable::build(4, &[0, 1, 2, 0, 2, 3], None).unwrap();
+        assert_eq!(ct.valence, vec![3, 2, 3, 2]);
+        for v in 0..4 {
+            assert!(ct.is_boundary_vertex(v));
+            assert_eq!(ct.u(ct.vc[v as usize]), None);
+            assert_eq!(ct.fan(v).count() as u32 + 1, ct.valence[v as usize]);
+        }
+        assert_eq!(ct.ring(0).collect::<Vec<_>>(), vec![1, 2, 3]);
+        assert_eq!(ct.boundary_neighbours(0), (1, 3));
+    }
+}

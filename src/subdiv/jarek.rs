@@ -1,0 +1,58 @@
+//! Rossignac's "Jarek" scheme (schemes.md 6): the surface analogue of the
+//! Jarek split-and-tweak curve rule (vertex `V += D/2`, midpoint
+//! `M -= (D_i + D_j)/4`, `D = 1/4 (avg - V)`).
+//!
+//! ```text
+//! displacement  d_v = 1/8 (avg(1-ring of v) - v)
+//! vertex        v'  = v + d_v = 7/8 v + 1/(8k) sum p_i          (valence k)
+//! edge (a, b)   e   = (a + b)/2 - (d_a + d_b)/2
+//! regular stencils: vertex 7/8 centre, 1/48 each neighbour;
+//!   edge a, b 53/96; wings -1/48; the other 3 neighbours of a and of b -1/96
+//! ```
+//! Boundary variant (schemes.md 6, our suggestion there): a boundary vertex's
+//! `d_v` uses its two BOUNDARY neighbours only, `d_v = 1/8 ((q1 + q2)/2 - v)`.
+//! The boundary then follows the Jarek curve rule exactly: vertex
+//! `[1, 14, 1]/16`, border edge `[-1, 17, 17, -1]/32`, independent of the
+//! interior.
+
+use super::rules::{Rules, Sink};
+use crate::mesh::{CornerTable, n, p};
+
+/// Jarek rules.
+pub struct Jarek;
+
+impl Jarek {
+    /// Emits `scale * d_v` (without the `-scale * v` term's partner: the full
+    /// `d_v = 1/8 avg - 1/8 v` is emitted).
+    #[inline(always)]
+    fn displacement<S: Sink>(ct: &CornerTable, v: u32, scale: f32, s: &mut S) {
+        s.add(v, -scale / 8.0);
+        if ct.is_boundary_vertex(v) {
+            let (q1, q2) = ct.boundary_neighbours(v);
+            s.add(q1, scale / 16.0);
+            s.add(q2, scale / 16.0);
+        } else {
+            let w = scale / (8.0 * ct.valence[v as usize] as f32);
+            for c in ct.fan(v) {
+                s.add(ct.vtx(n(c)), w);
+            }
+        }
+    }
+}
+
+impl Rules for Jarek {
+    const MOVES_VERTICES: bool = true;
+    #[inline(always)]
+    fn edge<S: Sink>(&self, ct: &CornerTable, c: u32, s: &mut S) {
+        let (a, b) = (ct.vtx(n(c)), ct.vtx(p(c)));
+        s.add(a, 0.5);
+        s.add(b, 0.5);
+        Self::displacement(ct, a, -0.5, s);
+        Self::displacement(ct, b, -0.5, s);
+    }
+    #[inline(always)]
+    fn vertex<S: Sink>(&self, ct: &CornerTable, v: u32, s: &mut S) {
+        s.add(v, 1.0);
+        Self::displacement(ct, v, 1.0, s);
+    }
+}

@@ -1,0 +1,311 @@
+//! Subdivision: the shared 1-to-4 [`split`] plus one file of rules per scheme.
+//!
+//! A level = `split` (new V, O, C, valences; edge numbering) + edge points for
+//! every edge + vertex points (Loop, Jarek) or a copy (interpolating schemes).
+//! Every rule reads the old level only; output arrays are allocated once per
+//! level with their exact sizes (`V' = V + E`, `F' = 4F`); the work is spread
+//! over rayon's threads in chunks.
+
+pub mod butterfly;
+pub mod jarek;
+pub mod loop_;
+pub mod midpoint;
+pub mod modified_butterfly;
+pub mod rules;
+pub mod split;
+pub mod stencil;
+
+use crate::mesh::{CornerTable, Mesh};
+use crate::{Error, Result};
+use glam::Vec3;
+use rayon::prelude::*;
+use rules::{Accumulate, Rules};
+use std::time::Instant;
+
+pub use loop_::LoopBeta;
+
+/// A subdivision scheme.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum Scheme {
+    /// Linear: edge midpoints, nothing moves.
+    Midpoint,
+    /// Loop (approximating, C2 except at extraordinary vertices).
+    #[default]
+    Loop,
+    /// Classic 8-point butterfly (interpolating).
+    Butterfly,
+    /// Zorin's modified butterfly (interpolating, C1 everywhere).
+    ModifiedButterfly,
+    /// Rossignac's Jarek scheme (approximating).
+    Jarek,
+}
+
+impl Scheme {
+    /// All schemes, in menu order.
+    pub const ALL: [Scheme; 5] = [
+        Scheme::Midpoint,
+        Scheme::Loop,
+        Scheme::Butterfly,
+        Scheme::ModifiedButterfly,
+        Scheme::Jarek,
+    ];
+    /// The command-line name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Midpoint => "midpoint",
+            Scheme::Loop => "loop",
+            Scheme::Butterfly => "butterfly",
+            Scheme::ModifiedButterfly => "modified-butterfly",
+            Scheme::Jarek => "jarek",
+        }
+    }
+    /// Whether old vertices keep their positions.
+    pub fn is_interpolating(self) -> bool {
+        !matches!(self, Scheme::Loop | Scheme::Jarek)
+    }
+}
+
+impl std::fmt::Display for Scheme {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Scheme {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "midpoint" | "linear" => Ok(Scheme::Midpoint),
+            "loop" => Ok(Scheme::Loop),
+            "butterfly" => Ok(Scheme::Butterfly),
+            "modified-butterfly" | "modified_butterfly" | "mbutterfly" | "zorin" => {
+                Ok(Scheme::ModifiedButterfly)
+            }
+            "jarek" => Ok(Scheme::Jarek),
+            _ => Err(format!(
+                "unknown scheme '{s}' (expected one of: midpoint, loop, butterfly, modified-butterfly, jarek)"
+            )),
+        }
+    }
+}
+
+/// Options of a subdivision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Loop's vertex weights.
+    pub loop_beta: LoopBeta,
+    /// Modified-butterfly tension `w` (0 = Zorin's default).
+    pub tension: f32,
+    /// Refuse a level whose predicted memory exceeds this many bytes
+    /// (`None`: 80% of the memory available when the call starts).
+    pub max_memory: Option<u64>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            loop_beta: LoopBeta::Loop,
+            tension: 0.0,
+            max_memory: None,
+        }
+    }
+}
+
+/// Time spent per phase, in milliseconds, summed over levels.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Edge numbering, new V and O (the split and the O update are one pass).
+    pub split_ms: f64,
+    /// Edge (odd) points.
+    pub edge_ms: f64,
+    /// Vertex (even) points or their copy.
+    pub vertex_ms: f64,
+    /// The whole call.
+    pub total_ms: f64,
+    /// Faces after each level.
+    pub faces_per_level: Vec<usize>,
+}
+
+/// Predicted peak bytes of refining a mesh with `nt` triangles, `nv`
+/// vertices and `ne` edges once (new tables, positions and scratch, plus the
+/// old level still alive).
+pub fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
+    let new_corners = 12 * nt;
+    let new_verts = nv + ne;
+    let new = new_corners * 8 + new_verts * (8 + 12);
+    let scratch = 3 * nt * 4 + ne * 4;
+    let old = 3 * nt * 8 + nv * 20;
+    new + scratch + old
+}
+
+/// Bytes this machine can still give (80% of `MemAvailable`), if known.
+pub fn default_memory_limit() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024 / 5 * 4)
+}
+
+/// Checks that refining `ct` once more (to level `level`) fits in `limit`
+/// bytes and in 32-bit corner ids.
+///
+/// # Errors
+/// [`Error::TooLarge`] with the predicted size.
+pub fn check_level_fits(ct: &CornerTable, level: u32, limit: Option<u64>) -> Result<()> {
+    let nt = ct.num_triangles() as u64;
+    let nv = ct.num_vertices() as u64;
+    let ne = (3 * nt + ct.num_border_edges() as u64) / 2;
+    let bytes = predict_level_bytes(nt, nv, ne);
+    let faces = 4 * nt;
+    let limit_bytes = limit.unwrap_or(u64::MAX);
+    if 12 * nt >= u64::from(u32::MAX) || bytes > limit_bytes {
+        return Err(Error::TooLarge {
+            level,
+            faces,
+            bytes,
+            limit: limit_bytes.min(u64::from(u32::MAX) / 12 * 96),
+        });
+    }
+    Ok(())
+}
+
+/// Fills `out` (old vertices first, then one point per edge) from the old
+/// level with the rules `r`. Returns (vertex ms, edge ms).
+pub(crate) fn apply_level<R: Rules>(
+    r: &R,
+    ct: &CornerTable,
+    owners: &[u32],
+    pos: &[Vec3],
+    out: &mut [Vec3],
+) -> (f64, f64) {
+    let t0 = Instant::now();
+    let (vpart, epart) = out.split_at_mut(ct.num_vertices());
+    if R::MOVES_VERTICES {
+        vpart
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(2048)
+            .for_each(|(v, q)| {
+                let mut acc = Accumulate::new(pos);
+                r.vertex(ct, v as u32, &mut acc);
+                *q = acc.sum;
+            });
+    } else {
+        vpart
+            .par_iter_mut()
+            .zip(pos.par_iter())
+            .with_min_len(8192)
+            .for_each(|(q, &x)| *q = x);
+    }
+    let t1 = Instant::now();
+    epart
+        .par_iter_mut()
+        .zip(owners.par_iter())
+        .with_min_len(2048)
+        .for_each(|(q, &c)| {
+            let mut acc = Accumulate::new(pos);
+            r.edge(ct, c, &mut acc);
+            *q = acc.sum;
+        });
+    let t2 = Instant::now();
+    (ms(t1 - t0), ms(t2 - t1))
+}
+
+pub(crate) fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
+}
+
+/// Runs `f` with the rules of `scheme` (static dispatch: every scheme's loops
+/// are compiled separately and fully inlined).
+pub(crate) fn with_rules<T>(scheme: Scheme, opts: &Options, f: impl RulesFn<T>) -> T {
+    match scheme {
+        Scheme::Midpoint => f.call(&midpoint::Midpoint),
+        Scheme::Loop => f.call(&loop_::Loop::new(opts.loop_beta)),
+        Scheme::Butterfly => f.call(&butterfly::Butterfly),
+        Scheme::ModifiedButterfly => {
+            f.call(&modified_butterfly::ModifiedButterfly::new(opts.tension))
+        }
+        Scheme::Jarek => f.call(&jarek::Jarek),
+    }
+}
+
+/// A generic callback over a [`Rules`] type (closures cannot be generic).
+pub(crate) trait RulesFn<T> {
+    fn call<R: Rules>(self, r: &R) -> T;
+}
+
+/// One level: split plus the scheme's points.
+struct OneLevel<'a> {
+    mesh: &'a Mesh,
+    stats: &'a mut Stats,
+}
+
+impl RulesFn<Mesh> for OneLevel<'_> {
+    fn call<R: Rules>(self, r: &R) -> Mesh {
+        let t0 = Instant::now();
+        let (ct, edges) = split::split(&self.mesh.ct);
+        self.stats.split_ms += ms(t0.elapsed());
+        let mut positions = vec![Vec3::ZERO; ct.num_vertices()];
+        let (vms, ems) = apply_level(
+            r,
+            &self.mesh.ct,
+            &edges.owners,
+            &self.mesh.positions,
+            &mut positions,
+        );
+        self.stats.vertex_ms += vms;
+        self.stats.edge_ms += ems;
+        Mesh { ct, positions }
+    }
+}
+
+/// Refines `mesh` `levels` times with `scheme`.
+///
+/// # Errors
+/// [`Error::TooLarge`] when a level would exceed the memory limit (checked
+/// before it is allocated) or 32-bit corner ids.
+pub fn subdivide(
+    mesh: &Mesh,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<(Mesh, Stats)> {
+    subdivide_with_progress(mesh, scheme, levels, opts, |_, _| true)
+}
+
+/// [`subdivide`] calling `progress(level_done, levels)` after each level; if
+/// it returns `false` the work stops and `Ok` holds the last finished level.
+///
+/// # Errors
+/// See [`subdivide`].
+pub fn subdivide_with_progress(
+    mesh: &Mesh,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+    mut progress: impl FnMut(u32, u32) -> bool,
+) -> Result<(Mesh, Stats)> {
+    let t0 = Instant::now();
+    let limit = opts.max_memory.or_else(default_memory_limit);
+    let mut stats = Stats::default();
+    let mut cur: Option<Mesh> = None;
+    for level in 1..=levels {
+        let src = cur.as_ref().unwrap_or(mesh);
+        check_level_fits(&src.ct, level, limit)?;
+        let next = with_rules(
+            scheme,
+            opts,
+            OneLevel {
+                mesh: src,
+                stats: &mut stats,
+            },
+        );
+        stats.faces_per_level.push(next.ct.num_triangles());
+        cur = Some(next);
+        if !progress(level, levels) {
+            break;
+        }
+    }
+    stats.total_ms = ms(t0.elapsed());
+    Ok((cur.unwrap_or_else(|| mesh.clone()), stats))
+}

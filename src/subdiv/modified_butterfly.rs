@@ -1,0 +1,218 @@
+//! Modified butterfly (Zorin, Schroeder, Sweldens, "Interpolating Subdivision
+//! for Meshes with Arbitrary Topology", SIGGRAPH 1996; schemes.md 3.3-3.5).
+//! Old vertices never move. Valence counts EDGES.
+//!
+//! Regular interior edge (both ends interior, valence 6), tension `w`
+//! (default 0, which is exactly the 8-point butterfly):
+//! ```text
+//!              c1 ------ b1 ------ c2
+//!             /  \      /  \      /  \         a  (a1, a2)       1/2 - w
+//!          d1 ---- a1 ========== a2 ---- d2    b  (b1, b2)       1/8 + 2w
+//!             \  /      \  /      \  /         c  (c1 .. c4)    -1/16 - w
+//!              c3 ------ b2 ------ c4          d  (d1, d2)       w
+//! ```
+//! One interior endpoint `v` of valence `k != 6` (extraordinary), neighbours
+//! `e_0 .. e_{k-1}` around it with `e_0` the other endpoint:
+//! ```text
+//!   e = 3/4 v + sum_j s_j e_j
+//!   k = 3: s = (5/12, -1/12, -1/12)
+//!   k = 4: s = (3/8, 0, -1/8, 0)
+//!   k >= 5: s_j = (1/4 + cos(2 pi j/k) + 1/2 cos(4 pi j/k)) / k
+//! ```
+//! Both endpoints extraordinary: the average of the two EV stencils.
+//!
+//! Boundary (our choice, schemes.md 3.5 "Recommendation"):
+//! * border edge: 4-point curve rule `9/16 (p1 + p2) - 1/16 (p0 + p3)`;
+//! * interior edge with an extraordinary interior endpoint: its EV rule (as
+//!   OpenMesh), averaged if both are;
+//! * interior edge from a regular boundary vertex `b` (valence 4, i.e. 3
+//!   faces) to a regular interior vertex `i` (naspert/MESH rule, reproduces
+//!   quadratics):
+//!   ```text
+//!   b 3/8, i 5/8, boundary wing 1/16, interior wing 3/16,
+//!   b's other boundary neighbour -1/16,
+//!   i's neighbour across (i, boundary wing) -1/16,
+//!   i's neighbour across (i, interior wing) -1/8
+//!   ```
+//! * anything else near the boundary: the 8-point rule with OpenMesh's
+//!   parallelogram ghosts for missing outer vertices (linear precision).
+
+use super::butterfly::{eight_point, outer};
+use super::rules::{Rules, Sink, four_point};
+use crate::mesh::{CornerTable, n, p};
+
+/// Modified butterfly rules with tension `w` and precomputed EV weights.
+pub struct ModifiedButterfly {
+    w: f32,
+    /// `ev[k]` = the `k` weights `s_j` for valence `k` (k < 64).
+    ev: Vec<Vec<f32>>,
+}
+
+/// Zorin's extraordinary weights `s_j` for valence `k` (hard-coded tables for
+/// k = 3 and 4; the cosine formula for k >= 5).
+pub fn ev_weights(k: u32) -> Vec<f64> {
+    match k {
+        0..=2 => vec![0.25; k as usize], // cannot occur at an interior vertex
+        3 => vec![5.0 / 12.0, -1.0 / 12.0, -1.0 / 12.0],
+        4 => vec![3.0 / 8.0, 0.0, -1.0 / 8.0, 0.0],
+        _ => (0..k)
+            .map(|j| {
+                let t = 2.0 * std::f64::consts::PI * f64::from(j) / f64::from(k);
+                (0.25 + t.cos() + 0.5 * (2.0 * t).cos()) / f64::from(k)
+            })
+            .collect(),
+    }
+}
+
+impl ModifiedButterfly {
+    /// Rules with tension `w` (0 = Zorin's default).
+    pub fn new(w: f32) -> Self {
+        ModifiedButterfly {
+            w,
+            ev: (0..64)
+                .map(|k| ev_weights(k).into_iter().map(|x| x as f32).collect())
+                .collect(),
+        }
+    }
+
+    /// EV stencil around interior vertex `v(x)`, starting at neighbour `v(n(x))`,
+    /// scaled by `scale`.
+    #[inline]
+    fn ev_rule<S: Sink>(&self, ct: &CornerTable, x: u32, scale: f32, s: &mut S) {
+        let v = ct.vtx(x);
+        let k = ct.valence[v as usize];
+        s.add(v, 0.75 * scale);
+        let owned;
+        let ws: &[f32] = match self.ev.get(k as usize) {
+            Some(w) => w,
+            None => {
+                owned = ev_weights(k)
+                    .into_iter()
+                    .map(|x| x as f32)
+                    .collect::<Vec<_>>();
+                &owned
+            }
+        };
+        let mut c = x;
+        for &wj in ws {
+            s.add(ct.vtx(n(c)), wj * scale);
+            match ct.s(c) {
+                Some(y) => c = y,
+                None => break,
+            }
+        }
+    }
+
+    /// The vertex `d` continuing the edge line beyond interior valence-6
+    /// vertex `v(x)`, whose neighbour `v(n(x))` is the other endpoint.
+    #[inline]
+    fn beyond(ct: &CornerTable, x: u32) -> u32 {
+        let mut c = x;
+        for _ in 0..3 {
+            c = ct.s(c).unwrap_or(c);
+        }
+        ct.vtx(n(c))
+    }
+
+    /// The naspert/MESH rule for the interior edge from regular boundary vertex
+    /// `bv` to regular interior vertex `iv`. `bw`/`iw` are the boundary and the
+    /// interior wing apexes; `xo` is the corner facing the edge `(bv, iw)` from
+    /// the wing triangle, `xb`/`xi` the corners facing `(iv, bw)` / `(iv, iw)`.
+    #[inline]
+    #[allow(clippy::too_many_arguments)]
+    fn mesh_rule<S: Sink>(
+        ct: &CornerTable,
+        bv: u32,
+        iv: u32,
+        bw: u32,
+        iw: u32,
+        xo: u32,
+        xb: u32,
+        xi: u32,
+        s: &mut S,
+    ) {
+        s.add(bv, 3.0 / 8.0);
+        s.add(iv, 5.0 / 8.0);
+        s.add(bw, 1.0 / 16.0);
+        s.add(iw, 3.0 / 16.0);
+        outer(ct, xo, -1.0 / 16.0, s);
+        outer(ct, xb, -1.0 / 16.0, s);
+        outer(ct, xi, -1.0 / 8.0, s);
+    }
+}
+
+impl Rules for ModifiedButterfly {
+    const MOVES_VERTICES: bool = false;
+    fn edge<S: Sink>(&self, ct: &CornerTable, c: u32, s: &mut S) {
+        let Some(o) = ct.o(c) else {
+            return four_point(ct, c, s);
+        };
+        // triangle t(c) = (b1, a1, a2), triangle t(o) = (b2, a2, a1)
+        let (a1, a2) = (ct.vtx(n(c)), ct.vtx(p(c)));
+        let (bd1, bd2) = (ct.is_boundary_vertex(a1), ct.is_boundary_vertex(a2));
+        let (k1, k2) = (ct.valence[a1 as usize], ct.valence[a2 as usize]);
+        let ev1 = !bd1 && k1 != 6;
+        let ev2 = !bd2 && k2 != 6;
+        match (ev1, ev2) {
+            (true, true) => {
+                self.ev_rule(ct, n(c), 0.5, s);
+                self.ev_rule(ct, n(o), 0.5, s);
+            }
+            (true, false) => self.ev_rule(ct, n(c), 1.0, s),
+            (false, true) => self.ev_rule(ct, n(o), 1.0, s),
+            (false, false) if !bd1 && !bd2 => {
+                let w = self.w;
+                if w == 0.0 {
+                    return eight_point(ct, c, o, s);
+                }
+                s.add(a1, 0.5 - w);
+                s.add(a2, 0.5 - w);
+                s.add(ct.vtx(c), 0.125 + 2.0 * w);
+                s.add(ct.vtx(o), 0.125 + 2.0 * w);
+                for x in [n(c), p(c), n(o), p(o)] {
+                    outer(ct, x, -0.0625 - w, s);
+                }
+                s.add(Self::beyond(ct, n(c)), w);
+                s.add(Self::beyond(ct, n(o)), w);
+            }
+            (false, false) => {
+                let (b1, b2) = (ct.vtx(c), ct.vtx(o));
+                // corners facing the outer edges: p(c) faces (b1,a1), n(c) faces (a2,b1),
+                // n(o) faces (a1,b2), p(o) faces (b2,a2)
+                if bd1 && !bd2 && k1 == 4 {
+                    if ct.is_border(p(c)) {
+                        // (a1,b1) is on the border: b1 is the boundary wing
+                        Self::mesh_rule(ct, a1, a2, b1, b2, n(o), n(c), p(o), s);
+                    } else {
+                        Self::mesh_rule(ct, a1, a2, b2, b1, p(c), p(o), n(c), s);
+                    }
+                } else if bd2 && !bd1 && k2 == 4 {
+                    if ct.is_border(n(c)) {
+                        // (a2,b1) is on the border
+                        Self::mesh_rule(ct, a2, a1, b1, b2, p(o), p(c), n(o), s);
+                    } else {
+                        Self::mesh_rule(ct, a2, a1, b2, b1, n(c), n(o), p(c), s);
+                    }
+                } else {
+                    eight_point(ct, c, o, s);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn ev_weights_sum_to_quarter_and_match_tables() {
+        for k in 3..40 {
+            let s: f64 = ev_weights(k).iter().sum();
+            assert!((s - 0.25).abs() < 1e-12, "k={k} sum={s}");
+        }
+        let w5 = ev_weights(5);
+        assert!((w5[0] - 0.35).abs() < 1e-12 && (w5[1] - 0.030902).abs() < 1e-6);
+        assert!((ev_weights(8)[2] + 1.0 / 32.0).abs() < 1e-12);
+        assert!((ev_weights(7)[0] - 0.25).abs() < 1e-12);
+    }
+}

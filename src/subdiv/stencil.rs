@@ -1,0 +1,209 @@
+//! Stencil plans for fixed topology (schemes.md 7.7; OpenSubdiv's
+//! `far::StencilTable`, libigl's subdivision matrix `S`).
+//!
+//! When only the control positions change (animation), the topology, the O
+//! table and every weight are the same each frame. A [`StencilPlan`] records,
+//! once, each level's stencils as a flat CSR table (`offsets`, `indices`,
+//! `weights`; one row per new vertex) from the very same rule code that the
+//! one-shot subdivision runs, then [`StencilPlan::apply`] only gathers
+//! weighted sums level by level. Applying level by level keeps the tables
+//! small: a composed control-to-final matrix would have L-ring support.
+
+use super::rules::{Record, Rules};
+use super::{Options, RulesFn, Scheme, check_level_fits, split, with_rules};
+use crate::Result;
+use crate::mesh::CornerTable;
+use glam::Vec3;
+use rayon::prelude::*;
+
+/// One level's stencils.
+#[derive(Clone, Debug, Default)]
+pub struct LevelPlan {
+    /// Vertices of the coarser level.
+    pub n_in: usize,
+    /// Old vertices are copied unchanged (interpolating schemes): their rows
+    /// are omitted and `offsets` covers only the edge points.
+    pub copy_vertices: bool,
+    /// Row `i` spans `indices[offsets[i]..offsets[i+1]]`.
+    pub offsets: Vec<u32>,
+    /// Source vertex ids.
+    pub indices: Vec<u32>,
+    /// Weights.
+    pub weights: Vec<f32>,
+}
+
+impl LevelPlan {
+    /// Vertices of the finer level.
+    pub fn n_out(&self) -> usize {
+        self.offsets.len() - 1 + if self.copy_vertices { self.n_in } else { 0 }
+    }
+
+    /// Applies this level: `out` gets `n_out()` positions.
+    pub fn apply(&self, input: &[Vec3], out: &mut [Vec3]) {
+        let rows = if self.copy_vertices {
+            out[..self.n_in].copy_from_slice(&input[..self.n_in]);
+            &mut out[self.n_in..]
+        } else {
+            out
+        };
+        rows.par_iter_mut()
+            .enumerate()
+            .with_min_len(4096)
+            .for_each(|(i, q)| {
+                let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+                let mut sum = Vec3::ZERO;
+                for (&j, &w) in self.indices[a..b].iter().zip(&self.weights[a..b]) {
+                    sum += input[j as usize] * w;
+                }
+                *q = sum;
+            });
+    }
+}
+
+/// A recorded multi-level subdivision of one topology.
+#[derive(Clone, Debug)]
+pub struct StencilPlan {
+    /// The scheme recorded.
+    pub scheme: Scheme,
+    /// Per-level stencils, coarse to fine.
+    pub levels: Vec<LevelPlan>,
+    /// Topology of the finest level.
+    pub ct: CornerTable,
+}
+
+/// Reusable buffers for [`StencilPlan::apply`].
+#[derive(Default)]
+pub struct PlanScratch {
+    a: Vec<Vec3>,
+    b: Vec<Vec3>,
+}
+
+struct RecordLevel<'a> {
+    ct: &'a CornerTable,
+    owners: &'a [u32],
+}
+
+fn record_rows(
+    rows: usize,
+    f: impl Fn(usize, &mut Record) + Sync,
+) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
+    const ROWS: usize = 4096;
+    let parts: Vec<(Vec<u32>, Record)> = (0..rows.div_ceil(ROWS))
+        .into_par_iter()
+        .map(|k| {
+            let mut rec = Record::default();
+            let mut ends = Vec::with_capacity(ROWS);
+            for i in k * ROWS..((k + 1) * ROWS).min(rows) {
+                f(i, &mut rec);
+                ends.push(rec.idx.len() as u32);
+            }
+            (ends, rec)
+        })
+        .collect();
+    let total: usize = parts.iter().map(|(_, r)| r.idx.len()).sum();
+    let mut offsets = Vec::with_capacity(rows + 1);
+    offsets.push(0u32);
+    let mut indices = Vec::with_capacity(total);
+    let mut weights = Vec::with_capacity(total);
+    for (ends, rec) in parts {
+        let base = indices.len() as u32;
+        offsets.extend(ends.iter().map(|e| e + base));
+        indices.extend_from_slice(&rec.idx);
+        weights.extend_from_slice(&rec.w);
+    }
+    (offsets, indices, weights)
+}
+
+impl RulesFn<LevelPlan> for RecordLevel<'_> {
+    fn call<R: Rules>(self, r: &R) -> LevelPlan {
+        let nv = self.ct.num_vertices();
+        let ne = self.owners.len();
+        let (ct, owners) = (self.ct, self.owners);
+        let (offsets, indices, weights) = if R::MOVES_VERTICES {
+            record_rows(nv + ne, |i, rec| {
+                if i < nv {
+                    r.vertex(ct, i as u32, rec);
+                } else {
+                    r.edge(ct, owners[i - nv], rec);
+                }
+            })
+        } else {
+            record_rows(ne, |i, rec| r.edge(ct, owners[i], rec))
+        };
+        LevelPlan {
+            n_in: nv,
+            copy_vertices: !R::MOVES_VERTICES,
+            offsets,
+            indices,
+            weights,
+        }
+    }
+}
+
+impl StencilPlan {
+    /// Records `levels` levels of `scheme` on topology `ct`.
+    ///
+    /// # Errors
+    /// [`crate::Error::TooLarge`] when a level would not fit in memory.
+    pub fn build(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<Self> {
+        let limit = opts.max_memory.or_else(super::default_memory_limit);
+        let mut cur = ct.clone();
+        let mut plans = Vec::with_capacity(levels as usize);
+        for level in 1..=levels {
+            check_level_fits(&cur, level, limit)?;
+            let (next, edges) = split::split(&cur);
+            plans.push(with_rules(
+                scheme,
+                opts,
+                RecordLevel {
+                    ct: &cur,
+                    owners: &edges.owners,
+                },
+            ));
+            cur = next;
+        }
+        Ok(StencilPlan {
+            scheme,
+            levels: plans,
+            ct: cur,
+        })
+    }
+
+    /// Number of control vertices the plan expects.
+    pub fn n_control(&self) -> usize {
+        self.levels
+            .first()
+            .map_or(self.ct.num_vertices(), |l| l.n_in)
+    }
+
+    /// Evaluates the finest positions for new control positions into `out`
+    /// (resized to the finest vertex count). Allocates only on first use.
+    ///
+    /// # Panics
+    /// If `control.len() != self.n_control()` (a caller bug, not input data).
+    pub fn apply(&self, control: &[Vec3], scratch: &mut PlanScratch, out: &mut Vec<Vec3>) {
+        assert_eq!(
+            control.len(),
+            self.n_control(),
+            "control vertex count does not match the plan"
+        );
+        out.resize(self.ct.num_vertices(), Vec3::ZERO);
+        let Some((last, rest)) = self.levels.split_last() else {
+            out.copy_from_slice(control);
+            return;
+        };
+        let PlanScratch { a, b } = scratch;
+        for (i, lvl) in rest.iter().enumerate() {
+            if i == 0 {
+                a.resize(lvl.n_out(), Vec3::ZERO);
+                lvl.apply(control, a);
+            } else {
+                b.resize(lvl.n_out(), Vec3::ZERO);
+                lvl.apply(a, b);
+                std::mem::swap(a, b);
+            }
+        }
+        let src: &[Vec3] = if rest.is_empty() { control } else { a };
+        last.apply(src, out);
+    }
+}
