@@ -24,22 +24,10 @@ pub enum MeshError {
     NonFinite { vertex: usize },
     /// More than two faces share an edge.
     #[error("non-manifold edge ({v0}, {v1}): shared by {faces} faces (faces {examples:?})")]
-    NonManifoldEdge {
-        v0: u32,
-        v1: u32,
-        faces: usize,
-        examples: Vec<usize>,
-    },
+    NonManifoldEdge { v0: u32, v1: u32, faces: usize, examples: Vec<usize> },
     /// Two faces traverse an edge in the same direction.
-    #[error(
-        "inconsistent orientation: faces {f0} and {f1} both run along edge ({v0} -> {v1}); flip one of them"
-    )]
-    InconsistentOrientation {
-        v0: u32,
-        v1: u32,
-        f0: usize,
-        f1: usize,
-    },
+    #[error("inconsistent orientation: faces {f0} and {f1} both run along edge ({v0} -> {v1}); flip one of them")]
+    InconsistentOrientation { v0: u32, v1: u32, f0: usize, f1: usize },
     /// A vertex joins two or more separate fans of faces ("bowtie").
     #[error("non-manifold vertex {vertex}: its faces form {fans} separate fans")]
     NonManifoldVertex { vertex: u32, fans: usize },
@@ -55,14 +43,31 @@ impl MeshError {
     /// The input face this error is about, when there is exactly one.
     pub fn face(&self) -> Option<usize> {
         match self {
-            MeshError::IndexOutOfRange { face, .. } | MeshError::DegenerateFace { face, .. } => {
-                Some(*face)
-            }
+            MeshError::IndexOutOfRange { face, .. } | MeshError::DegenerateFace { face, .. } => Some(*face),
             MeshError::NonManifoldEdge { examples, .. } => examples.first().copied(),
             MeshError::InconsistentOrientation { f1, .. } => Some(*f1),
             _ => None,
         }
     }
+    /// The same error with vertex ids shifted by `d` (1 gives OBJ's 1-based
+    /// numbering in messages).
+    pub fn shift_vertices(self, d: u32) -> MeshError {
+        use MeshError as E;
+        match self {
+            E::IndexOutOfRange { face, index, len } => E::IndexOutOfRange { face, index: index + i64::from(d), len },
+            E::DegenerateFace { face, vertex } => E::DegenerateFace { face, vertex: vertex + d },
+            E::NonManifoldEdge { v0, v1, faces, examples } => {
+                E::NonManifoldEdge { v0: v0 + d, v1: v1 + d, faces, examples }
+            }
+            E::InconsistentOrientation { v0, v1, f0, f1 } => {
+                E::InconsistentOrientation { v0: v0 + d, v1: v1 + d, f0, f1 }
+            }
+            E::NonManifoldVertex { vertex, fans } => E::NonManifoldVertex { vertex: vertex + d, fans },
+            E::NonFinite { vertex } => E::NonFinite { vertex: vertex + d as usize },
+            other => other,
+        }
+    }
+
     /// The input vertex this error is about, when there is exactly one.
     pub fn vertex(&self) -> Option<usize> {
         match self {
@@ -85,11 +90,7 @@ pub enum Error {
     },
     /// A file could not be parsed.
     #[error("{file}:{line}: {msg}")]
-    Parse {
-        file: String,
-        line: usize,
-        msg: String,
-    },
+    Parse { file: String, line: usize, msg: String },
     /// The mesh in a file is not a valid manifold triangle mesh.
     #[error("{file}{}: {source}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Mesh {
@@ -103,12 +104,7 @@ pub enum Error {
     Invalid(#[from] MeshError),
     /// The next subdivision level would need more memory than allowed.
     #[error("level {level} would need about {} but the limit is {} ({faces} faces); use fewer levels or raise --max-memory", human_bytes(*bytes), human_bytes(*limit))]
-    TooLarge {
-        level: u32,
-        faces: u64,
-        bytes: u64,
-        limit: u64,
-    },
+    TooLarge { level: u32, faces: u64, bytes: u64, limit: u64 },
     /// An argument is out of its range.
     #[error("{0}")]
     Usage(String),
@@ -117,10 +113,7 @@ pub enum Error {
 impl Error {
     /// An I/O error on `path`.
     pub fn io(path: &Path, source: std::io::Error) -> Self {
-        Error::Io {
-            path: path.display().to_string(),
-            source,
-        }
+        Error::Io { path: path.display().to_string(), source }
     }
 }
 
@@ -136,9 +129,5 @@ pub fn human_bytes(b: u64) -> String {
         x /= 1024.0;
         i += 1;
     }
-    if i == 0 {
-        format!("{b} B")
-    } else {
-        format!("{x:.1} {}", U[i])
-    }
+    if i == 0 { format!("{b} B") } else { format!("{x:.1} {}", U[i]) }
 }

@@ -36,11 +36,7 @@ struct SchemeArgs {
 impl SchemeArgs {
     fn options(&self) -> Options {
         Options {
-            loop_beta: if self.warren {
-                LoopBeta::Warren
-            } else {
-                LoopBeta::Loop
-            },
+            loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
             tension: self.tension,
             max_memory: self.max_memory,
         }
@@ -124,9 +120,7 @@ enum Cmd {
 }
 
 fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
-    let (w, h) = s
-        .split_once(['x', 'X'])
-        .ok_or_else(|| format!("'{s}' is not WxH"))?;
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}' is not WxH"))?;
     let w: u32 = w.parse().map_err(|_| format!("bad width in '{s}'"))?;
     let h: u32 = h.parse().map_err(|_| format!("bad height in '{s}'"))?;
     if w == 0 || h == 0 || w > 16384 || h > 16384 {
@@ -144,9 +138,7 @@ fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
         Some('T') => (&s[..s.len() - 1], 1 << 40),
         _ => (s, 1),
     };
-    let x: f64 = num
-        .parse()
-        .map_err(|_| format!("'{s}' is not a size (e.g. 512M, 2G)"))?;
+    let x: f64 = num.parse().map_err(|_| format!("'{s}' is not a size (e.g. 512M, 2G)"))?;
     if !(x.is_finite() && x >= 0.0) {
         return Err(format!("'{s}' is not a size"));
     }
@@ -155,14 +147,11 @@ fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    if let Some(n) = cli.threads {
-        if let Err(e) = rayon::ThreadPoolBuilder::new()
-            .num_threads(n.max(1))
-            .build_global()
-        {
-            eprintln!("subdiv: cannot set {n} threads: {e}");
-            return ExitCode::from(2);
-        }
+    if let Some(n) = cli.threads
+        && let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n.max(1)).build_global()
+    {
+        eprintln!("subdiv: cannot set {n} threads: {e}");
+        return ExitCode::from(2);
     }
     match run(cli.cmd) {
         Ok(()) => ExitCode::SUCCESS,
@@ -176,44 +165,16 @@ fn main() -> ExitCode {
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
         None => view(subdiv::app::ViewOptions::default()),
-        Some(Cmd::View {
-            model,
-            scheme,
-            level,
-            wireframe,
-            frames,
-            screenshot,
-            paths,
-        }) => view(subdiv::app::ViewOptions {
-            model,
-            scheme: scheme.scheme,
-            level,
-            wireframe,
-            frames,
-            screenshot,
-            paths,
-        }),
-        Some(Cmd::Subdivide {
-            input,
-            output,
-            scheme,
-            levels,
-            stats,
-            json,
-        }) => subdivide_cmd(&input, &output, &scheme, levels, stats, json),
+        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths }) => {
+            view(subdiv::app::ViewOptions { model, scheme: scheme.scheme, level, wireframe, frames, screenshot, paths })
+        }
+        Some(Cmd::Subdivide { input, output, scheme, levels, stats, json }) => {
+            subdivide_cmd(&input, &output, &scheme, levels, stats, json)
+        }
         Some(Cmd::Info { input, json }) => info_cmd(&input, json),
-        Some(Cmd::Render {
-            input,
-            output,
-            scheme,
-            levels,
-            shading,
-            size,
-            ortho,
-            control,
-        }) => render_cmd(
-            &input, &output, &scheme, levels, &shading, size, ortho, control,
-        ),
+        Some(Cmd::Render { input, output, scheme, levels, shading, size, ortho, control }) => {
+            render_cmd(&input, &output, &scheme, levels, &shading, size, ortho, control)
+        }
     }
 }
 
@@ -224,7 +185,9 @@ fn view(opts: subdiv::app::ViewOptions) -> Result<()> {
 
 #[cfg(not(feature = "viewer"))]
 fn view(_opts: subdiv::app::ViewOptions) -> Result<()> {
-    Err(Error::Usage("built without the 'viewer' feature: use subdivide / info, or rebuild with default features".into()))
+    Err(Error::Usage(
+        "built without the 'viewer' feature: use subdivide / info, or rebuild with default features".into(),
+    ))
 }
 
 #[cfg(feature = "viewer")]
@@ -242,40 +205,17 @@ fn render_cmd(
     let shading: subdiv::render::Shading = shading.parse().map_err(Error::Usage)?;
     let mesh = io::load(input)?;
     let (fine, _) = subdiv::subdivide(&mesh, scheme.scheme, levels, &scheme.options())?;
-    let opts = subdiv::render::RenderOptions {
-        shading,
-        width: size.0,
-        height: size.1,
-        orthographic: ortho,
-    };
+    let opts = subdiv::render::RenderOptions { shading, width: size.0, height: size.1, orthographic: ortho };
     subdiv::render::render_png(&fine, control.then_some(&mesh), &opts, output)
 }
 
 #[cfg(not(feature = "viewer"))]
 #[allow(clippy::too_many_arguments)]
-fn render_cmd(
-    _: &Path,
-    _: &Path,
-    _: &SchemeArgs,
-    _: u32,
-    _: &str,
-    _: (u32, u32),
-    _: bool,
-    _: bool,
-) -> Result<()> {
-    Err(Error::Usage(
-        "built without the 'viewer' feature: rendering is not available".into(),
-    ))
+fn render_cmd(_: &Path, _: &Path, _: &SchemeArgs, _: u32, _: &str, _: (u32, u32), _: bool, _: bool) -> Result<()> {
+    Err(Error::Usage("built without the 'viewer' feature: rendering is not available".into()))
 }
 
-fn subdivide_cmd(
-    input: &Path,
-    output: &Path,
-    s: &SchemeArgs,
-    levels: u32,
-    stats: bool,
-    json: bool,
-) -> Result<()> {
+fn subdivide_cmd(input: &Path, output: &Path, s: &SchemeArgs, levels: u32, stats: bool, json: bool) -> Result<()> {
     let t0 = Instant::now();
     let mesh = io::load(input)?;
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -321,33 +261,23 @@ fn subdivide_cmd(
 }
 
 fn info_cmd(input: &Path, json: bool) -> Result<()> {
-    let (mesh, dropped, records): (Mesh, usize, usize) =
-        if input.extension().is_some_and(|e| e == "ct") {
-            let m = io::load(input)?;
-            let n = m.positions.len();
-            (m, 0, n)
-        } else {
-            let bytes = std::fs::read(input).map_err(|e| Error::io(input, e))?;
-            let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
-            (m, inf.unreferenced, inf.vertex_records)
-        };
+    let (mesh, dropped, records): (Mesh, usize, usize) = if input.extension().is_some_and(|e| e == "ct") {
+        let m = io::load(input)?;
+        let n = m.positions.len();
+        (m, 0, n)
+    } else {
+        let bytes = std::fs::read(input).map_err(|e| Error::io(input, e))?;
+        let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
+        (m, inf.unreferenced, inf.vertex_records)
+    };
     let t = topology(&mesh.ct);
     let (lo, hi) = mesh.bounds();
-    let hist: Vec<String> = t
-        .valence_histogram
-        .iter()
-        .enumerate()
-        .filter(|&(_, &c)| c > 0)
-        .map(|(k, c)| format!("{k}:{c}"))
-        .collect();
+    let hist: Vec<String> =
+        t.valence_histogram.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, c)| format!("{k}:{c}")).collect();
     if json {
         println!(
             "{{\"file\":\"{}\",\"vertices\":{},\"edges\":{},\"faces\":{},\"closed\":{},\"boundary_loops\":{},\"border_edges\":{},\"components\":{},\"euler\":{},\"genus\":{},\"unreferenced_dropped\":{dropped},\"non_manifold_edges\":0,\"non_manifold_vertices\":0,\"valence\":{{{}}}}}",
-            input
-                .display()
-                .to_string()
-                .replace('\\', "\\\\")
-                .replace('"', "\\\""),
+            input.display().to_string().replace('\\', "\\\\").replace('"', "\\\""),
             t.vertices,
             t.edges,
             t.faces,
@@ -368,28 +298,16 @@ fn info_cmd(input: &Path, json: bool) -> Result<()> {
         return Ok(());
     }
     println!("file:            {}", input.display());
-    println!(
-        "vertices:        {} ({records} records, {dropped} unreferenced dropped)",
-        t.vertices
-    );
+    println!("vertices:        {} ({records} records, {dropped} unreferenced dropped)", t.vertices);
     println!("edges:           {}", t.edges);
     println!("faces:           {}", t.faces);
-    println!(
-        "closed:          {}",
-        if t.is_closed() { "yes" } else { "no" }
-    );
-    println!(
-        "boundary loops:  {} ({} border edges)",
-        t.boundary_loops, t.border_edges
-    );
+    println!("closed:          {}", if t.is_closed() { "yes" } else { "no" });
+    println!("boundary loops:  {} ({} border edges)", t.boundary_loops, t.border_edges);
     println!("components:      {}", t.components);
     println!("euler:           {}", t.euler);
     println!("genus:           {}", t.genus);
     println!("manifold:        yes (0 non-manifold edges, 0 non-manifold vertices)");
     println!("valence:         {}", hist.join(" "));
-    println!(
-        "bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]",
-        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
-    );
+    println!("bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     Ok(())
 }

@@ -29,12 +29,7 @@ struct Tokens<'a> {
 
 impl<'a> Tokens<'a> {
     fn new(text: &'a str, file: &'a str) -> Self {
-        Tokens {
-            lines: text.lines().enumerate(),
-            cur: "".split_ascii_whitespace(),
-            line: 0,
-            file,
-        }
+        Tokens { lines: text.lines().enumerate(), cur: "".split_ascii_whitespace(), line: 0, file }
     }
     fn next_tok(&mut self) -> Option<&'a str> {
         loop {
@@ -47,18 +42,11 @@ impl<'a> Tokens<'a> {
         }
     }
     fn err(&self, msg: impl Into<String>) -> Error {
-        Error::Parse {
-            file: self.file.to_string(),
-            line: self.line.max(1),
-            msg: msg.into(),
-        }
+        Error::Parse { file: self.file.to_string(), line: self.line.max(1), msg: msg.into() }
     }
     fn num<T: std::str::FromStr>(&mut self, what: &str) -> Result<T> {
-        let t = self
-            .next_tok()
-            .ok_or_else(|| self.err(format!("file ends where {what} was expected")))?;
-        t.parse()
-            .map_err(|_| self.err(format!("'{t}' is not a valid {what}")))
+        let t = self.next_tok().ok_or_else(|| self.err(format!("file ends where {what} was expected")))?;
+        t.parse().map_err(|_| self.err(format!("'{t}' is not a valid {what}")))
     }
 }
 
@@ -71,10 +59,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
     let k: u64 = tk.num("vertex count")?;
     // every vertex needs at least "0 0 0\n" (6 bytes): refuse absurd headers before allocating
     if k > text.len() as u64 / 6 + 1 {
-        return Err(tk.err(format!(
-            "header claims {k} vertices but the file has only {} bytes",
-            text.len()
-        )));
+        return Err(tk.err(format!("header claims {k} vertices but the file has only {} bytes", text.len())));
     }
     let mut pos = Vec::with_capacity(k as usize);
     for i in 0..k {
@@ -92,10 +77,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
     }
     let t: u64 = tk.num("triangle count")?;
     if t > text.len() as u64 / 6 + 1 {
-        return Err(tk.err(format!(
-            "header claims {t} triangles but the file has only {} bytes",
-            text.len()
-        )));
+        return Err(tk.err(format!("header claims {t} triangles but the file has only {} bytes", text.len())));
     }
     let mut tris = Vec::with_capacity(3 * t as usize);
     let mut tri_lines = Vec::with_capacity(t as usize);
@@ -105,11 +87,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
             return Err(Error::Mesh {
                 file: file.into(),
                 line: Some(tk.line),
-                source: MeshError::IndexOutOfRange {
-                    face: tris.len() / 3,
-                    index: i,
-                    len: k as usize,
-                },
+                source: MeshError::IndexOutOfRange { face: tris.len() / 3, index: i, len: k as usize },
             });
         }
         tris.push(i as u32);
@@ -124,13 +102,9 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
         for _ in 0..3 * t {
             let s = match tok.take() {
                 Some(s) => s,
-                None => tk
-                    .next_tok()
-                    .ok_or_else(|| tk.err("the opposite table ends early"))?,
+                None => tk.next_tok().ok_or_else(|| tk.err("the opposite table ends early"))?,
             };
-            let x: i64 = s
-                .parse()
-                .map_err(|_| tk.err(format!("'{s}' is not a corner id")))?;
+            let x: i64 = s.parse().map_err(|_| tk.err(format!("'{s}' is not a corner id")))?;
             if x < -1 || x >= 3 * t as i64 {
                 return Err(tk.err(format!("opposite corner {x} out of range")));
             }
@@ -142,11 +116,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
     }
     let located = |e: MeshError| {
         let line = e.face().and_then(|f| tri_lines.get(f).copied());
-        Error::Mesh {
-            file: file.to_string(),
-            line,
-            source: e,
-        }
+        Error::Mesh { file: file.to_string(), line, source: e }
     };
     if o.is_empty() {
         return Mesh::from_triangles(pos, &tris).map_err(located);
@@ -154,10 +124,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
     // with O: all vertices must be used (the table is stored compact)
     let (ct, _, kept) = CornerTable::build(pos.len(), &tris, Some(&pos)).map_err(located)?;
     if kept.is_some() {
-        return Err(located(MeshError::BadOppositeTable {
-            corner: 0,
-            msg: "unused vertices in a .ct with O".into(),
-        }));
+        return Err(located(MeshError::BadOppositeTable { corner: 0, msg: "unused vertices in a .ct with O".into() }));
     }
     // the stored O must agree with the one built; a mismatch means a corrupt file
     let ct = CornerTable::from_vo(ct.v, o, pos.len()).map_err(located)?;
@@ -172,11 +139,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let text = std::str::from_utf8(&bytes).map_err(|e| Error::Parse {
         file: path.display().to_string(),
-        line: bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1,
+        line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
         msg: "not text (invalid UTF-8)".into(),
     })?;
     parse(text, &path.display().to_string())

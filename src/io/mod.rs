@@ -33,18 +33,14 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
         "obj" => obj::save(path, mesh),
         "ply" => ply::save(path, mesh),
         "ct" => ct::save(path, mesh),
-        other => Err(Error::Usage(format!(
-            "{}: unknown output format '.{other}' (use .obj, .ply or .ct)",
-            path.display()
-        ))),
+        other => {
+            Err(Error::Usage(format!("{}: unknown output format '.{other}' (use .obj, .ply or .ct)", path.display())))
+        }
     }
 }
 
 fn ext(path: &Path) -> String {
-    path.extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase()
+    path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase()
 }
 
 /// Writes `path` through a temporary file in the same directory and renames
@@ -54,22 +50,14 @@ fn ext(path: &Path) -> String {
 /// # Errors
 /// The error of `f`, or an I/O error naming `path`.
 pub fn atomic_write(path: &Path, f: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
-    let dir = path
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
+    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
     let tmp: PathBuf = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = (|| {
         let file = std::fs::File::create(&tmp).map_err(|e| Error::io(path, e))?;
         let mut w = std::io::BufWriter::with_capacity(1 << 20, file);
         f(&mut w)?;
-        let file = w
-            .into_inner()
-            .map_err(|e| Error::io(path, e.into_error()))?;
+        let file = w.into_inner().map_err(|e| Error::io(path, e.into_error()))?;
         file.sync_all().ok();
         std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
     })();

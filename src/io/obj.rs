@@ -44,11 +44,7 @@ pub struct RawObj {
 }
 
 fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
-    Error::Parse {
-        file: file.to_string(),
-        line,
-        msg: msg.into(),
-    }
+    Error::Parse { file: file.to_string(), line, msg: msg.into() }
 }
 
 /// Parses OBJ text. `file` is only used in error messages.
@@ -62,11 +58,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
         let ln = lineno + 1;
         let line = line.strip_suffix(b"\r").unwrap_or(line);
         let Ok(line) = std::str::from_utf8(line) else {
-            return Err(parse_err(
-                file,
-                ln,
-                "not text (invalid UTF-8): is this an OBJ file?",
-            ));
+            return Err(parse_err(file, ln, "not text (invalid UTF-8): is this an OBJ file?"));
         };
         let line = line.split('#').next().unwrap_or("");
         let mut toks = line.split_ascii_whitespace();
@@ -75,20 +67,16 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
             "v" => {
                 let mut xyz = [0f32; 3];
                 for (i, slot) in xyz.iter_mut().enumerate() {
-                    let t = toks.next().ok_or_else(|| {
-                        parse_err(file, ln, format!("vertex has {i} coordinates, expected 3"))
-                    })?;
-                    *slot = t
-                        .parse()
-                        .map_err(|_| parse_err(file, ln, format!("'{t}' is not a number")))?;
+                    let t = toks
+                        .next()
+                        .ok_or_else(|| parse_err(file, ln, format!("vertex has {i} coordinates, expected 3")))?;
+                    *slot = t.parse().map_err(|_| parse_err(file, ln, format!("'{t}' is not a number")))?;
                 }
                 if xyz.iter().any(|x| !x.is_finite()) {
                     return Err(Error::Mesh {
                         file: file.into(),
                         line: Some(ln),
-                        source: MeshError::NonFinite {
-                            vertex: raw.positions.len(),
-                        },
+                        source: MeshError::NonFinite { vertex: raw.positions.len() + 1 },
                     });
                 }
                 raw.positions.push(Vec3::from_array(xyz));
@@ -98,9 +86,8 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
                 poly.clear();
                 for t in toks {
                     let idx = t.split('/').next().unwrap_or("");
-                    let i: i64 = idx
-                        .parse()
-                        .map_err(|_| parse_err(file, ln, format!("'{t}' is not a vertex index")))?;
+                    let i: i64 =
+                        idx.parse().map_err(|_| parse_err(file, ln, format!("'{t}' is not a vertex index")))?;
                     let n = raw.positions.len() as i64;
                     // 1-based, or negative = relative to the last vertex so far
                     let abs = if i < 0 { n + i } else { i - 1 };
@@ -118,37 +105,23 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
                     poly.push(abs as u32);
                 }
                 if poly.len() < 3 {
-                    return Err(parse_err(
-                        file,
-                        ln,
-                        format!("face has {} vertices, needs at least 3", poly.len()),
-                    ));
+                    return Err(parse_err(file, ln, format!("face has {} vertices, needs at least 3", poly.len())));
                 }
                 if poly.len() > 3 {
                     raw.polygons += 1;
                 }
                 for k in 1..poly.len() - 1 {
-                    raw.triangles
-                        .extend_from_slice(&[poly[0], poly[k], poly[k + 1]]);
+                    raw.triangles.extend_from_slice(&[poly[0], poly[k], poly[k + 1]]);
                     raw.triangle_lines.push(ln as u32);
                 }
             }
-            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "cstype"
-            | "deg" | "curv" | "curv2" | "surf" | "parm" | "trim" | "hole" | "end" | "bmat"
-            | "step" | "mg" | "lod" | "usemap" | "maplib" | "shadow_obj" | "trace_obj"
-            | "ctech" | "stech" | "con" | "sp" => {}
-            other
-                if other
-                    .bytes()
-                    .all(|b| b.is_ascii_alphanumeric() || b == b'_')
-                    && other.len() < 32 => {}
+            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "cstype" | "deg" | "curv"
+            | "curv2" | "surf" | "parm" | "trim" | "hole" | "end" | "bmat" | "step" | "mg" | "lod" | "usemap"
+            | "maplib" | "shadow_obj" | "trace_obj" | "ctech" | "stech" | "con" | "sp" => {}
+            other if other.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') && other.len() < 32 => {}
             other => {
                 let shown: String = other.chars().take(20).collect();
-                return Err(parse_err(
-                    file,
-                    ln,
-                    format!("unexpected '{shown}': is this an OBJ file?"),
-                ));
+                return Err(parse_err(file, ln, format!("unexpected '{shown}': is this an OBJ file?")));
             }
         }
     }
@@ -184,11 +157,7 @@ pub fn build(raw: RawObj, file: &str) -> Result<(Mesh, ObjInfo)> {
     match Mesh::from_triangles_report(raw.positions, &raw.triangles) {
         Ok((mesh, rep)) => Ok((
             mesh,
-            ObjInfo {
-                vertex_records: nrec,
-                unreferenced: rep.unreferenced,
-                polygons_triangulated: polygons,
-            },
+            ObjInfo { vertex_records: nrec, unreferenced: rep.unreferenced, polygons_triangulated: polygons },
         )),
         Err(e) => {
             let line = e
@@ -199,7 +168,8 @@ pub fn build(raw: RawObj, file: &str) -> Result<(Mesh, ObjInfo)> {
             Err(Error::Mesh {
                 file: file.to_string(),
                 line,
-                source: e,
+                // messages use the file's own 1-based vertex numbering
+                source: e.shift_vertices(1),
             })
         }
     }
@@ -212,23 +182,14 @@ pub fn build(raw: RawObj, file: &str) -> Result<(Mesh, ObjInfo)> {
 /// # Errors
 /// tobj's load error as [`Error::Parse`] (without a line: tobj has none).
 pub fn load_tobj(path: &Path) -> Result<(Vec<Vec3>, Vec<u32>)> {
-    let opts = tobj::LoadOptions {
-        triangulate: true,
-        single_index: false,
-        ..Default::default()
-    };
-    let (models, _) = tobj::load_obj(path, &opts)
-        .map_err(|e| parse_err(&path.display().to_string(), 0, e.to_string()))?;
+    let opts = tobj::LoadOptions { triangulate: true, single_index: false, ..Default::default() };
+    let (models, _) =
+        tobj::load_obj(path, &opts).map_err(|e| parse_err(&path.display().to_string(), 0, e.to_string()))?;
     let mut pos = Vec::new();
     let mut tris = Vec::new();
     for m in models {
         let base = pos.len() as u32;
-        pos.extend(
-            m.mesh
-                .positions
-                .chunks_exact(3)
-                .map(|c| Vec3::new(c[0], c[1], c[2])),
-        );
+        pos.extend(m.mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
         tris.extend(m.mesh.indices.iter().map(|&i| i + base));
     }
     Ok((pos, tris))
@@ -253,14 +214,7 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
     const ROWS: usize = 1 << 15;
     const BATCH: usize = 16;
     let pos = &mesh.positions;
-    sink(
-        format!(
-            "# subdiv: {} vertices, {} triangles\n",
-            pos.len(),
-            mesh.ct.num_triangles()
-        )
-        .as_bytes(),
-    )?;
+    sink(format!("# subdiv: {} vertices, {} triangles\n", pos.len(), mesh.ct.num_triangles()).as_bytes())?;
     let vchunks: Vec<&[Vec3]> = pos.chunks(ROWS).collect();
     for batch in vchunks.chunks(BATCH) {
         let texts: Vec<Vec<u8>> = batch
@@ -315,9 +269,5 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
-    atomic_write(path, |w| {
-        write_obj(mesh, &mut |b| {
-            w.write_all(b).map_err(|e| Error::io(path, e))
-        })
-    })
+    atomic_write(path, |w| write_obj(mesh, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e))))
 }

@@ -45,33 +45,21 @@ impl CornerTable {
             return Err(MeshError::Empty);
         }
         if nc >= (u32::MAX as usize) / 4 || nv >= u32::MAX as usize {
-            return Err(MeshError::TooManyElements {
-                what: format!("{} triangles, {nv} vertices", nc / 3),
-            });
+            return Err(MeshError::TooManyElements { what: format!("{} triangles, {nv} vertices", nc / 3) });
         }
         let tris = &tris[..nc];
         // range and degeneracy
         for (f, tri) in tris.chunks_exact(3).enumerate() {
             for &i in tri {
                 if i as usize >= nv {
-                    return Err(MeshError::IndexOutOfRange {
-                        face: f,
-                        index: i as i64,
-                        len: nv,
-                    });
+                    return Err(MeshError::IndexOutOfRange { face: f, index: i as i64, len: nv });
                 }
             }
             if tri[0] == tri[1] || tri[0] == tri[2] {
-                return Err(MeshError::DegenerateFace {
-                    face: f,
-                    vertex: tri[0],
-                });
+                return Err(MeshError::DegenerateFace { face: f, vertex: tri[0] });
             }
             if tri[1] == tri[2] {
-                return Err(MeshError::DegenerateFace {
-                    face: f,
-                    vertex: tri[1],
-                });
+                return Err(MeshError::DegenerateFace { face: f, vertex: tri[1] });
             }
         }
         // drop unreferenced vertices
@@ -102,40 +90,23 @@ impl CornerTable {
         let (v, kept) = if report.unreferenced == 0 {
             (tris.to_vec(), None)
         } else {
-            (
-                tris.iter().map(|&i| new_id[i as usize]).collect(),
-                Some(kept),
-            )
+            (tris.iter().map(|&i| new_id[i as usize]).collect(), Some(kept))
         };
         let orig = |x: u32| kept.as_ref().map_or(x, |k| k[x as usize]);
         let nvk = kept.as_ref().map_or(nv, Vec::len);
         let o = build_o(&v, nvk).map_err(|e| match e {
-            MeshError::NonManifoldEdge {
-                v0,
-                v1,
-                faces,
-                examples,
-            } => MeshError::NonManifoldEdge {
-                v0: orig(v0),
-                v1: orig(v1),
-                faces,
-                examples,
-            },
+            MeshError::NonManifoldEdge { v0, v1, faces, examples } => {
+                MeshError::NonManifoldEdge { v0: orig(v0), v1: orig(v1), faces, examples }
+            }
             MeshError::InconsistentOrientation { v0, v1, f0, f1 } => {
-                MeshError::InconsistentOrientation {
-                    v0: orig(v0),
-                    v1: orig(v1),
-                    f0,
-                    f1,
-                }
+                MeshError::InconsistentOrientation { v0: orig(v0), v1: orig(v1), f0, f1 }
             }
             other => other,
         })?;
         let ct = CornerTable::from_vo(v, o, nvk).map_err(|e| match e {
-            MeshError::NonManifoldVertex { vertex, fans } => MeshError::NonManifoldVertex {
-                vertex: orig(vertex),
-                fans,
-            },
+            MeshError::NonManifoldVertex { vertex, fans } => {
+                MeshError::NonManifoldVertex { vertex: orig(vertex), fans }
+            }
             other => other,
         })?;
         Ok((ct, report, kept))
@@ -150,11 +121,8 @@ impl CornerTable {
     /// that no corner uses gives [`MeshError::TooManyElements`].
     pub fn from_vo(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
         let nc = v.len();
-        if o.len() != nc || nc % 3 != 0 {
-            return Err(MeshError::BadOppositeTable {
-                corner: 0,
-                msg: "V and O have different lengths".into(),
-            });
+        if o.len() != nc || !nc.is_multiple_of(3) {
+            return Err(MeshError::BadOppositeTable { corner: 0, msg: "V and O have different lengths".into() });
         }
         // O must be an involution that pairs the same edge, oppositely oriented.
         for c in 0..nc as u32 {
@@ -162,12 +130,7 @@ impl CornerTable {
             if x == BORDER {
                 continue;
             }
-            let bad = |msg: &str| {
-                Err(MeshError::BadOppositeTable {
-                    corner: c as usize,
-                    msg: msg.into(),
-                })
-            };
+            let bad = |msg: &str| Err(MeshError::BadOppositeTable { corner: c as usize, msg: msg.into() });
             if x as usize >= nc || x == c {
                 return bad("opposite corner out of range");
             }
@@ -175,20 +138,13 @@ impl CornerTable {
                 return bad("o(o(c)) != c");
             }
             if v[n(x) as usize] != v[p(c) as usize] || v[p(x) as usize] != v[n(c) as usize] {
-                return bad(
-                    "the opposite corner does not face the same edge in the opposite direction",
-                );
+                return bad("the opposite corner does not face the same edge in the opposite direction");
             }
         }
         let mut vc = vec![BORDER; nv];
         let mut valence = vec![0u32; nv];
         let mut visited = vec![false; nc];
-        let ct_tmp = CornerTable {
-            v,
-            o,
-            vc: Vec::new(),
-            valence: Vec::new(),
-        };
+        let ct_tmp = CornerTable { v, o, vc: Vec::new(), valence: Vec::new() };
         for c0 in 0..nc as u32 {
             if visited[c0 as usize] {
                 continue;
@@ -224,9 +180,7 @@ impl CornerTable {
             }
             let vert = ct_tmp.v[c0 as usize];
             if vert as usize >= nv {
-                return Err(MeshError::TooManyElements {
-                    what: format!("vertex id {vert} >= vertex count {nv}"),
-                });
+                return Err(MeshError::TooManyElements { what: format!("vertex id {vert} >= vertex count {nv}") });
             }
             if vc[vert as usize] != BORDER {
                 let fans = count_fans(&ct_tmp, vert);
@@ -236,23 +190,15 @@ impl CornerTable {
             valence[vert as usize] = count + u32::from(!closed);
         }
         if let Some(missing) = vc.iter().position(|&x| x == BORDER) {
-            return Err(MeshError::TooManyElements {
-                what: format!("vertex {missing} is used by no triangle"),
-            });
+            return Err(MeshError::TooManyElements { what: format!("vertex {missing} is used by no triangle") });
         }
-        Ok(CornerTable {
-            vc,
-            valence,
-            ..ct_tmp
-        })
+        Ok(CornerTable { vc, valence, ..ct_tmp })
     }
 }
 
 /// Number of separate fans at vertex `vert` (only called on the error path).
 fn count_fans(ct: &CornerTable, vert: u32) -> usize {
-    let corners: Vec<u32> = (0..ct.v.len() as u32)
-        .filter(|&c| ct.v[c as usize] == vert)
-        .collect();
+    let corners: Vec<u32> = (0..ct.v.len() as u32).filter(|&c| ct.v[c as usize] == vert).collect();
     let mut seen = vec![false; corners.len()];
     let mut fans = 0;
     for i in 0..corners.len() {
@@ -307,10 +253,7 @@ fn build_o(v: &[u32], nv: usize) -> Result<Vec<u32>, MeshError> {
                 twin = x;
             }
         }
-        let same = bucket(a)
-            .iter()
-            .filter(|&&x| x != c && v[p(x) as usize] == b)
-            .count();
+        let same = bucket(a).iter().filter(|&&x| x != c && v[p(x) as usize] == b).count();
         if same + opp + 1 > 2 {
             let mut faces: Vec<usize> = bucket(a)
                 .iter()
@@ -319,29 +262,12 @@ fn build_o(v: &[u32], nv: usize) -> Result<Vec<u32>, MeshError> {
                 .map(|&x| x as usize / 3)
                 .collect();
             faces.sort_unstable();
-            return Err(MeshError::NonManifoldEdge {
-                v0: a.min(b),
-                v1: a.max(b),
-                faces: faces.len(),
-                examples: faces,
-            });
+            return Err(MeshError::NonManifoldEdge { v0: a.min(b), v1: a.max(b), faces: faces.len(), examples: faces });
         }
         if same == 1 {
-            let other = bucket(a)
-                .iter()
-                .find(|&&x| x != c && v[p(x) as usize] == b)
-                .copied()
-                .unwrap_or(c);
-            let (f0, f1) = (
-                (c / 3).min(other / 3) as usize,
-                (c / 3).max(other / 3) as usize,
-            );
-            return Err(MeshError::InconsistentOrientation {
-                v0: a,
-                v1: b,
-                f0,
-                f1,
-            });
+            let other = bucket(a).iter().find(|&&x| x != c && v[p(x) as usize] == b).copied().unwrap_or(c);
+            let (f0, f1) = ((c / 3).min(other / 3) as usize, (c / 3).max(other / 3) as usize);
+            return Err(MeshError::InconsistentOrientation { v0: a, v1: b, f0, f1 });
         }
         o[c as usize] = twin;
     }
@@ -374,17 +300,10 @@ mod tests {
 
     #[test]
     fn errors_are_typed() {
-        assert_eq!(
-            CornerTable::build(3, &[], None).unwrap_err(),
-            MeshError::Empty
-        );
+        assert_eq!(CornerTable::build(3, &[], None).unwrap_err(), MeshError::Empty);
         assert!(matches!(
             CornerTable::build(3, &[0, 1, 5], None).unwrap_err(),
-            MeshError::IndexOutOfRange {
-                face: 0,
-                index: 5,
-                len: 3
-            }
+            MeshError::IndexOutOfRange { face: 0, index: 5, len: 3 }
         ));
         assert!(matches!(
             CornerTable::build(3, &[0, 1, 1], None).unwrap_err(),
@@ -394,30 +313,16 @@ mod tests {
         let fin = [0, 1, 2, 1, 0, 3, 0, 1, 4];
         assert!(matches!(
             CornerTable::build(5, &fin, None).unwrap_err(),
-            MeshError::NonManifoldEdge {
-                v0: 0,
-                v1: 1,
-                faces: 3,
-                ..
-            }
+            MeshError::NonManifoldEdge { v0: 0, v1: 1, faces: 3, .. }
         ));
         // two faces with the same orientation on an edge
         let flip = [0, 1, 2, 0, 1, 3];
-        assert!(matches!(
-            CornerTable::build(4, &flip, None).unwrap_err(),
-            MeshError::InconsistentOrientation { .. }
-        ));
+        assert!(matches!(CornerTable::build(4, &flip, None).unwrap_err(), MeshError::InconsistentOrientation { .. }));
         // bowtie: two triangles sharing vertex 2 only
         let bow = [0, 1, 2, 2, 3, 4];
-        assert_eq!(
-            CornerTable::build(5, &bow, None).unwrap_err(),
-            MeshError::NonManifoldVertex { vertex: 2, fans: 2 }
-        );
+        assert_eq!(CornerTable::build(5, &bow, None).unwrap_err(), MeshError::NonManifoldVertex { vertex: 2, fans: 2 });
         let nan = [Vec3::ZERO, Vec3::X, Vec3::new(f32::NAN, 0.0, 0.0)];
-        assert_eq!(
-            CornerTable::build(3, &[0, 1, 2], Some(&nan)).unwrap_err(),
-            MeshError::NonFinite { vertex: 2 }
-        );
+        assert_eq!(CornerTable::build(3, &[0, 1, 2], Some(&nan)).unwrap_err(), MeshError::NonFinite { vertex: 2 });
     }
 
     #[test]

@@ -30,7 +30,7 @@ pub fn n(c: u32) -> u32 {
 /// Previous corner in the same triangle (`n(n(c))`).
 #[inline(always)]
 pub fn p(c: u32) -> u32 {
-    if c % 3 == 0 { c + 2 } else { c - 1 }
+    if c.is_multiple_of(3) { c + 2 } else { c - 1 }
 }
 /// Triangle of a corner.
 #[inline(always)]
@@ -113,22 +113,13 @@ impl CornerTable {
     /// The corners around vertex `v`, in swing order, starting at `C[v]`.
     pub fn fan(&self, v: u32) -> Fan<'_> {
         let start = self.vc[v as usize];
-        Fan {
-            ct: self,
-            start,
-            next: Some(start),
-        }
+        Fan { ct: self, start, next: Some(start) }
     }
     /// The neighbours of `v` in swing order (`valence(v)` of them). For a
     /// boundary vertex the first and last are its two boundary neighbours.
     pub fn ring(&self, v: u32) -> Ring<'_> {
         let start = self.vc[v as usize];
-        Ring {
-            ct: self,
-            start,
-            next: Some(start),
-            tail: None,
-        }
+        Ring { ct: self, start, next: Some(start), tail: None }
     }
     /// The two boundary neighbours `(q_first, q_last)` of boundary vertex `v`:
     /// `q_first` across the border edge of `C[v]`, `q_last` at the end of the fan.
@@ -208,10 +199,7 @@ impl Mesh {
     ///
     /// # Errors
     /// Any [`crate::MeshError`] found by validation.
-    pub fn from_triangles(
-        positions: Vec<Vec3>,
-        triangles: &[u32],
-    ) -> Result<Mesh, crate::MeshError> {
+    pub fn from_triangles(positions: Vec<Vec3>, triangles: &[u32]) -> Result<Mesh, crate::MeshError> {
         Self::from_triangles_report(positions, triangles).map(|(m, _)| m)
     }
 
@@ -240,10 +228,9 @@ impl Mesh {
         if self.positions.is_empty() {
             return (Vec3::ZERO, Vec3::ZERO);
         }
-        self.positions.iter().fold(
-            (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
-            |(lo, hi), &q| (lo.min(q), hi.max(q)),
-        )
+        self.positions
+            .iter()
+            .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &q| (lo.min(q), hi.max(q)))
     }
     /// Area-weighted vertex normals (see [`normals::vertex_normals`]).
     pub fn vertex_normals(&self) -> Vec<Vec3> {

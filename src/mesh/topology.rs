@@ -42,11 +42,7 @@ pub fn topology(ct: &CornerTable) -> Topology {
     let edges = ct.num_edges();
     // components over triangles
     let comp_of_tri = triangle_components(ct);
-    let components = comp_of_tri
-        .iter()
-        .copied()
-        .max()
-        .map_or(0, |m| m as usize + 1);
+    let components = comp_of_tri.iter().copied().max().map_or(0, |m| m as usize + 1);
     let mut cv = vec![0i64; components];
     let mut ce = vec![0i64; components];
     let mut cf = vec![0i64; components];
@@ -86,9 +82,7 @@ pub fn topology(ct: &CornerTable) -> Topology {
             c = next;
         }
     }
-    let genus = (0..components)
-        .map(|k| (2 - (cv[k] - ce[k] + cf[k]) - cb[k]) / 2)
-        .sum();
+    let genus = (0..components).map(|k| (2 - (cv[k] - ce[k] + cf[k]) - cb[k]) / 2).sum();
     let maxval = ct.valence.iter().copied().max().unwrap_or(0) as usize;
     let mut valence_histogram = vec![0; maxval + 1];
     for &k in &ct.valence {
@@ -151,10 +145,10 @@ pub fn check_invariants(ct: &CornerTable) -> Result<(), String> {
                 return Err(format!("orientation identity fails at corner {c}"));
             }
         }
-        if let Some(s) = ct.s(c) {
-            if ct.vtx(s) != ct.vtx(c) || ct.u(s) != Some(c) {
-                return Err(format!("swing identity fails at corner {c}"));
-            }
+        if let Some(s) = ct.s(c)
+            && (ct.vtx(s) != ct.vtx(c) || ct.u(s) != Some(c))
+        {
+            return Err(format!("swing identity fails at corner {c}"));
         }
     }
     for v in 0..ct.num_vertices() as u32 {
@@ -163,17 +157,12 @@ pub fn check_invariants(ct: &CornerTable) -> Result<(), String> {
             return Err(format!("C[{v}] is not a corner of {v}"));
         }
         if ct.is_boundary_vertex(v) && ct.u(c).is_some() {
-            return Err(format!(
-                "C[{v}] is not the first corner of its boundary fan"
-            ));
+            return Err(format!("C[{v}] is not the first corner of its boundary fan"));
         }
         let corners = ct.fan(v).count() as u32;
         let want = corners + u32::from(ct.is_boundary_vertex(v));
         if ct.valence[v as usize] != want {
-            return Err(format!(
-                "valence of {v} is {} but its fan has {want} edges",
-                ct.valence[v as usize]
-            ));
+            return Err(format!("valence of {v} is {} but its fan has {want} edges", ct.valence[v as usize]));
         }
     }
     Ok(())

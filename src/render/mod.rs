@@ -25,9 +25,7 @@ impl std::str::FromStr for Shading {
             "flat" => Ok(Shading::Flat),
             "wire" | "wireframe" => Ok(Shading::Wire),
             "phong+wire" | "phong-wire" => Ok(Shading::PhongWire),
-            _ => Err(format!(
-                "unknown shading '{s}' (expected phong, flat, wire or phong+wire)"
-            )),
+            _ => Err(format!("unknown shading '{s}' (expected phong, flat, wire or phong+wire)")),
         }
     }
 }
@@ -49,11 +47,6 @@ pub struct RenderOptions {
 ///
 /// # Errors
 /// When no adapter exists or the file cannot be written.
-pub fn render_png(
-    _mesh: &Mesh,
-    _control: Option<&Mesh>,
-    _opts: &RenderOptions,
-    _out: &Path,
-) -> Result<()> {
+pub fn render_png(_mesh: &Mesh, _control: Option<&Mesh>, _opts: &RenderOptions, _out: &Path) -> Result<()> {
     Err(crate::Error::Usage("the renderer is not built yet".into()))
 }

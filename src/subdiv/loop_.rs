@@ -66,17 +66,11 @@ pub struct Loop {
 impl Loop {
     /// Loop rules with the given beta.
     pub fn new(kind: LoopBeta) -> Self {
-        Loop {
-            betas: (0..64).map(|k| kind.beta(k) as f32).collect(),
-            kind,
-        }
+        Loop { betas: (0..64).map(|k| kind.beta(k) as f32).collect(), kind }
     }
     #[inline(always)]
     fn beta(&self, k: u32) -> f32 {
-        self.betas
-            .get(k as usize)
-            .copied()
-            .unwrap_or_else(|| self.kind.beta(k) as f32)
+        self.betas.get(k as usize).copied().unwrap_or_else(|| self.kind.beta(k) as f32)
     }
 }
 

@@ -42,13 +42,8 @@ pub enum Scheme {
 
 impl Scheme {
     /// All schemes, in menu order.
-    pub const ALL: [Scheme; 5] = [
-        Scheme::Midpoint,
-        Scheme::Loop,
-        Scheme::Butterfly,
-        Scheme::ModifiedButterfly,
-        Scheme::Jarek,
-    ];
+    pub const ALL: [Scheme; 5] =
+        [Scheme::Midpoint, Scheme::Loop, Scheme::Butterfly, Scheme::ModifiedButterfly, Scheme::Jarek];
     /// The command-line name.
     pub fn name(self) -> &'static str {
         match self {
@@ -78,9 +73,7 @@ impl std::str::FromStr for Scheme {
             "midpoint" | "linear" => Ok(Scheme::Midpoint),
             "loop" => Ok(Scheme::Loop),
             "butterfly" => Ok(Scheme::Butterfly),
-            "modified-butterfly" | "modified_butterfly" | "mbutterfly" | "zorin" => {
-                Ok(Scheme::ModifiedButterfly)
-            }
+            "modified-butterfly" | "modified_butterfly" | "mbutterfly" | "zorin" => Ok(Scheme::ModifiedButterfly),
             "jarek" => Ok(Scheme::Jarek),
             _ => Err(format!(
                 "unknown scheme '{s}' (expected one of: midpoint, loop, butterfly, modified-butterfly, jarek)"
@@ -103,11 +96,7 @@ pub struct Options {
 
 impl Default for Options {
     fn default() -> Self {
-        Options {
-            loop_beta: LoopBeta::Loop,
-            tension: 0.0,
-            max_memory: None,
-        }
+        Options { loop_beta: LoopBeta::Loop, tension: 0.0, max_memory: None }
     }
 }
 
@@ -152,21 +141,35 @@ pub fn default_memory_limit() -> Option<u64> {
 /// # Errors
 /// [`Error::TooLarge`] with the predicted size.
 pub fn check_level_fits(ct: &CornerTable, level: u32, limit: Option<u64>) -> Result<()> {
-    let nt = ct.num_triangles() as u64;
-    let nv = ct.num_vertices() as u64;
-    let ne = (3 * nt + ct.num_border_edges() as u64) / 2;
-    let bytes = predict_level_bytes(nt, nv, ne);
-    let faces = 4 * nt;
+    check_levels_fit(ct, level.saturating_sub(1), 1, limit)
+}
+
+/// Checks, before any work, that refining `ct` (already at level `done`)
+/// `more` more times fits in `limit` bytes and in 32-bit ids at every level.
+/// Counts are predicted exactly: `F' = 4F`, `E' = 2E + 3F`, `V' = V + E`.
+///
+/// # Errors
+/// [`Error::TooLarge`] naming the first level that does not fit.
+pub fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
+    let mut nt = ct.num_triangles() as u64;
+    let mut nv = ct.num_vertices() as u64;
+    let mut ne = (3 * nt + ct.num_border_edges() as u64) / 2;
     let limit_bytes = limit.unwrap_or(u64::MAX);
-    if 12 * nt >= u64::from(u32::MAX) || bytes > limit_bytes {
-        return Err(Error::TooLarge {
-            level,
-            faces,
-            bytes,
-            limit: limit_bytes.min(u64::from(u32::MAX) / 12 * 96),
-        });
+    for level in done + 1..=done + more {
+        let bytes = predict_level_bytes(nt, nv, ne);
+        let faces = 4 * nt;
+        if 12 * nt >= u64::from(u32::MAX) || nv + ne >= u64::from(u32::MAX) || bytes > limit_bytes {
+            let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
+            return Err(Error::TooLarge { level, faces, bytes, limit });
+        }
+        (nt, nv, ne) = (4 * nt, nv + ne, 2 * ne + 3 * nt);
     }
     Ok(())
+}
+
+/// Predicted triangle count after `levels` more levels.
+pub fn predict_faces(ct: &CornerTable, levels: u32) -> u64 {
+    (ct.num_triangles() as u64).saturating_mul(4u64.saturating_pow(levels))
 }
 
 /// Fills `out` (old vertices first, then one point per edge) from the old
@@ -181,32 +184,20 @@ pub(crate) fn apply_level<R: Rules>(
     let t0 = Instant::now();
     let (vpart, epart) = out.split_at_mut(ct.num_vertices());
     if R::MOVES_VERTICES {
-        vpart
-            .par_iter_mut()
-            .enumerate()
-            .with_min_len(2048)
-            .for_each(|(v, q)| {
-                let mut acc = Accumulate::new(pos);
-                r.vertex(ct, v as u32, &mut acc);
-                *q = acc.sum;
-            });
-    } else {
-        vpart
-            .par_iter_mut()
-            .zip(pos.par_iter())
-            .with_min_len(8192)
-            .for_each(|(q, &x)| *q = x);
-    }
-    let t1 = Instant::now();
-    epart
-        .par_iter_mut()
-        .zip(owners.par_iter())
-        .with_min_len(2048)
-        .for_each(|(q, &c)| {
+        vpart.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
             let mut acc = Accumulate::new(pos);
-            r.edge(ct, c, &mut acc);
+            r.vertex(ct, v as u32, &mut acc);
             *q = acc.sum;
         });
+    } else {
+        vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
+    }
+    let t1 = Instant::now();
+    epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
+        let mut acc = Accumulate::new(pos);
+        r.edge(ct, c, &mut acc);
+        *q = acc.sum;
+    });
     let t2 = Instant::now();
     (ms(t1 - t0), ms(t2 - t1))
 }
@@ -222,9 +213,7 @@ pub(crate) fn with_rules<T>(scheme: Scheme, opts: &Options, f: impl RulesFn<T>) 
         Scheme::Midpoint => f.call(&midpoint::Midpoint),
         Scheme::Loop => f.call(&loop_::Loop::new(opts.loop_beta)),
         Scheme::Butterfly => f.call(&butterfly::Butterfly),
-        Scheme::ModifiedButterfly => {
-            f.call(&modified_butterfly::ModifiedButterfly::new(opts.tension))
-        }
+        Scheme::ModifiedButterfly => f.call(&modified_butterfly::ModifiedButterfly::new(opts.tension)),
         Scheme::Jarek => f.call(&jarek::Jarek),
     }
 }
@@ -246,13 +235,7 @@ impl RulesFn<Mesh> for OneLevel<'_> {
         let (ct, edges) = split::split(&self.mesh.ct);
         self.stats.split_ms += ms(t0.elapsed());
         let mut positions = vec![Vec3::ZERO; ct.num_vertices()];
-        let (vms, ems) = apply_level(
-            r,
-            &self.mesh.ct,
-            &edges.owners,
-            &self.mesh.positions,
-            &mut positions,
-        );
+        let (vms, ems) = apply_level(r, &self.mesh.ct, &edges.owners, &self.mesh.positions, &mut positions);
         self.stats.vertex_ms += vms;
         self.stats.edge_ms += ems;
         Mesh { ct, positions }
@@ -264,12 +247,7 @@ impl RulesFn<Mesh> for OneLevel<'_> {
 /// # Errors
 /// [`Error::TooLarge`] when a level would exceed the memory limit (checked
 /// before it is allocated) or 32-bit corner ids.
-pub fn subdivide(
-    mesh: &Mesh,
-    scheme: Scheme,
-    levels: u32,
-    opts: &Options,
-) -> Result<(Mesh, Stats)> {
+pub fn subdivide(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Mesh, Stats)> {
     subdivide_with_progress(mesh, scheme, levels, opts, |_, _| true)
 }
 
@@ -288,18 +266,11 @@ pub fn subdivide_with_progress(
     let t0 = Instant::now();
     let limit = opts.max_memory.or_else(default_memory_limit);
     let mut stats = Stats::default();
+    check_levels_fit(&mesh.ct, 0, levels, limit)?;
     let mut cur: Option<Mesh> = None;
     for level in 1..=levels {
         let src = cur.as_ref().unwrap_or(mesh);
-        check_level_fits(&src.ct, level, limit)?;
-        let next = with_rules(
-            scheme,
-            opts,
-            OneLevel {
-                mesh: src,
-                stats: &mut stats,
-            },
-        );
+        let next = with_rules(scheme, opts, OneLevel { mesh: src, stats: &mut stats });
         stats.faces_per_level.push(next.ct.num_triangles());
         cur = Some(next);
         if !progress(level, levels) {

@@ -67,12 +67,7 @@ pub fn ev_weights(k: u32) -> Vec<f64> {
 impl ModifiedButterfly {
     /// Rules with tension `w` (0 = Zorin's default).
     pub fn new(w: f32) -> Self {
-        ModifiedButterfly {
-            w,
-            ev: (0..64)
-                .map(|k| ev_weights(k).into_iter().map(|x| x as f32).collect())
-                .collect(),
-        }
+        ModifiedButterfly { w, ev: (0..64).map(|k| ev_weights(k).into_iter().map(|x| x as f32).collect()).collect() }
     }
 
     /// EV stencil around interior vertex `v(x)`, starting at neighbour `v(n(x))`,
@@ -86,10 +81,7 @@ impl ModifiedButterfly {
         let ws: &[f32] = match self.ev.get(k as usize) {
             Some(w) => w,
             None => {
-                owned = ev_weights(k)
-                    .into_iter()
-                    .map(|x| x as f32)
-                    .collect::<Vec<_>>();
+                owned = ev_weights(k).into_iter().map(|x| x as f32).collect::<Vec<_>>();
                 &owned
             }
         };
@@ -120,17 +112,7 @@ impl ModifiedButterfly {
     /// the wing triangle, `xb`/`xi` the corners facing `(iv, bw)` / `(iv, iw)`.
     #[inline]
     #[allow(clippy::too_many_arguments)]
-    fn mesh_rule<S: Sink>(
-        ct: &CornerTable,
-        bv: u32,
-        iv: u32,
-        bw: u32,
-        iw: u32,
-        xo: u32,
-        xb: u32,
-        xi: u32,
-        s: &mut S,
-    ) {
+    fn mesh_rule<S: Sink>(ct: &CornerTable, bv: u32, iv: u32, bw: u32, iw: u32, xo: u32, xb: u32, xi: u32, s: &mut S) {
         s.add(bv, 3.0 / 8.0);
         s.add(iv, 5.0 / 8.0);
         s.add(bw, 1.0 / 16.0);

@@ -27,10 +27,7 @@ impl<'a> Accumulate<'a> {
     /// A zero sum over `pos`.
     #[inline(always)]
     pub fn new(pos: &'a [Vec3]) -> Self {
-        Accumulate {
-            pos,
-            sum: Vec3::ZERO,
-        }
+        Accumulate { pos, sum: Vec3::ZERO }
     }
 }
 

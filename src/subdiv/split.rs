@@ -44,11 +44,7 @@ impl EdgeNumbering {
     #[inline(always)]
     pub fn edge_of(&self, o: &[u32], c: u32) -> u32 {
         let x = o[c as usize];
-        if x == BORDER || c < x {
-            self.wown[c as usize]
-        } else {
-            self.wown[x as usize]
-        }
+        if x == BORDER || c < x { self.wown[c as usize] } else { self.wown[x as usize] }
     }
 }
 
@@ -65,10 +61,7 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
         .enumerate()
         .map(|(k, ch)| {
             let base = (k * CHUNK) as u32;
-            ch.iter()
-                .enumerate()
-                .filter(|&(i, &x)| is_owner(base + i as u32, x))
-                .count() as u32
+            ch.iter().enumerate().filter(|&(i, &x)| is_owner(base + i as u32, x)).count() as u32
         })
         .collect();
     let ne: u32 = counts.iter().sum();
@@ -84,11 +77,8 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
         first += cnt;
         rest = b;
     }
-    wown.par_chunks_mut(CHUNK)
-        .zip(o.par_chunks(CHUNK))
-        .zip(slices)
-        .enumerate()
-        .for_each(|(k, ((w, och), (first, own)))| {
+    wown.par_chunks_mut(CHUNK).zip(o.par_chunks(CHUNK)).zip(slices).enumerate().for_each(
+        |(k, ((w, och), (first, own)))| {
             let base = (k * CHUNK) as u32;
             let mut e = 0usize;
             for (i, &x) in och.iter().enumerate() {
@@ -99,7 +89,8 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
                     e += 1;
                 }
             }
-        });
+        },
+    );
     EdgeNumbering { owners, wown }
 }
 
@@ -163,28 +154,9 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
     let ne = edges.owners.len();
     let mut vc = Vec::with_capacity(nv as usize + ne);
     vc.par_extend(old.vc.par_iter().map(|&c| a(c)));
-    vc.par_extend(edges.owners.par_iter().map(|&c| {
-        if oo[c as usize] == BORDER {
-            p(a(p(c)))
-        } else {
-            c
-        }
-    }));
+    vc.par_extend(edges.owners.par_iter().map(|&c| if oo[c as usize] == BORDER { p(a(p(c))) } else { c }));
     let mut valence = Vec::with_capacity(nv as usize + ne);
     valence.extend_from_slice(&old.valence);
-    valence.par_extend(
-        edges
-            .owners
-            .par_iter()
-            .map(|&c| if oo[c as usize] == BORDER { 4 } else { 6 }),
-    );
-    (
-        CornerTable {
-            v: v2,
-            o: o2,
-            vc,
-            valence,
-        },
-        edges,
-    )
+    valence.par_extend(edges.owners.par_iter().map(|&c| if oo[c as usize] == BORDER { 4 } else { 6 }));
+    (CornerTable { v: v2, o: o2, vc, valence }, edges)
 }

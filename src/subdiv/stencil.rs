@@ -10,7 +10,7 @@
 //! small: a composed control-to-final matrix would have L-ring support.
 
 use super::rules::{Record, Rules};
-use super::{Options, RulesFn, Scheme, check_level_fits, split, with_rules};
+use super::{Options, RulesFn, Scheme, check_levels_fit, split, with_rules};
 use crate::Result;
 use crate::mesh::CornerTable;
 use glam::Vec3;
@@ -46,17 +46,14 @@ impl LevelPlan {
         } else {
             out
         };
-        rows.par_iter_mut()
-            .enumerate()
-            .with_min_len(4096)
-            .for_each(|(i, q)| {
-                let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
-                let mut sum = Vec3::ZERO;
-                for (&j, &w) in self.indices[a..b].iter().zip(&self.weights[a..b]) {
-                    sum += input[j as usize] * w;
-                }
-                *q = sum;
-            });
+        rows.par_iter_mut().enumerate().with_min_len(4096).for_each(|(i, q)| {
+            let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
+            let mut sum = Vec3::ZERO;
+            for (&j, &w) in self.indices[a..b].iter().zip(&self.weights[a..b]) {
+                sum += input[j as usize] * w;
+            }
+            *q = sum;
+        });
     }
 }
 
@@ -83,10 +80,7 @@ struct RecordLevel<'a> {
     owners: &'a [u32],
 }
 
-fn record_rows(
-    rows: usize,
-    f: impl Fn(usize, &mut Record) + Sync,
-) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
+fn record_rows(rows: usize, f: impl Fn(usize, &mut Record) + Sync) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
     const ROWS: usize = 4096;
     let parts: Vec<(Vec<u32>, Record)> = (0..rows.div_ceil(ROWS))
         .into_par_iter()
@@ -130,13 +124,7 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
         } else {
             record_rows(ne, |i, rec| r.edge(ct, owners[i], rec))
         };
-        LevelPlan {
-            n_in: nv,
-            copy_vertices: !R::MOVES_VERTICES,
-            offsets,
-            indices,
-            weights,
-        }
+        LevelPlan { n_in: nv, copy_vertices: !R::MOVES_VERTICES, offsets, indices, weights }
     }
 }
 
@@ -147,33 +135,20 @@ impl StencilPlan {
     /// [`crate::Error::TooLarge`] when a level would not fit in memory.
     pub fn build(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<Self> {
         let limit = opts.max_memory.or_else(super::default_memory_limit);
+        check_levels_fit(ct, 0, levels, limit)?;
         let mut cur = ct.clone();
         let mut plans = Vec::with_capacity(levels as usize);
-        for level in 1..=levels {
-            check_level_fits(&cur, level, limit)?;
+        for _ in 1..=levels {
             let (next, edges) = split::split(&cur);
-            plans.push(with_rules(
-                scheme,
-                opts,
-                RecordLevel {
-                    ct: &cur,
-                    owners: &edges.owners,
-                },
-            ));
+            plans.push(with_rules(scheme, opts, RecordLevel { ct: &cur, owners: &edges.owners }));
             cur = next;
         }
-        Ok(StencilPlan {
-            scheme,
-            levels: plans,
-            ct: cur,
-        })
+        Ok(StencilPlan { scheme, levels: plans, ct: cur })
     }
 
     /// Number of control vertices the plan expects.
     pub fn n_control(&self) -> usize {
-        self.levels
-            .first()
-            .map_or(self.ct.num_vertices(), |l| l.n_in)
+        self.levels.first().map_or(self.ct.num_vertices(), |l| l.n_in)
     }
 
     /// Evaluates the finest positions for new control positions into `out`
@@ -182,11 +157,7 @@ impl StencilPlan {
     /// # Panics
     /// If `control.len() != self.n_control()` (a caller bug, not input data).
     pub fn apply(&self, control: &[Vec3], scratch: &mut PlanScratch, out: &mut Vec<Vec3>) {
-        assert_eq!(
-            control.len(),
-            self.n_control(),
-            "control vertex count does not match the plan"
-        );
+        assert_eq!(control.len(), self.n_control(), "control vertex count does not match the plan");
         out.resize(self.ct.num_vertices(), Vec3::ZERO);
         let Some((last, rest)) = self.levels.split_last() else {
             out.copy_from_slice(control);

@@ -1,0 +1,120 @@
+//! The command line: outputs, --stats, and bad input giving one clear message,
+//! a non-zero exit, no panic and no half-written file.
+
+mod common;
+use common::*;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_subdiv"))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+fn write(name: &str, text: &str) -> PathBuf {
+    let p = tmp(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn run_fail(args: &[&str]) -> String {
+    let out = bin().args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(!out.status.success(), "expected failure for {args:?}");
+    assert!(!err.contains("panicked"), "panic for {args:?}: {err}");
+    assert_eq!(err.trim().lines().count(), 1, "one clear line expected: {err}");
+    err
+}
+
+#[test]
+fn subdivide_writes_every_format_with_stats() {
+    let input = model_path("cube.obj");
+    for ext in ["obj", "ply", "ct"] {
+        let out = tmp(&format!("cube2.{ext}"));
+        let o = bin()
+            .args([
+                "subdivide",
+                input.to_str().unwrap(),
+                out.to_str().unwrap(),
+                "--scheme",
+                "loop",
+                "--levels",
+                "2",
+                "--stats",
+            ])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let stdout = String::from_utf8_lossy(&o.stdout);
+        let ms: f64 =
+            stdout.lines().find_map(|l| l.strip_prefix("subdivide_ms=")).expect("subdivide_ms line").parse().unwrap();
+        assert!(ms >= 0.0);
+        assert!(stdout.contains("edge_points_ms=") && stdout.contains("split_and_o_ms="));
+        if ext != "ply" {
+            let m = subdiv::io::load(&out).unwrap();
+            assert_eq!(m.ct.num_triangles(), 12 * 16);
+        } else {
+            let bytes = std::fs::read(&out).unwrap();
+            assert!(bytes.starts_with(b"ply\nformat binary_little_endian 1.0\n"));
+        }
+    }
+    let o = bin().args(["info", model_path("torus.obj").to_str().unwrap()]).output().unwrap();
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(s.contains("genus:           1") && s.contains("6:512"), "{s}");
+}
+
+#[test]
+fn bad_input_is_refused_clearly() {
+    let out = tmp("never.obj");
+    let o = out.to_str().unwrap();
+    let cases: Vec<(PathBuf, &str)> = vec![
+        (write("garbage.obj", "\u{1}\u{2}\u{3} this is not a mesh\n"), "garbage.obj:1:"),
+        (write("empty.obj", ""), "no triangles"),
+        (write("nan.obj", "v 0 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 3\n"), "nan.obj:2:"),
+        (write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), "range.obj:4:"),
+        (
+            write("fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n"),
+            "non-manifold edge",
+        ),
+        (write("bowtie.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 1 0\nv 2 2 0\nf 1 2 3\nf 3 4 5\n"), "non-manifold vertex"),
+        (PathBuf::from("/nonexistent/dir/x.obj"), "No such file"),
+    ];
+    for (input, want) in cases {
+        let err = run_fail(&["subdivide", input.to_str().unwrap(), o, "--levels", "1"]);
+        assert!(err.contains(want), "{}: {err}", input.display());
+        assert!(err.contains(input.file_name().unwrap().to_str().unwrap()), "names the file: {err}");
+        assert!(!out.exists(), "no output file after a failure");
+    }
+    // too many levels for memory: refused before allocating, with the predicted size
+    let err = run_fail(&["subdivide", model_path("torus.obj").to_str().unwrap(), o, "--levels", "14"]);
+    assert!(err.contains("would need about"), "{err}");
+    let err =
+        run_fail(&["subdivide", model_path("torus.obj").to_str().unwrap(), o, "--levels", "3", "--max-memory", "1M"]);
+    assert!(err.contains("level 1") || err.contains("level 2") || err.contains("level 3"), "{err}");
+    assert!(!out.exists());
+    // an existing output is never truncated by a failure
+    std::fs::write(&out, "keep me").unwrap();
+    run_fail(&["subdivide", model_path("torus.obj").to_str().unwrap(), o, "--levels", "14"]);
+    run_fail(&["subdivide", model_path("cube.obj").to_str().unwrap(), tmp("x.unknown").to_str().unwrap()]);
+    assert_eq!(std::fs::read_to_string(&out).unwrap(), "keep me");
+    let _ = std::fs::remove_file(&out);
+    assert!(!Path::new(&tmp("x.unknown")).exists());
+}
+
+#[test]
+fn shared_bad_models_when_present() {
+    // The shared corpus is optional: these inputs are generated above too.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/procedural");
+    for (f, want) in [("fin_nonmanifold.obj", "non-manifold edge"), ("bowtie_nonmanifold.obj", "non-manifold vertex")] {
+        let p = dir.join(f);
+        if p.exists() {
+            let err = run_fail(&["info", p.to_str().unwrap()]);
+            assert!(err.contains(want), "{err}");
+        }
+    }
+}

@@ -1,0 +1,150 @@
+//! Mesh generators shared by the integration tests (everything is generated
+//! or bundled in `models/`; nothing outside the repository is needed).
+#![allow(dead_code)]
+
+use glam::Vec3;
+use std::path::PathBuf;
+use subdiv::Mesh;
+
+pub fn model_path(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models").join(name)
+}
+
+pub fn bundled(name: &str) -> Mesh {
+    subdiv::io::load(&model_path(name)).expect("bundled model loads")
+}
+
+pub const BUNDLED: [&str; 4] = ["tetrahedron.obj", "cube.obj", "torus.obj", "lprism.obj"];
+
+/// An `n x m` grid of squares, each split by the diagonal (i,j)-(i+1,j+1):
+/// the affine image of a regular triangular lattice. Vertex (i, j) is
+/// `i * (m + 1) + j`... stored row-major with `(m + 1)` columns; position
+/// given by `f(i, j)`.
+pub fn grid(n: usize, m: usize, f: impl Fn(f32, f32) -> Vec3) -> Mesh {
+    let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+    let mut pos = Vec::new();
+    for j in 0..=m {
+        for i in 0..=n {
+            pos.push(f(i as f32, j as f32));
+        }
+    }
+    let mut tris = Vec::new();
+    for j in 0..m {
+        for i in 0..n {
+            tris.extend_from_slice(&[id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            tris.extend_from_slice(&[id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    Mesh::from_triangles(pos, &tris).expect("grid is valid")
+}
+
+/// Flat grid in the plane z = 0 with unit spacing.
+pub fn flat_grid(n: usize) -> Mesh {
+    grid(n, n, |i, j| Vec3::new(i, j, 0.0))
+}
+
+/// Regular icosahedron (0, +-1, +-phi) and cyclic permutations.
+pub fn icosahedron() -> Mesh {
+    let t = (1.0 + 5f32.sqrt()) / 2.0;
+    let pos = vec![
+        Vec3::new(-1.0, t, 0.0),
+        Vec3::new(1.0, t, 0.0),
+        Vec3::new(-1.0, -t, 0.0),
+        Vec3::new(1.0, -t, 0.0),
+        Vec3::new(0.0, -1.0, t),
+        Vec3::new(0.0, 1.0, t),
+        Vec3::new(0.0, -1.0, -t),
+        Vec3::new(0.0, 1.0, -t),
+        Vec3::new(t, 0.0, -1.0),
+        Vec3::new(t, 0.0, 1.0),
+        Vec3::new(-t, 0.0, -1.0),
+        Vec3::new(-t, 0.0, 1.0),
+    ];
+    let tris = [
+        0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3,
+        4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1,
+    ];
+    Mesh::from_triangles(pos, &tris).expect("icosahedron is valid")
+}
+
+/// Icosahedron refined `levels` times by midpoint split, projected to the unit sphere.
+pub fn icosphere(levels: u32) -> Mesh {
+    let mut m = icosahedron();
+    for p in &mut m.positions {
+        *p = p.normalize();
+    }
+    for _ in 0..levels {
+        let (mut f, _) = subdiv::subdivide(&m, subdiv::Scheme::Midpoint, 1, &Default::default()).unwrap();
+        for p in &mut f.positions {
+            *p = p.normalize();
+        }
+        m = f;
+    }
+    m
+}
+
+/// Upper part of an icosphere (z > -0.15): an open mesh with an irregular boundary.
+pub fn hemisphere() -> Mesh {
+    let s = icosphere(2);
+    let mut tris = Vec::new();
+    for tri in s.ct.v.chunks_exact(3) {
+        if tri.iter().all(|&v| s.positions[v as usize].z > -0.15) {
+            tris.extend_from_slice(tri);
+        }
+    }
+    Mesh::from_triangles(s.positions.clone(), &tris).expect("hemisphere is valid")
+}
+
+/// An open curved disk: a centre of valence `k` and `rings` rings of `k` vertices.
+pub fn disk_fan(k: usize, rings: usize) -> Mesh {
+    let mut pos = vec![Vec3::new(0.0, 0.0, 0.3)];
+    for r in 1..=rings {
+        for i in 0..k {
+            let a = std::f32::consts::TAU * (i as f32 + 0.5 * (r % 2) as f32) / k as f32;
+            let rad = r as f32 / rings as f32;
+            pos.push(Vec3::new(rad * a.cos(), rad * a.sin(), 0.3 * (1.0 - rad * rad)));
+        }
+    }
+    let ring = |r: usize, i: usize| (1 + (r - 1) * k + i % k) as u32;
+    let mut tris = Vec::new();
+    for i in 0..k {
+        tris.extend_from_slice(&[0, ring(1, i), ring(1, i + 1)]);
+    }
+    for r in 1..rings {
+        for i in 0..k {
+            if r % 2 == 1 {
+                tris.extend_from_slice(&[ring(r, i), ring(r + 1, i), ring(r + 1, i + 1)]);
+                tris.extend_from_slice(&[ring(r, i), ring(r + 1, i + 1), ring(r, i + 1)]);
+            } else {
+                tris.extend_from_slice(&[ring(r, i), ring(r + 1, i), ring(r, i + 1)]);
+                tris.extend_from_slice(&[ring(r, i + 1), ring(r + 1, i), ring(r + 1, i + 1)]);
+            }
+        }
+    }
+    Mesh::from_triangles(pos, &tris).expect("disk fan is valid")
+}
+
+/// Every test mesh: bundled models plus open ones.
+pub fn all_meshes() -> Vec<(String, Mesh)> {
+    let mut v: Vec<(String, Mesh)> = BUNDLED.iter().map(|n| (n.to_string(), bundled(n))).collect();
+    v.push(("grid".into(), grid(6, 5, |i, j| Vec3::new(i + 0.3 * j, j, 0.1 * (i * j).sin()))));
+    v.push(("hemisphere".into(), hemisphere()));
+    v.push(("disk_fan".into(), disk_fan(16, 3)));
+    v.push(("icosahedron".into(), icosahedron()));
+    v.push(("single_triangle".into(), Mesh::from_triangles(vec![Vec3::ZERO, Vec3::X, Vec3::Y], &[0, 1, 2]).unwrap()));
+    v
+}
+
+/// Tiny deterministic PRNG (xorshift) for reproducible random tests.
+pub struct Rng(pub u64);
+impl Rng {
+    pub fn next_f32(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        ((self.0 >> 40) as f32) / ((1u64 << 24) as f32) * 2.0 - 1.0
+    }
+    pub fn vec3(&mut self) -> Vec3 {
+        Vec3::new(self.next_f32(), self.next_f32(), self.next_f32())
+    }
+}

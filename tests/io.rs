@@ -1,0 +1,118 @@
+//! Parsers: agreement with tobj, every error names file and line, and no
+//! input makes them panic.
+
+mod common;
+use common::*;
+use subdiv::io::obj;
+use subdiv::{Error, MeshError};
+
+#[test]
+fn our_obj_parser_agrees_with_tobj() {
+    for name in BUNDLED {
+        let path = model_path(name);
+        let (m, _) = obj::load(&path).unwrap();
+        let (tp, tt) = obj::load_tobj(&path).unwrap();
+        let key = |p: glam::Vec3| p.to_array().map(f32::to_bits);
+        let mut ours: Vec<_> =
+            m.ct.v
+                .chunks_exact(3)
+                .map(|t| t.iter().map(|&i| key(m.positions[i as usize])).collect::<Vec<_>>())
+                .collect();
+        let mut theirs: Vec<_> =
+            tt.chunks_exact(3).map(|t| t.iter().map(|&i| key(tp[i as usize])).collect::<Vec<_>>()).collect();
+        ours.sort();
+        theirs.sort();
+        assert_eq!(ours, theirs, "{name}");
+    }
+}
+
+fn err_of(text: &str) -> Error {
+    obj::from_bytes(text.as_bytes(), "test.obj").map(|_| ()).unwrap_err()
+}
+
+#[test]
+fn obj_errors_name_the_line() {
+    let e = err_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+    assert!(matches!(e, Error::Mesh { line: Some(4), source: MeshError::IndexOutOfRange { index: 4, .. }, .. }), "{e}");
+    assert!(e.to_string().starts_with("test.obj:4:"), "{e}");
+    let e = err_of("v 0 0 0\nv 1 nan 0\n");
+    assert!(matches!(e, Error::Mesh { line: Some(2), source: MeshError::NonFinite { .. }, .. }), "{e}");
+    let e = err_of("v 0 0 0\nv 1 zero 0\n");
+    assert!(matches!(e, Error::Parse { line: 2, .. }), "{e}");
+    let e = err_of("");
+    assert!(matches!(e, Error::Mesh { source: MeshError::Empty, .. }), "{e}");
+    let e = err_of("\u{1}\u{2}garbage\u{7f}\n");
+    assert!(matches!(e, Error::Parse { line: 1, .. }), "{e}");
+    let e = obj::from_bytes(&[0xff, 0xfe, 0x00, 0x41], "bin.obj").map(|_| ()).unwrap_err();
+    assert!(matches!(e, Error::Parse { line: 1, .. }), "{e}");
+    // fin: 3 faces on edge (1,2)
+    let fin = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+    let e = err_of(fin);
+    assert!(matches!(e, Error::Mesh { source: MeshError::NonManifoldEdge { faces: 3, .. }, .. }), "{e}");
+    // bowtie at vertex 3 (1-based, as the file numbers it), named with the line of its v record
+    let bow = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 1 0\nv 2 2 0\nf 1 2 3\nf 3 4 5\n";
+    let e = err_of(bow);
+    assert!(
+        matches!(e, Error::Mesh { line: Some(3), source: MeshError::NonManifoldVertex { vertex: 3, fans: 2 }, .. }),
+        "{e}"
+    );
+    // negative (relative) indices and polygons are accepted
+    let (m, info) = obj::from_bytes(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4 -3 -2 -1\n", "q.obj").unwrap();
+    assert_eq!((m.ct.num_triangles(), info.polygons_triangulated), (2, 1));
+}
+
+#[test]
+fn ct_errors_and_header_guard() {
+    use subdiv::io::ct::parse;
+    let e = parse("1000000000000\n0 0 0\n", "big.ct").unwrap_err();
+    assert!(matches!(e, Error::Parse { line: 1, .. }), "{e}");
+    let e = parse("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 7\n", "bad.ct").unwrap_err();
+    assert!(matches!(e, Error::Mesh { line: Some(6), source: MeshError::IndexOutOfRange { .. }, .. }), "{e}");
+    let e = parse("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n0 -1 -1\n", "o.ct").unwrap_err();
+    assert!(matches!(e, Error::Mesh { source: MeshError::BadOppositeTable { .. }, .. }), "{e}");
+    let m = parse("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n-1 -1 -1\n", "ok.ct").unwrap();
+    assert_eq!(m.ct.num_border_edges(), 3);
+}
+
+/// Random and mutated inputs never panic (the error path is what is tested).
+#[test]
+fn parsers_never_panic_on_mutated_input() {
+    let seeds: Vec<Vec<u8>> = BUNDLED
+        .iter()
+        .flat_map(|n| {
+            let p = model_path(n);
+            [std::fs::read(&p).unwrap(), std::fs::read(p.with_extension("ct")).unwrap()]
+        })
+        .collect();
+    let mut rng = Rng(12345);
+    let mut rnd = |n: usize| ((rng.next_f32() + 1.0) * 0.5 * n as f32) as usize % n.max(1);
+    let tokens: [&[u8]; 10] = [b"-1", b"0", b"nan", b"1e39", b"\n", b" ", b"f", b"v", b"99999999999", b"/"];
+    for round in 0..3000 {
+        let mut data = seeds[round % seeds.len()].clone();
+        for _ in 0..1 + rnd(6) {
+            let at = rnd(data.len());
+            match rnd(4) {
+                0 => {
+                    data.truncate(at);
+                }
+                1 => {
+                    let t = tokens[rnd(tokens.len())];
+                    data.splice(at..at, t.iter().copied());
+                }
+                2 => {
+                    if at < data.len() {
+                        data[at] = rnd(256) as u8;
+                    }
+                }
+                _ => {
+                    let end = (at + rnd(40)).min(data.len());
+                    data.drain(at..end);
+                }
+            }
+        }
+        let _ = obj::from_bytes(&data, "fuzz.obj");
+        if let Ok(s) = std::str::from_utf8(&data) {
+            let _ = subdiv::io::ct::parse(s, "fuzz.ct");
+        }
+    }
+}
