@@ -1,1 +1,13 @@
-//! Animation along split-and-tweak paths (DESIGN.md 4).
+//! Animation along split-and-tweak paths (DESIGN.md 4): every control vertex
+//! follows a closed polygon of key positions, refined `n` times by split and
+//! tweak ([`tweak`]); frame `f` puts each vertex at point `f` of its refined
+//! polygon, and the mesh is re-evaluated through a recorded
+//! [`crate::subdiv::stencil::StencilPlan`] ([`player`]).
+
+pub mod paths;
+pub mod player;
+pub mod tweak;
+
+pub use paths::Paths;
+pub use player::{Animation, Clock};
+pub use tweak::Tweak;

@@ -1,0 +1,201 @@
+//! Playback: refined key paths, the per-frame re-evaluation through a stencil
+//! plan, and a frame clock.
+//!
+//! Per frame only two things happen: the stencil plan is applied to the
+//! frame's control positions (topology, O and weights are reused), and the
+//! vertex normals are recomputed into reused buffers. Nothing is allocated
+//! after the first frame.
+
+use super::paths::Paths;
+use super::tweak::{refine_closed, Tweak};
+use crate::mesh::normals::vertex_normals_into;
+use crate::subdiv::stencil::{PlanScratch, StencilPlan};
+use crate::{CornerTable, Error, Mesh, Options, Result, Scheme};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::time::{Duration, Instant};
+
+/// Most refined path samples held in memory (frames x control vertices).
+const MAX_SAMPLES: usize = 64 << 20;
+
+/// A ready-to-play animation of one model.
+pub struct Animation {
+    plan: StencilPlan,
+    frames: usize,
+    nv: usize,
+    /// Frame-major refined paths: `curves[f * nv + v]`.
+    curves: Vec<Vec3>,
+    scratch: PlanScratch,
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    fnorm: Vec<Vec3>,
+    /// Time of the last [`Animation::evaluate`]: (stencils, normals).
+    pub last_timing: (Duration, Duration),
+}
+
+impl Animation {
+    /// Refines every key polygon `refine` times with `tweak` (K keys give
+    /// `K * 2^refine` frames) and records the stencil plan of `level` levels of
+    /// `scheme` on the model's topology.
+    ///
+    /// # Errors
+    /// Paths that do not match the model, too many frames to hold, or a level
+    /// that does not fit in memory.
+    pub fn new(
+        control: &Mesh,
+        paths: &Paths,
+        tweak: Tweak,
+        refine: u32,
+        scheme: Scheme,
+        level: u32,
+        opts: &Options,
+    ) -> Result<Self> {
+        paths.check_model(control, "paths")?;
+        let nv = control.positions.len();
+        let frames = paths.keys_per_vertex.checked_shl(refine).filter(|&f| f > 0 && refine < 24).unwrap_or(usize::MAX);
+        if frames.saturating_mul(nv) > MAX_SAMPLES {
+            return Err(Error::Usage(format!(
+                "{} keys refined {refine} times give {frames} frames for {nv} vertices: too many samples to hold; use a smaller --refine",
+                paths.keys_per_vertex
+            )));
+        }
+        let per_vertex: Vec<Vec<Vec3>> =
+            (0..nv).into_par_iter().map(|v| refine_closed(paths.polygon(v), tweak, refine)).collect();
+        let mut curves = vec![Vec3::ZERO; frames * nv];
+        curves.par_chunks_mut(nv).enumerate().for_each(|(f, row)| {
+            for (v, slot) in row.iter_mut().enumerate() {
+                *slot = per_vertex[v][f];
+            }
+        });
+        let plan = StencilPlan::build(&control.ct, scheme, level, opts)?;
+        Ok(Animation {
+            plan,
+            frames,
+            nv,
+            curves,
+            scratch: PlanScratch::default(),
+            positions: Vec::new(),
+            normals: Vec::new(),
+            fnorm: Vec::new(),
+            last_timing: Default::default(),
+        })
+    }
+
+    /// Number of frames (`K * 2^refine`).
+    pub fn frame_count(&self) -> usize {
+        self.frames
+    }
+    /// Control positions of frame `f` (taken modulo the frame count).
+    pub fn control(&self, f: usize) -> &[Vec3] {
+        let f = f % self.frames;
+        &self.curves[f * self.nv..(f + 1) * self.nv]
+    }
+    /// Topology of the evaluated (finest) mesh.
+    pub fn topology(&self) -> &CornerTable {
+        &self.plan.ct
+    }
+    /// The recorded plan.
+    pub fn plan(&self) -> &StencilPlan {
+        &self.plan
+    }
+
+    /// Positions and unit normals of the subdivided mesh at frame `f`.
+    pub fn evaluate(&mut self, f: usize) -> (&[Vec3], &[Vec3]) {
+        let f = f % self.frames;
+        let t0 = Instant::now();
+        let control = &self.curves[f * self.nv..(f + 1) * self.nv];
+        self.plan.apply(control, &mut self.scratch, &mut self.positions);
+        let t1 = Instant::now();
+        self.fnorm.resize(self.plan.ct.num_triangles(), Vec3::ZERO);
+        self.normals.resize(self.positions.len(), Vec3::ZERO);
+        vertex_normals_into(&self.plan.ct, &self.positions, &mut self.fnorm, &mut self.normals);
+        self.last_timing = (t1 - t0, t1.elapsed());
+        (&self.positions, &self.normals)
+    }
+
+    /// The mesh at frame `f` (a copy, for export).
+    pub fn mesh_at(&mut self, f: usize) -> Mesh {
+        let positions = self.evaluate(f).0.to_vec();
+        Mesh { ct: self.plan.ct.clone(), positions }
+    }
+}
+
+/// A frame clock: play/pause, speed, loop, step.
+#[derive(Clone, Debug)]
+pub struct Clock {
+    /// Advancing with time.
+    pub playing: bool,
+    /// Frames per second.
+    pub fps: f32,
+    /// Wrap at the end (otherwise stop on the last frame).
+    pub looping: bool,
+    pos: f64,
+    frames: usize,
+}
+
+impl Clock {
+    /// A paused looping clock over `frames` frames at 30 fps.
+    pub fn new(frames: usize) -> Self {
+        Clock { playing: false, fps: 30.0, looping: true, pos: 0.0, frames: frames.max(1) }
+    }
+    /// Number of frames.
+    pub fn frames(&self) -> usize {
+        self.frames
+    }
+    /// Changes the frame count, keeping the relative position.
+    pub fn set_frames(&mut self, frames: usize) {
+        let rel = self.pos / self.frames as f64;
+        self.frames = frames.max(1);
+        self.pos = (rel * self.frames as f64).floor();
+    }
+    /// Current frame.
+    pub fn frame(&self) -> usize {
+        (self.pos.floor() as usize).min(self.frames - 1)
+    }
+    /// Jumps to frame `f` (clamped).
+    pub fn set_frame(&mut self, f: usize) {
+        self.pos = f.min(self.frames - 1) as f64;
+    }
+    /// Steps by `d` frames (wrapping when looping).
+    pub fn step(&mut self, d: i64) {
+        let n = self.frames as i64;
+        let f = self.frame() as i64 + d;
+        self.pos = if self.looping { f.rem_euclid(n) } else { f.clamp(0, n - 1) } as f64;
+    }
+    /// Advances by `dt` seconds when playing; returns the current frame.
+    pub fn tick(&mut self, dt: f64) -> usize {
+        if self.playing {
+            self.pos += dt * f64::from(self.fps);
+            let n = self.frames as f64;
+            if self.pos >= n {
+                if self.looping {
+                    self.pos %= n;
+                } else {
+                    self.pos = n - 1.0;
+                    self.playing = false;
+                }
+            }
+        }
+        self.frame()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clock_loops_steps_and_stops() {
+        let mut c = Clock::new(8);
+        assert_eq!(c.tick(1.0), 0, "paused");
+        c.playing = true;
+        c.fps = 4.0;
+        assert_eq!(c.tick(0.5), 2);
+        assert_eq!(c.tick(2.0), 2, "wraps: 2 + 8 = 10 -> 2");
+        c.step(-3);
+        assert_eq!(c.frame(), 7);
+        c.looping = false;
+        c.tick(10.0);
+        assert_eq!((c.frame(), c.playing), (7, false));
+    }
+}

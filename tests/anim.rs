@@ -1,0 +1,57 @@
+//! The tetrahedron animation: paths file, frame count, re-evaluation through
+//! the stencil plan against full subdivision.
+
+mod common;
+use common::*;
+use subdiv::anim::{Animation, Paths, Tweak};
+use subdiv::{subdivide, Mesh, Options, Scheme};
+
+fn tet_paths() -> Paths {
+    Paths::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap()
+}
+
+#[test]
+fn tetrahedron_paths_fit_the_model_and_give_k_times_2_pow_n_frames() {
+    let tet = bundled("tetrahedron.obj");
+    let p = tet_paths();
+    assert_eq!((p.vertex_count(), p.keys_per_vertex), (4, 4));
+    p.check_model(&tet, "tetrahedron.paths").unwrap();
+    let mut a = Animation::new(&tet, &p, Tweak::FourPoint, 5, Scheme::Loop, 5, &Options::default()).unwrap();
+    assert_eq!(a.frame_count(), 128);
+    assert_eq!(a.topology().num_triangles(), 4 * 4usize.pow(5));
+    // the 4-point tweak interpolates: frame 32k is key k
+    for k in 0..4 {
+        assert_eq!(a.control(32 * k), (0..4).map(|v| p.polygon(v)[k]).collect::<Vec<_>>().as_slice());
+    }
+    // every frame equals a full subdivision of that frame's control mesh
+    for f in [0, 1, 17, 64, 127] {
+        let control = Mesh { ct: tet.ct.clone(), positions: a.control(f).to_vec() };
+        let (full, _) = subdivide(&control, Scheme::Loop, 5, &Options::default()).unwrap();
+        let (pos, nrm) = a.evaluate(f);
+        assert_eq!(pos.len(), full.positions.len());
+        for (x, y) in pos.iter().zip(&full.positions) {
+            assert!((*x - *y).abs().max_element() < 1e-6);
+        }
+        assert!(nrm.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+    }
+    // the mismatching model is refused with both counts
+    let e = p.check_model(&bundled("cube.obj"), "tetrahedron.paths").unwrap_err();
+    assert!(e.to_string().contains("4 vertices") && e.to_string().contains("8"), "{e}");
+}
+
+#[test]
+fn every_model_can_animate_with_generated_paths() {
+    for name in BUNDLED {
+        let m = bundled(name);
+        let p = Paths::generated(&m, 4);
+        for t in Tweak::ALL {
+            let mut a = Animation::new(&m, &p, t, 2, Scheme::Jarek, 1, &Options::default()).unwrap();
+            assert_eq!(a.frame_count(), 16);
+            let first: Vec<_> = a.evaluate(0).0.to_vec();
+            let later: Vec<_> = a.evaluate(5).0.to_vec();
+            assert!(first.iter().zip(&later).any(|(x, y)| x.distance(*y) > 1e-4), "{name}: the mesh moves");
+        }
+    }
+    let m = bundled("torus.obj");
+    assert!(Animation::new(&m, &Paths::generated(&m, 4), Tweak::Jarek, 20, Scheme::Loop, 1, &Options::default()).is_err());
+}
