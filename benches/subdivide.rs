@@ -1,1 +1,72 @@
-fn main() {}
+//! Criterion benches: every scheme at levels 1-3 on a generated icosphere
+//! (throughput in output faces, so the per-face cost across levels can be
+//! compared: it should stay flat), the same on the Stanford bunny when
+//! ../shared/models is present, and the animation's per-frame re-evaluation
+//! through a stencil plan against a full re-subdivision.
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Duration;
+use subdiv::anim::{Animation, Paths, Tweak};
+use subdiv::mesh::shapes::icosphere;
+use subdiv::{Mesh, Options, Scheme, subdivide};
+
+fn per_level(c: &mut Criterion, group: &str, mesh: &Mesh, levels: &[u32]) {
+    let mut g = c.benchmark_group(group);
+    g.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(2));
+    let opts = Options::default();
+    for scheme in Scheme::ALL {
+        for &l in levels {
+            let faces = mesh.ct.num_triangles() as u64 * 4u64.pow(l);
+            g.throughput(Throughput::Elements(faces));
+            g.bench_with_input(BenchmarkId::new(scheme.name(), format!("L{l}")), &l, |b, &l| {
+                b.iter(|| black_box(subdivide(mesh, scheme, l, &opts).unwrap().0.positions.len()))
+            });
+        }
+    }
+    g.finish();
+}
+
+fn schemes(c: &mut Criterion) {
+    // 1280 faces: levels 1..5 give 5k .. 1.3M faces
+    per_level(c, "icosphere3", &icosphere(3), &[1, 2, 3, 4, 5]);
+    let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/stanford-bunny-compact.obj");
+    if let Ok(m) = subdiv::io::load(&bunny) {
+        per_level(c, "bunny", &m, &[1, 2, 3]);
+    }
+}
+
+fn animation(c: &mut Criterion) {
+    let mut g = c.benchmark_group("anim_frame");
+    g.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(3));
+    let tet = subdiv::io::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/tetrahedron.obj")).unwrap();
+    let mut cases = vec![("tetrahedron_L5", tet, 5)];
+    let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/stanford-bunny-compact.obj");
+    if let Ok(m) = subdiv::io::load(&bunny) {
+        cases.push(("bunny_L2", m, 2));
+    }
+    for (name, mesh, level) in cases {
+        let paths = Paths::generated(&mesh, 4);
+        let mut anim =
+            Animation::new(&mesh, &paths, Tweak::Jarek, 3, Scheme::Loop, level, &Options::default()).unwrap();
+        let mut f = 0;
+        g.bench_function(BenchmarkId::new("plan_positions_normals", name), |b| {
+            b.iter(|| {
+                f += 1;
+                black_box(anim.evaluate(f).1.len())
+            })
+        });
+        let control = Mesh { ct: mesh.ct.clone(), positions: anim.control(3).to_vec() };
+        g.bench_function(BenchmarkId::new("full_subdivision_normals", name), |b| {
+            b.iter(|| {
+                let (m, _) = subdivide(&control, Scheme::Loop, level, &Options::default()).unwrap();
+                black_box(m.vertex_normals().len())
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, schemes, animation);
+criterion_main!(benches);

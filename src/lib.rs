@@ -26,6 +26,7 @@
 pub mod anim;
 pub mod error;
 pub mod io;
+pub mod mem;
 pub mod mesh;
 pub mod subdiv;
 

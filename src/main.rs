@@ -226,8 +226,9 @@ fn subdivide_cmd(input: &Path, output: &Path, s: &SchemeArgs, levels: u32, stats
     if stats {
         println!("subdivide_ms={:.3}", st.total_ms);
         println!(
-            "phases: split_and_o_ms={:.3} edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={load_ms:.3} save_ms={save_ms:.3} threads={}",
+            "phases: split_and_o_ms={:.3} (edge_numbering_ms={:.3}) edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={load_ms:.3} save_ms={save_ms:.3} threads={}",
             st.split_ms,
+            st.numbering_ms,
             st.edge_ms,
             st.vertex_ms,
             rayon::current_num_threads()

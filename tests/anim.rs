@@ -4,7 +4,7 @@
 mod common;
 use common::*;
 use subdiv::anim::{Animation, Paths, Tweak};
-use subdiv::{subdivide, Mesh, Options, Scheme};
+use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn tet_paths() -> Paths {
     Paths::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap()
@@ -53,5 +53,7 @@ fn every_model_can_animate_with_generated_paths() {
         }
     }
     let m = bundled("torus.obj");
-    assert!(Animation::new(&m, &Paths::generated(&m, 4), Tweak::Jarek, 20, Scheme::Loop, 1, &Options::default()).is_err());
+    assert!(
+        Animation::new(&m, &Paths::generated(&m, 4), Tweak::Jarek, 20, Scheme::Loop, 1, &Options::default()).is_err()
+    );
 }

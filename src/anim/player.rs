@@ -7,7 +7,7 @@
 //! after the first frame.
 
 use super::paths::Paths;
-use super::tweak::{refine_closed, Tweak};
+use super::tweak::{Tweak, refine_closed};
 use crate::mesh::normals::vertex_normals_into;
 use crate::subdiv::stencil::{PlanScratch, StencilPlan};
 use crate::{CornerTable, Error, Mesh, Options, Result, Scheme};

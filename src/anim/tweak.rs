@@ -67,8 +67,7 @@ pub fn refine_once(poly: &[Vec3], tweak: Tweak) -> Vec<Vec3> {
         return Vec::new();
     }
     let (a, b) = tweak.factors();
-    let d: Vec<Vec3> =
-        (0..n).map(|j| poly[(j + n - 1) % n] / 8.0 + poly[(j + 1) % n] / 8.0 - poly[j] / 4.0).collect();
+    let d: Vec<Vec3> = (0..n).map(|j| poly[(j + n - 1) % n] / 8.0 + poly[(j + 1) % n] / 8.0 - poly[j] / 4.0).collect();
     let mut out = Vec::with_capacity(2 * n);
     for j in 0..n {
         let k = (j + 1) % n;
@@ -121,7 +120,8 @@ mod tests {
 
     #[test]
     fn four_point_interpolates_the_keys() {
-        let keys = [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.2, 0.0), Vec3::new(1.3, 1.0, 0.5), Vec3::new(0.0, 1.0, 0.1)];
+        let keys =
+            [Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.2, 0.0), Vec3::new(1.3, 1.0, 0.5), Vec3::new(0.0, 1.0, 0.1)];
         let r = refine_closed(&keys, Tweak::FourPoint, 5);
         assert_eq!(r.len(), 4 * 32);
         for (j, k) in keys.iter().enumerate() {
@@ -140,7 +140,8 @@ mod tests {
             assert!(refine_closed(&same, t, 4).iter().all(|p| *p == Vec3::ONE));
         }
         // linear precision on a closed polygon is impossible, but the centroid is kept
-        let sq = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(-1.0, 0.0, 0.0), Vec3::new(0.0, -1.0, 0.0)];
+        let sq =
+            [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0), Vec3::new(-1.0, 0.0, 0.0), Vec3::new(0.0, -1.0, 0.0)];
         for t in Tweak::ALL {
             let r = refine_closed(&sq, t, 3);
             let c: Vec3 = r.iter().copied().sum::<Vec3>() / r.len() as f32;

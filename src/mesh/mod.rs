@@ -14,6 +14,7 @@
 
 mod build;
 pub mod normals;
+pub mod shapes;
 pub mod topology;
 
 pub use build::BuildReport;

@@ -16,7 +16,7 @@
 //! vector), which keeps the stencil linear and linear-precise, unlike VTK's
 //! substitution by the opposite wing (schemes.md 3.5).
 
-use super::rules::{Rules, Sink, four_point};
+use super::rules::{Level, Rules, Sink, four_point};
 use crate::mesh::{CornerTable, n, p};
 
 /// Classic butterfly rules.
@@ -53,7 +53,7 @@ pub(crate) fn eight_point<S: Sink>(ct: &CornerTable, c: u32, o: u32, s: &mut S) 
 impl Rules for Butterfly {
     const MOVES_VERTICES: bool = false;
     #[inline(always)]
-    fn edge<S: Sink>(&self, ct: &CornerTable, c: u32, s: &mut S) {
+    fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         match ct.o(c) {
             None => four_point(ct, c, s),
             Some(o) => eight_point(ct, c, o, s),

@@ -24,8 +24,11 @@
 //! validation; valence-2 boundary corners use the smooth boundary rule
 //! (OpenSubdiv's `EDGE_ONLY` mode).
 
-use super::rules::{Rules, Sink};
-use crate::mesh::{CornerTable, n, p};
+use super::rules::{Level, Rules, Sink, edge_points, ring_sums};
+use crate::mesh::{n, p};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::time::Instant;
 
 /// Which beta the vertex rule uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -77,7 +80,7 @@ impl Loop {
 impl Rules for Loop {
     const MOVES_VERTICES: bool = true;
     #[inline(always)]
-    fn edge<S: Sink>(&self, ct: &CornerTable, c: u32, s: &mut S) {
+    fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         let (a, b) = (ct.vtx(n(c)), ct.vtx(p(c)));
         match ct.o(c) {
             None => {
@@ -93,7 +96,7 @@ impl Rules for Loop {
         }
     }
     #[inline(always)]
-    fn vertex<S: Sink>(&self, ct: &CornerTable, v: u32, s: &mut S) {
+    fn vertex<S: Sink>(&self, ct: &Level, v: u32, s: &mut S) {
         if ct.is_boundary_vertex(v) {
             let (q1, q2) = ct.boundary_neighbours(v);
             s.add(v, 0.75);
@@ -107,6 +110,27 @@ impl Rules for Loop {
                 s.add(ct.vtx(n(c)), beta);
             }
         }
+    }
+
+    /// Direct evaluation: vertex points from the lane-interleaved ring sums
+    /// (`(1 - k beta) v + beta S`, boundary `3/4 v + 1/8 S`), edge points from
+    /// the emitted stencils.
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+        let t0 = Instant::now();
+        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
+        ring_sums(lv, pos, vpart);
+        vpart.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, q)| {
+            *q = if lv.boundary[v] {
+                pos[v] * 0.75 + *q * 0.125
+            } else {
+                let k = lv.valence[v];
+                let beta = self.beta(k);
+                pos[v] * (1.0 - k as f32 * beta) + *q * beta
+            };
+        });
+        let t1 = Instant::now();
+        edge_points(self, lv, owners, pos, epart);
+        (super::ms(t1 - t0), super::ms(t1.elapsed()))
     }
 }
 

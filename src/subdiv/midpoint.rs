@@ -8,8 +8,8 @@
 //! a cheap level-of-detail baseline (schemes.md 2). Note that OpenMesh's
 //! `MidpointT` is a different operation (vertex truncation).
 
-use super::rules::{Rules, Sink};
-use crate::mesh::{CornerTable, n, p};
+use super::rules::{Level, Rules, Sink};
+use crate::mesh::{n, p};
 
 /// Midpoint rules.
 pub struct Midpoint;
@@ -17,7 +17,7 @@ pub struct Midpoint;
 impl Rules for Midpoint {
     const MOVES_VERTICES: bool = false;
     #[inline(always)]
-    fn edge<S: Sink>(&self, ct: &CornerTable, c: u32, s: &mut S) {
+    fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         s.add(ct.vtx(n(c)), 0.5);
         s.add(ct.vtx(p(c)), 0.5);
     }

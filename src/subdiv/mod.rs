@@ -18,8 +18,7 @@ pub mod stencil;
 use crate::mesh::{CornerTable, Mesh};
 use crate::{Error, Result};
 use glam::Vec3;
-use rayon::prelude::*;
-use rules::{Accumulate, Rules};
+use rules::{Level, Rules};
 use std::time::Instant;
 
 pub use loop_::LoopBeta;
@@ -103,8 +102,11 @@ impl Default for Options {
 /// Time spent per phase, in milliseconds, summed over levels.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Stats {
-    /// Edge numbering, new V and O (the split and the O update are one pass).
+    /// The whole split: edge numbering plus the new V, O, C and valence
+    /// tables (the split and the O update are one pass).
     pub split_ms: f64,
+    /// Part of `split_ms`: numbering the edges (owner corners, edge ids).
+    pub numbering_ms: f64,
     /// Edge (odd) points.
     pub edge_ms: f64,
     /// Vertex (even) points or their copy.
@@ -172,36 +174,6 @@ pub fn predict_faces(ct: &CornerTable, levels: u32) -> u64 {
     (ct.num_triangles() as u64).saturating_mul(4u64.saturating_pow(levels))
 }
 
-/// Fills `out` (old vertices first, then one point per edge) from the old
-/// level with the rules `r`. Returns (vertex ms, edge ms).
-pub(crate) fn apply_level<R: Rules>(
-    r: &R,
-    ct: &CornerTable,
-    owners: &[u32],
-    pos: &[Vec3],
-    out: &mut [Vec3],
-) -> (f64, f64) {
-    let t0 = Instant::now();
-    let (vpart, epart) = out.split_at_mut(ct.num_vertices());
-    if R::MOVES_VERTICES {
-        vpart.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
-            let mut acc = Accumulate::new(pos);
-            r.vertex(ct, v as u32, &mut acc);
-            *q = acc.sum;
-        });
-    } else {
-        vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
-    }
-    let t1 = Instant::now();
-    epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
-        let mut acc = Accumulate::new(pos);
-        r.edge(ct, c, &mut acc);
-        *q = acc.sum;
-    });
-    let t2 = Instant::now();
-    (ms(t1 - t0), ms(t2 - t1))
-}
-
 pub(crate) fn ms(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1000.0
 }
@@ -232,10 +204,12 @@ struct OneLevel<'a> {
 impl RulesFn<Mesh> for OneLevel<'_> {
     fn call<R: Rules>(self, r: &R) -> Mesh {
         let t0 = Instant::now();
-        let (ct, edges) = split::split(&self.mesh.ct);
+        let ((ct, edges), (number_ms, _)) = split::split_timed(&self.mesh.ct);
         self.stats.split_ms += ms(t0.elapsed());
-        let mut positions = vec![Vec3::ZERO; ct.num_vertices()];
-        let (vms, ems) = apply_level(r, &self.mesh.ct, &edges.owners, &self.mesh.positions, &mut positions);
+        self.stats.numbering_ms += number_ms;
+        let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
+        let lv = Level::new(&self.mesh.ct);
+        let (vms, ems) = r.apply(&lv, &edges.owners, &self.mesh.positions, &mut positions);
         self.stats.vertex_ms += vms;
         self.stats.edge_ms += ems;
         Mesh { ct, positions }

@@ -38,7 +38,7 @@
 //!   parallelogram ghosts for missing outer vertices (linear precision).
 
 use super::butterfly::{eight_point, outer};
-use super::rules::{Rules, Sink, four_point};
+use super::rules::{Level, Rules, Sink, four_point};
 use crate::mesh::{CornerTable, n, p};
 
 /// Modified butterfly rules with tension `w` and precomputed EV weights.
@@ -125,7 +125,7 @@ impl ModifiedButterfly {
 
 impl Rules for ModifiedButterfly {
     const MOVES_VERTICES: bool = false;
-    fn edge<S: Sink>(&self, ct: &CornerTable, c: u32, s: &mut S) {
+    fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         let Some(o) = ct.o(c) else {
             return four_point(ct, c, s);
         };

@@ -6,8 +6,42 @@
 //! inlined) and the stencil plan for animation (a recording sink stores the
 //! weights once). All rules read the OLD level only.
 
-use crate::mesh::{CornerTable, n, p};
+use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// One level's topology plus per-vertex facts that rules ask for often. It
+/// dereferences to the [`CornerTable`], so rules call the table's operators
+/// directly; [`Level::is_boundary_vertex`] answers from a flag array (one
+/// load) instead of `O[p(C[v])]` (two dependent loads).
+pub struct Level<'a> {
+    /// The table.
+    pub ct: &'a CornerTable,
+    /// `boundary[v]`: is vertex `v` on the boundary?
+    pub boundary: Vec<bool>,
+}
+
+impl<'a> Level<'a> {
+    /// Precomputes the per-vertex flags of `ct` (parallel, O(V)).
+    pub fn new(ct: &'a CornerTable) -> Self {
+        let boundary = ct.vc.par_iter().with_min_len(8192).map(|&c| ct.o[p(c) as usize] == BORDER).collect();
+        Level { ct, boundary }
+    }
+    /// Is vertex `v` on the boundary?
+    #[inline(always)]
+    pub fn is_boundary_vertex(&self, v: u32) -> bool {
+        self.boundary[v as usize]
+    }
+}
+
+impl std::ops::Deref for Level<'_> {
+    type Target = CornerTable;
+    #[inline(always)]
+    fn deref(&self) -> &CornerTable {
+        self.ct
+    }
+}
 
 /// Receives the weights of one stencil.
 pub trait Sink {
@@ -61,12 +95,92 @@ pub trait Rules: Sync {
     /// Whether old vertices move (Loop, Jarek) or are copied (interpolating).
     const MOVES_VERTICES: bool;
     /// Stencil of the new vertex on the edge opposite owner corner `c`.
-    fn edge<S: Sink>(&self, ct: &CornerTable, c: u32, s: &mut S);
+    fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S);
     /// Stencil of old vertex `v`'s new position.
     #[inline(always)]
-    fn vertex<S: Sink>(&self, _ct: &CornerTable, v: u32, s: &mut S) {
+    fn vertex<S: Sink>(&self, _ct: &Level, v: u32, s: &mut S) {
         s.add(v, 1.0);
     }
+    /// Evaluates a whole level into `out` (old vertices first, then one point
+    /// per edge in `owners` order); returns (vertex ms, edge ms). The default
+    /// sums each emitted stencil; a scheme may override it with a faster
+    /// equivalent (the stencil-plan test checks the two agree).
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+        let t0 = Instant::now();
+        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
+        if Self::MOVES_VERTICES {
+            vpart.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
+                let mut acc = Accumulate::new(pos);
+                self.vertex(lv, v as u32, &mut acc);
+                *q = acc.sum;
+            });
+        } else {
+            vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
+        }
+        let t1 = Instant::now();
+        edge_points(self, lv, owners, pos, epart);
+        (super::ms(t1 - t0), super::ms(t1.elapsed()))
+    }
+}
+
+/// Every edge point through the emitted stencils.
+pub fn edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) {
+    out.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
+        let mut acc = Accumulate::new(pos);
+        r.edge(lv, c, &mut acc);
+        *q = acc.sum;
+    });
+}
+
+/// For every vertex: the sum of its neighbours' positions (interior) or of
+/// its two boundary neighbours (boundary vertex).
+///
+/// Walking each fan is a chain of dependent loads (`O` then the next corner),
+/// so it runs at memory latency. Instead the corners are streamed in order
+/// and each adds its next vertex to its own vertex (`S[v(c)] += P[v(n(c))]`:
+/// around an interior vertex every neighbour is `v(n(c))` of exactly one of
+/// its corners). Each thread scatters into a private accumulator over its own
+/// range of corners; the accumulators are then added, and boundary vertices
+/// are replaced by the sum of their two boundary neighbours.
+pub fn ring_sums(lv: &Level, pos: &[Vec3], out: &mut [Vec3]) {
+    let (vt, nc) = (&lv.ct.v, lv.ct.num_corners());
+    let threads = rayon::current_num_threads().clamp(1, 16).min(nc.div_ceil(1 << 16)).max(1);
+    let per = nc.div_ceil(threads).div_ceil(3) * 3;
+    let scatter = |acc: &mut [Vec3], range: std::ops::Range<usize>| {
+        for tri in vt[range].chunks_exact(3) {
+            let (a, b, c) = (tri[0] as usize, tri[1] as usize, tri[2] as usize);
+            let (pa, pb, pc) = (pos[a], pos[b], pos[c]);
+            acc[a] += pb;
+            acc[b] += pc;
+            acc[c] += pa;
+        }
+    };
+    out.fill(Vec3::ZERO);
+    if threads == 1 {
+        scatter(out, 0..nc);
+    } else {
+        let mut extra: Vec<Vec<Vec3>> = (1..threads).map(|_| crate::mem::zeroed(out.len())).collect();
+        rayon::scope(|sc| {
+            sc.spawn(|_| scatter(out, 0..per.min(nc)));
+            for (k, acc) in extra.iter_mut().enumerate() {
+                let r = ((k + 1) * per).min(nc)..((k + 2) * per).min(nc);
+                let scatter = &scatter;
+                sc.spawn(move |_| scatter(acc, r));
+            }
+        });
+        let extra = &extra;
+        out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, q)| {
+            for e in extra {
+                *q += e[v];
+            }
+        });
+    }
+    out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, q)| {
+        if lv.boundary[v] {
+            let (a, b) = lv.boundary_neighbours(v as u32);
+            *q = pos[a as usize] + pos[b as usize];
+        }
+    });
 }
 
 /// The 4-point curve rule along the boundary for the border edge opposite

@@ -31,21 +31,12 @@ use rayon::prelude::*;
 pub(crate) const CHUNK: usize = 1 << 14;
 
 /// The edge numbering of a table: `owners[e]` is the corner owning edge `e`,
-/// `wown[c]` is the edge id of corner `c` when `c` is an owner.
+/// `w[c]` is the id of the edge opposite corner `c` (for both of its corners).
 pub struct EdgeNumbering {
     /// Owner corner of every edge, in edge-id order.
     pub owners: Vec<u32>,
-    /// Edge id per owner corner (unspecified at non-owners).
-    pub wown: Vec<u32>,
-}
-
-impl EdgeNumbering {
-    /// Edge id of the edge opposite corner `c`.
-    #[inline(always)]
-    pub fn edge_of(&self, o: &[u32], c: u32) -> u32 {
-        let x = o[c as usize];
-        if x == BORDER || c < x { self.wown[c as usize] } else { self.wown[x as usize] }
-    }
+    /// Edge id of the edge opposite each corner.
+    pub w: Vec<u32>,
 }
 
 #[inline(always)]
@@ -53,7 +44,19 @@ fn is_owner(c: u32, x: u32) -> bool {
     x == BORDER || c < x
 }
 
-/// Numbers the edges of `ct` in O(n), in parallel.
+/// A raw pointer that may be shared between threads which write disjoint
+/// elements.
+#[derive(Clone, Copy)]
+struct SharedMut(*mut u32);
+// SAFETY: used only for writes to elements that exactly one thread writes
+// (see number_edges), and read only after the parallel loop has joined.
+unsafe impl Send for SharedMut {}
+unsafe impl Sync for SharedMut {}
+
+/// Numbers the edges of `ct` in O(n), in parallel: owners are counted per
+/// chunk, a prefix sum gives each chunk its first id, then each owner writes
+/// its id to itself and to its opposite corner, so that later passes read
+/// `w` sequentially instead of chasing `O`.
 pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
     let o = &ct.o;
     let counts: Vec<u32> = o
@@ -65,8 +68,8 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
         })
         .collect();
     let ne: u32 = counts.iter().sum();
-    let mut owners = vec![0u32; ne as usize];
-    let mut wown = vec![0u32; o.len()];
+    let mut owners: Vec<u32> = crate::mem::zeroed(ne as usize);
+    let mut w: Vec<u32> = crate::mem::zeroed(o.len());
     // carve `owners` into one slice per chunk
     let mut slices = Vec::with_capacity(counts.len());
     let mut rest: &mut [u32] = &mut owners;
@@ -77,36 +80,57 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
         first += cnt;
         rest = b;
     }
-    wown.par_chunks_mut(CHUNK).zip(o.par_chunks(CHUNK)).zip(slices).enumerate().for_each(
-        |(k, ((w, och), (first, own)))| {
-            let base = (k * CHUNK) as u32;
-            let mut e = 0usize;
-            for (i, &x) in och.iter().enumerate() {
-                let c = base + i as u32;
-                if is_owner(c, x) {
-                    w[i] = first + e as u32;
-                    own[e] = c;
-                    e += 1;
+    let wp = SharedMut(w.as_mut_ptr());
+    let nc = o.len();
+    o.par_chunks(CHUNK).zip(slices).enumerate().for_each(|(k, (och, (first, own)))| {
+        let wp = wp;
+        let base = (k * CHUNK) as u32;
+        let mut e = 0usize;
+        for (i, &x) in och.iter().enumerate() {
+            let c = base + i as u32;
+            if is_owner(c, x) {
+                let id = first + e as u32;
+                own[e] = c;
+                e += 1;
+                // SAFETY: c < nc; x < nc for a valid table (checked at build);
+                // every corner is written once: by itself if it owns its edge,
+                // otherwise by its opposite (the owner). O is an involution, so
+                // no two threads write the same element.
+                unsafe {
+                    debug_assert!((c as usize) < nc);
+                    *wp.0.add(c as usize) = id;
+                    if x != BORDER {
+                        debug_assert!((x as usize) < nc);
+                        *wp.0.add(x as usize) = id;
+                    }
                 }
             }
-        },
-    );
-    EdgeNumbering { owners, wown }
+        }
+    });
+    EdgeNumbering { owners, w }
 }
 
 /// Splits every triangle into four. Returns the new table and the edge
 /// numbering of the old one (edge `e` became vertex `old.num_vertices() + e`).
 pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
+    split_timed(old).0
+}
+
+/// [`split`], also returning the milliseconds spent numbering edges and
+/// writing the new tables.
+pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f64)) {
+    let t0 = std::time::Instant::now();
     let edges = number_edges(old);
+    let t1 = std::time::Instant::now();
     let nt = old.num_triangles();
     let nv = old.num_vertices() as u32;
     let nc = 3 * nt;
     let (ov, oo) = (&old.v, &old.o);
-    let w = |c: u32| nv + edges.edge_of(oo, c);
+    let ew = &edges.w;
     let a = |c: u32| (3 * nt * (c as usize % 3 + 1) + 3 * (c as usize / 3)) as u32;
 
-    let mut v2 = vec![0u32; 4 * nc];
-    let mut o2 = vec![0u32; 4 * nc];
+    let mut v2: Vec<u32> = crate::mem::zeroed(4 * nc);
+    let mut o2: Vec<u32> = crate::mem::zeroed(4 * nc);
     {
         let (b0, rest) = v2.split_at_mut(nc);
         let (b1, rest) = rest.split_at_mut(nc);
@@ -130,7 +154,8 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
                 let mut bo = [q1, q2, q3];
                 for i in (0..b0.len()).step_by(3) {
                     let c0 = base + i as u32;
-                    let ws = [w(c0), w(c0 + 1), w(c0 + 2)];
+                    let j = c0 as usize;
+                    let ws = [nv + ew[j], nv + ew[j + 1], nv + ew[j + 2]];
                     b0[i..i + 3].copy_from_slice(&ws);
                     for kk in 0..3u32 {
                         let c = c0 + kk;
@@ -152,11 +177,26 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
             });
     }
     let ne = edges.owners.len();
-    let mut vc = Vec::with_capacity(nv as usize + ne);
-    vc.par_extend(old.vc.par_iter().map(|&c| a(c)));
-    vc.par_extend(edges.owners.par_iter().map(|&c| if oo[c as usize] == BORDER { p(a(p(c))) } else { c }));
-    let mut valence = Vec::with_capacity(nv as usize + ne);
-    valence.extend_from_slice(&old.valence);
-    valence.par_extend(edges.owners.par_iter().map(|&c| if oo[c as usize] == BORDER { 4 } else { 6 }));
-    (CornerTable { v: v2, o: o2, vc, valence }, edges)
+    let nvu = nv as usize;
+    let mut vc: Vec<u32> = crate::mem::zeroed(nvu + ne);
+    let mut valence: Vec<u32> = crate::mem::zeroed(nvu + ne);
+    {
+        let (vc_old, vc_new) = vc.split_at_mut(nvu);
+        let (val_old, val_new) = valence.split_at_mut(nvu);
+        vc_old.par_iter_mut().zip(old.vc.par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
+        val_old.par_iter_mut().zip(old.valence.par_iter()).with_min_len(CHUNK).for_each(|(d, &k)| *d = k);
+        vc_new.par_iter_mut().zip(val_new.par_iter_mut()).zip(edges.owners.par_iter()).with_min_len(CHUNK).for_each(
+            |((d, k), &c)| {
+                if oo[c as usize] == BORDER {
+                    *d = p(a(p(c)));
+                    *k = 4;
+                } else {
+                    *d = c;
+                    *k = 6;
+                }
+            },
+        );
+    }
+    let times = (super::ms(t1 - t0), super::ms(t1.elapsed()));
+    ((CornerTable { v: v2, o: o2, vc, valence }, edges), times)
 }

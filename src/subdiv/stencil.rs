@@ -9,7 +9,7 @@
 //! weighted sums level by level. Applying level by level keeps the tables
 //! small: a composed control-to-final matrix would have L-ring support.
 
-use super::rules::{Record, Rules};
+use super::rules::{Level, Record, Rules};
 use super::{Options, RulesFn, Scheme, check_levels_fit, split, with_rules};
 use crate::Result;
 use crate::mesh::CornerTable;
@@ -112,7 +112,8 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
     fn call<R: Rules>(self, r: &R) -> LevelPlan {
         let nv = self.ct.num_vertices();
         let ne = self.owners.len();
-        let (ct, owners) = (self.ct, self.owners);
+        let lv = Level::new(self.ct);
+        let (ct, owners) = (&lv, self.owners);
         let (offsets, indices, weights) = if R::MOVES_VERTICES {
             record_rows(nv + ne, |i, rec| {
                 if i < nv {
