@@ -53,6 +53,14 @@ struct SharedMut(*mut u32);
 unsafe impl Send for SharedMut {}
 unsafe impl Sync for SharedMut {}
 
+impl SharedMut {
+    /// The pointer (a method, so closures capture the whole Sync wrapper).
+    #[inline(always)]
+    fn get(self) -> *mut u32 {
+        self.0
+    }
+}
+
 /// Numbers the edges of `ct` in O(n), in parallel: owners are counted per
 /// chunk, a prefix sum gives each chunk its first id, then each owner writes
 /// its id to itself and to its opposite corner, so that later passes read
@@ -83,7 +91,6 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
     let wp = SharedMut(w.as_mut_ptr());
     let nc = o.len();
     o.par_chunks(CHUNK).zip(slices).enumerate().for_each(|(k, (och, (first, own)))| {
-        let wp = wp;
         let base = (k * CHUNK) as u32;
         let mut e = 0usize;
         for (i, &x) in och.iter().enumerate() {
@@ -98,10 +105,10 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
                 // no two threads write the same element.
                 unsafe {
                     debug_assert!((c as usize) < nc);
-                    *wp.0.add(c as usize) = id;
+                    *wp.get().add(c as usize) = id;
                     if x != BORDER {
                         debug_assert!((x as usize) < nc);
-                        *wp.0.add(x as usize) = id;
+                        *wp.get().add(x as usize) = id;
                     }
                 }
             }
