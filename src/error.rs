@@ -108,6 +108,9 @@ pub enum Error {
     /// An argument is out of its range.
     #[error("{0}")]
     Usage(String),
+    /// No GPU adapter or device (the renderer and the window need one).
+    #[error("graphics: {0}")]
+    Gpu(String),
 }
 
 impl Error {

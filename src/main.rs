@@ -66,6 +66,47 @@ enum Cmd {
         /// Animation paths (.paths) for the model.
         #[arg(long)]
         paths: Option<PathBuf>,
+        /// Start playing the animation.
+        #[arg(long)]
+        play: bool,
+    },
+    /// Render the split-and-tweak animation to a GIF or numbered PNGs.
+    Animate {
+        /// Model (default: the bundled tetrahedron).
+        #[arg(long)]
+        model: Option<PathBuf>,
+        /// Key paths (.paths; default: beside the model or in paths/, else generated loops).
+        #[arg(long)]
+        paths: Option<PathBuf>,
+        #[command(flatten)]
+        scheme: SchemeArgs,
+        /// Subdivision level of every frame.
+        #[arg(long, short, default_value_t = 5)]
+        level: u32,
+        /// Path refinements n: K keys give K * 2^n frames.
+        #[arg(long, default_value_t = 5)]
+        refine: u32,
+        /// Path tweak: bspline, four-point or jarek.
+        #[arg(long, default_value = "jarek")]
+        tweak: String,
+        /// Write one looping GIF here.
+        #[arg(long, conflicts_with = "frames_dir", required_unless_present = "frames_dir")]
+        gif: Option<PathBuf>,
+        /// Write frame_0000.png, ... into this directory.
+        #[arg(long)]
+        frames_dir: Option<PathBuf>,
+        /// Image size WxH.
+        #[arg(long, default_value = "480x480", value_parser = parse_size)]
+        size: (u32, u32),
+        /// phong, flat, wire or phong+wire.
+        #[arg(long, default_value = "phong")]
+        shading: String,
+        /// Overlay the moving control mesh.
+        #[arg(long)]
+        control: bool,
+        /// Frames per second stored in the GIF.
+        #[arg(long, default_value_t = 30.0)]
+        fps: f32,
     },
     /// Subdivide a mesh and write the result (.obj, .ply or .ct by extension).
     Subdivide {
@@ -164,10 +205,37 @@ fn main() -> ExitCode {
 
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
-        None => view(subdiv::app::ViewOptions::default()),
-        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths }) => {
-            view(subdiv::app::ViewOptions { model, scheme: scheme.scheme, level, wireframe, frames, screenshot, paths })
+        None => view(ViewArgs::default()),
+        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths, play }) => {
+            view(ViewArgs { model, scheme: scheme.scheme, level, wireframe, frames, screenshot, paths, play })
         }
+        Some(Cmd::Animate {
+            model,
+            paths,
+            scheme,
+            level,
+            refine,
+            tweak,
+            gif,
+            frames_dir,
+            size,
+            shading,
+            control,
+            fps,
+        }) => animate_cmd(AnimateArgs {
+            model,
+            paths,
+            scheme,
+            level,
+            refine,
+            tweak,
+            gif,
+            frames_dir,
+            size,
+            shading,
+            control,
+            fps,
+        }),
         Some(Cmd::Subdivide { input, output, scheme, levels, stats, json }) => {
             subdivide_cmd(&input, &output, &scheme, levels, stats, json)
         }
@@ -178,13 +246,118 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
     }
 }
 
+/// `subdiv view` arguments (kept here so the CLI builds without the viewer).
+#[derive(Default)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+struct ViewArgs {
+    model: Option<PathBuf>,
+    scheme: Scheme,
+    level: u32,
+    wireframe: bool,
+    frames: Option<u32>,
+    screenshot: Option<PathBuf>,
+    paths: Option<PathBuf>,
+    play: bool,
+}
+
 #[cfg(feature = "viewer")]
-fn view(opts: subdiv::app::ViewOptions) -> Result<()> {
-    subdiv::app::run(opts)
+fn view(a: ViewArgs) -> Result<()> {
+    if a.frames.is_some() != a.screenshot.is_some() && a.frames.is_none() {
+        return Err(Error::Usage("--screenshot needs --frames N (or press P in the window)".into()));
+    }
+    subdiv::app::run(subdiv::app::ViewOptions {
+        model: a.model,
+        scheme: a.scheme,
+        level: a.level,
+        wireframe: a.wireframe,
+        frames: a.frames,
+        screenshot: a.screenshot,
+        paths: a.paths,
+        play: a.play,
+    })
+}
+
+/// `subdiv animate` arguments.
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+struct AnimateArgs {
+    model: Option<PathBuf>,
+    paths: Option<PathBuf>,
+    scheme: SchemeArgs,
+    level: u32,
+    refine: u32,
+    tweak: String,
+    gif: Option<PathBuf>,
+    frames_dir: Option<PathBuf>,
+    size: (u32, u32),
+    shading: String,
+    control: bool,
+    fps: f32,
+}
+
+#[cfg(feature = "viewer")]
+fn animate_cmd(a: AnimateArgs) -> Result<()> {
+    use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
+    use subdiv::render::export::{ExportStyle, ExportTarget, export_animation};
+    let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
+    let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
+    let (mesh, default_paths) = match &a.model {
+        Some(m) => {
+            let mesh = io::load(m)?;
+            let beside = subdiv::app::doc::paths_for(m);
+            (mesh, beside)
+        }
+        None => {
+            let (mesh, _) = io::obj::from_bytes(subdiv::app::doc::TETRAHEDRON_OBJ.as_bytes(), "tetrahedron.obj")?;
+            (mesh, None)
+        }
+    };
+    let paths = match (&a.paths, &default_paths, &a.model) {
+        (Some(p), _, _) | (None, Some(p), _) => {
+            let paths = Paths::load(p)?;
+            paths.check_model(&mesh, &p.display().to_string())?;
+            paths
+        }
+        (None, None, None) => Paths::parse(subdiv::app::doc::TETRAHEDRON_PATHS, "tetrahedron.paths")?,
+        (None, None, Some(_)) => Paths::generated(&mesh, 4),
+    };
+    let mut anim = Animation::new(&mesh, &paths, tweak, a.refine, a.scheme.scheme, a.level, &a.scheme.options())?;
+    let target = match (a.gif, a.frames_dir) {
+        (Some(g), _) => ExportTarget::Gif(g),
+        (None, Some(d)) => ExportTarget::Frames(d),
+        (None, None) => return Err(Error::Usage("give --gif FILE or --frames-dir DIR".into())),
+    };
+    let look = subdiv::render::Look { control: a.control, ..shading.look() };
+    let style = ExportStyle { size: a.size, look, fps: a.fps };
+    let t0 = Instant::now();
+    let total = anim.frame_count();
+    let n = export_animation(&mut anim, &mesh, &target, &style, |d, t| {
+        if d == t || d % 16 == 0 {
+            eprint!("\rsubdiv: frame {d}/{t}");
+        }
+        true
+    })?;
+    eprintln!();
+    let out = match &target {
+        ExportTarget::Gif(p) | ExportTarget::Frames(p) => p.display().to_string(),
+    };
+    println!(
+        "wrote {n} frames ({} keys x 2^{}, {} triangles each) to {out} in {:.2} s",
+        paths.keys_per_vertex,
+        a.refine,
+        anim.topology().num_triangles(),
+        t0.elapsed().as_secs_f64()
+    );
+    debug_assert_eq!(n, total);
+    Ok(())
 }
 
 #[cfg(not(feature = "viewer"))]
-fn view(_opts: subdiv::app::ViewOptions) -> Result<()> {
+fn animate_cmd(_a: AnimateArgs) -> Result<()> {
+    Err(Error::Usage("built without the 'viewer' feature: animation export is not available".into()))
+}
+
+#[cfg(not(feature = "viewer"))]
+fn view(_a: ViewArgs) -> Result<()> {
     Err(Error::Usage(
         "built without the 'viewer' feature: use subdivide / info, or rebuild with default features".into(),
     ))

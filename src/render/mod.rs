@@ -1,9 +1,52 @@
-//! The wgpu renderer: shared pipelines for the window and offscreen PNGs.
+//! The wgpu renderer: one set of pipelines (shaders/mesh.wgsl) used by the
+//! window and by offscreen rendering to PNG.
+//!
+//! Data in: flat position/normal arrays and the corner table's V table; the
+//! mesh core knows nothing of this module.
 
-use crate::{Mesh, Result};
+pub mod camera;
+pub mod export;
+pub mod gpu;
+pub mod offscreen;
+pub mod scene;
+
+pub use camera::Camera;
+pub use gpu::Gpu;
+pub use offscreen::Offscreen;
+pub use scene::{GpuMesh, Renderer, Targets, ViewportDraw};
+
+use crate::{Error, Mesh, Result};
 use std::path::Path;
 
-/// Shading modes.
+/// Depth buffer format of every pass.
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+
+/// How the faces are filled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Surface {
+    /// Smooth Phong shading with interpolated vertex normals.
+    #[default]
+    Smooth,
+    /// Flat shading, one normal per face.
+    Flat,
+    /// Faces not drawn (they still hide the lines behind them when the wireframe is on).
+    Hidden,
+}
+
+/// What one viewport shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct Look {
+    /// Face fill.
+    pub surface: Surface,
+    /// Edges as lines.
+    pub wireframe: bool,
+    /// Control mesh edges overlaid.
+    pub control: bool,
+    /// Vertex normals as short segments.
+    pub normals: bool,
+}
+
+/// Shading modes of the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Shading {
     /// Smooth Phong.
@@ -11,10 +54,23 @@ pub enum Shading {
     Phong,
     /// Flat (one normal per face).
     Flat,
-    /// Wireframe only.
+    /// Wireframe only (hidden lines removed).
     Wire,
     /// Phong with the wireframe over it.
     PhongWire,
+}
+
+impl Shading {
+    /// The viewport look for this mode.
+    pub fn look(self) -> Look {
+        let (surface, wireframe) = match self {
+            Shading::Phong => (Surface::Smooth, false),
+            Shading::Flat => (Surface::Flat, false),
+            Shading::Wire => (Surface::Hidden, true),
+            Shading::PhongWire => (Surface::Smooth, true),
+        };
+        Look { surface, wireframe, ..Look::default() }
+    }
 }
 
 impl std::str::FromStr for Shading {
@@ -35,7 +91,7 @@ impl std::str::FromStr for Shading {
 pub struct RenderOptions {
     /// Shading mode.
     pub shading: Shading,
-    /// Image size in pixels.
+    /// Image width in pixels.
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
@@ -43,10 +99,50 @@ pub struct RenderOptions {
     pub orthographic: bool,
 }
 
-/// Renders `mesh` (optionally with the control mesh overlaid) to a PNG.
+impl Default for RenderOptions {
+    fn default() -> Self {
+        RenderOptions { shading: Shading::Phong, width: 800, height: 600, orthographic: false }
+    }
+}
+
+/// The camera an offscreen render uses: the default direction, fitted to the
+/// bounds of `frame` (the control mesh, so every level is framed alike).
+pub fn default_camera(frame: &Mesh, opts: &RenderOptions) -> Camera {
+    let (lo, hi) = frame.bounds();
+    let mut cam = Camera::framing(lo, hi, opts.width as f32 / opts.height.max(1) as f32);
+    cam.orthographic = opts.orthographic;
+    cam
+}
+
+/// Renders `mesh` (with `control`'s edges overlaid when given) to an image.
 ///
 /// # Errors
-/// When no adapter exists or the file cannot be written.
-pub fn render_png(_mesh: &Mesh, _control: Option<&Mesh>, _opts: &RenderOptions, _out: &Path) -> Result<()> {
-    Err(crate::Error::Usage("the renderer is not built yet".into()))
+/// [`Error::Gpu`] without an adapter; size errors.
+pub fn render_image(mesh: &Mesh, control: Option<&Mesh>, opts: &RenderOptions) -> Result<image::RgbaImage> {
+    let mut off = Offscreen::new(opts.width, opts.height)?;
+    let gm = off.upload(mesh)?;
+    let gc = control.map(|c| off.upload(c)).transpose()?;
+    let look = Look { control: gc.is_some(), ..opts.shading.look() };
+    off.render_one(default_camera(control.unwrap_or(mesh), opts), &gm, gc.as_ref(), look)
+}
+
+/// Renders `mesh` to a PNG file (written atomically).
+///
+/// # Errors
+/// See [`render_image`]; I/O errors.
+pub fn render_png(mesh: &Mesh, control: Option<&Mesh>, opts: &RenderOptions, out: &Path) -> Result<()> {
+    let img = render_image(mesh, control, opts)?;
+    save_png(&img, out)
+}
+
+/// Writes an image as PNG through a temporary file and a rename.
+///
+/// # Errors
+/// I/O or encoding errors, naming the file.
+pub fn save_png(img: &image::RgbaImage, out: &Path) -> Result<()> {
+    crate::io::atomic_write(out, |w| {
+        let enc = image::codecs::png::PngEncoder::new(w);
+        image::ImageEncoder::write_image(enc, img.as_raw(), img.width(), img.height(), image::ExtendedColorType::Rgba8)
+            .map_err(|e| Error::Usage(format!("{}: PNG encoding failed: {e}", out.display())))
+    })
 }

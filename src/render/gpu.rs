@@ -1,0 +1,68 @@
+//! Instance, adapter and device creation for the window and offscreen use.
+
+use crate::{Error, Result};
+
+/// A device and its queue, with the adapter they came from.
+pub struct Gpu {
+    /// The wgpu instance.
+    pub instance: wgpu::Instance,
+    /// The adapter chosen.
+    pub adapter: wgpu::Adapter,
+    /// The logical device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+}
+
+impl Gpu {
+    /// A device without any window (offscreen rendering, tests). Honours
+    /// `WGPU_BACKEND` and the other wgpu environment variables.
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] when no adapter or device exists.
+    pub fn headless() -> Result<Gpu> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::all();
+        let instance = wgpu::Instance::new(desc.with_env());
+        pollster::block_on(Self::with_instance(instance, None))
+    }
+
+    /// Requests an adapter (compatible with `surface` when given) and a device.
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] when no adapter or device exists.
+    pub async fn with_instance(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'static>>) -> Result<Gpu> {
+        let adapter = instance
+            .request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: surface,
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| Error::Gpu(format!("no graphics adapter: {e}")))?;
+        let (device, queue) = adapter
+            .request_device(&wgpu::DeviceDescriptor {
+                label: Some("subdiv"),
+                required_limits: wgpu::Limits::downlevel_webgl2_defaults().using_resolution(adapter.limits()),
+                ..Default::default()
+            })
+            .await
+            .map_err(|e| Error::Gpu(format!("no graphics device: {e}")))?;
+        Ok(Gpu { instance, adapter, device, queue })
+    }
+
+    /// `backend | name`, for logs and the stats panel.
+    pub fn describe(&self) -> String {
+        let info = self.adapter.get_info();
+        format!("{:?} | {}", info.backend, info.name)
+    }
+
+    /// Largest supported MSAA sample count (up to 4) usable with both `format`
+    /// and the depth format.
+    pub fn msaa_samples(&self, format: wgpu::TextureFormat) -> u32 {
+        let c = self.adapter.get_texture_format_features(format).flags;
+        let d = self.adapter.get_texture_format_features(super::DEPTH_FORMAT).flags;
+        [4, 2].into_iter().find(|&n| c.sample_count_supported(n) && d.sample_count_supported(n)).unwrap_or(1)
+    }
+}

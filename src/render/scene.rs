@@ -1,0 +1,489 @@
+//! Pipelines, GPU meshes and the 3D pass shared by the window and offscreen
+//! rendering (shaders/mesh.wgsl).
+//!
+//! The wireframe is a line list of the mesh's edges (each edge once, taken
+//! from the corner table), drawn with the same vertex buffer: no polygon-mode
+//! feature is needed. Hidden lines are removed by a depth-only pass of the
+//! faces; lines are pulled slightly towards the eye so they win against the
+//! faces they lie on.
+
+use super::camera::Camera;
+use super::{DEPTH_FORMAT, Look, Surface};
+use crate::mesh::{BORDER, n, p};
+use crate::{CornerTable, Error, Result};
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec3, Vec4};
+use wgpu::util::DeviceExt;
+
+/// Background colour (linear RGB) of every view.
+pub const BACKGROUND: [f64; 3] = [0.045, 0.05, 0.065];
+
+/// Linear colours of surfaces and lines.
+const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
+const BACK: Vec4 = Vec4::new(0.62, 0.30, 0.16, 1.0);
+const WIRE_DARK: [f32; 4] = [0.015, 0.02, 0.035, 1.0];
+const WIRE_LIGHT: [f32; 4] = [0.80, 0.84, 0.92, 1.0];
+const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 1.0];
+const NORMALS: [f32; 4] = [0.15, 0.85, 0.25, 1.0];
+
+/// The 8-bit sRGB value the background has in a rendered image.
+pub fn background_srgb8() -> [u8; 3] {
+    BACKGROUND.map(|c| {
+        let s = if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        (s * 255.0).round().clamp(0.0, 255.0) as u8
+    })
+}
+
+/// Per-viewport uniforms (see `View` in shaders/mesh.wgsl).
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct ViewUniform {
+    proj: [[f32; 4]; 4],
+    view: [[f32; 4]; 4],
+    eye: [f32; 4],
+    forward: [f32; 4],
+    key_light: [f32; 4],
+    fill_light: [f32; 4],
+    front_color: [f32; 4],
+    back_color: [f32; 4],
+    params: [f32; 4],
+    line: [f32; 4],
+}
+
+/// A mesh on the GPU: positions and normals (separate buffers, so per-frame
+/// animation updates copy the slices as they are), triangle and edge indices.
+pub struct GpuMesh {
+    positions: wgpu::Buffer,
+    normals: wgpu::Buffer,
+    triangles: wgpu::Buffer,
+    edges: wgpu::Buffer,
+    vertex_count: usize,
+    triangle_indices: u32,
+    edge_indices: u32,
+    normal_lines: Option<(wgpu::Buffer, u32)>,
+    normal_length: f32,
+}
+
+/// Each edge once as a pair of vertex ids: corner `c` names the edge opposite
+/// it when it is on the border or the smaller corner of its pair.
+pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
+    let mut out = Vec::with_capacity(ct.num_edges() * 2);
+    for c in 0..ct.num_corners() as u32 {
+        let o = ct.o[c as usize];
+        if o == BORDER || c < o {
+            out.push(ct.v[n(c) as usize]);
+            out.push(ct.v[p(c) as usize]);
+        }
+    }
+    out
+}
+
+fn buffer(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    // wgpu rejects nothing of size 0, but some backends dislike it: keep 16 bytes at least.
+    let mut padded;
+    let contents = if bytes.len() < 16 {
+        padded = bytes.to_vec();
+        padded.resize(16, 0);
+        &padded[..]
+    } else {
+        bytes
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
+}
+
+impl GpuMesh {
+    /// Uploads a mesh with its vertex normals.
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] when a buffer would exceed the device's limit.
+    pub fn new(device: &wgpu::Device, ct: &CornerTable, positions: &[Vec3], normals: &[Vec3]) -> Result<GpuMesh> {
+        let edges = edge_indices(ct);
+        let limit = device.limits().max_buffer_size;
+        let biggest = (ct.v.len().max(edges.len()) * 4).max(positions.len() * 12) as u64;
+        if biggest > limit {
+            return Err(Error::Gpu(format!(
+                "the mesh needs a {} buffer but the graphics device allows {}",
+                crate::error::human_bytes(biggest),
+                crate::error::human_bytes(limit)
+            )));
+        }
+        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        Ok(GpuMesh {
+            positions: buffer(device, "positions", bytemuck::cast_slice(positions), vertex),
+            normals: buffer(device, "normals", bytemuck::cast_slice(normals), vertex),
+            triangles: buffer(device, "triangles", bytemuck::cast_slice(&ct.v), wgpu::BufferUsages::INDEX),
+            edges: buffer(device, "edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
+            vertex_count: positions.len(),
+            triangle_indices: ct.v.len() as u32,
+            edge_indices: edges.len() as u32,
+            normal_lines: None,
+            normal_length: 0.05,
+        })
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+
+    /// Replaces positions and normals (same vertex count, same topology):
+    /// the per-frame path of the animation; nothing is reallocated.
+    pub fn update(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, positions: &[Vec3], normals: &[Vec3]) {
+        let k = self.vertex_count.min(positions.len()).min(normals.len());
+        queue.write_buffer(&self.positions, 0, bytemuck::cast_slice(&positions[..k]));
+        queue.write_buffer(&self.normals, 0, bytemuck::cast_slice(&normals[..k]));
+        if self.normal_lines.is_some() {
+            self.set_normal_lines(device, positions, normals, None);
+        }
+    }
+
+    /// Builds (or with `length` `None`, rebuilds at the last length) the
+    /// short segments that display the vertex normals.
+    pub fn set_normal_lines(
+        &mut self,
+        device: &wgpu::Device,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        length: Option<f32>,
+    ) {
+        let length = length.unwrap_or(self.normal_length);
+        self.normal_length = length;
+        let mut v = Vec::with_capacity(positions.len() * 2);
+        for (q, nrm) in positions.iter().zip(normals) {
+            v.push(*q);
+            v.push(*q + *nrm * length);
+        }
+        let count = v.len() as u32;
+        self.normal_lines =
+            Some((buffer(device, "normal lines", bytemuck::cast_slice(&v), wgpu::BufferUsages::VERTEX), count));
+    }
+
+    /// Drops the normal segments.
+    pub fn clear_normal_lines(&mut self) {
+        self.normal_lines = None;
+    }
+}
+
+/// Multisampled colour and depth attachments of one size.
+pub struct Targets {
+    msaa: Option<wgpu::TextureView>,
+    depth: wgpu::TextureView,
+    /// Size in pixels.
+    pub size: (u32, u32),
+}
+
+impl Targets {
+    /// Attachments for a `width` x `height` target of the renderer's format.
+    pub fn new(device: &wgpu::Device, renderer: &Renderer, width: u32, height: u32) -> Targets {
+        let size = wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: 1 };
+        let make = |format, label| {
+            device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some(label),
+                    size,
+                    mip_level_count: 1,
+                    sample_count: renderer.samples,
+                    dimension: wgpu::TextureDimension::D2,
+                    format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default())
+        };
+        let msaa = (renderer.samples > 1).then(|| make(renderer.format, "msaa colour"));
+        Targets { msaa, depth: make(DEPTH_FORMAT, "depth"), size: (size.width, size.height) }
+    }
+}
+
+/// One viewport's worth of drawing.
+pub struct ViewportDraw<'a> {
+    /// Pixel rectangle `[x, y, width, height]` in the target.
+    pub rect: [f32; 4],
+    /// Camera (its aspect is taken from `rect`).
+    pub camera: Camera,
+    /// The surface to draw.
+    pub mesh: Option<&'a GpuMesh>,
+    /// The control mesh to overlay as lines (when `look.control`).
+    pub control: Option<&'a GpuMesh>,
+    /// How to draw it.
+    pub look: Look,
+}
+
+/// Pipelines and per-viewport uniforms.
+pub struct Renderer {
+    /// Colour target format.
+    pub format: wgpu::TextureFormat,
+    /// MSAA sample count of the pipelines.
+    pub samples: u32,
+    mesh: wgpu::RenderPipeline,
+    depth_only: wgpu::RenderPipeline,
+    lines: wgpu::RenderPipeline,
+    view_layout: wgpu::BindGroupLayout,
+    views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
+    styles: [wgpu::BindGroup; 4],
+}
+
+const POS_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+};
+const NRM_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![1 => Float32x3],
+};
+
+fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        }],
+    })
+}
+
+fn uniform_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buf: &wgpu::Buffer) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout,
+        entries: &[wgpu::BindGroupEntry { binding: 0, resource: buf.as_entire_binding() }],
+    })
+}
+
+impl Renderer {
+    /// Pipelines for colour targets of `format` with `samples` MSAA samples.
+    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, samples: u32) -> Renderer {
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("mesh.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/mesh.wgsl").into()),
+        });
+        let view_layout = uniform_layout(device, "view");
+        let style_layout = uniform_layout(device, "line style");
+        let mesh_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("mesh"),
+            bind_group_layouts: &[Some(&view_layout)],
+            immediate_size: 0,
+        });
+        let line_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("lines"),
+            bind_group_layouts: &[Some(&view_layout), Some(&style_layout)],
+            immediate_size: 0,
+        });
+        let multisample = wgpu::MultisampleState { count: samples, mask: !0, alpha_to_coverage_enabled: false };
+        let depth = |write: bool, compare| {
+            Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(write),
+                depth_compare: Some(compare),
+                stencil: Default::default(),
+                bias: Default::default(),
+            })
+        };
+        let pipeline = |label: &str,
+                        layout: &wgpu::PipelineLayout,
+                        vs: &str,
+                        buffers: &[Option<wgpu::VertexBufferLayout>],
+                        topology,
+                        write_color: bool,
+                        depth_state| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(layout),
+                vertex: wgpu::VertexState {
+                    module: &shader,
+                    entry_point: Some(vs),
+                    compilation_options: Default::default(),
+                    buffers,
+                },
+                primitive: wgpu::PrimitiveState { topology, cull_mode: None, ..Default::default() },
+                depth_stencil: depth_state,
+                multisample,
+                fragment: Some(wgpu::FragmentState {
+                    module: &shader,
+                    entry_point: Some(if vs == "vs_line" { "fs_line" } else { "fs_mesh" }),
+                    compilation_options: Default::default(),
+                    targets: &[Some(wgpu::ColorTargetState {
+                        format,
+                        blend: None,
+                        write_mask: if write_color { wgpu::ColorWrites::ALL } else { wgpu::ColorWrites::empty() },
+                    })],
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let tri = wgpu::PrimitiveTopology::TriangleList;
+        let mesh_buffers = [Some(POS_LAYOUT), Some(NRM_LAYOUT)];
+        let mesh = pipeline(
+            "mesh",
+            &mesh_layout,
+            "vs_mesh",
+            &mesh_buffers,
+            tri,
+            true,
+            depth(true, wgpu::CompareFunction::Less),
+        );
+        let depth_only = pipeline(
+            "depth only",
+            &mesh_layout,
+            "vs_mesh",
+            &mesh_buffers,
+            tri,
+            false,
+            depth(true, wgpu::CompareFunction::Less),
+        );
+        let lines = pipeline(
+            "lines",
+            &line_layout,
+            "vs_line",
+            &[Some(POS_LAYOUT)],
+            wgpu::PrimitiveTopology::LineList,
+            true,
+            depth(true, wgpu::CompareFunction::LessEqual),
+        );
+        let style = |c: [f32; 4]| {
+            let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("line style"),
+                contents: bytemuck::cast_slice(&[c]),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            uniform_group(device, &style_layout, &buf)
+        };
+        let styles = [style(WIRE_DARK), style(WIRE_LIGHT), style(CONTROL), style(NORMALS)];
+        Renderer { format, samples, mesh, depth_only, lines, view_layout, views: Vec::new(), styles }
+    }
+
+    fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
+        let aspect = d.rect[2] / d.rect[3].max(1.0);
+        let cam = &d.camera;
+        let key_world = Vec3::new(-0.45, 0.75, 0.5).normalize();
+        let fill_world = Vec3::new(0.35, -0.8, -0.45).normalize();
+        ViewUniform {
+            proj: cam.proj(aspect).to_cols_array_2d(),
+            view: cam.view().to_cols_array_2d(),
+            eye: cam.eye().extend(1.0).to_array(),
+            forward: cam.forward().extend(0.0).to_array(),
+            key_light: key_world.extend(0.5).to_array(),
+            fill_light: fill_world.extend(0.15).to_array(),
+            front_color: FRONT.to_array(),
+            back_color: BACK.to_array(),
+            params: [
+                f32::from(d.look.surface == Surface::Flat),
+                f32::from(!self.format.is_srgb()),
+                f32::from(cam.orthographic),
+                0.6,
+            ],
+            line: [0.0015, 0.004 * cam.radius, 0.0, 0.0],
+        }
+    }
+
+    /// Writes the uniforms of `draws` and records one render pass that clears
+    /// `targets` and draws every viewport, resolving into `resolve` (or
+    /// drawing straight into it without MSAA).
+    pub fn encode(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &Targets,
+        resolve: &wgpu::TextureView,
+        draws: &[ViewportDraw],
+    ) {
+        while self.views.len() < draws.len() {
+            let buf = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("view uniform"),
+                size: std::mem::size_of::<ViewUniform>() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let group = uniform_group(device, &self.view_layout, &buf);
+            self.views.push((buf, group));
+        }
+        for (d, (buf, _)) in draws.iter().zip(&self.views) {
+            queue.write_buffer(buf, 0, bytemuck::bytes_of(&self.uniform(d)));
+        }
+        let (view, resolve_target) = match &targets.msaa {
+            Some(m) => (m, Some(resolve)),
+            None => (resolve, None),
+        };
+        // A non-sRGB target stores what it is given: encode the clear colour like the shader does.
+        let [r, g, b] =
+            if self.format.is_srgb() { BACKGROUND } else { background_srgb8().map(|c| f64::from(c) / 255.0) };
+        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("scene"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view,
+                depth_slice: None,
+                resolve_target,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        let (tw, th) = (targets.size.0 as f32, targets.size.1 as f32);
+        for (d, (_, group)) in draws.iter().zip(&self.views) {
+            let [x, y, w, h] = d.rect;
+            let (x0, y0) = (x.clamp(0.0, tw), y.clamp(0.0, th));
+            let (x1, y1) = ((x + w).clamp(0.0, tw), (y + h).clamp(0.0, th));
+            if x1 - x0 < 1.0 || y1 - y0 < 1.0 {
+                continue;
+            }
+            // The viewport keeps the full rectangle (so the aspect is right); the scissor clips it.
+            pass.set_viewport(x, y, w.max(1.0), h.max(1.0), 0.0, 1.0);
+            pass.set_scissor_rect(x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32);
+            pass.set_bind_group(0, group, &[]);
+            if let Some(m) = d.mesh {
+                let faces = match d.look.surface {
+                    Surface::Smooth | Surface::Flat => Some(&self.mesh),
+                    Surface::Hidden => d.look.wireframe.then_some(&self.depth_only),
+                };
+                if let Some(pipe) = faces.filter(|_| m.triangle_indices > 0) {
+                    pass.set_pipeline(pipe);
+                    pass.set_vertex_buffer(0, m.positions.slice(..));
+                    pass.set_vertex_buffer(1, m.normals.slice(..));
+                    pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+                }
+                pass.set_pipeline(&self.lines);
+                if d.look.wireframe && m.edge_indices > 0 {
+                    let style = if d.look.surface == Surface::Hidden { 1 } else { 0 };
+                    pass.set_bind_group(1, &self.styles[style], &[]);
+                    pass.set_vertex_buffer(0, m.positions.slice(..));
+                    pass.set_index_buffer(m.edges.slice(..), wgpu::IndexFormat::Uint32);
+                    pass.draw_indexed(0..m.edge_indices, 0, 0..1);
+                }
+                if let (true, Some((buf, count))) = (d.look.normals, &m.normal_lines) {
+                    pass.set_bind_group(1, &self.styles[3], &[]);
+                    pass.set_vertex_buffer(0, buf.slice(..));
+                    pass.draw(0..*count, 0..1);
+                }
+            }
+            if let (true, Some(c)) = (d.look.control, d.control)
+                && c.edge_indices > 0
+            {
+                pass.set_pipeline(&self.lines);
+                pass.set_bind_group(1, &self.styles[2], &[]);
+                pass.set_vertex_buffer(0, c.positions.slice(..));
+                pass.set_index_buffer(c.edges.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..c.edge_indices, 0, 0..1);
+            }
+        }
+    }
+}

@@ -1,0 +1,178 @@
+//! Offscreen rendering, asserted on pixels. Runs on any wgpu adapter (Mesa's
+//! lavapipe or llvmpipe in CI). Skips only when no adapter exists and
+//! SUBDIV_REQUIRE_GPU is unset; CI sets it, so there a missing adapter fails.
+#![cfg(feature = "viewer")]
+
+mod common;
+
+use common::{bundled, hemisphere};
+use glam::Vec3;
+use image::RgbaImage;
+use subdiv::render::scene::background_srgb8;
+use subdiv::render::{Camera, Look, Offscreen, Shading, Surface, default_camera};
+use subdiv::{Mesh, Options, Scheme, subdivide};
+
+fn offscreen(w: u32, h: u32) -> Option<Offscreen> {
+    match Offscreen::new(w, h) {
+        Ok(o) => Some(o),
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
+            eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
+            None
+        }
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    }
+}
+
+fn render(off: &mut Offscreen, mesh: &Mesh, control: Option<&Mesh>, look: Look, ortho: bool) -> RgbaImage {
+    let (w, h) = off.size();
+    let opts = subdiv::render::RenderOptions { shading: Shading::Phong, width: w, height: h, orthographic: ortho };
+    let cam = default_camera(control.unwrap_or(mesh), &opts);
+    let gm = off.upload(mesh).unwrap();
+    let gc = control.map(|c| off.upload(c).unwrap());
+    off.render_one(cam, &gm, gc.as_ref(), look).unwrap()
+}
+
+fn is_background(img: &RgbaImage, x: u32, y: u32) -> bool {
+    let bg = background_srgb8();
+    let p = img.get_pixel(x, y).0;
+    (0..3).all(|i| (i32::from(p[i]) - i32::from(bg[i])).abs() <= 1)
+}
+
+fn luminance(p: [u8; 4]) -> f64 {
+    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
+}
+
+fn differing_pixels(a: &RgbaImage, b: &RgbaImage) -> usize {
+    a.pixels().zip(b.pixels()).filter(|(p, q)| (0..3).any(|i| p.0[i].abs_diff(q.0[i]) > 8)).count()
+}
+
+fn fine(name: &str, scheme: Scheme, levels: u32) -> (Mesh, Mesh) {
+    let m = bundled(name);
+    let f = subdivide(&m, scheme, levels, &Options::default()).unwrap().0;
+    (m, f)
+}
+
+#[test]
+fn every_bundled_model_covers_the_centre_and_leaves_the_corners_background() {
+    // An odd width exercises the 256-byte row padding of the readback.
+    let Some(mut off) = offscreen(161, 120) else { return };
+    for name in common::BUNDLED {
+        let (control, mesh) = fine(name, Scheme::Loop, 2);
+        let img = render(&mut off, &mesh, Some(&control), Shading::Phong.look(), false);
+        assert_eq!(img.dimensions(), (161, 120));
+        for (x, y) in [(0, 0), (160, 0), (0, 119), (160, 119)] {
+            assert!(is_background(&img, x, y), "{name}: corner ({x},{y}) is {:?}", img.get_pixel(x, y));
+        }
+        let covered = (-3..=3).flat_map(|dx| (-3..=3).map(move |dy| (80 + dx, 60 + dy)));
+        let hits = covered.filter(|&(x, y)| !is_background(&img, x as u32, y as u32)).count();
+        // The torus has a hole in the middle, so ask for the centre region to be mostly covered elsewhere.
+        if name == "torus.obj" {
+            let object = img.pixels().filter(|p| !(0..3).all(|i| p.0[i].abs_diff(background_srgb8()[i]) <= 1)).count();
+            assert!(object > 161 * 120 / 8, "{name}: only {object} object pixels");
+        } else {
+            assert!(hits >= 40, "{name}: centre not covered ({hits}/49)");
+        }
+    }
+}
+
+#[test]
+fn wireframe_flat_and_phong_differ() {
+    let Some(mut off) = offscreen(200, 160) else { return };
+    let (_, mesh) = fine("cube.obj", Scheme::Butterfly, 2);
+    let phong = render(&mut off, &mesh, None, Shading::Phong.look(), false);
+    let flat = render(&mut off, &mesh, None, Shading::Flat.look(), false);
+    let wire = render(&mut off, &mesh, None, Shading::Wire.look(), false);
+    let both = render(&mut off, &mesh, None, Shading::PhongWire.look(), false);
+    let area = 200 * 160;
+    assert!(differing_pixels(&phong, &wire) > area / 20, "wire vs phong");
+    assert!(differing_pixels(&phong, &both) > area / 50, "phong+wire vs phong");
+    assert!(differing_pixels(&phong, &flat) > area / 100, "flat vs phong");
+    // Wire only: the inside of the object is mostly background between lines, unlike Phong.
+    let bg_inside = |img: &RgbaImage| {
+        (80..120).flat_map(|x| (60..100).map(move |y| (x, y))).filter(|&(x, y)| is_background(img, x, y)).count()
+    };
+    assert!(bg_inside(&wire) > 400, "wireframe interior should show the background between edges");
+    assert_eq!(bg_inside(&phong), 0, "the shaded cube covers its interior");
+}
+
+#[test]
+fn the_lit_side_is_brighter_than_the_far_side() {
+    // The key light comes from the upper left of the default view (and a
+    // headlight from the eye): on a sphere the upper-left limb must be
+    // brighter than the lower-right one.
+    let Some(mut off) = offscreen(200, 200) else { return };
+    let sphere = subdiv::mesh::shapes::icosphere(4);
+    let img = render(&mut off, &sphere, None, Shading::Phong.look(), true);
+    let mean = |x0: u32, y0: u32| {
+        let mut s = 0.0;
+        let mut n = 0;
+        for x in x0..x0 + 20 {
+            for y in y0..y0 + 20 {
+                if !is_background(&img, x, y) {
+                    s += luminance(img.get_pixel(x, y).0);
+                    n += 1;
+                }
+            }
+        }
+        assert!(n > 100, "region at ({x0},{y0}) is off the sphere");
+        s / f64::from(n)
+    };
+    let (upper_left, lower_right) = (mean(55, 55), mean(125, 125));
+    eprintln!("lit {upper_left:.1} far {lower_right:.1}");
+    assert!(upper_left > lower_right + 15.0, "upper left {upper_left:.1} vs lower right {lower_right:.1}");
+}
+
+#[test]
+fn orthographic_and_perspective_images_differ() {
+    let Some(mut off) = offscreen(160, 160) else { return };
+    let (_, mesh) = fine("lprism.obj", Scheme::Midpoint, 1);
+    let persp = render(&mut off, &mesh, None, Shading::Phong.look(), false);
+    let ortho = render(&mut off, &mesh, None, Shading::Phong.look(), true);
+    assert!(differing_pixels(&persp, &ortho) > 160 * 160 / 100);
+}
+
+#[test]
+fn the_control_overlay_draws_orange_lines_and_open_meshes_show_their_back() {
+    let Some(mut off) = offscreen(200, 160) else { return };
+    let (control, mesh) = fine("tetrahedron.obj", Scheme::Loop, 3);
+    let orange = |img: &RgbaImage| img.pixels().filter(|p| p.0[0] > 180 && p.0[2] < 80 && p.0[0] > p.0[1] + 60).count();
+    let without = render(&mut off, &mesh, Some(&control), Shading::Phong.look(), false);
+    let with = render(&mut off, &mesh, Some(&control), Look { control: true, ..Shading::Phong.look() }, false);
+    assert_eq!(orange(&without), 0);
+    assert!(orange(&with) > 100, "{} orange pixels", orange(&with));
+    // Two-sided lighting: looking into an open hemisphere shows its warm back faces.
+    let cup = hemisphere();
+    let (lo, hi) = cup.bounds();
+    let mut cam = Camera::framing(lo, hi, 1.25);
+    // The opening faces -z: from a diagonal behind it the outside and, through the opening, the inside show.
+    cam.yaw = 0.75 * std::f32::consts::PI;
+    cam.pitch = 0.2;
+    let g = off.upload(&cup).unwrap();
+    let img = off.render_one(cam, &g, None, Look { surface: Surface::Smooth, ..Look::default() }).unwrap();
+    let warm = img.pixels().filter(|p| p.0[0] > p.0[2] + 20).count();
+    let cool = img.pixels().filter(|p| p.0[2] > p.0[0] + 20).count();
+    eprintln!("warm {warm} cool {cool}");
+    assert!(warm > 50 && cool > 50, "back faces {warm}, front faces {cool}");
+}
+
+#[test]
+fn animation_frames_update_in_place_and_move() {
+    use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
+    let Some(mut off) = offscreen(128, 128) else { return };
+    let control = bundled("tetrahedron.obj");
+    let paths =
+        Paths::load(&std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
+    let mut anim = Animation::new(&control, &paths, Tweak::Jarek, 2, Scheme::Loop, 3, &Options::default()).unwrap();
+    let topo = anim.topology().clone();
+    let (p, n) = anim.evaluate(0);
+    let mut g = subdiv::render::GpuMesh::new(&off.gpu.device, &topo, p, n).unwrap();
+    let (lo, hi) = subdiv::render::export::motion_bounds(&anim);
+    let cam = Camera::framing(lo, hi, 1.0);
+    let first = off.render_one(cam, &g, None, Look::default()).unwrap();
+    let (p, n) = anim.evaluate(anim.frame_count() / 2);
+    g.update(&off.gpu.device, &off.gpu.queue, p, n);
+    let middle = off.render_one(cam, &g, None, Look::default()).unwrap();
+    assert!(differing_pixels(&first, &middle) > 50, "the animation does not move");
+    let far = Vec3::splat(1e3);
+    assert!(lo.cmplt(far).all() && hi.cmpgt(-far).all());
+}
