@@ -49,6 +49,19 @@ pub fn motion_bounds(anim: &Animation) -> (Vec3, Vec3) {
     if lo.cmple(hi).all() { (lo, hi) } else { (Vec3::ZERO, Vec3::ZERO) }
 }
 
+/// Bounds of the subdivided surface over every frame (evaluates them all).
+pub fn surface_motion_bounds(anim: &mut Animation) -> (Vec3, Vec3) {
+    let mut lo = Vec3::splat(f32::MAX);
+    let mut hi = Vec3::splat(f32::MIN);
+    for f in 0..anim.frame_count() {
+        for q in anim.evaluate(f).0 {
+            lo = lo.min(*q);
+            hi = hi.max(*q);
+        }
+    }
+    if lo.cmple(hi).all() { (lo, hi) } else { (Vec3::ZERO, Vec3::ZERO) }
+}
+
 /// Renders every frame of `anim` (whose control topology is `control`) and
 /// writes them to `target`. `progress(done, total)` is called after each
 /// frame; returning `false` cancels (nothing is left behind for a GIF).
@@ -65,7 +78,12 @@ pub fn export_animation(
 ) -> Result<usize> {
     let (w, h) = style.size;
     let mut off = Offscreen::new(w, h)?;
-    let (lo, hi) = motion_bounds(anim);
+    // Frame the whole motion of what is drawn: the surface, and the control mesh when overlaid.
+    let (mut lo, mut hi) = surface_motion_bounds(anim);
+    if style.look.control {
+        let (a, b) = motion_bounds(anim);
+        (lo, hi) = (lo.min(a), hi.max(b));
+    }
     let mut camera = Camera::framing(lo, hi, w as f32 / h as f32);
     camera.orthographic = false;
     let total = anim.frame_count();
