@@ -1,23 +1,19 @@
 use std::time::Instant;
-use subdiv::subdiv::rules::{Level, ring_sums};
+use subdiv::render::{Look, Offscreen, RenderOptions, Surface, default_camera};
 fn main() {
-    let m = subdiv::io::load(std::path::Path::new("/work/shared/models/stanford-bunny-compact.obj")).unwrap();
-    let (m, _) = subdiv::subdivide(&m, subdiv::Scheme::Midpoint, 2, &Default::default()).unwrap();
-    let mut out = vec![glam::Vec3::ZERO; m.positions.len()];
-    for _ in 0..3 {
-        let t = Instant::now();
-        let lv = Level::new(&m.ct);
-        let t1 = t.elapsed();
-        ring_sums(&lv, &m.positions, &mut out);
-        println!("level {:?} ring_sums {:?} (nv={})", t1, t.elapsed() - t1, m.positions.len());
-    }
-    // sequential walk for comparison
-    let t = Instant::now();
-    let mut acc = glam::Vec3::ZERO;
-    for v in 0..m.positions.len() as u32 {
-        for c in m.ct.fan(v) {
-            acc += m.positions[m.ct.v[subdiv::mesh::n(c) as usize] as usize];
+    let m = subdiv::io::load(std::path::Path::new("../shared/models/stanford-bunny-compact.obj")).unwrap();
+    let (f, _) = subdiv::subdivide(&m, subdiv::Scheme::Loop, 2, &Default::default()).unwrap();
+    let mut off = Offscreen::new(960, 800).unwrap();
+    println!("{} samples {}", off.gpu.describe(), off.renderer.samples);
+    let cam = default_camera(&m, &RenderOptions { width: 960, height: 800, ..Default::default() });
+    let g = off.upload(&f).unwrap();
+    for (name, look) in [("smooth", Look::default()), ("flat", Look { surface: Surface::Flat, ..Look::default() }), ("hidden", Look { surface: Surface::Hidden, wireframe: false, ..Look::default() })] {
+        let mut ts = vec![];
+        for _ in 0..6 {
+            let t = Instant::now();
+            off.render_one(cam, &g, None, look).unwrap();
+            ts.push(t.elapsed().as_secs_f64() * 1e3);
         }
+        println!("{name}: {:?}", ts.iter().map(|t| format!("{t:.0}")).collect::<Vec<_>>());
     }
-    println!("1-thread naive fan walk {:?} {acc}", t.elapsed());
 }

@@ -84,6 +84,8 @@ struct App {
     win: Option<Win>,
     fatal: Option<Error>,
     frames_done: u32,
+    /// Frame-to-frame times (ms) of the counted `--frames` frames.
+    frame_log: Vec<f64>,
     started: Instant,
     last_frame: Instant,
 }
@@ -131,6 +133,7 @@ impl App {
             win: None,
             fatal: None,
             frames_done: 0,
+            frame_log: Vec::new(),
             started: Instant::now(),
             last_frame: Instant::now(),
         })
@@ -161,7 +164,10 @@ impl App {
         config.present_mode = wgpu::PresentMode::AutoVsync;
         config.view_formats = vec![];
         surface.configure(&gpu.device, &config);
-        let samples = gpu.msaa_samples(format);
+        let samples = match std::env::var("SUBDIV_MSAA").ok().and_then(|v| v.parse::<u32>().ok()) {
+            Some(n) if n <= 1 => 1,
+            _ => gpu.msaa_samples(format),
+        };
         let renderer = Renderer::new(&gpu.device, format, samples);
         let targets = Targets::new(&gpu.device, &renderer, config.width, config.height);
         let egui_ctx = egui::Context::default();
@@ -258,7 +264,8 @@ impl App {
 
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
         let now = Instant::now();
-        let dt = (now - self.last_frame).as_secs_f64().min(0.25);
+        let raw_dt = (now - self.last_frame).as_secs_f64();
+        let dt = raw_dt.min(0.25);
         self.last_frame = now;
         self.ui.frame_ms = if self.ui.frame_ms == 0.0 { dt * 1e3 } else { 0.9 * self.ui.frame_ms + 0.1 * dt * 1e3 };
         self.doc.poll();
@@ -365,6 +372,7 @@ impl App {
         let finishing = self.opts.frames.is_some_and(|n| {
             if !self.doc.busy() {
                 self.frames_done += 1;
+                self.frame_log.push(raw_dt * 1e3);
             }
             self.frames_done >= n
         });
@@ -472,6 +480,14 @@ impl App {
             }
         }
         if finishing {
+            // Skip the first frames (uploads, pipeline warm-up) in the summary.
+            let tail = &self.frame_log[self.frame_log.len() / 3..];
+            if !tail.is_empty() {
+                let mean = tail.iter().sum::<f64>() / tail.len() as f64;
+                let max = tail.iter().fold(0.0f64, |a, &b| a.max(b));
+                let tris = result_tris(&self.doc);
+                println!("frames={} frame_ms_mean={mean:.1} frame_ms_max={max:.1} triangles={tris} adapter=\"{}\"", tail.len(), self.ui.adapter);
+            }
             if let Some(e) = self.doc.error.take().filter(|_| self.fatal.is_none()) {
                 self.fatal = Some(Error::Usage(e));
             }
@@ -480,6 +496,13 @@ impl App {
             self.fatal = Some(Error::Usage("--frames: the work did not finish in time".into()));
             event_loop.exit();
         }
+    }
+}
+
+fn result_tris(doc: &Doc) -> usize {
+    match &doc.anim {
+        Some(a) if doc.animating => a.player.topology().num_triangles(),
+        _ => doc.result.mesh.ct.num_triangles(),
     }
 }
 
