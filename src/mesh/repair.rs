@@ -27,12 +27,17 @@
 //!    vertex gets its own copy of the vertex, which separates bowtie vertices
 //!    and the faces of cut edges. Copies are numbered vertex by vertex, fans in
 //!    order of their first corner, so an already valid mesh keeps its ids.
-//! 6. **Separation check.** Two faces that were not glued across an edge but
-//!    still share both its vertex copies (the fan of a cut edge's endpoint can
-//!    go around and reach another face of the same edge) would be glued, or
-//!    refused, by the build. For every such extra face one more glued edge at
-//!    the shared endpoint is cut and step 5 runs again. Cuts only ever split
-//!    fans, so this ends (at worst with separate triangles).
+//! 6. **Re-gluing.** Two faces of a cut edge can still share both its vertex
+//!    copies: the fan of each endpoint goes around and reaches the other face
+//!    (two tetrahedra sharing an edge: each one's two faces on it). They are
+//!    glued again, which merges no fans and changes no ids, so each
+//!    tetrahedron comes out closed. Such a pair is always oppositely oriented:
+//!    the glued edges around one vertex are all consistent after step 4, and
+//!    faces around a vertex cannot be inconsistent across exactly one edge.
+//!    Three faces cannot share both copies either (a fan has two ends). The
+//!    code still handles the impossible case defensively, by cutting one more
+//!    edge at the shared endpoint and redoing step 5 (cuts only split fans,
+//!    so that would end, at worst with separate triangles).
 //! 7. **Unreferenced vertices** (used by no remaining face) are dropped.
 //!
 //! The result is then built by [`Mesh::from_triangles`], which validates it
