@@ -149,8 +149,8 @@ pub fn from_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, ObjInfo)> {
 }
 
 /// Loads an OBJ file and repairs it instead of refusing bad topology (see
-/// [`crate::mesh::repair`]). The report numbers vertices and triangles from 1,
-/// as the file does.
+/// [`crate::mesh::repair`]). The report shows vertex ids 1-based, as the file
+/// numbers them (`id_base` 1), and triangles 0-based, as error messages do.
 ///
 /// # Errors
 /// I/O errors and [`Error::Parse`] as [`load`]; [`Error::Mesh`] for an index

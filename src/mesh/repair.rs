@@ -46,7 +46,8 @@
 //!
 //! The [`RepairReport`] counts each kind of change and keeps the first
 //! [`EXAMPLES`] ids of each (input numbering, 0-based; its `Display` shifts
-//! them by [`RepairReport::id_base`], 1 for OBJ files, and shows at most
+//! vertex ids by [`RepairReport::id_base`], 1 for OBJ files, as the error
+//! messages do, and shows at most
 //! [`EXAMPLES`] of each). [`analyze`] keeps every id, for `subdiv info`.
 
 use super::{BORDER, Mesh, n, p};
@@ -93,8 +94,9 @@ impl<T> Tally<T> {
 /// and vertex ids indices into the input positions, both 0-based.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct RepairReport {
-    /// Added to every id when the report is displayed (1 for OBJ files, whose
-    /// vertices are numbered from 1; triangles are then numbered from 1 too).
+    /// Added to every vertex id when the report is displayed (1 for OBJ
+    /// files, whose vertices are numbered from 1). Face ids are shown 0-based,
+    /// as in [`MeshError`] messages.
     pub id_base: u32,
     /// Triangles in the input.
     pub faces_in: usize,
@@ -155,16 +157,18 @@ fn list<T>(t: &Tally<T>, f: impl Fn(&T) -> String) -> String {
 impl fmt::Display for RepairReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let b = self.id_base;
-        let base = if b == 1 { "1-based, as in the file" } else { "0-based" };
+        let base = if b == 1 { "vertex ids 1-based as in the file" } else { "vertex ids 0-based" };
         writeln!(
             f,
-            "repair: {} -> {} faces, {} -> {} vertices (ids {base})",
+            "repair: {} -> {} faces, {} -> {} vertices ({base}; faces are 0-based triangle indices)",
             self.faces_in, self.faces_out, self.vertices_in, self.vertices_out
         )?;
         if self.is_empty() {
             return writeln!(f, "  nothing to repair");
         }
-        let face = |x: &usize| (x + b as usize).to_string();
+        // faces as in MeshError: 0-based triangle indices (OBJ polygons are
+        // split into triangles, so the file has no triangle numbering of its own)
+        let face = |x: &usize| x.to_string();
         let vert = |x: &u32| (x + b).to_string();
         let edge = |e: &[u32; 2]| format!("{}-{}", e[0] + b, e[1] + b);
         writeln!(
@@ -200,7 +204,7 @@ impl fmt::Display for RepairReport {
         )?;
         writeln!(
             f,
-            "  vertices split:                 {}{}; {} copies added",
+            "  vertices split:                 {}{}, {} copies added",
             self.split_vertices.count,
             list(&self.split_vertices, vert),
             self.added_vertices
@@ -755,6 +759,24 @@ mod tests {
     }
 
     #[test]
+    fn examples_are_capped_but_analyze_keeps_all() {
+        // 15 repeated-index faces next to one good one
+        let pos = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
+        let mut tris = vec![0, 1, 2];
+        for _ in 0..15 {
+            tris.extend([0, 1, 1]);
+        }
+        let (_, rep) = repair(pos.clone(), &tris).unwrap();
+        assert_eq!(rep.degenerate_faces.count, 15);
+        assert_eq!(rep.degenerate_faces.examples, (1..=EXAMPLES).collect::<Vec<_>>());
+        let all = analyze(&pos, &tris).unwrap();
+        assert_eq!(all.degenerate_faces.examples, (1..=15).collect::<Vec<_>>());
+        // the display shows the first EXAMPLES and says there are more
+        let s = all.to_string();
+        assert!(s.contains("15 (1, 2, 3, 4, 5, 6, 7, 8, 9, 10, ...)"), "{s}");
+    }
+
+    #[test]
     fn errors_stay_errors() {
         assert_eq!(repair(vec![Vec3::ZERO; 3], &[0, 0, 1]).unwrap_err(), MeshError::Empty);
         assert!(matches!(repair(vec![Vec3::ZERO; 3], &[0, 1, 3]).unwrap_err(), MeshError::IndexOutOfRange { .. }));
@@ -769,6 +791,6 @@ mod tests {
         rep.id_base = 1;
         let s = rep.to_string();
         assert!(s.contains("non-manifold edges cut:         1 (1-2)"), "{s}");
-        assert!(s.contains("ids 1-based"), "{s}");
+        assert!(s.contains("vertex ids 1-based"), "{s}");
     }
 }
