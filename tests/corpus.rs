@@ -307,3 +307,29 @@ fn corpus_covers_what_it_claims() {
     assert_eq!(topology(&built("four_components").ct).components, 4);
     assert_eq!(topology(&built("cylinder_fans_valence_24").ct).border_edges, 0);
 }
+
+#[test]
+fn random_soups_always_repair_into_valid_meshes() {
+    // random triangles over a handful of vertices: fins, bowties, flips,
+    // duplicates and non-orientable pieces in every combination
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut pick = |k: u32| ((rng.next_f32() + 1.0) * 0.5 * k as f32) as u32 % k;
+    for round in 0..3000 {
+        let nv = 4 + pick(6);
+        let nt = 1 + pick(14) as usize;
+        let positions: Vec<Vec3> =
+            (0..nv).map(|i| Vec3::new(i as f32, (i * i % 7) as f32, (i * 3 % 5) as f32)).collect();
+        let triangles: Vec<u32> = (0..3 * nt).map(|_| pick(nv)).collect();
+        match repair(positions.clone(), &triangles) {
+            Err(MeshError::Empty) => assert!(triangles.chunks(3).all(|t| t[0] == t[1] || t[1] == t[2] || t[0] == t[2])),
+            Err(e) => panic!("round {round}: {e}"),
+            Ok((mesh, report)) => {
+                check_invariants(&mesh.ct).unwrap_or_else(|e| panic!("round {round}: {e}"));
+                Mesh::from_triangles(mesh.positions.clone(), &mesh.ct.v)
+                    .unwrap_or_else(|e| panic!("round {round}: {triangles:?}: {e}\n{report}"));
+                let (_, again) = repair(mesh.positions.clone(), &mesh.ct.v).unwrap();
+                assert!(again.is_empty(), "round {round}: not a fixed point\n{again}");
+            }
+        }
+    }
+}

@@ -27,7 +27,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
 
 /// Loads a mesh from `.obj` or `.ct` like [`load`], but repairs bad topology
 /// (non-manifold edges and vertices, inconsistent orientation, degenerate and
-/// duplicate faces) instead of refusing it; see [`crate::mesh::repair`]. A
+/// duplicate faces) instead of refusing it; see [`crate::mesh::repair`](mod@crate::mesh::repair). A
 /// stored O table in a `.ct` is ignored (the repaired mesh gets a new one).
 ///
 /// # Errors

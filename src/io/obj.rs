@@ -149,7 +149,7 @@ pub fn from_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, ObjInfo)> {
 }
 
 /// Loads an OBJ file and repairs it instead of refusing bad topology (see
-/// [`crate::mesh::repair`]). The report shows vertex ids 1-based, as the file
+/// [`crate::mesh::repair`](mod@crate::mesh::repair)). The report shows vertex ids 1-based, as the file
 /// numbers them (`id_base` 1), and triangles 0-based, as error messages do.
 ///
 /// # Errors

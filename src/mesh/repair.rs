@@ -1,4 +1,4 @@
-//! Repairing a triangle soup into a mesh that [`CornerTable::build`] accepts:
+//! Repairing a triangle soup into a mesh that [`CornerTable::build`](super::CornerTable::build) accepts:
 //! the documented alternative to refusing non-manifold input (DESIGN.md 2).
 //!
 //! [`repair`] takes the raw positions and triangles (indices already checked by
