@@ -7,6 +7,12 @@
 //! [`anim`] (split-and-tweak paths). The renderer and the window (feature
 //! `viewer`) only see flat arrays.
 //!
+//! Input that is not a manifold mesh is refused with a typed [`MeshError`]
+//! naming the elements; [`mesh::repair()`] (CLI: `subdiv repair`, or `--repair`
+//! on `subdivide` and `info`) instead cuts non-manifold edges, splits
+//! non-manifold vertices, fixes the orientation and drops degenerate,
+//! duplicate and unreferenced elements, reporting what it changed.
+//!
 //! ```
 //! use subdiv::{Mesh, Scheme, Options, subdivide};
 //! use glam::Vec3;

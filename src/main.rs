@@ -1,11 +1,11 @@
-//! The `subdiv` command line: view | subdivide | info | render | animate.
+//! The `subdiv` command line: view | subdivide | repair | info | render.
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 use subdiv::mesh::topology::topology;
-use subdiv::{Error, LoopBeta, Mesh, Options, Result, Scheme, io};
+use subdiv::{Error, LoopBeta, Mesh, MeshError, Options, Result, Scheme, io};
 
 #[derive(Parser)]
 #[command(name = "subdiv", version, about = "Triangle-mesh subdivision: viewer and command line", long_about = None)]
@@ -125,14 +125,37 @@ enum Cmd {
         /// Print the result summary as JSON.
         #[arg(long)]
         json: bool,
+        /// Repair the input first (cut non-manifold edges, split non-manifold
+        /// vertices, fix orientation, drop degenerate and duplicate faces)
+        /// instead of refusing it; the repair report goes to stderr.
+        #[arg(long)]
+        repair: bool,
+    },
+    /// Repair a mesh into a valid manifold one and write it (.obj, .ply or .ct by extension).
+    ///
+    /// Drops degenerate and duplicate faces, cuts non-manifold edges, makes the
+    /// orientation consistent, gives every fan of a non-manifold vertex its own
+    /// copy and drops unreferenced vertices; prints what changed.
+    Repair {
+        /// Input OBJ or .ct.
+        input: PathBuf,
+        /// Output .obj, .ply or .ct (written atomically).
+        output: PathBuf,
     },
     /// Print counts, boundary, components, genus, valences and problems.
+    ///
+    /// A mesh that does not build (non-manifold, inconsistent orientation,
+    /// degenerate faces) is analysed instead: every non-manifold edge and
+    /// vertex is listed, and the counts are those of the repaired mesh.
     Info {
         /// Input OBJ or .ct.
         input: PathBuf,
         /// Print as JSON.
         #[arg(long)]
         json: bool,
+        /// Always analyse and describe the repaired mesh, even when the input is valid.
+        #[arg(long)]
+        repair: bool,
     },
     /// Render a mesh offscreen to a PNG.
     Render {
@@ -236,10 +259,11 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
             control,
             fps,
         }),
-        Some(Cmd::Subdivide { input, output, scheme, levels, stats, json }) => {
-            subdivide_cmd(&input, &output, &scheme, levels, stats, json)
+        Some(Cmd::Subdivide { input, output, scheme, levels, stats, json, repair }) => {
+            subdivide_cmd(&input, &output, &scheme, levels, stats, json, repair)
         }
-        Some(Cmd::Info { input, json }) => info_cmd(&input, json),
+        Some(Cmd::Repair { input, output }) => repair_cmd(&input, &output),
+        Some(Cmd::Info { input, json, repair }) => info_cmd(&input, json, repair),
         Some(Cmd::Render { input, output, scheme, levels, shading, size, ortho, control }) => {
             render_cmd(&input, &output, &scheme, levels, &shading, size, ortho, control)
         }
@@ -388,9 +412,23 @@ fn render_cmd(_: &Path, _: &Path, _: &SchemeArgs, _: u32, _: &str, _: (u32, u32)
     Err(Error::Usage("built without the 'viewer' feature: rendering is not available".into()))
 }
 
-fn subdivide_cmd(input: &Path, output: &Path, s: &SchemeArgs, levels: u32, stats: bool, json: bool) -> Result<()> {
+fn subdivide_cmd(
+    input: &Path,
+    output: &Path,
+    s: &SchemeArgs,
+    levels: u32,
+    stats: bool,
+    json: bool,
+    repair: bool,
+) -> Result<()> {
     let t0 = Instant::now();
-    let mesh = io::load(input)?;
+    let mesh = if repair {
+        let (m, report) = io::load_repaired(input)?;
+        eprint!("{report}");
+        m
+    } else {
+        io::load(input)?
+    };
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
     let t1 = Instant::now();
@@ -434,23 +472,55 @@ fn subdivide_cmd(input: &Path, output: &Path, s: &SchemeArgs, levels: u32, stats
     Ok(())
 }
 
-fn info_cmd(input: &Path, json: bool) -> Result<()> {
-    let (mesh, dropped, records): (Mesh, usize, usize) = if input.extension().is_some_and(|e| e == "ct") {
-        let m = io::load(input)?;
-        let n = m.positions.len();
-        (m, 0, n)
-    } else {
-        let bytes = std::fs::read(input).map_err(|e| Error::io(input, e))?;
-        let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
-        (m, inf.unreferenced, inf.vertex_records)
+fn repair_cmd(input: &Path, output: &Path) -> Result<()> {
+    let (mesh, report) = io::load_repaired(input)?;
+    io::save(output, &mesh)?;
+    print!("{report}");
+    println!(
+        "{} -> {}: {} vertices, {} faces",
+        input.display(),
+        output.display(),
+        mesh.positions.len(),
+        mesh.ct.num_triangles()
+    );
+    Ok(())
+}
+
+/// Is this load error a topology problem that the repair analysis can describe?
+fn is_topology_error(e: &Error) -> bool {
+    let source = match e {
+        Error::Mesh { source, .. } | Error::Invalid(source) => source,
+        _ => return false,
     };
+    matches!(
+        source,
+        MeshError::NonManifoldEdge { .. }
+            | MeshError::NonManifoldVertex { .. }
+            | MeshError::InconsistentOrientation { .. }
+            | MeshError::DegenerateFace { .. }
+    )
+}
+
+fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
+    let loaded = if repair { None } else { Some(load_for_info(input)) };
+    let (mesh, dropped, records, report) = match loaded {
+        Some(Ok((m, dropped, records))) => (m, dropped, records, None),
+        Some(Err(e)) if !is_topology_error(&e) => return Err(e),
+        // invalid topology (or --repair): analyse and describe the repaired mesh
+        _ => {
+            let (m, r) = io::analyze(input)?;
+            (m, r.unreferenced_vertices.count, r.vertices_in, Some(r))
+        }
+    };
+    let (nm_edges, nm_vertices) =
+        report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));
     let t = topology(&mesh.ct);
     let (lo, hi) = mesh.bounds();
     let hist: Vec<String> =
         t.valence_histogram.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, c)| format!("{k}:{c}")).collect();
     if json {
         println!(
-            "{{\"file\":\"{}\",\"vertices\":{},\"edges\":{},\"faces\":{},\"closed\":{},\"boundary_loops\":{},\"border_edges\":{},\"components\":{},\"euler\":{},\"genus\":{},\"unreferenced_dropped\":{dropped},\"non_manifold_edges\":0,\"non_manifold_vertices\":0,\"valence\":{{{}}}}}",
+            "{{\"file\":\"{}\",\"vertices\":{},\"edges\":{},\"faces\":{},\"closed\":{},\"boundary_loops\":{},\"border_edges\":{},\"components\":{},\"euler\":{},\"genus\":{},\"unreferenced_dropped\":{dropped},\"non_manifold_edges\":{nm_edges},\"non_manifold_vertices\":{nm_vertices},\"repaired\":{},\"valence\":{{{}}}}}",
             input.display().to_string().replace('\\', "\\\\").replace('"', "\\\""),
             t.vertices,
             t.edges,
@@ -461,6 +531,7 @@ fn info_cmd(input: &Path, json: bool) -> Result<()> {
             t.components,
             t.euler,
             t.genus,
+            report.is_some(),
             hist.iter()
                 .map(|h| {
                     let (k, c) = h.split_once(':').unwrap_or(("0", "0"));
@@ -480,8 +551,42 @@ fn info_cmd(input: &Path, json: bool) -> Result<()> {
     println!("components:      {}", t.components);
     println!("euler:           {}", t.euler);
     println!("genus:           {}", t.genus);
-    println!("manifold:        yes (0 non-manifold edges, 0 non-manifold vertices)");
+    match &report {
+        None => println!("manifold:        yes (0 non-manifold edges, 0 non-manifold vertices)"),
+        Some(r) => {
+            let b = r.id_base;
+            println!(
+                "manifold:        {} ({nm_edges} non-manifold edges, {nm_vertices} non-manifold vertices; counts above are of the repaired mesh)",
+                if nm_edges + nm_vertices == 0 { "yes" } else { "no" }
+            );
+            if nm_edges > 0 {
+                let ids: Vec<String> =
+                    r.non_manifold_edges.examples.iter().map(|e| format!("{}-{}", e[0] + b, e[1] + b)).collect();
+                println!("non-manifold edges:    {}", ids.join(" "));
+            }
+            if nm_vertices > 0 {
+                let ids: Vec<String> = r.non_manifold_vertices.examples.iter().map(|v| (v + b).to_string()).collect();
+                println!("non-manifold vertices: {}", ids.join(" "));
+            }
+        }
+    }
     println!("valence:         {}", hist.join(" "));
     println!("bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    if let Some(r) = &report {
+        print!("{r}");
+    }
     Ok(())
+}
+
+/// Loads for `info`: the mesh, unreferenced vertices dropped, vertex records.
+fn load_for_info(input: &Path) -> Result<(Mesh, usize, usize)> {
+    if input.extension().is_some_and(|e| e == "ct") {
+        let m = io::load(input)?;
+        let n = m.positions.len();
+        Ok((m, 0, n))
+    } else {
+        let bytes = std::fs::read(input).map_err(|e| Error::io(input, e))?;
+        let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
+        Ok((m, inf.unreferenced, inf.vertex_records))
+    }
 }

@@ -109,12 +109,64 @@ fn bad_input_is_refused_clearly() {
 #[test]
 fn shared_bad_models_when_present() {
     // The shared corpus is optional: these inputs are generated above too.
+    // `subdivide` refuses them; `info` analyses them instead of failing and
+    // lists the offending elements; `--repair` makes them subdivide.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/procedural");
-    for (f, want) in [("fin_nonmanifold.obj", "non-manifold edge"), ("bowtie_nonmanifold.obj", "non-manifold vertex")] {
+    for (f, want, listed) in [
+        ("fin_nonmanifold.obj", "non-manifold edge", "non-manifold edges:    1-2"),
+        ("bowtie_nonmanifold.obj", "non-manifold vertex", "non-manifold vertices: 1"),
+    ] {
         let p = dir.join(f);
-        if p.exists() {
-            let err = run_fail(&["info", p.to_str().unwrap()]);
-            assert!(err.contains(want), "{err}");
+        if !p.exists() {
+            continue;
         }
+        let out = tmp(&format!("repaired-{f}"));
+        let err = run_fail(&["subdivide", p.to_str().unwrap(), out.to_str().unwrap()]);
+        assert!(err.contains(want), "{err}");
+        let o = bin().args(["info", p.to_str().unwrap()]).output().unwrap();
+        let s = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(s.contains("manifold:        no") && s.contains(listed), "{s}");
+        let o = bin().args(["subdivide", "--repair", p.to_str().unwrap(), out.to_str().unwrap()]).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(String::from_utf8_lossy(&o.stderr).contains("repair:"));
+        subdiv::io::load(&out).expect("the repaired, subdivided output is valid");
     }
+}
+
+#[test]
+fn repair_command_and_flags() {
+    let fin = write("rfin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
+    let bow = write("rbow.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 1 0\nv 2 2 0\nf 1 2 3\nf 3 4 5\n");
+    // repair IN OUT: report on stdout, a valid mesh written
+    let out = tmp("rfin-fixed.obj");
+    let o = bin().args(["repair", fin.to_str().unwrap(), out.to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(s.contains("non-manifold edges cut:         1 (1-2)"), "{s}");
+    let m = subdiv::io::load(&out).unwrap();
+    assert_eq!((m.ct.num_triangles(), m.positions.len(), m.ct.num_border_edges()), (3, 9, 9));
+    // info lists the bowtie vertex (1-based) instead of failing
+    let o = bin().args(["info", bow.to_str().unwrap()]).output().unwrap();
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success() && s.contains("non-manifold vertices: 3"), "{s}");
+    let o = bin().args(["info", "--json", bow.to_str().unwrap()]).output().unwrap();
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(s.contains("\"non_manifold_vertices\":1") && s.contains("\"repaired\":true"), "{s}");
+    // a valid mesh: info --repair finds nothing to repair
+    let o = bin().args(["info", "--repair", model_path("cube.obj").to_str().unwrap()]).output().unwrap();
+    assert!(String::from_utf8_lossy(&o.stdout).contains("nothing to repair"));
+    // subdivide --repair: stdout stays the JSON summary, the report goes to stderr
+    let out = tmp("rbow-sub.obj");
+    let o = bin()
+        .args(["subdivide", "--repair", "--json", bow.to_str().unwrap(), out.to_str().unwrap(), "-n", "2"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("\"faces\":32"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("vertices split:                 1 (3)"));
+    // parse errors stay errors with the line, even with --repair
+    let nan = write("rnan.obj", "v 0 0 0\nv nan 1 0\nv 0 1 0\nf 1 2 3\n");
+    let err = run_fail(&["repair", nan.to_str().unwrap(), out.to_str().unwrap()]);
+    assert!(err.contains("rnan.obj:2:"), "{err}");
 }

@@ -116,3 +116,37 @@ fn parsers_never_panic_on_mutated_input() {
         }
     }
 }
+
+#[test]
+fn repairing_loaders_repair_topology_but_keep_data_errors() {
+    let dir = std::env::temp_dir().join(format!("subdiv-io-repair-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // a fin in both formats: .ct ids are 0-based, OBJ ids 1-based
+    let ct = dir.join("fin.ct");
+    std::fs::write(&ct, "5\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3\n0 1 2\n1 0 3\n0 1 4\n").unwrap();
+    let obj_path = dir.join("fin.obj");
+    std::fs::write(&obj_path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n").unwrap();
+    for (path, base, edge) in [(&ct, 0, "(0-1)"), (&obj_path, 1, "(1-2)")] {
+        assert!(matches!(
+            subdiv::io::load(path).unwrap_err(),
+            Error::Mesh { source: MeshError::NonManifoldEdge { faces: 3, .. }, .. }
+        ));
+        let (m, rep) = subdiv::io::load_repaired(path).unwrap();
+        assert_eq!((m.ct.num_triangles(), m.positions.len()), (3, 9));
+        assert_eq!(rep.id_base, base);
+        assert!(rep.to_string().contains(edge), "{rep}");
+        let (_, all) = subdiv::io::analyze(path).unwrap();
+        assert_eq!(all.non_manifold_edges.examples, vec![[0, 1]]);
+    }
+    // data errors are not repaired: they keep the file and line
+    let bad = dir.join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n").unwrap();
+    assert!(matches!(
+        subdiv::io::load_repaired(&bad).unwrap_err(),
+        Error::Mesh { line: Some(4), source: MeshError::IndexOutOfRange { .. }, .. }
+    ));
+    std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\n").unwrap();
+    let e = subdiv::io::load_repaired(&bad).unwrap_err();
+    assert!(matches!(e, Error::Mesh { source: MeshError::Empty, .. }), "only degenerate faces: {e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

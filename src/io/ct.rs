@@ -50,11 +50,49 @@ impl<'a> Tokens<'a> {
     }
 }
 
+/// Raw `.ct` content before any topology is checked.
+#[derive(Clone, Debug, Default)]
+pub struct RawCt {
+    /// Positions.
+    pub positions: Vec<Vec3>,
+    /// Triangles (0-based).
+    pub triangles: Vec<u32>,
+    /// Line (1-based) of the last vertex id of every triangle.
+    pub triangle_lines: Vec<usize>,
+    /// The stored opposite table ([`BORDER`] for -1), empty when absent.
+    pub o: Vec<u32>,
+}
+
 /// Parses `.ct` text; `file` names the source in errors.
 ///
 /// # Errors
 /// [`Error::Parse`] with the line, or [`Error::Mesh`] for invalid topology.
 pub fn parse(text: &str, file: &str) -> Result<Mesh> {
+    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o } = parse_raw(text, file)?;
+    let located = |e: MeshError| {
+        let line = e.face().and_then(|f| tri_lines.get(f).copied());
+        Error::Mesh { file: file.to_string(), line, source: e }
+    };
+    if o.is_empty() {
+        return Mesh::from_triangles(pos, &tris).map_err(located);
+    }
+    // with O: all vertices must be used (the table is stored compact)
+    let (ct, _, kept) = CornerTable::build(pos.len(), &tris, Some(&pos)).map_err(located)?;
+    if kept.is_some() {
+        return Err(located(MeshError::BadOppositeTable { corner: 0, msg: "unused vertices in a .ct with O".into() }));
+    }
+    // the stored O must agree with the one built; a mismatch means a corrupt file
+    let ct = CornerTable::from_vo(ct.v, o, pos.len()).map_err(located)?;
+    Ok(Mesh { ct, positions: pos })
+}
+
+/// Reads `.ct` text into its arrays, checking syntax, counts, index ranges
+/// and finite coordinates, but not the topology.
+///
+/// # Errors
+/// [`Error::Parse`] with the line, or [`Error::Mesh`] for an index out of
+/// range or a non-finite coordinate.
+pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
     let mut tk = Tokens::new(text, file);
     let k: u64 = tk.num("vertex count")?;
     // every vertex needs at least "0 0 0\n" (6 bytes): refuse absurd headers before allocating
@@ -114,21 +152,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
             return Err(tk.err(format!("unexpected '{extra}' after the opposite table")));
         }
     }
-    let located = |e: MeshError| {
-        let line = e.face().and_then(|f| tri_lines.get(f).copied());
-        Error::Mesh { file: file.to_string(), line, source: e }
-    };
-    if o.is_empty() {
-        return Mesh::from_triangles(pos, &tris).map_err(located);
-    }
-    // with O: all vertices must be used (the table is stored compact)
-    let (ct, _, kept) = CornerTable::build(pos.len(), &tris, Some(&pos)).map_err(located)?;
-    if kept.is_some() {
-        return Err(located(MeshError::BadOppositeTable { corner: 0, msg: "unused vertices in a .ct with O".into() }));
-    }
-    // the stored O must agree with the one built; a mismatch means a corrupt file
-    let ct = CornerTable::from_vo(ct.v, o, pos.len()).map_err(located)?;
-    Ok(Mesh { ct, positions: pos })
+    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o })
 }
 
 /// Loads a `.ct` file.
@@ -143,6 +167,20 @@ pub fn load(path: &Path) -> Result<Mesh> {
         msg: "not text (invalid UTF-8)".into(),
     })?;
     parse(text, &path.display().to_string())
+}
+
+/// Reads a `.ct` file into its arrays (see [`parse_raw`]).
+///
+/// # Errors
+/// See [`parse_raw`]; I/O errors name the file.
+pub fn load_raw(path: &Path) -> Result<RawCt> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| Error::Parse {
+        file: path.display().to_string(),
+        line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
+        msg: "not text (invalid UTF-8)".into(),
+    })?;
+    parse_raw(text, &path.display().to_string())
 }
 
 /// Writes `.ct` text including the O table.

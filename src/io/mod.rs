@@ -7,6 +7,7 @@ pub mod obj;
 pub mod ply;
 
 use crate::mesh::Mesh;
+use crate::mesh::repair::{RepairReport, repair};
 use crate::{Error, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -22,6 +23,54 @@ pub fn load(path: &Path) -> Result<Mesh> {
         "ct" => ct::load(path),
         _ => obj::load(path).map(|(m, _)| m),
     }
+}
+
+/// Loads a mesh from `.obj` or `.ct` like [`load`], but repairs bad topology
+/// (non-manifold edges and vertices, inconsistent orientation, degenerate and
+/// duplicate faces) instead of refusing it; see [`crate::mesh::repair`](mod@crate::mesh::repair). A
+/// stored O table in a `.ct` is ignored (the repaired mesh gets a new one).
+///
+/// # Errors
+/// I/O and parse errors, index out of range and non-finite coordinates (each
+/// naming the file and line), and a mesh with no face left.
+pub fn load_repaired(path: &Path) -> Result<(Mesh, RepairReport)> {
+    match ext(path).as_str() {
+        "ct" => {
+            let raw = ct::load_raw(path)?;
+            let lines = raw.triangle_lines;
+            repair(raw.positions, &raw.triangles).map_err(|e| Error::Mesh {
+                file: path.display().to_string(),
+                line: e.face().and_then(|f| lines.get(f).copied()),
+                source: e,
+            })
+        }
+        _ => obj::load_repaired(path),
+    }
+}
+
+/// [`load_repaired`] with a report that keeps every id found (no cap): what
+/// `subdiv info` lists for a mesh that does not build. Ids in the report are
+/// those of the file (`id_base` 1 for OBJ).
+///
+/// # Errors
+/// As [`load_repaired`].
+pub fn analyze(path: &Path) -> Result<(Mesh, RepairReport)> {
+    let file = path.display().to_string();
+    let (positions, triangles, base) = match ext(path).as_str() {
+        "ct" => {
+            let raw = ct::load_raw(path)?;
+            (raw.positions, raw.triangles, 0)
+        }
+        _ => {
+            let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+            let raw = obj::parse(&bytes, &file)?;
+            (raw.positions, raw.triangles, 1)
+        }
+    };
+    let (mesh, mut report) = crate::mesh::repair::repair_with_cap(positions, &triangles, usize::MAX)
+        .map_err(|e| Error::Mesh { file, line: None, source: e.shift_vertices(base) })?;
+    report.id_base = base;
+    Ok((mesh, report))
 }
 
 /// Saves a mesh as `.obj`, `.ply` or `.ct`, chosen by extension.

@@ -12,6 +12,7 @@
 
 use super::atomic_write;
 use crate::mesh::Mesh;
+use crate::mesh::repair::{RepairReport, repair};
 use crate::{Error, MeshError, Result};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -145,6 +146,34 @@ pub fn load(path: &Path) -> Result<(Mesh, ObjInfo)> {
 pub fn from_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, ObjInfo)> {
     let raw = parse(bytes, file)?;
     build(raw, file)
+}
+
+/// Loads an OBJ file and repairs it instead of refusing bad topology (see
+/// [`crate::mesh::repair`](mod@crate::mesh::repair)). The report shows vertex ids 1-based, as the file
+/// numbers them (`id_base` 1), and triangles 0-based, as error messages do.
+///
+/// # Errors
+/// I/O errors and [`Error::Parse`] as [`load`]; [`Error::Mesh`] for an index
+/// out of range, a non-finite coordinate, or no face left after repair.
+pub fn load_repaired(path: &Path) -> Result<(Mesh, RepairReport)> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    from_bytes_repaired(&bytes, &path.display().to_string())
+}
+
+/// Parses and repairs OBJ bytes (see [`load_repaired`]).
+///
+/// # Errors
+/// See [`load_repaired`].
+pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
+    let raw = parse(bytes, file)?;
+    let lines = raw.triangle_lines;
+    let (mesh, mut report) = repair(raw.positions, &raw.triangles).map_err(|e| Error::Mesh {
+        file: file.to_string(),
+        line: e.face().and_then(|f| lines.get(f)).map(|&l| l as usize),
+        source: e.shift_vertices(1),
+    })?;
+    report.id_base = 1;
+    Ok((mesh, report))
 }
 
 /// Validates parsed OBJ content into a mesh, mapping errors to source lines.

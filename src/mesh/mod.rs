@@ -14,11 +14,13 @@
 
 mod build;
 pub mod normals;
+pub mod repair;
 pub mod shapes;
 pub mod topology;
 
 pub use build::BuildReport;
 use glam::Vec3;
+pub use repair::{RepairReport, repair};
 
 /// Sentinel in the O table: the edge opposite this corner is a border edge.
 pub const BORDER: u32 = u32::MAX;

@@ -148,3 +148,160 @@ impl Rng {
         Vec3::new(self.next_f32(), self.next_f32(), self.next_f32())
     }
 }
+
+// ---- raw triangle soups (possibly invalid) for the corpus and repair tests ----
+
+/// Positions and a flat triangle list, before any validation.
+#[derive(Clone, Debug, Default)]
+pub struct Soup {
+    pub positions: Vec<Vec3>,
+    pub triangles: Vec<u32>,
+}
+
+impl Soup {
+    pub fn of(mesh: &Mesh) -> Soup {
+        Soup { positions: mesh.positions.clone(), triangles: mesh.ct.v.clone() }
+    }
+    pub fn faces(&self) -> usize {
+        self.triangles.len() / 3
+    }
+    /// Appends `other` (re-indexed) moved by `offset`: a separate component.
+    pub fn append(&mut self, other: &Soup, offset: Vec3) {
+        let base = self.positions.len() as u32;
+        self.positions.extend(other.positions.iter().map(|&q| q + offset));
+        self.triangles.extend(other.triangles.iter().map(|&i| i + base));
+    }
+    /// Reverses the orientation of face `f`.
+    pub fn flip(&mut self, f: usize) {
+        self.triangles.swap(3 * f + 1, 3 * f + 2);
+    }
+}
+
+/// `k` triangles on the edge (0, 1), alternating orientation (a "fin" / book).
+pub fn soup_fin(k: usize) -> Soup {
+    let mut s = Soup { positions: vec![Vec3::ZERO, Vec3::X], triangles: Vec::new() };
+    for i in 0..k {
+        let a = std::f32::consts::TAU * i as f32 / k as f32;
+        s.positions.push(Vec3::new(0.5, a.cos(), a.sin()));
+        let w = 2 + i as u32;
+        s.triangles.extend(if i % 2 == 0 { [0, 1, w] } else { [1, 0, w] });
+    }
+    s
+}
+
+/// A closed tetrahedron on vertices `a, b, c, d` (outward orientation for a
+/// right-handed `a, b, c, d`).
+pub fn tet_faces(a: u32, b: u32, c: u32, d: u32) -> [u32; 12] {
+    [a, c, b, a, d, c, a, b, d, b, c, d]
+}
+
+/// Two closed tetrahedra sharing the edge (0, 1): four faces on one edge.
+pub fn soup_two_tets_on_edge() -> Soup {
+    let positions = vec![
+        Vec3::ZERO,
+        Vec3::X,
+        Vec3::new(0.5, 1.0, 0.2),
+        Vec3::new(0.5, 0.5, 1.0),
+        Vec3::new(0.5, -1.0, 0.2),
+        Vec3::new(0.5, -0.5, -1.0),
+    ];
+    let mut triangles = tet_faces(0, 1, 2, 3).to_vec();
+    triangles.extend(tet_faces(0, 1, 4, 5));
+    Soup { positions, triangles }
+}
+
+/// Two closed tetrahedra sharing only vertex 0 (a closed bowtie).
+pub fn soup_two_tets_on_vertex() -> Soup {
+    let positions = vec![
+        Vec3::ZERO,
+        Vec3::new(1.0, 0.2, 0.1),
+        Vec3::new(1.0, 1.0, 0.0),
+        Vec3::new(1.0, 0.5, 1.0),
+        Vec3::new(-1.0, 0.2, 0.1),
+        Vec3::new(-1.0, -1.0, 0.0),
+        Vec3::new(-1.0, 0.5, -1.0),
+    ];
+    let mut triangles = tet_faces(0, 1, 2, 3).to_vec();
+    triangles.extend(tet_faces(0, 4, 5, 6));
+    Soup { positions, triangles }
+}
+
+/// Two open fans (hexagonal disks) meeting at their centre, vertex 0.
+pub fn soup_bowtie_disks() -> Soup {
+    let mut s = Soup { positions: vec![Vec3::ZERO], triangles: Vec::new() };
+    for (side, z) in [(0u32, 1.0f32), (1, -1.0)] {
+        let base = 1 + 6 * side;
+        for i in 0..6 {
+            let a = std::f32::consts::TAU * i as f32 / 6.0;
+            s.positions.push(Vec3::new(a.cos(), a.sin(), z));
+        }
+        // a fan of 5 triangles (open between the last and the first rim vertex)
+        for i in 0..5 {
+            s.triangles.extend([0, base + i, base + i + 1]);
+        }
+    }
+    s
+}
+
+/// A strip of `k` quads closed into a Möbius band (non-orientable).
+pub fn soup_mobius(k: u32) -> Soup {
+    let mut s = Soup::default();
+    for i in 0..k {
+        let a = std::f32::consts::TAU * i as f32 / k as f32;
+        let tw = a / 2.0;
+        for sgn in [1.0f32, -1.0] {
+            let r = 1.0 + sgn * 0.3 * tw.cos();
+            s.positions.push(Vec3::new(r * a.cos(), r * a.sin(), sgn * 0.3 * tw.sin()));
+        }
+    }
+    for i in 0..k {
+        let (a, b) = (2 * i, 2 * i + 1);
+        let (c, d) = if i + 1 < k { (2 * i + 2, 2 * i + 3) } else { (1, 0) };
+        s.triangles.extend([a, c, b, b, c, d]);
+    }
+    s
+}
+
+/// A closed cylinder whose caps are fans around a centre of valence `k`.
+pub fn soup_cylinder_fans(k: u32, rings: u32) -> Soup {
+    let mut s = Soup::default();
+    for r in 0..=rings {
+        for i in 0..k {
+            let a = std::f32::consts::TAU * i as f32 / k as f32;
+            s.positions.push(Vec3::new(a.cos(), a.sin(), r as f32 / rings as f32));
+        }
+    }
+    let id = |r: u32, i: u32| r * k + i % k;
+    for r in 0..rings {
+        for i in 0..k {
+            s.triangles.extend([id(r, i), id(r, i + 1), id(r + 1, i + 1), id(r, i), id(r + 1, i + 1), id(r + 1, i)]);
+        }
+    }
+    let (bot, top) = (s.positions.len() as u32, s.positions.len() as u32 + 1);
+    s.positions.push(Vec3::ZERO);
+    s.positions.push(Vec3::new(0.0, 0.0, 1.0));
+    for i in 0..k {
+        s.triangles.extend([bot, id(0, i + 1), id(0, i)]);
+        s.triangles.extend([top, id(rings, i), id(rings, i + 1)]);
+    }
+    s
+}
+
+/// An `n x m` torus grid whose last row is glued to the first reflected: a
+/// Klein bottle (closed, non-orientable, every vertex interior).
+pub fn soup_klein(n: u32, m: u32) -> Soup {
+    let mut s = Soup::default();
+    for j in 0..m {
+        for i in 0..n {
+            let (a, b) = (std::f32::consts::TAU * i as f32 / n as f32, std::f32::consts::TAU * j as f32 / m as f32);
+            s.positions.push(Vec3::new((2.0 + a.cos()) * b.cos(), (2.0 + a.cos()) * b.sin(), a.sin()));
+        }
+    }
+    let id = |i: u32, j: u32| if j == m { (n - i % n) % n } else { j * n + i % n };
+    for j in 0..m {
+        for i in 0..n {
+            s.triangles.extend([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    s
+}
