@@ -69,6 +69,9 @@ enum Cmd {
         /// Start playing the animation.
         #[arg(long)]
         play: bool,
+        /// Start with the camera turning around the model.
+        #[arg(long)]
+        turntable: bool,
     },
     /// Render the split-and-tweak animation to a GIF or numbered PNGs.
     Animate {
@@ -229,8 +232,18 @@ fn main() -> ExitCode {
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
         None => view(ViewArgs::default()),
-        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths, play }) => {
-            view(ViewArgs { model, scheme: scheme.scheme, level, wireframe, frames, screenshot, paths, play })
+        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths, play, turntable }) => {
+            view(ViewArgs {
+                model,
+                scheme: scheme.scheme,
+                level,
+                wireframe,
+                frames,
+                screenshot,
+                paths,
+                play,
+                turntable,
+            })
         }
         Some(Cmd::Animate {
             model,
@@ -282,6 +295,7 @@ struct ViewArgs {
     screenshot: Option<PathBuf>,
     paths: Option<PathBuf>,
     play: bool,
+    turntable: bool,
 }
 
 #[cfg(feature = "viewer")]
@@ -298,6 +312,7 @@ fn view(a: ViewArgs) -> Result<()> {
         screenshot: a.screenshot,
         paths: a.paths,
         play: a.play,
+        turntable: a.turntable,
     })
 }
 

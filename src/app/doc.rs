@@ -27,6 +27,9 @@ pub const TETRAHEDRON_OBJ: &str = include_str!("../../models/tetrahedron.obj");
 /// Its animation paths.
 pub const TETRAHEDRON_PATHS: &str = include_str!("../../paths/tetrahedron.paths");
 
+/// Largest proxy mesh (see [`Doc::proxy`]).
+pub const PROXY_FACES: u64 = 150_000;
+
 /// Highest level offered in the panel (further limited by memory).
 pub const MAX_LEVEL: u32 = 10;
 
@@ -50,7 +53,7 @@ impl Shown {
 
 enum Done {
     Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>)> },
-    Subdivided { ticket: u64, result: Result<(Shown, Stats, f64)>, level: u32 },
+    Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64)>, level: u32 },
     Animated { ticket: u64, result: Result<Animation> },
     Exported { result: Result<(usize, PathBuf)> },
 }
@@ -88,6 +91,9 @@ pub struct Doc {
     pub control: Shown,
     /// The subdivided mesh shown (the control mesh at level 0).
     pub result: Shown,
+    /// A lower level of the same subdivision (at most [`PROXY_FACES`]
+    /// triangles), drawn instead of a big `result` while the camera moves.
+    pub proxy: Option<Shown>,
     /// Level of `result`.
     pub result_level: u32,
     /// Scheme of `result`.
@@ -171,6 +177,7 @@ impl Doc {
             path: None,
             control: Shown::new(mesh.clone()),
             result: Shown::new(mesh),
+            proxy: None,
             result_level: 0,
             result_scheme: Scheme::Loop,
             stats: None,
@@ -276,8 +283,19 @@ impl Doc {
                 latest.load(Ordering::SeqCst) == ticket
             })
             .map(|(fine, stats)| {
+                let ms = t0.elapsed().as_secs_f64() * 1e3;
+                let big = fine.ct.num_triangles() as u64 > PROXY_FACES;
                 let shown = if level == 0 { Shown::new(mesh.clone()) } else { Shown::new(Arc::new(fine)) };
-                (shown, stats, t0.elapsed().as_secs_f64() * 1e3)
+                let proxy_level = (0..level).rev().find(|&l| predict_faces(&mesh.ct, l) <= PROXY_FACES);
+                let proxy = match proxy_level {
+                    Some(l) if big && latest.load(Ordering::SeqCst) == ticket => {
+                        subdivide_with_progress(&mesh, scheme, l, &opts, |_, _| latest.load(Ordering::SeqCst) == ticket)
+                            .ok()
+                            .map(|(p, _)| Shown::new(Arc::new(p)))
+                    }
+                    _ => None,
+                };
+                (shown, proxy, stats, ms)
             });
             let _ = tx.send(Done::Subdivided { ticket, result, level });
         });
@@ -389,8 +407,9 @@ impl Doc {
                     }
                     self.subdividing = None;
                     match result {
-                        Ok((shown, stats, ms)) => {
+                        Ok((shown, proxy, stats, ms)) => {
                             self.result = shown;
+                            self.proxy = proxy;
                             self.result_level = level;
                             self.result_scheme = self.scheme;
                             self.stats = Some(stats);
@@ -457,6 +476,7 @@ impl Doc {
         }
         self.path = Some(path);
         self.result = Shown::new(mesh);
+        self.proxy = None;
         self.result_level = 0;
         self.stats = None;
         self.control_changed = true;

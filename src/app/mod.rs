@@ -9,8 +9,9 @@
 pub mod doc;
 pub mod panel;
 
+use crate::render::blit::Blit;
 use crate::render::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
-use crate::render::{Gpu, Look, Surface, offscreen::padded_bytes_per_row, offscreen::read_rows};
+use crate::render::{Gpu, Look, offscreen::padded_bytes_per_row, offscreen::read_rows};
 use crate::{Error, Result, Scheme};
 use doc::Doc;
 use panel::UiState;
@@ -41,6 +42,8 @@ pub struct ViewOptions {
     pub paths: Option<PathBuf>,
     /// Start playing the animation.
     pub play: bool,
+    /// Start with the camera turning around the model.
+    pub turntable: bool,
 }
 
 /// Longest a `--frames` run may wait for its work before giving up.
@@ -73,9 +76,61 @@ struct Win {
     egui_renderer: egui_wgpu::Renderer,
     control: Option<GpuMesh>,
     result: Option<GpuMesh>,
+    proxy: Option<GpuMesh>,
     anim: Option<GpuMesh>,
     repaint_after: Option<Duration>,
+    blit: Blit,
+    /// The 3D viewports rendered at the window's size, blitted every frame.
+    scene: SceneTexture,
+    /// What `scene` holds (None: must render).
+    scene_key: Option<SceneKey>,
+    /// Bumped on every mesh upload or animation update.
+    version: u64,
+    /// MSAA samples of the renderer's pipelines.
+    samples: u32,
 }
+
+struct SceneTexture {
+    view: wgpu::TextureView,
+    group: wgpu::BindGroup,
+}
+
+impl SceneTexture {
+    fn new(device: &wgpu::Device, blit: &Blit, format: wgpu::TextureFormat, w: u32, h: u32) -> SceneTexture {
+        let tex = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("scene"),
+            size: wgpu::Extent3d { width: w.max(1), height: h.max(1), depth_or_array_layers: 1 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let view = tex.create_view(&Default::default());
+        let group = blit.bind(device, &view);
+        SceneTexture { view, group }
+    }
+}
+
+/// Everything the 3D image depends on; equal keys mean the cached scene is current.
+#[derive(Clone, Copy, PartialEq)]
+struct SceneKey {
+    camera: crate::render::Camera,
+    look: Look,
+    side_by_side: bool,
+    rect: [f32; 4],
+    size: (u32, u32),
+    version: u64,
+    proxy: bool,
+}
+
+/// Meshes above this many triangles are drawn through their proxy (a
+/// lower level) while the camera moves, so orbiting stays fluid on a
+/// software rasteriser; the full mesh returns as soon as the motion stops.
+const PROXY_ABOVE: usize = 300_000;
+/// How long after the last camera change the proxy is kept.
+const SETTLE: Duration = Duration::from_millis(180);
 
 struct App {
     opts: ViewOptions,
@@ -86,6 +141,8 @@ struct App {
     frames_done: u32,
     /// Frame-to-frame times (ms) of the counted `--frames` frames.
     frame_log: Vec<f64>,
+    last_camera: Option<crate::render::Camera>,
+    last_motion: Instant,
     started: Instant,
     last_frame: Instant,
 }
@@ -125,7 +182,8 @@ impl App {
         if opts.play {
             doc.request_animation();
         }
-        let ui = UiState::new(opts.wireframe);
+        let mut ui = UiState::new(opts.wireframe);
+        ui.turntable = opts.turntable;
         Ok(App {
             opts,
             doc,
@@ -134,6 +192,8 @@ impl App {
             fatal: None,
             frames_done: 0,
             frame_log: Vec::new(),
+            last_camera: None,
+            last_motion: Instant::now(),
             started: Instant::now(),
             last_frame: Instant::now(),
         })
@@ -164,12 +224,7 @@ impl App {
         config.present_mode = wgpu::PresentMode::AutoVsync;
         config.view_formats = vec![];
         surface.configure(&gpu.device, &config);
-        let samples = match std::env::var("SUBDIV_MSAA").ok().and_then(|v| v.parse::<u32>().ok()) {
-            Some(n) if n <= 1 => 1,
-            _ => gpu.msaa_samples(format),
-        };
-        let renderer = Renderer::new(&gpu.device, format, samples);
-        let targets = Targets::new(&gpu.device, &renderer, config.width, config.height);
+        let samples = gpu.msaa_samples(format);
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(
             egui_ctx.clone(),
@@ -180,7 +235,15 @@ impl App {
             Some(gpu.device.limits().max_texture_dimension_2d as usize),
         );
         let egui_renderer = egui_wgpu::Renderer::new(&gpu.device, format, egui_wgpu::RendererOptions::default());
-        self.ui.adapter = format!("{} · {samples}× MSAA", gpu.describe());
+        self.ui.adapter = gpu.describe();
+        self.ui.msaa_available = samples > 1;
+        // A software rasteriser pays per sample: start without MSAA there (the panel can turn it on).
+        self.ui.msaa = samples > 1 && (!gpu.is_software() || std::env::var_os("SUBDIV_MSAA").is_some());
+        let samples = if self.ui.msaa { samples } else { 1 };
+        let renderer = Renderer::new(&gpu.device, format, samples);
+        let targets = Targets::new(&gpu.device, &renderer, config.width, config.height);
+        let blit = Blit::new(&gpu.device, format);
+        let scene = SceneTexture::new(&gpu.device, &blit, format, config.width, config.height);
         Ok(Win {
             window,
             gpu,
@@ -193,8 +256,14 @@ impl App {
             egui_renderer,
             control: None,
             result: None,
+            proxy: None,
             anim: None,
             repaint_after: None,
+            blit,
+            scene,
+            scene_key: None,
+            version: 0,
+            samples,
         })
     }
 
@@ -218,6 +287,7 @@ impl App {
         }
         if doc.result_changed {
             win.result = upload(&doc.result, &mut doc.error);
+            win.proxy = doc.proxy.as_ref().and_then(|p| upload(p, &mut doc.error));
             doc.result_changed = false;
             uploaded = true;
         }
@@ -240,6 +310,7 @@ impl App {
                     c.update(device, queue, cpos, &cn);
                 }
                 a.shown_frame = Some(f);
+                win.version += 1;
             }
         } else if win.anim.is_some() {
             win.anim = None;
@@ -252,6 +323,7 @@ impl App {
         if self.ui.normals {
             if let Some(m) = win.result.as_mut().filter(|_| uploaded || !self.ui.normals_built) {
                 m.set_normal_lines(device, &doc.result.mesh.positions, &doc.result.normals, Some(normal_length));
+                win.version += 1;
             }
             self.ui.normals_built = true;
         } else {
@@ -259,6 +331,7 @@ impl App {
         }
         if uploaded {
             self.ui.upload_ms = t0.elapsed().as_secs_f64() * 1e3;
+            win.version += 1;
         }
     }
 
@@ -325,19 +398,35 @@ impl App {
             }
         };
         let view = frame.texture.create_view(&Default::default());
+        let want = if self.ui.msaa { win.gpu.msaa_samples(win.config.format) } else { 1 };
+        if want != win.samples {
+            win.renderer = Renderer::new(&win.gpu.device, win.config.format, want);
+            win.targets = Targets::new(&win.gpu.device, &win.renderer, win.config.width, win.config.height);
+            win.samples = want;
+            win.scene_key = None;
+        }
         let r = [rect.left() * ppp, rect.top() * ppp, rect.width() * ppp, rect.height() * ppp];
-        let result_mesh =
-            if self.doc.animating { win.anim.as_ref().or(win.result.as_ref()) } else { win.result.as_ref() };
+        if self.ui.turntable {
+            self.ui.camera.yaw += (dt * 0.8) as f32;
+        }
+        if Some(self.ui.camera) != self.last_camera {
+            self.last_camera = Some(self.ui.camera);
+            self.last_motion = now;
+        }
+        let big = win.result.as_ref().is_some_and(|m| m.triangle_count() > PROXY_ABOVE);
+        let use_proxy = !self.doc.animating && big && win.proxy.is_some() && now - self.last_motion < SETTLE;
+        let result_mesh = if self.doc.animating {
+            win.anim.as_ref().or(win.result.as_ref())
+        } else if use_proxy {
+            win.proxy.as_ref()
+        } else {
+            win.result.as_ref()
+        };
         let look = self.ui.look();
         let mut draws = Vec::with_capacity(2);
         if self.ui.side_by_side {
             let half = r[2] / 2.0;
-            let left = Look {
-                surface: if look.surface == Surface::Hidden { Surface::Hidden } else { look.surface },
-                wireframe: true,
-                control: false,
-                normals: false,
-            };
+            let left = Look { wireframe: true, control: false, normals: false, ..look };
             draws.push(ViewportDraw {
                 rect: [r[0], r[1], half, r[3]],
                 camera: self.ui.camera,
@@ -367,6 +456,24 @@ impl App {
         };
         let mut encoder = win.gpu.device.create_command_encoder(&Default::default());
         let user_cmds = win.egui_renderer.update_buffers(&win.gpu.device, &win.gpu.queue, &mut encoder, &jobs, &screen);
+
+        // The 3D viewports are re-rendered only when something they show changed.
+        let key = SceneKey {
+            camera: self.ui.camera,
+            look,
+            side_by_side: self.ui.side_by_side,
+            rect: r,
+            size: (win.config.width, win.config.height),
+            version: win.version,
+            proxy: use_proxy,
+        };
+        if win.scene_key != Some(key) {
+            let t = Instant::now();
+            win.renderer.encode(&win.gpu.device, &win.gpu.queue, &mut encoder, &win.targets, &win.scene.view, &draws);
+            win.scene_key = Some(key);
+            self.ui.scene_renders += 1;
+            self.ui.encode_ms = t.elapsed().as_secs_f64() * 1e3;
+        }
 
         // The frames-mode exit and the P key both take a screenshot of this frame.
         let finishing = self.opts.frames.is_some_and(|n| {
@@ -408,7 +515,7 @@ impl App {
             targets_views.push(v);
         }
         for target in targets_views {
-            win.renderer.encode(&win.gpu.device, &win.gpu.queue, &mut encoder, &win.targets, target, &draws);
+            win.blit.draw(&mut encoder, &win.scene.group, target);
             let pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("egui"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
@@ -486,7 +593,11 @@ impl App {
                 let mean = tail.iter().sum::<f64>() / tail.len() as f64;
                 let max = tail.iter().fold(0.0f64, |a, &b| a.max(b));
                 let tris = result_tris(&self.doc);
-                println!("frames={} frame_ms_mean={mean:.1} frame_ms_max={max:.1} triangles={tris} adapter=\"{}\"", tail.len(), self.ui.adapter);
+                println!(
+                    "frames={} frame_ms_mean={mean:.1} frame_ms_max={max:.1} triangles={tris} adapter=\"{}\"",
+                    tail.len(),
+                    self.ui.adapter
+                );
             }
             if let Some(e) = self.doc.error.take().filter(|_| self.fatal.is_none()) {
                 self.fatal = Some(Error::Usage(e));
@@ -537,6 +648,9 @@ impl ApplicationHandler for App {
                     win.config.height = size.height;
                     win.surface.configure(&win.gpu.device, &win.config);
                     win.targets = Targets::new(&win.gpu.device, &win.renderer, size.width, size.height);
+                    win.scene =
+                        SceneTexture::new(&win.gpu.device, &win.blit, win.config.format, size.width, size.height);
+                    win.scene_key = None;
                 }
                 win.window.request_redraw();
             }
@@ -563,7 +677,17 @@ impl ApplicationHandler for App {
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
         let Some(win) = &self.win else { return };
-        if self.doc.busy() || self.doc.anim.as_ref().is_some_and(|a| a.clock.playing) {
+        let settle_at = self.last_motion + SETTLE + Duration::from_millis(5);
+        if win.scene_key.is_some_and(|k| k.proxy) {
+            // The proxy is showing: come back for the full mesh once the camera has settled.
+            if Instant::now() >= settle_at {
+                win.window.request_redraw();
+            } else {
+                event_loop.set_control_flow(ControlFlow::WaitUntil(settle_at));
+                return;
+            }
+        }
+        if self.doc.busy() || self.ui.turntable || self.doc.anim.as_ref().is_some_and(|a| a.clock.playing) {
             // Poll the workers (and play) at the frame rate.
             win.window.request_redraw();
             event_loop.set_control_flow(ControlFlow::Wait);

@@ -15,7 +15,7 @@ use std::sync::atomic::Ordering;
 /// Keyboard help shown at the bottom of the panel.
 pub const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor. \
 Keys: W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
-B side by side, Space play/pause, Left/Right step frame, P screenshot.";
+B side by side, T turntable, Space play/pause, Left/Right step frame, P screenshot.";
 
 /// View state owned by the window (not by the document).
 pub struct UiState {
@@ -59,6 +59,16 @@ pub struct UiState {
     pub scene_rect: egui::Rect,
     /// The normal segments of the current result exist.
     pub normals_built: bool,
+    /// Multisampling on.
+    pub msaa: bool,
+    /// The camera turns around the model.
+    pub turntable: bool,
+    /// The adapter offers multisampling.
+    pub msaa_available: bool,
+    /// How many times the 3D viewports were rendered (they are cached between changes).
+    pub scene_renders: u64,
+    /// CPU time to record the last 3D render, ms.
+    pub encode_ms: f64,
 }
 
 impl UiState {
@@ -94,6 +104,11 @@ impl UiState {
             adapter: String::new(),
             scene_rect: egui::Rect::NOTHING,
             normals_built: false,
+            msaa: false,
+            turntable: false,
+            msaa_available: false,
+            scene_renders: 0,
+            encode_ms: 0.0,
         }
     }
 
@@ -107,7 +122,7 @@ fn sep(n: u64) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, ch) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(ch);
@@ -248,6 +263,11 @@ fn display_section(ui: &mut egui::Ui, st: &mut UiState) {
         ui.checkbox(&mut st.normals, "Normals (N)");
         ui.checkbox(&mut st.side_by_side, "Side by side (B)");
         ui.checkbox(&mut st.camera.orthographic, "Orthographic (O)");
+        ui.checkbox(&mut st.turntable, "Turntable (T)");
+        if st.msaa_available {
+            ui.checkbox(&mut st.msaa, "Anti-aliasing (MSAA)")
+                .on_hover_text("4x multisampling; costly on a software rasteriser with big meshes");
+        }
     });
     ui.horizontal(|ui| {
         st.fit |= ui.button("Fit (F)").clicked();
@@ -398,7 +418,7 @@ fn stats_section(ui: &mut egui::Ui, doc: &mut Doc, st: &UiState) {
         1000.0 / st.frame_ms.max(0.01),
         st.upload_ms
     ));
-    ui.label(RichText::new(&st.adapter).small().weak());
+    ui.label(RichText::new(format!("{} · 3D renders {}", st.adapter, st.scene_renders)).small().weak());
     if let Some(e) = doc.error.clone() {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(e).color(Color32::from_rgb(255, 110, 90)));
@@ -505,6 +525,9 @@ fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, doc: &mut Doc, st: &mut UiSt
     }
     if pressed(Key::F) {
         st.fit = true;
+    }
+    if pressed(Key::T) {
+        st.turntable = !st.turntable;
     }
     if pressed(Key::R) {
         st.reset = true;

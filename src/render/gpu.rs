@@ -58,9 +58,17 @@ impl Gpu {
         format!("{:?} | {}", info.backend, info.name)
     }
 
+    /// Whether the adapter is a software rasteriser (lavapipe, llvmpipe...).
+    pub fn is_software(&self) -> bool {
+        self.adapter.get_info().device_type == wgpu::DeviceType::Cpu
+    }
+
     /// Largest supported MSAA sample count (up to 4) usable with both `format`
-    /// and the depth format.
+    /// and the depth format. `SUBDIV_MSAA=1` (or 4) overrides.
     pub fn msaa_samples(&self, format: wgpu::TextureFormat) -> u32 {
+        if let Some(n) = std::env::var("SUBDIV_MSAA").ok().and_then(|v| v.parse::<u32>().ok()) {
+            return if n <= 1 { 1 } else { 4 };
+        }
         let c = self.adapter.get_texture_format_features(format).flags;
         let d = self.adapter.get_texture_format_features(super::DEPTH_FORMAT).flags;
         [4, 2].into_iter().find(|&n| c.sample_count_supported(n) && d.sample_count_supported(n)).unwrap_or(1)

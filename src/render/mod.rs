@@ -4,6 +4,7 @@
 //! Data in: flat position/normal arrays and the corner table's V table; the
 //! mesh core knows nothing of this module.
 
+pub mod blit;
 pub mod camera;
 pub mod export;
 pub mod gpu;

@@ -62,6 +62,36 @@ pub struct GpuMesh {
     edge_indices: u32,
     normal_lines: Option<(wgpu::Buffer, u32)>,
     normal_length: f32,
+    /// Which faces may be skipped (closed meshes only).
+    pub cull: Cull,
+}
+
+/// Face culling of a mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cull {
+    /// Draw both sides (open meshes: their inside can be seen).
+    None = 0,
+    /// Closed, outward oriented: skip back faces.
+    Back = 1,
+    /// Closed, inward oriented: skip front faces.
+    Front = 2,
+}
+
+/// Closed meshes skip the faces turned away from the eye; which side is
+/// "away" follows the sign of the enclosed volume (the corner table makes the
+/// orientation consistent, not necessarily outward).
+pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
+    if ct.o.contains(&BORDER) {
+        return Cull::None;
+    }
+    let volume: f64 =
+        ct.v.chunks_exact(3)
+            .map(|t| {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize].as_dvec3());
+                a.dot(b.cross(c))
+            })
+            .sum();
+    if volume >= 0.0 { Cull::Back } else { Cull::Front }
 }
 
 /// Each edge once as a pair of vertex ids: corner `c` names the edge opposite
@@ -118,12 +148,17 @@ impl GpuMesh {
             edge_indices: edges.len() as u32,
             normal_lines: None,
             normal_length: 0.05,
+            cull: cull_for(ct, positions),
         })
     }
 
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.vertex_count
+    }
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangle_indices as usize / 3
     }
 
     /// Replaces positions and normals (same vertex count, same topology):
@@ -215,8 +250,8 @@ pub struct Renderer {
     pub format: wgpu::TextureFormat,
     /// MSAA sample count of the pipelines.
     pub samples: u32,
-    mesh: wgpu::RenderPipeline,
-    depth_only: wgpu::RenderPipeline,
+    mesh: [wgpu::RenderPipeline; 3],
+    depth_only: [wgpu::RenderPipeline; 3],
     lines: wgpu::RenderPipeline,
     view_layout: wgpu::BindGroupLayout,
     views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
@@ -293,7 +328,8 @@ impl Renderer {
                         buffers: &[Option<wgpu::VertexBufferLayout>],
                         topology,
                         write_color: bool,
-                        depth_state| {
+                        depth_state,
+                        cull_mode: Option<wgpu::Face>| {
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),
                 layout: Some(layout),
@@ -303,7 +339,7 @@ impl Renderer {
                     compilation_options: Default::default(),
                     buffers,
                 },
-                primitive: wgpu::PrimitiveState { topology, cull_mode: None, ..Default::default() },
+                primitive: wgpu::PrimitiveState { topology, cull_mode, ..Default::default() },
                 depth_stencil: depth_state,
                 multisample,
                 fragment: Some(wgpu::FragmentState {
@@ -322,24 +358,32 @@ impl Renderer {
         };
         let tri = wgpu::PrimitiveTopology::TriangleList;
         let mesh_buffers = [Some(POS_LAYOUT), Some(NRM_LAYOUT)];
-        let mesh = pipeline(
-            "mesh",
-            &mesh_layout,
-            "vs_mesh",
-            &mesh_buffers,
-            tri,
-            true,
-            depth(true, wgpu::CompareFunction::Less),
-        );
-        let depth_only = pipeline(
-            "depth only",
-            &mesh_layout,
-            "vs_mesh",
-            &mesh_buffers,
-            tri,
-            false,
-            depth(true, wgpu::CompareFunction::Less),
-        );
+        // Index by `Cull as usize`: closed meshes skip their back faces.
+        let culls = [None, Some(wgpu::Face::Back), Some(wgpu::Face::Front)];
+        let mesh = culls.map(|c| {
+            pipeline(
+                "mesh",
+                &mesh_layout,
+                "vs_mesh",
+                &mesh_buffers,
+                tri,
+                true,
+                depth(true, wgpu::CompareFunction::Less),
+                c,
+            )
+        });
+        let depth_only = culls.map(|c| {
+            pipeline(
+                "depth only",
+                &mesh_layout,
+                "vs_mesh",
+                &mesh_buffers,
+                tri,
+                false,
+                depth(true, wgpu::CompareFunction::Less),
+                c,
+            )
+        });
         let lines = pipeline(
             "lines",
             &line_layout,
@@ -348,6 +392,7 @@ impl Renderer {
             wgpu::PrimitiveTopology::LineList,
             true,
             depth(true, wgpu::CompareFunction::LessEqual),
+            None,
         );
         let style = |c: [f32; 4]| {
             let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -450,16 +495,21 @@ impl Renderer {
             pass.set_scissor_rect(x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32);
             pass.set_bind_group(0, group, &[]);
             if let Some(m) = d.mesh {
-                let faces = match d.look.surface {
-                    Surface::Smooth | Surface::Flat => Some(&self.mesh),
-                    Surface::Hidden => d.look.wireframe.then_some(&self.depth_only),
-                };
-                if let Some(pipe) = faces.filter(|_| m.triangle_indices > 0) {
-                    pass.set_pipeline(pipe);
+                let cull = m.cull as usize;
+                let shaded = matches!(d.look.surface, Surface::Smooth | Surface::Flat);
+                if m.triangle_indices > 0 && (shaded || d.look.wireframe) {
                     pass.set_vertex_buffer(0, m.positions.slice(..));
                     pass.set_vertex_buffer(1, m.normals.slice(..));
                     pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
-                    pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+                    if !shaded {
+                        // Hidden-line wireframe: the faces only fill the depth buffer.
+                        pass.set_pipeline(&self.depth_only[cull]);
+                        pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+                    }
+                    if shaded {
+                        pass.set_pipeline(&self.mesh[cull]);
+                        pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+                    }
                 }
                 pass.set_pipeline(&self.lines);
                 if d.look.wireframe && m.edge_indices > 0 {
