@@ -131,3 +131,23 @@ fn space_plays_the_tetrahedron_animation() {
     doc.stop_animation();
     assert!(doc.anim.is_none() && !doc.animating);
 }
+
+#[test]
+fn a_non_manifold_file_can_be_repaired_from_the_panel() {
+    let dir = std::env::temp_dir().join(format!("subdiv-viewer-fin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fin = dir.join("fin.obj");
+    std::fs::write(&fin, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n").unwrap();
+    let mut doc = Doc::new();
+    doc.open(fin.clone());
+    settle(&mut doc);
+    assert!(doc.error.as_deref().is_some_and(|e| e.contains("non-manifold edge")), "{:?}", doc.error);
+    assert_eq!(doc.failed.as_deref(), Some(fin.as_path()), "offered for repair");
+    assert_eq!(doc.control.topo.vertices, 4, "the tetrahedron stays");
+    doc.open_with(fin, true);
+    settle(&mut doc);
+    assert!(doc.failed.is_none());
+    assert_eq!(doc.control.topo.faces, 3);
+    assert!(doc.notice.as_deref().is_some_and(|n| n.contains("repaired")), "{:?}", doc.notice);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -52,7 +52,7 @@ impl Shown {
 }
 
 enum Done {
-    Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>)> },
+    Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>, Option<String>)>, path: PathBuf },
     Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64)>, level: u32 },
     Animated { ticket: u64, result: Result<Animation> },
     Exported { result: Result<(usize, PathBuf)> },
@@ -126,6 +126,10 @@ pub struct Doc {
     pub error: Option<String>,
     /// Last notice (export finished...).
     pub notice: Option<String>,
+    /// Repair meshes when opening them (split non-manifold elements, orient, drop degenerate faces).
+    pub repair_on_open: bool,
+    /// The file whose opening failed last (offered for "Repair and open").
+    pub failed: Option<PathBuf>,
     /// Set when `control` changed (upload, refit the camera).
     pub control_changed: bool,
     /// Set when `result` changed (upload).
@@ -194,6 +198,8 @@ impl Doc {
             animating: false,
             error: None,
             notice: None,
+            repair_on_open: false,
+            failed: None,
             control_changed: true,
             result_changed: true,
             load_gen: Default::default(),
@@ -229,8 +235,14 @@ impl Doc {
         (0..=MAX_LEVEL).take_while(|&l| self.level_refusal(l).is_none()).last().unwrap_or(0)
     }
 
-    /// Opens a model file on a worker thread.
+    /// Opens a model file on a worker thread (repairing it when
+    /// [`Doc::repair_on_open`] is set).
     pub fn open(&mut self, path: PathBuf) {
+        self.open_with(path, self.repair_on_open);
+    }
+
+    /// Opens a model file on a worker thread, repairing it or not.
+    pub fn open_with(&mut self, path: PathBuf, repair: bool) {
         let ticket = self.load_gen.fetch_add(1, Ordering::SeqCst) + 1;
         let tx = self.tx.clone();
         self.loading = Some(Busy {
@@ -240,7 +252,15 @@ impl Doc {
             since: Instant::now(),
         });
         std::thread::spawn(move || {
-            let result = io::load(&path).and_then(|mesh| {
+            let loaded = if repair {
+                io::load_repaired(&path).map(|(m, r)| {
+                    let report = if r.is_empty() { None } else { Some(format!("repaired: {r}")) };
+                    (m, report)
+                })
+            } else {
+                io::load(&path).map(|m| (m, None))
+            };
+            let result = loaded.and_then(|(mesh, report)| {
                 let paths = match paths_for(&path) {
                     Some(p) => {
                         let paths = Paths::load(&p)?;
@@ -249,9 +269,9 @@ impl Doc {
                     }
                     None => None,
                 };
-                Ok((path, mesh, paths))
+                Ok((path.clone(), mesh, paths, report))
             });
-            let _ = tx.send(Done::Loaded { ticket, result });
+            let _ = tx.send(Done::Loaded { ticket, result, path });
         });
     }
 
@@ -391,14 +411,22 @@ impl Doc {
         while let Ok(done) = self.rx.try_recv() {
             changed = true;
             match done {
-                Done::Loaded { ticket, result } => {
+                Done::Loaded { ticket, result, path } => {
                     if ticket != self.load_gen.load(Ordering::SeqCst) {
                         continue;
                     }
                     self.loading = None;
                     match result {
-                        Ok((path, mesh, paths)) => self.adopt(path, mesh, paths),
-                        Err(e) => self.error = Some(format!("could not open: {e}")),
+                        Ok((path, mesh, paths, report)) => {
+                            self.failed = None;
+                            self.notice = report;
+                            self.adopt(path, mesh, paths);
+                        }
+                        Err(e) => {
+                            // Only a mesh-validity problem can be repaired; parse errors cannot.
+                            self.failed = matches!(e, crate::Error::Mesh { .. }).then_some(path);
+                            self.error = Some(format!("could not open: {e}"));
+                        }
                     }
                 }
                 Done::Subdivided { ticket, result, level } => {
