@@ -34,15 +34,27 @@ struct MeshOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
+    @location(2) color: vec3<f32>,
 };
 
-@vertex
-fn vs_mesh(@location(0) pos: vec3<f32>, @location(1) normal: vec3<f32>) -> MeshOut {
+fn mesh_vertex(pos: vec3<f32>, normal: vec3<f32>, color: vec3<f32>) -> MeshOut {
     var o: MeshOut;
     o.clip = u.proj * (u.view * vec4<f32>(pos, 1.0));
     o.world = pos;
     o.normal = normal;
+    o.color = color;
     return o;
+}
+
+@vertex
+fn vs_mesh(@location(0) pos: vec3<f32>, @location(1) normal: vec3<f32>) -> MeshOut {
+    return mesh_vertex(pos, normal, u.front_color.rgb);
+}
+
+// Per-vertex colours (level shells, displacement maps) replace the front colour.
+@vertex
+fn vs_mesh_colored(@location(0) pos: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) color: vec3<f32>) -> MeshOut {
+    return mesh_vertex(pos, normal, color);
 }
 
 fn encode_srgb(c: vec3<f32>) -> vec3<f32> {
@@ -89,7 +101,7 @@ fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<
             n = -n;
         }
     }
-    let base = select(u.back_color.rgb, u.front_color.rgb, front);
+    let base = select(u.back_color.rgb, i.color, front);
     // The headlight sits a little above and left of the eye so silhouettes keep some shape.
     var c = 0.12 * base;
     c += light(n, v, v, u.params.w, base);

@@ -176,3 +176,18 @@ fn animation_frames_update_in_place_and_move() {
     let far = Vec3::splat(1e3);
     assert!(lo.cmplt(far).all() && hi.cmpgt(-far).all());
 }
+
+#[test]
+fn per_vertex_colours_replace_the_material_only_when_asked() {
+    let Some(mut off) = offscreen(120, 120) else { return };
+    let (control, mesh) = fine("cube.obj", Scheme::Loop, 1);
+    let opts = subdiv::render::RenderOptions { width: 120, height: 120, ..Default::default() };
+    let cam = default_camera(&control, &opts);
+    let mut g = off.upload(&mesh).unwrap();
+    g.set_colors(&off.gpu.device, &vec![Vec3::new(0.8, 0.02, 0.02); mesh.positions.len()]);
+    let red = |img: &RgbaImage| img.pixels().filter(|p| p.0[0] > p.0[1] + 60 && p.0[0] > p.0[2] + 60).count();
+    let plain = off.render_one(cam, &g, None, Look::default()).unwrap();
+    let coloured = off.render_one(cam, &g, None, Look { colors: true, ..Look::default() }).unwrap();
+    assert_eq!(red(&plain), 0);
+    assert!(red(&coloured) > 1000, "{} red pixels", red(&coloured));
+}

@@ -45,6 +45,8 @@ pub struct Look {
     pub control: bool,
     /// Vertex normals as short segments.
     pub normals: bool,
+    /// Per-vertex colours instead of the material colour (when the mesh has them).
+    pub colors: bool,
 }
 
 /// Shading modes of the command line.

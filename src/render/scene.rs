@@ -64,6 +64,7 @@ pub struct GpuMesh {
     normal_length: f32,
     /// Which faces may be skipped (closed meshes only).
     pub cull: Cull,
+    colors: Option<wgpu::Buffer>,
 }
 
 /// Face culling of a mesh.
@@ -149,6 +150,7 @@ impl GpuMesh {
             normal_lines: None,
             normal_length: 0.05,
             cull: cull_for(ct, positions),
+            colors: None,
         })
     }
 
@@ -191,6 +193,24 @@ impl GpuMesh {
         let count = v.len() as u32;
         self.normal_lines =
             Some((buffer(device, "normal lines", bytemuck::cast_slice(&v), wgpu::BufferUsages::VERTEX), count));
+    }
+
+    /// Sets per-vertex colours (linear RGB, one per vertex), shown when the
+    /// look asks for colours.
+    pub fn set_colors(&mut self, device: &wgpu::Device, colors: &[Vec3]) {
+        let mut c = colors.to_vec();
+        c.resize(self.vertex_count, Vec3::ONE);
+        self.colors = Some(buffer(device, "colors", bytemuck::cast_slice(&c), wgpu::BufferUsages::VERTEX));
+    }
+
+    /// Whether per-vertex colours are set.
+    pub fn has_colors(&self) -> bool {
+        self.colors.is_some()
+    }
+
+    /// Drops the per-vertex colours.
+    pub fn clear_colors(&mut self) {
+        self.colors = None;
     }
 
     /// Drops the normal segments.
@@ -251,6 +271,7 @@ pub struct Renderer {
     /// MSAA sample count of the pipelines.
     pub samples: u32,
     mesh: [wgpu::RenderPipeline; 3],
+    mesh_colored: [wgpu::RenderPipeline; 3],
     depth_only: [wgpu::RenderPipeline; 3],
     lines: wgpu::RenderPipeline,
     view_layout: wgpu::BindGroupLayout,
@@ -267,6 +288,11 @@ const NRM_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: 12,
     step_mode: wgpu::VertexStepMode::Vertex,
     attributes: &wgpu::vertex_attr_array![1 => Float32x3],
+};
+const COLOR_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![2 => Float32x3],
 };
 
 fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
@@ -372,6 +398,19 @@ impl Renderer {
                 c,
             )
         });
+        let colored_buffers = [Some(POS_LAYOUT), Some(NRM_LAYOUT), Some(COLOR_LAYOUT)];
+        let mesh_colored = culls.map(|c| {
+            pipeline(
+                "mesh colored",
+                &mesh_layout,
+                "vs_mesh_colored",
+                &colored_buffers,
+                tri,
+                true,
+                depth(true, wgpu::CompareFunction::Less),
+                c,
+            )
+        });
         let depth_only = culls.map(|c| {
             pipeline(
                 "depth only",
@@ -403,7 +442,7 @@ impl Renderer {
             uniform_group(device, &style_layout, &buf)
         };
         let styles = [style(WIRE_DARK), style(WIRE_LIGHT), style(CONTROL), style(NORMALS)];
-        Renderer { format, samples, mesh, depth_only, lines, view_layout, views: Vec::new(), styles }
+        Renderer { format, samples, mesh, mesh_colored, depth_only, lines, view_layout, views: Vec::new(), styles }
     }
 
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
@@ -507,7 +546,13 @@ impl Renderer {
                         pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
                     }
                     if shaded {
-                        pass.set_pipeline(&self.mesh[cull]);
+                        match (&m.colors, d.look.colors) {
+                            (Some(colors), true) => {
+                                pass.set_pipeline(&self.mesh_colored[cull]);
+                                pass.set_vertex_buffer(2, colors.slice(..));
+                            }
+                            _ => pass.set_pipeline(&self.mesh[cull]),
+                        }
                         pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
                     }
                 }
