@@ -88,6 +88,8 @@ struct Win {
     version: u64,
     /// MSAA samples of the renderer's pipelines.
     samples: u32,
+    /// The last GPU error (validation, out of memory): shown in the panel instead of a panic.
+    gpu_error: Arc<std::sync::Mutex<Option<String>>>,
 }
 
 struct SceneTexture {
@@ -225,6 +227,13 @@ impl App {
         config.view_formats = vec![];
         surface.configure(&gpu.device, &config);
         let samples = gpu.msaa_samples(format);
+        let gpu_error: Arc<std::sync::Mutex<Option<String>>> = Arc::default();
+        let sink = gpu_error.clone();
+        gpu.device.on_uncaptured_error(Arc::new(move |e| {
+            if let Ok(mut slot) = sink.lock() {
+                *slot = Some(e.to_string());
+            }
+        }));
         let egui_ctx = egui::Context::default();
         let egui_state = egui_winit::State::new(
             egui_ctx.clone(),
@@ -264,6 +273,7 @@ impl App {
             scene_key: None,
             version: 0,
             samples,
+            gpu_error,
         })
     }
 
@@ -344,6 +354,9 @@ impl App {
         self.doc.poll();
         self.sync(dt);
         let Some(win) = &mut self.win else { return };
+        if let Some(e) = win.gpu_error.lock().ok().and_then(|mut slot| slot.take()) {
+            self.doc.error = Some(format!("graphics: {e}"));
+        }
         let size = win.window.inner_size();
         if size.width == 0 || size.height == 0 {
             return; // minimised

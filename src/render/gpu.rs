@@ -44,7 +44,8 @@ impl Gpu {
         let (device, queue) = adapter
             .request_device(&wgpu::DeviceDescriptor {
                 label: Some("subdiv"),
-                required_limits: wgpu::Limits::downlevel_webgl2_defaults().using_resolution(adapter.limits()),
+                // Everything the adapter offers: big meshes need big buffers.
+                required_limits: adapter.limits(),
                 ..Default::default()
             })
             .await
