@@ -1,0 +1,139 @@
+//! `subdiv render` and `subdiv animate`: files written whole, right sizes and
+//! frame counts; refusals leave existing files alone. Skips only without a GPU
+//! adapter when SUBDIV_REQUIRE_GPU is unset.
+#![cfg(feature = "viewer")]
+
+mod common;
+use common::model_path;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn tmp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-cli-render-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d.join(name)
+}
+
+/// Runs the binary; `None` when it failed only for want of an adapter (and that may skip).
+fn run(args: &[&str]) -> Option<Output> {
+    let out = Command::new(env!("CARGO_BIN_EXE_subdiv")).args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    if !out.status.success() && err.contains("no graphics adapter") {
+        assert!(std::env::var_os("SUBDIV_REQUIRE_GPU").is_none(), "SUBDIV_REQUIRE_GPU is set: {err}");
+        eprintln!("SKIPPED: no GPU adapter");
+        return None;
+    }
+    Some(out)
+}
+
+#[test]
+fn render_writes_a_png_of_the_requested_size() {
+    let out = tmp("torus.png");
+    let tor = model_path("torus.obj");
+    let Some(o) = run(&[
+        "render",
+        tor.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "-s",
+        "loop",
+        "-n",
+        "1",
+        "--shading",
+        "phong+wire",
+        "--size",
+        "123x77",
+    ]) else {
+        return;
+    };
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&out).unwrap();
+    assert_eq!((img.width(), img.height()), (123, 77));
+}
+
+#[test]
+fn animate_writes_k_times_two_to_the_n_frames() {
+    let gif = tmp("tetra.gif");
+    let Some(o) = run(&["animate", "--level", "2", "--refine", "1", "--size", "64x64", "--gif", gif.to_str().unwrap()])
+    else {
+        return;
+    };
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let frames = image::AnimationDecoder::into_frames(
+        image::codecs::gif::GifDecoder::new(std::io::BufReader::new(std::fs::File::open(&gif).unwrap())).unwrap(),
+    );
+    assert_eq!(frames.count(), 4 * 2, "4 keys refined once");
+
+    let dir = tmp("frames");
+    let paths = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths");
+    let tet = model_path("tetrahedron.obj");
+    let o = run(&[
+        "animate",
+        "--model",
+        tet.to_str().unwrap(),
+        "--paths",
+        paths.to_str().unwrap(),
+        "--level",
+        "1",
+        "--refine",
+        "2",
+        "--size",
+        "32x32",
+        "--frames-dir",
+        dir.to_str().unwrap(),
+    ])
+    .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut names: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names.len(), 16);
+    assert_eq!((names[0].as_str(), names[15].as_str()), ("frame_0000.png", "frame_0015.png"));
+
+    // A model without paths animates along generated loops.
+    let cube_gif = tmp("cube.gif");
+    let cube = model_path("cube.obj");
+    let o = run(&[
+        "animate",
+        "--model",
+        cube.to_str().unwrap(),
+        "--level",
+        "1",
+        "--refine",
+        "0",
+        "--size",
+        "32x32",
+        "--gif",
+        cube_gif.to_str().unwrap(),
+    ])
+    .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn refused_animations_leave_existing_files_alone() {
+    let gif = tmp("keep.gif");
+    std::fs::write(&gif, b"previous").unwrap();
+    let cube = model_path("cube.obj");
+    let tet_paths = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths");
+    for args in [
+        vec!["animate", "--tweak", "wobbly", "--gif", gif.to_str().unwrap()],
+        // The tetrahedron's 4-vertex paths do not fit the 8-vertex cube.
+        vec![
+            "animate",
+            "--model",
+            cube.to_str().unwrap(),
+            "--paths",
+            tet_paths.to_str().unwrap(),
+            "--gif",
+            gif.to_str().unwrap(),
+        ],
+        vec!["animate", "--level", "40", "--gif", gif.to_str().unwrap()],
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_subdiv")).args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success() && !err.contains("panicked"), "{args:?}: {err}");
+        assert!(err.contains("error"), "{err}");
+        assert_eq!(std::fs::read(&gif).unwrap(), b"previous");
+    }
+}
