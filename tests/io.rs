@@ -4,7 +4,7 @@
 mod common;
 use common::*;
 use subdiv::io::obj;
-use subdiv::{Error, MeshError};
+use subdiv::{Error, MeshError, Scheme};
 
 #[test]
 fn our_obj_parser_agrees_with_tobj() {
@@ -74,20 +74,26 @@ fn ct_errors_and_header_guard() {
     assert_eq!(m.ct.num_border_edges(), 3);
 }
 
-/// Random and mutated inputs never panic (the error path is what is tested).
+/// Random and mutated inputs never panic (the error path is what is tested);
+/// whatever parses also repairs and subdivides. 3000 rounds here; the longer
+/// run is the same test with `SUBDIV_FUZZ_ROUNDS=1000000 cargo test --release
+/// --test io parsers_never_panic`.
 #[test]
 fn parsers_never_panic_on_mutated_input() {
-    let seeds: Vec<Vec<u8>> = BUNDLED
+    let rounds: usize = std::env::var("SUBDIV_FUZZ_ROUNDS").ok().and_then(|v| v.parse().ok()).unwrap_or(3000);
+    let mut seeds: Vec<Vec<u8>> = BUNDLED
         .iter()
         .flat_map(|n| {
             let p = model_path(n);
             [std::fs::read(&p).unwrap(), std::fs::read(p.with_extension("ct")).unwrap()]
         })
         .collect();
+    let paths_seed = std::fs::read(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
+    seeds.push(paths_seed);
     let mut rng = Rng(12345);
     let mut rnd = |n: usize| ((rng.next_f32() + 1.0) * 0.5 * n as f32) as usize % n.max(1);
     let tokens: [&[u8]; 10] = [b"-1", b"0", b"nan", b"1e39", b"\n", b" ", b"f", b"v", b"99999999999", b"/"];
-    for round in 0..3000 {
+    for round in 0..rounds {
         let mut data = seeds[round % seeds.len()].clone();
         for _ in 0..1 + rnd(6) {
             let at = rnd(data.len());
@@ -110,9 +116,16 @@ fn parsers_never_panic_on_mutated_input() {
                 }
             }
         }
-        let _ = obj::from_bytes(&data, "fuzz.obj");
+        if let Ok((m, _)) = obj::from_bytes(&data, "fuzz.obj") {
+            let _ = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default());
+        }
+        if let Ok((m, _)) = obj::from_bytes_repaired(&data, "fuzz.obj") {
+            let (fine, _) = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default()).unwrap();
+            assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok());
+        }
         if let Ok(s) = std::str::from_utf8(&data) {
             let _ = subdiv::io::ct::parse(s, "fuzz.ct");
+            let _ = subdiv::anim::paths::Paths::parse(s, "fuzz.paths");
         }
     }
 }
