@@ -35,19 +35,36 @@
 //! boundary vertex, ring e_0 .. e_m counter-clockwise from one border edge to
 //! the other (m faces), centre v:
 //!     t_along  = e_0 - e_m                      (OpenSubdiv: 3/2 (e_0 - e_m))
-//!     t_across (points into the surface):
-//!       m = 1: e_0 + e_1 - 2 v
-//!       m = 2: e_1 - v
-//!       m = 3: -2 v - e_0 + 2 e_1 + 2 e_2 - e_3
-//!       m >= 4, theta = pi / m: centre 0, e_0 and e_m: -sin(theta),
-//!               e_i (0 < i < m): 2 (1 - cos(theta)) sin(i theta)
+//!     t_across (points into the surface), eigenvalue 3/8 + 1/4 cos(pi/m):
+//!       m = 1: e_0 + e_1 - 2 v                  (eigenvalue 1/4)
+//!       m >= 2, theta = pi / m, c = cos(theta), s = sin(theta):
+//!              v: -s,   e_0 and e_m: -s c,   e_i (0 < i < m): (1 - c)(2c + 1) sin(i theta)
+//!       m = 2: e_1 - v;   m = 3: proportional to -2 v - e_0 + 2 e_1 + 2 e_2 - e_3
 //!     normal = normalize(t_along x t_across)
 //! ```
-//! Source: OpenSubdiv `sdc/loopScheme.h` `assignSmoothLimitTangentMasks` and
+//! Sources: interior and the boundary cases m = 1, 2, 3 as OpenSubdiv
+//! `sdc/loopScheme.h` `assignSmoothLimitTangentMasks` and
 //! `assignCreaseLimitTangentMasks` (scaled: only directions matter for a
-//! normal). Every tangent mask sums to 0, so it is translation invariant.
-//! Where the cross product vanishes (degenerate geometry) the vertex falls back
-//! to the area-weighted face normal ([`crate::mesh::normals`], schemes.md 4.4).
+//! normal). The general boundary formula is **derived here** as the symmetric
+//! left eigenvector of the boundary 1-ring subdivision matrix of our rules
+//! (v' = 3/4 v + 1/8 (e_0 + e_m), border edges 1/2 (v + e), interior edges
+//! 3/8 (v + e_i) + 1/8 (e_{i-1} + e_{i+1})): with `l_i = sin(i theta)` the
+//! interior rows give the eigenvalue `3/8 + c/4`, and the rows of `v` and
+//! `e_0` fix `l_v` and `l_0` (unit test `boundary_masks_are_left_eigenvectors`).
+//! It agrees with the published masks for m = 2, 3. The m >= 4 mask quoted in
+//! schemes.md 5.4 (centre weight 0, ends `sin(theta)`, interior
+//! `(2 cos(theta) - 2) sin(i theta)`) is NOT an eigenvector of these rules:
+//! its normal changes from one level to the next (by about 2 degrees at m = 4
+//! on our hemisphere test), so we do not use it.
+//! For m >= 7 (boundary valence >= 8) the antisymmetric interior mode
+//! `sin(2 i theta)` has eigenvalue `3/8 + cos(2 theta)/4 > 1/2`, larger than
+//! the boundary tangent's 1/2: Hoppe's boundary rules are not C1 there (the
+//! known defect fixed by Biermann, Levin and Zorin 2000), the limit normal is
+//! not defined by these masks, and such vertices use the fallback.
+//! Every tangent mask sums to 0, so it is translation invariant.
+//! Where the cross product vanishes (degenerate geometry) or the vertex is a
+//! boundary vertex with m >= 7, the vertex falls back to the area-weighted
+//! face normal ([`crate::mesh::normals`], schemes.md 4.4).
 //!
 //! Ring order: [`CornerTable::ring`] lists the neighbours in swing order,
 //! which is counter-clockwise seen from outside for counter-clockwise faces;
@@ -96,22 +113,22 @@ pub fn loop_limit_positions_with(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
 /// The two limit tangents of the Loop surface at vertex `v` (interior:
 /// `(t1, t2)`; boundary: `(t_along, t_across)`), unnormalised; their cross
 /// product points along the limit normal. See the module docs for the masks.
+/// Both are zero for a boundary vertex with more than [`MAX_BOUNDARY_FACES`]
+/// faces.
 pub fn loop_limit_tangents(ct: &CornerTable, pos: &[Vec3], v: u32) -> (Vec3, Vec3) {
     let ring: Vec<DVec3> = ct.ring(v).map(|q| pos[q as usize].as_dvec3()).collect();
     let x = pos[v as usize].as_dvec3();
     let (t1, t2) = if ct.is_boundary_vertex(v) {
         let m = ring.len() - 1;
         let along = ring[0] - ring[m];
-        let across = match m {
-            1 => ring[0] + ring[1] - 2.0 * x,
-            2 => ring[1] - x,
-            3 => -2.0 * x - ring[0] + 2.0 * ring[1] + 2.0 * ring[2] - ring[3],
-            _ => {
-                let th = PI / m as f64;
-                let ends = (ring[0] + ring[m]) * -th.sin();
-                let w = 2.0 * (1.0 - th.cos());
-                ring[1..m].iter().enumerate().fold(ends, |s, (i, &e)| s + e * (w * ((i + 1) as f64 * th).sin()))
-            }
+        if m > MAX_BOUNDARY_FACES {
+            return (Vec3::ZERO, Vec3::ZERO);
+        }
+        let across = if m == 1 {
+            ring[0] + ring[1] - 2.0 * x
+        } else {
+            let w = boundary_across_weights(m);
+            ring.iter().zip(&w[1..]).fold(x * w[0], |s, (&e, &wi)| s + e * wi)
         };
         (along, across)
     } else {
@@ -122,6 +139,21 @@ pub fn loop_limit_tangents(ct: &CornerTable, pos: &[Vec3], v: u32) -> (Vec3, Vec
         })
     };
     (t1.as_vec3(), t2.as_vec3())
+}
+
+/// Boundary vertices with more faces than this have no limit normal from the
+/// tangent masks (not C1, see the module docs); they get the fallback.
+pub const MAX_BOUNDARY_FACES: usize = 6;
+
+/// The across-boundary tangent mask for a boundary vertex with `m >= 2`
+/// faces: `[w_v, w_0, ..., w_m]` (derived here, see the module docs).
+pub fn boundary_across_weights(m: usize) -> Vec<f64> {
+    let th = PI / m as f64;
+    let (s, c) = th.sin_cos();
+    let mut w = vec![-s, -s * c];
+    w.extend((1..m).map(|i| (1.0 - c) * (2.0 * c + 1.0) * (i as f64 * th).sin()));
+    w.push(-s * c);
+    w
 }
 
 /// Exact Loop limit normals: unit, one per vertex, oriented like the face
@@ -161,9 +193,10 @@ fn tangent_normals(mesh: &Mesh, tangents: impl Fn(&CornerTable, &[Vec3], u32) ->
 /// boundary vertex (4.3): along the boundary, the 4-point curve's exact mask
 ///     t_along = (1/12) (p_{-2} - 8 p_{-1} + 8 p_{+1} - p_{+2})
 /// with p_{+1} = e_0, p_{-1} = e_m the boundary neighbours and p_{+2}, p_{-2}
-/// the next boundary vertices; across: no verified mask, so the vector from
-/// v to the centroid of the interior neighbours (or, with none, of e_0 and
-/// e_m), with its component along t_along removed (4.3's second option).
+/// the next boundary vertices; across: no verified mask, so (4.3's first
+/// option) the normal is the area-weighted face normal of the fan with its
+/// component along t_along removed: exact along the boundary, approximate
+/// across it.
 /// ```
 /// The vertex positions of an interpolating scheme are already on the limit
 /// surface (limit mask = identity), so only normals need masks. Unit normals,
@@ -196,16 +229,12 @@ fn butterfly_tangents(ct: &CornerTable, pos: &[Vec3], v: u32) -> (Vec3, Vec3) {
     let p2 = pos[other(e0) as usize].as_dvec3();
     let m2 = pos[other(em) as usize].as_dvec3();
     let along = (m2 - 8.0 * ring[m] + 8.0 * ring[0] - p2) / 12.0;
-    let centroid = if m >= 2 {
-        ring[1..m].iter().copied().sum::<DVec3>() / (m - 1) as f64
-    } else {
-        // one face: its third vertex is a boundary neighbour; use the triangle's centroid
-        (ring[0] + ring[1] + x) / 3.0
-    };
-    let d = centroid - x;
+    // area-weighted fan normal (2 x area each), made perpendicular to t_along
+    let fan_normal = ring.windows(2).map(|w| (w[0] - x).cross(w[1] - x)).sum::<DVec3>();
     let l2 = along.length_squared();
-    let across = if l2 > 0.0 { d - along * (d.dot(along) / l2) } else { d };
-    (along.as_vec3(), across.as_vec3())
+    let nrm = if l2 > 0.0 { fan_normal - along * (fan_normal.dot(along) / l2) } else { fan_normal };
+    // along x (nrm x along) = nrm |along|^2: the pair's cross product is nrm
+    (along.as_vec3(), nrm.cross(along).as_vec3())
 }
 
 #[cfg(test)]
@@ -228,13 +257,101 @@ mod tests {
         }
     }
 
+    /// The boundary 1-ring subdivision matrix of our Loop rules, rows and
+    /// columns ordered `v, e_0, ..., e_m`.
+    fn boundary_matrix(m: usize) -> Vec<Vec<f64>> {
+        let k = m + 2;
+        let mut s = vec![vec![0.0; k]; k];
+        s[0][0] = 0.75;
+        s[0][1] += 0.125;
+        s[0][m + 1] += 0.125;
+        for i in 0..=m {
+            let r = i + 1;
+            if i == 0 || i == m {
+                s[r][0] = 0.5;
+                s[r][r] = 0.5;
+            } else {
+                s[r][0] = 0.375;
+                s[r][r] = 0.375;
+                s[r][r - 1] += 0.125;
+                s[r][r + 1] += 0.125;
+            }
+        }
+        s
+    }
+
     #[test]
-    fn boundary_across_masks_sum_to_zero() {
-        for m in 4..40usize {
-            let th = PI / m as f64;
-            let w = 2.0 * (1.0 - th.cos());
-            let s: f64 = -2.0 * th.sin() + (1..m).map(|i| w * (i as f64 * th).sin()).sum::<f64>();
-            assert!(s.abs() < 1e-12, "m = {m}: {s}");
+    fn boundary_masks_are_left_eigenvectors() {
+        for m in 1..=12usize {
+            let s = boundary_matrix(m);
+            let across = if m == 1 { vec![-2.0, 1.0, 1.0] } else { boundary_across_weights(m) };
+            let lam = if m == 1 { 0.25 } else { 0.375 + 0.25 * (PI / m as f64).cos() };
+            let mut along = vec![0.0; m + 2];
+            along[1] = 1.0;
+            along[m + 1] = -1.0;
+            for (l, lam) in [(across, lam), (along, 0.5)] {
+                assert!(l.iter().sum::<f64>().abs() < 1e-12, "m = {m}: mask sum");
+                for j in 0..m + 2 {
+                    let ls: f64 = (0..m + 2).map(|r| l[r] * s[r][j]).sum();
+                    assert!((ls - lam * l[j]).abs() < 1e-12, "m = {m}, column {j}: {ls} vs {}", lam * l[j]);
+                }
+            }
+        }
+        // agrees with the published m = 2 and m = 3 masks (up to scale)
+        let w2 = boundary_across_weights(2);
+        assert!(w2.iter().zip([-1.0, 0.0, 1.0, 0.0]).all(|(a, b)| (a - b).abs() < 1e-12), "{w2:?}");
+        let w3 = boundary_across_weights(3);
+        let k = w3[0] / -2.0;
+        assert!(w3.iter().zip([-2.0, -1.0, 2.0, 2.0, -1.0]).all(|(a, b)| (a - k * b).abs() < 1e-12), "{w3:?}");
+    }
+
+    #[test]
+    fn published_m4_mask_is_not_an_eigenvector() {
+        // schemes.md 5.4's m >= 4 formula, for the record
+        let m = 4;
+        let th = PI / m as f64;
+        let mut l = vec![0.0, -th.sin()];
+        l.extend((1..m).map(|i| 2.0 * (1.0 - th.cos()) * (i as f64 * th).sin()));
+        l.push(-th.sin());
+        let s = boundary_matrix(m);
+        let ls: Vec<f64> = (0..m + 2).map(|j| (0..m + 2).map(|r| l[r] * s[r][j]).sum()).collect();
+        let lam = ls[2] / l[2];
+        assert!((0..m + 2).any(|j| (ls[j] - lam * l[j]).abs() > 1e-3), "{ls:?}");
+    }
+
+    #[test]
+    fn interior_masks_are_left_eigenvectors() {
+        // 1-ring matrix of an interior vertex of valence k: v' = (1 - k beta) v + beta sum,
+        // e_i' = 3/8 (v + e_i) + 1/8 (e_{i-1} + e_{i+1}); cos/sin masks have eigenvalue
+        // 3/8 + 1/4 cos(2 pi / k)
+        for k in 3..=12usize {
+            let beta = LoopBeta::Loop.beta(k as u32);
+            let mut s = vec![vec![0.0; k + 1]; k + 1];
+            s[0][0] = 1.0 - k as f64 * beta;
+            for i in 0..k {
+                s[0][i + 1] = beta;
+                s[i + 1][0] = 0.375;
+                s[i + 1][i + 1] = 0.375;
+                s[i + 1][(i + 1) % k + 1] += 0.125;
+                s[i + 1][(i + k - 1) % k + 1] += 0.125;
+            }
+            let lam = 0.375 + 0.25 * (2.0 * PI / k as f64).cos();
+            for f in [f64::cos, f64::sin] {
+                let mut l = vec![0.0];
+                l.extend((0..k).map(|i| f(2.0 * PI * i as f64 / k as f64)));
+                for j in 0..=k {
+                    let ls: f64 = (0..=k).map(|r| l[r] * s[r][j]).sum();
+                    assert!((ls - lam * l[j]).abs() < 1e-12, "k = {k}, column {j}");
+                }
+            }
+            // and the limit position mask has eigenvalue 1
+            let chi = 1.0 / (k as f64 + 3.0 / (8.0 * beta));
+            let mut l = vec![1.0 - k as f64 * chi];
+            l.extend(std::iter::repeat_n(chi, k));
+            for j in 0..=k {
+                let ls: f64 = (0..=k).map(|r| l[r] * s[r][j]).sum();
+                assert!((ls - l[j]).abs() < 1e-12, "limit mask, k = {k}, column {j}");
+            }
         }
     }
 }
