@@ -314,9 +314,10 @@ fn weld(pts: &[Vec3]) -> (Vec<Vec3>, Vec<u32>) {
 /// Tessellates and builds a validated mesh (see [`tessellate_raw`]).
 ///
 /// # Errors
-/// Any [`MeshError`] of [`Mesh::from_triangles`] (the teapot, for one, has
-/// non-manifold places: use [`tessellate_repaired`] or
-/// [`crate::mesh::repair()`] on [`tessellate_raw`]'s output).
+/// Any [`MeshError`] of [`Mesh::from_triangles`]. The teapot, for one, is
+/// refused: its handle touches the body at the single point (-2, 0, 0.9), a
+/// non-manifold vertex. Use [`tessellate_repaired`] or
+/// [`crate::mesh::repair()`] on [`tessellate_raw`]'s output.
 pub fn tessellate(patches: &[Patch], n: u32) -> Result<Mesh, MeshError> {
     let raw = tessellate_raw(patches, n)?;
     Mesh::from_triangles(raw.positions, &raw.triangles)
