@@ -291,11 +291,11 @@ fn weld(pts: &[Vec3]) -> (Vec<Vec3>, Vec<u32>) {
         'search: for dz in -1..=1 {
             for dy in -1..=1 {
                 for dx in -1..=1 {
-                    if let Some(ids) = grid.get(&[c.x + dx, c.y + dy, c.z + dz]) {
-                        if let Some(&k) = ids.iter().find(|&&k| kept[k as usize].distance(q) <= eps) {
-                            found = Some(k);
-                            break 'search;
-                        }
+                    if let Some(ids) = grid.get(&[c.x + dx, c.y + dy, c.z + dz])
+                        && let Some(&k) = ids.iter().find(|&&k| kept[k as usize].distance(q) <= eps)
+                    {
+                        found = Some(k);
+                        break 'search;
                     }
                 }
             }
