@@ -21,6 +21,7 @@
 
 use super::Mesh;
 use glam::Vec3;
+use rayon::prelude::*;
 
 /// Taubin's lambda for a pass band of about 0.1 (schemes.md 9).
 pub const TAUBIN_LAMBDA: f32 = 0.6307;
@@ -57,7 +58,7 @@ fn umbrella_pass(mesh: &Mesh, x: &mut [Vec3], scratch: &mut [Vec3], f: f32) {
     let ct = &mesh.ct;
     scratch.copy_from_slice(x);
     let old = &*scratch;
-    for (v, xv) in x.iter_mut().enumerate() {
+    x.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, xv)| {
         let v32 = v as u32;
         let avg = if ct.is_boundary_vertex(v32) {
             let (a, b) = ct.boundary_neighbours(v32);
@@ -71,5 +72,5 @@ fn umbrella_pass(mesh: &Mesh, x: &mut [Vec3], scratch: &mut [Vec3], f: f32) {
             s / k.max(1) as f32
         };
         *xv = old[v] + (avg - old[v]) * f;
-    }
+    });
 }

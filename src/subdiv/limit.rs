@@ -77,6 +77,7 @@ use super::LoopBeta;
 use crate::mesh::normals::vertex_normals;
 use crate::mesh::{CornerTable, Mesh};
 use glam::{DVec3, Vec3};
+use rayon::prelude::*;
 use std::f64::consts::PI;
 
 /// Loop limit positions with Loop's original beta (the default of
@@ -91,22 +92,26 @@ pub fn loop_limit_positions(mesh: &Mesh) -> Vec<Vec3> {
 pub fn loop_limit_positions_with(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
     let ct = &mesh.ct;
     let pos = &mesh.positions;
-    let mut ring = Vec::with_capacity(16);
     (0..ct.num_vertices() as u32)
-        .map(|v| {
-            let x = pos[v as usize].as_dvec3();
-            if ct.is_boundary_vertex(v) {
-                let (q1, q2) = ct.boundary_neighbours(v);
-                let q = pos[q1 as usize].as_dvec3() + pos[q2 as usize].as_dvec3();
-                return (x * (2.0 / 3.0) + q * (1.0 / 6.0)).as_vec3();
-            }
-            ring.clear();
-            ring.extend(ct.ring(v));
-            let k = ring.len() as u32;
-            let chi = 1.0 / (f64::from(k) + 3.0 / (8.0 * beta.beta(k)));
-            let sum: DVec3 = ring.iter().map(|&q| pos[q as usize].as_dvec3()).sum();
-            (x * (1.0 - f64::from(k) * chi) + sum * chi).as_vec3()
-        })
+        .into_par_iter()
+        .with_min_len(4096)
+        .map_init(
+            || Vec::with_capacity(16),
+            |ring, v| {
+                let x = pos[v as usize].as_dvec3();
+                if ct.is_boundary_vertex(v) {
+                    let (q1, q2) = ct.boundary_neighbours(v);
+                    let q = pos[q1 as usize].as_dvec3() + pos[q2 as usize].as_dvec3();
+                    return (x * (2.0 / 3.0) + q * (1.0 / 6.0)).as_vec3();
+                }
+                ring.clear();
+                ring.extend(ct.ring(v));
+                let k = ring.len() as u32;
+                let chi = 1.0 / (f64::from(k) + 3.0 / (8.0 * beta.beta(k)));
+                let sum: DVec3 = ring.iter().map(|&q| pos[q as usize].as_dvec3()).sum();
+                (x * (1.0 - f64::from(k) * chi) + sum * chi).as_vec3()
+            },
+        )
         .collect()
 }
 
@@ -165,21 +170,27 @@ pub fn loop_limit_normals(mesh: &Mesh) -> Vec<Vec3> {
 }
 
 /// Normals from a per-vertex tangent pair, with the area-weighted fallback.
-fn tangent_normals(mesh: &Mesh, tangents: impl Fn(&CornerTable, &[Vec3], u32) -> (Vec3, Vec3)) -> Vec<Vec3> {
+fn tangent_normals(mesh: &Mesh, tangents: impl Fn(&CornerTable, &[Vec3], u32) -> (Vec3, Vec3) + Sync) -> Vec<Vec3> {
     let ct = &mesh.ct;
-    let mut fallback: Option<Vec<Vec3>> = None;
-    (0..ct.num_vertices() as u32)
+    let mut out: Vec<Vec3> = (0..ct.num_vertices() as u32)
+        .into_par_iter()
+        .with_min_len(4096)
         .map(|v| {
             let (a, b) = tangents(ct, &mesh.positions, v);
             // relative test: a cross product tiny against |a| |b| means parallel tangents
             let c = a.cross(b);
-            if c.length() > 1e-6 * a.length() * b.length() && c.is_finite() {
-                c.normalize()
-            } else {
-                fallback.get_or_insert_with(|| vertex_normals(ct, &mesh.positions))[v as usize]
-            }
+            if c.length() > 1e-6 * a.length() * b.length() && c.is_finite() { c.normalize() } else { Vec3::ZERO }
         })
-        .collect()
+        .collect();
+    if out.contains(&Vec3::ZERO) {
+        let fallback = vertex_normals(ct, &mesh.positions);
+        for (o, f) in out.iter_mut().zip(fallback) {
+            if *o == Vec3::ZERO {
+                *o = f;
+            }
+        }
+    }
+    out
 }
 
 /// Tangent-mask normals for the interpolating butterfly schemes (schemes.md 4;
@@ -188,7 +199,8 @@ fn tangent_normals(mesh: &Mesh, tangents: impl Fn(&CornerTable, &[Vec3], u32) ->
 /// ```text
 /// regular interior vertex (valence 6, its six neighbours interior of valence
 /// 6 too: a lattice 2-ring), 19-point mask of 4.1 (8-point butterfly, which is
-/// also the modified butterfly's regular rule at tension 0), centre weight 0,
+/// also the modified butterfly's regular rule at tension 0; approximate for
+/// other tensions), centre weight 0,
 /// neighbour e_i at angle theta_i = 60 i degrees:
 ///     1-ring e_i (distance 1):                          (8/15) cos(theta_i)
 ///     straight 2-ring s_i beyond e_i (distance 2):      (1/30) cos(theta_i)
