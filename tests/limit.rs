@@ -290,3 +290,34 @@ fn butterfly_normals_are_exact_on_cubics() {
         assert!(angle(nf[v], nrm[v]) < 1e-4);
     }
 }
+
+/// A boundary vertex with more than 6 faces has no mask-defined limit normal
+/// (not C1): it gets the area-weighted face normal; one with 6 faces uses
+/// the mask, which on a planar fan is the plane normal.
+#[test]
+fn high_valence_boundary_vertices_fall_back() {
+    for faces in [6u32, 8, 11] {
+        let mut pos = vec![Vec3::ZERO];
+        let mut tris = Vec::new();
+        for i in 0..=faces {
+            let a = std::f32::consts::PI * i as f32 / faces as f32;
+            // a bent fan: heights vary so the fallback differs from any plane normal
+            pos.push(Vec3::new(a.cos(), a.sin(), 0.3 * (1.7 * i as f32).sin()));
+            if i > 0 {
+                tris.extend([0, i, i + 1]);
+            }
+        }
+        let m = Mesh::from_triangles(pos, &tris).unwrap();
+        assert_eq!(m.ct.valence[0], faces + 1);
+        let got = loop_limit_normals(&m)[0];
+        let area = vertex_normals(&m.ct, &m.positions)[0];
+        if faces > 6 {
+            assert_eq!(got, area, "{faces} faces");
+        } else {
+            assert!(angle(got, area) > 1e-3, "{faces} faces: the mask was not used");
+            // the mask's normal is invariant under refinement
+            let fine = sub(&m, Scheme::Loop, 1);
+            assert!(angle(got, loop_limit_normals(&fine)[0]) < 1e-3);
+        }
+    }
+}

@@ -58,9 +58,11 @@
 //! on our hemisphere test), so we do not use it.
 //! For m >= 7 (boundary valence >= 8) the antisymmetric interior mode
 //! `sin(2 i theta)` has eigenvalue `3/8 + cos(2 theta)/4 > 1/2`, larger than
-//! the boundary tangent's 1/2: Hoppe's boundary rules are not C1 there (the
-//! known defect fixed by Biermann, Levin and Zorin 2000), the limit normal is
-//! not defined by these masks, and such vertices use the fallback.
+//! the boundary tangent's 1/2, so by our analysis these boundary rules are
+//! not C1 there (Biermann, Levin and Zorin, "Piecewise Smooth Subdivision
+//! Surfaces with Normal Control", SIGGRAPH 2000, modify the boundary rules
+//! for such reasons); the masks do not define a limit normal, and such
+//! vertices use the fallback.
 //! Every tangent mask sums to 0, so it is translation invariant.
 //! Where the cross product vanishes (degenerate geometry) or the vertex is a
 //! boundary vertex with m >= 7, the vertex falls back to the area-weighted
