@@ -221,3 +221,13 @@ fn fuzzed_files_never_panic() {
     assert!(parse_bez("4000000000\n1 2 3", "x.bez").is_err());
     assert!(parse_bzc("18446744073709551615 0 0", "x.bzc").is_err());
 }
+
+#[test]
+fn absurd_resolutions_are_refused() {
+    let patches = load_bez(&model_path("teapot.bez")).unwrap();
+    assert!(matches!(tessellate_raw(&patches, u32::MAX), Err(MeshError::TooManyElements { .. })));
+    assert!(matches!(tessellate_raw(&patches, 100_000), Err(MeshError::TooManyElements { .. })));
+    assert!(matches!(tessellate_raw(&[], 4), Err(MeshError::Empty)));
+    // 0 segments means 1
+    assert_eq!(tessellate_raw(&patches[..1], 0).unwrap(), tessellate_raw(&patches[..1], 1).unwrap());
+}

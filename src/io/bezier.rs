@@ -244,11 +244,11 @@ pub fn tessellate_raw(patches: &[Patch], n: u32) -> Result<RawMesh, MeshError> {
         return Err(MeshError::Empty);
     }
     let n = n.max(1) as usize;
-    let per = (n + 1) * (n + 1);
     let too_many = || MeshError::TooManyElements { what: format!("{} patches at {n} segments a side", patches.len()) };
-    let total = per.checked_mul(patches.len()).filter(|&t| t < u32::MAX as usize / 8).ok_or_else(too_many)?;
-    let tri_total =
-        (2 * n * n).checked_mul(patches.len()).filter(|&t| t < u32::MAX as usize / 8).ok_or_else(too_many)?;
+    let fits = |x: Option<usize>| x.filter(|&t| t < u32::MAX as usize / 8).ok_or_else(too_many);
+    let per = fits((n + 1).checked_mul(n + 1))?;
+    let total = fits(per.checked_mul(patches.len()))?;
+    let tri_total = fits(n.checked_mul(2 * n).and_then(|t| t.checked_mul(patches.len())))?;
     let mut pts = Vec::with_capacity(total);
     for patch in patches {
         for j in 0..=n {

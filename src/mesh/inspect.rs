@@ -68,8 +68,10 @@ pub fn displacement_from_control(control: &Mesh, fine: &Mesh, levels: u32) -> Re
 /// `[0, 1]` (clamped; NaN gives 0), as linear-ish sRGB components in `[0, 1]`.
 ///
 /// A degree-6 polynomial fit of matplotlib's viridis table by Matt Zucker
-/// (public shadertoy "Colormap polynomials", WlfXRN), evaluated by Horner's
-/// rule; it stays within about 0.01 of the table.
+/// ("mattz", CC0, <https://www.shadertoy.com/view/WlfXRN>), evaluated by
+/// Horner's rule: `c0 + t (c1 + t (c2 + ... + t c6))`, coefficients below;
+/// it stays within 0.02 of the table (unit test) and its luminance increases
+/// monotonically.
 pub fn colormap(t: f32) -> [f32; 3] {
     const C: [Vec3; 7] = [
         Vec3::new(0.277_727_33, 0.005_407_344_5, 0.334_099_8),
