@@ -183,9 +183,8 @@ fn model_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
         }
     });
     ui.label(RichText::new("…or drop an OBJ or .ct file on the window").small().weak());
-    ui.checkbox(&mut doc.repair_on_open, "Repair on open").on_hover_text(
-        "split non-manifold edges and vertices, orient faces consistently, drop degenerate and duplicate faces",
-    );
+    ui.checkbox(&mut doc.repair_on_open, "Repair on open")
+        .on_hover_text("split non-manifold edges and vertices, orient faces consistently, drop degenerate and duplicate faces");
     if let Some(p) = doc.failed.clone()
         && ui.button("Repair and open").on_hover_text(p.display().to_string()).clicked()
     {
