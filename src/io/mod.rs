@@ -2,6 +2,7 @@
 //! `.ct` (with its O table), and binary PLY output. Every writer goes through
 //! [`atomic_write`], so a failure never leaves a truncated file behind.
 
+pub mod bezier;
 pub mod ct;
 pub mod obj;
 pub mod ply;

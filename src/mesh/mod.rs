@@ -13,9 +13,12 @@
 //! are propagated through a 1-to-4 split in linear time ([`crate::subdiv::split`]).
 
 mod build;
+pub mod edit;
+pub mod inspect;
 pub mod normals;
 pub mod repair;
 pub mod shapes;
+pub mod smooth;
 pub mod topology;
 
 pub use build::BuildReport;

@@ -8,6 +8,7 @@
 
 pub mod butterfly;
 pub mod jarek;
+pub mod limit;
 pub mod loop_;
 pub mod midpoint;
 pub mod modified_butterfly;
