@@ -213,6 +213,12 @@ fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
 }
 
 fn main() -> ExitCode {
+    // Like other Unix tools, end quietly when the reader of our output goes away
+    // (`subdiv info big.obj | head`) instead of panicking on a broken pipe.
+    // SAFETY: setting a signal disposition to the default before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     if let Some(n) = cli.threads
         && let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n.max(1)).build_global()
@@ -595,7 +601,7 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
 
 /// Loads for `info`: the mesh, unreferenced vertices dropped, vertex records.
 fn load_for_info(input: &Path) -> Result<(Mesh, usize, usize)> {
-    if input.extension().is_some_and(|e| e == "ct") {
+    if input.extension().is_some_and(|e| e == "ct" || e == "bez") {
         let m = io::load(input)?;
         let n = m.positions.len();
         Ok((m, 0, n))

@@ -88,7 +88,8 @@ fn parsers_never_panic_on_mutated_input() {
             [std::fs::read(&p).unwrap(), std::fs::read(p.with_extension("ct")).unwrap()]
         })
         .collect();
-    let paths_seed = std::fs::read(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
+    let paths_seed =
+        std::fs::read(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
     seeds.push(paths_seed);
     let mut rng = Rng(12345);
     let mut rnd = |n: usize| ((rng.next_f32() + 1.0) * 0.5 * n as f32) as usize % n.max(1);

@@ -13,8 +13,9 @@ use crate::{Error, Result};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Loads a mesh from `.obj` or `.ct` (chosen by extension; anything else is
-/// read as OBJ).
+/// Loads a mesh from `.obj`, `.ct` or `.bez` (bicubic Bezier patches,
+/// tessellated [`BEZ_RESOLUTION`] times per side), chosen by extension;
+/// anything else is read as OBJ.
 ///
 /// # Errors
 /// I/O, parse and validation errors, each naming the file (and line where
@@ -22,6 +23,11 @@ use std::path::{Path, PathBuf};
 pub fn load(path: &Path) -> Result<Mesh> {
     match ext(path).as_str() {
         "ct" => ct::load(path),
+        "bez" => bezier::tessellate(&bezier::load_bez(path)?, BEZ_RESOLUTION).map_err(|source| Error::Mesh {
+            file: path.display().to_string(),
+            line: None,
+            source,
+        }),
         _ => obj::load(path).map(|(m, _)| m),
     }
 }
@@ -45,9 +51,17 @@ pub fn load_repaired(path: &Path) -> Result<(Mesh, RepairReport)> {
                 source: e,
             })
         }
+        "bez" => bezier::tessellate_repaired(&bezier::load_bez(path)?, BEZ_RESOLUTION).map_err(|source| Error::Mesh {
+            file: path.display().to_string(),
+            line: None,
+            source,
+        }),
         _ => obj::load_repaired(path),
     }
 }
+
+/// Samples per patch side when a `.bez` file of bicubic patches is opened as a mesh.
+pub const BEZ_RESOLUTION: u32 = 8;
 
 /// [`load_repaired`] with a report that keeps every id found (no cap): what
 /// `subdiv info` lists for a mesh that does not build. Ids in the report are
@@ -60,6 +74,11 @@ pub fn analyze(path: &Path) -> Result<(Mesh, RepairReport)> {
     let (positions, triangles, base) = match ext(path).as_str() {
         "ct" => {
             let raw = ct::load_raw(path)?;
+            (raw.positions, raw.triangles, 0)
+        }
+        "bez" => {
+            let raw = bezier::tessellate_raw(&bezier::load_bez(path)?, BEZ_RESOLUTION)
+                .map_err(|source| Error::Mesh { file: file.clone(), line: None, source })?;
             (raw.positions, raw.triangles, 0)
         }
         _ => {
