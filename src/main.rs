@@ -139,6 +139,32 @@ enum Cmd {
     /// Drops degenerate and duplicate faces, cuts non-manifold edges, makes the
     /// orientation consistent, gives every fan of a non-manifold vertex its own
     /// copy and drops unreferenced vertices; prints what changed.
+    /// Taubin lambda/mu smoothing (no shrinkage), or plain Laplacian with --laplacian.
+    Smooth {
+        /// Input OBJ, .ct or .bez.
+        input: PathBuf,
+        /// Output .obj, .ply or .ct (written atomically).
+        output: PathBuf,
+        /// Number of lambda/mu step pairs.
+        #[arg(long, short = 'n', default_value_t = 10)]
+        steps: u32,
+        /// Shrinking factor lambda (> 0).
+        #[arg(long, default_value_t = subdiv::mesh::smooth::TAUBIN_LAMBDA)]
+        lambda: f32,
+        /// Inflating factor mu (< -lambda).
+        #[arg(long, default_value_t = subdiv::mesh::smooth::TAUBIN_MU, allow_hyphen_values = true)]
+        mu: f32,
+        /// Plain Laplacian smoothing with lambda only (shrinks; for comparison).
+        #[arg(long)]
+        laplacian: bool,
+    },
+    /// Move every vertex to its limit position on the Loop surface (after `subdivide --scheme loop`).
+    Limit {
+        /// Input OBJ, .ct or .bez.
+        input: PathBuf,
+        /// Output .obj, .ply or .ct (written atomically).
+        output: PathBuf,
+    },
     Repair {
         /// Input OBJ or .ct.
         input: PathBuf,
@@ -282,6 +308,28 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
             subdivide_cmd(&input, &output, &scheme, levels, stats, json, repair)
         }
         Some(Cmd::Repair { input, output }) => repair_cmd(&input, &output),
+        Some(Cmd::Smooth { input, output, steps, lambda, mu, laplacian }) => {
+            let mesh = io::load(&input)?;
+            if !(lambda.is_finite() && mu.is_finite() && lambda > 0.0 && (laplacian || mu < -lambda)) {
+                return Err(Error::Usage(format!("need lambda > 0 and mu < -lambda (got {lambda}, {mu})")));
+            }
+            let positions = if laplacian {
+                subdiv::mesh::smooth::laplacian(&mesh, steps, lambda)
+            } else {
+                subdiv::mesh::smooth::taubin(&mesh, steps, lambda, mu)
+            };
+            let out = Mesh { ct: mesh.ct, positions };
+            io::save(&output, &out)?;
+            println!("{} -> {}: {steps} smoothing steps", input.display(), output.display());
+            Ok(())
+        }
+        Some(Cmd::Limit { input, output }) => {
+            let mesh = io::load(&input)?;
+            let positions = subdiv::subdiv::limit::loop_limit_positions(&mesh);
+            io::save(&output, &Mesh { ct: mesh.ct, positions })?;
+            println!("{} -> {}: Loop limit positions", input.display(), output.display());
+            Ok(())
+        }
         Some(Cmd::Info { input, json, repair }) => info_cmd(&input, json, repair),
         Some(Cmd::Render { input, output, scheme, levels, shading, size, ortho, control }) => {
             render_cmd(&input, &output, &scheme, levels, &shading, size, ortho, control)

@@ -170,3 +170,24 @@ fn repair_command_and_flags() {
     let err = run_fail(&["repair", nan.to_str().unwrap(), out.to_str().unwrap()]);
     assert!(err.contains("rnan.obj:2:"), "{err}");
 }
+
+#[test]
+fn smooth_and_limit_keep_the_topology() {
+    let input = model_path("torus.obj");
+    let before = subdiv::io::load(&input).unwrap();
+    for (cmd, extra) in [("smooth", vec!["-n", "3"]), ("limit", vec![])] {
+        let out = tmp(&format!("torus-{cmd}.obj"));
+        let mut args = vec![cmd, input.to_str().unwrap(), out.to_str().unwrap()];
+        args.extend(extra);
+        let o = bin().args(&args).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let after = subdiv::io::load(&out).unwrap();
+        assert_eq!(after.ct.v, before.ct.v);
+        assert!(
+            after.positions.iter().zip(&before.positions).any(|(a, b)| (*a - *b).length() > 1e-4),
+            "{cmd} moved nothing"
+        );
+    }
+    let err = run_fail(&["smooth", input.to_str().unwrap(), tmp("x.obj").to_str().unwrap(), "--mu", "0.5"]);
+    assert!(err.contains("mu < -lambda"), "{err}");
+}

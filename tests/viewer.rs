@@ -151,3 +151,60 @@ fn a_non_manifold_file_can_be_repaired_from_the_panel() {
     assert!(doc.notice.as_deref().is_some_and(|n| n.contains("repaired")), "{:?}", doc.notice);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn picking_flip_split_smooth_and_revert_edit_the_control_mesh() {
+    use glam::Vec3;
+    use subdiv::app::doc::pick_edge;
+    let mut doc = Doc::new();
+    let tet = doc.control.mesh.clone();
+    // A ray from outside through the centroid of face 0 hits face 0 first.
+    let t0: Vec<Vec3> = tet.ct.v[..3].iter().map(|&i| tet.positions[i as usize]).collect();
+    let centroid = (t0[0] + t0[1] + t0[2]) / 3.0;
+    let origin = centroid * 5.0;
+    let c = pick_edge(&tet, origin, (centroid - origin).normalize()).expect("the ray hits");
+    assert!(c < 3, "picked corner {c} is not on face 0");
+    assert_eq!(pick_edge(&tet, Vec3::new(0.0, 50.0, 0.0), Vec3::Y), None, "pointing away misses");
+
+    doc.picked = Some(c);
+    doc.split_picked();
+    assert_eq!((doc.control.topo.vertices, doc.control.topo.faces), (5, 6));
+    assert!(subdiv::mesh::topology::check_invariants(&doc.control.mesh.ct).is_ok());
+    assert!(doc.original.is_some());
+    doc.smooth(5);
+    assert_ne!(doc.control.mesh.positions, doc.original.as_ref().unwrap().positions);
+    doc.revert();
+    assert_eq!((doc.control.topo.vertices, doc.control.topo.faces), (4, 4));
+    assert_eq!(doc.control.mesh.positions, tet.positions);
+    // The tetrahedron's edges cannot be flipped (every vertex has valence 3).
+    doc.picked = Some(0);
+    doc.flip_picked();
+    assert!(doc.error.as_deref().is_some_and(|e| e.starts_with("flip:")), "{:?}", doc.error);
+}
+
+#[test]
+fn display_options_recolour_and_renormal_the_result() {
+    use subdiv::app::doc::{Coloring, NormalMode};
+    use subdiv::mesh::inspect::colormap;
+    let mut doc = Doc::new();
+    doc.scheme = subdiv::Scheme::Midpoint;
+    doc.level = 2;
+    doc.request_subdivision();
+    settle(&mut doc);
+    doc.coloring = Coloring::Displacement;
+    doc.refresh_result();
+    let colors = doc.result_colors.clone().expect("colours");
+    assert_eq!(colors.len(), doc.result.mesh.positions.len());
+    let zero = glam::Vec3::from(colormap(0.0));
+    assert!(colors.iter().all(|c| (*c - zero).length() < 1e-6), "midpoint points lie on the control mesh");
+    doc.coloring = Coloring::Shells;
+    doc.refresh_result();
+    let colors = doc.result_colors.clone().unwrap();
+    assert_eq!(colors[0], zero, "level-0 vertices are dark");
+    assert_eq!(*colors.last().unwrap(), glam::Vec3::from(colormap(1.0)), "the newest vertices are bright");
+    doc.normal_mode = NormalMode::LoopLimit;
+    doc.snap_limit = true;
+    doc.refresh_result();
+    assert!(doc.result.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+    assert_ne!(doc.result.mesh.positions, doc.raw.positions, "snapped to the limit");
+}

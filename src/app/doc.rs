@@ -27,6 +27,56 @@ pub const TETRAHEDRON_OBJ: &str = include_str!("../../models/tetrahedron.obj");
 /// Its animation paths.
 pub const TETRAHEDRON_PATHS: &str = include_str!("../../paths/tetrahedron.paths");
 
+/// Which normals shade the result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum NormalMode {
+    /// Area-weighted average of the face normals around each vertex.
+    #[default]
+    FanAverage,
+    /// Exact normals of the Loop limit surface (tangent masks).
+    LoopLimit,
+    /// Butterfly tangent masks.
+    Butterfly,
+}
+
+impl NormalMode {
+    /// All modes, in menu order.
+    pub const ALL: [NormalMode; 3] = [NormalMode::FanAverage, NormalMode::LoopLimit, NormalMode::Butterfly];
+    /// Menu label.
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalMode::FanAverage => "fan-averaged",
+            NormalMode::LoopLimit => "Loop limit",
+            NormalMode::Butterfly => "butterfly masks",
+        }
+    }
+}
+
+/// Per-vertex colouring of the result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Coloring {
+    /// The material colour.
+    #[default]
+    None,
+    /// The level that created each vertex ("shells").
+    Shells,
+    /// Distance from the control mesh's surface.
+    Displacement,
+}
+
+impl Coloring {
+    /// All modes, in menu order.
+    pub const ALL: [Coloring; 3] = [Coloring::None, Coloring::Shells, Coloring::Displacement];
+    /// Menu label.
+    pub fn name(self) -> &'static str {
+        match self {
+            Coloring::None => "none",
+            Coloring::Shells => "level shells",
+            Coloring::Displacement => "displacement from control",
+        }
+    }
+}
+
 /// Largest proxy mesh (see [`Doc::proxy`]).
 pub const PROXY_FACES: u64 = 150_000;
 
@@ -89,8 +139,25 @@ pub struct Doc {
     pub path: Option<PathBuf>,
     /// The control mesh.
     pub control: Shown,
-    /// The subdivided mesh shown (the control mesh at level 0).
+    /// The subdivided mesh shown (the control mesh at level 0), after the
+    /// display options (limit snapping, normal mode) are applied to `raw`.
     pub result: Shown,
+    /// The subdivision output itself.
+    pub raw: Arc<Mesh>,
+    /// Shading normals.
+    pub normal_mode: NormalMode,
+    /// Show the Loop limit positions instead of the level's points.
+    pub snap_limit: bool,
+    /// Per-vertex colouring.
+    pub coloring: Coloring,
+    /// Colours for `result` (with `coloring`), linear RGB.
+    pub result_colors: Option<Vec<Vec3>>,
+    /// Largest value behind the colours (levels, or a distance), for the legend.
+    pub color_max: f32,
+    /// The control mesh as loaded, before smoothing or edge edits.
+    pub original: Option<Arc<Mesh>>,
+    /// A picked control-mesh corner: the edge opposite it is selected.
+    pub picked: Option<u32>,
     /// A lower level of the same subdivision (at most [`PROXY_FACES`]
     /// triangles), drawn instead of a big `result` while the camera moves.
     pub proxy: Option<Shown>,
@@ -180,7 +247,15 @@ impl Doc {
             name: "tetrahedron (built in)".into(),
             path: None,
             control: Shown::new(mesh.clone()),
-            result: Shown::new(mesh),
+            result: Shown::new(mesh.clone()),
+            raw: mesh,
+            normal_mode: NormalMode::default(),
+            snap_limit: false,
+            coloring: Coloring::default(),
+            result_colors: None,
+            color_max: 0.0,
+            original: None,
+            picked: None,
             proxy: None,
             result_level: 0,
             result_scheme: Scheme::Loop,
@@ -436,13 +511,14 @@ impl Doc {
                     self.subdividing = None;
                     match result {
                         Ok((shown, proxy, stats, ms)) => {
+                            self.raw = shown.mesh.clone();
                             self.result = shown;
                             self.proxy = proxy;
                             self.result_level = level;
                             self.result_scheme = self.scheme;
                             self.stats = Some(stats);
                             self.job_ms = ms;
-                            self.result_changed = true;
+                            self.refresh_result();
                         }
                         Err(e) => {
                             self.error = Some(e.to_string());
@@ -503,13 +579,17 @@ impl Doc {
             }
         }
         self.path = Some(path);
-        self.result = Shown::new(mesh);
+        self.result = Shown::new(mesh.clone());
+        self.raw = mesh;
+        self.original = None;
+        self.picked = None;
         self.proxy = None;
         self.result_level = 0;
         self.stats = None;
         self.control_changed = true;
         self.result_changed = true;
         self.anim = None;
+        self.refresh_result();
         // Keep the level when it fits; otherwise the largest that does.
         self.level = self.level.min(self.max_level());
         if self.level > 0 || self.animating {
@@ -527,6 +607,169 @@ impl Doc {
         self.name = "tetrahedron (built in)".into();
         self.paths_source = "paths/tetrahedron.paths".into();
     }
+}
+
+impl Doc {
+    /// Rebuilds the shown result from the subdivision output and the display
+    /// options (limit snapping, normals, colours), and marks it for upload.
+    pub fn refresh_result(&mut self) {
+        use crate::mesh::inspect::{
+            colormap, displacement_from_control, vertex_counts_per_level, vertex_creation_level,
+        };
+        use crate::subdiv::limit::{butterfly_normals, loop_limit_normals, loop_limit_positions};
+        let raw = &self.raw;
+        let mesh = if self.snap_limit {
+            Arc::new(Mesh { ct: raw.ct.clone(), positions: loop_limit_positions(raw) })
+        } else {
+            raw.clone()
+        };
+        let normals = match self.normal_mode {
+            NormalMode::FanAverage => mesh.vertex_normals(),
+            NormalMode::LoopLimit => loop_limit_normals(&mesh),
+            NormalMode::Butterfly => butterfly_normals(&mesh),
+        };
+        let topo = if Arc::ptr_eq(&mesh, &self.result.mesh) || mesh.ct.v == self.result.mesh.ct.v {
+            self.result.topo.clone()
+        } else {
+            topology(&mesh.ct)
+        };
+        let nv = mesh.positions.len();
+        let level = self.result_level;
+        let (values, max): (Option<Vec<f32>>, f32) = match self.coloring {
+            Coloring::None => (None, 0.0),
+            Coloring::Shells => {
+                let counts = vertex_counts_per_level(&self.control.mesh.ct, level);
+                let lv = vertex_creation_level(&counts, nv);
+                (Some(lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect()), level as f32)
+            }
+            Coloring::Displacement => match displacement_from_control(&self.control.mesh, &mesh, level) {
+                Ok(d) => {
+                    let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
+                    (Some(d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 }).collect()), max)
+                }
+                Err(e) => {
+                    self.error = Some(format!("displacement: {e}"));
+                    (None, 0.0)
+                }
+            },
+        };
+        self.result_colors = values.map(|v| v.iter().map(|&t| Vec3::from(colormap(t))).collect());
+        self.color_max = max;
+        self.result = Shown { mesh, normals, topo };
+        self.result_changed = true;
+    }
+
+    /// Replaces the control mesh by an edited version (smoothing, edge
+    /// operations), keeping the original for [`Doc::revert`], and
+    /// re-subdivides.
+    pub fn replace_control(&mut self, mesh: Mesh) {
+        if self.original.is_none() {
+            self.original = Some(self.control.mesh.clone());
+        }
+        let mesh = Arc::new(mesh);
+        if self.paths.vertex_count() != mesh.positions.len() {
+            self.paths = Paths::generated(&mesh, 4);
+            self.paths_source = "generated (small loops around each vertex)".into();
+        }
+        self.control = Shown::new(mesh.clone());
+        self.raw = mesh;
+        self.result_level = 0;
+        self.proxy = None;
+        self.anim = None;
+        self.picked = None;
+        self.control_changed = true;
+        self.refresh_result();
+        if self.level > 0 || self.animating {
+            self.request_subdivision();
+        }
+    }
+
+    /// Taubin lambda/mu smoothing of the control mesh.
+    pub fn smooth(&mut self, steps: u32) {
+        use crate::mesh::smooth::{TAUBIN_LAMBDA, TAUBIN_MU, taubin};
+        let positions = taubin(&self.control.mesh, steps, TAUBIN_LAMBDA, TAUBIN_MU);
+        let ct = self.control.mesh.ct.clone();
+        self.replace_control(Mesh { ct, positions });
+    }
+
+    /// Back to the control mesh as loaded.
+    pub fn revert(&mut self) {
+        if let Some(m) = self.original.take() {
+            let m = Arc::unwrap_or_clone(m);
+            self.replace_control(m);
+            self.original = None;
+        }
+    }
+
+    /// Flips the picked edge of the control mesh.
+    pub fn flip_picked(&mut self) {
+        let Some(c) = self.picked else { return };
+        let mut m = (*self.control.mesh).clone();
+        match crate::mesh::edit::flip_edge(&mut m.ct, c) {
+            Ok(()) => self.replace_control(m),
+            Err(e) => self.error = Some(format!("flip: {e}")),
+        }
+    }
+
+    /// Splits the picked edge of the control mesh at its midpoint.
+    pub fn split_picked(&mut self) {
+        let Some(c) = self.picked else { return };
+        if c as usize >= self.control.mesh.ct.num_corners() {
+            return;
+        }
+        let mut m = (*self.control.mesh).clone();
+        crate::mesh::edit::split_edge(&mut m, c, 0.5);
+        self.replace_control(m);
+    }
+
+    /// The vertex ids of the picked edge.
+    pub fn picked_edge(&self) -> Option<(u32, u32)> {
+        let c = self.picked?;
+        let ct = &self.control.mesh.ct;
+        ((c as usize) < ct.num_corners()).then(|| (ct.v[crate::mesh::n(c) as usize], ct.v[crate::mesh::p(c) as usize]))
+    }
+}
+
+/// The corner of `mesh` whose opposite edge is nearest to where the ray
+/// `origin + t * dir` first hits the surface (brute force over the
+/// triangles, Moller-Trumbore), or `None` when the ray misses.
+pub fn pick_edge(mesh: &Mesh, origin: Vec3, dir: Vec3) -> Option<u32> {
+    let mut best: Option<(f32, u32, Vec3)> = None;
+    for (t, tri) in mesh.ct.v.chunks_exact(3).enumerate() {
+        let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| mesh.positions[i as usize]);
+        let (e1, e2) = (b - a, c - a);
+        let pv = dir.cross(e2);
+        let det = e1.dot(pv);
+        if det.abs() < 1e-12 {
+            continue;
+        }
+        let inv = 1.0 / det;
+        let tv = origin - a;
+        let u = tv.dot(pv) * inv;
+        let qv = tv.cross(e1);
+        let v = dir.dot(qv) * inv;
+        let dist = e2.dot(qv) * inv;
+        if u < 0.0 || v < 0.0 || u + v > 1.0 || dist <= 0.0 {
+            continue;
+        }
+        if best.is_none_or(|(d, _, _)| dist < d) {
+            best = Some((dist, t as u32, origin + dir * dist));
+        }
+    }
+    let (_, t, hit) = best?;
+    let seg = |p: Vec3, q: Vec3| {
+        let d = q - p;
+        let s = ((hit - p).dot(d) / d.length_squared().max(1e-30)).clamp(0.0, 1.0);
+        (p + d * s).distance(hit)
+    };
+    (0..3u32)
+        .map(|k| {
+            let c = 3 * t + k;
+            let (p, q) = (mesh.ct.v[crate::mesh::n(c) as usize], mesh.ct.v[crate::mesh::p(c) as usize]);
+            (seg(mesh.positions[p as usize], mesh.positions[q as usize]), c)
+        })
+        .min_by(|x, y| x.0.total_cmp(&y.0))
+        .map(|(_, c)| c)
 }
 
 impl Default for Doc {

@@ -14,6 +14,7 @@ use crate::render::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
 use crate::render::{Gpu, Look, offscreen::padded_bytes_per_row, offscreen::read_rows};
 use crate::{Error, Result, Scheme};
 use doc::Doc;
+use glam::Vec3;
 use panel::UiState;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -290,13 +291,30 @@ impl App {
                 .ok()
         };
         if doc.control_changed {
+            let fit = win.control.as_ref().is_none_or(|c| c.vertex_count() == 0) || doc.original.is_none();
             win.control = upload(&doc.control, &mut doc.error);
             doc.control_changed = false;
-            self.ui.fit = true;
+            // Edits (smoothing, flips) keep the view; a new model is framed.
+            self.ui.fit |= fit;
+            self.ui.highlighted = None;
             uploaded = true;
+        }
+        if self.ui.highlighted != doc.picked
+            && let Some(c) = &mut win.control
+        {
+            let seg: Vec<Vec3> = doc
+                .picked_edge()
+                .map(|(a, b)| vec![doc.control.mesh.positions[a as usize], doc.control.mesh.positions[b as usize]])
+                .unwrap_or_default();
+            c.set_highlight(device, &seg);
+            self.ui.highlighted = doc.picked;
+            win.version += 1;
         }
         if doc.result_changed {
             win.result = upload(&doc.result, &mut doc.error);
+            if let (Some(m), Some(colors)) = (&mut win.result, &doc.result_colors) {
+                m.set_colors(device, colors);
+            }
             win.proxy = doc.proxy.as_ref().and_then(|p| upload(p, &mut doc.error));
             doc.result_changed = false;
             uploaded = true;
@@ -435,7 +453,7 @@ impl App {
         } else {
             win.result.as_ref()
         };
-        let look = self.ui.look();
+        let look = Look { colors: self.doc.coloring != doc::Coloring::None, ..self.ui.look() };
         let mut draws = Vec::with_capacity(2);
         if self.ui.side_by_side {
             let half = r[2] / 2.0;

@@ -61,6 +61,12 @@ pub struct UiState {
     pub normals_built: bool,
     /// Multisampling on.
     pub msaa: bool,
+    /// Clicks in the 3D area pick control-mesh edges.
+    pub pick: bool,
+    /// The picked corner whose highlight is uploaded.
+    pub highlighted: Option<u32>,
+    /// Taubin steps per click.
+    pub smooth_steps: u32,
     /// The camera turns around the model.
     pub turntable: bool,
     /// The adapter offers multisampling.
@@ -105,6 +111,9 @@ impl UiState {
             scene_rect: egui::Rect::NOTHING,
             normals_built: false,
             msaa: false,
+            pick: false,
+            highlighted: None,
+            smooth_steps: 10,
             turntable: false,
             msaa_available: false,
             scene_renders: 0,
@@ -148,6 +157,8 @@ pub fn show(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) -> egui::Rect {
             display_section(ui, st);
             ui.separator();
             animation_section(ui, doc, st);
+            ui.separator();
+            tools_section(ui, doc, st);
             ui.separator();
             stats_section(ui, doc, st);
             ui.separator();
@@ -290,6 +301,59 @@ fn display_section(ui: &mut egui::Ui, st: &mut UiState) {
         st.reset |= ui.button("Reset camera (R)").clicked();
         st.screenshot |= ui.button("Screenshot (P)").clicked();
     });
+}
+
+fn tools_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
+    use super::doc::{Coloring, NormalMode};
+    ui.label(RichText::new("Surface and tools").strong());
+    let mut refresh = false;
+    egui::ComboBox::from_label("Normals").selected_text(doc.normal_mode.name()).show_ui(ui, |ui| {
+        for m in NormalMode::ALL {
+            refresh |= ui.selectable_value(&mut doc.normal_mode, m, m.name()).changed();
+        }
+    });
+    refresh |= ui
+        .checkbox(&mut doc.snap_limit, "Snap to Loop limit positions")
+        .on_hover_text("move every vertex to its limit point on the Loop surface")
+        .changed();
+    egui::ComboBox::from_label("Colour").selected_text(doc.coloring.name()).show_ui(ui, |ui| {
+        for c in Coloring::ALL {
+            refresh |= ui.selectable_value(&mut doc.coloring, c, c.name()).changed();
+        }
+    });
+    match doc.coloring {
+        Coloring::Shells => {
+            ui.label(RichText::new(format!("dark: level 0 vertices … bright: level {}", doc.result_level)).small());
+        }
+        Coloring::Displacement => {
+            ui.label(RichText::new(format!("dark: on the control mesh … bright: {:.4} away", doc.color_max)).small());
+        }
+        Coloring::None => {}
+    }
+    if refresh {
+        doc.refresh_result();
+    }
+    ui.horizontal(|ui| {
+        ui.add(egui::DragValue::new(&mut st.smooth_steps).range(1..=200).suffix(" steps"));
+        if ui.button("Smooth (Taubin)").on_hover_text("lambda 0.6307, mu -0.6732 on the control mesh").clicked() {
+            doc.smooth(st.smooth_steps);
+        }
+        if ui.add_enabled(doc.original.is_some(), egui::Button::new("Revert")).clicked() {
+            doc.revert();
+        }
+    });
+    ui.checkbox(&mut st.pick, "Pick control edges (click)");
+    if let Some((a, b)) = doc.picked_edge() {
+        ui.horizontal(|ui| {
+            ui.label(format!("edge ({a}, {b})"));
+            if ui.button("Flip").clicked() {
+                doc.flip_picked();
+            }
+            if ui.button("Split").clicked() {
+                doc.split_picked();
+            }
+        });
+    }
 }
 
 fn animation_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
@@ -489,6 +553,25 @@ fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, doc: &mut Doc, st: &mut UiSt
     }
     if resp.double_clicked() {
         st.fit = true;
+    } else if resp.clicked()
+        && st.pick
+        && let Some(pos) = resp.interact_pointer_pos()
+    {
+        let vp = if st.side_by_side {
+            egui::Rect::from_min_size(rect.min, egui::vec2(rect.width() / 2.0, rect.height()))
+        } else {
+            rect
+        };
+        let vp = if st.side_by_side && pos.x > vp.right() { vp.translate(egui::vec2(vp.width(), 0.0)) } else { vp };
+        let ndc = glam::Vec3::new(
+            (pos.x - vp.left()) / vp.width() * 2.0 - 1.0,
+            1.0 - (pos.y - vp.top()) / vp.height() * 2.0,
+            0.0,
+        );
+        let inv = st.camera.view_proj(vp.width() / vp.height().max(1.0)).inverse();
+        let near = inv.project_point3(ndc);
+        let far = inv.project_point3(ndc.with_z(1.0));
+        doc.picked = super::doc::pick_edge(&doc.control.mesh, near, (far - near).normalize_or_zero());
     }
     if let Some(pos) = resp.hover_pos() {
         let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));

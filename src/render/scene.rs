@@ -65,6 +65,7 @@ pub struct GpuMesh {
     /// Which faces may be skipped (closed meshes only).
     pub cull: Cull,
     colors: Option<wgpu::Buffer>,
+    highlight: Option<(wgpu::Buffer, u32)>,
 }
 
 /// Face culling of a mesh.
@@ -151,6 +152,7 @@ impl GpuMesh {
             normal_length: 0.05,
             cull: cull_for(ct, positions),
             colors: None,
+            highlight: None,
         })
     }
 
@@ -206,6 +208,17 @@ impl GpuMesh {
     /// Whether per-vertex colours are set.
     pub fn has_colors(&self) -> bool {
         self.colors.is_some()
+    }
+
+    /// Segments (point pairs) drawn highlighted over this mesh, e.g. a
+    /// picked edge; empty clears them.
+    pub fn set_highlight(&mut self, device: &wgpu::Device, segments: &[Vec3]) {
+        self.highlight = (!segments.is_empty()).then(|| {
+            (
+                buffer(device, "highlight", bytemuck::cast_slice(segments), wgpu::BufferUsages::VERTEX),
+                segments.len() as u32,
+            )
+        });
     }
 
     /// Drops the per-vertex colours.
@@ -578,6 +591,14 @@ impl Renderer {
                 pass.set_vertex_buffer(0, c.positions.slice(..));
                 pass.set_index_buffer(c.edges.slice(..), wgpu::IndexFormat::Uint32);
                 pass.draw_indexed(0..c.edge_indices, 0, 0..1);
+            }
+            for m in [d.control, d.mesh].into_iter().flatten() {
+                if let Some((buf, count)) = &m.highlight {
+                    pass.set_pipeline(&self.lines);
+                    pass.set_bind_group(1, &self.styles[3], &[]);
+                    pass.set_vertex_buffer(0, buf.slice(..));
+                    pass.draw(0..*count, 0..1);
+                }
             }
         }
     }
