@@ -208,3 +208,23 @@ fn display_options_recolour_and_renormal_the_result() {
     assert!(doc.result.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
     assert_ne!(doc.result.mesh.positions, doc.raw.positions, "snapped to the limit");
 }
+
+#[test]
+fn a_bzc_file_opens_as_a_curve_with_its_construction() {
+    let mut doc = Doc::new();
+    doc.open(common::model_path("curve.bzc"));
+    settle(&mut doc);
+    assert!(doc.error.is_none(), "{:?}", doc.error);
+    let c = doc.curve.clone().expect("a curve");
+    let line = c.polyline();
+    assert_eq!(line.len(), c.segments + 1);
+    assert_eq!(line[0], c.control[0].extend(0.0), "starts at the first control point");
+    assert!((line[c.segments] - c.control.last().unwrap().extend(0.0)).length() < 1e-6, "ends at the last");
+    let (segs, point) = c.construction_segments();
+    // n control points: levels of n-1, n-2, ..., 1 points: (n-2) + ... + 0 segments.
+    let n = c.control.len();
+    assert_eq!(segs.len() / 2, (n - 1) * (n - 2) / 2);
+    let expect = subdiv::io::bezier::de_casteljau(&c.control, c.t).unwrap().extend(0.0);
+    assert!((point.unwrap() - expect).length() < 1e-6);
+    assert_eq!(doc.control.topo.vertices, 4, "the mesh stays loaded underneath");
+}

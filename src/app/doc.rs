@@ -101,8 +101,44 @@ impl Shown {
     }
 }
 
+/// A planar Bezier curve opened from a `.bzc` file.
+#[derive(Clone, Debug)]
+pub struct Curve {
+    /// File name.
+    pub name: String,
+    /// Control points.
+    pub control: Vec<glam::Vec2>,
+    /// Polyline segments drawn.
+    pub segments: usize,
+    /// Parameter of the de Casteljau construction shown.
+    pub t: f32,
+    /// Show the construction at `t`.
+    pub construction: bool,
+}
+
+impl Curve {
+    /// The evaluated polyline (de Casteljau at `segments + 1` parameters), in the z = 0 plane.
+    pub fn polyline(&self) -> Vec<Vec3> {
+        crate::io::bezier::curve_polyline(&self.control, self.segments).iter().map(|p| p.extend(0.0)).collect()
+    }
+    /// The intermediate polygons of de Casteljau at `t`, as segments, ending with the curve point.
+    pub fn construction_segments(&self) -> (Vec<Vec3>, Option<Vec3>) {
+        let mut level: Vec<glam::Vec2> = self.control.clone();
+        let mut segs = Vec::new();
+        while level.len() > 1 {
+            level = crate::io::bezier::de_casteljau_step(&level, self.t);
+            for w in level.windows(2) {
+                segs.push(w[0].extend(0.0));
+                segs.push(w[1].extend(0.0));
+            }
+        }
+        (segs, level.first().map(|p| p.extend(0.0)))
+    }
+}
+
 enum Done {
     Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>, Option<String>)>, path: PathBuf },
+    LoadedCurve { ticket: u64, result: Result<Curve> },
     Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64)>, level: u32 },
     Animated { ticket: u64, result: Result<Animation> },
     Exported { result: Result<(usize, PathBuf)> },
@@ -158,6 +194,10 @@ pub struct Doc {
     pub original: Option<Arc<Mesh>>,
     /// A picked control-mesh corner: the edge opposite it is selected.
     pub picked: Option<u32>,
+    /// A Bezier curve shown instead of the mesh.
+    pub curve: Option<Curve>,
+    /// Set when `curve` changed (upload).
+    pub curve_changed: bool,
     /// A lower level of the same subdivision (at most [`PROXY_FACES`]
     /// triangles), drawn instead of a big `result` while the camera moves.
     pub proxy: Option<Shown>,
@@ -256,6 +296,8 @@ impl Doc {
             color_max: 0.0,
             original: None,
             picked: None,
+            curve: None,
+            curve_changed: false,
             proxy: None,
             result_level: 0,
             result_scheme: Scheme::Loop,
@@ -326,6 +368,19 @@ impl Doc {
             total: 1,
             since: Instant::now(),
         });
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc")) {
+            std::thread::spawn(move || {
+                let result = crate::io::bezier::load_bzc(&path).map(|control| Curve {
+                    name: path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+                    control,
+                    segments: 64,
+                    t: 0.5,
+                    construction: true,
+                });
+                let _ = tx.send(Done::LoadedCurve { ticket, result });
+            });
+            return;
+        }
         std::thread::spawn(move || {
             let loaded = if repair {
                 io::load_repaired(&path).map(|(m, r)| {
@@ -502,6 +557,20 @@ impl Doc {
                             self.failed = matches!(e, crate::Error::Mesh { .. }).then_some(path);
                             self.error = Some(format!("could not open: {e}"));
                         }
+                    }
+                }
+                Done::LoadedCurve { ticket, result } => {
+                    if ticket != self.load_gen.load(Ordering::SeqCst) {
+                        continue;
+                    }
+                    self.loading = None;
+                    match result {
+                        Ok(curve) => {
+                            self.stop_animation();
+                            self.curve = Some(curve);
+                            self.curve_changed = true;
+                        }
+                        Err(e) => self.error = Some(format!("could not open: {e}")),
                     }
                 }
                 Done::Subdivided { ticket, result, level } => {

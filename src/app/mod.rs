@@ -79,6 +79,8 @@ struct Win {
     result: Option<GpuMesh>,
     proxy: Option<GpuMesh>,
     anim: Option<GpuMesh>,
+    /// A Bezier curve: its polyline and its control polygon (with the construction highlighted).
+    curve: Option<(GpuMesh, GpuMesh)>,
     repaint_after: Option<Duration>,
     blit: Blit,
     /// The 3D viewports rendered at the window's size, blitted every frame.
@@ -155,7 +157,11 @@ impl App {
         let mut doc = Doc::new();
         doc.scheme = opts.scheme;
         doc.level = opts.level;
-        if let Some(model) = &opts.model {
+        if let Some(model) = opts.model.as_ref().filter(|m| m.extension().is_some_and(|e| e == "bzc")) {
+            // Check the curve now so a bad file fails before any window; show it through the loader.
+            crate::io::bezier::load_bzc(model)?;
+            doc.open(model.clone());
+        } else if let Some(model) = &opts.model {
             // Load the first model synchronously so a bad file is a clear error before any window opens.
             let mesh = crate::io::load(model)?;
             let paths = match &opts.paths {
@@ -268,6 +274,7 @@ impl App {
             result: None,
             proxy: None,
             anim: None,
+            curve: None,
             repaint_after: None,
             blit,
             scene,
@@ -318,6 +325,36 @@ impl App {
             win.proxy = doc.proxy.as_ref().and_then(|p| upload(p, &mut doc.error));
             doc.result_changed = false;
             uploaded = true;
+        }
+        if doc.curve_changed {
+            let first = win.curve.is_none();
+            win.curve = doc.curve.as_ref().map(|c| {
+                let line = c.polyline();
+                let pairs: Vec<u32> = (1..line.len() as u32).flat_map(|i| [i - 1, i]).collect();
+                let poly: Vec<Vec3> = c.control.iter().map(|p| p.extend(0.0)).collect();
+                let cpairs: Vec<u32> = (1..poly.len() as u32).flat_map(|i| [i - 1, i]).collect();
+                let mut control = GpuMesh::lines(device, &poly, &cpairs);
+                if c.construction {
+                    let (mut segs, point) = c.construction_segments();
+                    if let Some(q) = point {
+                        let r = 0.01 * (poly.iter().fold(Vec3::ZERO, |a, p| a.max(p.abs()))).length().max(1e-6);
+                        segs.extend([q - Vec3::X * r, q + Vec3::X * r, q - Vec3::Y * r, q + Vec3::Y * r]);
+                    }
+                    control.set_highlight(device, &segs);
+                }
+                (GpuMesh::lines(device, &line, &pairs), control)
+            });
+            if first && let Some(c) = &doc.curve {
+                let lo = c.control.iter().fold(glam::Vec2::splat(f32::MAX), |a, p| a.min(*p)).extend(0.0);
+                let hi = c.control.iter().fold(glam::Vec2::splat(f32::MIN), |a, p| a.max(*p)).extend(0.0);
+                self.ui.camera =
+                    crate::render::Camera { yaw: 0.0, pitch: 0.0, orthographic: true, ..Default::default() };
+                self.ui.camera.fit(lo, hi, 1.3);
+            } else if win.curve.is_none() {
+                self.ui.reset = true;
+            }
+            doc.curve_changed = false;
+            win.version += 1;
         }
         let normal_length = 0.03 * self.ui.camera.radius;
         if let Some(a) = &mut doc.anim {
@@ -404,7 +441,7 @@ impl App {
             self.ui.fit = true;
             self.ui.reset = false;
         }
-        if self.ui.fit && rect.is_positive() {
+        if self.ui.fit && rect.is_positive() && self.doc.curve.is_none() {
             // Fit what is shown: the result (a Loop surface can be much smaller than its control mesh).
             let (lo, hi) = self.doc.result.mesh.bounds();
             self.ui.camera.fit(lo, hi, aspect);
@@ -455,7 +492,17 @@ impl App {
         };
         let look = Look { colors: self.doc.coloring != doc::Coloring::None, ..self.ui.look() };
         let mut draws = Vec::with_capacity(2);
-        if self.ui.side_by_side {
+        if let Some((line, control)) = &win.curve {
+            let look =
+                Look { surface: crate::render::Surface::Hidden, wireframe: true, control: true, ..Look::default() };
+            draws.push(ViewportDraw {
+                rect: r,
+                camera: self.ui.camera,
+                mesh: Some(line),
+                control: Some(control),
+                look,
+            });
+        } else if self.ui.side_by_side {
             let half = r[2] / 2.0;
             let left = Look { wireframe: true, control: false, normals: false, ..look };
             draws.push(ViewportDraw {

@@ -84,7 +84,7 @@ impl UiState {
         let mut bundled: Vec<PathBuf> = std::fs::read_dir(&dir)
             .map(|rd| {
                 rd.filter_map(|e| e.ok().map(|e| e.path()))
-                    .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("obj" | "ct")))
+                    .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("obj" | "ct" | "bez" | "bzc")))
                     .collect()
             })
             .unwrap_or_default();
@@ -173,7 +173,32 @@ pub fn show(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) -> egui::Rect {
     rect
 }
 
+fn curve_section(ui: &mut egui::Ui, doc: &mut Doc) {
+    let Some(c) = &mut doc.curve else { return };
+    ui.label(
+        RichText::new(format!(
+            "Bezier curve: {} ({} control points, degree {})",
+            c.name,
+            c.control.len(),
+            c.control.len() - 1
+        ))
+        .strong(),
+    );
+    let mut changed = ui.add(egui::Slider::new(&mut c.segments, 1..=512).text("segments")).changed();
+    changed |= ui.checkbox(&mut c.construction, "de Casteljau construction").changed();
+    changed |= ui.add_enabled(c.construction, egui::Slider::new(&mut c.t, 0.0..=1.0).text("t")).changed();
+    let back = ui.button("Back to the mesh").clicked();
+    if back {
+        doc.curve = None;
+    }
+    if changed || back {
+        doc.curve_changed = true;
+    }
+    ui.separator();
+}
+
 fn model_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
+    curve_section(ui, doc);
     ui.label(RichText::new(format!("Model: {}", doc.name)).strong());
     let current = doc.path.clone();
     egui::ComboBox::from_id_salt("model").selected_text("Bundled models").show_ui(ui, |ui| {
@@ -199,7 +224,7 @@ fn model_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
             st.browser = Some(start.or_else(|| std::env::current_dir().ok()).unwrap_or_else(|| PathBuf::from("/")));
         }
     });
-    ui.label(RichText::new("…or drop an OBJ or .ct file on the window").small().weak());
+    ui.label(RichText::new("…or drop a file on the window (.obj, .ct, .bez patches, .bzc curves)").small().weak());
     ui.checkbox(&mut doc.repair_on_open, "Repair on open").on_hover_text(
         "split non-manifold edges and vertices, orient faces consistently, drop degenerate and duplicate faces",
     );
@@ -667,7 +692,9 @@ fn overlay(ui: &mut egui::Ui, rect: egui::Rect, doc: &Doc, st: &UiState) {
     let painter = ui.painter_at(rect);
     let font = egui::FontId::proportional(14.0);
     let weak = Color32::from_gray(170);
-    let label = if doc.animating {
+    let label = if let Some(c) = &doc.curve {
+        format!("{}: Bezier curve of degree {}", c.name, c.control.len().saturating_sub(1))
+    } else if doc.animating {
         match &doc.anim {
             Some(a) => format!(
                 "{} level {} — frame {}/{}",
@@ -747,7 +774,7 @@ fn file_browser(ctx: &egui::Context, doc: &mut Doc, st: &mut UiState) {
                         if ui.selectable_label(false, format!("[dir] {name}/")).clicked() {
                             next = Some(p);
                         }
-                    } else if matches!(p.extension().and_then(|e| e.to_str()), Some("obj" | "ct"))
+                    } else if matches!(p.extension().and_then(|e| e.to_str()), Some("obj" | "ct" | "bez" | "bzc"))
                         && ui.selectable_label(false, name).clicked()
                     {
                         chosen = Some(p);

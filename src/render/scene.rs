@@ -156,6 +156,27 @@ impl GpuMesh {
         })
     }
 
+    /// Lines only (no faces): `points` joined by the index pairs in `pairs`
+    /// (a curve and its control polygon).
+    pub fn lines(device: &wgpu::Device, points: &[Vec3], pairs: &[u32]) -> GpuMesh {
+        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        let normals = vec![Vec3::Z; points.len()];
+        GpuMesh {
+            positions: buffer(device, "line points", bytemuck::cast_slice(points), vertex),
+            normals: buffer(device, "line normals", bytemuck::cast_slice(&normals), vertex),
+            triangles: buffer(device, "no triangles", &[], wgpu::BufferUsages::INDEX),
+            edges: buffer(device, "line pairs", bytemuck::cast_slice(pairs), wgpu::BufferUsages::INDEX),
+            vertex_count: points.len(),
+            triangle_indices: 0,
+            edge_indices: pairs.len() as u32,
+            normal_lines: None,
+            normal_length: 0.05,
+            cull: Cull::None,
+            colors: None,
+            highlight: None,
+        }
+    }
+
     /// Number of vertices.
     pub fn vertex_count(&self) -> usize {
         self.vertex_count
