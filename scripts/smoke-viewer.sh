@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
-bin=target/release/subdiv
+bin="${CARGO_TARGET_DIR:-target}/release/subdiv"
 out="$(mktemp -d)"
 export XDG_RUNTIME_DIR="${XDG_RUNTIME_DIR:-$(mktemp -d)}"; chmod 700 "$XDG_RUNTIME_DIR"
 run() { xvfb-run -a -s "-screen 0 1280x800x24" timeout 300 "$bin" "$@"; }
