@@ -8,7 +8,7 @@
 
 use super::paths::Paths;
 use super::tweak::{Tweak, refine_closed};
-use crate::mesh::normals::vertex_normals_into;
+use crate::mesh::normals::{VertexFaces, face_normals_into};
 use crate::subdiv::stencil::{PlanScratch, StencilPlan};
 use crate::{CornerTable, Error, Mesh, Options, Result, Scheme};
 use glam::Vec3;
@@ -29,6 +29,7 @@ pub struct Animation {
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
     fnorm: Vec<Vec3>,
+    vertex_faces: VertexFaces,
     /// Time of the last [`Animation::evaluate`]: (stencils, normals).
     pub last_timing: (Duration, Duration),
 }
@@ -68,6 +69,7 @@ impl Animation {
             }
         });
         let plan = StencilPlan::build(&control.ct, scheme, level, opts)?;
+        let vertex_faces = VertexFaces::new(&plan.ct);
         Ok(Animation {
             plan,
             frames,
@@ -77,6 +79,7 @@ impl Animation {
             positions: Vec::new(),
             normals: Vec::new(),
             fnorm: Vec::new(),
+            vertex_faces,
             last_timing: Default::default(),
         })
     }
@@ -108,7 +111,8 @@ impl Animation {
         let t1 = Instant::now();
         self.fnorm.resize(self.plan.ct.num_triangles(), Vec3::ZERO);
         self.normals.resize(self.positions.len(), Vec3::ZERO);
-        vertex_normals_into(&self.plan.ct, &self.positions, &mut self.fnorm, &mut self.normals);
+        face_normals_into(&self.plan.ct, &self.positions, &mut self.fnorm);
+        self.vertex_faces.normals_into(&self.fnorm, &mut self.normals);
         self.last_timing = (t1 - t0, t1.elapsed());
         (&self.positions, &self.normals)
     }

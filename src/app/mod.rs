@@ -671,9 +671,18 @@ impl App {
                 let mean = tail.iter().sum::<f64>() / tail.len() as f64;
                 let max = tail.iter().fold(0.0f64, |a, &b| a.max(b));
                 let tris = result_tris(&self.doc);
+                let anim = match &self.doc.anim {
+                    Some(a) => format!(
+                        " anim_plan_ms={:.2} anim_normals_ms={:.2}",
+                        a.player.last_timing.0.as_secs_f64() * 1e3,
+                        a.player.last_timing.1.as_secs_f64() * 1e3
+                    ),
+                    None => String::new(),
+                };
                 println!(
-                    "frames={} frame_ms_mean={mean:.1} frame_ms_max={max:.1} triangles={tris} adapter=\"{}\"",
+                    "frames={} frame_ms_mean={mean:.1} frame_ms_max={max:.1} triangles={tris}{anim} scene_renders={} adapter=\"{}\"",
                     tail.len(),
+                    self.ui.scene_renders,
                     self.ui.adapter
                 );
             }
