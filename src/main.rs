@@ -72,6 +72,9 @@ enum Cmd {
         /// Start with the camera turning around the model.
         #[arg(long)]
         turntable: bool,
+        /// Repair the model's topology when opening it (see `subdiv repair`).
+        #[arg(long)]
+        repair: bool,
     },
     /// Render the split-and-tweak animation to a GIF or numbered PNGs.
     Animate {
@@ -264,7 +267,7 @@ fn main() -> ExitCode {
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
         None => view(ViewArgs::default()),
-        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths, play, turntable }) => {
+        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths, play, turntable, repair }) => {
             view(ViewArgs {
                 model,
                 scheme: scheme.scheme,
@@ -275,6 +278,7 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
                 paths,
                 play,
                 turntable,
+                repair,
             })
         }
         Some(Cmd::Animate {
@@ -350,6 +354,7 @@ struct ViewArgs {
     paths: Option<PathBuf>,
     play: bool,
     turntable: bool,
+    repair: bool,
 }
 
 #[cfg(feature = "viewer")]
@@ -367,6 +372,7 @@ fn view(a: ViewArgs) -> Result<()> {
         paths: a.paths,
         play: a.play,
         turntable: a.turntable,
+        repair: a.repair,
     })
 }
 

@@ -45,6 +45,8 @@ pub struct ViewOptions {
     pub play: bool,
     /// Start with the camera turning around the model.
     pub turntable: bool,
+    /// Repair the model when opening it.
+    pub repair: bool,
 }
 
 /// Longest a `--frames` run may wait for its work before giving up.
@@ -163,7 +165,17 @@ impl App {
             doc.open(model.clone());
         } else if let Some(model) = &opts.model {
             // Load the first model synchronously so a bad file is a clear error before any window opens.
-            let mesh = crate::io::load(model)?;
+            let mesh = if opts.repair {
+                let (mesh, report) = crate::io::load_repaired(model)?;
+                if !report.is_empty() {
+                    eprint!("{report}");
+                    doc.notice = Some(format!("repaired: {report}"));
+                }
+                doc.repair_on_open = true;
+                mesh
+            } else {
+                crate::io::load(model)?
+            };
             let paths = match &opts.paths {
                 Some(p) => {
                     let paths = crate::anim::paths::Paths::load(p)?;
