@@ -7,7 +7,11 @@ fn main() {
     println!("{} samples {}", off.gpu.describe(), off.renderer.samples);
     let cam = default_camera(&m, &RenderOptions { width: 960, height: 800, ..Default::default() });
     let g = off.upload(&f).unwrap();
-    for (name, look) in [("smooth", Look::default()), ("flat", Look { surface: Surface::Flat, ..Look::default() }), ("hidden", Look { surface: Surface::Hidden, wireframe: false, ..Look::default() })] {
+    for (name, look) in [
+        ("smooth", Look::default()),
+        ("flat", Look { surface: Surface::Flat, ..Look::default() }),
+        ("hidden", Look { surface: Surface::Hidden, wireframe: false, ..Look::default() }),
+    ] {
         let mut ts = vec![];
         for _ in 0..6 {
             let t = Instant::now();

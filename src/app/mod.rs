@@ -486,7 +486,11 @@ impl App {
                 let mean = tail.iter().sum::<f64>() / tail.len() as f64;
                 let max = tail.iter().fold(0.0f64, |a, &b| a.max(b));
                 let tris = result_tris(&self.doc);
-                println!("frames={} frame_ms_mean={mean:.1} frame_ms_max={max:.1} triangles={tris} adapter=\"{}\"", tail.len(), self.ui.adapter);
+                println!(
+                    "frames={} frame_ms_mean={mean:.1} frame_ms_max={max:.1} triangles={tris} adapter=\"{}\"",
+                    tail.len(),
+                    self.ui.adapter
+                );
             }
             if let Some(e) = self.doc.error.take().filter(|_| self.fatal.is_none()) {
                 self.fatal = Some(Error::Usage(e));
