@@ -207,9 +207,13 @@ impl RulesFn<Mesh> for OneLevel<'_> {
         let ((ct, edges), (number_ms, _)) = split::split_timed(&self.mesh.ct);
         self.stats.split_ms += ms(t0.elapsed());
         self.stats.numbering_ms += number_ms;
+        // the per-corner edge ids are the split's alone: free them before the
+        // positions are allocated (lower peak memory)
+        let split::EdgeNumbering { owners, w } = edges;
+        drop(w);
         let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
         let lv = Level::new(&self.mesh.ct);
-        let (vms, ems) = r.apply(&lv, &edges.owners, &self.mesh.positions, &mut positions);
+        let (vms, ems) = r.apply(&lv, &owners, &self.mesh.positions, &mut positions);
         self.stats.vertex_ms += vms;
         self.stats.edge_ms += ems;
         Mesh { ct, positions }

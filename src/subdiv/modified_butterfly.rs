@@ -127,23 +127,25 @@ impl ModifiedButterfly {
 }
 
 /// `class[v]` of a vertex that uses the regular rules (interior valence 6).
-const REGULAR: u32 = 0;
+const REGULAR: u8 = 0;
 /// `class[v]` of a boundary vertex.
-const BOUNDARY: u32 = 1;
+const BOUNDARY: u8 = 1;
 /// `class[v]` of an extraordinary vertex without tabulated weights (valence
 /// 64 or more): left to [`Rules::edge`].
-const SLOW: u32 = 2;
-/// `class[v] - RING` is the index of an extraordinary vertex's ring.
-const RING: u32 = 3;
+const SLOW: u8 = 2;
+/// `class[v]` of an extraordinary vertex with a precomputed ring.
+const RING: u8 = 3;
 
 /// The one-ring of every extraordinary interior vertex, walked once per level
 /// (an EV edge point then reads it instead of swinging around the vertex:
 /// `k` dependent loads, each a likely cache miss, for every one of its `k`
-/// edges). `class[v]` is [`REGULAR`], [`BOUNDARY`], [`SLOW`] or `RING + i`
-/// for the `i`-th extraordinary vertex with valence below 64, whose ring is `corners/verts[start[i]..start[i + 1]]`
-/// in swing order from `C[v]` (`verts[j] = v(n(corners[j]))`).
+/// edges). `class` holds one byte per vertex (small enough to stay in cache
+/// while edge points are computed); the `i`-th [`RING`] vertex `evs[i]` has
+/// its ring in `corners/verts[start[i]..start[i + 1]]`, in swing order from
+/// `C[v]` (`verts[j] = v(n(corners[j]))`).
 struct EvRings {
-    class: Vec<u32>,
+    class: Vec<u8>,
+    evs: Vec<u32>,
     start: Vec<u32>,
     corners: Vec<u32>,
     verts: Vec<u32>,
@@ -154,24 +156,27 @@ impl EvRings {
         let nv = lv.num_vertices();
         let is_ev = |v: usize| !lv.boundary[v] && lv.valence[v] != 6;
         let slow = |v: usize| is_ev(v) && lv.valence[v] as usize >= tabulated;
-        // extraordinary vertices are few (the input's, after level 1)
-        let evs: Vec<u32> = (0..nv as u32)
+        let class: Vec<u8> = (0..nv)
             .into_par_iter()
             .with_min_len(8192)
-            .filter(|&v| is_ev(v as usize) && !slow(v as usize))
+            .map(|v| {
+                if lv.boundary[v] {
+                    BOUNDARY
+                } else if slow(v) {
+                    SLOW
+                } else if is_ev(v) {
+                    RING
+                } else {
+                    REGULAR
+                }
+            })
             .collect();
-        let mut class: Vec<u32> = crate::mem::zeroed(nv);
-        class.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, k)| {
-            if lv.boundary[v] {
-                *k = BOUNDARY;
-            } else if slow(v) {
-                *k = SLOW;
-            }
-        });
+        // extraordinary vertices are few (the input's, after level 1)
+        let evs: Vec<u32> =
+            (0..nv as u32).into_par_iter().with_min_len(8192).filter(|&v| class[v as usize] == RING).collect();
         let mut start = Vec::with_capacity(evs.len() + 1);
         let mut total = 0u32;
-        for (i, &v) in evs.iter().enumerate() {
-            class[v as usize] = RING + i as u32;
+        for &v in &evs {
             start.push(total);
             total += lv.valence[v as usize];
         }
@@ -196,17 +201,18 @@ impl EvRings {
                 c = lv.s(c).unwrap_or(c);
             }
         });
-        EvRings { class, start, corners, verts }
+        EvRings { class, evs, start, corners, verts }
     }
 }
 
 impl ModifiedButterfly {
-    /// [`Self::ev_rule`] from the precomputed ring of the `i`-th extraordinary
-    /// vertex `v`, starting at the neighbour across corner `x` (a corner of
+    /// [`Self::ev_rule`] from the precomputed ring of extraordinary vertex
+    /// `v`, starting at the neighbour across corner `x` (a corner of
     /// `v` in the triangle of the edge).
     #[inline(always)]
-    fn ev_ring(&self, r: &EvRings, i: u32, v: u32, x: u32, scale: f32, acc: &mut Accumulate) {
-        let (a, b) = (r.start[i as usize] as usize, r.start[i as usize + 1] as usize);
+    fn ev_ring(&self, r: &EvRings, v: u32, x: u32, scale: f32, acc: &mut Accumulate) {
+        let i = r.evs.binary_search(&v).expect("a RING vertex is listed");
+        let (a, b) = (r.start[i] as usize, r.start[i + 1] as usize);
         let (cs, vs) = (&r.corners[a..b], &r.verts[a..b]);
         let k = cs.len();
         let j0 = cs.iter().position(|&c| c == x).unwrap_or(0);
@@ -244,13 +250,13 @@ impl Rules for ModifiedButterfly {
                 let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
                 if k1 == REGULAR && k2 == REGULAR && fast_regular {
                     eight_point(lv, c, o, &mut acc);
-                } else if k1 >= RING && k2 >= RING {
-                    self.ev_ring(&rings, k1 - RING, a1, n(c), 0.5, &mut acc);
-                    self.ev_ring(&rings, k2 - RING, a2, n(o), 0.5, &mut acc);
-                } else if k1 >= RING && k2 < SLOW {
-                    self.ev_ring(&rings, k1 - RING, a1, n(c), 1.0, &mut acc);
-                } else if k2 >= RING && k1 < SLOW {
-                    self.ev_ring(&rings, k2 - RING, a2, n(o), 1.0, &mut acc);
+                } else if k1 == RING && k2 == RING {
+                    self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
+                    self.ev_ring(&rings, a2, n(o), 0.5, &mut acc);
+                } else if k1 == RING && k2 < SLOW {
+                    self.ev_ring(&rings, a1, n(c), 1.0, &mut acc);
+                } else if k2 == RING && k1 < SLOW {
+                    self.ev_ring(&rings, a2, n(o), 1.0, &mut acc);
                 } else {
                     self.edge(lv, c, &mut acc);
                 }
