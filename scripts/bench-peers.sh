@@ -12,6 +12,8 @@
 #            created once with ../shared/bench/setup_peers.sh, a few minutes)
 #   CACHE    where the generated icosphere is kept (default $HOME/.cache/subdiv-bench)
 #   ROWS     space-separated subset of: loop butterfly mbutterfly midpoint icosphere
+#   PEERS    comma-separated peers to time (default: all; e.g. vtk,igl for a
+#            quick run: trimesh and open3d take minutes per row)
 #   BUILD_FLAGS  extra cargo build flags (e.g. --no-default-features: skips the
 #            viewer, the binary's subdivide command is the same)
 # The machine is shared: only ratios within one table are comparable.
@@ -59,7 +61,7 @@ run() { # title, mesh, then peers.py arguments
     shift 2
     echo
     echo "### $title"
-    "$PY" "$shared/bench/peers.py" "$mesh" --repeats "$REPEATS" --ours "$ours" "$@"
+    "$PY" "$shared/bench/peers.py" "$mesh" --repeats "$REPEATS" ${PEERS:+--peers "$PEERS"} --ours "$ours" "$@"
 }
 for row in $ROWS; do
     case "$row" in

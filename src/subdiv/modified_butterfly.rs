@@ -37,7 +37,7 @@
 //! * anything else near the boundary: the 8-point rule with OpenMesh's
 //!   parallelogram ghosts for missing outer vertices (linear precision).
 
-use super::butterfly::{eight_point, outer};
+use super::butterfly::{eight_point, eight_point_interior, outer};
 use super::rules::{Accumulate, Level, Rules, Sink, four_point};
 use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
@@ -209,7 +209,7 @@ impl ModifiedButterfly {
     /// [`Self::ev_rule`] from the precomputed ring of extraordinary vertex
     /// `v`, starting at the neighbour across corner `x` (a corner of
     /// `v` in the triangle of the edge).
-    #[inline(always)]
+    #[inline(never)]
     fn ev_ring(&self, r: &EvRings, v: u32, x: u32, scale: f32, acc: &mut Accumulate) {
         let i = r.evs.binary_search(&v).expect("a RING vertex is listed");
         let (a, b) = (r.start[i] as usize, r.start[i + 1] as usize);
@@ -222,6 +222,14 @@ impl ModifiedButterfly {
             let q = j0 + j;
             acc.add(vs[if q >= k { q - k } else { q }], wj * scale);
         }
+    }
+}
+
+impl ModifiedButterfly {
+    /// [`Rules::edge`] out of line: the rare cases stay out of the hot loop.
+    #[inline(never)]
+    fn edge_cold(&self, lv: &Level, c: u32, acc: &mut Accumulate) {
+        self.edge(lv, c, acc);
     }
 }
 
@@ -244,12 +252,16 @@ impl Rules for ModifiedButterfly {
             let mut acc = Accumulate::new(pos);
             let o = lv.o[c as usize];
             if o == BORDER {
-                self.edge(lv, c, &mut acc);
+                self.edge_cold(lv, c, &mut acc);
             } else {
                 let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
                 let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
                 if k1 == REGULAR && k2 == REGULAR && fast_regular {
-                    eight_point(lv, c, o, &mut acc);
+                    // both ends interior: every outer edge is interior too
+                    match eight_point_interior(lv, pos, c, o) {
+                        Some(e) => acc.sum = e,
+                        None => eight_point(lv, c, o, &mut acc),
+                    }
                 } else if k1 == RING && k2 == RING {
                     self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
                     self.ev_ring(&rings, a2, n(o), 0.5, &mut acc);
@@ -258,7 +270,7 @@ impl Rules for ModifiedButterfly {
                 } else if k2 == RING && k1 < SLOW {
                     self.ev_ring(&rings, a2, n(o), 1.0, &mut acc);
                 } else {
-                    self.edge(lv, c, &mut acc);
+                    self.edge_cold(lv, c, &mut acc);
                 }
             }
             *q = acc.sum;
