@@ -53,6 +53,20 @@ struct SharedMut(*mut u32);
 unsafe impl Send for SharedMut {}
 unsafe impl Sync for SharedMut {}
 
+/// [`SharedMut`] for flags.
+#[derive(Clone, Copy)]
+struct SharedBool(*mut bool);
+// SAFETY: as for SharedMut: each element is written by one thread.
+unsafe impl Send for SharedBool {}
+unsafe impl Sync for SharedBool {}
+
+impl SharedBool {
+    #[inline(always)]
+    fn get(self) -> *mut bool {
+        self.0
+    }
+}
+
 impl SharedMut {
     /// The pointer (a method, so closures capture the whole Sync wrapper).
     #[inline(always)]
@@ -144,6 +158,19 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
 /// opposite corner); the new vertices' `C` and valence are written by the
 /// numbering pass, which has each edge's owner and opposite at hand.
 pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f64)) {
+    let ((ct, edges, _), times) = split_with_boundary(old, None);
+    ((ct, edges), times)
+}
+
+/// The new table, the old table's edge numbering and (when asked for) the new
+/// vertices' boundary flags.
+pub(crate) type SplitLevel = (CornerTable, EdgeNumbering, Option<Vec<bool>>);
+
+/// [`split_timed`]; given the old vertices' boundary flags, also returns the
+/// new ones (an old vertex keeps its flag, an edge vertex is on the boundary
+/// iff its edge is a border edge), written by the numbering pass, so that
+/// the next level need not find them by chasing `O[p(C[v])]`.
+pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool]>) -> (SplitLevel, (f64, f64)) {
     let t0 = std::time::Instant::now();
     let nt = old.num_triangles();
     let nvu = old.num_vertices();
@@ -156,10 +183,20 @@ pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f6
     let ne = counts.iter().map(|&k| k as usize).sum::<usize>();
     let mut vc: Vec<u32> = crate::mem::zeroed(nvu + ne);
     let mut valence: Vec<u32> = crate::mem::zeroed(nvu + ne);
+    let mut boundary: Option<Vec<bool>> = old_boundary.map(|b| {
+        let mut nb = crate::mem::zeroed::<bool>(nvu + ne);
+        nb[..nvu].copy_from_slice(b);
+        nb
+    });
     let edges = {
         let vcp = SharedMut(vc[nvu..].as_mut_ptr());
         let valp = SharedMut(valence[nvu..].as_mut_ptr());
+        let bp = boundary.as_mut().map(|b| SharedBool(b[nvu..].as_mut_ptr()));
         number_edges_with(old, &counts, |id, c, x| {
+            if let Some(bp) = bp {
+                // SAFETY: as for C and valence below.
+                unsafe { *bp.get().add(id as usize) = x == BORDER };
+            }
             // an edge vertex has valence 6 (interior) or 4 (border); its C is
             // the central corner c (interior) or p(A(p(c))), the first corner
             // of its fan (border)
@@ -244,5 +281,5 @@ pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f6
     vc_old.par_iter_mut().zip(old.vc.par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
     val_old.copy_from_slice(&old.valence);
     let times = (super::ms(t1 - t0), super::ms(t1.elapsed()));
-    ((CornerTable { v: v2, o: o2, vc, valence }, edges), times)
+    ((CornerTable { v: v2, o: o2, vc, valence }, edges, boundary), times)
 }
