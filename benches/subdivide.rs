@@ -4,7 +4,7 @@
 //! ../shared/models is present, and the animation's per-frame re-evaluation
 //! through a stencil plan against a full re-subdivision.
 
-use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
@@ -69,4 +69,27 @@ fn animation(c: &mut Criterion) {
 }
 
 criterion_group!(benches, schemes, animation);
-criterion_main!(benches);
+
+/// Makes glibc keep freed blocks up to 32 MiB (its maximum mmap threshold)
+/// in the heap instead of unmapping them, so that every level of the
+/// per-level group reuses memory between iterations the same way. Without
+/// it, the threshold adapts to the first iterations and only the largest
+/// level (L5: ~16 MB arrays) gets fresh pages, and the kernel's zeroing of
+/// them, on every iteration: a step in the per-face cost that comes from the
+/// allocator, not from the algorithm. (The CLI pays first touch at every
+/// level; `examples/phases` measures that.)
+fn tune_allocator() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only changes allocator parameters; called before any
+    // other thread exists.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 32 << 20);
+        libc::mallopt(libc::M_TRIM_THRESHOLD, i32::MAX);
+    }
+}
+
+fn main() {
+    tune_allocator();
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}

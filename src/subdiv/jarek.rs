@@ -15,7 +15,7 @@
 //! `[1, 14, 1]/16`, border edge `[-1, 17, 17, -1]/32`, independent of the
 //! interior.
 
-use super::rules::{Level, Rules, Sink, ring_sums};
+use super::rules::{Level, Rules, Sink, ring_sums_map};
 use crate::mesh::{n, p};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -65,11 +65,10 @@ impl Rules for Jarek {
     fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
         let (vpart, epart) = out.split_at_mut(lv.num_vertices());
-        ring_sums(lv, pos, vpart);
         // vpart holds d_v for now
-        vpart.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, q)| {
+        ring_sums_map(lv, pos, vpart, |v, sum| {
             let k = if lv.boundary[v] { 2.0 } else { lv.valence[v] as f32 };
-            *q = (*q / k - pos[v]) * 0.125;
+            (sum / k - pos[v]) * 0.125
         });
         let t1 = Instant::now();
         let d: &[Vec3] = vpart;

@@ -24,10 +24,9 @@
 //! validation; valence-2 boundary corners use the smooth boundary rule
 //! (OpenSubdiv's `EDGE_ONLY` mode).
 
-use super::rules::{Level, Rules, Sink, edge_points, ring_sums};
+use super::rules::{Level, Rules, Sink, edge_points, ring_sums_map};
 use crate::mesh::{n, p};
 use glam::Vec3;
-use rayon::prelude::*;
 use std::time::Instant;
 
 /// Which beta the vertex rule uses.
@@ -118,15 +117,14 @@ impl Rules for Loop {
     fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
         let (vpart, epart) = out.split_at_mut(lv.num_vertices());
-        ring_sums(lv, pos, vpart);
-        vpart.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, q)| {
-            *q = if lv.boundary[v] {
-                pos[v] * 0.75 + *q * 0.125
+        ring_sums_map(lv, pos, vpart, |v, sum| {
+            if lv.boundary[v] {
+                pos[v] * 0.75 + sum * 0.125
             } else {
                 let k = lv.valence[v];
                 let beta = self.beta(k);
-                pos[v] * (1.0 - k as f32 * beta) + *q * beta
-            };
+                pos[v] * (1.0 - k as f32 * beta) + sum * beta
+            }
         });
         let t1 = Instant::now();
         edge_points(self, lv, owners, pos, epart);

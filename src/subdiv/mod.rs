@@ -196,24 +196,34 @@ pub(crate) trait RulesFn<T> {
     fn call<R: Rules>(self, r: &R) -> T;
 }
 
-/// One level: split plus the scheme's points.
+/// One level: split plus the scheme's points. `boundary` holds the input
+/// level's vertex boundary flags when the previous level produced them.
 struct OneLevel<'a> {
     mesh: &'a Mesh,
+    boundary: Option<Vec<bool>>,
     stats: &'a mut Stats,
 }
 
-impl RulesFn<Mesh> for OneLevel<'_> {
-    fn call<R: Rules>(self, r: &R) -> Mesh {
+impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
+    fn call<R: Rules>(self, r: &R) -> (Mesh, Option<Vec<bool>>) {
+        let lv = match self.boundary {
+            Some(boundary) => Level { ct: &self.mesh.ct, boundary },
+            None => Level::new(&self.mesh.ct),
+        };
         let t0 = Instant::now();
-        let ((ct, edges), (number_ms, _)) = split::split_timed(&self.mesh.ct);
+        let ((ct, edges, next_boundary), (number_ms, _)) =
+            split::split_with_boundary(&self.mesh.ct, Some(&lv.boundary));
         self.stats.split_ms += ms(t0.elapsed());
         self.stats.numbering_ms += number_ms;
+        // the per-corner edge ids are the split's alone: free them before the
+        // positions are allocated (lower peak memory)
+        let split::EdgeNumbering { owners, w } = edges;
+        drop(w);
         let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
-        let lv = Level::new(&self.mesh.ct);
-        let (vms, ems) = r.apply(&lv, &edges.owners, &self.mesh.positions, &mut positions);
+        let (vms, ems) = r.apply(&lv, &owners, &self.mesh.positions, &mut positions);
         self.stats.vertex_ms += vms;
         self.stats.edge_ms += ems;
-        Mesh { ct, positions }
+        (Mesh { ct, positions }, next_boundary)
     }
 }
 
@@ -243,9 +253,12 @@ pub fn subdivide_with_progress(
     let mut stats = Stats::default();
     check_levels_fit(&mesh.ct, 0, levels, limit)?;
     let mut cur: Option<Mesh> = None;
+    let mut boundary: Option<Vec<bool>> = None;
     for level in 1..=levels {
         let src = cur.as_ref().unwrap_or(mesh);
-        let next = with_rules(scheme, opts, OneLevel { mesh: src, stats: &mut stats });
+        let (next, next_boundary) =
+            with_rules(scheme, opts, OneLevel { mesh: src, boundary: boundary.take(), stats: &mut stats });
+        boundary = next_boundary;
         stats.faces_per_level.push(next.ct.num_triangles());
         cur = Some(next);
         if !progress(level, levels) {

@@ -37,9 +37,12 @@
 //! * anything else near the boundary: the 8-point rule with OpenMesh's
 //!   parallelogram ghosts for missing outer vertices (linear precision).
 
-use super::butterfly::{eight_point, outer};
-use super::rules::{Level, Rules, Sink, four_point};
-use crate::mesh::{CornerTable, n, p};
+use super::butterfly::{eight_point, eight_point_interior, outer};
+use super::rules::{Accumulate, Level, Rules, Sink, four_point};
+use crate::mesh::{BORDER, CornerTable, n, p};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::time::Instant;
 
 /// Modified butterfly rules with tension `w` and precomputed EV weights.
 pub struct ModifiedButterfly {
@@ -123,8 +126,158 @@ impl ModifiedButterfly {
     }
 }
 
+/// `class[v]` of a vertex that uses the regular rules (interior valence 6).
+const REGULAR: u8 = 0;
+/// `class[v]` of a boundary vertex.
+const BOUNDARY: u8 = 1;
+/// `class[v]` of an extraordinary vertex without tabulated weights (valence
+/// 64 or more): left to [`Rules::edge`].
+const SLOW: u8 = 2;
+/// `class[v]` of an extraordinary vertex with a precomputed ring.
+const RING: u8 = 3;
+
+/// The one-ring of every extraordinary interior vertex, walked once per level
+/// (an EV edge point then reads it instead of swinging around the vertex:
+/// `k` dependent loads, each a likely cache miss, for every one of its `k`
+/// edges). `class` holds one byte per vertex (small enough to stay in cache
+/// while edge points are computed); the `i`-th [`RING`] vertex `evs[i]` has
+/// its ring in `corners/verts[start[i]..start[i + 1]]`, in swing order from
+/// `C[v]` (`verts[j] = v(n(corners[j]))`).
+struct EvRings {
+    class: Vec<u8>,
+    evs: Vec<u32>,
+    start: Vec<u32>,
+    corners: Vec<u32>,
+    verts: Vec<u32>,
+}
+
+impl EvRings {
+    fn new(lv: &Level, tabulated: usize) -> Self {
+        let nv = lv.num_vertices();
+        let is_ev = |v: usize| !lv.boundary[v] && lv.valence[v] != 6;
+        let slow = |v: usize| is_ev(v) && lv.valence[v] as usize >= tabulated;
+        let class: Vec<u8> = (0..nv)
+            .into_par_iter()
+            .with_min_len(8192)
+            .map(|v| {
+                if lv.boundary[v] {
+                    BOUNDARY
+                } else if slow(v) {
+                    SLOW
+                } else if is_ev(v) {
+                    RING
+                } else {
+                    REGULAR
+                }
+            })
+            .collect();
+        // extraordinary vertices are few (the input's, after level 1)
+        let evs: Vec<u32> =
+            (0..nv as u32).into_par_iter().with_min_len(8192).filter(|&v| class[v as usize] == RING).collect();
+        let mut start = Vec::with_capacity(evs.len() + 1);
+        let mut total = 0u32;
+        for &v in &evs {
+            start.push(total);
+            total += lv.valence[v as usize];
+        }
+        start.push(total);
+        let mut corners = vec![0u32; total as usize];
+        let mut verts = vec![0u32; total as usize];
+        // carve the ring storage into one piece per vertex and fill them in parallel
+        let mut pieces = Vec::with_capacity(evs.len());
+        let (mut rc, mut rv) = (&mut corners[..], &mut verts[..]);
+        for w in start.windows(2) {
+            let k = (w[1] - w[0]) as usize;
+            let (a, b) = std::mem::take(&mut rc).split_at_mut(k);
+            let (x, y) = std::mem::take(&mut rv).split_at_mut(k);
+            pieces.push((a, x));
+            (rc, rv) = (b, y);
+        }
+        evs.par_iter().zip(pieces).with_min_len(256).for_each(|(&v, (cs, vs))| {
+            let mut c = lv.vc[v as usize];
+            for (cj, vj) in cs.iter_mut().zip(vs.iter_mut()) {
+                *cj = c;
+                *vj = lv.vtx(n(c));
+                c = lv.s(c).unwrap_or(c);
+            }
+        });
+        EvRings { class, evs, start, corners, verts }
+    }
+}
+
+impl ModifiedButterfly {
+    /// [`Self::ev_rule`] from the precomputed ring of extraordinary vertex
+    /// `v`, starting at the neighbour across corner `x` (a corner of
+    /// `v` in the triangle of the edge).
+    #[inline(never)]
+    fn ev_ring(&self, r: &EvRings, v: u32, x: u32, scale: f32, acc: &mut Accumulate) {
+        let i = r.evs.binary_search(&v).expect("a RING vertex is listed");
+        let (a, b) = (r.start[i] as usize, r.start[i + 1] as usize);
+        let (cs, vs) = (&r.corners[a..b], &r.verts[a..b]);
+        let k = cs.len();
+        let j0 = cs.iter().position(|&c| c == x).unwrap_or(0);
+        acc.add(v, 0.75 * scale);
+        let ws = &self.ev[k];
+        for (j, &wj) in ws.iter().enumerate() {
+            let q = j0 + j;
+            acc.add(vs[if q >= k { q - k } else { q }], wj * scale);
+        }
+    }
+}
+
+impl ModifiedButterfly {
+    /// [`Rules::edge`] out of line: the rare cases stay out of the hot loop.
+    #[inline(never)]
+    fn edge_cold(&self, lv: &Level, c: u32, acc: &mut Accumulate) {
+        self.edge(lv, c, acc);
+    }
+}
+
 impl Rules for ModifiedButterfly {
     const MOVES_VERTICES: bool = false;
+
+    /// Direct evaluation, the same stencils as [`Rules::edge`]: regular
+    /// interior edges (most of them) take the 8-point rule after one class
+    /// load per endpoint; edges at extraordinary vertices read the rings
+    /// walked once per level; everything else (boundary, tension) goes
+    /// through [`Rules::edge`].
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+        let t0 = Instant::now();
+        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
+        vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
+        let t1 = Instant::now();
+        let rings = EvRings::new(lv, self.ev.len());
+        let fast_regular = self.w == 0.0;
+        epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
+            let mut acc = Accumulate::new(pos);
+            let o = lv.o[c as usize];
+            if o == BORDER {
+                self.edge_cold(lv, c, &mut acc);
+            } else {
+                let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
+                let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
+                if k1 == REGULAR && k2 == REGULAR && fast_regular {
+                    // both ends interior: every outer edge is interior too
+                    match eight_point_interior(lv, pos, c, o) {
+                        Some(e) => acc.sum = e,
+                        None => eight_point(lv, c, o, &mut acc),
+                    }
+                } else if k1 == RING && k2 == RING {
+                    self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
+                    self.ev_ring(&rings, a2, n(o), 0.5, &mut acc);
+                } else if k1 == RING && k2 < SLOW {
+                    self.ev_ring(&rings, a1, n(c), 1.0, &mut acc);
+                } else if k2 == RING && k1 < SLOW {
+                    self.ev_ring(&rings, a2, n(o), 1.0, &mut acc);
+                } else {
+                    self.edge_cold(lv, c, &mut acc);
+                }
+            }
+            *q = acc.sum;
+        });
+        (crate::subdiv::ms(t1 - t0), crate::subdiv::ms(t1.elapsed()))
+    }
+
     fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         let Some(o) = ct.o(c) else {
             return four_point(ct, c, s);

@@ -143,6 +143,13 @@ pub fn edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: &[u32], pos: &[
 /// range of corners; the accumulators are then added, and boundary vertices
 /// are replaced by the sum of their two boundary neighbours.
 pub fn ring_sums(lv: &Level, pos: &[Vec3], out: &mut [Vec3]) {
+    ring_sums_map(lv, pos, out, |_, s| s);
+}
+
+/// [`ring_sums`], then `out[v] = f(v, sum)`, in the same pass that adds the
+/// per-thread accumulators and fixes boundary vertices (one pass over the
+/// vertices instead of three).
+pub fn ring_sums_map(lv: &Level, pos: &[Vec3], out: &mut [Vec3], f: impl Fn(usize, Vec3) -> Vec3 + Sync) {
     let (vt, nc) = (&lv.ct.v, lv.ct.num_corners());
     let threads = rayon::current_num_threads().clamp(1, 16).min(nc.div_ceil(1 << 16)).max(1);
     let per = nc.div_ceil(threads).div_ceil(3) * 3;
@@ -155,11 +162,13 @@ pub fn ring_sums(lv: &Level, pos: &[Vec3], out: &mut [Vec3]) {
             acc[c] += pa;
         }
     };
-    out.fill(Vec3::ZERO);
+    // in parallel: the first touch of fresh pages is part of the cost
+    out.par_iter_mut().with_min_len(1 << 14).for_each(|q| *q = Vec3::ZERO);
+    let mut extra: Vec<Vec<Vec3>> = Vec::new();
     if threads == 1 {
         scatter(out, 0..nc);
     } else {
-        let mut extra: Vec<Vec<Vec3>> = (1..threads).map(|_| crate::mem::zeroed(out.len())).collect();
+        extra = (1..threads).map(|_| crate::mem::zeroed(out.len())).collect();
         rayon::scope(|sc| {
             sc.spawn(|_| scatter(out, 0..per.min(nc)));
             for (k, acc) in extra.iter_mut().enumerate() {
@@ -168,18 +177,18 @@ pub fn ring_sums(lv: &Level, pos: &[Vec3], out: &mut [Vec3]) {
                 sc.spawn(move |_| scatter(acc, r));
             }
         });
-        let extra = &extra;
-        out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, q)| {
-            for e in extra {
-                *q += e[v];
-            }
-        });
     }
+    let extra = &extra;
     out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, q)| {
+        let mut sum = *q;
+        for e in extra {
+            sum += e[v];
+        }
         if lv.boundary[v] {
             let (a, b) = lv.boundary_neighbours(v as u32);
-            *q = pos[a as usize] + pos[b as usize];
+            sum = pos[a as usize] + pos[b as usize];
         }
+        *q = f(v, sum);
     });
 }
 

@@ -23,7 +23,7 @@
 //! `C'[v] = A(C[v])`; an edge vertex has valence 6 (interior) or 4 (border)
 //! and `C' = c` (interior) or `p(A(p(c)))` (border, the first corner of its fan).
 
-use crate::mesh::{BORDER, CornerTable, n, p};
+use crate::mesh::{BORDER, CornerTable, p};
 use rayon::prelude::*;
 
 /// Corners per parallel work item: big enough to amortise scheduling, small
@@ -53,6 +53,20 @@ struct SharedMut(*mut u32);
 unsafe impl Send for SharedMut {}
 unsafe impl Sync for SharedMut {}
 
+/// [`SharedMut`] for flags.
+#[derive(Clone, Copy)]
+struct SharedBool(*mut bool);
+// SAFETY: as for SharedMut: each element is written by one thread.
+unsafe impl Send for SharedBool {}
+unsafe impl Sync for SharedBool {}
+
+impl SharedBool {
+    #[inline(always)]
+    fn get(self) -> *mut bool {
+        self.0
+    }
+}
+
 impl SharedMut {
     /// The pointer (a method, so closures capture the whole Sync wrapper).
     #[inline(always)]
@@ -66,15 +80,26 @@ impl SharedMut {
 /// its id to itself and to its opposite corner, so that later passes read
 /// `w` sequentially instead of chasing `O`.
 pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
-    let o = &ct.o;
-    let counts: Vec<u32> = o
-        .par_chunks(CHUNK)
+    number_edges_with(ct, &count_owners(ct), |_, _, _| {})
+}
+
+/// The number of edge owners in every chunk of `CHUNK` corners.
+fn count_owners(ct: &CornerTable) -> Vec<u32> {
+    ct.o.par_chunks(CHUNK)
         .enumerate()
         .map(|(k, ch)| {
             let base = (k * CHUNK) as u32;
             ch.iter().enumerate().filter(|&(i, &x)| is_owner(base + i as u32, x)).count() as u32
         })
-        .collect();
+        .collect()
+}
+
+/// [`number_edges`] from the per-chunk owner `counts`, calling
+/// `each(id, owner, opposite)` for every edge, in parallel, while the
+/// numbering pass has the three at hand (the split fills the new vertices'
+/// `C` and valence this way, without another pass).
+fn number_edges_with(ct: &CornerTable, counts: &[u32], each: impl Fn(u32, u32, u32) + Sync) -> EdgeNumbering {
+    let o = &ct.o;
     let ne: u32 = counts.iter().sum();
     let mut owners: Vec<u32> = crate::mem::zeroed(ne as usize);
     let mut w: Vec<u32> = crate::mem::zeroed(o.len());
@@ -82,7 +107,7 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
     let mut slices = Vec::with_capacity(counts.len());
     let mut rest: &mut [u32] = &mut owners;
     let mut first = 0u32;
-    for &cnt in &counts {
+    for &cnt in counts {
         let (a, b) = rest.split_at_mut(cnt as usize);
         slices.push((first, a));
         first += cnt;
@@ -99,6 +124,7 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
                 let id = first + e as u32;
                 own[e] = c;
                 e += 1;
+                each(id, c, x);
                 // SAFETY: c < nc; x < nc for a valid table (checked at build);
                 // every corner is written once: by itself if it owns its edge,
                 // otherwise by its opposite (the owner). O is an involution, so
@@ -125,27 +151,93 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
 
 /// [`split`], also returning the milliseconds spent numbering edges and
 /// writing the new tables.
+///
+/// Written for memory bandwidth: every output array is written exactly once,
+/// in streams, by straight-line code per old triangle (no per-corner loop,
+/// no bounds checks inside the loop, no division but one `x % 3` per
+/// opposite corner); the new vertices' `C` and valence are written by the
+/// numbering pass, which has each edge's owner and opposite at hand.
 pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f64)) {
+    let ((ct, edges, _), times) = split_with_boundary(old, None);
+    ((ct, edges), times)
+}
+
+/// The new table, the old table's edge numbering and (when asked for) the new
+/// vertices' boundary flags.
+pub(crate) type SplitLevel = (CornerTable, EdgeNumbering, Option<Vec<bool>>);
+
+/// [`split_timed`]; given the old vertices' boundary flags, also returns the
+/// new ones (an old vertex keeps its flag, an edge vertex is on the boundary
+/// iff its edge is a border edge), written by the numbering pass, so that
+/// the next level need not find them by chasing `O[p(C[v])]`.
+pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool]>) -> (SplitLevel, (f64, f64)) {
     let t0 = std::time::Instant::now();
-    let edges = number_edges(old);
-    let t1 = std::time::Instant::now();
     let nt = old.num_triangles();
-    let nv = old.num_vertices() as u32;
+    let nvu = old.num_vertices();
+    let nv = nvu as u32;
     let nc = 3 * nt;
     let (ov, oo) = (&old.v, &old.o);
-    let ew = &edges.w;
+    // A(c): first corner of the corner triangle of v(c) (schemes.md 7.4)
     let a = |c: u32| (3 * nt * (c as usize % 3 + 1) + 3 * (c as usize / 3)) as u32;
+    let counts = count_owners(old);
+    let ne = counts.iter().map(|&k| k as usize).sum::<usize>();
+    let mut vc: Vec<u32> = crate::mem::zeroed(nvu + ne);
+    let mut valence: Vec<u32> = crate::mem::zeroed(nvu + ne);
+    let mut boundary: Option<Vec<bool>> = old_boundary.map(|b| {
+        let mut nb = crate::mem::zeroed::<bool>(nvu + ne);
+        nb[..nvu].copy_from_slice(b);
+        nb
+    });
+    let edges = {
+        let vcp = SharedMut(vc[nvu..].as_mut_ptr());
+        let valp = SharedMut(valence[nvu..].as_mut_ptr());
+        let bp = boundary.as_mut().map(|b| SharedBool(b[nvu..].as_mut_ptr()));
+        number_edges_with(old, &counts, |id, c, x| {
+            if let Some(bp) = bp {
+                // SAFETY: as for C and valence below.
+                unsafe { *bp.get().add(id as usize) = x == BORDER };
+            }
+            // an edge vertex has valence 6 (interior) or 4 (border); its C is
+            // the central corner c (interior) or p(A(p(c))), the first corner
+            // of its fan (border)
+            let (d, k) = if x == BORDER { (p(a(p(c))), 4) } else { (c, 6) };
+            // SAFETY: id < ne, the length of both tails, and every id is
+            // written once (each edge has one owner).
+            unsafe {
+                *vcp.get().add(id as usize) = d;
+                *valp.get().add(id as usize) = k;
+            }
+        })
+    };
+    let t1 = std::time::Instant::now();
+    let ew = &edges.w;
+
+    // p(A(n(x))) and n(A(p(x))) for a corner x = 3u + j of the old table are
+    // x + DN[j] and x + DP[j] (wrapping): A(n(x)) = 3nt((j+1)%3 + 1) + 3u.
+    let nt3 = 3 * nt as u32;
+    let dn: [u32; 3] = std::array::from_fn(|j| (nt3 * ((j as u32 + 1) % 3 + 1) + 2).wrapping_sub(j as u32));
+    let dp: [u32; 3] = std::array::from_fn(|j| (nt3 * ((j as u32 + 2) % 3 + 1) + 1).wrapping_sub(j as u32));
+    let across_n = |x: u32| if x == BORDER { BORDER } else { x.wrapping_add(dn[(x % 3) as usize]) };
+    let across_p = |x: u32| if x == BORDER { BORDER } else { x.wrapping_add(dp[(x % 3) as usize]) };
 
     let mut v2: Vec<u32> = crate::mem::zeroed(4 * nc);
     let mut o2: Vec<u32> = crate::mem::zeroed(4 * nc);
     {
+        fn tri(s: &mut [u32]) -> &mut [[u32; 3]] {
+            bytemuck::cast_slice_mut(s)
+        }
         let (b0, rest) = v2.split_at_mut(nc);
         let (b1, rest) = rest.split_at_mut(nc);
         let (b2, b3) = rest.split_at_mut(nc);
         let (q0, rest) = o2.split_at_mut(nc);
         let (q1, rest) = rest.split_at_mut(nc);
         let (q2, q3) = rest.split_at_mut(nc);
-        let g = CHUNK / 3 * 3;
+        let (b0, b1, b2, b3) = (tri(b0), tri(b1), tri(b2), tri(b3));
+        let (q0, q1, q2, q3) = (tri(q0), tri(q1), tri(q2), tri(q3));
+        let ew3: &[[u32; 3]] = bytemuck::cast_slice(ew);
+        let ov3: &[[u32; 3]] = bytemuck::cast_slice(ov);
+        let oo3: &[[u32; 3]] = bytemuck::cast_slice(oo);
+        let g = CHUNK / 3;
         b0.par_chunks_mut(g)
             .zip(b1.par_chunks_mut(g))
             .zip(b2.par_chunks_mut(g))
@@ -156,54 +248,38 @@ pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f6
             .zip(q3.par_chunks_mut(g))
             .enumerate()
             .for_each(|(k, (((((((b0, b1), b2), b3), q0), q1), q2), q3))| {
-                let base = (k * g) as u32;
-                let mut bv = [b1, b2, b3];
-                let mut bo = [q1, q2, q3];
-                for i in (0..b0.len()).step_by(3) {
-                    let c0 = base + i as u32;
-                    let j = c0 as usize;
-                    let ws = [nv + ew[j], nv + ew[j + 1], nv + ew[j + 2]];
-                    b0[i..i + 3].copy_from_slice(&ws);
-                    for kk in 0..3u32 {
-                        let c = c0 + kk;
-                        let (cn, cp) = (n(c), p(c));
-                        // central corner c faces the corner triangle's corner A(c)
-                        q0[i + kk as usize] = a(c);
-                        let bvk = &mut bv[kk as usize];
-                        bvk[i] = ov[c as usize];
-                        bvk[i + 1] = ws[(cp - c0) as usize];
-                        bvk[i + 2] = ws[(cn - c0) as usize];
-                        let bok = &mut bo[kk as usize];
-                        bok[i] = c;
-                        let x = oo[cn as usize];
-                        bok[i + 1] = if x == BORDER { BORDER } else { p(a(n(x))) };
-                        let y = oo[cp as usize];
-                        bok[i + 2] = if y == BORDER { BORDER } else { n(a(p(y))) };
-                    }
+                let t0 = k * g;
+                let len = b0.len();
+                let (ew3, ov3, oo3) = (&ew3[t0..t0 + len], &ov3[t0..t0 + len], &oo3[t0..t0 + len]);
+                let (b1, b2, b3) = (&mut b1[..len], &mut b2[..len], &mut b3[..len]);
+                let (q0, q1, q2, q3) = (&mut q0[..len], &mut q1[..len], &mut q2[..len], &mut q3[..len]);
+                for t in 0..len {
+                    let c0 = 3 * (t0 + t) as u32;
+                    let e = ew3[t];
+                    let ws = [nv + e[0], nv + e[1], nv + e[2]];
+                    let vv = ov3[t];
+                    let x = oo3[t];
+                    // central triangle: the three edge vertices
+                    b0[t] = ws;
+                    // corner triangle k: (V[c], W[p(c)], W[n(c)]) for c = c0 + k
+                    b1[t] = [vv[0], ws[2], ws[1]];
+                    b2[t] = [vv[1], ws[0], ws[2]];
+                    b3[t] = [vv[2], ws[1], ws[0]];
+                    // O'[c] = A(c) for the central corners
+                    q0[t] = [nt3 + c0, 2 * nt3 + c0, 3 * nt3 + c0];
+                    // corner triangle k: (c, p(A(n(O[n(c)]))), n(A(p(O[p(c)]))))
+                    let (an, ap) = (x.map(across_n), x.map(across_p));
+                    q1[t] = [c0, an[1], ap[2]];
+                    q2[t] = [c0 + 1, an[2], ap[0]];
+                    q3[t] = [c0 + 2, an[0], ap[1]];
                 }
             });
     }
-    let ne = edges.owners.len();
-    let nvu = nv as usize;
-    let mut vc: Vec<u32> = crate::mem::zeroed(nvu + ne);
-    let mut valence: Vec<u32> = crate::mem::zeroed(nvu + ne);
-    {
-        let (vc_old, vc_new) = vc.split_at_mut(nvu);
-        let (val_old, val_new) = valence.split_at_mut(nvu);
-        vc_old.par_iter_mut().zip(old.vc.par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
-        val_old.par_iter_mut().zip(old.valence.par_iter()).with_min_len(CHUNK).for_each(|(d, &k)| *d = k);
-        vc_new.par_iter_mut().zip(val_new.par_iter_mut()).zip(edges.owners.par_iter()).with_min_len(CHUNK).for_each(
-            |((d, k), &c)| {
-                if oo[c as usize] == BORDER {
-                    *d = p(a(p(c)));
-                    *k = 4;
-                } else {
-                    *d = c;
-                    *k = 6;
-                }
-            },
-        );
-    }
+    let (vc_old, _) = vc.split_at_mut(nvu);
+    let (val_old, _) = valence.split_at_mut(nvu);
+    // an old vertex keeps its valence; its C moves to its corner triangle
+    vc_old.par_iter_mut().zip(old.vc.par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
+    val_old.copy_from_slice(&old.valence);
     let times = (super::ms(t1 - t0), super::ms(t1.elapsed()));
-    ((CornerTable { v: v2, o: o2, vc, valence }, edges), times)
+    ((CornerTable { v: v2, o: o2, vc, valence }, edges, boundary), times)
 }

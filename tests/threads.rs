@@ -1,0 +1,47 @@
+//! The result must not depend on the thread count: every scheme, on a closed
+//! and an open mesh big enough that every parallel pass really splits its
+//! work (the split's chunks, the ring sums' per-thread accumulators), gives
+//! the same V and O tables, C, valences and (to 1e-6) positions with 1, 2
+//! and 3 threads. (Positions may differ in the last bits: the ring sums add
+//! per-thread partial sums; both meshes fit in the unit cube, so 1e-6 is a
+//! few float ulps.)
+
+mod common;
+use common::*;
+use glam::Vec3;
+use subdiv::{Mesh, Options, Scheme, subdivide};
+
+fn in_pool(threads: usize, m: &Mesh, s: Scheme, levels: u32) -> Mesh {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    pool.install(|| subdivide(m, s, levels, &Options::default()).unwrap().0)
+}
+
+#[test]
+fn same_result_for_any_thread_count() {
+    // 20,480 and 2 x 110 x 110 = 24,200 faces: level 2 reads ~250k corners
+    let meshes = [
+        ("icosphere5", icosphere(5)),
+        ("wavy_grid", grid(110, 110, |i, j| Vec3::new(i + 0.3 * j, j, (0.3 * i * j).sin()) / 110.0)),
+    ];
+    for (name, m) in &meshes {
+        for s in Scheme::ALL {
+            let one = in_pool(1, m, s, 2);
+            for threads in [2, 3] {
+                let many = in_pool(threads, m, s, 2);
+                let what = format!("{name} {s} with {threads} threads");
+                assert_eq!(one.ct.v, many.ct.v, "V differs: {what}");
+                assert_eq!(one.ct.o, many.ct.o, "O differs: {what}");
+                assert_eq!(one.ct.vc, many.ct.vc, "C differs: {what}");
+                assert_eq!(one.ct.valence, many.ct.valence, "valences differ: {what}");
+                assert_eq!(one.positions.len(), many.positions.len(), "{what}");
+                let worst = one
+                    .positions
+                    .iter()
+                    .zip(&many.positions)
+                    .map(|(a, b)| (*a - *b).abs().max_element())
+                    .fold(0.0, f32::max);
+                assert!(worst <= 1e-6, "positions differ by {worst}: {what}");
+            }
+        }
+    }
+}
