@@ -57,9 +57,14 @@ const FRAMES_TIMEOUT: Duration = Duration::from_secs(300);
 /// # Errors
 /// When no window or GPU adapter can be created, or a `--frames` run fails.
 pub fn run(opts: ViewOptions) -> Result<()> {
-    let event_loop = EventLoop::new().map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?;
-    event_loop.set_control_flow(ControlFlow::Wait);
+    // The model first: a bad file is reported as such even where no window can open.
     let mut app = App::new(opts)?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        Error::Gpu(format!(
+            "cannot open a window ({e}); without a display use `subdiv render` or `subdiv animate`, or run under xvfb-run"
+        ))
+    })?;
+    event_loop.set_control_flow(ControlFlow::Wait);
     event_loop.run_app(&mut app).map_err(|e| Error::Gpu(format!("event loop: {e}")))?;
     match app.fatal.take() {
         Some(e) => Err(e),
