@@ -497,17 +497,33 @@ fn subdivide_cmd(
     repair: bool,
 ) -> Result<()> {
     let t0 = Instant::now();
-    let mesh = if repair {
+    let is_obj = |p: &Path| p.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj"));
+    let (mesh, attrs) = if repair {
         let (m, report) = io::load_repaired(input)?;
         eprint!("{report}");
-        m
+        (m, Default::default())
+    } else if is_obj(input) {
+        io::obj::load_with_attributes(input)?
     } else {
-        io::load(input)?
+        (io::load(input)?, Default::default())
     };
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
+    // Texture coordinates and colours ride along (OBJ in and out; see subdiv::attributes).
+    let fine_attrs = if attrs.is_empty() {
+        attrs
+    } else if is_obj(output) {
+        subdiv::subdiv::attributes::refine(&mesh.ct, &attrs, s.scheme, levels, &s.options())?
+    } else {
+        eprintln!("subdiv: note: texture coordinates and colours are written to .obj outputs only");
+        Default::default()
+    };
     let t1 = Instant::now();
-    io::save(output, &fine)?;
+    if fine_attrs.is_empty() {
+        io::save(output, &fine)?;
+    } else {
+        io::obj::save_with(output, &fine, &fine_attrs)?;
+    }
     let save_ms = t1.elapsed().as_secs_f64() * 1e3;
     if stats {
         println!("subdivide_ms={:.3}", st.total_ms);

@@ -13,8 +13,9 @@
 use super::atomic_write;
 use crate::mesh::Mesh;
 use crate::mesh::repair::{RepairReport, repair};
+use crate::subdiv::attributes::Attributes;
 use crate::{Error, MeshError, Result};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::path::Path;
 
@@ -42,7 +43,16 @@ pub struct RawObj {
     pub triangle_lines: Vec<u32>,
     /// Polygons triangulated.
     pub polygons: usize,
+    /// Texture coordinates of the `vt` records.
+    pub uvs: Vec<Vec2>,
+    /// Per triangle corner, the `vt` index used there ([`NO_UV`] when none).
+    pub corner_uv: Vec<u32>,
+    /// `v x y z r g b` colours, in record order (only the records that had one).
+    pub colors: Vec<Vec3>,
 }
+
+/// A corner without a texture coordinate in [`RawObj::corner_uv`].
+pub const NO_UV: u32 = u32::MAX;
 
 fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
     Error::Parse { file: file.to_string(), line, msg: msg.into() }
@@ -55,6 +65,7 @@ fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
 pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
     let mut raw = RawObj::default();
     let mut poly: Vec<u32> = Vec::with_capacity(8);
+    let mut poly_uv: Vec<u32> = Vec::with_capacity(8);
     for (lineno, line) in bytes.split(|&b| b == b'\n').enumerate() {
         let ln = lineno + 1;
         let line = line.strip_suffix(b"\r").unwrap_or(line);
@@ -80,13 +91,61 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
                         source: MeshError::NonFinite { vertex: raw.positions.len() + 1 },
                     });
                 }
+                // Optional per-vertex colour `v x y z r g b` (a common extension).
+                let rest: Vec<&str> = toks.by_ref().take(4).collect();
+                if rest.len() >= 3 {
+                    let mut rgb = [0f32; 3];
+                    for (slot, t) in rgb.iter_mut().zip(&rest) {
+                        *slot = t.parse().map_err(|_| parse_err(file, ln, format!("colour '{t}' is not a number")))?;
+                    }
+                    if rgb.iter().any(|x| !x.is_finite()) {
+                        return Err(parse_err(file, ln, "vertex colour is not finite"));
+                    }
+                    // kept only while every vertex so far has one
+                    if raw.colors.len() == raw.positions.len() {
+                        raw.colors.push(Vec3::from_array(rgb).clamp(Vec3::ZERO, Vec3::ONE));
+                    }
+                }
                 raw.positions.push(Vec3::from_array(xyz));
                 raw.vertex_lines.push(ln as u32);
             }
+            "vt" => {
+                let mut uv = [0f32; 2];
+                for (i, slot) in uv.iter_mut().enumerate() {
+                    let t = toks
+                        .next()
+                        .ok_or_else(|| parse_err(file, ln, format!("texture coordinate has {i} values, expected 2")))?;
+                    *slot = t.parse().map_err(|_| parse_err(file, ln, format!("'{t}' is not a number")))?;
+                }
+                if uv.iter().any(|x| !x.is_finite()) {
+                    return Err(parse_err(file, ln, "texture coordinate is not finite"));
+                }
+                raw.uvs.push(Vec2::from_array(uv));
+            }
             "f" => {
                 poly.clear();
+                poly_uv.clear();
                 for t in toks {
-                    let idx = t.split('/').next().unwrap_or("");
+                    let mut parts = t.split('/');
+                    let idx = parts.next().unwrap_or("");
+                    match parts.next().filter(|x| !x.is_empty()) {
+                        None => poly_uv.push(NO_UV),
+                        Some(vt) => {
+                            let j: i64 = vt
+                                .parse()
+                                .map_err(|_| parse_err(file, ln, format!("'{t}' has a bad texture index")))?;
+                            let m = raw.uvs.len() as i64;
+                            let abs = if j < 0 { m + j } else { j - 1 };
+                            if j == 0 || abs < 0 || abs >= m {
+                                return Err(parse_err(
+                                    file,
+                                    ln,
+                                    format!("texture index {j} out of range ({m} vt records so far)"),
+                                ));
+                            }
+                            poly_uv.push(abs as u32);
+                        }
+                    }
                     let i: i64 =
                         idx.parse().map_err(|_| parse_err(file, ln, format!("'{t}' is not a vertex index")))?;
                     let n = raw.positions.len() as i64;
@@ -113,12 +172,13 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
                 }
                 for k in 1..poly.len() - 1 {
                     raw.triangles.extend_from_slice(&[poly[0], poly[k], poly[k + 1]]);
+                    raw.corner_uv.extend_from_slice(&[poly_uv[0], poly_uv[k], poly_uv[k + 1]]);
                     raw.triangle_lines.push(ln as u32);
                 }
             }
-            "vt" | "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "cstype" | "deg" | "curv"
-            | "curv2" | "surf" | "parm" | "trim" | "hole" | "end" | "bmat" | "step" | "mg" | "lod" | "usemap"
-            | "maplib" | "shadow_obj" | "trace_obj" | "ctech" | "stech" | "con" | "sp" => {}
+            "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "cstype" | "deg" | "curv" | "curv2"
+            | "surf" | "parm" | "trim" | "hole" | "end" | "bmat" | "step" | "mg" | "lod" | "usemap" | "maplib"
+            | "shadow_obj" | "trace_obj" | "ctech" | "stech" | "con" | "sp" => {}
             other if other.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') && other.len() < 32 => {}
             other => {
                 let shown: String = other.chars().take(20).collect();
@@ -174,6 +234,43 @@ pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairRepo
     })?;
     report.id_base = 1;
     Ok((mesh, report))
+}
+
+/// Loads an OBJ with its attributes: per-corner texture coordinates (when
+/// every face corner has a `vt`) and per-vertex colours (when every `v`
+/// record has one), following the vertex renumbering of the build.
+///
+/// # Errors
+/// See [`load`].
+pub fn load_with_attributes(path: &Path) -> Result<(Mesh, Attributes)> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    from_bytes_with_attributes(&bytes, &path.display().to_string())
+}
+
+/// [`load_with_attributes`] on bytes; `file` names the source in errors.
+///
+/// # Errors
+/// See [`load`].
+pub fn from_bytes_with_attributes(bytes: &[u8], file: &str) -> Result<(Mesh, Attributes)> {
+    let mut raw = parse(bytes, file)?;
+    let uv = (!raw.corner_uv.is_empty() && raw.corner_uv.iter().all(|&j| j != NO_UV))
+        .then(|| raw.corner_uv.iter().map(|&j| raw.uvs[j as usize]).collect::<Vec<_>>());
+    let colors =
+        (raw.colors.len() == raw.positions.len() && !raw.colors.is_empty()).then(|| std::mem::take(&mut raw.colors));
+    let nrec = raw.positions.len();
+    let used: Vec<bool> = {
+        let mut u = vec![false; nrec];
+        for &i in &raw.triangles {
+            if let Some(slot) = u.get_mut(i as usize) {
+                *slot = true;
+            }
+        }
+        u
+    };
+    let (mesh, _) = build(raw, file)?;
+    // the build keeps used vertices in record order
+    let colors = colors.map(|c| c.into_iter().zip(&used).filter(|(_, u)| **u).map(|(c, _)| c).collect());
+    Ok((mesh, Attributes { uv, colors }))
 }
 
 /// Validates parsed OBJ content into a mesh, mapping errors to source lines.
@@ -291,6 +388,78 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
         }
     }
     Ok(())
+}
+
+/// Formats OBJ text for `mesh` with its attributes: `v x y z r g b` when
+/// there are colours, one `vt` per corner and `f a/ta b/tb c/tc` when there
+/// are texture coordinates. Without attributes this is [`write_obj`].
+///
+/// # Errors
+/// The first error of `sink`.
+pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
+    if attrs.is_empty() {
+        return write_obj(mesh, sink);
+    }
+    let mut out = Vec::with_capacity(1 << 20);
+    let mut rb = ryu::Buffer::new();
+    let mut ib = itoa::Buffer::new();
+    out.extend_from_slice(
+        format!("# subdiv: {} vertices, {} triangles\n", mesh.positions.len(), mesh.ct.num_triangles()).as_bytes(),
+    );
+    let colors = attrs.colors.as_ref().filter(|c| c.len() == mesh.positions.len());
+    for (i, q) in mesh.positions.iter().enumerate() {
+        out.extend_from_slice(b"v");
+        let rgb = colors.map(|c| c[i].to_array());
+        for x in q.to_array().into_iter().chain(rgb.into_iter().flatten()) {
+            out.push(b' ');
+            push_f32(&mut out, &mut rb, x);
+        }
+        out.push(b'\n');
+        if out.len() > 1 << 20 {
+            sink(&out)?;
+            out.clear();
+        }
+    }
+    let uv = attrs.uv.as_ref().filter(|u| u.len() == mesh.ct.v.len());
+    if let Some(uv) = uv {
+        for t in uv {
+            out.extend_from_slice(b"vt ");
+            push_f32(&mut out, &mut rb, t.x);
+            out.push(b' ');
+            push_f32(&mut out, &mut rb, t.y);
+            out.push(b'\n');
+            if out.len() > 1 << 20 {
+                sink(&out)?;
+                out.clear();
+            }
+        }
+    }
+    for (c, v) in mesh.ct.v.iter().enumerate() {
+        out.extend_from_slice(if c % 3 == 0 { b"f " } else { b" " });
+        out.extend_from_slice(ib.format(v + 1).as_bytes());
+        if uv.is_some() {
+            out.push(b'/');
+            out.extend_from_slice(ib.format(c + 1).as_bytes());
+        }
+        if c % 3 == 2 {
+            out.push(b'\n');
+        }
+        if out.len() > 1 << 20 {
+            sink(&out)?;
+            out.clear();
+        }
+    }
+    sink(&out)
+}
+
+/// Saves `mesh` with its attributes as OBJ (atomically).
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+    crate::io::atomic_write(path, |w| {
+        write_obj_with(mesh, attrs, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
+    })
 }
 
 /// Saves `mesh` as OBJ (atomically).

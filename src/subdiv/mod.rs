@@ -6,6 +6,7 @@
 //! level with their exact sizes (`V' = V + E`, `F' = 4F`); the work is spread
 //! over rayon's threads in chunks.
 
+pub mod attributes;
 pub mod butterfly;
 pub mod jarek;
 pub mod limit;
