@@ -23,7 +23,7 @@ fn uvs_are_linear_inside_triangles_and_seams_stay_sharp() {
         .chunks_exact(3)
         .flat_map(|t| {
             let off = chart(t, &mesh.positions);
-            t.iter().map(move |&v| v).collect::<Vec<_>>().into_iter().map(move |v| (v, off))
+            t.iter().map(move |&v| (v, off))
         })
         .map(|(v, off)| mesh.positions[v as usize].truncate() + off)
         .collect();
