@@ -228,3 +228,31 @@ fn a_bzc_file_opens_as_a_curve_with_its_construction() {
     assert!((point.unwrap() - expect).length() < 1e-6);
     assert_eq!(doc.control.topo.vertices, 4, "the mesh stays loaded underneath");
 }
+
+#[test]
+fn file_colours_are_refined_with_the_mesh() {
+    use subdiv::app::doc::Coloring;
+    let dir = std::env::temp_dir().join(format!("subdiv-viewer-col-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("tet.obj");
+    std::fs::write(&f, "v 1 1 1 1 0 0\nv 1 -1 -1 0 1 0\nv -1 1 -1 0 0 1\nv -1 -1 1 1 1 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n").unwrap();
+    let mut doc = Doc::new();
+    doc.level = 2;
+    doc.open(f);
+    settle(&mut doc);
+    assert!(doc.error.is_none(), "{:?}", doc.error);
+    doc.coloring = Coloring::File;
+    doc.refresh_result();
+    let got = doc.result_colors.clone().expect("file colours shown");
+    let want = subdiv::subdiv::attributes::refine_colors(
+        &doc.control.mesh.ct,
+        doc.file_colors.as_ref().unwrap(),
+        subdiv::Scheme::Loop,
+        2,
+        &Default::default(),
+    )
+    .unwrap();
+    assert_eq!(got, want);
+    assert_eq!(got.len(), doc.result.mesh.positions.len());
+    let _ = std::fs::remove_dir_all(&dir);
+}

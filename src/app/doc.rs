@@ -62,17 +62,20 @@ pub enum Coloring {
     Shells,
     /// Distance from the control mesh's surface.
     Displacement,
+    /// The colours of the file (`v x y z r g b`), refined with the scheme's weights.
+    File,
 }
 
 impl Coloring {
     /// All modes, in menu order.
-    pub const ALL: [Coloring; 3] = [Coloring::None, Coloring::Shells, Coloring::Displacement];
+    pub const ALL: [Coloring; 4] = [Coloring::None, Coloring::Shells, Coloring::Displacement, Coloring::File];
     /// Menu label.
     pub fn name(self) -> &'static str {
         match self {
             Coloring::None => "none",
             Coloring::Shells => "level shells",
             Coloring::Displacement => "displacement from control",
+            Coloring::File => "colours of the file",
         }
     }
 }
@@ -137,9 +140,9 @@ impl Curve {
 }
 
 enum Done {
-    Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>, Option<String>)>, path: PathBuf },
+    Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>, Option<String>, Option<Vec<Vec3>>)>, path: PathBuf },
     LoadedCurve { ticket: u64, result: Result<Curve> },
-    Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64)>, level: u32 },
+    Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64, Option<Vec<Vec3>>)>, level: u32 },
     Animated { ticket: u64, result: Result<Animation> },
     Exported { result: Result<(usize, PathBuf)> },
 }
@@ -186,6 +189,10 @@ pub struct Doc {
     pub snap_limit: bool,
     /// Per-vertex colouring.
     pub coloring: Coloring,
+    /// Colours of the control mesh read from the file, if it had them.
+    pub file_colors: Option<Vec<Vec3>>,
+    /// `file_colors` refined to the result.
+    pub raw_colors: Option<Vec<Vec3>>,
     /// Colours for `result` (with `coloring`), linear RGB.
     pub result_colors: Option<Vec<Vec3>>,
     /// Largest value behind the colours (levels, or a distance), for the legend.
@@ -292,6 +299,8 @@ impl Doc {
             normal_mode: NormalMode::default(),
             snap_limit: false,
             coloring: Coloring::default(),
+            file_colors: None,
+            raw_colors: None,
             result_colors: None,
             color_max: 0.0,
             original: None,
@@ -385,12 +394,17 @@ impl Doc {
             let loaded = if repair {
                 io::load_repaired(&path).map(|(m, r)| {
                     let report = if r.is_empty() { None } else { Some(format!("repaired: {r}")) };
-                    (m, report)
+                    (m, report, None)
                 })
             } else {
-                io::load(&path).map(|m| (m, None))
+                let is_obj = path.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj"));
+                if is_obj {
+                    io::obj::load_with_attributes(&path).map(|(m, a)| (m, None, a.colors))
+                } else {
+                    io::load(&path).map(|m| (m, None, None))
+                }
             };
-            let result = loaded.and_then(|(mesh, report)| {
+            let result = loaded.and_then(|(mesh, report, colors)| {
                 let paths = match paths_for(&path) {
                     Some(p) => {
                         let paths = Paths::load(&p)?;
@@ -399,7 +413,7 @@ impl Doc {
                     }
                     None => None,
                 };
-                Ok((path.clone(), mesh, paths, report))
+                Ok((path.clone(), mesh, paths, report, colors))
             });
             let _ = tx.send(Done::Loaded { ticket, result, path });
         });
@@ -426,6 +440,7 @@ impl Doc {
             since: Instant::now(),
         });
         let (tx, latest) = (self.tx.clone(), self.sub_gen.clone());
+        let file_colors = self.file_colors.clone();
         std::thread::spawn(move || {
             let t0 = Instant::now();
             let result = subdivide_with_progress(&mesh, scheme, level, &opts, |l, _| {
@@ -445,7 +460,10 @@ impl Doc {
                     }
                     _ => None,
                 };
-                (shown, proxy, stats, ms)
+                let colors = file_colors.and_then(|c| {
+                    crate::subdiv::attributes::refine_colors(&mesh.ct, &c, scheme, level, &opts).ok()
+                });
+                (shown, proxy, stats, ms, colors)
             });
             let _ = tx.send(Done::Subdivided { ticket, result, level });
         });
@@ -547,9 +565,10 @@ impl Doc {
                     }
                     self.loading = None;
                     match result {
-                        Ok((path, mesh, paths, report)) => {
+                        Ok((path, mesh, paths, report, colors)) => {
                             self.failed = None;
                             self.notice = report;
+                            self.file_colors = colors;
                             self.adopt(path, mesh, paths);
                         }
                         Err(e) => {
@@ -579,7 +598,8 @@ impl Doc {
                     }
                     self.subdividing = None;
                     match result {
-                        Ok((shown, proxy, stats, ms)) => {
+                        Ok((shown, proxy, stats, ms, colors)) => {
+                            self.raw_colors = colors;
                             self.raw = shown.mesh.clone();
                             self.result = shown;
                             self.proxy = proxy;
@@ -649,6 +669,7 @@ impl Doc {
         }
         self.path = Some(path);
         self.result = Shown::new(mesh.clone());
+        self.raw_colors = self.file_colors.clone().filter(|c| c.len() == mesh.positions.len());
         self.raw = mesh;
         self.original = None;
         self.picked = None;
@@ -669,6 +690,7 @@ impl Doc {
     /// Goes back to the built-in tetrahedron.
     pub fn open_builtin(&mut self) {
         let (mesh, paths) = builtin_tetrahedron();
+        self.file_colors = None;
         self.load_gen.fetch_add(1, Ordering::SeqCst);
         self.loading = None;
         self.adopt(PathBuf::from("tetrahedron.obj"), mesh, Some(paths));
@@ -711,6 +733,16 @@ impl Doc {
                 let lv = vertex_creation_level(&counts, nv);
                 (Some(lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect()), level as f32)
             }
+            Coloring::File => match self.raw_colors.as_ref().filter(|c| c.len() == nv) {
+                Some(c) => {
+                    self.result_colors = Some(c.clone());
+                    self.color_max = 1.0;
+                    self.result = Shown { mesh, normals, topo };
+                    self.result_changed = true;
+                    return;
+                }
+                None => (None, 0.0),
+            },
             Coloring::Displacement => match displacement_from_control(&self.control.mesh, &mesh, level) {
                 Ok(d) => {
                     let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
@@ -736,6 +768,10 @@ impl Doc {
             self.original = Some(self.control.mesh.clone());
         }
         let mesh = Arc::new(mesh);
+        if self.file_colors.as_ref().is_some_and(|c| c.len() != mesh.positions.len()) {
+            self.file_colors = None;
+        }
+        self.raw_colors = self.file_colors.clone();
         if self.paths.vertex_count() != mesh.positions.len() {
             self.paths = Paths::generated(&mesh, 4);
             self.paths_source = "generated (small loops around each vertex)".into();

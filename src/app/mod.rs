@@ -178,6 +178,10 @@ impl App {
                 }
                 doc.repair_on_open = true;
                 mesh
+            } else if model.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
+                let (mesh, attrs) = crate::io::obj::load_with_attributes(model)?;
+                doc.file_colors = attrs.colors;
+                mesh
             } else {
                 crate::io::load(model)?
             };

@@ -353,7 +353,10 @@ fn tools_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
         Coloring::Displacement => {
             ui.label(RichText::new(format!("dark: on the control mesh … bright: {:.4} away", doc.color_max)).small());
         }
-        Coloring::None => {}
+        Coloring::File if doc.file_colors.is_none() => {
+            ui.label(RichText::new("this model has no vertex colours (OBJ `v x y z r g b`)").small());
+        }
+        Coloring::File | Coloring::None => {}
     }
     if refresh {
         doc.refresh_result();
