@@ -21,7 +21,8 @@ struct View {
     // z: 1 = orthographic, w: headlight intensity
     params: vec4<f32>,
     // x: line pull towards the camera (fraction of view depth, perspective),
-    // y: the same in world units (orthographic)
+    // y: the same in world units (orthographic), z: 1 = the colour attribute
+    // holds texture coordinates (checker texture)
     line: vec4<f32>,
 };
 
@@ -101,7 +102,14 @@ fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<
             n = -n;
         }
     }
-    let base = select(u.back_color.rgb, i.color, front);
+    var front_base = i.color;
+    if u.line.z > 0.5 {
+        // Checker texture from the interpolated texture coordinates (8 x 8 squares per unit).
+        let cell = floor(i.color.xy * 8.0);
+        let odd = (i32(cell.x) + i32(cell.y)) & 1;
+        front_base = select(vec3<f32>(0.85, 0.85, 0.8), vec3<f32>(0.08, 0.12, 0.35), odd == 1);
+    }
+    let base = select(u.back_color.rgb, front_base, front);
     // The headlight sits a little above and left of the eye so silhouettes keep some shape.
     var c = 0.12 * base;
     c += light(n, v, v, u.params.w, base);

@@ -75,6 +75,9 @@ enum Cmd {
         /// Repair the model's topology when opening it (see `subdiv repair`).
         #[arg(long)]
         repair: bool,
+        /// Colouring: none, shells, displacement, file (OBJ vertex colours) or checker (OBJ vt).
+        #[arg(long, default_value = "none")]
+        color: String,
     },
     /// Render the split-and-tweak animation to a GIF or numbered PNGs.
     Animate {
@@ -267,20 +270,31 @@ fn main() -> ExitCode {
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
         None => view(ViewArgs::default()),
-        Some(Cmd::View { model, scheme, level, wireframe, frames, screenshot, paths, play, turntable, repair }) => {
-            view(ViewArgs {
-                model,
-                scheme: scheme.scheme,
-                level,
-                wireframe,
-                frames,
-                screenshot,
-                paths,
-                play,
-                turntable,
-                repair,
-            })
-        }
+        Some(Cmd::View {
+            model,
+            scheme,
+            level,
+            wireframe,
+            frames,
+            screenshot,
+            paths,
+            play,
+            turntable,
+            repair,
+            color,
+        }) => view(ViewArgs {
+            model,
+            scheme: scheme.scheme,
+            level,
+            wireframe,
+            frames,
+            screenshot,
+            paths,
+            play,
+            turntable,
+            repair,
+            color,
+        }),
         Some(Cmd::Animate {
             model,
             paths,
@@ -355,6 +369,7 @@ struct ViewArgs {
     play: bool,
     turntable: bool,
     repair: bool,
+    color: String,
 }
 
 #[cfg(feature = "viewer")]
@@ -373,6 +388,7 @@ fn view(a: ViewArgs) -> Result<()> {
         play: a.play,
         turntable: a.turntable,
         repair: a.repair,
+        coloring: a.color.parse().map_err(Error::Usage)?,
     })
 }
 

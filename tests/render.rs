@@ -191,3 +191,24 @@ fn per_vertex_colours_replace_the_material_only_when_asked() {
     assert_eq!(red(&plain), 0);
     assert!(red(&coloured) > 1000, "{} red pixels", red(&coloured));
 }
+
+#[test]
+fn the_checker_texture_follows_per_corner_uvs() {
+    let Some(mut off) = offscreen(160, 160) else { return };
+    let (control, attrs) = subdiv::io::obj::load_with_attributes(&common::model_path("cube_uv.obj")).unwrap();
+    let uv = attrs.uv.expect("cube_uv.obj has vt");
+    let (fine, _) = subdivide(&control, Scheme::Loop, 2, &Options::default()).unwrap();
+    let fuv = subdiv::subdiv::attributes::refine_corner_uvs(&uv, 2);
+    let attr: Vec<Vec3> = fuv.iter().map(|t| t.extend(0.0)).collect();
+    let g =
+        subdiv::render::GpuMesh::unwelded(&off.gpu.device, &fine.ct, &fine.positions, &fine.vertex_normals(), &attr)
+            .unwrap();
+    let opts = subdiv::render::RenderOptions { width: 160, height: 160, ..Default::default() };
+    let cam = default_camera(&fine, &opts);
+    let img = off.render_one(cam, &g, None, Look { colors: true, uv_checker: true, ..Look::default() }).unwrap();
+    let blue = img.pixels().filter(|p| p.0[2] > p.0[0] + 40).count();
+    let light = img.pixels().filter(|p| p.0[0] > 150 && p.0[1] > 150).count();
+    assert!(blue > 500 && light > 500, "checker squares: {blue} dark blue, {light} light");
+    let plain = off.render_one(cam, &g, None, Look::default()).unwrap();
+    assert!(differing_pixels(&img, &plain) > 2000);
+}

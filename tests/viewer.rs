@@ -235,7 +235,11 @@ fn file_colours_are_refined_with_the_mesh() {
     let dir = std::env::temp_dir().join(format!("subdiv-viewer-col-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let f = dir.join("tet.obj");
-    std::fs::write(&f, "v 1 1 1 1 0 0\nv 1 -1 -1 0 1 0\nv -1 1 -1 0 0 1\nv -1 -1 1 1 1 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n").unwrap();
+    std::fs::write(
+        &f,
+        "v 1 1 1 1 0 0\nv 1 -1 -1 0 1 0\nv -1 1 -1 0 0 1\nv -1 -1 1 1 1 1\nf 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n",
+    )
+    .unwrap();
     let mut doc = Doc::new();
     doc.level = 2;
     doc.open(f);
@@ -255,4 +259,20 @@ fn file_colours_are_refined_with_the_mesh() {
     assert_eq!(got, want);
     assert_eq!(got.len(), doc.result.mesh.positions.len());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn texture_coordinates_of_the_file_follow_the_levels() {
+    use subdiv::app::doc::Coloring;
+    let mut doc = Doc::new();
+    doc.level = 2;
+    doc.open(common::model_path("cube_uv.obj"));
+    settle(&mut doc);
+    assert_eq!(doc.file_uv.as_ref().map(Vec::len), Some(36));
+    assert_eq!(doc.raw_uv.as_ref().map(Vec::len), Some(3 * doc.result.mesh.ct.num_triangles()));
+    assert_eq!(doc.file_colors.as_ref().map(Vec::len), Some(8));
+    doc.coloring = Coloring::Checker;
+    doc.refresh_result();
+    assert!(doc.result_colors.is_none(), "the checker is drawn from the UVs, not vertex colours");
+    assert!("checker".parse::<Coloring>().is_ok() && "plaid".parse::<Coloring>().is_err());
 }

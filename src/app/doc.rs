@@ -13,6 +13,7 @@ use crate::anim::player::{Animation, Clock};
 use crate::anim::tweak::Tweak;
 use crate::mesh::topology::{Topology, topology};
 use crate::render::export::{ExportStyle, ExportTarget, export_animation};
+use crate::subdiv::attributes::Attributes;
 use crate::subdiv::{Stats, check_levels_fit, default_memory_limit, predict_faces, subdivide_with_progress};
 use crate::{Mesh, Options, Result, Scheme, io};
 use glam::Vec3;
@@ -64,11 +65,14 @@ pub enum Coloring {
     Displacement,
     /// The colours of the file (`v x y z r g b`), refined with the scheme's weights.
     File,
+    /// A checker texture through the file's texture coordinates (`vt`).
+    Checker,
 }
 
 impl Coloring {
     /// All modes, in menu order.
-    pub const ALL: [Coloring; 4] = [Coloring::None, Coloring::Shells, Coloring::Displacement, Coloring::File];
+    pub const ALL: [Coloring; 5] =
+        [Coloring::None, Coloring::Shells, Coloring::Displacement, Coloring::File, Coloring::Checker];
     /// Menu label.
     pub fn name(self) -> &'static str {
         match self {
@@ -76,6 +80,21 @@ impl Coloring {
             Coloring::Shells => "level shells",
             Coloring::Displacement => "displacement from control",
             Coloring::File => "colours of the file",
+            Coloring::Checker => "texture (checker through vt)",
+        }
+    }
+}
+
+impl std::str::FromStr for Coloring {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "" | "none" => Ok(Coloring::None),
+            "shells" | "levels" => Ok(Coloring::Shells),
+            "displacement" => Ok(Coloring::Displacement),
+            "file" | "colors" | "colours" => Ok(Coloring::File),
+            "checker" | "uv" | "texture" => Ok(Coloring::Checker),
+            _ => Err(format!("unknown colouring '{s}' (none, shells, displacement, file, checker)")),
         }
     }
 }
@@ -140,9 +159,9 @@ impl Curve {
 }
 
 enum Done {
-    Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>, Option<String>, Option<Vec<Vec3>>)>, path: PathBuf },
+    Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>, Option<String>, Attributes)>, path: PathBuf },
     LoadedCurve { ticket: u64, result: Result<Curve> },
-    Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64, Option<Vec<Vec3>>)>, level: u32 },
+    Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64, Attributes)>, level: u32 },
     Animated { ticket: u64, result: Result<Animation> },
     Exported { result: Result<(usize, PathBuf)> },
 }
@@ -193,6 +212,10 @@ pub struct Doc {
     pub file_colors: Option<Vec<Vec3>>,
     /// `file_colors` refined to the result.
     pub raw_colors: Option<Vec<Vec3>>,
+    /// Per-corner texture coordinates of the control mesh read from the file.
+    pub file_uv: Option<Vec<glam::Vec2>>,
+    /// `file_uv` refined to the result (linear inside each triangle).
+    pub raw_uv: Option<Vec<glam::Vec2>>,
     /// Colours for `result` (with `coloring`), linear RGB.
     pub result_colors: Option<Vec<Vec3>>,
     /// Largest value behind the colours (levels, or a distance), for the legend.
@@ -301,6 +324,8 @@ impl Doc {
             coloring: Coloring::default(),
             file_colors: None,
             raw_colors: None,
+            file_uv: None,
+            raw_uv: None,
             result_colors: None,
             color_max: 0.0,
             original: None,
@@ -394,17 +419,17 @@ impl Doc {
             let loaded = if repair {
                 io::load_repaired(&path).map(|(m, r)| {
                     let report = if r.is_empty() { None } else { Some(format!("repaired: {r}")) };
-                    (m, report, None)
+                    (m, report, Attributes::default())
                 })
             } else {
                 let is_obj = path.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj"));
                 if is_obj {
-                    io::obj::load_with_attributes(&path).map(|(m, a)| (m, None, a.colors))
+                    io::obj::load_with_attributes(&path).map(|(m, a)| (m, None, a))
                 } else {
-                    io::load(&path).map(|m| (m, None, None))
+                    io::load(&path).map(|m| (m, None, Attributes::default()))
                 }
             };
-            let result = loaded.and_then(|(mesh, report, colors)| {
+            let result = loaded.and_then(|(mesh, report, attrs)| {
                 let paths = match paths_for(&path) {
                     Some(p) => {
                         let paths = Paths::load(&p)?;
@@ -413,7 +438,7 @@ impl Doc {
                     }
                     None => None,
                 };
-                Ok((path.clone(), mesh, paths, report, colors))
+                Ok((path.clone(), mesh, paths, report, attrs))
             });
             let _ = tx.send(Done::Loaded { ticket, result, path });
         });
@@ -440,7 +465,7 @@ impl Doc {
             since: Instant::now(),
         });
         let (tx, latest) = (self.tx.clone(), self.sub_gen.clone());
-        let file_colors = self.file_colors.clone();
+        let file_attrs = Attributes { uv: self.file_uv.clone(), colors: self.file_colors.clone() };
         std::thread::spawn(move || {
             let t0 = Instant::now();
             let result = subdivide_with_progress(&mesh, scheme, level, &opts, |l, _| {
@@ -460,10 +485,9 @@ impl Doc {
                     }
                     _ => None,
                 };
-                let colors = file_colors.and_then(|c| {
-                    crate::subdiv::attributes::refine_colors(&mesh.ct, &c, scheme, level, &opts).ok()
-                });
-                (shown, proxy, stats, ms, colors)
+                let attrs =
+                    crate::subdiv::attributes::refine(&mesh.ct, &file_attrs, scheme, level, &opts).unwrap_or_default();
+                (shown, proxy, stats, ms, attrs)
             });
             let _ = tx.send(Done::Subdivided { ticket, result, level });
         });
@@ -565,10 +589,11 @@ impl Doc {
                     }
                     self.loading = None;
                     match result {
-                        Ok((path, mesh, paths, report, colors)) => {
+                        Ok((path, mesh, paths, report, attrs)) => {
                             self.failed = None;
                             self.notice = report;
-                            self.file_colors = colors;
+                            self.file_colors = attrs.colors;
+                            self.file_uv = attrs.uv;
                             self.adopt(path, mesh, paths);
                         }
                         Err(e) => {
@@ -598,8 +623,9 @@ impl Doc {
                     }
                     self.subdividing = None;
                     match result {
-                        Ok((shown, proxy, stats, ms, colors)) => {
-                            self.raw_colors = colors;
+                        Ok((shown, proxy, stats, ms, attrs)) => {
+                            self.raw_colors = attrs.colors;
+                            self.raw_uv = attrs.uv;
                             self.raw = shown.mesh.clone();
                             self.result = shown;
                             self.proxy = proxy;
@@ -670,6 +696,7 @@ impl Doc {
         self.path = Some(path);
         self.result = Shown::new(mesh.clone());
         self.raw_colors = self.file_colors.clone().filter(|c| c.len() == mesh.positions.len());
+        self.raw_uv = self.file_uv.clone().filter(|u| u.len() == mesh.ct.v.len());
         self.raw = mesh;
         self.original = None;
         self.picked = None;
@@ -691,6 +718,7 @@ impl Doc {
     pub fn open_builtin(&mut self) {
         let (mesh, paths) = builtin_tetrahedron();
         self.file_colors = None;
+        self.file_uv = None;
         self.load_gen.fetch_add(1, Ordering::SeqCst);
         self.loading = None;
         self.adopt(PathBuf::from("tetrahedron.obj"), mesh, Some(paths));
@@ -733,6 +761,7 @@ impl Doc {
                 let lv = vertex_creation_level(&counts, nv);
                 (Some(lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect()), level as f32)
             }
+            Coloring::Checker => (None, 0.0),
             Coloring::File => match self.raw_colors.as_ref().filter(|c| c.len() == nv) {
                 Some(c) => {
                     self.result_colors = Some(c.clone());
@@ -771,7 +800,11 @@ impl Doc {
         if self.file_colors.as_ref().is_some_and(|c| c.len() != mesh.positions.len()) {
             self.file_colors = None;
         }
+        if self.file_uv.as_ref().is_some_and(|u| u.len() != mesh.ct.v.len()) {
+            self.file_uv = None;
+        }
         self.raw_colors = self.file_colors.clone();
+        self.raw_uv = self.file_uv.clone();
         if self.paths.vertex_count() != mesh.positions.len() {
             self.paths = Paths::generated(&mesh, 4);
             self.paths_source = "generated (small loops around each vertex)".into();

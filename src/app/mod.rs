@@ -47,6 +47,8 @@ pub struct ViewOptions {
     pub turntable: bool,
     /// Repair the model when opening it.
     pub repair: bool,
+    /// Initial colouring.
+    pub coloring: doc::Coloring,
 }
 
 /// Longest a `--frames` run may wait for its work before giving up.
@@ -181,6 +183,7 @@ impl App {
             } else if model.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
                 let (mesh, attrs) = crate::io::obj::load_with_attributes(model)?;
                 doc.file_colors = attrs.colors;
+                doc.file_uv = attrs.uv;
                 mesh
             } else {
                 crate::io::load(model)?
@@ -206,6 +209,8 @@ impl App {
         if let Some(reason) = doc.level_refusal(doc.level) {
             return Err(Error::Usage(reason));
         }
+        doc.coloring = opts.coloring;
+        doc.refresh_result();
         if doc.level > 0 {
             doc.request_subdivision();
         }
@@ -339,8 +344,18 @@ impl App {
             win.version += 1;
         }
         if doc.result_changed {
-            win.result = upload(&doc.result, &mut doc.error);
-            if let (Some(m), Some(colors)) = (&mut win.result, &doc.result_colors) {
+            let checker = doc.coloring == doc::Coloring::Checker;
+            win.result = match doc.raw_uv.as_ref().filter(|u| checker && u.len() == doc.result.mesh.ct.v.len()) {
+                Some(uv) => {
+                    let attr: Vec<Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
+                    let r = &doc.result;
+                    GpuMesh::unwelded(device, &r.mesh.ct, &r.mesh.positions, &r.normals, &attr)
+                        .map_err(|e| doc.error = Some(e.to_string()))
+                        .ok()
+                }
+                None => upload(&doc.result, &mut doc.error),
+            };
+            if let (Some(m), Some(colors), false) = (&mut win.result, &doc.result_colors, checker) {
                 m.set_colors(device, colors);
             }
             win.proxy = doc.proxy.as_ref().and_then(|p| upload(p, &mut doc.error));
@@ -511,7 +526,11 @@ impl App {
         } else {
             win.result.as_ref()
         };
-        let look = Look { colors: self.doc.coloring != doc::Coloring::None, ..self.ui.look() };
+        let look = Look {
+            colors: self.doc.coloring != doc::Coloring::None,
+            uv_checker: self.doc.coloring == doc::Coloring::Checker,
+            ..self.ui.look()
+        };
         let mut draws = Vec::with_capacity(2);
         if let Some((line, control)) = &win.curve {
             let look =

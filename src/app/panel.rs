@@ -129,6 +129,7 @@ impl UiState {
             control: self.control,
             normals: self.normals,
             colors: false,
+            uv_checker: false,
         }
     }
 }
@@ -355,6 +356,12 @@ fn tools_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
         }
         Coloring::File if doc.file_colors.is_none() => {
             ui.label(RichText::new("this model has no vertex colours (OBJ `v x y z r g b`)").small());
+        }
+        Coloring::Checker if doc.file_uv.is_none() => {
+            ui.label(RichText::new("this model has no texture coordinates (OBJ `vt`); try models/cube_uv.obj").small());
+        }
+        Coloring::Checker => {
+            ui.label(RichText::new("UVs per corner (seams kept), linear inside each triangle").small());
         }
         Coloring::File | Coloring::None => {}
     }

@@ -47,6 +47,8 @@ pub struct Look {
     pub normals: bool,
     /// Per-vertex colours instead of the material colour (when the mesh has them).
     pub colors: bool,
+    /// The colour attribute holds texture coordinates: show a checker texture.
+    pub uv_checker: bool,
 }
 
 /// Shading modes of the command line.

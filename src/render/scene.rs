@@ -156,6 +156,54 @@ impl GpuMesh {
         })
     }
 
+    /// One GPU vertex per corner, carrying a per-corner attribute in the
+    /// colour slot (texture coordinates for the checker, `(u, v, 0)`), so
+    /// seams between charts stay sharp. Edges are the corner table's.
+    pub fn unwelded(
+        device: &wgpu::Device,
+        ct: &CornerTable,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        corner_attr: &[Vec3],
+    ) -> Result<GpuMesh> {
+        let pos: Vec<Vec3> = ct.v.iter().map(|&v| positions[v as usize]).collect();
+        let nrm: Vec<Vec3> = ct.v.iter().map(|&v| normals[v as usize]).collect();
+        let identity: Vec<u32> = (0..ct.v.len() as u32).collect();
+        let mut edges = Vec::with_capacity(ct.num_edges() * 2);
+        for c in 0..ct.num_corners() as u32 {
+            let o = ct.o[c as usize];
+            if o == BORDER || c < o {
+                edges.push(n(c));
+                edges.push(p(c));
+            }
+        }
+        let limit = device.limits().max_buffer_size;
+        if (pos.len() * 12) as u64 > limit {
+            return Err(Error::Gpu(format!(
+                "the mesh needs {} per buffer, the device allows {}",
+                crate::error::human_bytes((pos.len() * 12) as u64),
+                crate::error::human_bytes(limit)
+            )));
+        }
+        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        let mut attr = corner_attr.to_vec();
+        attr.resize(pos.len(), Vec3::ZERO);
+        Ok(GpuMesh {
+            positions: buffer(device, "corner positions", bytemuck::cast_slice(&pos), vertex),
+            normals: buffer(device, "corner normals", bytemuck::cast_slice(&nrm), vertex),
+            triangles: buffer(device, "corner triangles", bytemuck::cast_slice(&identity), wgpu::BufferUsages::INDEX),
+            edges: buffer(device, "corner edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
+            vertex_count: pos.len(),
+            triangle_indices: identity.len() as u32,
+            edge_indices: edges.len() as u32,
+            normal_lines: None,
+            normal_length: 0.05,
+            cull: cull_for(ct, positions),
+            colors: Some(buffer(device, "corner uv", bytemuck::cast_slice(&attr), wgpu::BufferUsages::VERTEX)),
+            highlight: None,
+        })
+    }
+
     /// Lines only (no faces): `points` joined by the index pairs in `pairs`
     /// (a curve and its control polygon).
     pub fn lines(device: &wgpu::Device, points: &[Vec3], pairs: &[u32]) -> GpuMesh {
@@ -499,7 +547,7 @@ impl Renderer {
                 f32::from(cam.orthographic),
                 0.6,
             ],
-            line: [0.0015, 0.004 * cam.radius, 0.0, 0.0],
+            line: [0.0015, 0.004 * cam.radius, f32::from(d.look.uv_checker), 0.0],
         }
     }
 
