@@ -158,8 +158,11 @@ impl Curve {
     }
 }
 
+/// A loaded model: its path, mesh, matching paths, repair report and attributes.
+type Opened = (PathBuf, Mesh, Option<Paths>, Option<String>, Attributes);
+
 enum Done {
-    Loaded { ticket: u64, result: Result<(PathBuf, Mesh, Option<Paths>, Option<String>, Attributes)>, path: PathBuf },
+    Loaded { ticket: u64, result: Result<Opened>, path: PathBuf },
     LoadedCurve { ticket: u64, result: Result<Curve> },
     Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64, Attributes)>, level: u32 },
     Animated { ticket: u64, result: Result<Animation> },
