@@ -63,12 +63,30 @@ fn keys_toggle_the_view_and_step_levels_on_a_worker() {
 #[test]
 fn a_newer_request_supersedes_an_older_one() {
     let mut doc = Doc::new();
-    doc.level = 7;
+    doc.level = 8;
     doc.request_subdivision();
     doc.level = 1;
     doc.request_subdivision();
     settle(&mut doc);
+    // The level-8 job finishes later (or stops early); its late result must not replace level 1.
+    std::thread::sleep(Duration::from_millis(500));
+    doc.poll();
     assert_eq!((doc.result_level, doc.result.topo.faces), (1, 16));
+}
+
+#[test]
+fn a_big_level_brings_its_proxy_from_the_same_run() {
+    let mut doc = Doc::new();
+    doc.level = 8; // 262,144 faces: over the proxy threshold
+    doc.request_subdivision();
+    settle(&mut doc);
+    assert!(doc.error.is_none(), "{:?}", doc.error);
+    assert_eq!(doc.result.topo.faces, 4 << 16);
+    let proxy = doc.proxy.as_ref().expect("a proxy");
+    assert_eq!(proxy.topo.faces, 4 << 14, "level 7: the highest level under the threshold");
+    let stats = doc.stats.as_ref().unwrap();
+    assert_eq!(stats.faces_per_level.len(), 8, "both legs of the run are in the stats");
+    assert_eq!(*stats.faces_per_level.last().unwrap(), 4 << 16);
 }
 
 #[test]
@@ -206,7 +224,7 @@ fn display_options_recolour_and_renormal_the_result() {
     doc.snap_limit = true;
     doc.refresh_result();
     assert!(doc.result.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
-    assert_ne!(doc.result.mesh.positions, doc.raw.positions, "snapped to the limit");
+    assert_ne!(doc.result.mesh.positions, doc.raw.mesh.positions, "snapped to the limit");
 }
 
 #[test]
@@ -250,7 +268,7 @@ fn file_colours_are_refined_with_the_mesh() {
     let got = doc.result_colors.clone().expect("file colours shown");
     let want = subdiv::subdiv::attributes::refine_colors(
         &doc.control.mesh.ct,
-        doc.file_colors.as_ref().unwrap(),
+        doc.file_attrs.colors.as_ref().unwrap(),
         subdiv::Scheme::Loop,
         2,
         &Default::default(),
@@ -268,9 +286,9 @@ fn texture_coordinates_of_the_file_follow_the_levels() {
     doc.level = 2;
     doc.open(common::model_path("cube_uv.obj"));
     settle(&mut doc);
-    assert_eq!(doc.file_uv.as_ref().map(Vec::len), Some(36));
-    assert_eq!(doc.raw_uv.as_ref().map(Vec::len), Some(3 * doc.result.mesh.ct.num_triangles()));
-    assert_eq!(doc.file_colors.as_ref().map(Vec::len), Some(8));
+    assert_eq!(doc.file_attrs.uv.as_ref().map(Vec::len), Some(36));
+    assert_eq!(doc.raw_attrs.uv.as_ref().map(Vec::len), Some(3 * doc.result.mesh.ct.num_triangles()));
+    assert_eq!(doc.file_attrs.colors.as_ref().map(Vec::len), Some(8));
     doc.coloring = Coloring::Checker;
     doc.refresh_result();
     assert!(doc.result_colors.is_none(), "the checker is drawn from the UVs, not vertex colours");

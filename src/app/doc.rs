@@ -105,19 +105,22 @@ pub const PROXY_FACES: u64 = 150_000;
 /// Highest level offered in the panel (further limited by memory).
 pub const MAX_LEVEL: u32 = 10;
 
-/// A mesh with its normals and counts, ready to upload.
+/// A mesh with its normals and counts, ready to upload. Cloning shares the
+/// arrays.
+#[derive(Clone)]
 pub struct Shown {
     /// The mesh.
     pub mesh: Arc<Mesh>,
-    /// Fan-averaged vertex normals.
-    pub normals: Vec<Vec3>,
+    /// Unit vertex normals (fan-averaged unless a display option chose others).
+    pub normals: Arc<Vec<Vec3>>,
     /// V/E/F, genus, boundary loops...
     pub topo: Topology,
 }
 
 impl Shown {
+    /// Computes the fan-averaged normals and the topology (worker threads do this).
     fn new(mesh: Arc<Mesh>) -> Shown {
-        let normals = mesh.vertex_normals();
+        let normals = Arc::new(mesh.vertex_normals());
         let topo = topology(&mesh.ct);
         Shown { mesh, normals, topo }
     }
@@ -158,13 +161,17 @@ impl Curve {
     }
 }
 
+/// A finished subdivision: the result, its proxy, phase times, job time and
+/// the refined attributes.
+type Subdivided = (Shown, Option<Shown>, Stats, f64, Attributes);
+
 /// A loaded model: its path, mesh, matching paths, repair report and attributes.
 type Opened = (PathBuf, Mesh, Option<Paths>, Option<String>, Attributes);
 
 enum Done {
     Loaded { ticket: u64, result: Result<Opened>, path: PathBuf },
     LoadedCurve { ticket: u64, result: Result<Curve> },
-    Subdivided { ticket: u64, result: Result<(Shown, Option<Shown>, Stats, f64, Attributes)>, level: u32 },
+    Subdivided { ticket: u64, result: Result<Subdivided>, level: u32 },
     Animated { ticket: u64, result: Result<Animation> },
     Exported { result: Result<(usize, PathBuf)> },
 }
@@ -203,22 +210,18 @@ pub struct Doc {
     /// The subdivided mesh shown (the control mesh at level 0), after the
     /// display options (limit snapping, normal mode) are applied to `raw`.
     pub result: Shown,
-    /// The subdivision output itself.
-    pub raw: Arc<Mesh>,
+    /// The subdivision output itself, with fan normals and topology from the worker.
+    pub raw: Shown,
     /// Shading normals.
     pub normal_mode: NormalMode,
     /// Show the Loop limit positions instead of the level's points.
     pub snap_limit: bool,
     /// Per-vertex colouring.
     pub coloring: Coloring,
-    /// Colours of the control mesh read from the file, if it had them.
-    pub file_colors: Option<Vec<Vec3>>,
-    /// `file_colors` refined to the result.
-    pub raw_colors: Option<Vec<Vec3>>,
-    /// Per-corner texture coordinates of the control mesh read from the file.
-    pub file_uv: Option<Vec<glam::Vec2>>,
-    /// `file_uv` refined to the result (linear inside each triangle).
-    pub raw_uv: Option<Vec<glam::Vec2>>,
+    /// Vertex colours and corner texture coordinates of the control mesh, from its file.
+    pub file_attrs: Attributes,
+    /// `file_attrs` refined to `raw`.
+    pub raw_attrs: Attributes,
     /// Colours for `result` (with `coloring`), linear RGB.
     pub result_colors: Option<Vec<Vec3>>,
     /// Largest value behind the colours (levels, or a distance), for the legend.
@@ -315,20 +318,18 @@ impl Doc {
     pub fn new() -> Doc {
         let (mesh, paths) = builtin_tetrahedron();
         let (tx, rx) = channel();
-        let mesh = Arc::new(mesh);
+        let shown = Shown::new(Arc::new(mesh));
         Doc {
             name: "tetrahedron (built in)".into(),
             path: None,
-            control: Shown::new(mesh.clone()),
-            result: Shown::new(mesh.clone()),
-            raw: mesh,
+            control: shown.clone(),
+            result: shown.clone(),
+            raw: shown,
             normal_mode: NormalMode::default(),
             snap_limit: false,
             coloring: Coloring::default(),
-            file_colors: None,
-            raw_colors: None,
-            file_uv: None,
-            raw_uv: None,
+            file_attrs: Attributes::default(),
+            raw_attrs: Attributes::default(),
             result_colors: None,
             color_max: 0.0,
             original: None,
@@ -468,31 +469,46 @@ impl Doc {
             since: Instant::now(),
         });
         let (tx, latest) = (self.tx.clone(), self.sub_gen.clone());
-        let file_attrs = Attributes { uv: self.file_uv.clone(), colors: self.file_colors.clone() };
+        let (file_attrs, control) = (self.file_attrs.clone(), self.control.clone());
+        // A big result gets a proxy: the highest lower level of at most PROXY_FACES
+        // triangles, on the way to the result (not computed twice).
+        let proxy_level = (predict_faces(&mesh.ct, level) > PROXY_FACES)
+            .then(|| (0..level).rev().find(|&l| predict_faces(&mesh.ct, l) <= PROXY_FACES))
+            .flatten();
         std::thread::spawn(move || {
             let t0 = Instant::now();
-            let result = subdivide_with_progress(&mesh, scheme, level, &opts, |l, _| {
-                done.store(l as usize, Ordering::Relaxed);
-                latest.load(Ordering::SeqCst) == ticket
-            })
-            .map(|(fine, stats)| {
-                let ms = t0.elapsed().as_secs_f64() * 1e3;
-                let big = fine.ct.num_triangles() as u64 > PROXY_FACES;
-                let shown = if level == 0 { Shown::new(mesh.clone()) } else { Shown::new(Arc::new(fine)) };
-                let proxy_level = (0..level).rev().find(|&l| predict_faces(&mesh.ct, l) <= PROXY_FACES);
-                let proxy = match proxy_level {
-                    Some(l) if big && latest.load(Ordering::SeqCst) == ticket => {
-                        subdivide_with_progress(&mesh, scheme, l, &opts, |_, _| latest.load(Ordering::SeqCst) == ticket)
-                            .ok()
-                            .map(|(p, _)| Shown::new(Arc::new(p)))
+            let live = || latest.load(Ordering::SeqCst) == ticket;
+            let run = |from: &Mesh, first: u32, levels: u32| {
+                subdivide_with_progress(from, scheme, levels, &opts, |l, _| {
+                    done.store((first + l) as usize, Ordering::Relaxed);
+                    live()
+                })
+            };
+            let result = (|| {
+                let (proxy, first_stats) = match proxy_level {
+                    Some(0) => (Some(control.clone()), Stats::default()),
+                    Some(l) => {
+                        let (p, s) = run(&mesh, 0, l)?;
+                        (Some(Shown::new(Arc::new(p))), s)
                     }
-                    _ => None,
+                    None => (None, Stats::default()),
                 };
+                let (from, first) = match &proxy {
+                    Some(p) => (p.mesh.clone(), proxy_level.unwrap_or(0)),
+                    None => (mesh.clone(), 0),
+                };
+                let (fine, stats) = run(&from, first, level - first)?;
+                let stats = first_stats.then(stats);
+                let shown = if level == 0 { control } else { Shown::new(Arc::new(fine)) };
+                let ms = t0.elapsed().as_secs_f64() * 1e3;
                 let attrs =
                     crate::subdiv::attributes::refine(&mesh.ct, &file_attrs, scheme, level, &opts).unwrap_or_default();
-                (shown, proxy, stats, ms, attrs)
-            });
-            let _ = tx.send(Done::Subdivided { ticket, result, level });
+                Ok((shown, proxy, stats, ms, attrs))
+            })();
+            // A superseded run stopped early: its partial mesh is not the level asked for.
+            if live() {
+                let _ = tx.send(Done::Subdivided { ticket, result, level });
+            }
         });
     }
 
@@ -595,8 +611,7 @@ impl Doc {
                         Ok((path, mesh, paths, report, attrs)) => {
                             self.failed = None;
                             self.notice = report;
-                            self.file_colors = attrs.colors;
-                            self.file_uv = attrs.uv;
+                            self.file_attrs = attrs;
                             self.adopt(path, mesh, paths);
                         }
                         Err(e) => {
@@ -627,9 +642,8 @@ impl Doc {
                     self.subdividing = None;
                     match result {
                         Ok((shown, proxy, stats, ms, attrs)) => {
-                            self.raw_colors = attrs.colors;
-                            self.raw_uv = attrs.uv;
-                            self.raw = shown.mesh.clone();
+                            self.raw_attrs = attrs;
+                            self.raw = shown.clone();
                             self.result = shown;
                             self.proxy = proxy;
                             self.result_level = level;
@@ -686,6 +700,8 @@ impl Doc {
         self.name =
             path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| path.display().to_string());
         self.control = Shown::new(mesh.clone());
+        self.raw = self.control.clone();
+        self.raw_attrs = self.file_attrs.clone();
         match paths {
             Some(p) => {
                 self.paths = p;
@@ -697,10 +713,6 @@ impl Doc {
             }
         }
         self.path = Some(path);
-        self.result = Shown::new(mesh.clone());
-        self.raw_colors = self.file_colors.clone().filter(|c| c.len() == mesh.positions.len());
-        self.raw_uv = self.file_uv.clone().filter(|u| u.len() == mesh.ct.v.len());
-        self.raw = mesh;
         self.original = None;
         self.picked = None;
         self.proxy = None;
@@ -720,8 +732,7 @@ impl Doc {
     /// Goes back to the built-in tetrahedron.
     pub fn open_builtin(&mut self) {
         let (mesh, paths) = builtin_tetrahedron();
-        self.file_colors = None;
-        self.file_uv = None;
+        self.file_attrs = Attributes::default();
         self.load_gen.fetch_add(1, Ordering::SeqCst);
         self.loading = None;
         self.adopt(PathBuf::from("tetrahedron.obj"), mesh, Some(paths));
@@ -741,44 +752,34 @@ impl Doc {
         use crate::subdiv::limit::{butterfly_normals, loop_limit_normals, loop_limit_positions};
         let raw = &self.raw;
         let mesh = if self.snap_limit {
-            Arc::new(Mesh { ct: raw.ct.clone(), positions: loop_limit_positions(raw) })
+            Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions: loop_limit_positions(&raw.mesh) })
         } else {
-            raw.clone()
+            raw.mesh.clone()
         };
         let normals = match self.normal_mode {
-            NormalMode::FanAverage => mesh.vertex_normals(),
-            NormalMode::LoopLimit => loop_limit_normals(&mesh),
-            NormalMode::Butterfly => butterfly_normals(&mesh),
-        };
-        let topo = if Arc::ptr_eq(&mesh, &self.result.mesh) || mesh.ct.v == self.result.mesh.ct.v {
-            self.result.topo.clone()
-        } else {
-            topology(&mesh.ct)
+            // the worker's fan normals, unless the points moved to the limit
+            NormalMode::FanAverage if !self.snap_limit => raw.normals.clone(),
+            NormalMode::FanAverage => Arc::new(mesh.vertex_normals()),
+            NormalMode::LoopLimit => Arc::new(loop_limit_normals(&mesh)),
+            NormalMode::Butterfly => Arc::new(butterfly_normals(&mesh)),
         };
         let nv = mesh.positions.len();
         let level = self.result_level;
-        let (values, max): (Option<Vec<f32>>, f32) = match self.coloring {
-            Coloring::None => (None, 0.0),
+        let ramp = |t: &[f32]| t.iter().map(|&t| Vec3::from(colormap(t))).collect::<Vec<_>>();
+        let (colors, max) = match self.coloring {
+            Coloring::None | Coloring::Checker => (None, 0.0),
             Coloring::Shells => {
                 let counts = vertex_counts_per_level(&self.control.mesh.ct, level);
                 let lv = vertex_creation_level(&counts, nv);
-                (Some(lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect()), level as f32)
+                let t: Vec<f32> = lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect();
+                (Some(ramp(&t)), level as f32)
             }
-            Coloring::Checker => (None, 0.0),
-            Coloring::File => match self.raw_colors.as_ref().filter(|c| c.len() == nv) {
-                Some(c) => {
-                    self.result_colors = Some(c.clone());
-                    self.color_max = 1.0;
-                    self.result = Shown { mesh, normals, topo };
-                    self.result_changed = true;
-                    return;
-                }
-                None => (None, 0.0),
-            },
+            Coloring::File => (self.raw_attrs.colors.clone().filter(|c| c.len() == nv), 1.0),
             Coloring::Displacement => match displacement_from_control(&self.control.mesh, &mesh, level) {
                 Ok(d) => {
                     let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
-                    (Some(d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 }).collect()), max)
+                    let t: Vec<f32> = d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 }).collect();
+                    (Some(ramp(&t)), max)
                 }
                 Err(e) => {
                     self.error = Some(format!("displacement: {e}"));
@@ -786,9 +787,10 @@ impl Doc {
                 }
             },
         };
-        self.result_colors = values.map(|v| v.iter().map(|&t| Vec3::from(colormap(t))).collect());
+        self.result_colors = colors;
         self.color_max = max;
-        self.result = Shown { mesh, normals, topo };
+        // snapping moves points, not connectivity: the topology is the raw one
+        self.result = Shown { mesh, normals, topo: raw.topo.clone() };
         self.result_changed = true;
     }
 
@@ -800,20 +802,20 @@ impl Doc {
             self.original = Some(self.control.mesh.clone());
         }
         let mesh = Arc::new(mesh);
-        if self.file_colors.as_ref().is_some_and(|c| c.len() != mesh.positions.len()) {
-            self.file_colors = None;
+        // Edits that change the counts (edge splits) leave the file's attributes behind.
+        if self.file_attrs.colors.as_ref().is_some_and(|c| c.len() != mesh.positions.len()) {
+            self.file_attrs.colors = None;
         }
-        if self.file_uv.as_ref().is_some_and(|u| u.len() != mesh.ct.v.len()) {
-            self.file_uv = None;
+        if self.file_attrs.uv.as_ref().is_some_and(|u| u.len() != mesh.ct.v.len()) {
+            self.file_attrs.uv = None;
         }
-        self.raw_colors = self.file_colors.clone();
-        self.raw_uv = self.file_uv.clone();
+        self.raw_attrs = self.file_attrs.clone();
         if self.paths.vertex_count() != mesh.positions.len() {
             self.paths = Paths::generated(&mesh, 4);
             self.paths_source = "generated (small loops around each vertex)".into();
         }
-        self.control = Shown::new(mesh.clone());
-        self.raw = mesh;
+        self.control = Shown::new(mesh);
+        self.raw = self.control.clone();
         self.result_level = 0;
         self.proxy = None;
         self.anim = None;

@@ -182,8 +182,7 @@ impl App {
                 mesh
             } else if model.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
                 let (mesh, attrs) = crate::io::obj::load_with_attributes(model)?;
-                doc.file_colors = attrs.colors;
-                doc.file_uv = attrs.uv;
+                doc.file_attrs = attrs;
                 mesh
             } else {
                 crate::io::load(model)?
@@ -345,7 +344,7 @@ impl App {
         }
         if doc.result_changed {
             let checker = doc.coloring == doc::Coloring::Checker;
-            win.result = match doc.raw_uv.as_ref().filter(|u| checker && u.len() == doc.result.mesh.ct.v.len()) {
+            win.result = match doc.raw_attrs.uv.as_ref().filter(|u| checker && u.len() == doc.result.mesh.ct.v.len()) {
                 Some(uv) => {
                     let attr: Vec<Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
                     let r = &doc.result;

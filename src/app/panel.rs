@@ -354,10 +354,10 @@ fn tools_section(ui: &mut egui::Ui, doc: &mut Doc, st: &mut UiState) {
         Coloring::Displacement => {
             ui.label(RichText::new(format!("dark: on the control mesh … bright: {:.4} away", doc.color_max)).small());
         }
-        Coloring::File if doc.file_colors.is_none() => {
+        Coloring::File if doc.file_attrs.colors.is_none() => {
             ui.label(RichText::new("this model has no vertex colours (OBJ `v x y z r g b`)").small());
         }
-        Coloring::Checker if doc.file_uv.is_none() => {
+        Coloring::Checker if doc.file_attrs.uv.is_none() => {
             ui.label(RichText::new("this model has no texture coordinates (OBJ `vt`); try models/cube_uv.obj").small());
         }
         Coloring::Checker => {
