@@ -163,9 +163,8 @@ fn animation_frames_update_in_place_and_move() {
     let paths =
         Paths::load(&std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
     let mut anim = Animation::new(&control, &paths, Tweak::Jarek, 2, Scheme::Loop, 3, &Options::default()).unwrap();
-    let topo = anim.topology().clone();
-    let (p, n) = anim.evaluate(0);
-    let mut g = subdiv::render::GpuMesh::new(&off.gpu.device, &topo, p, n).unwrap();
+    let (topo, p, n) = anim.evaluate_with_topology(0);
+    let mut g = subdiv::render::GpuMesh::new(&off.gpu.device, topo, p, n).unwrap();
     let (lo, hi) = subdiv::render::export::motion_bounds(&anim);
     let cam = Camera::framing(lo, hi, 1.0);
     let first = off.render_one(cam, &g, None, Look::default()).unwrap();
@@ -173,8 +172,6 @@ fn animation_frames_update_in_place_and_move() {
     g.update(&off.gpu.device, &off.gpu.queue, p, n);
     let middle = off.render_one(cam, &g, None, Look::default()).unwrap();
     assert!(differing_pixels(&first, &middle) > 50, "the animation does not move");
-    let far = Vec3::splat(1e3);
-    assert!(lo.cmplt(far).all() && hi.cmpgt(-far).all());
 }
 
 #[test]

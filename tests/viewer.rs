@@ -294,3 +294,15 @@ fn texture_coordinates_of_the_file_follow_the_levels() {
     assert!(doc.result_colors.is_none(), "the checker is drawn from the UVs, not vertex colours");
     assert!("checker".parse::<Coloring>().is_ok() && "plaid".parse::<Coloring>().is_err());
 }
+
+#[test]
+fn the_cursor_maps_into_the_viewport_under_it() {
+    let rect = egui::Rect::from_min_size(egui::pos2(100.0, 0.0), egui::vec2(400.0, 200.0));
+    let at = |side, x, y| panel::cursor_ndc(rect, side, egui::pos2(x, y));
+    assert_eq!(at(false, 100.0, 0.0), glam::Vec2::new(-1.0, 1.0));
+    assert_eq!(at(false, 500.0, 200.0), glam::Vec2::new(1.0, -1.0));
+    // side by side: each half has its own NDC square
+    assert_eq!(at(true, 200.0, 100.0), glam::Vec2::new(0.0, 0.0), "centre of the left half");
+    assert_eq!(at(true, 400.0, 100.0), glam::Vec2::new(0.0, 0.0), "centre of the right half");
+    assert_eq!(at(true, 500.0, 0.0), glam::Vec2::new(1.0, 1.0));
+}

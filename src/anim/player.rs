@@ -117,6 +117,13 @@ impl Animation {
         (&self.positions, &self.normals)
     }
 
+    /// [`Animation::evaluate`] with the topology, borrowed together (for a
+    /// first upload).
+    pub fn evaluate_with_topology(&mut self, f: usize) -> (&CornerTable, &[Vec3], &[Vec3]) {
+        self.evaluate(f);
+        (&self.plan.ct, &self.positions, &self.normals)
+    }
+
     /// The mesh at frame `f` (a copy, for export).
     pub fn mesh_at(&mut self, f: usize) -> Mesh {
         let positions = self.evaluate(f).0.to_vec();

@@ -380,8 +380,8 @@ impl App {
                 (GpuMesh::lines(device, &line, &pairs), control)
             });
             if first && let Some(c) = &doc.curve {
-                let lo = c.control.iter().fold(glam::Vec2::splat(f32::MAX), |a, p| a.min(*p)).extend(0.0);
-                let hi = c.control.iter().fold(glam::Vec2::splat(f32::MIN), |a, p| a.max(*p)).extend(0.0);
+                let points: Vec<Vec3> = c.control.iter().map(|p| p.extend(0.0)).collect();
+                let (lo, hi) = crate::mesh::bounds_of(&points);
                 self.ui.camera =
                     crate::render::Camera { yaw: 0.0, pitch: 0.0, orthographic: true, ..Default::default() };
                 self.ui.camera.fit(lo, hi, 1.3);
@@ -397,9 +397,8 @@ impl App {
             if a.shown_frame != Some(f) {
                 let fresh = a.shown_frame.is_none();
                 if fresh || win.anim.is_none() {
-                    let topo = a.player.topology().clone();
-                    let (pos, nrm) = a.player.evaluate(f);
-                    win.anim = GpuMesh::new(device, &topo, pos, nrm).ok();
+                    let (topo, pos, nrm) = a.player.evaluate_with_topology(f);
+                    win.anim = GpuMesh::new(device, topo, pos, nrm).ok();
                 } else if let Some(m) = &mut win.anim {
                     let (pos, nrm) = a.player.evaluate(f);
                     m.update(device, queue, pos, nrm);

@@ -592,18 +592,8 @@ fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, doc: &mut Doc, st: &mut UiSt
         && st.pick
         && let Some(pos) = resp.interact_pointer_pos()
     {
-        let vp = if st.side_by_side {
-            egui::Rect::from_min_size(rect.min, egui::vec2(rect.width() / 2.0, rect.height()))
-        } else {
-            rect
-        };
-        let vp = if st.side_by_side && pos.x > vp.right() { vp.translate(egui::vec2(vp.width(), 0.0)) } else { vp };
-        let ndc = glam::Vec3::new(
-            (pos.x - vp.left()) / vp.width() * 2.0 - 1.0,
-            1.0 - (pos.y - vp.top()) / vp.height() * 2.0,
-            0.0,
-        );
-        let inv = st.camera.view_proj(vp.width() / vp.height().max(1.0)).inverse();
+        let ndc = cursor_ndc(rect, st.side_by_side, pos).extend(0.0);
+        let inv = st.camera.view_proj(aspect).inverse();
         let near = inv.project_point3(ndc);
         let far = inv.project_point3(ndc.with_z(1.0));
         doc.picked = super::doc::pick_edge(&doc.control.mesh, near, (far - near).normalize_or_zero());
@@ -612,20 +602,7 @@ fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, doc: &mut Doc, st: &mut UiSt
         let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
         let factor = (-scroll * 0.0025).exp() / zoom;
         if (factor - 1.0).abs() > 1e-4 {
-            // Cursor in the NDC of the viewport under it.
-            let vp = if st.side_by_side {
-                let half = rect.width() / 2.0;
-                if pos.x < rect.left() + half {
-                    egui::Rect::from_min_size(rect.min, egui::vec2(half, rect.height()))
-                } else {
-                    egui::Rect::from_min_size(rect.min + egui::vec2(half, 0.0), egui::vec2(half, rect.height()))
-                }
-            } else {
-                rect
-            };
-            let ndc =
-                Vec2::new((pos.x - vp.left()) / vp.width() * 2.0 - 1.0, 1.0 - (pos.y - vp.top()) / vp.height() * 2.0);
-            st.camera.zoom_to(factor, ndc, aspect);
+            st.camera.zoom_to(factor, cursor_ndc(rect, st.side_by_side, pos), aspect);
         }
     }
     if ui.ctx().egui_wants_keyboard_input() {
@@ -690,6 +667,19 @@ fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, doc: &mut Doc, st: &mut UiSt
         doc.level -= 1;
         doc.request_subdivision();
     }
+}
+
+/// The cursor in the normalised device coordinates of the viewport under it
+/// (the left or right half in side-by-side mode).
+pub fn cursor_ndc(rect: egui::Rect, side_by_side: bool, pos: egui::Pos2) -> Vec2 {
+    let mut vp = rect;
+    if side_by_side {
+        vp.set_width(rect.width() / 2.0);
+        if pos.x > vp.right() {
+            vp = vp.translate(egui::vec2(vp.width(), 0.0));
+        }
+    }
+    Vec2::new((pos.x - vp.left()) / vp.width() * 2.0 - 1.0, 1.0 - (pos.y - vp.top()) / vp.height() * 2.0)
 }
 
 /// Aspect of one viewport of the 3D area.

@@ -25,6 +25,13 @@ pub use build::BuildReport;
 use glam::Vec3;
 pub use repair::{RepairReport, repair};
 
+/// Axis-aligned bounds `(min, max)` of points; zero when there are none.
+pub fn bounds_of<'a>(points: impl IntoIterator<Item = &'a Vec3>) -> (Vec3, Vec3) {
+    let (lo, hi) =
+        points.into_iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &q| (lo.min(q), hi.max(q)));
+    if lo.cmple(hi).all() { (lo, hi) } else { (Vec3::ZERO, Vec3::ZERO) }
+}
+
 /// Sentinel in the O table: the edge opposite this corner is a border edge.
 pub const BORDER: u32 = u32::MAX;
 
@@ -42,6 +49,13 @@ pub fn p(c: u32) -> u32 {
 #[inline(always)]
 pub fn t(c: u32) -> u32 {
     c / 3
+}
+/// Whether corner `c`, whose opposite is `o`, names its edge once for the
+/// mesh: a border corner always does, an interior edge by its smaller corner.
+/// (`BORDER` is `u32::MAX`, so this is `c < o`.)
+#[inline(always)]
+pub fn owns_edge(c: u32, o: u32) -> bool {
+    c < o
 }
 
 /// Connectivity of a triangle mesh: V, O, one corner per vertex and valences.
@@ -142,6 +156,11 @@ impl CornerTable {
         self.o.iter().filter(|&&x| x == BORDER).count()
     }
     /// Number of edges: each interior edge has two corners, each border edge one.
+    /// The corner owning each edge (see [`owns_edge`]), in corner order: the
+    /// edge is the one opposite it, from `v(n(c))` to `v(p(c))`.
+    pub fn edge_owners(&self) -> impl Iterator<Item = u32> + '_ {
+        self.o.iter().enumerate().map(|(c, &o)| (c as u32, o)).filter(|&(c, o)| owns_edge(c, o)).map(|(c, _)| c)
+    }
     pub fn num_edges(&self) -> usize {
         (self.num_corners() + self.num_border_edges()) / 2
     }
@@ -231,12 +250,7 @@ impl Mesh {
     }
     /// Axis-aligned bounds `(min, max)`; zero for an empty mesh.
     pub fn bounds(&self) -> (Vec3, Vec3) {
-        if self.positions.is_empty() {
-            return (Vec3::ZERO, Vec3::ZERO);
-        }
-        self.positions
-            .iter()
-            .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &q| (lo.min(q), hi.max(q)))
+        bounds_of(&self.positions)
     }
     /// Area-weighted vertex normals (see [`normals::vertex_normals`]).
     pub fn vertex_normals(&self) -> Vec<Vec3> {

@@ -50,9 +50,7 @@ pub fn topology(ct: &CornerTable) -> Topology {
     for (t, &k) in comp_of_tri.iter().enumerate() {
         cf[k as usize] += 1;
         for c in 3 * t as u32..3 * t as u32 + 3 {
-            let x = ct.o[c as usize];
-            // each interior edge counted once (by the smaller corner), border edges once
-            if x == BORDER || c < x {
+            if super::owns_edge(c, ct.o[c as usize]) {
                 ce[k as usize] += 1;
             }
         }

@@ -4,6 +4,7 @@
 use super::offscreen::Offscreen;
 use super::{Camera, GpuMesh, Look, save_png};
 use crate::anim::player::Animation;
+use crate::mesh::bounds_of;
 use crate::mesh::normals::vertex_normals;
 use crate::{Error, Mesh, Result};
 use glam::Vec3;
@@ -38,28 +39,15 @@ impl Default for ExportStyle {
 /// Bounds of the control polygon over every frame, so the camera frames the
 /// whole motion.
 pub fn motion_bounds(anim: &Animation) -> (Vec3, Vec3) {
-    let mut lo = Vec3::splat(f32::MAX);
-    let mut hi = Vec3::splat(f32::MIN);
-    for f in 0..anim.frame_count() {
-        for q in anim.control(f) {
-            lo = lo.min(*q);
-            hi = hi.max(*q);
-        }
-    }
-    if lo.cmple(hi).all() { (lo, hi) } else { (Vec3::ZERO, Vec3::ZERO) }
+    bounds_of((0..anim.frame_count()).flat_map(|f| anim.control(f)))
 }
 
 /// Bounds of the subdivided surface over every frame (evaluates them all).
 pub fn surface_motion_bounds(anim: &mut Animation) -> (Vec3, Vec3) {
-    let mut lo = Vec3::splat(f32::MAX);
-    let mut hi = Vec3::splat(f32::MIN);
-    for f in 0..anim.frame_count() {
-        for q in anim.evaluate(f).0 {
-            lo = lo.min(*q);
-            hi = hi.max(*q);
-        }
-    }
-    if lo.cmple(hi).all() { (lo, hi) } else { (Vec3::ZERO, Vec3::ZERO) }
+    (0..anim.frame_count())
+        .map(|f| bounds_of(anim.evaluate(f).0))
+        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+        .unwrap_or_default()
 }
 
 /// Renders every frame of `anim` (whose control topology is `control`) and
@@ -87,9 +75,8 @@ pub fn export_animation(
     let mut camera = Camera::framing(lo, hi, w as f32 / h as f32);
     camera.orthographic = false;
     let total = anim.frame_count();
-    let topo = anim.topology().clone();
-    let (pos, nrm) = anim.evaluate(0);
-    let mut fine = GpuMesh::new(&off.gpu.device, &topo, pos, nrm)?;
+    let (topo, pos, nrm) = anim.evaluate_with_topology(0);
+    let mut fine = GpuMesh::new(&off.gpu.device, topo, pos, nrm)?;
     let mut coarse =
         GpuMesh::new(&off.gpu.device, &control.ct, anim.control(0), &vertex_normals(&control.ct, anim.control(0)))?;
     let mut render = |f: usize, off: &mut Offscreen| -> Result<image::RgbaImage> {

@@ -96,18 +96,9 @@ pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
     if volume >= 0.0 { Cull::Back } else { Cull::Front }
 }
 
-/// Each edge once as a pair of vertex ids: corner `c` names the edge opposite
-/// it when it is on the border or the smaller corner of its pair.
+/// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]).
 pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
-    let mut out = Vec::with_capacity(ct.num_edges() * 2);
-    for c in 0..ct.num_corners() as u32 {
-        let o = ct.o[c as usize];
-        if o == BORDER || c < o {
-            out.push(ct.v[n(c) as usize]);
-            out.push(ct.v[p(c) as usize]);
-        }
-    }
-    out
+    ct.edge_owners().flat_map(|c| [ct.v[n(c) as usize], ct.v[p(c) as usize]]).collect()
 }
 
 fn buffer(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -169,14 +160,8 @@ impl GpuMesh {
         let pos: Vec<Vec3> = ct.v.iter().map(|&v| positions[v as usize]).collect();
         let nrm: Vec<Vec3> = ct.v.iter().map(|&v| normals[v as usize]).collect();
         let identity: Vec<u32> = (0..ct.v.len() as u32).collect();
-        let mut edges = Vec::with_capacity(ct.num_edges() * 2);
-        for c in 0..ct.num_corners() as u32 {
-            let o = ct.o[c as usize];
-            if o == BORDER || c < o {
-                edges.push(n(c));
-                edges.push(p(c));
-            }
-        }
+        // the same edges, between the corners' own GPU vertices
+        let edges: Vec<u32> = ct.edge_owners().flat_map(|c| [n(c), p(c)]).collect();
         let limit = device.limits().max_buffer_size;
         if (pos.len() * 12) as u64 > limit {
             return Err(Error::Gpu(format!(

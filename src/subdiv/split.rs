@@ -23,7 +23,7 @@
 //! `C'[v] = A(C[v])`; an edge vertex has valence 6 (interior) or 4 (border)
 //! and `C' = c` (interior) or `p(A(p(c)))` (border, the first corner of its fan).
 
-use crate::mesh::{BORDER, CornerTable, p};
+use crate::mesh::{BORDER, CornerTable, owns_edge, p};
 use rayon::prelude::*;
 
 /// Corners per parallel work item: big enough to amortise scheduling, small
@@ -37,11 +37,6 @@ pub struct EdgeNumbering {
     pub owners: Vec<u32>,
     /// Edge id of the edge opposite each corner.
     pub w: Vec<u32>,
-}
-
-#[inline(always)]
-fn is_owner(c: u32, x: u32) -> bool {
-    x == BORDER || c < x
 }
 
 /// A raw pointer that may be shared between threads which write disjoint
@@ -89,7 +84,7 @@ fn count_owners(ct: &CornerTable) -> Vec<u32> {
         .enumerate()
         .map(|(k, ch)| {
             let base = (k * CHUNK) as u32;
-            ch.iter().enumerate().filter(|&(i, &x)| is_owner(base + i as u32, x)).count() as u32
+            ch.iter().enumerate().filter(|&(i, &x)| owns_edge(base + i as u32, x)).count() as u32
         })
         .collect()
 }
@@ -120,7 +115,7 @@ fn number_edges_with(ct: &CornerTable, counts: &[u32], each: impl Fn(u32, u32, u
         let mut e = 0usize;
         for (i, &x) in och.iter().enumerate() {
             let c = base + i as u32;
-            if is_owner(c, x) {
+            if owns_edge(c, x) {
                 let id = first + e as u32;
                 own[e] = c;
                 e += 1;
