@@ -17,7 +17,7 @@ struct Cli {
     threads: Option<usize>,
 }
 
-#[derive(clap::Args, Clone)]
+#[derive(clap::Args, Clone, Default)]
 struct SchemeArgs {
     /// Scheme: midpoint, loop, butterfly, modified-butterfly, jarek.
     #[arg(long, short, default_value = "loop")]
@@ -46,77 +46,9 @@ impl SchemeArgs {
 #[derive(Subcommand)]
 enum Cmd {
     /// Open the viewer (the default when no command is given).
-    View {
-        /// OBJ or .ct file (default: the bundled tetrahedron).
-        model: Option<PathBuf>,
-        #[command(flatten)]
-        scheme: SchemeArgs,
-        /// Initial subdivision level.
-        #[arg(long, short, default_value_t = 0)]
-        level: u32,
-        /// Start with the wireframe shown.
-        #[arg(long)]
-        wireframe: bool,
-        /// Render N frames, then exit (for CI).
-        #[arg(long)]
-        frames: Option<u32>,
-        /// Save the last frame to this PNG (with --frames).
-        #[arg(long)]
-        screenshot: Option<PathBuf>,
-        /// Animation paths (.paths) for the model.
-        #[arg(long)]
-        paths: Option<PathBuf>,
-        /// Start playing the animation.
-        #[arg(long)]
-        play: bool,
-        /// Start with the camera turning around the model.
-        #[arg(long)]
-        turntable: bool,
-        /// Repair the model's topology when opening it (see `subdiv repair`).
-        #[arg(long)]
-        repair: bool,
-        /// Colouring: none, shells, displacement, file (OBJ vertex colours) or checker (OBJ vt).
-        #[arg(long, default_value = "none")]
-        color: String,
-    },
+    View(ViewArgs),
     /// Render the split-and-tweak animation to a GIF or numbered PNGs.
-    Animate {
-        /// Model (default: the bundled tetrahedron).
-        #[arg(long)]
-        model: Option<PathBuf>,
-        /// Key paths (.paths; default: beside the model or in paths/, else generated loops).
-        #[arg(long)]
-        paths: Option<PathBuf>,
-        #[command(flatten)]
-        scheme: SchemeArgs,
-        /// Subdivision level of every frame.
-        #[arg(long, short, default_value_t = 5)]
-        level: u32,
-        /// Path refinements n: K keys give K * 2^n frames.
-        #[arg(long, default_value_t = 5)]
-        refine: u32,
-        /// Path tweak: bspline, four-point or jarek.
-        #[arg(long, default_value = "jarek")]
-        tweak: String,
-        /// Write one looping GIF here.
-        #[arg(long, conflicts_with = "frames_dir", required_unless_present = "frames_dir")]
-        gif: Option<PathBuf>,
-        /// Write frame_0000.png, ... into this directory.
-        #[arg(long)]
-        frames_dir: Option<PathBuf>,
-        /// Image size WxH.
-        #[arg(long, default_value = "480x480", value_parser = parse_size)]
-        size: (u32, u32),
-        /// phong, flat, wire or phong+wire.
-        #[arg(long, default_value = "phong")]
-        shading: String,
-        /// Overlay the moving control mesh.
-        #[arg(long)]
-        control: bool,
-        /// Frames per second stored in the GIF.
-        #[arg(long, default_value_t = 30.0)]
-        fps: f32,
-    },
+    Animate(AnimateArgs),
     /// Subdivide a mesh and write the result (.obj, .ply or .ct by extension).
     Subdivide {
         /// Input OBJ or .ct.
@@ -270,58 +202,8 @@ fn main() -> ExitCode {
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
         None => view(ViewArgs::default()),
-        Some(Cmd::View {
-            model,
-            scheme,
-            level,
-            wireframe,
-            frames,
-            screenshot,
-            paths,
-            play,
-            turntable,
-            repair,
-            color,
-        }) => view(ViewArgs {
-            model,
-            scheme: scheme.scheme,
-            level,
-            wireframe,
-            frames,
-            screenshot,
-            paths,
-            play,
-            turntable,
-            repair,
-            color,
-        }),
-        Some(Cmd::Animate {
-            model,
-            paths,
-            scheme,
-            level,
-            refine,
-            tweak,
-            gif,
-            frames_dir,
-            size,
-            shading,
-            control,
-            fps,
-        }) => animate_cmd(AnimateArgs {
-            model,
-            paths,
-            scheme,
-            level,
-            refine,
-            tweak,
-            gif,
-            frames_dir,
-            size,
-            shading,
-            control,
-            fps,
-        }),
+        Some(Cmd::View(args)) => view(args),
+        Some(Cmd::Animate(args)) => animate_cmd(args),
         Some(Cmd::Subdivide { input, output, scheme, levels, stats, json, repair }) => {
             subdivide_cmd(&input, &output, &scheme, levels, stats, json, repair)
         }
@@ -355,31 +237,52 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
     }
 }
 
-/// `subdiv view` arguments (kept here so the CLI builds without the viewer).
-#[derive(Default)]
+/// `subdiv view` arguments (parsed the same with and without the viewer feature).
+#[derive(clap::Args, Default)]
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
 struct ViewArgs {
+    /// OBJ, .ct, .bez (patches) or .bzc (curve) file (default: the bundled tetrahedron).
     model: Option<PathBuf>,
-    scheme: Scheme,
+    #[command(flatten)]
+    scheme: SchemeArgs,
+    /// Initial subdivision level.
+    #[arg(long, short, default_value_t = 0)]
     level: u32,
+    /// Start with the wireframe shown.
+    #[arg(long)]
     wireframe: bool,
+    /// Render N frames, then exit (for CI).
+    #[arg(long)]
     frames: Option<u32>,
+    /// Save the last frame to this PNG (with --frames).
+    #[arg(long)]
     screenshot: Option<PathBuf>,
+    /// Animation paths (.paths) for the model.
+    #[arg(long)]
     paths: Option<PathBuf>,
+    /// Start playing the animation.
+    #[arg(long)]
     play: bool,
+    /// Start with the camera turning around the model.
+    #[arg(long)]
     turntable: bool,
+    /// Repair the model's topology when opening it (see `subdiv repair`).
+    #[arg(long)]
     repair: bool,
+    /// Colouring: none, shells, displacement, file (OBJ vertex colours) or checker (OBJ vt).
+    #[arg(long, default_value = "none")]
     color: String,
 }
 
 #[cfg(feature = "viewer")]
 fn view(a: ViewArgs) -> Result<()> {
-    if a.frames.is_some() != a.screenshot.is_some() && a.frames.is_none() {
+    if a.screenshot.is_some() && a.frames.is_none() {
         return Err(Error::Usage("--screenshot needs --frames N (or press P in the window)".into()));
     }
     subdiv::app::run(subdiv::app::ViewOptions {
         model: a.model,
-        scheme: a.scheme,
+        scheme: a.scheme.scheme,
+        opts: a.scheme.options(),
         level: a.level,
         wireframe: a.wireframe,
         frames: a.frames,
@@ -393,19 +296,43 @@ fn view(a: ViewArgs) -> Result<()> {
 }
 
 /// `subdiv animate` arguments.
+#[derive(clap::Args)]
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
 struct AnimateArgs {
+    /// Model (default: the bundled tetrahedron).
+    #[arg(long)]
     model: Option<PathBuf>,
+    /// Key paths (.paths; default: beside the model or in paths/, else generated loops).
+    #[arg(long)]
     paths: Option<PathBuf>,
+    #[command(flatten)]
     scheme: SchemeArgs,
+    /// Subdivision level of every frame.
+    #[arg(long, short, default_value_t = 5)]
     level: u32,
+    /// Path refinements n: K keys give K * 2^n frames.
+    #[arg(long, default_value_t = 5)]
     refine: u32,
+    /// Path tweak: bspline, four-point or jarek.
+    #[arg(long, default_value = "jarek")]
     tweak: String,
+    /// Write one looping GIF here.
+    #[arg(long, conflicts_with = "frames_dir", required_unless_present = "frames_dir")]
     gif: Option<PathBuf>,
+    /// Write frame_0000.png, ... into this directory.
+    #[arg(long)]
     frames_dir: Option<PathBuf>,
+    /// Image size WxH.
+    #[arg(long, default_value = "480x480", value_parser = parse_size)]
     size: (u32, u32),
+    /// phong, flat, wire or phong+wire.
+    #[arg(long, default_value = "phong")]
     shading: String,
+    /// Overlay the moving control mesh.
+    #[arg(long)]
     control: bool,
+    /// Frames per second stored in the GIF.
+    #[arg(long, default_value_t = 30.0)]
     fps: f32,
 }
 

@@ -31,6 +31,8 @@ pub struct ViewOptions {
     pub model: Option<PathBuf>,
     /// Initial scheme.
     pub scheme: Scheme,
+    /// Scheme options (Loop's or Warren's beta, tension, memory limit).
+    pub opts: crate::Options,
     /// Initial level.
     pub level: u32,
     /// Start with the wireframe on.
@@ -165,6 +167,10 @@ impl App {
     fn new(opts: ViewOptions) -> Result<App> {
         let mut doc = Doc::new();
         doc.scheme = opts.scheme;
+        doc.opts = opts.opts;
+        if let Some(limit) = opts.opts.max_memory {
+            doc.limit = Some(limit);
+        }
         doc.level = opts.level;
         if let Some(model) = opts.model.as_ref().filter(|m| m.extension().is_some_and(|e| e == "bzc")) {
             // Check the curve now so a bad file fails before any window; show it through the loader.
