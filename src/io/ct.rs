@@ -160,13 +160,17 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
 /// # Errors
 /// See [`parse`]; I/O errors name the file.
 pub fn load(path: &Path) -> Result<Mesh> {
+    parse(&read_text(path)?, &path.display().to_string())
+}
+
+/// The file as text; invalid UTF-8 is a parse error at its line.
+fn read_text(path: &Path) -> Result<String> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| Error::Parse {
+    String::from_utf8(bytes).map_err(|e| Error::Parse {
         file: path.display().to_string(),
-        line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
+        line: e.as_bytes()[..e.utf8_error().valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
         msg: "not text (invalid UTF-8)".into(),
-    })?;
-    parse(text, &path.display().to_string())
+    })
 }
 
 /// Reads a `.ct` file into its arrays (see [`parse_raw`]).
@@ -174,13 +178,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// # Errors
 /// See [`parse_raw`]; I/O errors name the file.
 pub fn load_raw(path: &Path) -> Result<RawCt> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| Error::Parse {
-        file: path.display().to_string(),
-        line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
-        msg: "not text (invalid UTF-8)".into(),
-    })?;
-    parse_raw(text, &path.display().to_string())
+    parse_raw(&read_text(path)?, &path.display().to_string())
 }
 
 /// Writes `.ct` text including the O table.

@@ -54,6 +54,21 @@ pub struct RawObj {
 /// A corner without a texture coordinate in [`RawObj::corner_uv`].
 pub const NO_UV: u32 = u32::MAX;
 
+/// The next `N` tokens as numbers; `what` names the record in errors.
+fn floats<'a, const N: usize>(
+    toks: &mut impl Iterator<Item = &'a str>,
+    file: &str,
+    ln: usize,
+    what: &str,
+) -> Result<[f32; N]> {
+    let mut out = [0f32; N];
+    for (i, slot) in out.iter_mut().enumerate() {
+        let t = toks.next().ok_or_else(|| parse_err(file, ln, format!("{what} has {i} values, expected {N}")))?;
+        *slot = t.parse().map_err(|_| parse_err(file, ln, format!("{what} '{t}' is not a number")))?;
+    }
+    Ok(out)
+}
+
 fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
     Error::Parse { file: file.to_string(), line, msg: msg.into() }
 }
@@ -77,13 +92,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
         let Some(key) = toks.next() else { continue };
         match key {
             "v" => {
-                let mut xyz = [0f32; 3];
-                for (i, slot) in xyz.iter_mut().enumerate() {
-                    let t = toks
-                        .next()
-                        .ok_or_else(|| parse_err(file, ln, format!("vertex has {i} coordinates, expected 3")))?;
-                    *slot = t.parse().map_err(|_| parse_err(file, ln, format!("'{t}' is not a number")))?;
-                }
+                let xyz: [f32; 3] = floats(&mut toks, file, ln, "vertex")?;
                 if xyz.iter().any(|x| !x.is_finite()) {
                     return Err(Error::Mesh {
                         file: file.into(),
@@ -91,13 +100,10 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
                         source: MeshError::NonFinite { vertex: raw.positions.len() + 1 },
                     });
                 }
-                // Optional per-vertex colour `v x y z r g b` (a common extension).
-                let rest: Vec<&str> = toks.by_ref().take(4).collect();
-                if rest.len() >= 3 {
-                    let mut rgb = [0f32; 3];
-                    for (slot, t) in rgb.iter_mut().zip(&rest) {
-                        *slot = t.parse().map_err(|_| parse_err(file, ln, format!("colour '{t}' is not a number")))?;
-                    }
+                // Optional per-vertex colour `v x y z r g b` (a common extension); a
+                // lone fourth value is the homogeneous w and is ignored.
+                if let (Some(r), Some(g)) = (toks.next(), toks.next()) {
+                    let rgb: [f32; 3] = floats(&mut [r, g].into_iter().chain(toks), file, ln, "colour")?;
                     if rgb.iter().any(|x| !x.is_finite()) {
                         return Err(parse_err(file, ln, "vertex colour is not finite"));
                     }
@@ -110,13 +116,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
                 raw.vertex_lines.push(ln as u32);
             }
             "vt" => {
-                let mut uv = [0f32; 2];
-                for (i, slot) in uv.iter_mut().enumerate() {
-                    let t = toks
-                        .next()
-                        .ok_or_else(|| parse_err(file, ln, format!("texture coordinate has {i} values, expected 2")))?;
-                    *slot = t.parse().map_err(|_| parse_err(file, ln, format!("'{t}' is not a number")))?;
-                }
+                let uv: [f32; 2] = floats(&mut toks, file, ln, "texture coordinate")?;
                 if uv.iter().any(|x| !x.is_finite()) {
                     return Err(parse_err(file, ln, "texture coordinate is not finite"));
                 }
