@@ -169,7 +169,7 @@ fn animation_frames_update_in_place_and_move() {
     let cam = Camera::framing(lo, hi, 1.0);
     let first = off.render_one(cam, &g, None, Look::default()).unwrap();
     let (p, n) = anim.evaluate(anim.frame_count() / 2);
-    g.update(&off.gpu.device, &off.gpu.queue, p, n);
+    g.update(&off.gpu.queue, p, n);
     let middle = off.render_one(cam, &g, None, Look::default()).unwrap();
     assert!(differing_pixels(&first, &middle) > 50, "the animation does not move");
 }

@@ -402,17 +402,15 @@ impl App {
             let f = a.clock.tick(dt);
             if a.shown_frame != Some(f) {
                 let fresh = a.shown_frame.is_none();
-                if fresh || win.anim.is_none() {
-                    let (topo, pos, nrm) = a.player.evaluate_with_topology(f);
-                    win.anim = GpuMesh::new(device, topo, pos, nrm).ok();
-                } else if let Some(m) = &mut win.anim {
-                    let (pos, nrm) = a.player.evaluate(f);
-                    m.update(device, queue, pos, nrm);
+                let (topo, pos, nrm) = a.player.evaluate_with_topology(f);
+                match &mut win.anim {
+                    Some(m) if !fresh => m.update(queue, pos, nrm),
+                    _ => win.anim = GpuMesh::new(device, topo, pos, nrm).ok(),
                 }
                 let cpos = a.player.control(f);
                 if let Some(c) = &mut win.control {
                     let cn = crate::mesh::normals::vertex_normals(&doc.control.mesh.ct, cpos);
-                    c.update(device, queue, cpos, &cn);
+                    c.update(queue, cpos, &cn);
                 }
                 a.shown_frame = Some(f);
                 win.version += 1;
@@ -420,19 +418,27 @@ impl App {
         } else if win.anim.is_some() {
             win.anim = None;
         }
-        for m in [&mut win.result, &mut win.anim].into_iter().flatten() {
-            if !self.ui.normals {
-                m.clear_normal_lines();
-            }
-        }
+        // Normal segments: built once per upload (a new GpuMesh has none), kept
+        // current by GpuMesh::update while the animation plays.
         if self.ui.normals {
-            if let Some(m) = win.result.as_mut().filter(|_| uploaded || !self.ui.normals_built) {
-                m.set_normal_lines(device, &doc.result.mesh.positions, &doc.result.normals, Some(normal_length));
+            if let Some(m) = win.result.as_mut().filter(|m| !m.has_normal_lines()) {
+                m.set_normal_lines(device, &doc.result.mesh.positions, &doc.result.normals, normal_length);
                 win.version += 1;
             }
-            self.ui.normals_built = true;
+            if let (Some(m), Some(a)) = (win.anim.as_mut(), doc.anim.as_mut())
+                && !m.has_normal_lines()
+            {
+                let (pos, nrm) = a.player.evaluate(a.shown_frame.unwrap_or(0));
+                m.set_normal_lines(device, pos, nrm, normal_length);
+                win.version += 1;
+            }
         } else {
-            self.ui.normals_built = false;
+            for m in [&mut win.result, &mut win.anim].into_iter().flatten() {
+                if m.has_normal_lines() {
+                    m.clear_normal_lines();
+                    win.version += 1;
+                }
+            }
         }
         if uploaded {
             self.ui.upload_ms = t0.elapsed().as_secs_f64() * 1e3;

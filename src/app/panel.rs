@@ -57,8 +57,6 @@ pub struct UiState {
     pub adapter: String,
     /// The 3D area (points), set each frame.
     pub scene_rect: egui::Rect,
-    /// The normal segments of the current result exist.
-    pub normals_built: bool,
     /// Multisampling on.
     pub msaa: bool,
     /// Clicks in the 3D area pick control-mesh edges.
@@ -109,7 +107,6 @@ impl UiState {
             hovering_file: false,
             adapter: String::new(),
             scene_rect: egui::Rect::NOTHING,
-            normals_built: false,
             msaa: false,
             pick: false,
             highlighted: None,

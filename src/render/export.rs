@@ -81,9 +81,9 @@ pub fn export_animation(
         GpuMesh::new(&off.gpu.device, &control.ct, anim.control(0), &vertex_normals(&control.ct, anim.control(0)))?;
     let mut render = |f: usize, off: &mut Offscreen| -> Result<image::RgbaImage> {
         let (pos, nrm) = anim.evaluate(f);
-        fine.update(&off.gpu.device, &off.gpu.queue, pos, nrm);
+        fine.update(&off.gpu.queue, pos, nrm);
         let cpos = anim.control(f);
-        coarse.update(&off.gpu.device, &off.gpu.queue, cpos, &vertex_normals(&control.ct, cpos));
+        coarse.update(&off.gpu.queue, cpos, &vertex_normals(&control.ct, cpos));
         off.render_one(camera, &fine, Some(&coarse), style.look)
     };
     let cancelled = || Error::Usage("export cancelled".into());

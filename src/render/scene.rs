@@ -96,6 +96,11 @@ pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
     if volume >= 0.0 { Cull::Back } else { Cull::Front }
 }
 
+/// Segments from each point along its normal, `length` long.
+fn normal_segments(positions: &[Vec3], normals: &[Vec3], length: f32) -> Vec<Vec3> {
+    positions.iter().zip(normals).flat_map(|(q, n)| [*q, *q + *n * length]).collect()
+}
+
 /// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]).
 pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
     ct.edge_owners().flat_map(|c| [ct.v[n(c) as usize], ct.v[p(c) as usize]]).collect()
@@ -221,34 +226,29 @@ impl GpuMesh {
 
     /// Replaces positions and normals (same vertex count, same topology):
     /// the per-frame path of the animation; nothing is reallocated.
-    pub fn update(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, positions: &[Vec3], normals: &[Vec3]) {
+    pub fn update(&mut self, queue: &wgpu::Queue, positions: &[Vec3], normals: &[Vec3]) {
         let k = self.vertex_count.min(positions.len()).min(normals.len());
         queue.write_buffer(&self.positions, 0, bytemuck::cast_slice(&positions[..k]));
         queue.write_buffer(&self.normals, 0, bytemuck::cast_slice(&normals[..k]));
-        if self.normal_lines.is_some() {
-            self.set_normal_lines(device, positions, normals, None);
+        if let Some((buf, count)) = &self.normal_lines {
+            let segs = normal_segments(&positions[..k], &normals[..k], self.normal_length);
+            if segs.len() as u32 == *count {
+                queue.write_buffer(buf, 0, bytemuck::cast_slice(&segs));
+            }
         }
     }
 
-    /// Builds (or with `length` `None`, rebuilds at the last length) the
-    /// short segments that display the vertex normals.
-    pub fn set_normal_lines(
-        &mut self,
-        device: &wgpu::Device,
-        positions: &[Vec3],
-        normals: &[Vec3],
-        length: Option<f32>,
-    ) {
-        let length = length.unwrap_or(self.normal_length);
+    /// Builds the segments, `length` long, that display the vertex normals.
+    pub fn set_normal_lines(&mut self, device: &wgpu::Device, positions: &[Vec3], normals: &[Vec3], length: f32) {
         self.normal_length = length;
-        let mut v = Vec::with_capacity(positions.len() * 2);
-        for (q, nrm) in positions.iter().zip(normals) {
-            v.push(*q);
-            v.push(*q + *nrm * length);
-        }
-        let count = v.len() as u32;
-        self.normal_lines =
-            Some((buffer(device, "normal lines", bytemuck::cast_slice(&v), wgpu::BufferUsages::VERTEX), count));
+        let v = normal_segments(positions, normals, length);
+        let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        self.normal_lines = Some((buffer(device, "normal lines", bytemuck::cast_slice(&v), usage), v.len() as u32));
+    }
+
+    /// Whether the normal segments are built.
+    pub fn has_normal_lines(&self) -> bool {
+        self.normal_lines.is_some()
     }
 
     /// Sets per-vertex colours (linear RGB, one per vertex), shown when the
