@@ -106,8 +106,7 @@ fn bad_texture_and_colour_records_name_the_line() {
 
 #[test]
 fn subdivide_command_carries_attributes_into_obj() {
-    let dir = std::env::temp_dir().join(format!("subdiv-attrs-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("attrs");
     let input = dir.join("quad.obj");
     std::fs::write(&input, "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nv 1 1 0 1 1 1\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nf 1/1 2/2 4/4 3/3\n").unwrap();
     let output = dir.join("quad2.obj");

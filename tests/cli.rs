@@ -11,8 +11,7 @@ fn bin() -> Command {
 }
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("subdiv-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
+    let d = scratch_dir("cli");
     d.join(name)
 }
 

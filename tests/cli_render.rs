@@ -4,13 +4,12 @@
 #![cfg(feature = "viewer")]
 
 mod common;
-use common::model_path;
+use common::{model_path, scratch_dir};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
 fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("subdiv-cli-render-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
+    let d = scratch_dir("cli-render");
     d.join(name)
 }
 

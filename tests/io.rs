@@ -133,8 +133,7 @@ fn parsers_never_panic_on_mutated_input() {
 
 #[test]
 fn repairing_loaders_repair_topology_but_keep_data_errors() {
-    let dir = std::env::temp_dir().join(format!("subdiv-io-repair-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch_dir("io-repair");
     // a fin in both formats: .ct ids are 0-based, OBJ ids 1-based
     let ct = dir.join("fin.ct");
     std::fs::write(&ct, "5\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3\n0 1 2\n1 0 3\n0 1 4\n").unwrap();

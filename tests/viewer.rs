@@ -91,8 +91,7 @@ fn a_big_level_brings_its_proxy_from_the_same_run() {
 
 #[test]
 fn a_bad_file_shows_an_error_and_keeps_the_model() {
-    let dir = std::env::temp_dir().join(format!("subdiv-viewer-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch_dir("viewer-test");
     let bad = dir.join("bad.obj");
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nf 1 2 7\n").unwrap();
     let mut doc = Doc::new();
@@ -152,8 +151,7 @@ fn space_plays_the_tetrahedron_animation() {
 
 #[test]
 fn a_non_manifold_file_can_be_repaired_from_the_panel() {
-    let dir = std::env::temp_dir().join(format!("subdiv-viewer-fin-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch_dir("viewer-fin");
     let fin = dir.join("fin.obj");
     std::fs::write(&fin, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n").unwrap();
     let mut doc = Doc::new();
@@ -250,8 +248,7 @@ fn a_bzc_file_opens_as_a_curve_with_its_construction() {
 #[test]
 fn file_colours_are_refined_with_the_mesh() {
     use subdiv::app::doc::Coloring;
-    let dir = std::env::temp_dir().join(format!("subdiv-viewer-col-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::scratch_dir("viewer-col");
     let f = dir.join("tet.obj");
     std::fs::write(
         &f,

@@ -401,53 +401,55 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
         return write_obj(mesh, sink);
     }
     let mut out = Vec::with_capacity(1 << 20);
-    let mut rb = ryu::Buffer::new();
-    let mut ib = itoa::Buffer::new();
-    out.extend_from_slice(
-        format!("# subdiv: {} vertices, {} triangles\n", mesh.positions.len(), mesh.ct.num_triangles()).as_bytes(),
-    );
+    // appends one record, handing the text to `sink` every megabyte
+    let mut record = |out: &mut Vec<u8>, write: &mut dyn FnMut(&mut Vec<u8>)| -> Result<()> {
+        write(out);
+        if out.len() > 1 << 20 {
+            sink(out)?;
+            out.clear();
+        }
+        Ok(())
+    };
+    let (mut rb, mut ib) = (ryu::Buffer::new(), itoa::Buffer::new());
+    let header = format!("# subdiv: {} vertices, {} triangles\n", mesh.positions.len(), mesh.ct.num_triangles());
+    record(&mut out, &mut |o| o.extend_from_slice(header.as_bytes()))?;
     let colors = attrs.colors.as_ref().filter(|c| c.len() == mesh.positions.len());
     for (i, q) in mesh.positions.iter().enumerate() {
-        out.extend_from_slice(b"v");
         let rgb = colors.map(|c| c[i].to_array());
-        for x in q.to_array().into_iter().chain(rgb.into_iter().flatten()) {
-            out.push(b' ');
-            push_f32(&mut out, &mut rb, x);
-        }
-        out.push(b'\n');
-        if out.len() > 1 << 20 {
-            sink(&out)?;
-            out.clear();
-        }
+        record(&mut out, &mut |o| {
+            o.push(b'v');
+            for x in q.to_array().into_iter().chain(rgb.into_iter().flatten()) {
+                o.push(b' ');
+                push_f32(o, &mut rb, x);
+            }
+            o.push(b'\n');
+        })?;
     }
     let uv = attrs.uv.as_ref().filter(|u| u.len() == mesh.ct.v.len());
-    if let Some(uv) = uv {
-        for t in uv {
-            out.extend_from_slice(b"vt ");
-            push_f32(&mut out, &mut rb, t.x);
-            out.push(b' ');
-            push_f32(&mut out, &mut rb, t.y);
-            out.push(b'\n');
-            if out.len() > 1 << 20 {
-                sink(&out)?;
-                out.clear();
+    for t in uv.into_iter().flatten() {
+        record(&mut out, &mut |o| {
+            o.extend_from_slice(b"vt");
+            for x in [t.x, t.y] {
+                o.push(b' ');
+                push_f32(o, &mut rb, x);
             }
-        }
+            o.push(b'\n');
+        })?;
     }
-    for (c, v) in mesh.ct.v.iter().enumerate() {
-        out.extend_from_slice(if c % 3 == 0 { b"f " } else { b" " });
-        out.extend_from_slice(ib.format(v + 1).as_bytes());
-        if uv.is_some() {
-            out.push(b'/');
-            out.extend_from_slice(ib.format(c + 1).as_bytes());
-        }
-        if c % 3 == 2 {
-            out.push(b'\n');
-        }
-        if out.len() > 1 << 20 {
-            sink(&out)?;
-            out.clear();
-        }
+    for (t, tri) in mesh.ct.v.chunks_exact(3).enumerate() {
+        record(&mut out, &mut |o| {
+            o.push(b'f');
+            for (k, v) in tri.iter().enumerate() {
+                o.push(b' ');
+                o.extend_from_slice(ib.format(v + 1).as_bytes());
+                if uv.is_some() {
+                    // one vt per corner, in corner order
+                    o.push(b'/');
+                    o.extend_from_slice(ib.format(3 * t + k + 1).as_bytes());
+                }
+            }
+            o.push(b'\n');
+        })?;
     }
     sink(&out)
 }

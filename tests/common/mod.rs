@@ -6,6 +6,14 @@ use glam::Vec3;
 use std::path::PathBuf;
 use subdiv::Mesh;
 
+/// A fresh directory for one test's files (`name` and the process id keep
+/// tests and runs apart).
+pub fn scratch_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("subdiv-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).expect("temporary directory");
+    d
+}
+
 pub fn model_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models").join(name)
 }
