@@ -259,11 +259,6 @@ impl GpuMesh {
         self.colors = Some(buffer(device, "colors", bytemuck::cast_slice(&c), wgpu::BufferUsages::VERTEX));
     }
 
-    /// Whether per-vertex colours are set.
-    pub fn has_colors(&self) -> bool {
-        self.colors.is_some()
-    }
-
     /// Segments (point pairs) drawn highlighted over this mesh, e.g. a
     /// picked edge; empty clears them.
     pub fn set_highlight(&mut self, device: &wgpu::Device, segments: &[Vec3]) {
@@ -273,11 +268,6 @@ impl GpuMesh {
                 segments.len() as u32,
             )
         });
-    }
-
-    /// Drops the per-vertex colours.
-    pub fn clear_colors(&mut self) {
-        self.colors = None;
     }
 
     /// Drops the normal segments.
