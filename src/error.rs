@@ -105,9 +105,61 @@ pub enum Error {
     /// The next subdivision level would need more memory than allowed.
     #[error("level {level} would need about {} but the limit is {} ({faces} faces); use fewer levels or raise --max-memory", human_bytes(*bytes), human_bytes(*limit))]
     TooLarge { level: u32, faces: u64, bytes: u64, limit: u64 },
-    /// An argument is out of its range.
+    /// An argument is out of its range, or options that do not go together.
     #[error("{0}")]
     Usage(String),
+    /// The work was cancelled before it finished (by the user, or by a newer
+    /// request that superseded it).
+    #[error("{what} cancelled")]
+    Cancelled {
+        /// What was cancelled ("export", "subdivision").
+        what: String,
+    },
+    /// Encoding an image or an animation failed.
+    #[error("{path}: {format} encoding failed: {msg}")]
+    Encode {
+        /// The file being written.
+        path: String,
+        /// The format ("PNG", "GIF").
+        format: &'static str,
+        /// The encoder's message.
+        msg: String,
+    },
+    /// Waiting for a result ran past its limit.
+    #[error("{what}: did not finish within {seconds} s")]
+    Timeout {
+        /// What was waited for.
+        what: String,
+        /// The limit.
+        seconds: f64,
+    },
+    /// Two things that must have the same count do not.
+    #[error("{what}: {found} {unit}, but {expected} expected")]
+    CountMismatch {
+        /// Where the counts come from (a file, a pair of meshes).
+        what: String,
+        /// What is counted ("vertices").
+        unit: &'static str,
+        /// The count that was needed.
+        expected: usize,
+        /// The count that was found.
+        found: usize,
+    },
+    /// A file's extension names no format this build reads or writes.
+    #[error("{path}: unknown {direction} format '.{ext}' (use {known})")]
+    UnknownFormat {
+        /// The file.
+        path: String,
+        /// Its extension, lower case (may be empty).
+        ext: String,
+        /// "input" or "output".
+        direction: &'static str,
+        /// The extensions that are known.
+        known: &'static str,
+    },
+    /// Something our own code should have made impossible: a bug in subdiv.
+    #[error("internal error: {0} (this is a bug in subdiv, please report it)")]
+    Internal(String),
     /// No GPU adapter or device (the renderer and the window need one).
     #[error("graphics: {0}")]
     Gpu(String),
@@ -117,6 +169,14 @@ impl Error {
     /// An I/O error on `path`.
     pub fn io(path: &Path, source: std::io::Error) -> Self {
         Error::Io { path: path.display().to_string(), source }
+    }
+    /// [`Error::Cancelled`] for `what`.
+    pub fn cancelled(what: &str) -> Self {
+        Error::Cancelled { what: what.to_string() }
+    }
+    /// [`Error::Encode`] of `format` into `path`.
+    pub fn encode(path: &Path, format: &'static str, msg: impl std::fmt::Display) -> Self {
+        Error::Encode { path: path.display().to_string(), format, msg: msg.to_string() }
     }
 }
 

@@ -30,6 +30,7 @@
 //! are the old vertices' new positions, *odd* points the new edge vertices.
 
 pub mod anim;
+pub mod bundled;
 pub mod error;
 pub mod io;
 pub mod mem;

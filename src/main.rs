@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 use subdiv::mesh::topology::topology;
-use subdiv::{Error, LoopBeta, Mesh, MeshError, Options, Result, Scheme, io};
+use subdiv::{Error, LoopBeta, Mesh, MeshError, Options, Result, Scheme, bundled, io};
 
 #[derive(Parser)]
 #[command(name = "subdiv", version, about = "Triangle-mesh subdivision: viewer and command line", long_about = None)]
@@ -209,7 +209,7 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
         }
         Some(Cmd::Repair { input, output }) => repair_cmd(&input, &output),
         Some(Cmd::Smooth { input, output, steps, lambda, mu, laplacian }) => {
-            let mesh = io::load(&input)?;
+            let mesh = bundled::load(&input)?;
             if !(lambda.is_finite() && mu.is_finite() && lambda > 0.0 && (laplacian || mu < -lambda)) {
                 return Err(Error::Usage(format!("need lambda > 0 and mu < -lambda (got {lambda}, {mu})")));
             }
@@ -224,7 +224,7 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
             Ok(())
         }
         Some(Cmd::Limit { input, output }) => {
-            let mesh = io::load(&input)?;
+            let mesh = bundled::load(&input)?;
             let positions = subdiv::subdiv::limit::loop_limit_positions(&mesh);
             io::save(&output, &Mesh { ct: mesh.ct, positions })?;
             println!("{} -> {}: Loop limit positions", input.display(), output.display());
@@ -344,23 +344,30 @@ fn animate_cmd(a: AnimateArgs) -> Result<()> {
     let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
     let (mesh, default_paths) = match &a.model {
         Some(m) => {
-            let mesh = io::load(m)?;
-            let beside = subdiv::app::doc::paths_for(m);
+            let mesh = bundled::load(m)?;
+            let beside = match bundled::paths_for(m) {
+                Some(src) => {
+                    let paths = src.load()?;
+                    paths.check_model(&mesh, &src.describe())?;
+                    Some(paths)
+                }
+                None => None,
+            };
             (mesh, beside)
         }
         None => {
-            let (mesh, _) = io::obj::from_bytes(subdiv::app::doc::TETRAHEDRON_OBJ.as_bytes(), "tetrahedron.obj")?;
-            (mesh, None)
+            let (mesh, paths) = bundled::tetrahedron()?;
+            (mesh, Some(paths))
         }
     };
-    let paths = match (&a.paths, &default_paths, &a.model) {
-        (Some(p), _, _) | (None, Some(p), _) => {
+    let paths = match (&a.paths, default_paths) {
+        (Some(p), _) => {
             let paths = Paths::load(p)?;
             paths.check_model(&mesh, &p.display().to_string())?;
             paths
         }
-        (None, None, None) => Paths::parse(subdiv::app::doc::TETRAHEDRON_PATHS, "tetrahedron.paths")?,
-        (None, None, Some(_)) => Paths::generated(&mesh, 4),
+        (None, Some(paths)) => paths,
+        (None, None) => Paths::generated(&mesh, 4),
     };
     let mut anim = Animation::new(&mesh, &paths, tweak, a.refine, a.scheme.scheme, a.level, &a.scheme.options())?;
     let target = match (a.gif, a.frames_dir) {
@@ -418,7 +425,7 @@ fn render_cmd(
     control: bool,
 ) -> Result<()> {
     let shading: subdiv::render::Shading = shading.parse().map_err(Error::Usage)?;
-    let mesh = io::load(input)?;
+    let mesh = bundled::load(input)?;
     let (fine, _) = subdiv::subdivide(&mesh, scheme.scheme, levels, &scheme.options())?;
     let opts = subdiv::render::RenderOptions { shading, width: size.0, height: size.1, orthographic: ortho };
     subdiv::render::render_png(&fine, control.then_some(&mesh), &opts, output)
@@ -442,13 +449,13 @@ fn subdivide_cmd(
     let t0 = Instant::now();
     let is_obj = |p: &Path| p.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj"));
     let (mesh, attrs) = if repair {
-        let (m, report) = io::load_repaired(input)?;
+        let (m, report) = bundled::load_repaired(input)?;
         eprint!("{report}");
         (m, Default::default())
     } else if is_obj(input) {
-        io::obj::load_with_attributes(input)?
+        bundled::load_with_attributes(input)?
     } else {
-        (io::load(input)?, Default::default())
+        (bundled::load(input)?, Default::default())
     };
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
@@ -507,7 +514,7 @@ fn subdivide_cmd(
 }
 
 fn repair_cmd(input: &Path, output: &Path) -> Result<()> {
-    let (mesh, report) = io::load_repaired(input)?;
+    let (mesh, report) = bundled::load_repaired(input)?;
     io::save(output, &mesh)?;
     print!("{report}");
     println!(
@@ -542,7 +549,7 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
         Some(Err(e)) if !is_topology_error(&e) => return Err(e),
         // invalid topology (or --repair): analyse and describe the repaired mesh
         _ => {
-            let (m, r) = io::analyze(input)?;
+            let (m, r) = bundled::analyze(input)?;
             (m, r.unreferenced_vertices.count, r.vertices_in, Some(r))
         }
     };
@@ -615,7 +622,7 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
 /// Loads for `info`: the mesh, unreferenced vertices dropped, vertex records.
 fn load_for_info(input: &Path) -> Result<(Mesh, usize, usize)> {
     if input.extension().is_some_and(|e| e == "ct" || e == "bez") {
-        let m = io::load(input)?;
+        let m = bundled::load(input)?;
         let n = m.positions.len();
         Ok((m, 0, n))
     } else {

@@ -18,8 +18,7 @@ fn uvs_are_linear_inside_triangles_and_seams_stay_sharp() {
         if cx > 3.0 { Vec2::new(100.0, 0.0) } else { Vec2::ZERO }
     };
     let uv: Vec<Vec2> = mesh
-        .ct
-        .v
+        .triangles()
         .chunks_exact(3)
         .flat_map(|t| {
             let off = chart(t, &mesh.positions);
@@ -31,8 +30,8 @@ fn uvs_are_linear_inside_triangles_and_seams_stay_sharp() {
         // midpoint keeps every point on the plane, so uv must equal (x, y) + the chart offset
         let (fine, _) = subdivide(&mesh, Scheme::Midpoint, levels, &Options::default()).unwrap();
         let fuv = refine_corner_uvs(&uv, levels);
-        assert_eq!(fuv.len(), fine.ct.v.len());
-        for (t, tri) in fine.ct.v.chunks_exact(3).enumerate() {
+        assert_eq!(fuv.len(), fine.ct.v_table().len());
+        for (t, tri) in fine.ct.v_table().chunks_exact(3).enumerate() {
             let off = chart(tri, &fine.positions);
             for k in 0..3 {
                 let want = fine.positions[tri[k] as usize].truncate() + off;
@@ -87,7 +86,10 @@ fn obj_round_trip_with_texture_coordinates_and_colours() {
     })
     .unwrap();
     let (again, attrs2) = obj::from_bytes_with_attributes(&bytes, "again.obj").unwrap();
-    assert_eq!((again.ct.v.clone(), again.positions.clone()), (mesh.ct.v.clone(), mesh.positions.clone()));
+    assert_eq!(
+        (again.ct.v_table().to_vec(), again.positions.clone()),
+        (mesh.ct.v_table().to_vec(), mesh.positions.clone())
+    );
     assert_eq!(attrs2, attrs);
 }
 

@@ -207,7 +207,7 @@ fn with_repair_every_nonempty_mesh_refines_with_every_scheme() {
         let (mesh, report) = result.unwrap_or_else(|e| panic!("{}: repair failed: {e}", case.name));
         let name = case.name;
         // the result passes the ordinary validating build unchanged
-        let rebuilt = Mesh::from_triangles(mesh.positions.clone(), &mesh.ct.v)
+        let rebuilt = Mesh::from_triangles(mesh.positions.clone(), mesh.ct.v_table())
             .unwrap_or_else(|e| panic!("{name}: repaired mesh does not build: {e}"));
         assert_eq!(rebuilt.ct, mesh.ct, "{name}");
         check_invariants(&mesh.ct).unwrap_or_else(|e| panic!("{name}: {e}"));
@@ -233,7 +233,7 @@ fn with_repair_every_nonempty_mesh_refines_with_every_scheme() {
         // every output position is an input position
         assert!(mesh.positions.iter().all(|q| case.soup.positions.contains(q)), "{name}");
         // repairing again finds nothing
-        let (again, rep2) = repair(mesh.positions.clone(), &mesh.ct.v).unwrap();
+        let (again, rep2) = repair(mesh.positions.clone(), mesh.ct.v_table()).unwrap();
         assert!(rep2.is_empty(), "{name}: second repair changed something\n{rep2}");
         assert_eq!(again.ct, mesh.ct, "{name}");
         refine_all(name, &mesh);
@@ -300,8 +300,8 @@ fn corpus_covers_what_it_claims() {
         let c = cases().into_iter().find(|c| c.name == name).unwrap();
         Mesh::from_triangles(c.soup.positions, &c.soup.triangles).unwrap()
     };
-    let max_valence = |m: &Mesh| m.ct.valence.iter().copied().max().unwrap();
-    assert!(built("valence_2_corners").ct.valence.contains(&2));
+    let max_valence = |m: &Mesh| m.ct.valences().iter().copied().max().unwrap();
+    assert!(built("valence_2_corners").ct.valences().contains(&2));
     assert_eq!(max_valence(&built("fan_valence_16")), 16);
     assert_eq!(max_valence(&built("cylinder_fans_valence_24")), 24);
     assert_eq!(topology(&built("four_components").ct).components, 4);
@@ -325,9 +325,9 @@ fn random_soups_always_repair_into_valid_meshes() {
             Err(e) => panic!("round {round}: {e}"),
             Ok((mesh, report)) => {
                 check_invariants(&mesh.ct).unwrap_or_else(|e| panic!("round {round}: {e}"));
-                Mesh::from_triangles(mesh.positions.clone(), &mesh.ct.v)
+                Mesh::from_triangles(mesh.positions.clone(), mesh.ct.v_table())
                     .unwrap_or_else(|e| panic!("round {round}: {triangles:?}: {e}\n{report}"));
-                let (_, again) = repair(mesh.positions.clone(), &mesh.ct.v).unwrap();
+                let (_, again) = repair(mesh.positions.clone(), mesh.ct.v_table()).unwrap();
                 assert!(again.is_empty(), "round {round}: not a fixed point\n{again}");
             }
         }

@@ -12,13 +12,14 @@ use subdiv::{CornerTable, Mesh};
 
 /// The triangles as a sorted list of rotation-normalised triples (keeps orientation).
 fn triangle_set(ct: &CornerTable) -> Vec<[u32; 3]> {
-    let mut v: Vec<[u32; 3]> =
-        ct.v.chunks_exact(3)
-            .map(|t| {
-                let k = (0..3).min_by_key(|&i| t[i]).unwrap();
-                [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
-            })
-            .collect();
+    let mut v: Vec<[u32; 3]> = ct
+        .v_table()
+        .chunks_exact(3)
+        .map(|t| {
+            let k = (0..3).min_by_key(|&i| t[i]).unwrap();
+            [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+        })
+        .collect();
     v.sort_unstable();
     v
 }
@@ -27,16 +28,16 @@ fn triangle_set(ct: &CornerTable) -> Vec<[u32; 3]> {
 /// identity holds; `from_vo` accepts V and O.
 fn assert_consistent(ct: &CornerTable, what: &str) {
     check_invariants(ct).unwrap_or_else(|e| panic!("{what}: {e}"));
-    let (rebuilt, report, kept) = CornerTable::build(ct.num_vertices(), &ct.v, None).unwrap();
+    let (rebuilt, report, kept) = CornerTable::build(ct.num_vertices(), ct.v_table(), None).unwrap();
     assert!(kept.is_none() && report.unreferenced == 0, "{what}: a vertex lost all its triangles");
-    assert_eq!(rebuilt.o, ct.o, "{what}: O differs from a rebuild");
-    assert_eq!(rebuilt.valence, ct.valence, "{what}: valences differ from a rebuild");
+    assert_eq!(rebuilt.o_table(), ct.o_table(), "{what}: O differs from a rebuild");
+    assert_eq!(rebuilt.valences(), ct.valences(), "{what}: valences differ from a rebuild");
     for v in 0..ct.num_vertices() {
         if ct.is_boundary_vertex(v as u32) {
-            assert_eq!(rebuilt.vc[v], ct.vc[v], "{what}: C[{v}] is not the fan start");
+            assert_eq!(rebuilt.c_table()[v], ct.c_table()[v], "{what}: C[{v}] is not the fan start");
         }
     }
-    CornerTable::from_vo(ct.v.clone(), ct.o.clone(), ct.num_vertices()).unwrap();
+    CornerTable::from_vo(ct.v_table().to_vec(), ct.o_table().to_vec(), ct.num_vertices()).unwrap();
 }
 
 fn has_edge(ct: &CornerTable, a: u32, b: u32) -> bool {
@@ -96,7 +97,7 @@ fn bad_flips_are_refused() {
             match flip_edge(&mut ct, c) {
                 Ok(()) => {
                     for v in [a, b] {
-                        assert!(m.ct.is_boundary_vertex(v) || m.ct.valence[v as usize] > 3, "{name}: {c}");
+                        assert!(m.ct.is_boundary_vertex(v) || m.ct.valences()[v as usize] > 3, "{name}: {c}");
                     }
                 }
                 Err(EditError::BorderEdge { .. }) => assert!(m.ct.is_border(c)),
@@ -105,7 +106,7 @@ fn bad_flips_are_refused() {
                     assert_eq!((v0, v1), (w.min(d), w.max(d)));
                     assert!(w == d || has_edge(&m.ct, w, d), "{name}: {c}");
                 }
-                Err(EditError::LowValence { vertex }) => assert!(m.ct.valence[vertex as usize] <= 3),
+                Err(EditError::LowValence { vertex }) => assert!(m.ct.valences()[vertex as usize] <= 3),
                 Err(e) => panic!("{name}: {c}: {e}"),
             }
         }
@@ -132,7 +133,7 @@ fn split_adds_one_vertex_and_keeps_euler() {
             assert_eq!(t1.edges, t0.edges + de, "{name}");
             assert_eq!(t1.faces, t0.faces + df, "{name}");
             assert_eq!((t1.euler, t1.genus, t1.boundary_loops), (t0.euler, t0.genus, t0.boundary_loops), "{name}");
-            assert_eq!(mm.ct.valence[v as usize], if border { 3 } else { 4 });
+            assert_eq!(mm.ct.valences()[v as usize], if border { 3 } else { 4 });
             assert!(has_edge(&mm.ct, a, v) && has_edge(&mm.ct, v, b) && !has_edge(&mm.ct, a, b));
             // old positions untouched
             assert_eq!(&mm.positions[..m.positions.len()], &m.positions[..]);
@@ -169,7 +170,7 @@ fn random_edit_sequences_stay_consistent() {
         // the edited mesh still subdivides into a valid table
         let (fine, _) = subdiv::subdivide(&mesh, subdiv::Scheme::Loop, 1, &Default::default()).unwrap();
         check_invariants(&fine.ct).unwrap();
-        assert!(fine.ct.o.iter().filter(|&&x| x == BORDER).count() == 2 * mesh.ct.num_border_edges());
+        assert!(fine.ct.o_table().iter().filter(|&&x| x == BORDER).count() == 2 * mesh.ct.num_border_edges());
         assert!(fine.positions.iter().all(|q: &Vec3| q.is_finite()));
     }
 }

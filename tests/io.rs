@@ -14,7 +14,7 @@ fn our_obj_parser_agrees_with_tobj() {
         let (tp, tt) = obj::load_tobj(&path).unwrap();
         let key = |p: glam::Vec3| p.to_array().map(f32::to_bits);
         let mut ours: Vec<_> =
-            m.ct.v
+            m.ct.v_table()
                 .chunks_exact(3)
                 .map(|t| t.iter().map(|&i| key(m.positions[i as usize])).collect::<Vec<_>>())
                 .collect();

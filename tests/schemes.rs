@@ -20,7 +20,7 @@ fn close(a: Vec3, b: Vec3, tol: f32) -> bool {
 fn edge_point(orig: &Mesh, fine: &Mesh, a: u32, b: u32) -> Vec3 {
     let (nv, _) = (orig.positions.len(), ());
     // the edge vertex is adjacent (in the fine mesh) to both a and b
-    for tri in fine.ct.v.chunks_exact(3) {
+    for tri in fine.ct.v_table().chunks_exact(3) {
         for k in 0..3 {
             let (x, y) = (tri[k], tri[(k + 1) % 3]);
             if x == a && y as usize >= nv {
@@ -138,7 +138,7 @@ fn midpoint_points_stay_on_the_input_surface() {
         };
         for &q in &f.positions {
             let d =
-                m.ct.v
+                m.ct.v_table()
                     .chunks_exact(3)
                     .map(|t| {
                         dist_to_triangle(
@@ -318,11 +318,11 @@ fn symmetries(m: &Mesh) -> Vec<Mat3> {
                 let k = (0..3).min_by_key(|&k| t[k]).unwrap();
                 [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
             };
-            let mut tris: Vec<[u32; 3]> = m.ct.v.chunks_exact(3).map(|t| norm([t[0], t[1], t[2]])).collect();
+            let mut tris: Vec<[u32; 3]> = m.ct.v_table().chunks_exact(3).map(|t| norm([t[0], t[1], t[2]])).collect();
             tris.sort_unstable();
             let reflect = r.determinant() < 0.0;
             let mut mapped: Vec<[u32; 3]> =
-                m.ct.v
+                m.ct.v_table()
                     .chunks_exact(3)
                     .map(|t| {
                         let (a, b, c) = (map[t[0] as usize], map[t[1] as usize], map[t[2] as usize]);

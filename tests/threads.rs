@@ -29,10 +29,10 @@ fn same_result_for_any_thread_count() {
             for threads in [2, 3] {
                 let many = in_pool(threads, m, s, 2);
                 let what = format!("{name} {s} with {threads} threads");
-                assert_eq!(one.ct.v, many.ct.v, "V differs: {what}");
-                assert_eq!(one.ct.o, many.ct.o, "O differs: {what}");
-                assert_eq!(one.ct.vc, many.ct.vc, "C differs: {what}");
-                assert_eq!(one.ct.valence, many.ct.valence, "valences differ: {what}");
+                assert_eq!(one.ct.v_table(), many.ct.v_table(), "V differs: {what}");
+                assert_eq!(one.ct.o_table(), many.ct.o_table(), "O differs: {what}");
+                assert_eq!(one.ct.c_table(), many.ct.c_table(), "C differs: {what}");
+                assert_eq!(one.ct.valences(), many.ct.valences(), "valences differ: {what}");
                 assert_eq!(one.positions.len(), many.positions.len(), "{what}");
                 let worst = one
                     .positions

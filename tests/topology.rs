@@ -19,10 +19,10 @@ fn propagated_o_equals_rebuilt_for_every_scheme_and_level() {
                 let (next, _) = subdiv::subdivide(&cur, scheme, 1, &Options::default()).unwrap();
                 let ctx = format!("{name} {scheme} level {level}");
                 check_invariants(&next.ct).unwrap_or_else(|e| panic!("{ctx}: {e}"));
-                let (rebuilt, rep, kept) = CornerTable::build(next.positions.len(), &next.ct.v, None).unwrap();
+                let (rebuilt, rep, kept) = CornerTable::build(next.positions.len(), next.ct.v_table(), None).unwrap();
                 assert!(kept.is_none() && rep.unreferenced == 0, "{ctx}: unreferenced vertices after split");
-                assert_eq!(rebuilt.o, next.ct.o, "{ctx}: propagated O differs from rebuilt O");
-                assert_eq!(rebuilt.valence, next.ct.valence, "{ctx}: valences differ");
+                assert_eq!(rebuilt.o_table(), next.ct.o_table(), "{ctx}: propagated O differs from rebuilt O");
+                assert_eq!(rebuilt.valences(), next.ct.valences(), "{ctx}: valences differ");
                 for c in 0..next.ct.num_corners() as u32 {
                     if let Some(x) = next.ct.o(c) {
                         assert_eq!(next.ct.o(x), Some(c), "{ctx}: o(o(c)) != c");
@@ -55,7 +55,7 @@ fn topology_of_known_meshes() {
     let t = topology(&hemisphere().ct);
     assert_eq!((t.boundary_loops, t.components, t.genus), (1, 1, 0));
     let d = disk_fan(16, 3);
-    assert_eq!(d.ct.valence[0], 16);
+    assert_eq!(d.ct.valences()[0], 16);
     assert_eq!(topology(&d.ct).boundary_loops, 1);
 }
 

@@ -175,7 +175,7 @@ fn picking_flip_split_smooth_and_revert_edit_the_control_mesh() {
     let mut doc = Doc::new();
     let tet = doc.control.mesh.clone();
     // A ray from outside through the centroid of face 0 hits face 0 first.
-    let t0: Vec<Vec3> = tet.ct.v[..3].iter().map(|&i| tet.positions[i as usize]).collect();
+    let t0: Vec<Vec3> = tet.ct.v_table()[..3].iter().map(|&i| tet.positions[i as usize]).collect();
     let centroid = (t0[0] + t0[1] + t0[2]) / 3.0;
     let origin = centroid * 5.0;
     let c = pick_edge(&tet, origin, (centroid - origin).normalize()).expect("the ray hits");

@@ -128,14 +128,15 @@ impl Paths {
     /// Checks that the paths fit `mesh` (one polygon per vertex).
     ///
     /// # Errors
-    /// [`Error::Usage`] naming both counts.
+    /// [`Error::CountMismatch`] naming both counts.
     pub fn check_model(&self, mesh: &Mesh, file: &str) -> Result<()> {
         if self.vertex_count() != mesh.positions.len() {
-            return Err(Error::Usage(format!(
-                "{file}: paths for {} vertices, but the model has {}",
-                self.vertex_count(),
-                mesh.positions.len()
-            )));
+            return Err(Error::CountMismatch {
+                what: format!("{file}: paths for the model"),
+                unit: "vertices",
+                expected: mesh.positions.len(),
+                found: self.vertex_count(),
+            });
         }
         Ok(())
     }

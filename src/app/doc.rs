@@ -15,18 +15,13 @@ use crate::mesh::topology::{Topology, topology};
 use crate::render::export::{ExportStyle, ExportTarget, export_animation};
 use crate::subdiv::attributes::Attributes;
 use crate::subdiv::{Stats, check_levels_fit, default_memory_limit, predict_faces, subdivide_with_progress};
-use crate::{Mesh, Options, Result, Scheme, io};
+use crate::{Mesh, Options, Result, Scheme, bundled};
 use glam::Vec3;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::time::Instant;
-
-/// The tetrahedron compiled into the binary, so the viewer opens anywhere.
-pub const TETRAHEDRON_OBJ: &str = include_str!("../../models/tetrahedron.obj");
-/// Its animation paths.
-pub const TETRAHEDRON_PATHS: &str = include_str!("../../paths/tetrahedron.paths");
 
 /// Which normals shade the result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -294,24 +289,12 @@ pub struct Doc {
 }
 
 fn builtin_tetrahedron() -> (Mesh, Paths) {
-    // Both are compiled in and checked by the tests; a failure here is a build error in disguise.
-    let (mesh, _) =
-        io::obj::from_bytes(TETRAHEDRON_OBJ.as_bytes(), "tetrahedron.obj").expect("bundled tetrahedron is valid");
-    let paths = Paths::parse(TETRAHEDRON_PATHS, "tetrahedron.paths").expect("bundled tetrahedron paths are valid");
-    (mesh, paths)
+    // Both are compiled in and parsed by bundled's unit test; a failure here
+    // is a build error in disguise.
+    bundled::tetrahedron().expect("the bundled tetrahedron and its paths are valid")
 }
 
-/// The `.paths` that goes with `model`: `model.paths` beside it, or
-/// `paths/<stem>.paths` of the bundled set.
-pub fn paths_for(model: &Path) -> Option<PathBuf> {
-    let beside = model.with_extension("paths");
-    if beside.is_file() {
-        return Some(beside);
-    }
-    let stem = model.file_stem()?;
-    let bundled = Path::new(env!("CARGO_MANIFEST_DIR")).join("paths").join(stem).with_extension("paths");
-    bundled.is_file().then_some(bundled)
-}
+pub use crate::bundled::paths_for;
 
 impl Doc {
     /// A document on the built-in tetrahedron.
@@ -346,7 +329,7 @@ impl Doc {
             opts: Options::default(),
             limit: default_memory_limit(),
             paths,
-            paths_source: "paths/tetrahedron.paths".into(),
+            paths_source: "bundled:tetrahedron.paths".into(),
             refine: 5,
             tweak: Tweak::Jarek,
             anim: None,
@@ -408,7 +391,7 @@ impl Doc {
         });
         if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc")) {
             std::thread::spawn(move || {
-                let result = crate::io::bezier::load_bzc(&path).map(|control| Curve {
+                let result = crate::bundled::load_curve(&path).map(|control| Curve {
                     name: path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
                     control,
                     segments: 64,
@@ -421,24 +404,24 @@ impl Doc {
         }
         std::thread::spawn(move || {
             let loaded = if repair {
-                io::load_repaired(&path).map(|(m, r)| {
+                bundled::load_repaired(&path).map(|(m, r)| {
                     let report = if r.is_empty() { None } else { Some(format!("repaired: {r}")) };
                     (m, report, Attributes::default())
                 })
             } else {
                 let is_obj = path.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj"));
                 if is_obj {
-                    io::obj::load_with_attributes(&path).map(|(m, a)| (m, None, a))
+                    bundled::load_with_attributes(&path).map(|(m, a)| (m, None, a))
                 } else {
-                    io::load(&path).map(|m| (m, None, Attributes::default()))
+                    bundled::load(&path).map(|m| (m, None, Attributes::default()))
                 }
             };
             let result = loaded.and_then(|(mesh, report, attrs)| {
                 let paths = match paths_for(&path) {
                     Some(p) => {
-                        let paths = Paths::load(&p)?;
+                        let paths = p.load()?;
                         // A .paths for another vertex count is ignored (a generated one is used).
-                        paths.check_model(&mesh, &p.display().to_string()).ok().map(|_| paths)
+                        paths.check_model(&mesh, &p.describe()).ok().map(|_| paths)
                     }
                     None => None,
                 };
@@ -705,7 +688,7 @@ impl Doc {
         match paths {
             Some(p) => {
                 self.paths = p;
-                self.paths_source = paths_for(&path).map(|p| p.display().to_string()).unwrap_or_default();
+                self.paths_source = paths_for(&path).map(|p| p.describe()).unwrap_or_default();
             }
             None => {
                 self.paths = Paths::generated(&mesh, 4);
@@ -738,7 +721,7 @@ impl Doc {
         self.adopt(PathBuf::from("tetrahedron.obj"), mesh, Some(paths));
         self.path = None;
         self.name = "tetrahedron (built in)".into();
-        self.paths_source = "paths/tetrahedron.paths".into();
+        self.paths_source = "bundled:tetrahedron.paths".into();
     }
 }
 
@@ -806,7 +789,7 @@ impl Doc {
         if self.file_attrs.colors.as_ref().is_some_and(|c| c.len() != mesh.positions.len()) {
             self.file_attrs.colors = None;
         }
-        if self.file_attrs.uv.as_ref().is_some_and(|u| u.len() != mesh.ct.v.len()) {
+        if self.file_attrs.uv.as_ref().is_some_and(|u| u.len() != mesh.ct.v_table().len()) {
             self.file_attrs.uv = None;
         }
         self.raw_attrs = self.file_attrs.clone();
@@ -869,7 +852,8 @@ impl Doc {
     pub fn picked_edge(&self) -> Option<(u32, u32)> {
         let c = self.picked?;
         let ct = &self.control.mesh.ct;
-        ((c as usize) < ct.num_corners()).then(|| (ct.v[crate::mesh::n(c) as usize], ct.v[crate::mesh::p(c) as usize]))
+        ((c as usize) < ct.num_corners())
+            .then(|| (ct.v_table()[crate::mesh::n(c) as usize], ct.v_table()[crate::mesh::p(c) as usize]))
     }
 }
 
@@ -878,7 +862,7 @@ impl Doc {
 /// triangles, Moller-Trumbore), or `None` when the ray misses.
 pub fn pick_edge(mesh: &Mesh, origin: Vec3, dir: Vec3) -> Option<u32> {
     let mut best: Option<(f32, u32, Vec3)> = None;
-    for (t, tri) in mesh.ct.v.chunks_exact(3).enumerate() {
+    for (t, tri) in mesh.ct.v_table().chunks_exact(3).enumerate() {
         let [a, b, c] = [tri[0], tri[1], tri[2]].map(|i| mesh.positions[i as usize]);
         let (e1, e2) = (b - a, c - a);
         let pv = dir.cross(e2);
@@ -908,7 +892,7 @@ pub fn pick_edge(mesh: &Mesh, origin: Vec3, dir: Vec3) -> Option<u32> {
     (0..3u32)
         .map(|k| {
             let c = 3 * t + k;
-            let (p, q) = (mesh.ct.v[crate::mesh::n(c) as usize], mesh.ct.v[crate::mesh::p(c) as usize]);
+            let (p, q) = (mesh.ct.v_table()[crate::mesh::n(c) as usize], mesh.ct.v_table()[crate::mesh::p(c) as usize]);
             (seg(mesh.positions[p as usize], mesh.positions[q as usize]), c)
         })
         .min_by(|x, y| x.0.total_cmp(&y.0))

@@ -174,12 +174,12 @@ impl App {
         doc.level = opts.level;
         if let Some(model) = opts.model.as_ref().filter(|m| m.extension().is_some_and(|e| e == "bzc")) {
             // Check the curve now so a bad file fails before any window; show it through the loader.
-            crate::io::bezier::load_bzc(model)?;
+            crate::bundled::load_curve(model)?;
             doc.open(model.clone());
         } else if let Some(model) = &opts.model {
             // Load the first model synchronously so a bad file is a clear error before any window opens.
             let mesh = if opts.repair {
-                let (mesh, report) = crate::io::load_repaired(model)?;
+                let (mesh, report) = crate::bundled::load_repaired(model)?;
                 if !report.is_empty() {
                     eprint!("{report}");
                     doc.notice = Some(format!("repaired: {report}"));
@@ -187,11 +187,11 @@ impl App {
                 doc.repair_on_open = true;
                 mesh
             } else if model.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
-                let (mesh, attrs) = crate::io::obj::load_with_attributes(model)?;
+                let (mesh, attrs) = crate::bundled::load_with_attributes(model)?;
                 doc.file_attrs = attrs;
                 mesh
             } else {
-                crate::io::load(model)?
+                crate::bundled::load(model)?
             };
             let paths = match &opts.paths {
                 Some(p) => {
@@ -200,7 +200,7 @@ impl App {
                     Some(paths)
                 }
                 None => doc::paths_for(model).and_then(|p| {
-                    let paths = crate::anim::paths::Paths::load(&p).ok()?;
+                    let paths = p.load().ok()?;
                     paths.check_model(&mesh, "").ok().map(|_| paths)
                 }),
             };
@@ -350,16 +350,17 @@ impl App {
         }
         if doc.result_changed {
             let checker = doc.coloring == doc::Coloring::Checker;
-            win.result = match doc.raw_attrs.uv.as_ref().filter(|u| checker && u.len() == doc.result.mesh.ct.v.len()) {
-                Some(uv) => {
-                    let attr: Vec<Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
-                    let r = &doc.result;
-                    GpuMesh::unwelded(device, &r.mesh.ct, &r.mesh.positions, &r.normals, &attr)
-                        .map_err(|e| doc.error = Some(e.to_string()))
-                        .ok()
-                }
-                None => upload(&doc.result, &mut doc.error),
-            };
+            win.result =
+                match doc.raw_attrs.uv.as_ref().filter(|u| checker && u.len() == doc.result.mesh.ct.v_table().len()) {
+                    Some(uv) => {
+                        let attr: Vec<Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
+                        let r = &doc.result;
+                        GpuMesh::unwelded(device, &r.mesh.ct, &r.mesh.positions, &r.normals, &attr)
+                            .map_err(|e| doc.error = Some(e.to_string()))
+                            .ok()
+                    }
+                    None => upload(&doc.result, &mut doc.error),
+                };
             if let (Some(m), Some(colors), false) = (&mut win.result, &doc.result_colors, checker) {
                 m.set_colors(device, colors);
             }
@@ -741,7 +742,8 @@ impl App {
             }
             event_loop.exit();
         } else if self.opts.frames.is_some() && self.started.elapsed() > FRAMES_TIMEOUT {
-            self.fatal = Some(Error::Usage("--frames: the work did not finish in time".into()));
+            self.fatal =
+                Some(Error::Timeout { what: "--frames: the work".into(), seconds: FRAMES_TIMEOUT.as_secs_f64() });
             event_loop.exit();
         }
     }

@@ -76,17 +76,9 @@ pub struct UiState {
 }
 
 impl UiState {
-    /// Defaults; `bundled` lists `models/`.
+    /// Defaults; `bundled` lists the models compiled into the binary.
     pub fn new(wireframe: bool) -> UiState {
-        let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models");
-        let mut bundled: Vec<PathBuf> = std::fs::read_dir(&dir)
-            .map(|rd| {
-                rd.filter_map(|e| e.ok().map(|e| e.path()))
-                    .filter(|p| matches!(p.extension().and_then(|e| e.to_str()), Some("obj" | "ct" | "bez" | "bzc")))
-                    .collect()
-            })
-            .unwrap_or_default();
-        bundled.sort();
+        let bundled = crate::bundled::MODELS.iter().map(|m| PathBuf::from(m.cli_name())).collect();
         UiState {
             camera: Camera::default(),
             surface: Surface::Smooth,

@@ -200,11 +200,7 @@ pub fn parse_bez(text: &str, file: &str) -> Result<Vec<Patch>> {
 
 fn read(path: &Path) -> Result<String> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    String::from_utf8(bytes).map_err(|e| Error::Parse {
-        file: path.display().to_string(),
-        line: 1,
-        msg: format!("not UTF-8 text: {e}"),
-    })
+    super::text(&bytes, &path.display().to_string()).map(str::to_owned)
 }
 
 /// Reads a `.bzc` file (see [`parse_bzc`]).

@@ -82,7 +82,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
         return Err(located(MeshError::BadOppositeTable { corner: 0, msg: "unused vertices in a .ct with O".into() }));
     }
     // the stored O must agree with the one built; a mismatch means a corrupt file
-    let ct = CornerTable::from_vo(ct.v, o, pos.len()).map_err(located)?;
+    let ct = CornerTable::from_vo(ct.v_table().to_vec(), o, pos.len()).map_err(located)?;
     Ok(Mesh { ct, positions: pos })
 }
 
@@ -166,11 +166,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// The file as text; invalid UTF-8 is a parse error at its line.
 fn read_text(path: &Path) -> Result<String> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    String::from_utf8(bytes).map_err(|e| Error::Parse {
-        file: path.display().to_string(),
-        line: e.as_bytes()[..e.utf8_error().valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
-        msg: "not text (invalid UTF-8)".into(),
-    })
+    super::text(&bytes, &path.display().to_string()).map(str::to_owned)
 }
 
 /// Reads a `.ct` file into its arrays (see [`parse_raw`]).
@@ -192,10 +188,10 @@ pub fn write(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
         writeln!(w, "{} {} {}", q.x, q.y, q.z)?;
     }
     writeln!(w, "{}", mesh.ct.num_triangles())?;
-    for tri in mesh.ct.v.chunks_exact(3) {
+    for tri in mesh.ct.v_table().chunks_exact(3) {
         writeln!(w, "{} {} {}", tri[0], tri[1], tri[2])?;
     }
-    for oo in mesh.ct.o.chunks_exact(3) {
+    for oo in mesh.ct.o_table().chunks_exact(3) {
         let f = |x: u32| if x == BORDER { -1 } else { i64::from(x) };
         writeln!(w, "{} {} {}", f(oo[0]), f(oo[1]), f(oo[2]))?;
     }

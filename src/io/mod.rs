@@ -21,14 +21,21 @@ use std::path::{Path, PathBuf};
 /// I/O, parse and validation errors, each naming the file (and line where
 /// there is one).
 pub fn load(path: &Path) -> Result<Mesh> {
-    match ext(path).as_str() {
-        "ct" => ct::load(path),
-        "bez" => bezier::tessellate(&bezier::load_bez(path)?, BEZ_RESOLUTION).map_err(|source| Error::Mesh {
-            file: path.display().to_string(),
-            line: None,
-            source,
-        }),
-        _ => obj::load(path).map(|(m, _)| m),
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    from_bytes(&bytes, &path.display().to_string())
+}
+
+/// [`load`] on a file's bytes; `file` names it in errors and its extension
+/// chooses the format.
+///
+/// # Errors
+/// As [`load`].
+pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Mesh> {
+    match ext(Path::new(file)).as_str() {
+        "ct" => ct::parse(text(bytes, file)?, file),
+        "bez" => bezier::tessellate(&bezier::parse_bez(text(bytes, file)?, file)?, BEZ_RESOLUTION)
+            .map_err(|source| Error::Mesh { file: file.to_string(), line: None, source }),
+        _ => obj::from_bytes(bytes, file).map(|(m, _)| m),
     }
 }
 
@@ -41,23 +48,41 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// I/O and parse errors, index out of range and non-finite coordinates (each
 /// naming the file and line), and a mesh with no face left.
 pub fn load_repaired(path: &Path) -> Result<(Mesh, RepairReport)> {
-    match ext(path).as_str() {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    from_bytes_repaired(&bytes, &path.display().to_string())
+}
+
+/// [`load_repaired`] on a file's bytes (see [`from_bytes`]).
+///
+/// # Errors
+/// As [`load_repaired`].
+pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
+    match ext(Path::new(file)).as_str() {
         "ct" => {
-            let raw = ct::load_raw(path)?;
+            let raw = ct::parse_raw(text(bytes, file)?, file)?;
             let lines = raw.triangle_lines;
             repair(raw.positions, &raw.triangles).map_err(|e| Error::Mesh {
-                file: path.display().to_string(),
+                file: file.to_string(),
                 line: e.face().and_then(|f| lines.get(f).copied()),
                 source: e,
             })
         }
-        "bez" => bezier::tessellate_repaired(&bezier::load_bez(path)?, BEZ_RESOLUTION).map_err(|source| Error::Mesh {
-            file: path.display().to_string(),
-            line: None,
-            source,
-        }),
-        _ => obj::load_repaired(path),
+        "bez" => bezier::tessellate_repaired(&bezier::parse_bez(text(bytes, file)?, file)?, BEZ_RESOLUTION)
+            .map_err(|source| Error::Mesh { file: file.to_string(), line: None, source }),
+        _ => obj::from_bytes_repaired(bytes, file),
     }
+}
+
+/// The bytes of `file` as text; invalid UTF-8 is a parse error at its line.
+///
+/// # Errors
+/// [`Error::Parse`] at the line of the first invalid byte.
+pub fn text<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str> {
+    std::str::from_utf8(bytes).map_err(|e| Error::Parse {
+        file: file.to_string(),
+        line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,
+        msg: "not text (invalid UTF-8)".into(),
+    })
 }
 
 /// Samples per patch side when a `.bez` file of bicubic patches is opened as a mesh.
@@ -70,20 +95,28 @@ pub const BEZ_RESOLUTION: u32 = 8;
 /// # Errors
 /// As [`load_repaired`].
 pub fn analyze(path: &Path) -> Result<(Mesh, RepairReport)> {
-    let file = path.display().to_string();
-    let (positions, triangles, base) = match ext(path).as_str() {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    analyze_bytes(&bytes, &path.display().to_string())
+}
+
+/// [`analyze`] on a file's bytes (see [`from_bytes`]).
+///
+/// # Errors
+/// As [`load_repaired`].
+pub fn analyze_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
+    let file = file.to_string();
+    let (positions, triangles, base) = match ext(Path::new(&file)).as_str() {
         "ct" => {
-            let raw = ct::load_raw(path)?;
+            let raw = ct::parse_raw(text(bytes, &file)?, &file)?;
             (raw.positions, raw.triangles, 0)
         }
         "bez" => {
-            let raw = bezier::tessellate_raw(&bezier::load_bez(path)?, BEZ_RESOLUTION)
+            let raw = bezier::tessellate_raw(&bezier::parse_bez(text(bytes, &file)?, &file)?, BEZ_RESOLUTION)
                 .map_err(|source| Error::Mesh { file: file.clone(), line: None, source })?;
             (raw.positions, raw.triangles, 0)
         }
         _ => {
-            let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-            let raw = obj::parse(&bytes, &file)?;
+            let raw = obj::parse(bytes, &file)?;
             (raw.positions, raw.triangles, 1)
         }
     };
@@ -102,9 +135,12 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
         "obj" => obj::save(path, mesh),
         "ply" => ply::save(path, mesh),
         "ct" => ct::save(path, mesh),
-        other => {
-            Err(Error::Usage(format!("{}: unknown output format '.{other}' (use .obj, .ply or .ct)", path.display())))
-        }
+        other => Err(Error::UnknownFormat {
+            path: path.display().to_string(),
+            ext: other.to_string(),
+            direction: "output",
+            known: ".obj, .ply or .ct",
+        }),
     }
 }
 

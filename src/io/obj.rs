@@ -12,8 +12,8 @@
 
 use super::atomic_write;
 use crate::mesh::Mesh;
+use crate::mesh::attributes::Attributes;
 use crate::mesh::repair::{RepairReport, repair};
-use crate::subdiv::attributes::Attributes;
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -364,7 +364,7 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
             sink(&t)?;
         }
     }
-    let tchunks: Vec<&[u32]> = mesh.ct.v.chunks(3 * ROWS).collect();
+    let tchunks: Vec<&[u32]> = mesh.ct.v_table().chunks(3 * ROWS).collect();
     for batch in tchunks.chunks(BATCH) {
         let texts: Vec<Vec<u8>> = batch
             .par_iter()
@@ -425,7 +425,7 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
             o.push(b'\n');
         })?;
     }
-    let uv = attrs.uv.as_ref().filter(|u| u.len() == mesh.ct.v.len());
+    let uv = attrs.uv.as_ref().filter(|u| u.len() == mesh.ct.v_table().len());
     for t in uv.into_iter().flatten() {
         record(&mut out, &mut |o| {
             o.extend_from_slice(b"vt");
@@ -436,7 +436,7 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
             o.push(b'\n');
         })?;
     }
-    for (t, tri) in mesh.ct.v.chunks_exact(3).enumerate() {
+    for (t, tri) in mesh.ct.v_table().chunks_exact(3).enumerate() {
         record(&mut out, &mut |o| {
             o.push(b'f');
             for (k, v) in tri.iter().enumerate() {

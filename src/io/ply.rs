@@ -29,7 +29,7 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
                 buf.clear();
             }
         }
-        for tri in mesh.ct.v.chunks_exact(3) {
+        for tri in mesh.ct.v_table().chunks_exact(3) {
             buf.push(3);
             for &i in tri {
                 buf.extend_from_slice(&i.to_le_bytes());

@@ -296,6 +296,11 @@ mod tests {
             assert_eq!(ct.vtx(ct.s(c).unwrap()), ct.vtx(c));
             assert_eq!(ct.u(ct.s(c).unwrap()), Some(c));
         }
+        // an interior vertex has no boundary neighbours (this used to loop
+        // forever, swinging round the closed fan)
+        for v in 0..4 {
+            assert_eq!(ct.boundary_neighbours(v), None);
+        }
     }
 
     #[test]
@@ -345,6 +350,6 @@ mod tests {
             assert_eq!(ct.fan(v).count() as u32 + 1, ct.valence[v as usize]);
         }
         assert_eq!(ct.ring(0).collect::<Vec<_>>(), vec![1, 2, 3]);
-        assert_eq!(ct.boundary_neighbours(0), (1, 3));
+        assert_eq!(ct.boundary_neighbours(0), Some((1, 3)));
     }
 }

@@ -2,7 +2,7 @@
 //! each vertex, its displacement from the control mesh's piecewise-linear
 //! surface, and a perceptual colour ramp to show either.
 //!
-//! Vertex numbering through a 1-to-4 split ([`crate::subdiv::split`]): old
+//! Vertex numbering through a 1-to-4 split ([`crate::mesh::split`]): old
 //! vertices keep their ids and the vertex on edge `e` gets id `V + e`
 //! (`V` = the old vertex count). So after levels `1..=L` the ids are layered:
 //! `0 .. V_0` are the control vertices, `V_0 .. V_1` were created by level 1,
@@ -11,7 +11,6 @@
 //! scheme uses the same split, so this holds for all of them.
 
 use super::{CornerTable, Mesh};
-use crate::subdiv::{Options, Scheme, subdivide};
 use crate::{Error, Result};
 use glam::Vec3;
 
@@ -46,21 +45,22 @@ pub fn vertex_creation_level(nv_per_level: &[usize], nv: usize) -> Vec<u8> {
 /// bound on the distance to the nearest point of the control surface.
 ///
 /// # Errors
-/// [`Error::Usage`] when `fine` does not have the vertex count of `control`
-/// refined `levels` times; [`Error::TooLarge`] when the midpoint refinement
-/// does not fit 32-bit ids.
+/// [`Error::CountMismatch`] when `fine` does not have the vertex and
+/// triangle counts of `control` refined `levels` times.
 pub fn displacement_from_control(control: &Mesh, fine: &Mesh, levels: u32) -> Result<Vec<f32>> {
     let want = vertex_counts_per_level(&control.ct, levels).last().copied().unwrap_or(0);
     if fine.positions.len() != want || fine.ct.num_triangles() != control.ct.num_triangles() << (2 * levels.min(15)) {
-        return Err(Error::Usage(format!(
-            "displacement: the fine mesh has {} vertices and {} triangles, but {levels} levels of the control mesh \
-             have {want} vertices",
-            fine.positions.len(),
-            fine.ct.num_triangles()
-        )));
+        return Err(Error::CountMismatch {
+            what: format!(
+                "displacement: the fine mesh ({} triangles) against {levels} levels of the control mesh",
+                fine.ct.num_triangles()
+            ),
+            unit: "vertices",
+            expected: want,
+            found: fine.positions.len(),
+        });
     }
-    let opts = Options { max_memory: Some(u64::MAX), ..Options::default() };
-    let (mid, _) = subdivide(control, Scheme::Midpoint, levels, &opts)?;
+    let mid = super::split::refine_linear(control, levels);
     Ok(fine.positions.iter().zip(&mid.positions).map(|(a, b)| a.distance(*b)).collect())
 }
 

@@ -10,8 +10,9 @@
 //! Besides V and O the table keeps, per vertex, one corner `C[v]` (for a
 //! boundary vertex the first corner of its fan, so that swinging forward visits
 //! the whole fan) and the valence (number of incident edges). All four arrays
-//! are propagated through a 1-to-4 split in linear time ([`crate::subdiv::split`]).
+//! are propagated through a 1-to-4 split in linear time ([`split`]).
 
+pub mod attributes;
 mod build;
 pub mod edit;
 pub mod inspect;
@@ -19,6 +20,7 @@ pub mod normals;
 pub mod repair;
 pub mod shapes;
 pub mod smooth;
+pub mod split;
 pub mod topology;
 
 pub use build::BuildReport;
@@ -59,20 +61,88 @@ pub fn owns_edge(c: u32, o: u32) -> bool {
 }
 
 /// Connectivity of a triangle mesh: V, O, one corner per vertex and valences.
+///
+/// The tables are private: a `CornerTable` is made only by the validating
+/// constructors ([`CornerTable::build`], [`CornerTable::from_vo`]), by the
+/// 1-to-4 [`split`] of a valid table and by the edits of [`edit`], each of
+/// which keeps the invariants that the rest of the crate relies on (the
+/// split's parallel writes among them):
+///
+/// * `V` has `3 F` entries, each `< num_vertices()`;
+/// * `O` has `3 F` entries, each [`BORDER`] or a corner `x < 3 F` with
+///   `O[x] = c`, `x != c`, and the two corners' edges the same one reversed;
+/// * `C[v]` is a corner of `v`, the first of its fan for a boundary vertex;
+///   `valence[v]` is its number of incident edges.
+///
+/// Outside the crate the fields cannot be set, nor the struct be built by
+/// hand:
+///
+/// ```compile_fail,E0616
+/// let mut ct = subdiv::CornerTable::default();
+/// ct.o = vec![0, 0, 0]; // error: field `o` is private
+/// ```
+///
+/// ```compile_fail,E0451
+/// let ct = subdiv::CornerTable { v: vec![0, 1, 2], o: vec![7, 7, 7], vc: vec![0, 1, 2], valence: vec![2; 3] };
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct CornerTable {
     /// `V[c]`: vertex of corner `c` (3 per triangle, counter-clockwise).
-    pub v: Vec<u32>,
+    v: Vec<u32>,
     /// `O[c]`: opposite corner, or [`BORDER`].
-    pub o: Vec<u32>,
+    o: Vec<u32>,
     /// `C[v]`: one corner of vertex `v`; for boundary vertices the corner `c`
     /// with `u(c)` undefined (the first of the fan in swing order).
-    pub vc: Vec<u32>,
+    vc: Vec<u32>,
     /// Number of edges incident to each vertex.
-    pub valence: Vec<u32>,
+    valence: Vec<u32>,
 }
 
 impl CornerTable {
+    /// The V table: `v_table()[c]` is the vertex of corner `c`, three
+    /// corners per triangle (the triangle index list).
+    #[inline(always)]
+    pub fn v_table(&self) -> &[u32] {
+        &self.v
+    }
+    /// The raw O table: `o_table()[c]` is the corner opposite `c`, or
+    /// [`BORDER`]. Prefer the checked operator [`Self::o`], which says
+    /// `None` for the border; the raw table is for passes over all corners.
+    #[inline(always)]
+    pub fn o_table(&self) -> &[u32] {
+        &self.o
+    }
+    /// The C table: `c_table()[v]` is one corner of vertex `v` (for a
+    /// boundary vertex the first of its fan).
+    #[inline(always)]
+    pub fn c_table(&self) -> &[u32] {
+        &self.vc
+    }
+    /// The valence (number of incident edges) of every vertex.
+    #[inline(always)]
+    pub fn valences(&self) -> &[u32] {
+        &self.valence
+    }
+    /// The valence of vertex `v`.
+    #[inline(always)]
+    pub fn valence(&self, v: u32) -> u32 {
+        self.valence[v as usize]
+    }
+    /// `C[v]`: one corner of vertex `v`, the first of its fan on the boundary.
+    #[inline(always)]
+    pub fn corner_of(&self, v: u32) -> u32 {
+        self.vc[v as usize]
+    }
+    /// The raw O entry of corner `c`: the opposite corner or [`BORDER`]
+    /// (the checked operator is [`Self::o`]).
+    #[inline(always)]
+    pub fn o_entry(&self, c: u32) -> u32 {
+        self.o[c as usize]
+    }
+    /// The tables, for the crate's own constructors and edits.
+    pub(crate) fn from_parts(v: Vec<u32>, o: Vec<u32>, vc: Vec<u32>, valence: Vec<u32>) -> CornerTable {
+        CornerTable { v, o, vc, valence }
+    }
     /// Number of corners (3 per triangle).
     #[inline]
     pub fn num_corners(&self) -> usize {
@@ -141,26 +211,32 @@ impl CornerTable {
         let start = self.vc[v as usize];
         Ring { ct: self, start, next: Some(start), tail: None }
     }
-    /// The two boundary neighbours `(q_first, q_last)` of boundary vertex `v`:
-    /// `q_first` across the border edge of `C[v]`, `q_last` at the end of the fan.
-    pub fn boundary_neighbours(&self, v: u32) -> (u32, u32) {
+    /// The two boundary neighbours `(q_first, q_last)` of vertex `v`, or
+    /// `None` when `v` is interior: `q_first` across the border edge of
+    /// `C[v]`, `q_last` at the end of the fan.
+    pub fn boundary_neighbours(&self, v: u32) -> Option<(u32, u32)> {
         let first = self.vc[v as usize];
+        if self.o[p(first) as usize] != BORDER {
+            return None;
+        }
+        // a boundary fan is open: swinging forward from its first corner
+        // reaches the other border edge after at most valence - 1 steps
         let mut c = first;
         while let Some(x) = self.s(c) {
             c = x;
         }
-        (self.vtx(n(first)), self.vtx(p(c)))
+        Some((self.vtx(n(first)), self.vtx(p(c))))
     }
     /// Number of border edges (corners whose opposite is the border).
     pub fn num_border_edges(&self) -> usize {
         self.o.iter().filter(|&&x| x == BORDER).count()
     }
-    /// Number of edges: each interior edge has two corners, each border edge one.
     /// The corner owning each edge (see [`owns_edge`]), in corner order: the
     /// edge is the one opposite it, from `v(n(c))` to `v(p(c))`.
     pub fn edge_owners(&self) -> impl Iterator<Item = u32> + '_ {
         self.o.iter().enumerate().map(|(c, &o)| (c as u32, o)).filter(|&(c, o)| owns_edge(c, o)).map(|(c, _)| c)
     }
+    /// Number of edges: each interior edge has two corners, each border edge one.
     pub fn num_edges(&self) -> usize {
         (self.num_corners() + self.num_border_edges()) / 2
     }
@@ -246,7 +322,7 @@ impl Mesh {
 
     /// The triangle index list (the V table), three per triangle.
     pub fn triangles(&self) -> &[u32] {
-        &self.ct.v
+        self.ct.v_table()
     }
     /// Axis-aligned bounds `(min, max)`; zero for an empty mesh.
     pub fn bounds(&self) -> (Vec3, Vec3) {

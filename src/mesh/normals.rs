@@ -14,7 +14,7 @@ pub fn face_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
 
 /// [`face_normals`] into a caller-owned buffer (no allocation per frame).
 pub fn face_normals_into(ct: &CornerTable, pos: &[Vec3], out: &mut [Vec3]) {
-    out.par_iter_mut().zip(ct.v.par_chunks_exact(3)).with_min_len(4096).for_each(|(f, tri)| {
+    out.par_iter_mut().zip(ct.v_table().par_chunks_exact(3)).with_min_len(4096).for_each(|(f, tri)| {
         let a = pos[tri[0] as usize];
         *f = (pos[tri[1] as usize] - a).cross(pos[tri[2] as usize] - a);
     });
@@ -45,15 +45,15 @@ impl VertexFaces {
     pub fn new(ct: &CornerTable) -> VertexFaces {
         let nv = ct.num_vertices();
         let mut offsets = vec![0u32; nv + 1];
-        for &v in &ct.v {
+        for &v in ct.v_table() {
             offsets[v as usize + 1] += 1;
         }
         for i in 0..nv {
             offsets[i + 1] += offsets[i];
         }
         let mut next = offsets.clone();
-        let mut faces = vec![0u32; ct.v.len()];
-        for (c, &v) in ct.v.iter().enumerate() {
+        let mut faces = vec![0u32; ct.v_table().len()];
+        for (c, &v) in ct.v_table().iter().enumerate() {
             let slot = &mut next[v as usize];
             faces[*slot as usize] = (c / 3) as u32;
             *slot += 1;

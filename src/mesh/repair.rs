@@ -591,15 +591,15 @@ mod tests {
 
     fn check(mesh: &Mesh) {
         check_invariants(&mesh.ct).unwrap();
-        Mesh::from_triangles(mesh.positions.clone(), &mesh.ct.v).unwrap();
+        Mesh::from_triangles(mesh.positions.clone(), mesh.ct.v_table()).unwrap();
     }
 
     #[test]
     fn good_mesh_is_unchanged() {
         let s = icosphere(2);
-        let (m, rep) = repair(s.positions.clone(), &s.ct.v).unwrap();
+        let (m, rep) = repair(s.positions.clone(), s.ct.v_table()).unwrap();
         assert!(rep.is_empty(), "{rep}");
-        assert_eq!(m.ct.v, s.ct.v);
+        assert_eq!(m.ct.v_table(), s.ct.v_table());
         assert_eq!(m.positions, s.positions);
         assert_eq!((rep.faces_in, rep.faces_out), (320, 320));
         assert!(rep.to_string().contains("nothing to repair"));
@@ -608,7 +608,7 @@ mod tests {
     #[test]
     fn flipped_faces_are_reoriented() {
         let s = icosphere(1);
-        let mut tris = s.ct.v.clone();
+        let mut tris = s.ct.v_table().to_vec();
         // flip faces 3 and 17
         for f in [3, 17] {
             tris.swap(3 * f + 1, 3 * f + 2);
@@ -622,7 +622,7 @@ mod tests {
         assert_eq!(rep.flipped_faces.count, 2);
         assert_eq!(rep.flipped_faces.examples, vec![3, 17]);
         // flipped back to exactly the original faces
-        assert_eq!(m.ct.v, s.ct.v);
+        assert_eq!(m.ct.v_table(), s.ct.v_table());
         let t = topology(&m.ct);
         assert_eq!((t.euler, t.border_edges, t.components), (2, 0, 1));
     }
@@ -637,7 +637,7 @@ mod tests {
         let (m, rep) = repair(pos, &bad).unwrap();
         check(&m);
         assert_eq!(rep.flipped_faces.examples, vec![0]);
-        assert_eq!(m.ct.v, tris.to_vec());
+        assert_eq!(m.ct.v_table(), tris.to_vec());
     }
 
     #[test]
@@ -753,7 +753,7 @@ mod tests {
         assert_eq!(rep.degenerate_faces.examples, vec![1, 3]);
         assert_eq!(rep.duplicate_faces.examples, vec![2]);
         assert_eq!(rep.unreferenced_vertices.examples, vec![3, 4]);
-        assert_eq!(m.ct.v, vec![0, 1, 2]);
+        assert_eq!(m.ct.v_table(), vec![0, 1, 2]);
         let s = rep.to_string();
         assert!(s.contains("degenerate faces dropped:       2 (1, 3)"), "{s}");
     }

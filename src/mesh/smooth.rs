@@ -60,8 +60,7 @@ fn umbrella_pass(mesh: &Mesh, x: &mut [Vec3], scratch: &mut [Vec3], f: f32) {
     let old = &*scratch;
     x.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, xv)| {
         let v32 = v as u32;
-        let avg = if ct.is_boundary_vertex(v32) {
-            let (a, b) = ct.boundary_neighbours(v32);
+        let avg = if let Some((a, b)) = ct.boundary_neighbours(v32) {
             (old[a as usize] + old[b as usize]) * 0.5
         } else {
             let (mut s, mut k) = (Vec3::ZERO, 0u32);

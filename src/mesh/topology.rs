@@ -50,20 +50,20 @@ pub fn topology(ct: &CornerTable) -> Topology {
     for (t, &k) in comp_of_tri.iter().enumerate() {
         cf[k as usize] += 1;
         for c in 3 * t as u32..3 * t as u32 + 3 {
-            if super::owns_edge(c, ct.o[c as usize]) {
+            if super::owns_edge(c, ct.o_table()[c as usize]) {
                 ce[k as usize] += 1;
             }
         }
     }
     for v in 0..nv {
-        cv[comp_of_tri[ct.vc[v] as usize / 3] as usize] += 1;
+        cv[comp_of_tri[ct.c_table()[v] as usize / 3] as usize] += 1;
     }
     // boundary loops: follow border edges; the border edge leaving vertex a is
     // the one opposite p(C[a]) (C[a] starts the fan at the border).
     let mut seen = vec![false; ct.num_corners()];
     let mut boundary_loops = 0;
     for c0 in 0..ct.num_corners() as u32 {
-        if ct.o[c0 as usize] != BORDER || seen[c0 as usize] {
+        if ct.o_table()[c0 as usize] != BORDER || seen[c0 as usize] {
             continue;
         }
         boundary_loops += 1;
@@ -73,7 +73,7 @@ pub fn topology(ct: &CornerTable) -> Topology {
             seen[c as usize] = true;
             // edge opposite c runs v(n(c)) -> v(p(c)); the next starts at v(p(c))
             let b = ct.vtx(p(c));
-            let next = p(ct.vc[b as usize]);
+            let next = p(ct.c_table()[b as usize]);
             if seen[next as usize] {
                 break;
             }
@@ -81,9 +81,9 @@ pub fn topology(ct: &CornerTable) -> Topology {
         }
     }
     let genus = (0..components).map(|k| (2 - (cv[k] - ce[k] + cf[k]) - cb[k]) / 2).sum();
-    let maxval = ct.valence.iter().copied().max().unwrap_or(0) as usize;
+    let maxval = ct.valences().iter().copied().max().unwrap_or(0) as usize;
     let mut valence_histogram = vec![0; maxval + 1];
-    for &k in &ct.valence {
+    for &k in ct.valences() {
         valence_histogram[k as usize] += 1;
     }
     Topology {
@@ -150,7 +150,7 @@ pub fn check_invariants(ct: &CornerTable) -> Result<(), String> {
         }
     }
     for v in 0..ct.num_vertices() as u32 {
-        let c = ct.vc[v as usize];
+        let c = ct.c_table()[v as usize];
         if ct.vtx(c) != v {
             return Err(format!("C[{v}] is not a corner of {v}"));
         }
@@ -159,8 +159,8 @@ pub fn check_invariants(ct: &CornerTable) -> Result<(), String> {
         }
         let corners = ct.fan(v).count() as u32;
         let want = corners + u32::from(ct.is_boundary_vertex(v));
-        if ct.valence[v as usize] != want {
-            return Err(format!("valence of {v} is {} but its fan has {want} edges", ct.valence[v as usize]));
+        if ct.valences()[v as usize] != want {
+            return Err(format!("valence of {v} is {} but its fan has {want} edges", ct.valences()[v as usize]));
         }
     }
     Ok(())

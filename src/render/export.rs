@@ -56,7 +56,7 @@ pub fn surface_motion_bounds(anim: &mut Animation) -> (Vec3, Vec3) {
 /// Returns the number of frames written.
 ///
 /// # Errors
-/// GPU, I/O and encoding errors; [`Error::Usage`] when cancelled.
+/// GPU, I/O and encoding errors; [`Error::Cancelled`] when cancelled.
 pub fn export_animation(
     anim: &mut Animation,
     control: &Mesh,
@@ -86,7 +86,7 @@ pub fn export_animation(
         coarse.update(&off.gpu.queue, cpos, &vertex_normals(&control.ct, cpos));
         off.render_one(camera, &fine, Some(&coarse), style.look)
     };
-    let cancelled = || Error::Usage("export cancelled".into());
+    let cancelled = || Error::cancelled("export");
     match target {
         ExportTarget::Frames(dir) => {
             std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
@@ -101,8 +101,7 @@ pub fn export_animation(
         ExportTarget::Gif(path) => {
             let delay = image::Delay::from_numer_denom_ms(1000, style.fps.clamp(1.0, 100.0).round() as u32);
             crate::io::atomic_write(path, |wr| {
-                let gif_err =
-                    |e: image::ImageError| Error::Usage(format!("{}: GIF encoding failed: {e}", path.display()));
+                let gif_err = |e: image::ImageError| Error::encode(path, "GIF", e);
                 let mut enc = image::codecs::gif::GifEncoder::new_with_speed(wr, 10);
                 enc.set_repeat(image::codecs::gif::Repeat::Infinite).map_err(gif_err)?;
                 for f in 0..total {

@@ -148,6 +148,6 @@ pub fn save_png(img: &image::RgbaImage, out: &Path) -> Result<()> {
     crate::io::atomic_write(out, |w| {
         let enc = image::codecs::png::PngEncoder::new(w);
         image::ImageEncoder::write_image(enc, img.as_raw(), img.width(), img.height(), image::ExtendedColorType::Rgba8)
-            .map_err(|e| Error::Usage(format!("{}: PNG encoding failed: {e}", out.display())))
+            .map_err(|e| Error::encode(out, "PNG", e))
     })
 }

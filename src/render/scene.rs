@@ -83,16 +83,17 @@ pub enum Cull {
 /// "away" follows the sign of the enclosed volume (the corner table makes the
 /// orientation consistent, not necessarily outward).
 pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
-    if ct.o.contains(&BORDER) {
+    if ct.o_table().contains(&BORDER) {
         return Cull::None;
     }
-    let volume: f64 =
-        ct.v.chunks_exact(3)
-            .map(|t| {
-                let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize].as_dvec3());
-                a.dot(b.cross(c))
-            })
-            .sum();
+    let volume: f64 = ct
+        .v_table()
+        .chunks_exact(3)
+        .map(|t| {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize].as_dvec3());
+            a.dot(b.cross(c))
+        })
+        .sum();
     if volume >= 0.0 { Cull::Back } else { Cull::Front }
 }
 
@@ -103,7 +104,7 @@ fn normal_segments(positions: &[Vec3], normals: &[Vec3], length: f32) -> Vec<Vec
 
 /// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]).
 pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
-    ct.edge_owners().flat_map(|c| [ct.v[n(c) as usize], ct.v[p(c) as usize]]).collect()
+    ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
 }
 
 fn buffer(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -127,7 +128,7 @@ impl GpuMesh {
     pub fn new(device: &wgpu::Device, ct: &CornerTable, positions: &[Vec3], normals: &[Vec3]) -> Result<GpuMesh> {
         let edges = edge_indices(ct);
         let limit = device.limits().max_buffer_size;
-        let biggest = (ct.v.len().max(edges.len()) * 4).max(positions.len() * 12) as u64;
+        let biggest = (ct.v_table().len().max(edges.len()) * 4).max(positions.len() * 12) as u64;
         if biggest > limit {
             return Err(Error::Gpu(format!(
                 "the mesh needs a {} buffer but the graphics device allows {}",
@@ -139,10 +140,10 @@ impl GpuMesh {
         Ok(GpuMesh {
             positions: buffer(device, "positions", bytemuck::cast_slice(positions), vertex),
             normals: buffer(device, "normals", bytemuck::cast_slice(normals), vertex),
-            triangles: buffer(device, "triangles", bytemuck::cast_slice(&ct.v), wgpu::BufferUsages::INDEX),
+            triangles: buffer(device, "triangles", bytemuck::cast_slice(ct.v_table()), wgpu::BufferUsages::INDEX),
             edges: buffer(device, "edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
             vertex_count: positions.len(),
-            triangle_indices: ct.v.len() as u32,
+            triangle_indices: ct.v_table().len() as u32,
             edge_indices: edges.len() as u32,
             normal_lines: None,
             normal_length: 0.05,
@@ -162,9 +163,9 @@ impl GpuMesh {
         normals: &[Vec3],
         corner_attr: &[Vec3],
     ) -> Result<GpuMesh> {
-        let pos: Vec<Vec3> = ct.v.iter().map(|&v| positions[v as usize]).collect();
-        let nrm: Vec<Vec3> = ct.v.iter().map(|&v| normals[v as usize]).collect();
-        let identity: Vec<u32> = (0..ct.v.len() as u32).collect();
+        let pos: Vec<Vec3> = ct.v_table().iter().map(|&v| positions[v as usize]).collect();
+        let nrm: Vec<Vec3> = ct.v_table().iter().map(|&v| normals[v as usize]).collect();
+        let identity: Vec<u32> = (0..ct.v_table().len() as u32).collect();
         // the same edges, between the corners' own GPU vertices
         let edges: Vec<u32> = ct.edge_owners().flat_map(|c| [n(c), p(c)]).collect();
         let limit = device.limits().max_buffer_size;

@@ -59,7 +59,7 @@ pub(crate) fn eight_point<S: Sink>(ct: &CornerTable, c: u32, o: u32, s: &mut S) 
 /// result is bit-identical).
 #[inline(always)]
 pub(crate) fn eight_point_interior(ct: &CornerTable, pos: &[Vec3], c: u32, o: u32) -> Option<Vec3> {
-    let (v, oo) = (&ct.v, &ct.o);
+    let (v, oo) = (ct.v_table(), ct.o_table());
     let (nc, pc, no, po) = (n(c), p(c), n(o), p(o));
     let x = [oo[nc as usize], oo[pc as usize], oo[no as usize], oo[po as usize]];
     if x.contains(&BORDER) {
@@ -84,7 +84,7 @@ impl Rules for Butterfly {
         vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
         let t1 = Instant::now();
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
-            let o = lv.o[c as usize];
+            let o = lv.o_table()[c as usize];
             *q = match (o != BORDER).then(|| eight_point_interior(lv, pos, c, o)).flatten() {
                 Some(e) => e,
                 None => {

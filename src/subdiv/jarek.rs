@@ -30,12 +30,11 @@ impl Jarek {
     #[inline(always)]
     fn displacement<S: Sink>(ct: &Level, v: u32, scale: f32, s: &mut S) {
         s.add(v, -scale / 8.0);
-        if ct.is_boundary_vertex(v) {
-            let (q1, q2) = ct.boundary_neighbours(v);
+        if let Some((q1, q2)) = ct.boundary_neighbours(v) {
             s.add(q1, scale / 16.0);
             s.add(q2, scale / 16.0);
         } else {
-            let w = scale / (8.0 * ct.valence[v as usize] as f32);
+            let w = scale / (8.0 * ct.valences()[v as usize] as f32);
             for c in ct.fan(v) {
                 s.add(ct.vtx(n(c)), w);
             }
@@ -67,7 +66,7 @@ impl Rules for Jarek {
         let (vpart, epart) = out.split_at_mut(lv.num_vertices());
         // vpart holds d_v for now
         ring_sums_map(lv, pos, vpart, |v, sum| {
-            let k = if lv.boundary[v] { 2.0 } else { lv.valence[v] as f32 };
+            let k = if lv.boundary[v] { 2.0 } else { lv.valences()[v] as f32 };
             (sum / k - pos[v]) * 0.125
         });
         let t1 = Instant::now();

@@ -101,8 +101,7 @@ pub fn loop_limit_positions_with(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
             || Vec::with_capacity(16),
             |ring, v| {
                 let x = pos[v as usize].as_dvec3();
-                if ct.is_boundary_vertex(v) {
-                    let (q1, q2) = ct.boundary_neighbours(v);
+                if let Some((q1, q2)) = ct.boundary_neighbours(v) {
                     let q = pos[q1 as usize].as_dvec3() + pos[q2 as usize].as_dvec3();
                     return (x * (2.0 / 3.0) + q * (1.0 / 6.0)).as_vec3();
                 }
@@ -239,7 +238,7 @@ pub fn butterfly_normals(mesh: &Mesh) -> Vec<Vec3> {
 /// when `v` or one of its neighbours `ids` is not an interior vertex of
 /// valence 6.
 fn regular_butterfly_tangents(ct: &CornerTable, pos: &[Vec3], v: u32, ids: &[u32]) -> Option<(Vec3, Vec3)> {
-    let regular = |q: u32| ct.valence[q as usize] == 6 && !ct.is_boundary_vertex(q);
+    let regular = |q: u32| ct.valences()[q as usize] == 6 && !ct.is_boundary_vertex(q);
     if ids.len() != 6 || !ids.iter().all(|&q| regular(q)) {
         return None;
     }
@@ -283,9 +282,16 @@ fn butterfly_tangents(ct: &CornerTable, pos: &[Vec3], v: u32) -> (Vec3, Vec3) {
     let m = ring.len() - 1;
     let (e0, em) = (ids[0], ids[m]);
     // next boundary vertices: e_0's boundary neighbour other than v, same for e_m
-    let other = |q: u32| {
-        let (a, b) = ct.boundary_neighbours(q);
-        if a == v { b } else { a }
+    // (e_0 and e_m lie on v's border edges, so they are boundary vertices)
+    let other = |q: u32| match ct.boundary_neighbours(q) {
+        Some((a, b)) => {
+            if a == v {
+                b
+            } else {
+                a
+            }
+        }
+        None => q,
     };
     let p2 = pos[other(e0) as usize].as_dvec3();
     let m2 = pos[other(em) as usize].as_dvec3();

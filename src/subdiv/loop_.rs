@@ -96,13 +96,12 @@ impl Rules for Loop {
     }
     #[inline(always)]
     fn vertex<S: Sink>(&self, ct: &Level, v: u32, s: &mut S) {
-        if ct.is_boundary_vertex(v) {
-            let (q1, q2) = ct.boundary_neighbours(v);
+        if let Some((q1, q2)) = ct.boundary_neighbours(v) {
             s.add(v, 0.75);
             s.add(q1, 0.125);
             s.add(q2, 0.125);
         } else {
-            let k = ct.valence[v as usize];
+            let k = ct.valences()[v as usize];
             let beta = self.beta(k);
             s.add(v, 1.0 - k as f32 * beta);
             for c in ct.fan(v) {
@@ -121,7 +120,7 @@ impl Rules for Loop {
             if lv.boundary[v] {
                 pos[v] * 0.75 + sum * 0.125
             } else {
-                let k = lv.valence[v];
+                let k = lv.valences()[v];
                 let beta = self.beta(k);
                 pos[v] * (1.0 - k as f32 * beta) + sum * beta
             }

@@ -1,4 +1,4 @@
-//! Subdivision: the shared 1-to-4 [`split`] plus one file of rules per scheme.
+//! Subdivision: the shared 1-to-4 [`split`](crate::mesh::split) plus one file of rules per scheme.
 //!
 //! A level = `split` (new V, O, C, valences; edge numbering) + edge points for
 //! every edge + vertex points (Loop, Jarek) or a copy (interpolating schemes).
@@ -14,10 +14,9 @@ pub mod loop_;
 pub mod midpoint;
 pub mod modified_butterfly;
 pub mod rules;
-pub mod split;
 pub mod stencil;
 
-use crate::mesh::{CornerTable, Mesh};
+use crate::mesh::{CornerTable, Mesh, split};
 use crate::{Error, Result};
 use glam::Vec3;
 use rules::{Level, Rules};

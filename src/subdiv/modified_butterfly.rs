@@ -78,7 +78,7 @@ impl ModifiedButterfly {
     #[inline]
     fn ev_rule<S: Sink>(&self, ct: &CornerTable, x: u32, scale: f32, s: &mut S) {
         let v = ct.vtx(x);
-        let k = ct.valence[v as usize];
+        let k = ct.valences()[v as usize];
         s.add(v, 0.75 * scale);
         let owned;
         let ws: &[f32] = match self.ev.get(k as usize) {
@@ -154,8 +154,8 @@ struct EvRings {
 impl EvRings {
     fn new(lv: &Level, tabulated: usize) -> Self {
         let nv = lv.num_vertices();
-        let is_ev = |v: usize| !lv.boundary[v] && lv.valence[v] != 6;
-        let slow = |v: usize| is_ev(v) && lv.valence[v] as usize >= tabulated;
+        let is_ev = |v: usize| !lv.boundary[v] && lv.valences()[v] != 6;
+        let slow = |v: usize| is_ev(v) && lv.valences()[v] as usize >= tabulated;
         let class: Vec<u8> = (0..nv)
             .into_par_iter()
             .with_min_len(8192)
@@ -178,7 +178,7 @@ impl EvRings {
         let mut total = 0u32;
         for &v in &evs {
             start.push(total);
-            total += lv.valence[v as usize];
+            total += lv.valences()[v as usize];
         }
         start.push(total);
         let mut corners = vec![0u32; total as usize];
@@ -194,7 +194,7 @@ impl EvRings {
             (rc, rv) = (b, y);
         }
         evs.par_iter().zip(pieces).with_min_len(256).for_each(|(&v, (cs, vs))| {
-            let mut c = lv.vc[v as usize];
+            let mut c = lv.c_table()[v as usize];
             for (cj, vj) in cs.iter_mut().zip(vs.iter_mut()) {
                 *cj = c;
                 *vj = lv.vtx(n(c));
@@ -250,7 +250,7 @@ impl Rules for ModifiedButterfly {
         let fast_regular = self.w == 0.0;
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
             let mut acc = Accumulate::new(pos);
-            let o = lv.o[c as usize];
+            let o = lv.o_table()[c as usize];
             if o == BORDER {
                 self.edge_cold(lv, c, &mut acc);
             } else {
@@ -285,7 +285,7 @@ impl Rules for ModifiedButterfly {
         // triangle t(c) = (b1, a1, a2), triangle t(o) = (b2, a2, a1)
         let (a1, a2) = (ct.vtx(n(c)), ct.vtx(p(c)));
         let (bd1, bd2) = (ct.is_boundary_vertex(a1), ct.is_boundary_vertex(a2));
-        let (k1, k2) = (ct.valence[a1 as usize], ct.valence[a2 as usize]);
+        let (k1, k2) = (ct.valences()[a1 as usize], ct.valences()[a2 as usize]);
         let ev1 = !bd1 && k1 != 6;
         let ev2 = !bd2 && k2 != 6;
         match (ev1, ev2) {

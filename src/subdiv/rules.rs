@@ -25,7 +25,8 @@ pub struct Level<'a> {
 impl<'a> Level<'a> {
     /// Precomputes the per-vertex flags of `ct` (parallel, O(V)).
     pub fn new(ct: &'a CornerTable) -> Self {
-        let boundary = ct.vc.par_iter().with_min_len(8192).map(|&c| ct.o[p(c) as usize] == BORDER).collect();
+        let boundary =
+            ct.c_table().par_iter().with_min_len(8192).map(|&c| ct.o_table()[p(c) as usize] == BORDER).collect();
         Level { ct, boundary }
     }
     /// Is vertex `v` on the boundary?
@@ -150,7 +151,7 @@ pub fn ring_sums(lv: &Level, pos: &[Vec3], out: &mut [Vec3]) {
 /// per-thread accumulators and fixes boundary vertices (one pass over the
 /// vertices instead of three).
 pub fn ring_sums_map(lv: &Level, pos: &[Vec3], out: &mut [Vec3], f: impl Fn(usize, Vec3) -> Vec3 + Sync) {
-    let (vt, nc) = (&lv.ct.v, lv.ct.num_corners());
+    let (vt, nc) = (lv.ct.v_table(), lv.ct.num_corners());
     let threads = rayon::current_num_threads().clamp(1, 16).min(nc.div_ceil(1 << 16)).max(1);
     let per = nc.div_ceil(threads).div_ceil(3) * 3;
     let scatter = |acc: &mut [Vec3], range: std::ops::Range<usize>| {
@@ -184,8 +185,9 @@ pub fn ring_sums_map(lv: &Level, pos: &[Vec3], out: &mut [Vec3], f: impl Fn(usiz
         for e in extra {
             sum += e[v];
         }
-        if lv.boundary[v] {
-            let (a, b) = lv.boundary_neighbours(v as u32);
+        if lv.boundary[v]
+            && let Some((a, b)) = lv.boundary_neighbours(v as u32)
+        {
             sum = pos[a as usize] + pos[b as usize];
         }
         *q = f(v, sum);
@@ -200,9 +202,11 @@ pub fn ring_sums_map(lv: &Level, pos: &[Vec3], out: &mut [Vec3], f: impl Fn(usiz
 #[inline]
 pub fn four_point<S: Sink>(ct: &CornerTable, c: u32, s: &mut S) {
     let (p1, p2) = (ct.vtx(n(c)), ct.vtx(p(c)));
-    // the border edge runs p1 -> p2; p0 ends the fan of p1, p3 starts that of p2
-    let p0 = ct.boundary_neighbours(p1).1;
-    let p3 = ct.vtx(n(ct.vc[p2 as usize]));
+    // the border edge runs p1 -> p2; p0 ends the fan of p1, p3 starts that
+    // of p2 (both ends of a border edge are boundary vertices, so the
+    // fallback to p1 itself is never taken)
+    let p0 = ct.boundary_neighbours(p1).map_or(p1, |(_, last)| last);
+    let p3 = ct.vtx(n(ct.corner_of(p2)));
     s.add(p0, -1.0 / 16.0);
     s.add(p1, 9.0 / 16.0);
     s.add(p2, 9.0 / 16.0);

@@ -10,9 +10,10 @@
 //! small: a composed control-to-final matrix would have L-ring support.
 
 use super::rules::{Level, Record, Rules};
-use super::{Options, RulesFn, Scheme, check_levels_fit, split, with_rules};
+use super::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
 use crate::Result;
 use crate::mesh::CornerTable;
+use crate::mesh::split;
 use glam::Vec3;
 use rayon::prelude::*;
 

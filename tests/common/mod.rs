@@ -95,7 +95,7 @@ pub fn icosphere(levels: u32) -> Mesh {
 pub fn hemisphere() -> Mesh {
     let s = icosphere(2);
     let mut tris = Vec::new();
-    for tri in s.ct.v.chunks_exact(3) {
+    for tri in s.ct.v_table().chunks_exact(3) {
         if tri.iter().all(|&v| s.positions[v as usize].z > -0.15) {
             tris.extend_from_slice(tri);
         }
@@ -168,7 +168,7 @@ pub struct Soup {
 
 impl Soup {
     pub fn of(mesh: &Mesh) -> Soup {
-        Soup { positions: mesh.positions.clone(), triangles: mesh.ct.v.clone() }
+        Soup { positions: mesh.positions.clone(), triangles: mesh.ct.v_table().to_vec() }
     }
     pub fn faces(&self) -> usize {
         self.triangles.len() / 3

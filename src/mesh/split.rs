@@ -23,7 +23,7 @@
 //! `C'[v] = A(C[v])`; an edge vertex has valence 6 (interior) or 4 (border)
 //! and `C' = c` (interior) or `p(A(p(c)))` (border, the first corner of its fan).
 
-use crate::mesh::{BORDER, CornerTable, owns_edge, p};
+use super::{BORDER, CornerTable, Mesh, n, owns_edge, p};
 use rayon::prelude::*;
 
 /// Corners per parallel work item: big enough to amortise scheduling, small
@@ -80,7 +80,8 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
 
 /// The number of edge owners in every chunk of `CHUNK` corners.
 fn count_owners(ct: &CornerTable) -> Vec<u32> {
-    ct.o.par_chunks(CHUNK)
+    ct.o_table()
+        .par_chunks(CHUNK)
         .enumerate()
         .map(|(k, ch)| {
             let base = (k * CHUNK) as u32;
@@ -94,7 +95,7 @@ fn count_owners(ct: &CornerTable) -> Vec<u32> {
 /// numbering pass has the three at hand (the split fills the new vertices'
 /// `C` and valence this way, without another pass).
 fn number_edges_with(ct: &CornerTable, counts: &[u32], each: impl Fn(u32, u32, u32) + Sync) -> EdgeNumbering {
-    let o = &ct.o;
+    let o = ct.o_table();
     let ne: u32 = counts.iter().sum();
     let mut owners: Vec<u32> = crate::mem::zeroed(ne as usize);
     let mut w: Vec<u32> = crate::mem::zeroed(o.len());
@@ -171,7 +172,7 @@ pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool
     let nvu = old.num_vertices();
     let nv = nvu as u32;
     let nc = 3 * nt;
-    let (ov, oo) = (&old.v, &old.o);
+    let (ov, oo) = (old.v_table(), old.o_table());
     // A(c): first corner of the corner triangle of v(c) (schemes.md 7.4)
     let a = |c: u32| (3 * nt * (c as usize % 3 + 1) + 3 * (c as usize / 3)) as u32;
     let counts = count_owners(old);
@@ -273,8 +274,39 @@ pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool
     let (vc_old, _) = vc.split_at_mut(nvu);
     let (val_old, _) = valence.split_at_mut(nvu);
     // an old vertex keeps its valence; its C moves to its corner triangle
-    vc_old.par_iter_mut().zip(old.vc.par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
-    val_old.copy_from_slice(&old.valence);
-    let times = (super::ms(t1 - t0), super::ms(t1.elapsed()));
-    ((CornerTable { v: v2, o: o2, vc, valence }, edges, boundary), times)
+    vc_old.par_iter_mut().zip(old.c_table().par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
+    val_old.copy_from_slice(old.valences());
+    let times = (ms(t1 - t0), ms(t1.elapsed()));
+    ((CornerTable::from_parts(v2, o2, vc, valence), edges, boundary), times)
+}
+
+/// One split with every new vertex at the midpoint of its edge: linear
+/// subdivision, the points lying on the old triangles (the `midpoint`
+/// scheme gives the same points; the tests check it). For shapes and for
+/// measuring a scheme's displacement from the control surface, which need
+/// no scheme.
+pub fn split_linear(mesh: &Mesh) -> Mesh {
+    let (ct, edges) = split(&mesh.ct);
+    let old = &mesh.ct;
+    let pos = &mesh.positions;
+    let mut positions = Vec::with_capacity(ct.num_vertices());
+    positions.extend_from_slice(pos);
+    positions.par_extend(edges.owners.par_iter().map(|&c| {
+        let (a, b) = (old.vtx(n(c)), old.vtx(p(c)));
+        (pos[a as usize] + pos[b as usize]) * 0.5
+    }));
+    Mesh { ct, positions }
+}
+
+/// [`split_linear`] `levels` times.
+pub fn refine_linear(mesh: &Mesh, levels: u32) -> Mesh {
+    let mut cur = mesh.clone();
+    for _ in 0..levels {
+        cur = split_linear(&cur);
+    }
+    cur
+}
+
+fn ms(d: std::time::Duration) -> f64 {
+    d.as_secs_f64() * 1000.0
 }

@@ -1,0 +1,243 @@
+//! The models and animation paths that ship inside the binary (`models/` and
+//! `paths/` of the repository, compiled in with `include_bytes!`), shared by
+//! the command line and the viewer. An installed `subdiv` needs no checkout:
+//! it lists and opens these from memory.
+//!
+//! On the command line a bundled model is named `bundled:<file name>`
+//! (`subdiv info bundled:torus.obj`); `subdiv models` lists them.
+
+use crate::anim::paths::Paths;
+use crate::{Mesh, Result, io};
+use std::path::{Path, PathBuf};
+
+/// One bundled file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Model {
+    /// File name, with the extension that says its format (`torus.obj`).
+    pub file_name: &'static str,
+    /// What it is, for a menu.
+    pub what: &'static str,
+    /// The file's bytes.
+    pub bytes: &'static [u8],
+}
+
+impl Model {
+    /// Whether this is a `.bzc` curve rather than a mesh.
+    pub fn is_curve(&self) -> bool {
+        self.file_name.ends_with(".bzc")
+    }
+    /// The name that opens it on the command line (`bundled:torus.obj`).
+    pub fn cli_name(&self) -> String {
+        format!("{PREFIX}{}", self.file_name)
+    }
+    /// Parses it as a mesh (`.obj`, `.ct`, `.bez`), naming it in errors as
+    /// [`Model::cli_name`] does.
+    ///
+    /// # Errors
+    /// Parse or validation errors (`teapot.bez` needs repair; see
+    /// [`Model::load_repaired`]).
+    pub fn load(&self) -> Result<Mesh> {
+        io::from_bytes(self.bytes, &self.cli_name())
+    }
+    /// Parses and repairs it (see [`io::from_bytes_repaired`]).
+    ///
+    /// # Errors
+    /// Parse errors.
+    pub fn load_repaired(&self) -> Result<(Mesh, crate::mesh::RepairReport)> {
+        io::from_bytes_repaired(self.bytes, &self.cli_name())
+    }
+    /// Its animation paths, when some are bundled for it.
+    pub fn paths(&self) -> Option<&'static str> {
+        paths_text(stem(self.file_name))
+    }
+}
+
+/// Command-line prefix of a bundled model.
+pub const PREFIX: &str = "bundled:";
+
+macro_rules! model {
+    ($name:literal, $what:literal) => {
+        Model { file_name: $name, what: $what, bytes: include_bytes!(concat!("../models/", $name)) }
+    };
+}
+
+/// Every bundled model, in menu order.
+pub const MODELS: &[Model] = &[
+    model!("tetrahedron.obj", "tetrahedron (the animation's model)"),
+    model!("tetrahedron.ct", "tetrahedron as a corner table"),
+    model!("cube.obj", "cube, 12 triangles"),
+    model!("cube.ct", "cube as a corner table"),
+    model!("cube_uv.obj", "cube with texture charts and vertex colours"),
+    model!("lprism.obj", "L-shaped prism"),
+    model!("lprism.ct", "L-shaped prism as a corner table"),
+    model!("torus.obj", "torus, 2048 triangles"),
+    model!("torus.ct", "torus as a corner table"),
+    model!("teapot.bez", "Newell's teapot, 32 Bezier patches (needs repair)"),
+    model!("curve.bzc", "a degree-4 Bezier curve"),
+];
+
+/// Bundled `.paths` files by model stem.
+const PATHS: &[(&str, &str)] = &[("tetrahedron", include_str!("../paths/tetrahedron.paths"))];
+
+/// The bundled model called `file_name` (`torus.obj`).
+pub fn model(file_name: &str) -> Option<&'static Model> {
+    MODELS.iter().find(|m| m.file_name == file_name)
+}
+
+/// The bundled model a command-line argument names (`bundled:torus.obj`).
+pub fn from_arg(arg: &Path) -> Option<&'static Model> {
+    arg.to_str().and_then(|s| s.strip_prefix(PREFIX)).and_then(model)
+}
+
+/// The bytes a model argument names: a bundled model (`bundled:NAME`, from
+/// memory) or a file.
+///
+/// # Errors
+/// I/O errors naming the file; an unknown `bundled:` name.
+pub fn read(arg: &Path) -> Result<std::borrow::Cow<'static, [u8]>> {
+    if let Some(m) = from_arg(arg) {
+        return Ok(std::borrow::Cow::Borrowed(m.bytes));
+    }
+    if let Some(name) = arg.to_str().and_then(|s| s.strip_prefix(PREFIX)) {
+        let known: Vec<&str> = MODELS.iter().map(|m| m.file_name).collect();
+        return Err(crate::Error::Usage(format!("no bundled model '{name}' (bundled: {})", known.join(", "))));
+    }
+    std::fs::read(arg).map(std::borrow::Cow::Owned).map_err(|e| crate::Error::io(arg, e))
+}
+
+/// Loads the mesh a model argument names (see [`read`], [`io::from_bytes`]).
+///
+/// # Errors
+/// As [`read`] and [`io::from_bytes`].
+pub fn load(arg: &Path) -> Result<Mesh> {
+    io::from_bytes(&read(arg)?, &arg.display().to_string())
+}
+
+/// Loads and repairs the mesh a model argument names (see [`io::from_bytes_repaired`]).
+///
+/// # Errors
+/// As [`read`] and [`io::from_bytes_repaired`].
+pub fn load_repaired(arg: &Path) -> Result<(Mesh, crate::mesh::RepairReport)> {
+    io::from_bytes_repaired(&read(arg)?, &arg.display().to_string())
+}
+
+/// Loads an OBJ model argument with its attributes (see
+/// [`io::obj::from_bytes_with_attributes`]).
+///
+/// # Errors
+/// As [`read`] and the OBJ reader.
+pub fn load_with_attributes(arg: &Path) -> Result<(Mesh, crate::mesh::attributes::Attributes)> {
+    io::obj::from_bytes_with_attributes(&read(arg)?, &arg.display().to_string())
+}
+
+/// Analyzes the mesh a model argument names (see [`io::analyze_bytes`]).
+///
+/// # Errors
+/// As [`read`] and [`io::analyze_bytes`].
+pub fn analyze(arg: &Path) -> Result<(Mesh, crate::mesh::RepairReport)> {
+    io::analyze_bytes(&read(arg)?, &arg.display().to_string())
+}
+
+/// Loads the `.bzc` curve a model argument names.
+///
+/// # Errors
+/// As [`read`] and [`io::bezier::parse_bzc`].
+pub fn load_curve(arg: &Path) -> Result<Vec<glam::Vec2>> {
+    let file = arg.display().to_string();
+    io::bezier::parse_bzc(io::text(&read(arg)?, &file)?, &file)
+}
+
+/// The text of the bundled `.paths` for models called `stem`.
+pub fn paths_text(stem: &str) -> Option<&'static str> {
+    PATHS.iter().find(|(s, _)| *s == stem).map(|&(_, t)| t)
+}
+
+fn stem(file_name: &str) -> &str {
+    Path::new(file_name).file_stem().and_then(|s| s.to_str()).unwrap_or(file_name)
+}
+
+/// Where a model's animation paths come from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PathsSource {
+    /// A `.paths` file beside the model.
+    File(PathBuf),
+    /// A bundled `.paths`, by model stem.
+    Bundled(&'static str),
+}
+
+impl PathsSource {
+    /// Reads and parses the paths.
+    ///
+    /// # Errors
+    /// I/O and parse errors naming the file.
+    pub fn load(&self) -> Result<Paths> {
+        match self {
+            PathsSource::File(p) => Paths::load(p),
+            PathsSource::Bundled(stem) => {
+                Paths::parse(paths_text(stem).unwrap_or_default(), &format!("{PREFIX}{stem}.paths"))
+            }
+        }
+    }
+    /// How to show it in a panel or message.
+    pub fn describe(&self) -> String {
+        match self {
+            PathsSource::File(p) => p.display().to_string(),
+            PathsSource::Bundled(stem) => format!("{PREFIX}{stem}.paths"),
+        }
+    }
+}
+
+/// The paths that go with the model at `model`: `<model>.paths` beside it,
+/// else the bundled paths of a model with the same stem.
+pub fn paths_for(model: &Path) -> Option<PathsSource> {
+    if let Some(m) = from_arg(model) {
+        let stem = stem(m.file_name);
+        return PATHS.iter().find(|(s, _)| *s == stem).map(|&(s, _)| PathsSource::Bundled(s));
+    }
+    let beside = model.with_extension("paths");
+    if beside.is_file() {
+        return Some(PathsSource::File(beside));
+    }
+    let stem = model.file_stem()?.to_str()?;
+    PATHS.iter().find(|(s, _)| *s == stem).map(|&(s, _)| PathsSource::Bundled(s))
+}
+
+/// The bundled tetrahedron and its paths: the viewer's first model and the
+/// default of `subdiv animate`.
+///
+/// # Errors
+/// None for the files as bundled (a unit test parses them); a parse error
+/// would name `bundled:tetrahedron.obj`.
+pub fn tetrahedron() -> Result<(Mesh, Paths)> {
+    let model = model("tetrahedron.obj").ok_or_else(|| crate::Error::Internal("no bundled tetrahedron".into()))?;
+    let mesh = model.load()?;
+    let paths = PathsSource::Bundled("tetrahedron").load()?;
+    paths.check_model(&mesh, "bundled:tetrahedron.paths")?;
+    Ok((mesh, paths))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_bundled_model_opens() {
+        for m in MODELS {
+            if m.is_curve() {
+                let text = io::text(m.bytes, m.file_name).unwrap();
+                assert!(io::bezier::parse_bzc(text, m.file_name).unwrap().len() >= 2, "{}", m.file_name);
+            } else {
+                let mesh = m.load_repaired().unwrap_or_else(|e| panic!("{}: {e}", m.file_name)).0;
+                assert!(mesh.ct.num_triangles() > 0, "{}", m.file_name);
+                if m.file_name != "teapot.bez" {
+                    m.load().unwrap_or_else(|e| panic!("{}: {e}", m.file_name));
+                }
+            }
+        }
+        let (tet, paths) = tetrahedron().unwrap();
+        assert_eq!(paths.vertex_count(), tet.positions.len());
+        assert_eq!(from_arg(Path::new("bundled:torus.obj")).map(|m| m.file_name), Some("torus.obj"));
+        assert_eq!(from_arg(Path::new("torus.obj")), None);
+        assert_eq!(from_arg(Path::new("bundled:nothing.obj")), None);
+    }
+}

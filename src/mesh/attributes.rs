@@ -1,0 +1,75 @@
+//! Attributes of a mesh: per-corner texture coordinates and per-vertex
+//! colours, and the linear refinement of UVs through the 1-to-4 split. The
+//! colours' refinement by a scheme's weights is in
+//! [`crate::subdiv::attributes`].
+//!
+//! * **Colours** (one per vertex) use the scheme's own weights: they are
+//!   refined by the same stencil plan as the positions (so a colour that is
+//!   an affine function of position stays that function wherever the scheme
+//!   reproduces it), then clamped to [0, 1] since the interpolating schemes'
+//!   negative weights can overshoot.
+//! * **Texture coordinates** are stored per corner, so a UV seam (one vertex,
+//!   different UVs in the triangles around it) stays sharp. Inside each
+//!   triangle they are refined **linearly**: the new corner on the edge
+//!   opposite corner `c` gets the midpoint `(uv[n(c)] + uv[p(c)]) / 2` of
+//!   that triangle's own corners, in the split layout of schemes.md 7.4
+//!   (central triangle `t` keeps corner ids; the corner triangle of `v(c)`
+//!   starts at `A(c) = 3nt(c%3 + 1) + 3(c/3)`). Charts are therefore
+//!   parameterised piecewise linearly over the control mesh, whatever the
+//!   scheme does to positions; the texture follows the surface without
+//!   swimming at seams.
+
+use super::{n, p};
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+
+/// Optional attributes of a mesh.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Attributes {
+    /// Texture coordinates, one per corner (three per triangle, in V order).
+    pub uv: Option<Vec<Vec2>>,
+    /// Linear RGB colours in [0, 1], one per vertex.
+    pub colors: Option<Vec<Vec3>>,
+}
+
+impl Attributes {
+    /// Whether there is anything to carry.
+    pub fn is_empty(&self) -> bool {
+        self.uv.is_none() && self.colors.is_none()
+    }
+}
+
+/// Corner UVs after one 1-to-4 split (linear inside each triangle).
+pub fn split_corner_uvs(uv: &[Vec2]) -> Vec<Vec2> {
+    let nt = uv.len() / 3;
+    let mut out = vec![Vec2::ZERO; 12 * nt];
+    let (central, corners) = out.split_at_mut(3 * nt);
+    central.par_chunks_mut(3).zip(uv.par_chunks_exact(3)).for_each(|(o, t)| {
+        // corner k of the central triangle lies on the edge opposite corner k
+        o[0] = 0.5 * (t[1] + t[2]);
+        o[1] = 0.5 * (t[2] + t[0]);
+        o[2] = 0.5 * (t[0] + t[1]);
+    });
+    // corner triangle of v(c): A(c) = 3nt(k+1) + 3t holds uv[c], then the
+    // midpoints on the edges opposite p(c) and n(c)
+    for k in 0..3usize {
+        let block = &mut corners[3 * nt * k..3 * nt * (k + 1)];
+        block.par_chunks_mut(3).enumerate().for_each(|(t, o)| {
+            let c = (3 * t + k) as u32;
+            let mid = |e: u32| 0.5 * (uv[n(e) as usize] + uv[p(e) as usize]);
+            o[0] = uv[c as usize];
+            o[1] = mid(p(c));
+            o[2] = mid(n(c));
+        });
+    }
+    out
+}
+
+/// Corner UVs after `levels` splits.
+pub fn refine_corner_uvs(uv: &[Vec2], levels: u32) -> Vec<Vec2> {
+    let mut cur = uv.to_vec();
+    for _ in 0..levels {
+        cur = split_corner_uvs(&cur);
+    }
+    cur
+}
