@@ -34,6 +34,11 @@ pub enum MeshError {
     /// An index or count does not fit the 32-bit corner table.
     #[error("mesh too large for 32-bit corner ids: {what}")]
     TooManyElements { what: String },
+    /// A crease or corner tag names something that does not exist, or an
+    /// invalid sharpness. `index` counts the crease tags first, then the
+    /// corner tags, in file order.
+    #[error("sharpness tag {index}: {msg}")]
+    BadTag { index: usize, msg: String },
     /// The opposite table stored in a file contradicts the triangles.
     #[error("stored opposite table is inconsistent at corner {corner}: {msg}")]
     BadOppositeTable { corner: usize, msg: String },

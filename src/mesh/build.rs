@@ -144,7 +144,7 @@ impl CornerTable {
         let mut vc = vec![BORDER; nv];
         let mut valence = vec![0u32; nv];
         let mut visited = vec![false; nc];
-        let ct_tmp = CornerTable { v, o, vc: Vec::new(), valence: Vec::new() };
+        let ct_tmp = CornerTable { v, o, vc: Vec::new(), valence: Vec::new(), sharpness: None };
         for c0 in 0..nc as u32 {
             if visited[c0 as usize] {
                 continue;

@@ -20,10 +20,12 @@ pub mod normals;
 pub mod repair;
 pub mod shapes;
 pub mod smooth;
+pub mod sharpness;
 pub mod split;
 pub mod topology;
 
 pub use build::BuildReport;
+pub use sharpness::{Creasing, Sharpness, Tags};
 use glam::Vec3;
 pub use repair::{RepairReport, repair};
 
@@ -85,7 +87,7 @@ pub fn owns_edge(c: u32, o: u32) -> bool {
 /// ```compile_fail,E0451
 /// let ct = subdiv::CornerTable { v: vec![0, 1, 2], o: vec![7, 7, 7], vc: vec![0, 1, 2], valence: vec![2; 3] };
 /// ```
-#[derive(Clone, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Debug, PartialEq, Default)]
 pub struct CornerTable {
     /// `V[c]`: vertex of corner `c` (3 per triangle, counter-clockwise).
     v: Vec<u32>,
@@ -96,6 +98,8 @@ pub struct CornerTable {
     vc: Vec<u32>,
     /// Number of edges incident to each vertex.
     valence: Vec<u32>,
+    /// Sharp edges and vertices, when there are any.
+    sharpness: Option<Box<Sharpness>>,
 }
 
 impl CornerTable {
@@ -141,7 +145,39 @@ impl CornerTable {
     }
     /// The tables, for the crate's own constructors and edits.
     pub(crate) fn from_parts(v: Vec<u32>, o: Vec<u32>, vc: Vec<u32>, valence: Vec<u32>) -> CornerTable {
-        CornerTable { v, o, vc, valence }
+        CornerTable { v, o, vc, valence, sharpness: None }
+    }
+    /// Sharp edges and vertices (`None`: every edge but the border is
+    /// smooth, every vertex smooth).
+    #[inline]
+    pub fn sharpness(&self) -> Option<&Sharpness> {
+        self.sharpness.as_deref()
+    }
+    /// This table with the sharpness that `tags` give it (replacing any it
+    /// had); see [`Sharpness::from_tags`].
+    ///
+    /// # Errors
+    /// [`crate::MeshError::BadTag`] for a tag naming a vertex or an edge
+    /// that does not exist, or an invalid sharpness.
+    pub fn with_tags(self, tags: &Tags, creasing: Creasing) -> Result<CornerTable, crate::MeshError> {
+        let s = Sharpness::from_tags(&self, tags, creasing)?;
+        Ok(self.with_sharpness(s))
+    }
+    /// This table with `sharpness`, which must have been made for it (or
+    /// by the split of its parent).
+    pub(crate) fn with_sharpness(mut self, sharpness: Option<Sharpness>) -> CornerTable {
+        self.sharpness = sharpness.map(Box::new);
+        self
+    }
+    /// Sharpness of the edge opposite corner `c`: [`sharpness::INFINITE`]
+    /// on the border, the tagged value (or 0) inside.
+    #[inline]
+    pub fn edge_sharpness(&self, c: u32) -> f32 {
+        if self.o[c as usize] == BORDER {
+            sharpness::INFINITE
+        } else {
+            self.sharpness.as_ref().map_or(0.0, |s| s.corner(c))
+        }
     }
     /// Number of corners (3 per triangle).
     #[inline]

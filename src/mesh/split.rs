@@ -277,7 +277,8 @@ pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool
     vc_old.par_iter_mut().zip(old.c_table().par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
     val_old.copy_from_slice(old.valences());
     let times = (ms(t1 - t0), ms(t1.elapsed()));
-    ((CornerTable::from_parts(v2, o2, vc, valence), edges, boundary), times)
+    let sharpness = old.sharpness().and_then(|s| s.split(old));
+    ((CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness), edges, boundary), times)
 }
 
 /// One split with every new vertex at the midpoint of its edge: linear

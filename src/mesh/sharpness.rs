@@ -1,0 +1,403 @@
+//! Sharp features of a corner table: per-edge and per-vertex sharpness
+//! (docs: creases.md 1; OpenSubdiv `sdc/crease.h`, `vtr/refinement.cpp`).
+//!
+//! * An edge's sharpness `s` is 0 (smooth), `0 < s < 10` (semi-sharp: sharp
+//!   rules for about `s` levels, then smooth) or `>= 10` ([`INFINITE`]).
+//!   Border edges are always infinitely sharp and are not stored.
+//! * A vertex's sharpness (a tagged corner) likewise.
+//!
+//! Both are **sparse**: most meshes have few sharp features, so the table
+//! keeps a sorted list of the sharp corners (a sharp interior edge is listed
+//! at both of its corners, by the corner opposite it) and of the sharp
+//! vertices. A mesh without tags carries nothing, and the split and the
+//! schemes pay nothing for it.
+//!
+//! Through a 1-to-4 split ([`Sharpness::split`], called by
+//! [`crate::mesh::split`]) the two halves of a sharp edge get its subdivided
+//! sharpness, the three new interior edges of every triangle are smooth, and
+//! an old vertex's sharpness is subdivided too; the new vertices are smooth.
+//! Subdivided sharpness (OpenSubdiv `Sdc::Crease`):
+//!
+//! ```text
+//! uniform   s' = s - 1 (0 when s <= 1; infinite stays infinite)
+//! Chaikin   at end vertex v of the half edge, with the other semi-sharp
+//!           edges of v (sum S, count k including this one):
+//!           s' = 3/4 s + 1/4 (S - s)/(k - 1) - 1   when k > 1, else s - 1;
+//!           0 when s' <= 0 (SubdivideEdgeSharpnessAtVertex)
+//! vertex    s' = s - 1 (0 when s <= 1; infinite stays infinite)
+//! ```
+//!
+//! Split layout (schemes.md 7.4): the half of the edge opposite corner `c`
+//! that ends at `v(n(c))` is opposite corner `p(A(n(c)))` of the split, the
+//! half that ends at `v(p(c))` is opposite `n(A(p(c)))`, with
+//! `A(x) = 3 nt (x % 3 + 1) + 3 (x / 3)`.
+
+use super::{BORDER, CornerTable, n, p};
+use crate::MeshError;
+
+/// Sharpness from which a feature is infinitely sharp (OpenSubdiv's
+/// `SHARPNESS_INFINITE`).
+pub const INFINITE: f32 = 10.0;
+
+/// How semi-sharp values decay from level to level (OpenSubdiv's
+/// `Sdc::Options::CreasingMethod`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Creasing {
+    /// `s - 1` per level (`CREASE_UNIFORM`).
+    #[default]
+    Uniform,
+    /// Chaikin's curve rule on the sharpness along a crease (`CREASE_CHAIKIN`).
+    Chaikin,
+}
+
+impl std::str::FromStr for Creasing {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "uniform" => Ok(Creasing::Uniform),
+            "chaikin" => Ok(Creasing::Chaikin),
+            _ => Err(format!("unknown creasing method '{s}' (expected uniform or chaikin)")),
+        }
+    }
+}
+
+/// A tagged sharp edge, by its two vertex ids.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CreaseTag {
+    /// One end.
+    pub v0: u32,
+    /// The other end.
+    pub v1: u32,
+    /// Sharpness (0 smooth, `>= 10` infinite).
+    pub sharpness: f32,
+}
+
+/// A tagged sharp vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerTag {
+    /// The vertex.
+    pub vertex: u32,
+    /// Sharpness (`>= 10` infinite).
+    pub sharpness: f32,
+}
+
+/// Sharp features as a file names them (OpenSubdiv's OBJ tags
+/// `t crease 2/1/0 v0 v1 s` and `t corner 1/1/0 v s`, vertex ids 0-based).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Tags {
+    /// Sharp edges.
+    pub creases: Vec<CreaseTag>,
+    /// Sharp vertices.
+    pub corners: Vec<CornerTag>,
+}
+
+impl Tags {
+    /// Whether there is no tag at all.
+    pub fn is_empty(&self) -> bool {
+        self.creases.is_empty() && self.corners.is_empty()
+    }
+}
+
+/// Sharpness of one level's edges and vertices (see the module docs).
+///
+/// Invariants (kept by every constructor): `corners` is sorted by corner
+/// and holds both corners of every sharp interior edge with the same value;
+/// `vertices` is sorted by vertex; every value is finite and `> 0`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sharpness {
+    corners: Vec<(u32, f32)>,
+    vertices: Vec<(u32, f32)>,
+    creasing: Creasing,
+}
+
+/// The error of a tag: `index` counts creases first, then corners.
+fn tag_error(index: usize, msg: String) -> MeshError {
+    MeshError::BadTag { index, msg }
+}
+
+fn check_value(index: usize, s: f32) -> Result<(), MeshError> {
+    if s.is_nan() || s < 0.0 {
+        return Err(tag_error(index, format!("sharpness {s} is not a number >= 0")));
+    }
+    Ok(())
+}
+
+/// `s - 1` with OpenSubdiv's clamps (`Crease::decrementSharpness`).
+#[inline]
+pub fn decrement(s: f32) -> f32 {
+    if s >= INFINITE {
+        INFINITE
+    } else if s > 1.0 {
+        s - 1.0
+    } else {
+        0.0
+    }
+}
+
+impl Sharpness {
+    /// The sharpness the tags give to `ct`'s edges and vertices, or `None`
+    /// when no tag is sharp. Sharpness above [`INFINITE`] is stored as
+    /// infinite; a tag on a border edge is kept (borders are sharp anyway).
+    ///
+    /// # Errors
+    /// [`MeshError::BadTag`] for a vertex out of range, an edge that does
+    /// not exist, or a sharpness that is negative or NaN.
+    pub fn from_tags(ct: &CornerTable, tags: &Tags, creasing: Creasing) -> Result<Option<Sharpness>, MeshError> {
+        let nv = ct.num_vertices() as u32;
+        let mut corners = Vec::new();
+        for (i, t) in tags.creases.iter().enumerate() {
+            check_value(i, t.sharpness)?;
+            if t.v0 >= nv || t.v1 >= nv {
+                return Err(tag_error(i, format!("edge ({}, {}) names a vertex >= {nv}", t.v0, t.v1)));
+            }
+            let Some(c) = ct.corner_opposite(t.v0, t.v1) else {
+                return Err(tag_error(i, format!("there is no edge ({}, {})", t.v0, t.v1)));
+            };
+            if t.sharpness > 0.0 {
+                let s = t.sharpness.min(INFINITE);
+                corners.push((c, s));
+                if let Some(x) = ct.o(c) {
+                    corners.push((x, s));
+                }
+            }
+        }
+        let mut vertices = Vec::new();
+        for (j, t) in tags.corners.iter().enumerate() {
+            let i = tags.creases.len() + j;
+            check_value(i, t.sharpness)?;
+            if t.vertex >= nv {
+                return Err(tag_error(i, format!("vertex {} does not exist (there are {nv})", t.vertex)));
+            }
+            if t.sharpness > 0.0 {
+                vertices.push((t.vertex, t.sharpness.min(INFINITE)));
+            }
+        }
+        Ok(Self::from_lists(corners, vertices, creasing))
+    }
+
+    /// Sorts, removes duplicates (the last tag wins) and zeros.
+    fn from_lists(mut corners: Vec<(u32, f32)>, mut vertices: Vec<(u32, f32)>, creasing: Creasing) -> Option<Self> {
+        for list in [&mut corners, &mut vertices] {
+            // stable sort keeps tag order among equal ids: keep the last
+            list.sort_by_key(|&(id, _)| id);
+            let mut out: Vec<(u32, f32)> = Vec::with_capacity(list.len());
+            for &(id, s) in list.iter() {
+                match out.last_mut() {
+                    Some(last) if last.0 == id => last.1 = s,
+                    _ => out.push((id, s)),
+                }
+            }
+            out.retain(|&(_, s)| s > 0.0);
+            *list = out;
+        }
+        (!corners.is_empty() || !vertices.is_empty()).then_some(Sharpness { corners, vertices, creasing })
+    }
+
+    /// The tags that give this sharpness back (each sharp edge once, by its
+    /// owner corner's vertices).
+    pub fn to_tags(&self, ct: &CornerTable) -> Tags {
+        let creases = self
+            .corners
+            .iter()
+            .filter(|&&(c, _)| super::owns_edge(c, ct.o_entry(c)))
+            .map(|&(c, s)| CreaseTag { v0: ct.vtx(n(c)), v1: ct.vtx(p(c)), sharpness: s })
+            .collect();
+        let corners = self.vertices.iter().map(|&(v, s)| CornerTag { vertex: v, sharpness: s }).collect();
+        Tags { creases, corners }
+    }
+
+    /// How the values decay.
+    pub fn creasing(&self) -> Creasing {
+        self.creasing
+    }
+
+    /// The sharp corners `(corner, sharpness of the edge opposite it)`,
+    /// sorted by corner (border corners only where a tag named them).
+    pub fn sharp_corners(&self) -> &[(u32, f32)] {
+        &self.corners
+    }
+
+    /// The sharp vertices `(vertex, sharpness)`, sorted by vertex.
+    pub fn sharp_vertices(&self) -> &[(u32, f32)] {
+        &self.vertices
+    }
+
+    /// Stored sharpness of the edge opposite corner `c` (0 when untagged;
+    /// a border edge is infinitely sharp whatever is stored, see
+    /// [`CornerTable::edge_sharpness`]).
+    pub fn corner(&self, c: u32) -> f32 {
+        self.corners.binary_search_by_key(&c, |&(x, _)| x).map_or(0.0, |i| self.corners[i].1)
+    }
+
+    /// Sharpness of vertex `v` (0 when untagged).
+    pub fn vertex(&self, v: u32) -> f32 {
+        self.vertices.binary_search_by_key(&v, |&(x, _)| x).map_or(0.0, |i| self.vertices[i].1)
+    }
+
+    /// Adds infinitely sharp vertices (OpenSubdiv's `EDGE_AND_CORNER`
+    /// boundary interpolation sharpens every boundary vertex with one face).
+    pub fn with_corners(this: Option<Sharpness>, corners: &[u32], creasing: Creasing) -> Option<Sharpness> {
+        let (c, mut v) = this.map_or((Vec::new(), Vec::new()), |s| (s.corners, s.vertices));
+        v.extend(corners.iter().map(|&x| (x, INFINITE)));
+        Self::from_lists(c, v, creasing)
+    }
+
+    /// With another creasing method.
+    pub fn with_creasing(mut self, creasing: Creasing) -> Sharpness {
+        self.creasing = creasing;
+        self
+    }
+
+    /// The sharpness after the 1-to-4 split of `old` (whose sharpness this
+    /// is), or `None` when every value decayed to smooth. Linear in the
+    /// number of sharp features (plus a sort of them).
+    pub fn split(&self, old: &CornerTable) -> Option<Sharpness> {
+        let nt3 = 3 * old.num_triangles() as u32;
+        // A(x): first corner of the corner triangle of v(x)
+        let a = |x: u32| nt3 * (x % 3 + 1) + 3 * (x / 3);
+        let chaikin = (self.creasing == Creasing::Chaikin).then(|| self.semi_sharp_sums(old));
+        let sub = |s: f32, v: u32| match &chaikin {
+            None => decrement(s),
+            Some(sums) => chaikin_at(s, v, old.valence(v), sums),
+        };
+        let mut corners = Vec::with_capacity(2 * self.corners.len());
+        for &(c, s) in &self.corners {
+            let (cn, cp) = (n(c), p(c));
+            // the half ending at v(n(c)) and the half ending at v(p(c))
+            corners.push((p(a(cn)), sub(s, old.vtx(cn))));
+            corners.push((n(a(cp)), sub(s, old.vtx(cp))));
+        }
+        let vertices = self.vertices.iter().map(|&(v, s)| (v, decrement(s))).collect();
+        Self::from_lists(corners, vertices, self.creasing)
+    }
+
+    /// Per vertex with a semi-sharp edge: (sum, count) of its semi-sharp
+    /// edges' sharpness, sorted by vertex.
+    fn semi_sharp_sums(&self, ct: &CornerTable) -> Vec<(u32, f32, u32)> {
+        let mut ends: Vec<(u32, f32)> = Vec::new();
+        for &(c, s) in &self.corners {
+            if s < INFINITE && super::owns_edge(c, ct.o_entry(c)) {
+                ends.push((ct.vtx(n(c)), s));
+                ends.push((ct.vtx(p(c)), s));
+            }
+        }
+        ends.sort_by_key(|&(v, _)| v);
+        let mut sums: Vec<(u32, f32, u32)> = Vec::new();
+        for (v, s) in ends {
+            match sums.last_mut() {
+                Some(last) if last.0 == v => {
+                    last.1 += s;
+                    last.2 += 1;
+                }
+                _ => sums.push((v, s, 1)),
+            }
+        }
+        sums
+    }
+}
+
+/// Chaikin's subdivided sharpness of a semi-sharp (or infinite) edge `s` at
+/// its end vertex `v` of valence `valence` (OpenSubdiv
+/// `Crease::SubdivideEdgeSharpnessAtVertex`).
+fn chaikin_at(s: f32, v: u32, valence: u32, sums: &[(u32, f32, u32)]) -> f32 {
+    if s >= INFINITE {
+        return INFINITE;
+    }
+    if s <= 0.0 {
+        return 0.0;
+    }
+    let mut t = s;
+    if valence >= 2
+        && let Ok(i) = sums.binary_search_by_key(&v, |&(x, _, _)| x)
+    {
+        let (_, sum, count) = sums[i];
+        if count > 1 {
+            t = 0.75 * s + 0.25 * (sum - s) / (count - 1) as f32;
+        }
+    }
+    t -= 1.0;
+    if t > 0.0 { t } else { 0.0 }
+}
+
+impl CornerTable {
+    /// The corner opposite the edge `(a, b)` (in either direction), by
+    /// walking `a`'s fan; `None` when there is no such edge.
+    pub fn corner_opposite(&self, a: u32, b: u32) -> Option<u32> {
+        if a as usize >= self.num_vertices() {
+            return None;
+        }
+        let mut last = None;
+        for c in self.fan(a) {
+            // edge (a, v(n(c))) is opposite p(c); (v(p(c)), a) opposite n(c)
+            if self.vtx(n(c)) == b {
+                return Some(p(c));
+            }
+            last = Some(c);
+        }
+        // a boundary fan's last edge is only opposite n(last)
+        let c = last?;
+        (self.vtx(p(c)) == b && self.o_entry(n(c)) == BORDER).then_some(n(c))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tet() -> CornerTable {
+        CornerTable::build(4, &[0, 2, 1, 0, 3, 2, 0, 1, 3, 1, 2, 3], None).unwrap().0
+    }
+
+    #[test]
+    fn tags_find_both_corners_of_an_edge() {
+        let ct = tet();
+        let tags = Tags {
+            creases: vec![CreaseTag { v0: 0, v1: 1, sharpness: 2.5 }],
+            corners: vec![CornerTag { vertex: 3, sharpness: 12.0 }],
+        };
+        let s = Sharpness::from_tags(&ct, &tags, Creasing::Uniform).unwrap().unwrap();
+        assert_eq!(s.sharp_corners().len(), 2);
+        for &(c, v) in s.sharp_corners() {
+            let e = [ct.vtx(n(c)), ct.vtx(p(c))];
+            assert!(e == [0, 1] || e == [1, 0], "{e:?}");
+            assert_eq!(v, 2.5);
+        }
+        assert_eq!(s.vertex(3), INFINITE);
+        assert_eq!(s.to_tags(&ct).creases.len(), 1);
+    }
+
+    #[test]
+    fn bad_tags_are_refused_with_their_index() {
+        let ct = tet();
+        let bad = |creases: Vec<CreaseTag>, corners: Vec<CornerTag>| {
+            Sharpness::from_tags(&ct, &Tags { creases, corners }, Creasing::Uniform).unwrap_err()
+        };
+        let e = bad(vec![CreaseTag { v0: 0, v1: 9, sharpness: 1.0 }], vec![]);
+        assert!(matches!(e, MeshError::BadTag { index: 0, .. }), "{e}");
+        let e = bad(vec![CreaseTag { v0: 0, v1: 1, sharpness: f32::NAN }], vec![]);
+        assert!(matches!(e, MeshError::BadTag { index: 0, .. }), "{e}");
+        let e = bad(vec![], vec![CornerTag { vertex: 4, sharpness: 1.0 }]);
+        assert!(matches!(e, MeshError::BadTag { index: 0, .. }), "{e}");
+        let e = bad(vec![CreaseTag { v0: 0, v1: 1, sharpness: 1.0 }], vec![CornerTag { vertex: 0, sharpness: -1.0 }]);
+        assert!(matches!(e, MeshError::BadTag { index: 1, .. }), "{e}");
+        // an open mesh: (1, 2) exists only as a border edge, (0, 2) not at all
+        let (open, _, _) = CornerTable::build(4, &[0, 1, 3, 1, 2, 3], None).unwrap();
+        assert!(open.corner_opposite(1, 2).is_some() && open.corner_opposite(2, 1).is_some());
+        assert!(open.corner_opposite(0, 2).is_none());
+    }
+
+    #[test]
+    fn decay_is_opensubdivs() {
+        assert_eq!(decrement(2.5), 1.5);
+        assert_eq!(decrement(1.0), 0.0);
+        assert_eq!(decrement(0.3), 0.0);
+        assert_eq!(decrement(INFINITE), INFINITE);
+        // Chaikin at a vertex with edges 3 and 1: 3/4 3 + 1/4 1 - 1 = 3/2.
+        let sums = [(7, 4.0, 2)];
+        assert_eq!(chaikin_at(3.0, 7, 4, &sums), 1.5);
+        // and edge 1 there: 3/4 1 + 1/4 3 - 1 = 1/2
+        assert_eq!(chaikin_at(1.0, 7, 4, &sums), 0.5);
+        // a lone semi-sharp edge decays uniformly
+        assert_eq!(chaikin_at(1.0, 8, 4, &sums), 0.0);
+    }
+}
