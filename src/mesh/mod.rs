@@ -14,6 +14,7 @@
 
 pub mod attributes;
 mod build;
+pub mod cut;
 pub mod edit;
 pub mod inspect;
 pub mod normals;

@@ -255,11 +255,8 @@ impl Sharpness {
         let nt3 = 3 * old.num_triangles() as u32;
         // A(x): first corner of the corner triangle of v(x)
         let a = |x: u32| nt3 * (x % 3 + 1) + 3 * (x / 3);
-        let chaikin = (self.creasing == Creasing::Chaikin).then(|| self.semi_sharp_sums(old));
-        let sub = |s: f32, v: u32| match &chaikin {
-            None => decrement(s),
-            Some(sums) => chaikin_at(s, v, old.valence(v), sums),
-        };
+        let decay = self.edge_decay(old);
+        let sub = |s: f32, v: u32| decay.at(s, v);
         let mut corners = Vec::with_capacity(2 * self.corners.len());
         for &(c, s) in &self.corners {
             let (cn, cp) = (n(c), p(c));
@@ -269,6 +266,13 @@ impl Sharpness {
         }
         let vertices = self.vertices.iter().map(|&(v, s)| (v, decrement(s))).collect();
         Self::from_lists(corners, vertices, self.creasing)
+    }
+
+    /// How the edges of `ct` (whose sharpness this is) decay at each end
+    /// vertex through the next split.
+    pub fn edge_decay<'a>(&self, ct: &'a CornerTable) -> EdgeDecay<'a> {
+        let sums = (self.creasing == Creasing::Chaikin).then(|| self.semi_sharp_sums(ct)).unwrap_or_default();
+        EdgeDecay { ct, chaikin: self.creasing == Creasing::Chaikin, sums }
     }
 
     /// Per vertex with a semi-sharp edge: (sum, count) of its semi-sharp
@@ -293,6 +297,23 @@ impl Sharpness {
             }
         }
         sums
+    }
+}
+
+/// The subdivided sharpness of a level's edges at their end vertices (see
+/// [`Sharpness::edge_decay`]).
+pub struct EdgeDecay<'a> {
+    ct: &'a CornerTable,
+    chaikin: bool,
+    sums: Vec<(u32, f32, u32)>,
+}
+
+impl EdgeDecay<'_> {
+    /// The sharpness of the half, ending at `v`, of an edge of sharpness
+    /// `s` after the split.
+    #[inline]
+    pub fn at(&self, s: f32, v: u32) -> f32 {
+        if self.chaikin { chaikin_at(s, v, self.ct.valence(v), &self.sums) } else { decrement(s) }
     }
 }
 

@@ -1,0 +1,349 @@
+//! Sharp features in the rules: which rule each vertex and edge of a level
+//! gets, and how a scheme's masks are blended (creases.md 2-4; OpenSubdiv
+//! `sdc/crease.cpp`, `sdc/scheme.h` `ComputeEdgeVertexMask` and
+//! `ComputeVertexVertexMask`).
+//!
+//! The rules are the same for every scheme; only the masks differ:
+//!
+//! ```text
+//! vertex rule     s_v > 0: corner; else by its sharp edges (border edges
+//!                 count, they are infinitely sharp): 0 smooth, 1 dart,
+//!                 2 crease, 3+ corner
+//! vertex point    smooth, dart: the scheme's smooth mask
+//!                 crease: the scheme's curve mask with the two crease
+//!                         neighbours (Loop 3/4, 1/8, 1/8)
+//!                 corner: v
+//!                 a transition (the rule of the vertex after the split,
+//!                 found from the subdivided sharpness, differs):
+//!                 w * parent mask + (1 - w) * child mask, w the mean
+//!                 sharpness of the features that become smooth, <= 1
+//!                 (ComputeFractionalWeightAtVertex)
+//! edge point      s = 0: the smooth mask; s >= 1 (or, with Chaikin, both
+//!                 halves staying sharp): the crease mask; else
+//!                 s * crease mask + (1 - s) * smooth mask
+//! ```
+//!
+//! Everything is sparse: only the vertices on sharp edges (and tagged ones)
+//! and the sharp edges are classified; the rest of the level runs the
+//! scheme's ordinary rules. Schemes whose smooth stencils reach across
+//! edges ([`Rules::CUT_AT_CREASES`]: the butterfly family) evaluate them on
+//! the level cut open along the edges that are creases at this level
+//! ([`crate::mesh::cut`]), so a crease acts as a boundary for every stencil
+//! that reaches it.
+
+use super::rules::{Level, Rules, Sink};
+use crate::mesh::sharpness::{EdgeDecay, INFINITE, decrement};
+use crate::mesh::{BORDER, CornerTable, n, owns_edge, p};
+
+/// Which mask a vertex point uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mask {
+    /// The scheme's smooth mask (smooth and dart vertices).
+    Smooth,
+    /// The scheme's curve mask along the crease through these two neighbours.
+    Crease(u32, u32),
+    /// The vertex stays.
+    Corner,
+}
+
+/// OpenSubdiv's vertex rules (`Sdc::Crease::Rule`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rule {
+    /// No sharp edge.
+    Smooth,
+    /// One sharp edge: the smooth mask, the edge keeps its crease rule.
+    Dart,
+    /// Two sharp edges.
+    Crease,
+    /// Three or more sharp edges, or a sharp vertex.
+    Corner,
+}
+
+/// The rule and masks of one vertex on a sharp feature.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexFeature {
+    /// The vertex.
+    pub vertex: u32,
+    /// Its rule at this level.
+    pub rule: Rule,
+    /// The mask of this level's rule.
+    pub parent: Mask,
+    /// The mask of the rule it has after the split.
+    pub child: Mask,
+    /// Weight of `parent` (`1 - weight` goes to `child`); 1 without a
+    /// transition.
+    pub weight: f32,
+}
+
+/// An edge whose point uses the crease mask, fully or in part.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EdgeFeature {
+    /// Its owner corner.
+    pub owner: u32,
+    /// Weight of the crease mask (1: a crease at this level; below 1 the
+    /// rest goes to the smooth mask).
+    pub weight: f32,
+}
+
+/// The sharp features of one level, classified (see the module docs).
+#[derive(Clone, Debug)]
+pub struct Features<'a> {
+    /// The level's (uncut) table.
+    pub ct: &'a CornerTable,
+    vertices: Vec<VertexFeature>,
+    edges: Vec<EdgeFeature>,
+}
+
+/// One incident edge of a vertex: the neighbour and the edge's sharpness
+/// now and after the split (at this vertex).
+#[derive(Clone, Copy)]
+struct Incident {
+    other: u32,
+    now: f32,
+    next: f32,
+}
+
+impl<'a> Features<'a> {
+    /// Classifies the sharp features of `ct`, or `None` when it has no
+    /// sharpness (its borders are handled by every scheme's boundary rules).
+    pub fn of(ct: &'a CornerTable) -> Option<Features<'a>> {
+        let sharp = ct.sharpness()?;
+        let decay = sharp.edge_decay(ct);
+        let mut candidates: Vec<u32> = sharp.sharp_vertices().iter().map(|&(v, _)| v).collect();
+        for &(c, _) in sharp.sharp_corners() {
+            candidates.push(ct.vtx(n(c)));
+            candidates.push(ct.vtx(p(c)));
+        }
+        candidates.sort_unstable();
+        candidates.dedup();
+        let mut inc = Vec::new();
+        let vertices: Vec<VertexFeature> =
+            candidates.iter().map(|&v| classify_vertex(ct, &decay, v, sharp.vertex(v), &mut inc)).collect();
+        let mut edges: Vec<EdgeFeature> = sharp
+            .sharp_corners()
+            .iter()
+            .filter(|&&(c, _)| owns_edge(c, ct.o_entry(c)))
+            .map(|&(c, _)| EdgeFeature { owner: c, weight: edge_weight(ct, &decay, c) })
+            .collect();
+        // border edges at a feature vertex: their crease curve may end there
+        for &v in &candidates {
+            for c in ct.fan(v) {
+                for e in [p(c), n(c)] {
+                    if ct.o_entry(e) == BORDER {
+                        edges.push(EdgeFeature { owner: e, weight: 1.0 });
+                    }
+                }
+            }
+        }
+        edges.sort_by_key(|e| e.owner);
+        edges.dedup_by_key(|e| e.owner);
+        Some(Features { ct, vertices, edges })
+    }
+
+    /// The classified vertices, sorted by vertex.
+    pub fn vertices(&self) -> &[VertexFeature] {
+        &self.vertices
+    }
+
+    /// The edges that use the crease mask, sorted by owner corner.
+    pub fn edges(&self) -> &[EdgeFeature] {
+        &self.edges
+    }
+
+    /// The feature of vertex `v`, if it has one.
+    #[inline]
+    pub fn vertex(&self, v: u32) -> Option<&VertexFeature> {
+        self.vertices.binary_search_by_key(&v, |f| f.vertex).ok().map(|i| &self.vertices[i])
+    }
+
+    /// The crease weight of the edge owned by `c`, if it has one.
+    #[inline]
+    pub fn edge(&self, c: u32) -> Option<f32> {
+        self.edges.binary_search_by_key(&c, |e| e.owner).ok().map(|i| self.edges[i].weight)
+    }
+
+    /// The corners of the edges that are creases at this level (weight 1,
+    /// not border): where the level is cut for [`Rules::CUT_AT_CREASES`].
+    pub fn cut_corners(&self) -> Vec<u32> {
+        self.edges.iter().filter(|e| e.weight >= 1.0 && self.ct.o_entry(e.owner) != BORDER).map(|e| e.owner).collect()
+    }
+
+    /// The neighbour of `v` that continues the crease through `v` beyond
+    /// `from` (the other end of `v`'s second crease edge), or `None` where
+    /// the crease curve ends at `v` (a dart or a corner). A vertex without
+    /// a feature is a regular boundary vertex: its crease is the border.
+    pub fn crease_continues(&self, v: u32, from: u32) -> Option<u32> {
+        match self.vertex(v) {
+            Some(f) => match f.parent {
+                Mask::Crease(a, b) => Some(if a == from { b } else { a }),
+                _ => None,
+            },
+            None => {
+                let (a, b) = self.ct.boundary_neighbours(v)?;
+                Some(if a == from { b } else { a })
+            }
+        }
+    }
+}
+
+/// The incident edges of `v` with their sharpness now and after the split.
+fn incident(ct: &CornerTable, decay: &EdgeDecay, v: u32, out: &mut Vec<Incident>) {
+    out.clear();
+    let mut last = None;
+    for c in ct.fan(v) {
+        // edge (v, v(n(c))) is opposite p(c)
+        let s = ct.edge_sharpness(p(c));
+        out.push(Incident { other: ct.vtx(n(c)), now: s, next: decay.at(s, v) });
+        last = Some(c);
+    }
+    if let Some(c) = last
+        && ct.o_entry(n(c)) == BORDER
+    {
+        out.push(Incident { other: ct.vtx(p(c)), now: INFINITE, next: INFINITE });
+    }
+}
+
+/// A rule and its mask from a vertex's sharpness and its edges' (`now` or
+/// `next` values).
+fn rule_of(vertex_sharpness: f32, edges: &[Incident], next: bool) -> (Rule, Mask) {
+    let sharp = |e: &&Incident| if next { e.next > 0.0 } else { e.now > 0.0 };
+    if vertex_sharpness > 0.0 {
+        return (Rule::Corner, Mask::Corner);
+    }
+    let mut it = edges.iter().filter(sharp);
+    match (it.next(), it.next(), it.next()) {
+        (None, _, _) => (Rule::Smooth, Mask::Smooth),
+        (Some(_), None, _) => (Rule::Dart, Mask::Smooth),
+        (Some(a), Some(b), None) => (Rule::Crease, Mask::Crease(a.other, b.other)),
+        _ => (Rule::Corner, Mask::Corner),
+    }
+}
+
+fn classify_vertex(ct: &CornerTable, decay: &EdgeDecay, v: u32, sv: f32, inc: &mut Vec<Incident>) -> VertexFeature {
+    incident(ct, decay, v, inc);
+    let (rule, parent) = rule_of(sv, inc, false);
+    let sv_next = decrement(sv);
+    let (_, child) = rule_of(sv_next, inc, true);
+    // ComputeFractionalWeightAtVertex: the features that become smooth
+    let (mut sum, mut count) = (0.0f32, 0u32);
+    if sv > 0.0 && sv_next <= 0.0 {
+        sum += sv;
+        count += 1;
+    }
+    for e in inc.iter() {
+        let decays = match decay.is_uniform() {
+            true => e.now > 0.0 && e.now <= 1.0,
+            false => e.now > 0.0 && e.next <= 0.0,
+        };
+        if decays {
+            sum += e.now;
+            count += 1;
+        }
+    }
+    let weight = if parent == child || count == 0 { 1.0 } else { (sum / count as f32).min(1.0) };
+    VertexFeature { vertex: v, rule, parent, child, weight }
+}
+
+/// Weight of the crease mask for the sharp edge owned by `c`
+/// (`ComputeEdgeVertexMask`).
+fn edge_weight(ct: &CornerTable, decay: &EdgeDecay, c: u32) -> f32 {
+    let s = ct.edge_sharpness(c);
+    if s >= 1.0 {
+        return 1.0;
+    }
+    if !decay.is_uniform() && decay.at(s, ct.vtx(n(c))) > 0.0 && decay.at(s, ct.vtx(p(c))) > 0.0 {
+        return 1.0;
+    }
+    s
+}
+
+/// A sink that scales every weight.
+pub struct Scaled<'s, S: Sink> {
+    /// The sink weights go to.
+    pub sink: &'s mut S,
+    /// The factor.
+    pub scale: f32,
+}
+
+impl<S: Sink> Sink for Scaled<'_, S> {
+    #[inline(always)]
+    fn add(&mut self, v: u32, w: f32) {
+        self.sink.add(v, w * self.scale);
+    }
+}
+
+/// Emits `scale` times the mask `m` of vertex `v`.
+fn emit_mask<R: Rules, S: Sink>(r: &R, lv: &Level, v: u32, m: Mask, scale: f32, s: &mut S) {
+    let mut sc = Scaled { sink: s, scale };
+    match m {
+        Mask::Smooth => r.vertex(lv, v, &mut sc),
+        Mask::Crease(a, b) => r.crease_vertex(v, a, b, &mut sc),
+        Mask::Corner => sc.add(v, 1.0),
+    }
+}
+
+/// The stencil of vertex `v`'s new position with its feature, if any
+/// (else the scheme's smooth rule).
+#[inline]
+pub fn vertex_stencil<R: Rules, S: Sink>(r: &R, lv: &Level, v: u32, s: &mut S) {
+    match lv.features.and_then(|f| f.vertex(v)) {
+        Some(f) if f.parent != Mask::Smooth => {
+            if f.parent == f.child || f.weight >= 1.0 {
+                emit_mask(r, lv, v, f.parent, 1.0, s);
+            } else {
+                emit_mask(r, lv, v, f.parent, f.weight, s);
+                emit_mask(r, lv, v, f.child, 1.0 - f.weight, s);
+            }
+        }
+        _ => r.vertex(lv, v, s),
+    }
+}
+
+/// The stencil of the new vertex on the edge owned by `c`, with its
+/// feature, if any (else the scheme's smooth rule).
+#[inline]
+pub fn edge_stencil<R: Rules, S: Sink>(r: &R, lv: &Level, c: u32, s: &mut S) {
+    match lv.features.and_then(|f| f.edge(c)) {
+        Some(w) if w >= 1.0 => r.crease_edge(lv, c, s),
+        Some(w) => {
+            r.crease_edge(lv, c, &mut Scaled { sink: s, scale: w });
+            r.edge(lv, c, &mut Scaled { sink: s, scale: 1.0 - w });
+        }
+        None => r.edge(lv, c, s),
+    }
+}
+
+/// The interpolating 4-point curve rule (Dyn, Levin, Gregory 1987) along the
+/// crease through the edge owned by `c` of the uncut table `f.ct`:
+/// `-1/16 p0 + 9/16 p1 + 9/16 p2 - 1/16 p3`. Where the crease curve ends
+/// (a dart or a corner) the missing point is replaced by the quadratic
+/// through the other three (`3/8 p1 + 3/4 p2 - 1/8 p3`, the 4-point rule
+/// with `p0 = 3 p1 - 3 p2 + p3`), and an edge ending at both ends is
+/// split at its midpoint. Points along a crease therefore depend on the
+/// crease polygon alone.
+pub fn four_point_crease<S: Sink>(f: &Features, c: u32, s: &mut S) {
+    let ct = f.ct;
+    let (p1, p2) = (ct.vtx(n(c)), ct.vtx(p(c)));
+    match (f.crease_continues(p1, p2), f.crease_continues(p2, p1)) {
+        (Some(p0), Some(p3)) => {
+            s.add(p0, -1.0 / 16.0);
+            s.add(p1, 9.0 / 16.0);
+            s.add(p2, 9.0 / 16.0);
+            s.add(p3, -1.0 / 16.0);
+        }
+        (None, Some(p3)) => {
+            s.add(p1, 3.0 / 8.0);
+            s.add(p2, 3.0 / 4.0);
+            s.add(p3, -1.0 / 8.0);
+        }
+        (Some(p0), None) => {
+            s.add(p0, -1.0 / 8.0);
+            s.add(p1, 3.0 / 4.0);
+            s.add(p2, 3.0 / 8.0);
+        }
+        (None, None) => {
+            s.add(p1, 0.5);
+            s.add(p2, 0.5);
+        }
+    }
+}
