@@ -160,8 +160,8 @@ impl CornerTable {
     /// # Errors
     /// [`crate::MeshError::BadTag`] for a tag naming a vertex or an edge
     /// that does not exist, or an invalid sharpness.
-    pub fn with_tags(self, tags: &Tags, creasing: Creasing) -> Result<CornerTable, crate::MeshError> {
-        let s = Sharpness::from_tags(&self, tags, creasing)?;
+    pub fn with_tags(self, tags: &Tags) -> Result<CornerTable, crate::MeshError> {
+        let s = Sharpness::from_tags(&self, tags)?;
         Ok(self.with_sharpness(s))
     }
     /// This table with `sharpness`, which must have been made for it (or

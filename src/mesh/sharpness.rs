@@ -107,7 +107,6 @@ impl Tags {
 pub struct Sharpness {
     corners: Vec<(u32, f32)>,
     vertices: Vec<(u32, f32)>,
-    creasing: Creasing,
 }
 
 /// The error of a tag: `index` counts creases first, then corners.
@@ -142,7 +141,7 @@ impl Sharpness {
     /// # Errors
     /// [`MeshError::BadTag`] for a vertex out of range, an edge that does
     /// not exist, or a sharpness that is negative or NaN.
-    pub fn from_tags(ct: &CornerTable, tags: &Tags, creasing: Creasing) -> Result<Option<Sharpness>, MeshError> {
+    pub fn from_tags(ct: &CornerTable, tags: &Tags) -> Result<Option<Sharpness>, MeshError> {
         let nv = ct.num_vertices() as u32;
         let mut corners = Vec::new();
         for (i, t) in tags.creases.iter().enumerate() {
@@ -172,11 +171,11 @@ impl Sharpness {
                 vertices.push((t.vertex, t.sharpness.min(INFINITE)));
             }
         }
-        Ok(Self::from_lists(corners, vertices, creasing))
+        Ok(Self::from_lists(corners, vertices))
     }
 
     /// Sorts, removes duplicates (the last tag wins) and zeros.
-    fn from_lists(mut corners: Vec<(u32, f32)>, mut vertices: Vec<(u32, f32)>, creasing: Creasing) -> Option<Self> {
+    fn from_lists(mut corners: Vec<(u32, f32)>, mut vertices: Vec<(u32, f32)>) -> Option<Self> {
         for list in [&mut corners, &mut vertices] {
             // stable sort keeps tag order among equal ids: keep the last
             list.sort_by_key(|&(id, _)| id);
@@ -190,7 +189,7 @@ impl Sharpness {
             out.retain(|&(_, s)| s > 0.0);
             *list = out;
         }
-        (!corners.is_empty() || !vertices.is_empty()).then_some(Sharpness { corners, vertices, creasing })
+        (!corners.is_empty() || !vertices.is_empty()).then_some(Sharpness { corners, vertices })
     }
 
     /// The tags that give this sharpness back (each sharp edge once, by its
@@ -204,11 +203,6 @@ impl Sharpness {
             .collect();
         let corners = self.vertices.iter().map(|&(v, s)| CornerTag { vertex: v, sharpness: s }).collect();
         Tags { creases, corners }
-    }
-
-    /// How the values decay.
-    pub fn creasing(&self) -> Creasing {
-        self.creasing
     }
 
     /// The sharp corners `(corner, sharpness of the edge opposite it)`,
@@ -236,26 +230,20 @@ impl Sharpness {
 
     /// Adds infinitely sharp vertices (OpenSubdiv's `EDGE_AND_CORNER`
     /// boundary interpolation sharpens every boundary vertex with one face).
-    pub fn with_corners(this: Option<Sharpness>, corners: &[u32], creasing: Creasing) -> Option<Sharpness> {
+    pub fn with_corners(this: Option<Sharpness>, corners: &[u32]) -> Option<Sharpness> {
         let (c, mut v) = this.map_or((Vec::new(), Vec::new()), |s| (s.corners, s.vertices));
         v.extend(corners.iter().map(|&x| (x, INFINITE)));
-        Self::from_lists(c, v, creasing)
-    }
-
-    /// With another creasing method.
-    pub fn with_creasing(mut self, creasing: Creasing) -> Sharpness {
-        self.creasing = creasing;
-        self
+        Self::from_lists(c, v)
     }
 
     /// The sharpness after the 1-to-4 split of `old` (whose sharpness this
-    /// is), or `None` when every value decayed to smooth. Linear in the
-    /// number of sharp features (plus a sort of them).
-    pub fn split(&self, old: &CornerTable) -> Option<Sharpness> {
+    /// is), decaying by `creasing`, or `None` when every value decayed to
+    /// smooth. Linear in the number of sharp features (plus a sort of them).
+    pub fn split(&self, old: &CornerTable, creasing: Creasing) -> Option<Sharpness> {
         let nt3 = 3 * old.num_triangles() as u32;
         // A(x): first corner of the corner triangle of v(x)
         let a = |x: u32| nt3 * (x % 3 + 1) + 3 * (x / 3);
-        let decay = self.edge_decay(old);
+        let decay = self.edge_decay(old, creasing);
         let sub = |s: f32, v: u32| decay.at(s, v);
         let mut corners = Vec::with_capacity(2 * self.corners.len());
         for &(c, s) in &self.corners {
@@ -265,14 +253,15 @@ impl Sharpness {
             corners.push((n(a(cp)), sub(s, old.vtx(cp))));
         }
         let vertices = self.vertices.iter().map(|&(v, s)| (v, decrement(s))).collect();
-        Self::from_lists(corners, vertices, self.creasing)
+        Self::from_lists(corners, vertices)
     }
 
     /// How the edges of `ct` (whose sharpness this is) decay at each end
     /// vertex through the next split.
-    pub fn edge_decay<'a>(&self, ct: &'a CornerTable) -> EdgeDecay<'a> {
-        let sums = (self.creasing == Creasing::Chaikin).then(|| self.semi_sharp_sums(ct)).unwrap_or_default();
-        EdgeDecay { ct, chaikin: self.creasing == Creasing::Chaikin, sums }
+    pub fn edge_decay<'a>(&self, ct: &'a CornerTable, creasing: Creasing) -> EdgeDecay<'a> {
+        let chaikin = creasing == Creasing::Chaikin;
+        let sums = if chaikin { self.semi_sharp_sums(ct) } else { Vec::new() };
+        EdgeDecay { ct, chaikin, sums }
     }
 
     /// Per vertex with a semi-sharp edge: (sum, count) of its semi-sharp
@@ -314,6 +303,10 @@ impl EdgeDecay<'_> {
     #[inline]
     pub fn at(&self, s: f32, v: u32) -> f32 {
         if self.chaikin { chaikin_at(s, v, self.ct.valence(v), &self.sums) } else { decrement(s) }
+    }
+    /// Whether the decay is uniform (`s - 1`).
+    pub fn is_uniform(&self) -> bool {
+        !self.chaikin
     }
 }
 
@@ -376,7 +369,7 @@ mod tests {
             creases: vec![CreaseTag { v0: 0, v1: 1, sharpness: 2.5 }],
             corners: vec![CornerTag { vertex: 3, sharpness: 12.0 }],
         };
-        let s = Sharpness::from_tags(&ct, &tags, Creasing::Uniform).unwrap().unwrap();
+        let s = Sharpness::from_tags(&ct, &tags).unwrap().unwrap();
         assert_eq!(s.sharp_corners().len(), 2);
         for &(c, v) in s.sharp_corners() {
             let e = [ct.vtx(n(c)), ct.vtx(p(c))];
@@ -391,7 +384,7 @@ mod tests {
     fn bad_tags_are_refused_with_their_index() {
         let ct = tet();
         let bad = |creases: Vec<CreaseTag>, corners: Vec<CornerTag>| {
-            Sharpness::from_tags(&ct, &Tags { creases, corners }, Creasing::Uniform).unwrap_err()
+            Sharpness::from_tags(&ct, &Tags { creases, corners }).unwrap_err()
         };
         let e = bad(vec![CreaseTag { v0: 0, v1: 9, sharpness: 1.0 }], vec![]);
         assert!(matches!(e, MeshError::BadTag { index: 0, .. }), "{e}");

@@ -23,7 +23,7 @@
 //! `C'[v] = A(C[v])`; an edge vertex has valence 6 (interior) or 4 (border)
 //! and `C' = c` (interior) or `p(A(p(c)))` (border, the first corner of its fan).
 
-use super::{BORDER, CornerTable, Mesh, n, owns_edge, p};
+use super::{BORDER, CornerTable, Creasing, Mesh, n, owns_edge, p};
 use rayon::prelude::*;
 
 /// Corners per parallel work item: big enough to amortise scheduling, small
@@ -154,7 +154,7 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
 /// opposite corner); the new vertices' `C` and valence are written by the
 /// numbering pass, which has each edge's owner and opposite at hand.
 pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f64)) {
-    let ((ct, edges, _), times) = split_with_boundary(old, None);
+    let ((ct, edges, _), times) = split_with_boundary(old, None, Creasing::Uniform);
     ((ct, edges), times)
 }
 
@@ -166,7 +166,11 @@ pub(crate) type SplitLevel = (CornerTable, EdgeNumbering, Option<Vec<bool>>);
 /// new ones (an old vertex keeps its flag, an edge vertex is on the boundary
 /// iff its edge is a border edge), written by the numbering pass, so that
 /// the next level need not find them by chasing `O[p(C[v])]`.
-pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool]>) -> (SplitLevel, (f64, f64)) {
+pub(crate) fn split_with_boundary(
+    old: &CornerTable,
+    old_boundary: Option<&[bool]>,
+    creasing: Creasing,
+) -> (SplitLevel, (f64, f64)) {
     let t0 = std::time::Instant::now();
     let nt = old.num_triangles();
     let nvu = old.num_vertices();
@@ -277,7 +281,7 @@ pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool
     vc_old.par_iter_mut().zip(old.c_table().par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
     val_old.copy_from_slice(old.valences());
     let times = (ms(t1 - t0), ms(t1.elapsed()));
-    let sharpness = old.sharpness().and_then(|s| s.split(old));
+    let sharpness = old.sharpness().and_then(|s| s.split(old, creasing));
     ((CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness), edges, boundary), times)
 }
 

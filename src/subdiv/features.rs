@@ -33,7 +33,7 @@
 
 use super::rules::{Level, Rules, Sink};
 use crate::mesh::sharpness::{EdgeDecay, INFINITE, decrement};
-use crate::mesh::{BORDER, CornerTable, n, owns_edge, p};
+use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
 
 /// Which mask a vertex point uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -106,9 +106,9 @@ struct Incident {
 impl<'a> Features<'a> {
     /// Classifies the sharp features of `ct`, or `None` when it has no
     /// sharpness (its borders are handled by every scheme's boundary rules).
-    pub fn of(ct: &'a CornerTable) -> Option<Features<'a>> {
+    pub fn of(ct: &'a CornerTable, creasing: Creasing) -> Option<Features<'a>> {
         let sharp = ct.sharpness()?;
-        let decay = sharp.edge_decay(ct);
+        let decay = sharp.edge_decay(ct, creasing);
         let mut candidates: Vec<u32> = sharp.sharp_vertices().iter().map(|&(v, _)| v).collect();
         for &(c, _) in sharp.sharp_corners() {
             candidates.push(ct.vtx(n(c)));

@@ -226,7 +226,7 @@ impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
         };
         let t0 = Instant::now();
         let ((ct, edges, next_boundary), (number_ms, _)) =
-            split::split_with_boundary(&self.mesh.ct, Some(&lv.boundary));
+            split::split_with_boundary(&self.mesh.ct, Some(&lv.boundary), crate::mesh::Creasing::Uniform);
         self.stats.split_ms += ms(t0.elapsed());
         self.stats.numbering_ms += number_ms;
         // the per-corner edge ids are the split's alone: free them before the
