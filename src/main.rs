@@ -39,6 +39,7 @@ impl SchemeArgs {
             loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
             tension: self.tension,
             max_memory: self.max_memory,
+            ..Options::default()
         }
     }
 }

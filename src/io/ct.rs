@@ -7,6 +7,10 @@
 //! t                 triangle count
 //! a b c             t lines of 0-based vertex ids
 //! o0 o1 o2          optional: t lines of opposite corners, -1 = border
+//! creases m         optional (our extension): m sharp edges,
+//! v0 v1 s           m lines: vertex ids and sharpness (>= 10 infinite)
+//! corners m         optional (our extension): m sharp vertices,
+//! v s               m lines
 //! ```
 //! `#` starts a comment. When the O lines are present the reader checks them
 //! (an involution pairing each edge with its reverse) in O(n) and skips the
@@ -14,6 +18,7 @@
 //! against the file size before anything is allocated.
 
 use super::atomic_write;
+use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
 use crate::mesh::{BORDER, CornerTable, Mesh};
 use crate::{Error, MeshError, Result};
 use glam::Vec3;
@@ -61,6 +66,10 @@ pub struct RawCt {
     pub triangle_lines: Vec<usize>,
     /// The stored opposite table ([`BORDER`] for -1), empty when absent.
     pub o: Vec<u32>,
+    /// Sharpness tags of the `creases` and `corners` sections.
+    pub tags: Tags,
+    /// Line of every crease, then every corner record.
+    pub tag_lines: Vec<usize>,
 }
 
 /// Parses `.ct` text; `file` names the source in errors.
@@ -68,13 +77,30 @@ pub struct RawCt {
 /// # Errors
 /// [`Error::Parse`] with the line, or [`Error::Mesh`] for invalid topology.
 pub fn parse(text: &str, file: &str) -> Result<Mesh> {
-    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o } = parse_raw(text, file)?;
+    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o, tags, tag_lines } =
+        parse_raw(text, file)?;
     let located = |e: MeshError| {
         let line = e.face().and_then(|f| tri_lines.get(f).copied());
         Error::Mesh { file: file.to_string(), line, source: e }
     };
+    let nrec = pos.len();
+    let with_tags = |mesh: Mesh| -> Result<Mesh> {
+        if tags.is_empty() {
+            return Ok(mesh);
+        }
+        let err = |i: usize, msg: String| Error::Parse { file: file.to_string(), line: tag_lines[i], msg };
+        if mesh.positions.len() != nrec {
+            return Err(err(0, "sharpness tags need every vertex used by a triangle".into()));
+        }
+        let Mesh { ct, positions } = mesh;
+        let ct = ct.with_tags(&tags).map_err(|e| match e {
+            MeshError::BadTag { index, msg } => err(index, msg),
+            other => located(other),
+        })?;
+        Ok(Mesh { ct, positions })
+    };
     if o.is_empty() {
-        return Mesh::from_triangles(pos, &tris).map_err(located);
+        return with_tags(Mesh::from_triangles(pos, &tris).map_err(located)?);
     }
     // with O: all vertices must be used (the table is stored compact)
     let (ct, _, kept) = CornerTable::build(pos.len(), &tris, Some(&pos)).map_err(located)?;
@@ -83,7 +109,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
     }
     // the stored O must agree with the one built; a mismatch means a corrupt file
     let ct = CornerTable::from_vo(ct.v_table().to_vec(), o, pos.len()).map_err(located)?;
-    Ok(Mesh { ct, positions: pos })
+    with_tags(Mesh { ct, positions: pos })
 }
 
 /// Reads `.ct` text into its arrays, checking syntax, counts, index ranges
@@ -135,7 +161,8 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
     }
     // optional O table
     let mut o = Vec::new();
-    if let Some(first) = tk.next_tok() {
+    let mut next = tk.next_tok();
+    if let Some(first) = next.filter(|s| !is_section(s)) {
         let mut tok = Some(first);
         for _ in 0..3 * t {
             let s = match tok.take() {
@@ -148,11 +175,42 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
             }
             o.push(if x < 0 { BORDER } else { x as u32 });
         }
-        if let Some(extra) = tk.next_tok() {
-            return Err(tk.err(format!("unexpected '{extra}' after the opposite table")));
-        }
+        next = tk.next_tok();
     }
-    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o })
+    let (tags, tag_lines) = parse_sections(&mut tk, next, text.len())?;
+    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o, tags, tag_lines })
+}
+
+fn is_section(tok: &str) -> bool {
+    tok == "creases" || tok == "corners"
+}
+
+/// The optional `creases` and `corners` sections after the tables.
+fn parse_sections<'a>(tk: &mut Tokens<'a>, mut next: Option<&'a str>, bytes: usize) -> Result<(Tags, Vec<usize>)> {
+    let (mut tags, mut creases, mut corners) = (Tags::default(), Vec::new(), Vec::new());
+    while let Some(key) = next {
+        if !is_section(key) {
+            return Err(tk.err(format!("unexpected '{key}' after the tables (expected creases or corners)")));
+        }
+        let m: u64 = tk.num(&format!("{key} count"))?;
+        if m > bytes as u64 / 4 + 1 {
+            return Err(tk.err(format!("{key} count {m} is larger than the file")));
+        }
+        for _ in 0..m {
+            if key == "creases" {
+                let (v0, v1): (u32, u32) = (tk.num("vertex id")?, tk.num("vertex id")?);
+                tags.creases.push(CreaseTag { v0, v1, sharpness: tk.num("sharpness")? });
+                creases.push(tk.line);
+            } else {
+                let vertex: u32 = tk.num("vertex id")?;
+                tags.corners.push(CornerTag { vertex, sharpness: tk.num("sharpness")? });
+                corners.push(tk.line);
+            }
+        }
+        next = tk.next_tok();
+    }
+    creases.extend(corners);
+    Ok((tags, creases))
 }
 
 /// Loads a `.ct` file.
@@ -194,6 +252,21 @@ pub fn write(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
     for oo in mesh.ct.o_table().chunks_exact(3) {
         let f = |x: u32| if x == BORDER { -1 } else { i64::from(x) };
         writeln!(w, "{} {} {}", f(oo[0]), f(oo[1]), f(oo[2]))?;
+    }
+    if let Some(s) = mesh.ct.sharpness() {
+        let tags = s.to_tags(&mesh.ct);
+        if !tags.creases.is_empty() {
+            writeln!(w, "creases {}", tags.creases.len())?;
+            for t in &tags.creases {
+                writeln!(w, "{} {} {}", t.v0, t.v1, t.sharpness)?;
+            }
+        }
+        if !tags.corners.is_empty() {
+            writeln!(w, "corners {}", tags.corners.len())?;
+            for t in &tags.corners {
+                writeln!(w, "{} {}", t.vertex, t.sharpness)?;
+            }
+        }
     }
     Ok(())
 }

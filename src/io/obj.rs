@@ -14,6 +14,7 @@ use super::atomic_write;
 use crate::mesh::Mesh;
 use crate::mesh::attributes::Attributes;
 use crate::mesh::repair::{RepairReport, repair};
+use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -49,6 +50,12 @@ pub struct RawObj {
     pub corner_uv: Vec<u32>,
     /// `v x y z r g b` colours, in record order (only the records that had one).
     pub colors: Vec<Vec3>,
+    /// Sharpness tags (`t crease`, `t corner`; vertex ids 0-based records).
+    pub tags: Tags,
+    /// Line of every crease tag.
+    pub crease_lines: Vec<u32>,
+    /// Line of every corner tag.
+    pub corner_lines: Vec<u32>,
 }
 
 /// A corner without a texture coordinate in [`RawObj::corner_uv`].
@@ -176,6 +183,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
                     raw.triangle_lines.push(ln as u32);
                 }
             }
+            "t" => parse_tag(&mut toks, file, ln, &mut raw)?,
             "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "cstype" | "deg" | "curv" | "curv2"
             | "surf" | "parm" | "trim" | "hole" | "end" | "bmat" | "step" | "mg" | "lod" | "usemap" | "maplib"
             | "shadow_obj" | "trace_obj" | "ctech" | "stech" | "con" | "sp" => {}
@@ -187,6 +195,102 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
         }
     }
     Ok(raw)
+}
+
+/// Parses a tag record (OpenSubdiv's `t name nint/nfloat/nstring ints
+/// floats strings`): `t crease 2/1/0 v0 v1 s` (also a chain `t crease
+/// k/1/0 v0 .. vk-1 s`, or one sharpness per edge), `t corner 1/1/0 v s`
+/// (also several vertices); vertex ids are 0-based. Other tags (such as
+/// `interpolateboundary`) are read and ignored.
+fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize, raw: &mut RawObj) -> Result<()> {
+    let name = toks.next().unwrap_or("");
+    let counts = toks.next().unwrap_or("");
+    if name != "crease" && name != "corner" {
+        return Ok(());
+    }
+    let mut cs = counts.split('/').map(|x| x.parse::<usize>());
+    let (Some(Ok(ni)), Some(Ok(nf))) = (cs.next(), cs.next()) else {
+        return Err(parse_err(file, ln, format!("{name} tag: '{counts}' is not a count like 2/1/0")));
+    };
+    let ints: Vec<u32> = (0..ni)
+        .map(|_| toks.next().and_then(|t| t.parse().ok()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| parse_err(file, ln, format!("{name} tag: needs {ni} vertex ids (0-based)")))?;
+    let floats: Vec<f32> = (0..nf)
+        .map(|_| toks.next().and_then(|t| t.parse().ok()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| parse_err(file, ln, format!("{name} tag: needs {nf} sharpness values")))?;
+    let per = |k: usize, n: usize| -> Result<f32> {
+        match floats.len() {
+            1 => Ok(floats[0]),
+            m if m == n => Ok(floats[k]),
+            m => Err(parse_err(file, ln, format!("{name} tag: {m} sharpness values for {n} elements"))),
+        }
+    };
+    if name == "crease" {
+        if ints.len() < 2 {
+            return Err(parse_err(file, ln, "crease tag: needs two vertex ids (0-based) and a sharpness"));
+        }
+        for k in 0..ints.len() - 1 {
+            let s = per(k, ints.len() - 1)?;
+            raw.tags.creases.push(CreaseTag { v0: ints[k], v1: ints[k + 1], sharpness: s });
+            raw.crease_lines.push(ln as u32);
+        }
+    } else {
+        if ints.is_empty() {
+            return Err(parse_err(file, ln, "corner tag: needs a vertex id (0-based) and a sharpness"));
+        }
+        for (k, &v) in ints.iter().enumerate() {
+            raw.tags.corners.push(CornerTag { vertex: v, sharpness: per(k, ints.len())? });
+            raw.corner_lines.push(ln as u32);
+        }
+    }
+    Ok(())
+}
+
+/// The tags of `raw` applied to `mesh` (built from `raw` with `used`
+/// records kept in order), errors at the tag's line.
+fn apply_tags(mesh: Mesh, raw_tags: &Tags, lines: (&[u32], &[u32]), used: &[bool], file: &str) -> Result<Mesh> {
+    if raw_tags.is_empty() {
+        return Ok(mesh);
+    }
+    let (crease_lines, corner_lines) = lines;
+    let line_of = |i: usize| {
+        (if i < crease_lines.len() { crease_lines[i] } else { corner_lines[i - crease_lines.len()] }) as usize
+    };
+    // record id -> vertex id (the build keeps the used records in order)
+    let mut new_id = vec![u32::MAX; used.len()];
+    let mut next = 0;
+    for (i, &u) in used.iter().enumerate() {
+        if u {
+            new_id[i] = next;
+            next += 1;
+        }
+    }
+    let map = |i: usize, v: u32| -> Result<u32> {
+        match new_id.get(v as usize) {
+            Some(&x) if x != u32::MAX => Ok(x),
+            Some(_) => Err(parse_err(file, line_of(i), format!("tag: vertex {v} is used by no face"))),
+            None => Err(parse_err(
+                file,
+                line_of(i),
+                format!("tag: vertex {v} does not exist ({} vertices, ids are 0-based)", used.len()),
+            )),
+        }
+    };
+    let mut tags = Tags::default();
+    for (i, t) in raw_tags.creases.iter().enumerate() {
+        tags.creases.push(CreaseTag { v0: map(i, t.v0)?, v1: map(i, t.v1)?, ..*t });
+    }
+    for (j, t) in raw_tags.corners.iter().enumerate() {
+        tags.corners.push(CornerTag { vertex: map(crease_lines.len() + j, t.vertex)?, ..*t });
+    }
+    let Mesh { ct, positions } = mesh;
+    let ct = ct.with_tags(&tags).map_err(|e| match e {
+        MeshError::BadTag { index, msg } => parse_err(file, line_of(index), msg),
+        other => Error::Mesh { file: file.to_string(), line: None, source: other },
+    })?;
+    Ok(Mesh { ct, positions })
 }
 
 /// Loads and validates an OBJ file.
@@ -257,20 +361,22 @@ pub fn from_bytes_with_attributes(bytes: &[u8], file: &str) -> Result<(Mesh, Att
         .then(|| raw.corner_uv.iter().map(|&j| raw.uvs[j as usize]).collect::<Vec<_>>());
     let colors =
         (raw.colors.len() == raw.positions.len() && !raw.colors.is_empty()).then(|| std::mem::take(&mut raw.colors));
-    let nrec = raw.positions.len();
-    let used: Vec<bool> = {
-        let mut u = vec![false; nrec];
-        for &i in &raw.triangles {
-            if let Some(slot) = u.get_mut(i as usize) {
-                *slot = true;
-            }
-        }
-        u
-    };
+    let used = used_records(raw.positions.len(), &raw.triangles);
     let (mesh, _) = build(raw, file)?;
     // the build keeps used vertices in record order
     let colors = colors.map(|c| c.into_iter().zip(&used).filter(|(_, u)| **u).map(|(c, _)| c).collect());
     Ok((mesh, Attributes { uv, colors }))
+}
+
+/// Which of `n` vertex records some triangle uses.
+fn used_records(n: usize, triangles: &[u32]) -> Vec<bool> {
+    let mut u = vec![false; n];
+    for &i in triangles {
+        if let Some(slot) = u.get_mut(i as usize) {
+            *slot = true;
+        }
+    }
+    u
 }
 
 /// Validates parsed OBJ content into a mesh, mapping errors to source lines.
@@ -280,9 +386,10 @@ pub fn from_bytes_with_attributes(bytes: &[u8], file: &str) -> Result<(Mesh, Att
 pub fn build(raw: RawObj, file: &str) -> Result<(Mesh, ObjInfo)> {
     let nrec = raw.positions.len();
     let polygons = raw.polygons;
+    let used = if raw.tags.is_empty() { Vec::new() } else { used_records(nrec, &raw.triangles) };
     match Mesh::from_triangles_report(raw.positions, &raw.triangles) {
         Ok((mesh, rep)) => Ok((
-            mesh,
+            apply_tags(mesh, &raw.tags, (&raw.crease_lines, &raw.corner_lines), &used, file)?,
             ObjInfo { vertex_records: nrec, unreferenced: rep.unreferenced, polygons_triangulated: polygons },
         )),
         Err(e) => {
@@ -387,7 +494,27 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
             sink(&t)?;
         }
     }
-    Ok(())
+    sink(&tag_records(mesh))
+}
+
+/// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b
+/// s` and `t corner 1/1/0 v s`, 0-based ids), so a file round-trips.
+pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
+    let mut out = Vec::new();
+    let Some(s) = mesh.ct.sharpness() else { return out };
+    let tags = s.to_tags(&mesh.ct);
+    let mut rb = ryu::Buffer::new();
+    for t in &tags.creases {
+        out.extend_from_slice(format!("t crease 2/1/0 {} {} ", t.v0, t.v1).as_bytes());
+        push_f32(&mut out, &mut rb, t.sharpness);
+        out.push(b'\n');
+    }
+    for t in &tags.corners {
+        out.extend_from_slice(format!("t corner 1/1/0 {} ", t.vertex).as_bytes());
+        push_f32(&mut out, &mut rb, t.sharpness);
+        out.push(b'\n');
+    }
+    out
 }
 
 /// Formats OBJ text for `mesh` with its attributes: `v x y z r g b` when
@@ -451,6 +578,7 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
             o.push(b'\n');
         })?;
     }
+    out.extend_from_slice(&tag_records(mesh));
     sink(&out)
 }
 

@@ -20,15 +20,15 @@ pub mod inspect;
 pub mod normals;
 pub mod repair;
 pub mod shapes;
-pub mod smooth;
 pub mod sharpness;
+pub mod smooth;
 pub mod split;
 pub mod topology;
 
 pub use build::BuildReport;
-pub use sharpness::{Creasing, Sharpness, Tags};
 use glam::Vec3;
 pub use repair::{RepairReport, repair};
+pub use sharpness::{BoundaryInterpolation, Creasing, Sharpness, Tags};
 
 /// Axis-aligned bounds `(min, max)` of points; zero when there are none.
 pub fn bounds_of<'a>(points: impl IntoIterator<Item = &'a Vec3>) -> (Vec3, Vec3) {

@@ -61,6 +61,31 @@ impl std::str::FromStr for Creasing {
     }
 }
 
+/// Whether boundary vertices with a single face are corners (OpenSubdiv's
+/// `Sdc::Options::VtxBoundaryInterpolation`; boundary edges are always
+/// infinitely sharp).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum BoundaryInterpolation {
+    /// Only the boundary edges are sharp (`VTX_BOUNDARY_EDGE_ONLY`): a
+    /// boundary vertex with one face follows the boundary curve.
+    #[default]
+    EdgeOnly,
+    /// Boundary vertices with one face are infinitely sharp corners too
+    /// (`VTX_BOUNDARY_EDGE_AND_CORNER`).
+    EdgeAndCorner,
+}
+
+impl std::str::FromStr for BoundaryInterpolation {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "edge" | "edge-only" => Ok(BoundaryInterpolation::EdgeOnly),
+            "edge-and-corner" | "corner" | "corners" => Ok(BoundaryInterpolation::EdgeAndCorner),
+            _ => Err(format!("unknown boundary interpolation '{s}' (expected edge or edge-and-corner)")),
+        }
+    }
+}
+
 /// A tagged sharp edge, by its two vertex ids.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CreaseTag {

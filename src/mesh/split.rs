@@ -145,6 +145,12 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
     split_timed(old).0
 }
 
+/// [`split`], the sharpness decaying by `creasing`.
+pub fn split_with(old: &CornerTable, creasing: Creasing) -> (CornerTable, EdgeNumbering) {
+    let ((ct, edges, _), _) = split_with_boundary(old, None, creasing);
+    (ct, edges)
+}
+
 /// [`split`], also returning the milliseconds spent numbering edges and
 /// writing the new tables.
 ///

@@ -78,9 +78,8 @@ impl Rules for Butterfly {
     /// Direct evaluation: interior edges with four interior outer edges (all
     /// but a thin band along the boundary) through [`eight_point_interior`],
     /// the rest through the emitted stencils.
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
-        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
         vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
         let t1 = Instant::now();
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
@@ -98,6 +97,15 @@ impl Rules for Butterfly {
     }
 
     const MOVES_VERTICES: bool = false;
+    const CUT_AT_CREASES: bool = true;
+    /// The 4-point curve along the crease (creases.md 4).
+    #[inline]
+    fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
+        match ct.features {
+            Some(f) => super::features::four_point_crease(f, c, s),
+            None => self.edge(ct, c, s),
+        }
+    }
     #[inline(always)]
     fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         match ct.o(c) {

@@ -31,9 +31,11 @@
 //! ([`crate::mesh::cut`]), so a crease acts as a boundary for every stencil
 //! that reaches it.
 
-use super::rules::{Level, Rules, Sink};
-use crate::mesh::sharpness::{EdgeDecay, INFINITE, decrement};
+use super::rules::{Accumulate, Level, Rules, Sink};
+use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
 use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
+use glam::Vec3;
+use std::borrow::Cow;
 
 /// Which mask a vertex point uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -345,5 +347,92 @@ pub fn four_point_crease<S: Sink>(f: &Features, c: u32, s: &mut S) {
             s.add(p1, 0.5);
             s.add(p2, 0.5);
         }
+    }
+}
+
+/// A sink that maps the extra vertices of a cut table back to the vertices
+/// they are copies of (for stencils recorded on a cut level).
+pub struct Unsplit<'s, S: Sink> {
+    /// The sink weights go to.
+    pub sink: &'s mut S,
+    /// The uncut table's vertex count.
+    pub nv: u32,
+    /// The cut's copies ([`crate::mesh::cut::Cut::copies`]).
+    pub copies: &'s [u32],
+}
+
+impl<S: Sink> Sink for Unsplit<'_, S> {
+    #[inline(always)]
+    fn add(&mut self, v: u32, w: f32) {
+        let v = if v < self.nv { v } else { self.copies[(v - self.nv) as usize] };
+        self.sink.add(v, w);
+    }
+}
+
+/// The table the schemes see for level 0 with `boundary`: for
+/// [`BoundaryInterpolation::EdgeAndCorner`] every boundary vertex with a
+/// single face becomes an infinitely sharp corner (OpenSubdiv's
+/// `TopologyRefinerFactory` does the same before refining); otherwise `ct`.
+pub fn with_boundary_corners(ct: &CornerTable, boundary: BoundaryInterpolation) -> Cow<'_, CornerTable> {
+    if boundary == BoundaryInterpolation::EdgeOnly {
+        return Cow::Borrowed(ct);
+    }
+    let corners: Vec<u32> =
+        (0..ct.num_vertices() as u32).filter(|&v| ct.valence(v) == 2 && ct.is_boundary_vertex(v)).collect();
+    if corners.is_empty() {
+        return Cow::Borrowed(ct);
+    }
+    let sharp = Sharpness::with_corners(ct.sharpness().cloned(), &corners);
+    Cow::Owned(ct.clone().with_sharpness(sharp))
+}
+
+/// One level of `r` on a table with sharp features `f` (one-shot
+/// subdivision): the scheme's own evaluation with the smooth and boundary
+/// rules (on the cut table for [`Rules::CUT_AT_CREASES`]), then the points
+/// of the feature vertices and edges again through their stencils. `w`
+/// holds each corner's edge id. Returns (vertex ms, edge ms).
+#[allow(clippy::too_many_arguments)]
+pub fn apply<R: Rules>(
+    r: &R,
+    f: &Features,
+    boundary: Vec<bool>,
+    owners: &[u32],
+    w: &[u32],
+    pos: &[Vec3],
+    vout: &mut [Vec3],
+    eout: &mut [Vec3],
+) -> (f64, f64) {
+    if R::CUT_AT_CREASES {
+        let cut = f.ct.cut_at(&f.cut_corners());
+        let mut pos_cut = Vec::with_capacity(pos.len() + cut.copies.len());
+        pos_cut.extend_from_slice(pos);
+        pos_cut.extend(cut.copies.iter().map(|&v| pos[v as usize]));
+        let lv = Level::new(&cut.table).with_features(Some(f));
+        let mut vcut = vec![Vec3::ZERO; cut.table.num_vertices()];
+        let times = r.apply(&lv, owners, &pos_cut, &mut vcut, eout);
+        vout.copy_from_slice(&vcut[..vout.len()]);
+        correct(r, &lv, f, w, &pos_cut, vout, eout);
+        times
+    } else {
+        let lv = Level::with_boundary(f.ct, boundary).with_features(Some(f));
+        let times = r.apply(&lv, owners, pos, vout, eout);
+        correct(r, &lv, f, w, pos, vout, eout);
+        times
+    }
+}
+
+/// The feature vertices' and edges' points through their stencils.
+fn correct<R: Rules>(r: &R, lv: &Level, f: &Features, w: &[u32], pos: &[Vec3], vout: &mut [Vec3], eout: &mut [Vec3]) {
+    if R::MOVES_VERTICES {
+        for vf in f.vertices().iter().filter(|vf| vf.parent != Mask::Smooth) {
+            let mut acc = Accumulate::new(pos);
+            vertex_stencil(r, lv, vf.vertex, &mut acc);
+            vout[vf.vertex as usize] = acc.sum;
+        }
+    }
+    for ef in f.edges() {
+        let mut acc = Accumulate::new(pos);
+        edge_stencil(r, lv, ef.owner, &mut acc);
+        eout[w[ef.owner as usize] as usize] = acc.sum;
     }
 }

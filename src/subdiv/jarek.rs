@@ -15,7 +15,8 @@
 //! `[1, 14, 1]/16`, border edge `[-1, 17, 17, -1]/32`, independent of the
 //! interior.
 
-use super::rules::{Level, Rules, Sink, ring_sums_map};
+use super::features;
+use super::rules::{Accumulate, Level, Rules, Sink, ring_sums_map};
 use crate::mesh::{n, p};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -25,10 +26,26 @@ use std::time::Instant;
 pub struct Jarek;
 
 impl Jarek {
-    /// Emits `scale * d_v` (without the `-scale * v` term's partner: the full
-    /// `d_v = 1/8 avg - 1/8 v` is emitted).
+    /// Emits `scale * d_v`, `d_v` the displacement vertex `v` gets at this
+    /// level: its smooth (or boundary) displacement, or on a sharp feature
+    /// the feature's vertex stencil minus `v` (corner 0, crease
+    /// `1/8 ((a + b)/2 - v)`, blends in transitions), so that the edge rule
+    /// `e = (a + b)/2 - (d_a + d_b)/2` follows whatever rule each end gets.
     #[inline(always)]
     fn displacement<S: Sink>(ct: &Level, v: u32, scale: f32, s: &mut S) {
+        if let Some(f) = ct.features
+            && f.vertex(v).is_some()
+        {
+            s.add(v, -scale);
+            features::vertex_stencil(&Jarek, ct, v, &mut features::Scaled { sink: s, scale });
+            return;
+        }
+        Self::smooth_displacement(ct, v, scale, s);
+    }
+
+    /// `scale * d_v` with the smooth rule (the boundary rule on the border).
+    #[inline(always)]
+    fn smooth_displacement<S: Sink>(ct: &Level, v: u32, scale: f32, s: &mut S) {
         s.add(v, -scale / 8.0);
         if let Some((q1, q2)) = ct.boundary_neighbours(v) {
             s.add(q1, scale / 16.0);
@@ -55,21 +72,41 @@ impl Rules for Jarek {
     #[inline(always)]
     fn vertex<S: Sink>(&self, ct: &Level, v: u32, s: &mut S) {
         s.add(v, 1.0);
-        Self::displacement(ct, v, 1.0, s);
+        Self::smooth_displacement(ct, v, 1.0, s);
+    }
+    /// The Jarek curve rule: `v + 1/8 ((a + b)/2 - v)`, i.e. `[1, 14, 1]/16`.
+    #[inline]
+    fn crease_vertex<S: Sink>(&self, v: u32, a: u32, b: u32, s: &mut S) {
+        s.add(v, 14.0 / 16.0);
+        s.add(a, 1.0 / 16.0);
+        s.add(b, 1.0 / 16.0);
+    }
+    /// The same edge rule: along a crease both displacements are the curve's.
+    #[inline]
+    fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
+        self.edge(ct, c, s);
     }
 
     /// Direct evaluation: every `d_v` once per level (from the ring sums),
     /// then `v' = v + d_v` and `e = (a + b)/2 - (d_a + d_b)/2`, instead of
     /// walking both endpoint rings again for every edge.
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
-        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
         // vpart holds d_v for now
         ring_sums_map(lv, pos, vpart, |v, sum| {
             let k = if lv.boundary[v] { 2.0 } else { lv.valences()[v] as f32 };
             (sum / k - pos[v]) * 0.125
         });
         let t1 = Instant::now();
+        if let Some(f) = lv.features {
+            // a vertex on a sharp feature moves by its feature's rule
+            for vf in f.vertices() {
+                let v = vf.vertex as usize;
+                let mut acc = Accumulate::new(pos);
+                features::vertex_stencil(self, lv, vf.vertex, &mut acc);
+                vpart[v] = acc.sum - pos[v];
+            }
+        }
         let d: &[Vec3] = vpart;
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(4096).for_each(|(q, &c)| {
             let (a, b) = (lv.vtx(n(c)) as usize, lv.vtx(p(c)) as usize);

@@ -110,12 +110,19 @@ impl Rules for Loop {
         }
     }
 
+    /// The crease vertex rule (Hoppe et al. 1994): `3/4 v + 1/8 (a + b)`.
+    #[inline]
+    fn crease_vertex<S: Sink>(&self, v: u32, a: u32, b: u32, s: &mut S) {
+        s.add(v, 0.75);
+        s.add(a, 0.125);
+        s.add(b, 0.125);
+    }
+
     /// Direct evaluation: vertex points from the lane-interleaved ring sums
     /// (`(1 - k beta) v + beta S`, boundary `3/4 v + 1/8 S`), edge points from
     /// the emitted stencils.
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
-        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
         ring_sums_map(lv, pos, vpart, |v, sum| {
             if lv.boundary[v] {
                 pos[v] * 0.75 + sum * 0.125

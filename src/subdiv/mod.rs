@@ -8,6 +8,7 @@
 
 pub mod attributes;
 pub mod butterfly;
+pub mod features;
 pub mod jarek;
 pub mod limit;
 pub mod loop_;
@@ -16,6 +17,7 @@ pub mod modified_butterfly;
 pub mod rules;
 pub mod stencil;
 
+pub use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::mesh::{CornerTable, Mesh, split};
 use crate::{Error, Result};
 use glam::Vec3;
@@ -92,11 +94,21 @@ pub struct Options {
     /// Refuse a level whose predicted memory exceeds this many bytes
     /// (`None`: 80% of the memory available when the call starts).
     pub max_memory: Option<u64>,
+    /// How semi-sharp creases decay from level to level.
+    pub creasing: Creasing,
+    /// Whether boundary vertices with one face are corners.
+    pub boundary: BoundaryInterpolation,
 }
 
 impl Default for Options {
     fn default() -> Self {
-        Options { loop_beta: LoopBeta::Loop, tension: 0.0, max_memory: None }
+        Options {
+            loop_beta: LoopBeta::Loop,
+            tension: 0.0,
+            max_memory: None,
+            creasing: Creasing::Uniform,
+            boundary: BoundaryInterpolation::EdgeOnly,
+        }
     }
 }
 
@@ -213,28 +225,35 @@ pub(crate) trait RulesFn<T> {
 /// One level: split plus the scheme's points. `boundary` holds the input
 /// level's vertex boundary flags when the previous level produced them.
 struct OneLevel<'a> {
-    mesh: &'a Mesh,
+    ct: &'a CornerTable,
+    positions: &'a [Vec3],
     boundary: Option<Vec<bool>>,
+    creasing: Creasing,
     stats: &'a mut Stats,
 }
 
 impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
     fn call<R: Rules>(self, r: &R) -> (Mesh, Option<Vec<bool>>) {
-        let lv = match self.boundary {
-            Some(boundary) => Level { ct: &self.mesh.ct, boundary },
-            None => Level::new(&self.mesh.ct),
-        };
+        let old = self.ct;
+        let boundary = self.boundary.unwrap_or_else(|| rules::boundary_flags(old));
         let t0 = Instant::now();
         let ((ct, edges, next_boundary), (number_ms, _)) =
-            split::split_with_boundary(&self.mesh.ct, Some(&lv.boundary), crate::mesh::Creasing::Uniform);
+            split::split_with_boundary(old, Some(&boundary), self.creasing);
         self.stats.split_ms += ms(t0.elapsed());
         self.stats.numbering_ms += number_ms;
-        // the per-corner edge ids are the split's alone: free them before the
-        // positions are allocated (lower peak memory)
+        let features = features::Features::of(old, self.creasing);
         let split::EdgeNumbering { owners, w } = edges;
-        drop(w);
         let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
-        let (vms, ems) = r.apply(&lv, &owners, &self.mesh.positions, &mut positions);
+        let (vpart, epart) = positions.split_at_mut(old.num_vertices());
+        let (vms, ems) = match &features {
+            None => {
+                // the per-corner edge ids are the split's alone: free them
+                // before the points are written (lower peak memory)
+                drop(w);
+                r.apply(&Level::with_boundary(old, boundary), &owners, self.positions, vpart, epart)
+            }
+            Some(f) => features::apply(r, f, boundary, &owners, &w, self.positions, vpart, epart),
+        };
         self.stats.vertex_ms += vms;
         self.stats.edge_ms += ems;
         (Mesh { ct, positions }, next_boundary)
@@ -268,10 +287,14 @@ pub fn subdivide_with_progress(
     check_levels_fit(&mesh.ct, 0, levels, limit)?;
     let mut cur: Option<Mesh> = None;
     let mut boundary: Option<Vec<bool>> = None;
+    let base = features::with_boundary_corners(&mesh.ct, opts.boundary);
     for level in 1..=levels {
-        let src = cur.as_ref().unwrap_or(mesh);
-        let (next, next_boundary) =
-            with_rules(scheme, opts, OneLevel { mesh: src, boundary: boundary.take(), stats: &mut stats });
+        let (ct, positions) = match &cur {
+            Some(m) => (&m.ct, &m.positions[..]),
+            None => (&*base, &mesh.positions[..]),
+        };
+        let one = OneLevel { ct, positions, boundary: boundary.take(), creasing: opts.creasing, stats: &mut stats };
+        let (next, next_boundary) = with_rules(scheme, opts, one);
         boundary = next_boundary;
         stats.faces_per_level.push(next.ct.num_triangles());
         cur = Some(next);

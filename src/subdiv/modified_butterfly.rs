@@ -235,15 +235,23 @@ impl ModifiedButterfly {
 
 impl Rules for ModifiedButterfly {
     const MOVES_VERTICES: bool = false;
+    const CUT_AT_CREASES: bool = true;
+    /// The 4-point curve along the crease (creases.md 4).
+    #[inline]
+    fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
+        match ct.features {
+            Some(f) => super::features::four_point_crease(f, c, s),
+            None => self.edge(ct, c, s),
+        }
+    }
 
     /// Direct evaluation, the same stencils as [`Rules::edge`]: regular
     /// interior edges (most of them) take the 8-point rule after one class
     /// load per endpoint; edges at extraordinary vertices read the rings
     /// walked once per level; everything else (boundary, tension) goes
     /// through [`Rules::edge`].
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
-        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
         vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
         let t1 = Instant::now();
         let rings = EvRings::new(lv, self.ev.len());

@@ -6,6 +6,7 @@
 //! inlined) and the stencil plan for animation (a recording sink stores the
 //! weights once). All rules read the OLD level only.
 
+use super::features::Features;
 use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -16,24 +17,39 @@ use std::time::Instant;
 /// directly; [`Level::is_boundary_vertex`] answers from a flag array (one
 /// load) instead of `O[p(C[v])]` (two dependent loads).
 pub struct Level<'a> {
-    /// The table.
+    /// The table (for [`Rules::CUT_AT_CREASES`] schemes on a level with
+    /// creases: the table cut open along them).
     pub ct: &'a CornerTable,
     /// `boundary[v]`: is vertex `v` on the boundary?
     pub boundary: Vec<bool>,
+    /// The level's sharp features, classified (`None`: no sharpness).
+    pub features: Option<&'a Features<'a>>,
 }
 
 impl<'a> Level<'a> {
     /// Precomputes the per-vertex flags of `ct` (parallel, O(V)).
     pub fn new(ct: &'a CornerTable) -> Self {
-        let boundary =
-            ct.c_table().par_iter().with_min_len(8192).map(|&c| ct.o_table()[p(c) as usize] == BORDER).collect();
-        Level { ct, boundary }
+        Self::with_boundary(ct, boundary_flags(ct))
+    }
+    /// A level whose boundary flags are known.
+    pub fn with_boundary(ct: &'a CornerTable, boundary: Vec<bool>) -> Self {
+        Level { ct, boundary, features: None }
+    }
+    /// This level with its sharp features.
+    pub fn with_features(mut self, features: Option<&'a Features<'a>>) -> Self {
+        self.features = features;
+        self
     }
     /// Is vertex `v` on the boundary?
     #[inline(always)]
     pub fn is_boundary_vertex(&self, v: u32) -> bool {
         self.boundary[v as usize]
     }
+}
+
+/// `boundary[v]`: is vertex `v` of `ct` on the boundary (parallel, O(V)).
+pub fn boundary_flags(ct: &CornerTable) -> Vec<bool> {
+    ct.c_table().par_iter().with_min_len(8192).map(|&c| ct.o_table()[p(c) as usize] == BORDER).collect()
 }
 
 impl std::ops::Deref for Level<'_> {
@@ -91,24 +107,46 @@ impl Sink for Record {
 }
 
 /// The rules of one scheme: a stencil for every edge point and (for
-/// approximating schemes) every vertex point.
+/// approximating schemes) every vertex point, smooth and along creases
+/// (how the two are chosen and blended is [`super::features`]).
 pub trait Rules: Sync {
     /// Whether old vertices move (Loop, Jarek) or are copied (interpolating).
     const MOVES_VERTICES: bool;
-    /// Stencil of the new vertex on the edge opposite owner corner `c`.
+    /// Whether the smooth stencils reach across edges, so that on a level
+    /// with creases they must see the level cut open along them (the
+    /// butterfly family; creases.md 4).
+    const CUT_AT_CREASES: bool = false;
+    /// Smooth stencil of the new vertex on the edge opposite owner corner
+    /// `c` (the scheme's boundary rule where `c` is a border corner).
     fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S);
-    /// Stencil of old vertex `v`'s new position.
+    /// Smooth stencil of old vertex `v`'s new position (the boundary rule
+    /// for a boundary vertex).
     #[inline(always)]
     fn vertex<S: Sink>(&self, _ct: &Level, v: u32, s: &mut S) {
         s.add(v, 1.0);
     }
-    /// Evaluates a whole level into `out` (old vertices first, then one point
-    /// per edge in `owners` order); returns (vertex ms, edge ms). The default
-    /// sums each emitted stencil; a scheme may override it with a faster
-    /// equivalent (the stencil-plan test checks the two agree).
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
+    /// The curve rule of the edge owned by `c` along a crease (the default:
+    /// its midpoint). `c` names the same edge in the cut and uncut tables;
+    /// read the crease from `ct.features`.
+    #[inline]
+    fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
+        let f = ct.features.map_or(ct.ct, |f| f.ct);
+        s.add(f.vtx(n(c)), 0.5);
+        s.add(f.vtx(p(c)), 0.5);
+    }
+    /// The curve rule of vertex `v` on a crease through its neighbours `a`
+    /// and `b` (the default: `v` stays).
+    #[inline]
+    fn crease_vertex<S: Sink>(&self, v: u32, _a: u32, _b: u32, s: &mut S) {
+        s.add(v, 1.0);
+    }
+    /// Evaluates a whole level with the smooth rules (and the boundary
+    /// rules): `vpart` gets the old vertices' new positions, `epart` one
+    /// point per edge in `owners` order; returns (vertex ms, edge ms). The
+    /// default sums each emitted stencil; a scheme may override it with a
+    /// faster equivalent (the stencil-plan test checks the two agree).
+    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
-        let (vpart, epart) = out.split_at_mut(lv.num_vertices());
         if Self::MOVES_VERTICES {
             vpart.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
                 let mut acc = Accumulate::new(pos);

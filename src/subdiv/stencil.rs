@@ -9,11 +9,12 @@
 //! weighted sums level by level. Applying level by level keeps the tables
 //! small: a composed control-to-final matrix would have L-ring support.
 
+use super::features::{Features, Unsplit, edge_stencil, vertex_stencil, with_boundary_corners};
 use super::rules::{Level, Record, Rules};
 use super::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
 use crate::Result;
-use crate::mesh::CornerTable;
 use crate::mesh::split;
+use crate::mesh::{CornerTable, Creasing};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -79,6 +80,7 @@ pub struct PlanScratch {
 struct RecordLevel<'a> {
     ct: &'a CornerTable,
     owners: &'a [u32],
+    creasing: Creasing,
 }
 
 fn record_rows(rows: usize, f: impl Fn(usize, &mut Record) + Sync) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
@@ -113,19 +115,24 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
     fn call<R: Rules>(self, r: &R) -> LevelPlan {
         let nv = self.ct.num_vertices();
         let ne = self.owners.len();
-        let lv = Level::new(self.ct);
+        let f = Features::of(self.ct, self.creasing);
+        // schemes whose stencils reach across edges see a creased level cut
+        // open along its creases; the cut's extra vertices map back to theirs
+        let cut = f.as_ref().filter(|_| R::CUT_AT_CREASES).map(|f| f.ct.cut_at(&f.cut_corners()));
+        let lv = Level::new(cut.as_ref().map_or(self.ct, |c| &c.table)).with_features(f.as_ref());
+        let copies: &[u32] = cut.as_ref().map_or(&[], |c| &c.copies);
         let (ct, owners) = (&lv, self.owners);
-        let (offsets, indices, weights) = if R::MOVES_VERTICES {
-            record_rows(nv + ne, |i, rec| {
-                if i < nv {
-                    r.vertex(ct, i as u32, rec);
-                } else {
-                    r.edge(ct, owners[i - nv], rec);
-                }
-            })
-        } else {
-            record_rows(ne, |i, rec| r.edge(ct, owners[i], rec))
+        let row = |i: usize, rec: &mut Record| {
+            let mut s = Unsplit { sink: rec, nv: nv as u32, copies };
+            if R::MOVES_VERTICES && i < nv {
+                vertex_stencil(r, ct, i as u32, &mut s);
+            } else {
+                let e = if R::MOVES_VERTICES { i - nv } else { i };
+                edge_stencil(r, ct, owners[e], &mut s);
+            }
         };
+        let rows = if R::MOVES_VERTICES { nv + ne } else { ne };
+        let (offsets, indices, weights) = record_rows(rows, row);
         LevelPlan { n_in: nv, copy_vertices: !R::MOVES_VERTICES, offsets, indices, weights }
     }
 }
@@ -138,11 +145,12 @@ impl StencilPlan {
     pub fn build(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<Self> {
         let limit = opts.max_memory.or_else(super::default_memory_limit);
         check_levels_fit(ct, 0, levels, limit)?;
-        let mut cur = ct.clone();
+        let mut cur = with_boundary_corners(ct, opts.boundary).into_owned();
         let mut plans = Vec::with_capacity(levels as usize);
         for _ in 1..=levels {
-            let (next, edges) = split::split(&cur);
-            plans.push(with_rules(scheme, opts, RecordLevel { ct: &cur, owners: &edges.owners }));
+            let (next, edges) = split::split_with(&cur, opts.creasing);
+            let record = RecordLevel { ct: &cur, owners: &edges.owners, creasing: opts.creasing };
+            plans.push(with_rules(scheme, opts, record));
             cur = next;
         }
         Ok(StencilPlan { scheme, levels: plans, ct: cur })

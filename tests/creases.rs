@@ -1,0 +1,358 @@
+//! Sharp features (creases.md): Loop against OpenSubdiv 3.5's own output,
+//! and the mathematics every scheme must keep with creases.
+mod common;
+
+use common::{icosphere, scratch_dir};
+use glam::{Mat3, Vec3};
+use std::path::{Path, PathBuf};
+use subdiv::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
+use subdiv::mesh::{BoundaryInterpolation, Creasing};
+use subdiv::subdiv::stencil::{PlanScratch, StencilPlan};
+use subdiv::{Mesh, Options, Scheme, subdivide};
+
+fn fixture(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/creases").join(name)
+}
+
+fn load(name: &str) -> Mesh {
+    subdiv::io::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+fn opts(creasing: Creasing, boundary: BoundaryInterpolation) -> Options {
+    Options { creasing, boundary, max_memory: Some(1 << 32), ..Options::default() }
+}
+
+fn sub(m: &Mesh, s: Scheme, levels: u32, o: &Options) -> Mesh {
+    subdivide(m, s, levels, o).unwrap().0
+}
+
+fn read_points(path: &Path) -> Vec<Vec3> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let c: Vec<f32> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            Vec3::new(c[0], c[1], c[2])
+        })
+        .collect()
+}
+
+/// Every point of `ours` has a point of `theirs` within `tol` and the
+/// matching is one to one (OpenSubdiv numbers edge vertices differently).
+fn assert_same_points(ours: &[Vec3], theirs: &[Vec3], tol: f32, what: &str) {
+    assert_eq!(ours.len(), theirs.len(), "{what}: vertex counts");
+    let mut used = vec![false; theirs.len()];
+    let mut worst = 0.0f32;
+    for (i, p) in ours.iter().enumerate() {
+        let (j, d) = theirs
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| !used[j])
+            .map(|(j, q)| (j, p.distance(*q)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        assert!(d <= tol, "{what}: our vertex {i} at {p} has no OpenSubdiv point within {tol} (nearest {d})");
+        used[j] = true;
+        worst = worst.max(d);
+    }
+    eprintln!("{what}: {} points, worst distance {worst:.2e}", ours.len());
+}
+
+#[test]
+fn loop_with_tags_equals_opensubdiv() {
+    let cases: [(&str, &[&str], u32); 5] = [
+        ("cube_sharp", &["uniform"], 3),
+        ("tet_semi", &["uniform", "chaikin"], 3),
+        ("ico_crease", &["uniform", "chaikin"], 2),
+        ("grid_open", &["uniform", "corners"], 3),
+        ("torus_semi", &["uniform", "chaikin"], 2),
+    ];
+    for (name, options, levels) in cases {
+        let m = load(&format!("{name}.obj"));
+        assert!(m.ct.sharpness().is_some(), "{name}: the tags were read");
+        for &o in options {
+            let op = match o {
+                "chaikin" => opts(Creasing::Chaikin, BoundaryInterpolation::EdgeOnly),
+                "corners" => opts(Creasing::Uniform, BoundaryInterpolation::EdgeAndCorner),
+                _ => opts(Creasing::Uniform, BoundaryInterpolation::EdgeOnly),
+            };
+            for l in 1..=levels {
+                let ours = sub(&m, Scheme::Loop, l, &op);
+                let theirs = read_points(&fixture(&format!("{name}.{o}.L{l}.osd.txt")));
+                assert_same_points(&ours.positions, &theirs, 2e-6, &format!("{name} {o} L{l}"));
+            }
+        }
+    }
+}
+
+/// The bundled cube with its 12 edges tagged infinitely sharp.
+fn sharp_cube() -> Mesh {
+    load("cube_sharp.obj")
+}
+
+/// Is `q` on the surface of the unit cube, and on which faces.
+fn cube_faces_of(q: Vec3, eps: f32) -> Vec<(usize, f32)> {
+    let mut f = Vec::new();
+    for k in 0..3 {
+        for side in [0.0, 1.0] {
+            if (q[k] - side).abs() < eps {
+                f.push((k, side));
+            }
+        }
+    }
+    f
+}
+
+#[test]
+fn an_all_sharp_cube_stays_a_cube_in_every_scheme() {
+    let cube = sharp_cube();
+    for s in Scheme::ALL {
+        for levels in 1..=3 {
+            let fine = sub(&cube, s, levels, &Options::default());
+            // every triangle lies in one face of the cube: its three points
+            // share a coordinate fixed at 0 or 1, and stay inside [0, 1]^3
+            for tri in fine.triangles().chunks_exact(3) {
+                let ps: Vec<Vec3> = tri.iter().map(|&v| fine.positions[v as usize]).collect();
+                let common: Vec<_> = cube_faces_of(ps[0], 1e-5)
+                    .into_iter()
+                    .filter(|&(k, side)| ps.iter().all(|q| (q[k] - side).abs() < 1e-5))
+                    .collect();
+                assert!(!common.is_empty(), "{s} L{levels}: triangle {ps:?} is not in a face of the cube");
+                for q in &ps {
+                    assert!(q.cmpge(Vec3::splat(-1e-5)).all() && q.cmple(Vec3::splat(1.0 + 1e-5)).all(), "{s}: {q}");
+                }
+            }
+        }
+    }
+}
+
+/// A coarse torus (8 steps around, 6 around the tube), with one closed
+/// crease loop around the tube: the vertices in the half plane y = 0, x > 0,
+/// and the 6 edges between them.
+fn torus_with_loop(sharpness: f32) -> (Mesh, Vec<u32>) {
+    let (nu, nv) = (8u32, 6u32);
+    let id = |a: u32, b: u32| (a % nu) * nv + (b % nv);
+    let mut pos = Vec::new();
+    for a in 0..nu {
+        for b in 0..nv {
+            let (u, v) = (std::f32::consts::TAU * a as f32 / nu as f32, std::f32::consts::TAU * b as f32 / nv as f32);
+            let r = 1.0 + 0.4 * v.cos();
+            pos.push(Vec3::new(r * u.cos(), r * u.sin(), 0.4 * v.sin()));
+        }
+    }
+    let mut tris = Vec::new();
+    for a in 0..nu {
+        for b in 0..nv {
+            tris.extend_from_slice(&[
+                id(a, b),
+                id(a + 1, b),
+                id(a + 1, b + 1),
+                id(a, b),
+                id(a + 1, b + 1),
+                id(a, b + 1),
+            ]);
+        }
+    }
+    let m = Mesh::from_triangles(pos, &tris).unwrap();
+    let on = |v: u32| on_loop(m.positions[v as usize]);
+    let mut creases = Vec::new();
+    for c in m.ct.edge_owners() {
+        let (a, b) = (m.ct.vtx(subdiv::mesh::n(c)), m.ct.vtx(subdiv::mesh::p(c)));
+        if on(a) && on(b) {
+            creases.push(CreaseTag { v0: a, v1: b, sharpness });
+        }
+    }
+    assert_eq!(creases.len(), 6, "the loop around the tube");
+    let ring: Vec<u32> = (0..m.positions.len() as u32).filter(|&v| on(v)).collect();
+    let ct = m.ct.clone().with_tags(&Tags { creases, corners: vec![] }).unwrap();
+    (Mesh { ct, positions: m.positions }, ring)
+}
+
+#[test]
+fn a_loop_crease_is_the_cubic_b_spline_of_its_polygon() {
+    // Loop: crease vertices 1/8, 3/4, 1/8 of their crease neighbours, crease
+    // edges 1/2, 1/2 (creases.md 3): check against the polygon directly
+    let (m, ring) = torus_with_loop(INFINITE);
+    let fine = sub(&m, Scheme::Loop, 1, &Options::default());
+    let neighbours = |v: u32| -> Vec<u32> { m.ct.ring(v).filter(|q| ring.contains(q)).collect() };
+    for &v in &ring {
+        let nb = neighbours(v);
+        assert_eq!(nb.len(), 2, "vertex {v} has two crease neighbours");
+        let want = m.positions[v as usize] * 0.75 + (m.positions[nb[0] as usize] + m.positions[nb[1] as usize]) * 0.125;
+        assert!(fine.positions[v as usize].distance(want) < 1e-6, "crease vertex {v}");
+    }
+    // the crease edge points are the midpoints: the new vertex on each crease
+    // edge lies in the plane of the polygon, and there are as many as edges
+    let on_plane = fine.positions[m.positions.len()..].iter().filter(|&&q| on_loop(q)).count();
+    assert_eq!(on_plane, ring.len(), "one new point per crease edge stays on the polygon's plane");
+}
+
+#[test]
+fn crease_points_depend_on_the_crease_polygon_alone() {
+    // moving every vertex off the crease leaves the points on the crease
+    // where they were, for every scheme (the butterfly family: the 4-point
+    // rule; Loop: the B-spline; Jarek: its curve rule)
+    let (m, ring) = torus_with_loop(INFINITE);
+    let mut moved = m.clone();
+    for (v, q) in moved.positions.iter_mut().enumerate() {
+        if !ring.contains(&(v as u32)) {
+            *q *= 1.3 + 0.1 * (v % 3) as f32;
+        }
+    }
+    for s in Scheme::ALL {
+        let (a, b) = (sub(&m, s, 2, &Options::default()), sub(&moved, s, 2, &Options::default()));
+        let crease: Vec<usize> = (0..a.positions.len()).filter(|&i| on_loop(a.positions[i])).collect();
+        assert!(crease.len() >= 4 * ring.len(), "{s}: the crease points after two levels");
+        for i in crease {
+            assert!(a.positions[i].distance(b.positions[i]) < 1e-5, "{s}: crease point {i} moved");
+        }
+    }
+}
+
+#[test]
+fn the_butterfly_crease_is_the_four_point_curve() {
+    let (m, ring) = torus_with_loop(INFINITE);
+    for s in [Scheme::Butterfly, Scheme::ModifiedButterfly] {
+        let fine = sub(&m, s, 1, &Options::default());
+        // old vertices stay
+        for v in 0..m.positions.len() {
+            assert_eq!(fine.positions[v], m.positions[v], "{s}: vertex {v} moved");
+        }
+        // each crease edge point: -1/16, 9/16, 9/16, -1/16 along the polygon
+        let nb = |v: u32| -> Vec<u32> { m.ct.ring(v).filter(|q| ring.contains(q)).collect() };
+        let (owners, ids) = edge_points(&m);
+        for (c, id) in owners.into_iter().zip(ids) {
+            let (p1, p2) = (m.ct.vtx(subdiv::mesh::n(c)), m.ct.vtx(subdiv::mesh::p(c)));
+            if !(ring.contains(&p1) && ring.contains(&p2)) {
+                continue;
+            }
+            let p0 = nb(p1).into_iter().find(|&q| q != p2).unwrap();
+            let p3 = nb(p2).into_iter().find(|&q| q != p1).unwrap();
+            let at = |v: u32| m.positions[v as usize];
+            let want = (at(p1) + at(p2)) * (9.0 / 16.0) - (at(p0) + at(p3)) / 16.0;
+            assert!(fine.positions[id].distance(want) < 1e-6, "{s}: crease edge ({p1}, {p2})");
+        }
+    }
+}
+
+/// Is `q` in the half plane of the torus's crease loop?
+fn on_loop(q: Vec3) -> bool {
+    q.y.abs() < 1e-5 && q.x > 0.0
+}
+
+/// Owner corner and new vertex id of every edge of `m` (the split numbers
+/// edge vertices `V + e` in owner order).
+fn edge_points(m: &Mesh) -> (Vec<u32>, Vec<usize>) {
+    let owners: Vec<u32> = m.ct.edge_owners().collect();
+    let ids = (0..owners.len()).map(|e| m.positions.len() + e).collect();
+    (owners, ids)
+}
+
+#[test]
+fn integer_sharpness_k_is_k_sharp_levels_then_smooth() {
+    for s in Scheme::ALL {
+        for k in 1..=2u32 {
+            let (semi, _) = torus_with_loop(k as f32);
+            let (inf, _) = torus_with_loop(INFINITE);
+            let direct = sub(&semi, s, 3, &Options::default());
+            let sharp = sub(&inf, s, k, &Options::default());
+            let untagged = Mesh { ct: sharp.ct.clone().with_tags(&Tags::default()).unwrap(), ..sharp };
+            let then = sub(&untagged, s, 3 - k, &Options::default());
+            for (i, (a, b)) in direct.positions.iter().zip(&then.positions).enumerate() {
+                assert!(a.distance(*b) < 1e-5, "{s} k = {k}: vertex {i}: {a} vs {b}");
+            }
+        }
+    }
+}
+
+#[test]
+fn sharpness_zero_is_the_smooth_result_bit_for_bit() {
+    let m = icosphere(1);
+    let creases: Vec<CreaseTag> =
+        m.ct.edge_owners()
+            .take(20)
+            .map(|c| CreaseTag { v0: m.ct.vtx(subdiv::mesh::n(c)), v1: m.ct.vtx(subdiv::mesh::p(c)), sharpness: 0.0 })
+            .collect();
+    let tagged = Mesh {
+        ct: m.ct.clone().with_tags(&Tags { creases, corners: vec![CornerTag { vertex: 0, sharpness: 0.0 }] }).unwrap(),
+        ..m.clone()
+    };
+    assert!(tagged.ct.sharpness().is_none());
+    for s in Scheme::ALL {
+        let (a, b) = (sub(&m, s, 3, &Options::default()), sub(&tagged, s, 3, &Options::default()));
+        assert!(a.positions == b.positions, "{s}");
+    }
+}
+
+#[test]
+fn affine_maps_commute_with_creased_subdivision() {
+    let cases = [load("ico_crease.obj"), load("grid_open.obj"), load("tet_semi.obj"), sharp_cube()];
+    let a = Mat3::from_cols(Vec3::new(1.2, 0.3, -0.1), Vec3::new(-0.2, 0.9, 0.4), Vec3::new(0.1, -0.5, 1.1));
+    let t = Vec3::new(3.0, -2.0, 0.5);
+    for m in &cases {
+        let mapped = Mesh { positions: m.positions.iter().map(|&p| a * p + t).collect(), ct: m.ct.clone() };
+        for s in Scheme::ALL {
+            for o in [Options::default(), opts(Creasing::Chaikin, BoundaryInterpolation::EdgeAndCorner)] {
+                let x = sub(m, s, 2, &o);
+                let y = sub(&mapped, s, 2, &o);
+                for (p, q) in x.positions.iter().zip(&y.positions) {
+                    let want = a * *p + t;
+                    assert!(want.distance(*q) < 2e-4 * (1.0 + want.length()), "{s}: {want} vs {q}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_stencil_plan_records_the_crease_rules() {
+    let cases = [load("ico_crease.obj"), load("grid_open.obj"), load("tet_semi.obj"), load("torus_semi.obj")];
+    for m in &cases {
+        for s in Scheme::ALL {
+            for o in [Options::default(), opts(Creasing::Chaikin, BoundaryInterpolation::EdgeAndCorner)] {
+                let full = sub(m, s, 3, &o);
+                let plan = StencilPlan::build(&m.ct, s, 3, &o).unwrap();
+                let mut out = Vec::new();
+                plan.apply(&m.positions, &mut PlanScratch::default(), &mut out);
+                assert_eq!(out.len(), full.positions.len());
+                for (i, (p, q)) in out.iter().zip(&full.positions).enumerate() {
+                    assert!(p.distance(*q) < 1e-5, "{s}: vertex {i}: plan {p} vs subdivision {q}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn tags_round_trip_through_obj_and_ct() {
+    let m = load("ico_crease.obj");
+    let dir = scratch_dir("creases-roundtrip");
+    for ext in ["obj", "ct"] {
+        let path = dir.join(format!("ico.{ext}"));
+        subdiv::io::save(&path, &m).unwrap();
+        let back = subdiv::io::load(&path).unwrap();
+        assert_eq!(back.ct.sharpness(), m.ct.sharpness(), "{ext}");
+        let (a, b) = (sub(&m, Scheme::Loop, 2, &Options::default()), sub(&back, Scheme::Loop, 2, &Options::default()));
+        assert!(a.positions == b.positions, "{ext}: the reloaded mesh subdivides the same");
+    }
+}
+
+#[test]
+fn bad_tags_are_refused_with_file_and_line() {
+    let dir = scratch_dir("creases-bad");
+    let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    for (tag, want) in [
+        ("t crease 2/1/0 0 9 1", "vertex"),
+        ("t crease 2/1/0 0 1 nan", "sharpness"),
+        ("t crease 2/1/0 0 1 -2", "sharpness"),
+        ("t corner 1/1/0 7 1", "vertex"),
+        ("t crease 2/1/0 0", "crease"),
+    ] {
+        let p = dir.join("bad.obj");
+        std::fs::write(&p, format!("{head}{tag}\n")).unwrap();
+        let e = subdiv::io::load(&p).unwrap_err().to_string();
+        assert!(e.contains("bad.obj:9"), "{tag}: {e}");
+        assert!(e.contains(want), "{tag}: {e}");
+    }
+}
