@@ -356,3 +356,28 @@ fn bad_tags_are_refused_with_file_and_line() {
         assert!(e.contains(want), "{tag}: {e}");
     }
 }
+
+#[test]
+fn the_crease_angle_finds_the_cube_edges_and_info_counts_them() {
+    let plain = common::bundled("cube.obj");
+    let auto = plain.ct.clone().with_angle_creases(&plain.positions, 40.0);
+    let tagged = sharp_cube();
+    assert_eq!(auto.sharpness(), tagged.ct.sharpness(), "the 12 edges at 90 degrees, not the diagonals at 0");
+    assert!(plain.ct.clone().with_angle_creases(&plain.positions, 95.0).sharpness().is_none());
+    let s = subdiv::subdiv::features::summary(&auto, BoundaryInterpolation::EdgeOnly);
+    assert_eq!((s.sharp_edges, s.infinite_edges, s.corners, s.darts, s.crease_vertices), (12, 12, 8, 0, 0));
+    // the icosphere fixture: a dart at the end of its infinitely sharp edge,
+    // two semi-sharp crease paths
+    let ico = load("ico_crease.obj");
+    let s = subdiv::subdiv::features::summary(&ico.ct, BoundaryInterpolation::EdgeOnly);
+    assert_eq!(s.sharp_edges, 6);
+    assert_eq!(s.infinite_edges, 1);
+    assert!(s.darts >= 2 && s.crease_vertices >= 2, "{s:?}");
+    // edge-and-corner makes the open grid's four corners sharp
+    let grid = load("grid_open.obj");
+    let (a, b) = (
+        subdiv::subdiv::features::summary(&grid.ct, BoundaryInterpolation::EdgeOnly),
+        subdiv::subdiv::features::summary(&grid.ct, BoundaryInterpolation::EdgeAndCorner),
+    );
+    assert_eq!(b.sharp_vertices, a.sharp_vertices + 2, "{a:?} {b:?}");
+}

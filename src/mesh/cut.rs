@@ -106,6 +106,27 @@ impl CornerTable {
     }
 }
 
+impl CornerTable {
+    /// The table cut open along its sharp edges (every interior edge with
+    /// sharpness > 0), for shading that shows a crease as a crease: one
+    /// normal per side. `None` when it has none.
+    pub fn cut_at_sharp_edges(&self) -> Option<Cut> {
+        let s = self.sharpness()?;
+        let corners: Vec<u32> = s.sharp_corners().iter().map(|&(c, _)| c).collect();
+        (!corners.is_empty()).then(|| self.cut_at(&corners))
+    }
+}
+
+impl Cut {
+    /// `positions` of the uncut table extended with the copies' positions.
+    pub fn positions(&self, positions: &[glam::Vec3]) -> Vec<glam::Vec3> {
+        let mut out = Vec::with_capacity(positions.len() + self.copies.len());
+        out.extend_from_slice(positions);
+        out.extend(self.copies.iter().map(|&v| positions[v as usize]));
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

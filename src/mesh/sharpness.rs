@@ -261,6 +261,20 @@ impl Sharpness {
         Self::from_lists(c, v)
     }
 
+    /// Adds sharp edges `(corner, sharpness)` (either corner of an edge; a
+    /// later value replaces an earlier one for the same edge).
+    pub fn with_edges(this: Option<Sharpness>, ct: &CornerTable, edges: &[(u32, f32)]) -> Option<Sharpness> {
+        let (mut c, v) = this.map_or((Vec::new(), Vec::new()), |s| (s.corners, s.vertices));
+        for &(x, s) in edges {
+            let s = s.min(INFINITE);
+            c.push((x, s));
+            if let Some(y) = ct.o(x) {
+                c.push((y, s));
+            }
+        }
+        Self::from_lists(c, v)
+    }
+
     /// The sharpness after the 1-to-4 split of `old` (whose sharpness this
     /// is), decaying by `creasing`, or `None` when every value decayed to
     /// smooth. Linear in the number of sharp features (plus a sort of them).
@@ -359,6 +373,28 @@ fn chaikin_at(s: f32, v: u32, valence: u32, sums: &[(u32, f32, u32)]) -> f32 {
 }
 
 impl CornerTable {
+    /// This table with every interior edge whose two faces' normals differ
+    /// by more than `degrees` made infinitely sharp, besides the sharpness
+    /// it has (Hoppe's feature test, Blender's "auto smooth" angle).
+    /// Degenerate faces (no normal) make no edge sharp.
+    pub fn with_angle_creases(self, positions: &[glam::Vec3], degrees: f32) -> CornerTable {
+        let fnorm = super::normals::face_normals(&self, positions);
+        let cos = degrees.to_radians().cos();
+        let sharp: Vec<(u32, f32)> = self
+            .edge_owners()
+            .filter_map(|c| {
+                let x = self.o(c)?;
+                let (a, b) = (fnorm[(c / 3) as usize].try_normalize()?, fnorm[(x / 3) as usize].try_normalize()?);
+                (a.dot(b) < cos).then_some((c, INFINITE))
+            })
+            .collect();
+        if sharp.is_empty() {
+            return self;
+        }
+        let s = Sharpness::with_edges(self.sharpness.as_deref().cloned(), &self, &sharp);
+        self.with_sharpness(s)
+    }
+
     /// The corner opposite the edge `(a, b)` (in either direction), by
     /// walking `a`'s fan; `None` when there is no such edge.
     pub fn corner_opposite(&self, a: u32, b: u32) -> Option<u32> {

@@ -436,3 +436,46 @@ fn correct<R: Rules>(r: &R, lv: &Level, f: &Features, w: &[u32], pos: &[Vec3], v
         eout[w[ef.owner as usize] as usize] = acc.sum;
     }
 }
+
+/// What `subdiv info` reports of a table's sharp features.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Summary {
+    /// Tagged interior edges with sharpness > 0.
+    pub sharp_edges: usize,
+    /// Of those, the infinitely sharp ones.
+    pub infinite_edges: usize,
+    /// Vertices with a sharpness of their own.
+    pub sharp_vertices: usize,
+    /// Vertices with the corner rule (3+ sharp edges, border edges
+    /// included, or a sharp vertex).
+    pub corners: usize,
+    /// Vertices with exactly one sharp edge.
+    pub darts: usize,
+    /// Vertices on a tagged crease with exactly two sharp edges (plain
+    /// boundary vertices are not counted).
+    pub crease_vertices: usize,
+}
+
+/// Counts the sharp features of `ct` (with `boundary`'s corners).
+pub fn summary(ct: &CornerTable, boundary: BoundaryInterpolation) -> Summary {
+    let ct = with_boundary_corners(ct, boundary);
+    let Some(sharp) = ct.sharpness() else { return Summary::default() };
+    let owned = |&&(c, _): &&(u32, f32)| owns_edge(c, ct.o_entry(c)) && ct.o_entry(c) != BORDER;
+    let mut s = Summary {
+        sharp_edges: sharp.sharp_corners().iter().filter(owned).count(),
+        infinite_edges: sharp.sharp_corners().iter().filter(owned).filter(|&&(_, x)| x >= INFINITE).count(),
+        sharp_vertices: sharp.sharp_vertices().len(),
+        ..Summary::default()
+    };
+    if let Some(f) = Features::of(&ct, Creasing::Uniform) {
+        for v in f.vertices() {
+            match v.rule {
+                Rule::Corner => s.corners += 1,
+                Rule::Dart => s.darts += 1,
+                Rule::Crease => s.crease_vertices += 1,
+                Rule::Smooth => {}
+            }
+        }
+    }
+    s
+}
