@@ -418,3 +418,44 @@ fn boundary_curves_follow_the_published_curve_rules() {
         }
     }
 }
+
+#[test]
+fn translating_the_input_translates_every_output_point_by_the_same_vector() {
+    // S(x + t) = S(x) + t exactly when every stencil sums to one; a stencil
+    // summing to 1.25 (the modified butterfly's old valence-2 rule) moves the
+    // new points by 1.25 t. Valence 2, 3 and 4, alone and beside regular
+    // vertices; t is large so that a wrong sum cannot hide in rounding.
+    let t = Vec3::new(8.0, -4.0, 2.0);
+    for (name, m) in low_valence_meshes() {
+        let mut moved = m.clone();
+        for p in &mut moved.positions {
+            *p += t;
+        }
+        for s in Scheme::ALL {
+            for levels in [1, 2] {
+                let (a, b) = (sub(&m, s, levels), sub(&moved, s, levels));
+                for (i, (p, q)) in a.positions.iter().zip(&b.positions).enumerate() {
+                    assert!(
+                        close(*q - *p, t, 1e-4 * 8.0),
+                        "{name} {s} level {levels}: point {i} moved by {:?}",
+                        *q - *p
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn stencils_at_low_valence_sum_to_one() {
+    for (name, m) in low_valence_meshes() {
+        for s in Scheme::ALL {
+            let plan = StencilPlan::build(&m.ct, s, 1, &Options::default()).unwrap();
+            let lvl = &plan.levels[0];
+            for r in 0..lvl.offsets.len() - 1 {
+                let sum: f32 = lvl.weights[lvl.offsets[r] as usize..lvl.offsets[r + 1] as usize].iter().sum();
+                assert!((sum - 1.0).abs() < 1e-6, "{name} {s} row {r}: weights sum to {sum}");
+            }
+        }
+    }
+}
