@@ -31,6 +31,11 @@ pub enum MeshError {
     /// A vertex joins two or more separate fans of faces ("bowtie").
     #[error("non-manifold vertex {vertex}: its faces form {fans} separate fans")]
     NonManifoldVertex { vertex: u32, fans: usize },
+    /// A vertex that no triangle uses, where every vertex must be used (a
+    /// corner table given as V and O; [`crate::CornerTable::build`] drops
+    /// such vertices instead).
+    #[error("vertex {vertex} is used by no triangle")]
+    UnusedVertex { vertex: u32 },
     /// An index or count does not fit the 32-bit corner table.
     #[error("mesh too large for 32-bit corner ids: {what}")]
     TooManyElements { what: String },
@@ -63,6 +68,7 @@ impl MeshError {
                 E::InconsistentOrientation { v0: v0 + d, v1: v1 + d, f0, f1 }
             }
             E::NonManifoldVertex { vertex, fans } => E::NonManifoldVertex { vertex: vertex + d, fans },
+            E::UnusedVertex { vertex } => E::UnusedVertex { vertex: vertex + d },
             E::NonFinite { vertex } => E::NonFinite { vertex: vertex + d as usize },
             other => other,
         }
@@ -72,7 +78,7 @@ impl MeshError {
     pub fn vertex(&self) -> Option<usize> {
         match self {
             MeshError::NonFinite { vertex } => Some(*vertex),
-            MeshError::NonManifoldVertex { vertex, .. } => Some(*vertex as usize),
+            MeshError::NonManifoldVertex { vertex, .. } | MeshError::UnusedVertex { vertex } => Some(*vertex as usize),
             _ => None,
         }
     }

@@ -63,8 +63,8 @@ pub struct RawCt {
     pub triangles: Vec<u32>,
     /// Line (1-based) of the last vertex id of every triangle.
     pub triangle_lines: Vec<usize>,
-    /// The stored opposite table ([`BORDER`] for -1), empty when absent.
-    pub o: Vec<u32>,
+    /// The stored opposite table, raw ([`BORDER`] for -1), empty when absent.
+    pub stored_o: Vec<u32>,
     /// Line (1-based) of the last entry of every stored O row (one per
     /// triangle), empty when O is absent.
     pub o_lines: Vec<usize>,
@@ -77,12 +77,13 @@ pub struct RawCt {
 /// including [`MeshError::BadOppositeTable`] at the line of the first stored
 /// O row that is not the table the faces define.
 pub fn parse(text: &str, file: &str) -> Result<Mesh> {
-    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o, o_lines } = parse_raw(text, file)?;
+    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, stored_o, o_lines } =
+        parse_raw(text, file)?;
     let located = |e: MeshError| {
         let line = e.face().and_then(|f| tri_lines.get(f).copied());
         Error::Mesh { file: file.to_string(), line, source: e }
     };
-    if o.is_empty() {
+    if stored_o.is_empty() {
         return Mesh::from_triangles(pos, &tris).map_err(located);
     }
     // with O: all vertices must be used (the table is stored compact)
@@ -91,9 +92,9 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
         return Err(located(MeshError::BadOppositeTable { corner: 0, msg: "unused vertices in a .ct with O".into() }));
     }
     // the stored O must be the one the faces define; a mismatch means a corrupt file
-    if let Some(c) = ct.o_table().iter().zip(&o).position(|(built, stored)| built != stored) {
+    if let Some(c) = ct.o_table().iter().zip(&stored_o).position(|(built, stored)| built != stored) {
         let show = |x: u32| if x == BORDER { "-1 (border)".to_string() } else { x.to_string() };
-        let msg = format!("stored {}, but the faces give {}", show(o[c]), show(ct.o_entry(c as u32)));
+        let msg = format!("stored {}, but the faces give {}", show(stored_o[c]), show(ct.o_entry(c as u32)));
         return Err(Error::Mesh {
             file: file.to_string(),
             line: o_lines.get(c / 3).copied(),
@@ -151,7 +152,7 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
         }
     }
     // optional O table
-    let mut o = Vec::new();
+    let mut stored_o = Vec::new();
     let mut o_lines = Vec::new();
     if let Some(first) = tk.next_tok() {
         let mut tok = Some(first);
@@ -164,8 +165,8 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
             if x < -1 || x >= 3 * t as i64 {
                 return Err(tk.err(format!("opposite corner {x} out of range")));
             }
-            o.push(if x < 0 { BORDER } else { x as u32 });
-            if o.len() % 3 == 0 {
+            stored_o.push(if x < 0 { BORDER } else { x as u32 });
+            if stored_o.len() % 3 == 0 {
                 o_lines.push(tk.line);
             }
         }
@@ -173,7 +174,7 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
             return Err(tk.err(format!("unexpected '{extra}' after the opposite table")));
         }
     }
-    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o, o_lines })
+    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, stored_o, o_lines })
 }
 
 /// Loads a `.ct` file.
@@ -212,9 +213,9 @@ pub fn write(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
     for tri in mesh.ct.v_table().chunks_exact(3) {
         writeln!(w, "{} {} {}", tri[0], tri[1], tri[2])?;
     }
-    for oo in mesh.ct.o_table().chunks_exact(3) {
+    for row in mesh.ct.o_table().chunks_exact(3) {
         let f = |x: u32| if x == BORDER { -1 } else { i64::from(x) };
-        writeln!(w, "{} {} {}", f(oo[0]), f(oo[1]), f(oo[2]))?;
+        writeln!(w, "{} {} {}", f(row[0]), f(row[1]), f(row[2]))?;
     }
     Ok(())
 }

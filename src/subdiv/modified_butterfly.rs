@@ -264,25 +264,25 @@ impl Rules for ModifiedButterfly {
         let fast_regular = self.w == 0.0;
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
             let mut acc = Accumulate::new(pos);
-            let o = lv.o_table()[c as usize];
-            if o == BORDER {
+            let o_raw = lv.o_table()[c as usize];
+            if o_raw == BORDER {
                 self.edge_cold(lv, c, &mut acc);
             } else {
                 let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
                 let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
                 if k1 == REGULAR && k2 == REGULAR && fast_regular {
                     // both ends interior: every outer edge is interior too
-                    match eight_point_interior(lv, pos, c, o) {
+                    match eight_point_interior(lv, pos, c, o_raw) {
                         Some(e) => acc.sum = e,
-                        None => eight_point(lv, c, o, &mut acc),
+                        None => eight_point(lv, c, o_raw, &mut acc),
                     }
                 } else if k1 == RING && k2 == RING {
                     self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
-                    self.ev_ring(&rings, a2, n(o), 0.5, &mut acc);
+                    self.ev_ring(&rings, a2, n(o_raw), 0.5, &mut acc);
                 } else if k1 == RING && k2 < SLOW {
                     self.ev_ring(&rings, a1, n(c), 1.0, &mut acc);
                 } else if k2 == RING && k1 < SLOW {
-                    self.ev_ring(&rings, a2, n(o), 1.0, &mut acc);
+                    self.ev_ring(&rings, a2, n(o_raw), 1.0, &mut acc);
                 } else {
                     self.edge_cold(lv, c, &mut acc);
                 }
