@@ -193,7 +193,8 @@ fn corner_triangle(nt: usize, c: u32) -> u32 {
 ///
 /// Two passes: the numbering pass ([`number_edges_and_vertices`]: edge ids,
 /// and the new vertices' `C`, valence and boundary flag) and the writing
-/// pass ([`write_v_and_o`]: the new V and O, one old triangle at a time).
+/// pass ([`write_v_and_o`]: the new V and O, one old triangle at a time;
+/// then [`carry_old_vertices`]: the old vertices' `C` and valence).
 pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool]>) -> (SplitLevel, (f64, f64)) {
     // the new table's ids (corners up to 12 F, vertices up to V + E <= 2 * 3 F
     // as every vertex has a corner) must stay below BORDER, or its O would
@@ -204,9 +205,10 @@ pub(crate) fn split_with_boundary(old: &CornerTable, old_boundary: Option<&[bool
         "split: {nc} corners are too many for 32-bit ids after a split (subdivide refuses this level)"
     );
     let t0 = std::time::Instant::now();
-    let NewVertexTables { edges, vc, valence, boundary } = number_edges_and_vertices(old, old_boundary);
+    let NewVertexTables { edges, mut vc, mut valence, boundary } = number_edges_and_vertices(old, old_boundary);
     let t1 = std::time::Instant::now();
     let (v2, o2) = write_v_and_o(old, &edges.w);
+    carry_old_vertices(old, &mut vc, &mut valence);
     let times = (ms(t1 - t0), ms(t1.elapsed()));
     ((CornerTable::from_parts(v2, o2, vc, valence), edges, boundary), times)
 }
@@ -221,10 +223,11 @@ struct NewVertexTables {
 }
 
 /// The numbering pass of a split: numbers the old edges and fills the new
-/// `C` and valence tables (and boundary flags when the old ones are given).
-/// An old vertex keeps its valence (and flag) and `C'[v] = A(C[v])`; edge
-/// vertex `V + e` has valence 6 and `C' = c` (interior edge, owner `c`) or
-/// valence 4 and `C' = p(A(p(c)))`, the first corner of its fan (border).
+/// vertices' part of the `C` and valence tables (and all boundary flags when
+/// the old ones are given; an old vertex keeps its flag): edge vertex
+/// `V + e` has valence 6 and `C' = c` (interior edge, owner `c`) or valence
+/// 4 and `C' = p(A(p(c)))`, the first corner of its fan (border). The old
+/// vertices' part is [`carry_old_vertices`].
 fn number_edges_and_vertices(old: &CornerTable, old_boundary: Option<&[bool]>) -> NewVertexTables {
     let (nt, nvu) = (old.num_triangles(), old.num_vertices());
     let counts = count_owners(old);
@@ -255,12 +258,17 @@ fn number_edges_and_vertices(old: &CornerTable, old_boundary: Option<&[bool]>) -
             }
         })
     };
-    let (vc_old, _) = vc.split_at_mut(nvu);
-    vc_old.par_iter_mut().zip(old.c_table().par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| {
+    NewVertexTables { edges, vc, valence, boundary }
+}
+
+/// The old vertices' part of the new `C` and valence tables: an old vertex
+/// keeps its valence and its `C` moves to its corner triangle, `C'[v] = A(C[v])`.
+fn carry_old_vertices(old: &CornerTable, vc: &mut [u32], valence: &mut [u32]) {
+    let (nt, nvu) = (old.num_triangles(), old.num_vertices());
+    vc[..nvu].par_iter_mut().zip(old.c_table().par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| {
         *d = corner_triangle(nt, c);
     });
     valence[..nvu].copy_from_slice(old.valences());
-    NewVertexTables { edges, vc, valence, boundary }
 }
 
 /// The writing pass of a split: the new V and O tables, written in eight
