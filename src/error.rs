@@ -163,6 +163,23 @@ pub enum Error {
         /// The extensions that are known.
         known: &'static str,
     },
+    /// A file that holds something other than a triangle mesh (a `.bzc`
+    /// Bezier curve) was given where a mesh is needed.
+    #[error("{file}: this is {what}, not a mesh (it has no faces to subdivide)")]
+    NotAMesh {
+        /// The file.
+        file: String,
+        /// What it holds ("a Bezier curve (.bzc)").
+        what: &'static str,
+    },
+    /// A `bundled:NAME` argument that names no bundled model.
+    #[error("no bundled model '{name}' (bundled: {known}; `subdiv models` lists them)")]
+    NoSuchBundled {
+        /// The name after `bundled:`.
+        name: String,
+        /// The bundled file names, comma-separated.
+        known: String,
+    },
     /// Something our own code should have made impossible: a bug in subdiv.
     #[error("internal error: {0} (this is a bug in subdiv, please report it)")]
     Internal(String),
