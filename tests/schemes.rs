@@ -536,9 +536,9 @@ fn modified_butterfly_low_valence_tables_on_rings_that_are_not_parallelograms() 
             let ring: Vec<u32> = m.ct.ring(v).collect();
             let e = |j: usize| f64v(m.positions[ring[j % k] as usize]);
             let pv = f64v(m.positions[v as usize]);
-            for j0 in 0..k {
-                // e_0 = ring[j0] is a regular interior vertex: the EV rule of v alone
-                assert_eq!(m.ct.valence(ring[j0]), 6);
+            for (j0, &q0) in ring.iter().enumerate() {
+                // e_0 = q0 is a regular interior vertex: the EV rule of v alone
+                assert_eq!(m.ct.valence(q0), 6);
                 let (e0, e1, e2) = (e(j0), e(j0 + 1), e(j0 + 2));
                 let (table, formula, gap) = if k == 4 {
                     let e3 = e(j0 + 3);
@@ -556,7 +556,7 @@ fn modified_butterfly_low_valence_tables_on_rings_that_are_not_parallelograms() 
                 };
                 assert!(gap.length() > 1e-2, "{name}: the ring of {v} must not hide the difference");
                 assert!(((formula - table) - gap).length() < 1e-12);
-                let got = f64v(edge_point(&m, &fine, v, ring[j0]));
+                let got = f64v(edge_point(&m, &fine, v, q0));
                 assert!((got - table).length() < 1e-5, "{name}: valence {k} vertex {v}: {got:?} vs table {table:?}");
                 checked += 1;
             }
