@@ -76,7 +76,7 @@ pub(crate) fn eight_point_interior(ct: &CornerTable, pos: &[Vec3], c: u32, o: u3
 
 impl Rules for Butterfly {
     /// Direct evaluation: interior edges with four interior outer edges (all
-    /// but a thin band along the boundary) through [`eight_point_interior`],
+    /// but a thin band along the boundary) through `eight_point_interior`,
     /// the rest through the emitted stencils.
     fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
