@@ -303,3 +303,23 @@ fn the_cursor_maps_into_the_viewport_under_it() {
     assert_eq!(at(true, 400.0, 100.0), glam::Vec2::new(0.0, 0.0), "centre of the right half");
     assert_eq!(at(true, 500.0, 0.0), glam::Vec2::new(1.0, 1.0));
 }
+
+#[test]
+fn snapping_to_the_limit_follows_warrens_beta() {
+    // The snapped points must be where repeated subdivision with the same
+    // (Warren's) weights converges: computed here by subdividing, not by the
+    // limit masks the viewer uses. Valence 5 tells Loop's beta from Warren's.
+    let ico = subdiv::mesh::shapes::icosahedron();
+    let warren = subdiv::Options { loop_beta: subdiv::LoopBeta::Warren, ..Default::default() };
+    let converged = subdiv::subdivide(&ico, subdiv::Scheme::Loop, 6, &warren).unwrap().0;
+    let mut doc = Doc::new();
+    doc.opts = warren;
+    doc.adopt("icosahedron.obj".into(), ico.clone(), None);
+    settle(&mut doc);
+    doc.snap_limit = true;
+    doc.refresh_result();
+    for v in 0..ico.positions.len() {
+        let d = doc.result.mesh.positions[v].distance(converged.positions[v]);
+        assert!(d < 1e-4, "vertex {v} snapped {d} away from the Warren limit");
+    }
+}

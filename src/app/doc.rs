@@ -732,10 +732,13 @@ impl Doc {
         use crate::mesh::inspect::{
             colormap, displacement_from_control, vertex_counts_per_level, vertex_creation_level,
         };
-        use crate::subdiv::limit::{butterfly_normals, loop_limit_normals, loop_limit_positions};
+        use crate::subdiv::limit::{butterfly_normals, loop_limit_normals, loop_limit_positions_with};
         let raw = &self.raw;
         let mesh = if self.snap_limit {
-            Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions: loop_limit_positions(&raw.mesh) })
+            Arc::new(Mesh {
+                ct: raw.mesh.ct.clone(),
+                positions: loop_limit_positions_with(&raw.mesh, self.opts.loop_beta),
+            })
         } else {
             raw.mesh.clone()
         };
