@@ -18,13 +18,25 @@ use wgpu::util::DeviceExt;
 /// Background colour (linear RGB) of every view.
 pub const BACKGROUND: [f64; 3] = [0.045, 0.05, 0.065];
 
-/// Linear colours of surfaces and lines.
-const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
+/// Linear colour of front faces (the material).
+pub const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
+/// Linear colours of back faces and lines.
 const BACK: Vec4 = Vec4::new(0.62, 0.30, 0.16, 1.0);
 const WIRE_DARK: [f32; 4] = [0.015, 0.02, 0.035, 1.0];
 const WIRE_LIGHT: [f32; 4] = [0.80, 0.84, 0.92, 1.0];
 const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 1.0];
 const NORMALS: [f32; 4] = [0.15, 0.85, 0.25, 1.0];
+
+/// Direction towards the key light (world, not normalised): upper left front.
+pub const KEY_LIGHT: Vec3 = Vec3::new(-0.45, 0.75, 0.5);
+/// Intensity of the key light.
+pub const KEY_INTENSITY: f32 = 0.5;
+/// Direction towards the weak fill light (world, not normalised): from below.
+pub const FILL_LIGHT: Vec3 = Vec3::new(0.35, -0.8, -0.45);
+/// Intensity of the fill light.
+pub const FILL_INTENSITY: f32 = 0.15;
+/// Intensity of the headlight, which shines from the eye along the view direction.
+pub const HEADLIGHT_INTENSITY: f32 = 0.6;
 
 /// The 8-bit sRGB value the background has in a rendered image.
 pub fn background_srgb8() -> [u8; 3] {
@@ -506,22 +518,22 @@ impl Renderer {
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
         let aspect = d.rect[2] / d.rect[3].max(1.0);
         let cam = &d.camera;
-        let key_world = Vec3::new(-0.45, 0.75, 0.5).normalize();
-        let fill_world = Vec3::new(0.35, -0.8, -0.45).normalize();
+        let key_world = KEY_LIGHT.normalize();
+        let fill_world = FILL_LIGHT.normalize();
         ViewUniform {
             proj: cam.proj(aspect).to_cols_array_2d(),
             view: cam.view().to_cols_array_2d(),
             eye: cam.eye().extend(1.0).to_array(),
             forward: cam.forward().extend(0.0).to_array(),
-            key_light: key_world.extend(0.5).to_array(),
-            fill_light: fill_world.extend(0.15).to_array(),
+            key_light: key_world.extend(KEY_INTENSITY).to_array(),
+            fill_light: fill_world.extend(FILL_INTENSITY).to_array(),
             front_color: FRONT.to_array(),
             back_color: BACK.to_array(),
             params: [
                 f32::from(d.look.surface == Surface::Flat),
                 f32::from(!self.format.is_srgb()),
                 f32::from(cam.orthographic),
-                0.6,
+                HEADLIGHT_INTENSITY,
             ],
             line: [0.0015, 0.004 * cam.radius, f32::from(d.look.uv_checker), 0.0],
         }
