@@ -108,7 +108,7 @@ pub enum Command {
     /// Save a screenshot of the next frame.
     Screenshot,
     /// A worker finished.
-    Finished(Finished),
+    Finished(Box<Finished>),
 }
 
 impl Viewer {
@@ -169,7 +169,7 @@ impl Viewer {
             Command::CancelExport => doc.jobs.cancel_export(),
             Command::DismissError => doc.status.error = None,
             Command::DismissNotice => doc.status.notice = None,
-            Command::Finished(finished) => self.finished(finished),
+            Command::Finished(finished) => self.finished(*finished),
             camera => self.apply_camera(camera),
         }
         if self.doc.model.control.version() != control && self.doc.model.original.is_none() {

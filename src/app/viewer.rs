@@ -36,7 +36,7 @@ impl Viewer {
         let finished = self.doc.jobs.poll();
         let any = !finished.is_empty();
         for f in finished {
-            self.apply(Command::Finished(f));
+            self.apply(Command::Finished(Box::new(f)));
         }
         any
     }

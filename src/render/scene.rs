@@ -64,7 +64,7 @@ struct ViewUniform {
     line: [f32; 4],
 }
 
-const _: () = assert!(std::mem::size_of::<ViewUniform>() % 16 == 0, "uniforms are arrays of vec4");
+const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "uniforms are arrays of vec4");
 
 /// Multisampled colour and depth attachments of one size.
 pub struct Targets {
