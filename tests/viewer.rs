@@ -6,6 +6,7 @@
 mod common;
 
 use glam::Vec3;
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 use subdiv::app::doc::{Problem, Request};
 use subdiv::app::{Command, Viewer};
@@ -86,13 +87,21 @@ fn keys_toggle_the_view_and_step_levels_on_a_worker() {
 fn a_newer_request_supersedes_an_older_one() {
     let mut v = Viewer::new();
     subdivide(&mut v, Scheme::Loop, 8);
+    // Supersede it during its last level (7 -> 8, 262,144 faces), so that a
+    // result it sent would come after the newer one's.
+    let t0 = Instant::now();
+    let done = |v: &Viewer| v.doc.jobs.busy.subdividing.as_ref().map_or(8, |b| b.done.load(Ordering::Relaxed));
+    while done(&v) < 7 {
+        assert!(t0.elapsed() < Duration::from_secs(60), "the level-8 job does not progress");
+        std::thread::sleep(Duration::from_millis(1));
+    }
     subdivide(&mut v, Scheme::Loop, 1);
     settle(&mut v);
-    // The level-8 job finishes later (or stops early): wait until its thread
-    // has ended, so that anything it sent is in the channel; it must not
-    // replace level 1.
+    // Wait until the superseded thread has ended, so that anything it sent is
+    // in the channel: it must not replace level 1.
     assert!(v.doc.jobs.wait_for_workers(Duration::from_secs(60)), "the superseded worker did not end");
     v.poll();
+    assert!(v.doc.status.error.is_none(), "a superseded result arrived: {:?}", error_text(&v));
     assert_eq!((v.doc.model.made.level, v.doc.model.result.shown.topo.faces), (1, 16));
 }
 
