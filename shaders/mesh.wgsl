@@ -3,7 +3,9 @@
 // Lighting (fs_mesh): Blinn-Phong with three directional lights,
 //   colour = ka * base + sum_i I_i * (kd * max(n.l_i, 0) * base + ks * max(n.h_i, 0)^shininess)
 // where light 0 is a headlight at the eye (l_0 = v, the direction to the eye), light 1 a key light
-// fixed in the world (upper left front) and light 2 a weak fill from below.
+// fixed in the world (upper left front) and light 2 a weak fill from below;
+// ka = 0.12, kd = 0.75, ks = 0.35 (white), shininess 48, intensities I_i in
+// params.w, key_light.w, fill_light.w (render/scene.rs: HEADLIGHT_INTENSITY, ...).
 // Two-sided: a back face (seen on open meshes) flips its normal and takes a
 // warmer base colour. Flat shading takes the face normal from the screen-space
 // derivatives of the world position, so no per-face vertex copies are needed.
