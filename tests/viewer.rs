@@ -388,3 +388,26 @@ fn snapping_to_the_limit_follows_warrens_beta() {
         assert!(d < 1e-4, "vertex {i} snapped {d} away from the Warren limit");
     }
 }
+
+#[test]
+fn a_new_model_is_framed_and_an_edit_keeps_the_view() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    frame(&ctx, &mut v, vec![]);
+    let fitted = v.view.camera;
+    v.apply(Command::Zoom { factor: 0.7, cursor: glam::Vec2::ZERO, aspect: 1.0 });
+    let zoomed = v.view.camera;
+    assert!(zoomed.distance < fitted.distance);
+    v.apply(Command::Smooth(3));
+    frame(&ctx, &mut v, vec![]);
+    assert_eq!(v.view.camera, zoomed, "smoothing the control mesh keeps the view");
+    v.apply(Command::Open(common::model_path("cube.obj")));
+    settle(&mut v);
+    frame(&ctx, &mut v, vec![]);
+    let (lo, hi) = v.doc.model.result.shown.mesh.bounds();
+    assert_eq!(v.view.camera.target, 0.5 * (lo + hi), "a new model is framed");
+    let mut framed = zoomed;
+    framed.fit(lo, hi, subdiv::app::view::viewport_aspect(v.view.scene_rect, false));
+    assert_eq!(v.view.camera.distance, framed.distance);
+    assert_ne!(v.view.camera.distance, zoomed.distance);
+}

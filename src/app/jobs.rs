@@ -85,7 +85,7 @@ pub struct Subdivided {
     pub attrs: Attributes,
     /// What was asked for.
     pub level: u32,
-    /// The scheme and its options used.
+    /// The scheme used.
     pub scheme: Scheme,
     /// The options used.
     pub opts: Options,
