@@ -17,6 +17,7 @@ mod build;
 pub mod edit;
 pub mod inspect;
 pub mod normals;
+pub mod pick;
 pub mod repair;
 pub mod shapes;
 pub mod smooth;
