@@ -2,8 +2,10 @@
 //
 // Lighting (fs_mesh): Blinn-Phong with three directional lights,
 //   colour = ka * base + sum_i I_i * (kd * max(n.l_i, 0) * base + ks * max(n.h_i, 0)^shininess)
-// where light 0 is a headlight that follows the camera, light 1 a key light
-// fixed in the world (upper left front) and light 2 a weak fill from below.
+// where light 0 is a headlight at the eye (l_0 = v, the direction to the eye), light 1 a key light
+// fixed in the world (upper left front) and light 2 a weak fill from below;
+// ka = 0.12, kd = 0.75, ks = 0.35 (white), shininess 48, intensities I_i in
+// params.w, key_light.w, fill_light.w (render/scene.rs: HEADLIGHT_INTENSITY, ...).
 // Two-sided: a back face (seen on open meshes) flips its normal and takes a
 // warmer base colour. Flat shading takes the face normal from the screen-space
 // derivatives of the world position, so no per-face vertex copies are needed.
@@ -110,7 +112,9 @@ fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<
         front_base = select(vec3<f32>(0.85, 0.85, 0.8), vec3<f32>(0.08, 0.12, 0.35), odd == 1);
     }
     let base = select(u.back_color.rgb, front_base, front);
-    // The headlight sits a little above and left of the eye so silhouettes keep some shape.
+    // The headlight shines from the eye along the view direction (l = v), so a face
+    // seen head-on gets its full diffuse and specular; the key and fill lights,
+    // fixed in the world, give silhouettes their shape.
     var c = 0.12 * base;
     c += light(n, v, v, u.params.w, base);
     c += light(n, v, normalize(u.key_light.xyz), u.key_light.w, base);

@@ -70,7 +70,7 @@ pub const MODELS: &[Model] = &[
     model!("cube_uv.obj", "cube with texture charts and vertex colours"),
     model!("lprism.obj", "L-shaped prism"),
     model!("lprism.ct", "L-shaped prism as a corner table"),
-    model!("torus.obj", "torus, 2048 triangles"),
+    model!("torus.obj", "torus, 1024 triangles"),
     model!("torus.ct", "torus as a corner table"),
     model!("teapot.bez", "Newell's teapot, 32 Bezier patches (needs repair)"),
     model!("curve.bzc", "a degree-4 Bezier curve"),
@@ -100,7 +100,7 @@ pub fn read(arg: &Path) -> Result<std::borrow::Cow<'static, [u8]>> {
     }
     if let Some(name) = arg.to_str().and_then(|s| s.strip_prefix(PREFIX)) {
         let known: Vec<&str> = MODELS.iter().map(|m| m.file_name).collect();
-        return Err(crate::Error::Usage(format!("no bundled model '{name}' (bundled: {})", known.join(", "))));
+        return Err(crate::Error::NoSuchBundled { name: name.to_string(), known: known.join(", ") });
     }
     std::fs::read(arg).map(std::borrow::Cow::Owned).map_err(|e| crate::Error::io(arg, e))
 }

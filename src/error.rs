@@ -31,6 +31,11 @@ pub enum MeshError {
     /// A vertex joins two or more separate fans of faces ("bowtie").
     #[error("non-manifold vertex {vertex}: its faces form {fans} separate fans")]
     NonManifoldVertex { vertex: u32, fans: usize },
+    /// A vertex that no triangle uses, where every vertex must be used (a
+    /// corner table given as V and O; [`crate::CornerTable::build`] drops
+    /// such vertices instead).
+    #[error("vertex {vertex} is used by no triangle")]
+    UnusedVertex { vertex: u32 },
     /// An index or count does not fit the 32-bit corner table.
     #[error("mesh too large for 32-bit corner ids: {what}")]
     TooManyElements { what: String },
@@ -68,6 +73,7 @@ impl MeshError {
                 E::InconsistentOrientation { v0: v0 + d, v1: v1 + d, f0, f1 }
             }
             E::NonManifoldVertex { vertex, fans } => E::NonManifoldVertex { vertex: vertex + d, fans },
+            E::UnusedVertex { vertex } => E::UnusedVertex { vertex: vertex + d },
             E::NonFinite { vertex } => E::NonFinite { vertex: vertex + d as usize },
             other => other,
         }
@@ -77,7 +83,7 @@ impl MeshError {
     pub fn vertex(&self) -> Option<usize> {
         match self {
             MeshError::NonFinite { vertex } => Some(*vertex),
-            MeshError::NonManifoldVertex { vertex, .. } => Some(*vertex as usize),
+            MeshError::NonManifoldVertex { vertex, .. } | MeshError::UnusedVertex { vertex } => Some(*vertex as usize),
             _ => None,
         }
     }
@@ -161,6 +167,23 @@ pub enum Error {
         direction: &'static str,
         /// The extensions that are known.
         known: &'static str,
+    },
+    /// A file that holds something other than a triangle mesh (a `.bzc`
+    /// Bezier curve) was given where a mesh is needed.
+    #[error("{file}: this is {what}, not a mesh (it has no faces to subdivide)")]
+    NotAMesh {
+        /// The file.
+        file: String,
+        /// What it holds ("a Bezier curve (.bzc)").
+        what: &'static str,
+    },
+    /// A `bundled:NAME` argument that names no bundled model.
+    #[error("no bundled model '{name}' (bundled: {known}; `subdiv models` lists them)")]
+    NoSuchBundled {
+        /// The name after `bundled:`.
+        name: String,
+        /// The bundled file names, comma-separated.
+        known: String,
     },
     /// Something our own code should have made impossible: a bug in subdiv.
     #[error("internal error: {0} (this is a bug in subdiv, please report it)")]

@@ -1,4 +1,7 @@
-//! The `subdiv` command line: view | subdivide | repair | info | render.
+//! The `subdiv` command line: view | animate | subdivide | smooth | limit |
+//! repair | info | render | models. Every command that reads a model takes a
+//! file or `bundled:NAME`, a model compiled into the binary (`subdiv models`
+//! lists them), through `subdiv::bundled`.
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -52,7 +55,7 @@ enum Cmd {
     Animate(AnimateArgs),
     /// Subdivide a mesh and write the result (.obj, .ply or .ct by extension).
     Subdivide {
-        /// Input OBJ or .ct.
+        /// Input model: .obj, .ct, .bez or bundled:NAME (see `subdiv models`).
         input: PathBuf,
         /// Output .obj, .ply or .ct.
         output: PathBuf,
@@ -80,7 +83,7 @@ enum Cmd {
     /// copy and drops unreferenced vertices; prints what changed.
     /// Taubin lambda/mu smoothing (no shrinkage), or plain Laplacian with --laplacian.
     Smooth {
-        /// Input OBJ, .ct or .bez.
+        /// Input model: .obj, .ct, .bez or bundled:NAME (see `subdiv models`).
         input: PathBuf,
         /// Output .obj, .ply or .ct (written atomically).
         output: PathBuf,
@@ -99,13 +102,13 @@ enum Cmd {
     },
     /// Move every vertex to its limit position on the Loop surface (after `subdivide --scheme loop`).
     Limit {
-        /// Input OBJ, .ct or .bez.
+        /// Input model: .obj, .ct, .bez or bundled:NAME (see `subdiv models`).
         input: PathBuf,
         /// Output .obj, .ply or .ct (written atomically).
         output: PathBuf,
     },
     Repair {
-        /// Input OBJ or .ct.
+        /// Input model: .obj, .ct, .bez or bundled:NAME (see `subdiv models`).
         input: PathBuf,
         /// Output .obj, .ply or .ct (written atomically).
         output: PathBuf,
@@ -114,9 +117,10 @@ enum Cmd {
     ///
     /// A mesh that does not build (non-manifold, inconsistent orientation,
     /// degenerate faces) is analysed instead: every non-manifold edge and
-    /// vertex is listed, and the counts are those of the repaired mesh.
+    /// vertex is listed, and the counts are those of the repaired mesh. A
+    /// .bzc Bezier curve is described as a curve (control points, degree).
     Info {
-        /// Input OBJ or .ct.
+        /// Input model: .obj, .ct, .bez or bundled:NAME (see `subdiv models`).
         input: PathBuf,
         /// Print as JSON.
         #[arg(long)]
@@ -125,9 +129,11 @@ enum Cmd {
         #[arg(long)]
         repair: bool,
     },
+    /// List the bundled models (open any of them as bundled:NAME).
+    Models,
     /// Render a mesh offscreen to a PNG.
     Render {
-        /// Input OBJ or .ct.
+        /// Input model: .obj, .ct, .bez or bundled:NAME (see `subdiv models`).
         input: PathBuf,
         /// Output PNG.
         output: PathBuf,
@@ -232,6 +238,10 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
             Ok(())
         }
         Some(Cmd::Info { input, json, repair }) => info_cmd(&input, json, repair),
+        Some(Cmd::Models) => {
+            models_cmd();
+            Ok(())
+        }
         Some(Cmd::Render { input, output, scheme, levels, shading, size, ortho, control }) => {
             render_cmd(&input, &output, &scheme, levels, &shading, size, ortho, control)
         }
@@ -242,7 +252,7 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
 #[derive(clap::Args, Default)]
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
 struct ViewArgs {
-    /// OBJ, .ct, .bez (patches) or .bzc (curve) file (default: the bundled tetrahedron).
+    /// OBJ, .ct, .bez (patches) or .bzc (curve) file, or bundled:NAME (default: the bundled tetrahedron).
     model: Option<PathBuf>,
     #[command(flatten)]
     scheme: SchemeArgs,
@@ -300,7 +310,7 @@ fn view(a: ViewArgs) -> Result<()> {
 #[derive(clap::Args)]
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
 struct AnimateArgs {
-    /// Model (default: the bundled tetrahedron).
+    /// Model: a file or bundled:NAME (default: the bundled tetrahedron).
     #[arg(long)]
     model: Option<PathBuf>,
     /// Key paths (.paths; default: beside the model or in paths/, else generated loops).
@@ -543,7 +553,53 @@ fn is_topology_error(e: &Error) -> bool {
     )
 }
 
+/// `subdiv models`: one line per bundled model, its command-line name and what it is.
+fn models_cmd() {
+    let width = bundled::MODELS.iter().map(|m| m.cli_name().len()).max().unwrap_or(0);
+    for m in bundled::MODELS {
+        println!("{:<width$}  {}", m.cli_name(), m.what);
+    }
+}
+
+/// Is this model argument a `.bzc` curve (a file or a bundled one)?
+fn is_curve(input: &Path) -> bool {
+    input.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc"))
+}
+
+/// `subdiv info` of a `.bzc` Bezier curve: control points, degree, ends,
+/// the point at t = 1/2 and the polyline length.
+fn curve_info(input: &Path, json: bool) -> Result<()> {
+    let control = bundled::load_curve(input)?;
+    let at = |t: f32| subdiv::io::bezier::de_casteljau(&control, t).unwrap_or_default();
+    let (first, mid, last) = (at(0.0), at(0.5), at(1.0));
+    let length: f32 =
+        subdiv::io::bezier::curve_polyline(&control, 256).windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    let degree = control.len().saturating_sub(1);
+    if json {
+        println!(
+            "{{\"file\":\"{}\",\"kind\":\"bezier_curve\",\"control_points\":{},\"degree\":{degree},\"length\":{length}}}",
+            json_escape(&input.display().to_string()),
+            control.len()
+        );
+        return Ok(());
+    }
+    println!("file:            {}", input.display());
+    println!("kind:            Bezier curve (.bzc), not a mesh: no faces to subdivide (`subdiv view` draws it)");
+    println!("control points:  {} (degree {degree})", control.len());
+    println!("ends:            ({:.4}, {:.4}) .. ({:.4}, {:.4})", first.x, first.y, last.x, last.y);
+    println!("point at t=1/2:  ({:.4}, {:.4})", mid.x, mid.y);
+    println!("length:          {length:.4}");
+    Ok(())
+}
+
+fn json_escape(s: &str) -> String {
+    s.replace('\\', "\\\\").replace('"', "\\\"")
+}
+
 fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
+    if is_curve(input) {
+        return curve_info(input, json);
+    }
     let loaded = if repair { None } else { Some(load_for_info(input)) };
     let (mesh, dropped, records, report) = match loaded {
         Some(Ok((m, dropped, records))) => (m, dropped, records, None),
@@ -563,7 +619,7 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
     if json {
         println!(
             "{{\"file\":\"{}\",\"vertices\":{},\"edges\":{},\"faces\":{},\"closed\":{},\"boundary_loops\":{},\"border_edges\":{},\"components\":{},\"euler\":{},\"genus\":{},\"unreferenced_dropped\":{dropped},\"non_manifold_edges\":{nm_edges},\"non_manifold_vertices\":{nm_vertices},\"repaired\":{},\"valence\":{{{}}}}}",
-            input.display().to_string().replace('\\', "\\\\").replace('"', "\\\""),
+            json_escape(&input.display().to_string()),
             t.vertices,
             t.edges,
             t.faces,
@@ -627,7 +683,8 @@ fn load_for_info(input: &Path) -> Result<(Mesh, usize, usize)> {
         let n = m.positions.len();
         Ok((m, 0, n))
     } else {
-        let bytes = std::fs::read(input).map_err(|e| Error::io(input, e))?;
+        // a file or a bundled model: bundled::read gives the bytes of either
+        let bytes = bundled::read(input)?;
         let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
         Ok((m, inf.unreferenced, inf.vertex_records))
     }

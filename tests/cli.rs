@@ -105,38 +105,49 @@ fn bad_input_is_refused_clearly() {
     assert!(!Path::new(&tmp("x.unknown")).exists());
 }
 
+const FIN_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+const BOWTIE_OBJ: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 1 0\nv 2 2 0\nf 1 2 3\nf 3 4 5\n";
+
 #[test]
-fn shared_bad_models_when_present() {
-    // The shared corpus is optional: these inputs are generated above too.
+fn non_manifold_models_are_refused_analysed_and_repaired() {
     // `subdivide` refuses them; `info` analyses them instead of failing and
-    // lists the offending elements; `--repair` makes them subdivide.
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/procedural");
+    // lists the offending elements; `--repair` makes them subdivide. The
+    // inputs are written here; the shared corpus's copies are checked too
+    // when it is present, never instead.
+    let mut cases = vec![
+        (write("gen-fin.obj", FIN_OBJ), "non-manifold edge", "non-manifold edges:    1-2"),
+        (write("gen-bowtie.obj", BOWTIE_OBJ), "non-manifold vertex", "non-manifold vertices: 3"),
+    ];
+    let shared = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/procedural");
     for (f, want, listed) in [
         ("fin_nonmanifold.obj", "non-manifold edge", "non-manifold edges:    1-2"),
         ("bowtie_nonmanifold.obj", "non-manifold vertex", "non-manifold vertices: 1"),
     ] {
-        let p = dir.join(f);
-        if !p.exists() {
-            continue;
+        if shared.join(f).exists() {
+            cases.push((shared.join(f), want, listed));
         }
+    }
+    for (p, want, listed) in cases {
+        let f = p.file_name().unwrap().to_str().unwrap().to_string();
         let out = tmp(&format!("repaired-{f}"));
         let err = run_fail(&["subdivide", p.to_str().unwrap(), out.to_str().unwrap()]);
-        assert!(err.contains(want), "{err}");
+        assert!(err.contains(want) && err.contains(&f), "{err}");
         let o = bin().args(["info", p.to_str().unwrap()]).output().unwrap();
         let s = String::from_utf8_lossy(&o.stdout);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        assert!(s.contains("manifold:        no") && s.contains(listed), "{s}");
+        assert!(s.contains("manifold:        no") && s.contains(listed), "{f}: {s}");
         let o = bin().args(["subdivide", "--repair", p.to_str().unwrap(), out.to_str().unwrap()]).output().unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(String::from_utf8_lossy(&o.stderr).contains("repair:"));
-        subdiv::io::load(&out).expect("the repaired, subdivided output is valid");
+        let m = subdiv::io::load(&out).expect("the repaired, subdivided output is valid");
+        assert!(m.ct.num_triangles() >= 8, "{f}: {} triangles", m.ct.num_triangles());
     }
 }
 
 #[test]
 fn repair_command_and_flags() {
-    let fin = write("rfin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
-    let bow = write("rbow.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 2 1 0\nv 2 2 0\nf 1 2 3\nf 3 4 5\n");
+    let fin = write("rfin.obj", FIN_OBJ);
+    let bow = write("rbow.obj", BOWTIE_OBJ);
     // repair IN OUT: report on stdout, a valid mesh written
     let out = tmp("rfin-fixed.obj");
     let o = bin().args(["repair", fin.to_str().unwrap(), out.to_str().unwrap()]).output().unwrap();

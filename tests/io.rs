@@ -74,6 +74,46 @@ fn ct_errors_and_header_guard() {
     assert_eq!(m.ct.num_border_edges(), 3);
 }
 
+#[test]
+fn ct_stored_o_must_be_the_one_the_faces_define() {
+    use subdiv::io::ct::parse;
+    // the bundled tetrahedron: lines 11-14 are its O rows; edge (1, 2) is
+    // faced by corners 0 and 10
+    let head = "4\n1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n4\n0 1 2\n0 3 1\n0 2 3\n1 3 2\n";
+    let rows = |r0: &str, r3: &str| format!("{head}{r0}\n11 2 7\n9 5 1\n{r3}\n");
+    let m = parse(&rows("10 8 4", "6 0 3"), "good.ct").unwrap();
+    assert_eq!((m.ct.o_entry(0), m.ct.o_entry(10), m.ct.num_border_edges()), (10, 0, 0));
+    // an interior edge marked as border on both sides: a valid involution
+    // with one fan per vertex (a slit between two interior vertices), but
+    // not the table of these faces; refused at the first bad row
+    let e = parse(&rows("-1 8 4", "6 -1 3"), "slit.ct").unwrap_err();
+    assert!(
+        matches!(e, Error::Mesh { line: Some(11), source: MeshError::BadOppositeTable { corner: 0, .. }, .. }),
+        "{e}"
+    );
+    assert!(e.to_string().starts_with("slit.ct:11:"), "{e}");
+    // the first row right, the last one not: line 14, corner 10
+    let e = parse(&rows("10 8 4", "6 -1 3"), "half.ct").unwrap_err();
+    assert!(
+        matches!(e, Error::Mesh { line: Some(14), source: MeshError::BadOppositeTable { corner: 10, .. }, .. }),
+        "{e}"
+    );
+    // a square whose diagonal is marked as border on both sides (its ends
+    // are boundary vertices, so each would get two fans): the O row's line too
+    let sq = "4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2\n0 1 2\n0 2 3\n-1 -1 -1\n-1 -1 -1\n";
+    let e = parse(sq, "square.ct").unwrap_err();
+    assert!(
+        matches!(e, Error::Mesh { line: Some(9), source: MeshError::BadOppositeTable { corner: 1, .. }, .. }),
+        "{e}"
+    );
+    // a corner paired with itself: line 7 of a one-triangle file
+    let e = parse("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 2\n0 -1 -1\n", "self.ct").unwrap_err();
+    assert!(
+        matches!(e, Error::Mesh { line: Some(7), source: MeshError::BadOppositeTable { corner: 0, .. }, .. }),
+        "{e}"
+    );
+}
+
 /// Random and mutated inputs never panic (the error path is what is tested);
 /// whatever parses also repairs and subdivides. 3000 rounds here; the longer
 /// run is the same test with `SUBDIV_FUZZ_ROUNDS=1000000 cargo test --release

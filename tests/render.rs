@@ -209,3 +209,50 @@ fn the_checker_texture_follows_per_corner_uvs() {
     let plain = off.render_one(cam, &g, None, Look::default()).unwrap();
     assert!(differing_pixels(&img, &plain) > 2000);
 }
+
+/// The lighting model of shaders/mesh.wgsl's header, evaluated on the CPU:
+/// ambient 0.12, per light 0.75 diffuse + 0.35 white Blinn-Phong specular
+/// (shininess 48), for unit normal `n`, direction to the eye `v` and the
+/// headlight's direction `head`; linear RGB.
+fn documented_shading(n: Vec3, v: Vec3, head: Vec3) -> Vec3 {
+    use subdiv::render::scene::{FILL_INTENSITY, FILL_LIGHT, FRONT, HEADLIGHT_INTENSITY, KEY_INTENSITY, KEY_LIGHT};
+    let base = FRONT.truncate();
+    let light = |l: Vec3, intensity: f32| {
+        let d = n.dot(l).max(0.0);
+        let s = if d > 0.0 { n.dot((l + v).normalize()).max(0.0).powf(48.0) } else { 0.0 };
+        intensity * (0.75 * d * base + Vec3::splat(0.35 * s))
+    };
+    0.12 * base
+        + light(head, HEADLIGHT_INTENSITY)
+        + light(KEY_LIGHT.normalize(), KEY_INTENSITY)
+        + light(FILL_LIGHT.normalize(), FILL_INTENSITY)
+}
+
+#[test]
+fn a_face_seen_head_on_is_lit_by_the_headlight_from_the_eye() {
+    // A square facing an orthographic camera: n = v everywhere, so the
+    // headlight (along v) gives full diffuse and its full specular highlight.
+    let Some(mut off) = offscreen(96, 96) else { return };
+    let quad = Mesh::from_triangles(
+        vec![
+            Vec3::new(-1.0, -1.0, 0.0),
+            Vec3::new(1.0, -1.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.0),
+            Vec3::new(-1.0, 1.0, 0.0),
+        ],
+        &[0, 1, 2, 0, 2, 3],
+    )
+    .unwrap();
+    let mut cam = Camera { yaw: 0.0, pitch: 0.0, orthographic: true, ..Camera::default() };
+    cam.fit(Vec3::new(-1.0, -1.0, 0.0), Vec3::new(1.0, 1.0, 0.0), 1.0);
+    let g = off.upload(&quad).unwrap();
+    let img = off.render_one(cam, &g, None, Look::default()).unwrap();
+    let v = -cam.forward();
+    let want = documented_shading(Vec3::Z, v, v).clamp(Vec3::ZERO, Vec3::ONE);
+    let srgb = |c: f32| if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+    let got = img.get_pixel(48, 48).0;
+    for i in 0..3 {
+        let w = (srgb(want[i]) * 255.0).round();
+        assert!((f32::from(got[i]) - w).abs() <= 2.0, "channel {i}: rendered {got:?}, documented {want} ({w})");
+    }
+}

@@ -352,14 +352,15 @@ fn symmetric_inputs_stay_symmetric() {
         assert!(syms.len() >= min_syms, "{name}: found only {} symmetries", syms.len());
         for s in Scheme::ALL {
             let f = sub(&m, s, 2);
-            let mut sorted: Vec<[i64; 3]> =
-                f.positions.iter().map(|p| (*p * 1e4).round().as_i64vec3().to_array()).collect();
+            // the point set maps onto itself: as multisets (a bijection, not
+            // only every image present somewhere), rounded to 1e-4
+            let key = |p: Vec3| (p * 1e4).round().as_i64vec3().to_array();
+            let mut sorted: Vec<[i64; 3]> = f.positions.iter().map(|&p| key(p)).collect();
             sorted.sort_unstable();
             for r in &syms {
-                for p in &f.positions {
-                    let q = *r * *p;
-                    assert!(f.positions.iter().any(|x| close(*x, q, 1e-4)), "{name} {s}: image of {p:?} missing");
-                }
+                let mut image: Vec<[i64; 3]> = f.positions.iter().map(|&p| key(*r * p)).collect();
+                image.sort_unstable();
+                assert_eq!(image, sorted, "{name} {s}: the symmetry {r:?} does not map the points onto themselves");
             }
         }
     }
@@ -416,5 +417,150 @@ fn boundary_curves_follow_the_published_curve_rules() {
                 );
             }
         }
+    }
+}
+
+#[test]
+fn translating_the_input_translates_every_output_point_by_the_same_vector() {
+    // S(x + t) = S(x) + t exactly when every stencil sums to one; a stencil
+    // summing to 1.25 (the modified butterfly's old valence-2 rule) moves the
+    // new points by 1.25 t. Valence 2, 3 and 4, alone and beside regular
+    // vertices; t is large so that a wrong sum cannot hide in rounding.
+    let t = Vec3::new(8.0, -4.0, 2.0);
+    for (name, m) in low_valence_meshes() {
+        let mut moved = m.clone();
+        for p in &mut moved.positions {
+            *p += t;
+        }
+        for s in Scheme::ALL {
+            for levels in [1, 2] {
+                let (a, b) = (sub(&m, s, levels), sub(&moved, s, levels));
+                for (i, (p, q)) in a.positions.iter().zip(&b.positions).enumerate() {
+                    assert!(
+                        close(*q - *p, t, 1e-4 * 8.0),
+                        "{name} {s} level {levels}: point {i} moved by {:?}",
+                        *q - *p
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn stencils_at_low_valence_sum_to_one() {
+    for (name, m) in low_valence_meshes() {
+        for s in Scheme::ALL {
+            let plan = StencilPlan::build(&m.ct, s, 1, &Options::default()).unwrap();
+            let lvl = &plan.levels[0];
+            for r in 0..lvl.offsets.len() - 1 {
+                let sum: f32 = lvl.weights[lvl.offsets[r] as usize..lvl.offsets[r + 1] as usize].iter().sum();
+                assert!((sum - 1.0).abs() < 1e-6, "{name} {s} row {r}: weights sum to {sum}");
+            }
+        }
+    }
+}
+
+/// What the tension does (the mathematics first). Zorin's 10-point rule
+/// (a 1/2 - w, b 1/8 + 2w, c -1/16 - w, d w; `--tension`, applied only to
+/// interior edges whose ends are both regular) reproduces quadratics for
+/// every w, and its stencil is symmetric under both reflections that fix
+/// the edge, so every cubic centred at the edge's midpoint is odd in one of
+/// the two directions and sums to zero on both sides: it reproduces cubics
+/// for EVERY w, not only for the 8-point w = 0. No w reproduces all
+/// quartics (along the edge x^4 needs w = 1/32, x^2 y^2 needs w = -1/16).
+/// (Dyn-Levin-Gregory's own tension family, 1/2 a, 2w b, -w c, reproduces
+/// quadratics, hence cubics, only at w = 1/16; it is our fixed `butterfly`.)
+/// Checked exactly: lattice coordinates are integers, dyadic w keeps every
+/// weight exact in f32, and f64 sums of these products are exact.
+#[test]
+fn ten_point_rule_reproduces_cubics_for_every_tension_and_not_quartics() {
+    let n = 10;
+    let m = grid(n, n, |i, j| Vec3::new(i, j, 0.0));
+    let interior: Vec<bool> = (0..m.positions.len() as u32).map(|v| !m.ct.is_boundary_vertex(v)).collect();
+    let at = |v: u32| (f64::from(m.positions[v as usize].x), f64::from(m.positions[v as usize].y));
+    let monomial = |a: i32, b: i32| move |(x, y): (f64, f64)| x.powi(a) * y.powi(b);
+    for w in [0.0, 1.0 / 32.0, -1.0 / 64.0, 3.0 / 64.0, 1.0 / 16.0] {
+        let opts = Options { tension: w as f32, ..Default::default() };
+        let lvl = &StencilPlan::build(&m.ct, Scheme::ModifiedButterfly, 1, &opts).unwrap().levels[0];
+        let mut rows = 0;
+        let mut worst_quartic = 0.0f64;
+        for r in 0..lvl.offsets.len() - 1 {
+            let (a, b) = (lvl.offsets[r] as usize, lvl.offsets[r + 1] as usize);
+            let (idx, ws) = (&lvl.indices[a..b], &lvl.weights[a..b]);
+            // only the regular rule: every source vertex interior
+            if !idx.iter().all(|&v| interior[v as usize]) {
+                continue;
+            }
+            rows += 1;
+            assert_eq!(idx.len(), if w == 0.0 { 8 } else { 10 }, "w = {w}: row {r} is not the regular rule");
+            let apply = |f: &dyn Fn((f64, f64)) -> f64| {
+                idx.iter().zip(ws).map(|(&v, &wt)| f64::from(wt) * f(at(v))).sum::<f64>()
+            };
+            let mid = (apply(&|q| q.0), apply(&|q| q.1));
+            for deg in 0..=4 {
+                for ea in 0..=deg {
+                    let f = monomial(ea, deg - ea);
+                    let err = (apply(&f) - f(mid)).abs();
+                    if deg <= 3 {
+                        assert_eq!(err, 0.0, "w = {w}, row {r}: x^{ea} y^{} not reproduced", deg - ea);
+                    } else {
+                        worst_quartic = worst_quartic.max(err);
+                    }
+                }
+            }
+        }
+        assert!(rows > 100, "w = {w}: only {rows} regular rows");
+        assert!(worst_quartic > 1e-3, "w = {w}: quartics reproduced too (error {worst_quartic})");
+    }
+}
+
+/// Zorin's valence-4 table (3/8, 0, -1/8, 0) and the cosine formula's values
+/// at k = 4 (7/16, -1/16, -1/16, -1/16) differ by (e0 - e1 + e2 - e3)/16,
+/// which vanishes when the ring is a parallelogram: only a ring that is not
+/// one tells them apart. The same for the valence-3 table against the
+/// formula (7/12, -1/6, -1/6): they differ by (e0 - (e1 + e2)/2)/6.
+#[test]
+fn modified_butterfly_low_valence_tables_on_rings_that_are_not_parallelograms() {
+    let f64v = |q: Vec3| q.as_dvec3();
+    for (name, m) in
+        low_valence_meshes().into_iter().filter(|(n, _)| n.contains("split once") && !n.starts_with("pillow"))
+    {
+        let fine = sub(&m, Scheme::ModifiedButterfly, 1);
+        let mut checked = 0;
+        for v in 0..m.positions.len() as u32 {
+            let k = m.ct.valence(v) as usize;
+            if !(k == 3 || k == 4) {
+                continue;
+            }
+            let ring: Vec<u32> = m.ct.ring(v).collect();
+            let e = |j: usize| f64v(m.positions[ring[j % k] as usize]);
+            let pv = f64v(m.positions[v as usize]);
+            for (j0, &q0) in ring.iter().enumerate() {
+                // e_0 = q0 is a regular interior vertex: the EV rule of v alone
+                assert_eq!(m.ct.valence(q0), 6);
+                let (e0, e1, e2) = (e(j0), e(j0 + 1), e(j0 + 2));
+                let (table, formula, gap) = if k == 4 {
+                    let e3 = e(j0 + 3);
+                    (
+                        pv * 0.75 + e0 * 0.375 - e2 * 0.125,
+                        pv * 0.75 + e0 * (7.0 / 16.0) - (e1 + e2 + e3) / 16.0,
+                        (e0 - e1 + e2 - e3) / 16.0,
+                    )
+                } else {
+                    (
+                        pv * 0.75 + e0 * (5.0 / 12.0) - (e1 + e2) / 12.0,
+                        pv * 0.75 + e0 * (7.0 / 12.0) - (e1 + e2) / 6.0,
+                        (e0 - (e1 + e2) * 0.5) / 6.0,
+                    )
+                };
+                assert!(gap.length() > 1e-2, "{name}: the ring of {v} must not hide the difference");
+                assert!(((formula - table) - gap).length() < 1e-12);
+                let got = f64v(edge_point(&m, &fine, v, q0));
+                assert!((got - table).length() < 1e-5, "{name}: valence {k} vertex {v}: {got:?} vs table {table:?}");
+                checked += 1;
+            }
+        }
+        assert!(checked >= 12, "{name}: {checked} edges checked");
     }
 }

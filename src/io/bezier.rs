@@ -64,6 +64,22 @@ pub fn curve_polyline(points: &[Vec2], segments: usize) -> Vec<Vec2> {
     (0..=s).filter_map(|k| de_casteljau(points, k as f32 / s as f32)).collect()
 }
 
+/// The de Casteljau construction at `t`: the segments of the intermediate
+/// polygons `P^(1) .. P^(n-1)` (each segment as two consecutive points, in
+/// level order), and the curve point `C(t) = P_0^(n)` (`None` for no points).
+/// A curve of `n + 1` control points gives `n (n - 1) / 2` segments.
+pub fn de_casteljau_construction(points: &[Vec2], t: f32) -> (Vec<Vec2>, Option<Vec2>) {
+    let mut level = points.to_vec();
+    let mut segments = Vec::new();
+    while level.len() > 1 {
+        level = de_casteljau_step(&level, t);
+        for w in level.windows(2) {
+            segments.extend_from_slice(w);
+        }
+    }
+    (segments, level.first().copied())
+}
+
 /// A bicubic tensor-product Bezier patch: `p[i][j]`, row `i` (along `v`),
 /// column `j` (along `u`).
 #[derive(Clone, Copy, Debug, PartialEq)]

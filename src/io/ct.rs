@@ -12,10 +12,14 @@
 //! corners m         optional (our extension): m sharp vertices,
 //! v s               m lines
 //! ```
-//! `#` starts a comment. When the O lines are present the reader checks them
-//! (an involution pairing each edge with its reverse) in O(n) and skips the
-//! build; otherwise O is built as for OBJ. Counts in the header are checked
-//! against the file size before anything is allocated.
+//! `#` starts a comment. O is always built from the faces as for OBJ (expected
+//! O(n), no hashing; it also validates the faces); when the O lines are
+//! present they must equal that table entry by entry, else the file is
+//! refused at the line of the first O row that differs. (A stored O can be a
+//! perfectly valid involution and still not be the faces' table: an interior
+//! edge marked as border on both sides is a slit the faces do not have.)
+//! Counts in the header are checked against the file size before anything
+//! is allocated.
 
 use super::atomic_write;
 use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
@@ -64,8 +68,11 @@ pub struct RawCt {
     pub triangles: Vec<u32>,
     /// Line (1-based) of the last vertex id of every triangle.
     pub triangle_lines: Vec<usize>,
-    /// The stored opposite table ([`BORDER`] for -1), empty when absent.
-    pub o: Vec<u32>,
+    /// The stored opposite table, raw ([`BORDER`] for -1), empty when absent.
+    pub stored_o: Vec<u32>,
+    /// Line (1-based) of the last entry of every stored O row (one per
+    /// triangle), empty when O is absent.
+    pub o_lines: Vec<usize>,
     /// Sharpness tags of the `creases` and `corners` sections.
     pub tags: Tags,
     /// Line of every crease, then every corner record.
@@ -75,9 +82,11 @@ pub struct RawCt {
 /// Parses `.ct` text; `file` names the source in errors.
 ///
 /// # Errors
-/// [`Error::Parse`] with the line, or [`Error::Mesh`] for invalid topology.
+/// [`Error::Parse`] with the line, or [`Error::Mesh`] for invalid topology,
+/// including [`MeshError::BadOppositeTable`] at the line of the first stored
+/// O row that is not the table the faces define.
 pub fn parse(text: &str, file: &str) -> Result<Mesh> {
-    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o, tags, tag_lines } =
+    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, stored_o, o_lines, tags, tag_lines } =
         parse_raw(text, file)?;
     let located = |e: MeshError| {
         let line = e.face().and_then(|f| tri_lines.get(f).copied());
@@ -99,7 +108,7 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
         })?;
         Ok(Mesh { ct, positions })
     };
-    if o.is_empty() {
+    if stored_o.is_empty() {
         return with_tags(Mesh::from_triangles(pos, &tris).map_err(located)?);
     }
     // with O: all vertices must be used (the table is stored compact)
@@ -107,8 +116,16 @@ pub fn parse(text: &str, file: &str) -> Result<Mesh> {
     if kept.is_some() {
         return Err(located(MeshError::BadOppositeTable { corner: 0, msg: "unused vertices in a .ct with O".into() }));
     }
-    // the stored O must agree with the one built; a mismatch means a corrupt file
-    let ct = CornerTable::from_vo(ct.v_table().to_vec(), o, pos.len()).map_err(located)?;
+    // the stored O must be the one the faces define; a mismatch means a corrupt file
+    if let Some(c) = ct.o_table().iter().zip(&stored_o).position(|(built, stored)| built != stored) {
+        let show = |x: u32| if x == BORDER { "-1 (border)".to_string() } else { x.to_string() };
+        let msg = format!("stored {}, but the faces give {}", show(stored_o[c]), show(ct.o_entry(c as u32)));
+        return Err(Error::Mesh {
+            file: file.to_string(),
+            line: o_lines.get(c / 3).copied(),
+            source: MeshError::BadOppositeTable { corner: c, msg },
+        });
+    }
     with_tags(Mesh { ct, positions: pos })
 }
 
@@ -160,7 +177,8 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
         }
     }
     // optional O table
-    let mut o = Vec::new();
+    let mut stored_o = Vec::new();
+    let mut o_lines = Vec::new();
     let mut next = tk.next_tok();
     if let Some(first) = next.filter(|s| !is_section(s)) {
         let mut tok = Some(first);
@@ -173,12 +191,15 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
             if x < -1 || x >= 3 * t as i64 {
                 return Err(tk.err(format!("opposite corner {x} out of range")));
             }
-            o.push(if x < 0 { BORDER } else { x as u32 });
+            stored_o.push(if x < 0 { BORDER } else { x as u32 });
+            if stored_o.len() % 3 == 0 {
+                o_lines.push(tk.line);
+            }
         }
         next = tk.next_tok();
     }
     let (tags, tag_lines) = parse_sections(&mut tk, next, text.len())?;
-    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, o, tags, tag_lines })
+    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, stored_o, o_lines, tags, tag_lines })
 }
 
 fn is_section(tok: &str) -> bool {
@@ -249,9 +270,9 @@ pub fn write(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
     for tri in mesh.ct.v_table().chunks_exact(3) {
         writeln!(w, "{} {} {}", tri[0], tri[1], tri[2])?;
     }
-    for oo in mesh.ct.o_table().chunks_exact(3) {
+    for row in mesh.ct.o_table().chunks_exact(3) {
         let f = |x: u32| if x == BORDER { -1 } else { i64::from(x) };
-        writeln!(w, "{} {} {}", f(oo[0]), f(oo[1]), f(oo[2]))?;
+        writeln!(w, "{} {} {}", f(row[0]), f(row[1]), f(row[2]))?;
     }
     if let Some(s) = mesh.ct.sharpness() {
         let tags = s.to_tags(&mesh.ct);

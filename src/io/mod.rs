@@ -15,11 +15,11 @@ use std::path::{Path, PathBuf};
 
 /// Loads a mesh from `.obj`, `.ct` or `.bez` (bicubic Bezier patches,
 /// tessellated [`BEZ_RESOLUTION`] times per side), chosen by extension;
-/// anything else is read as OBJ.
+/// anything else is read as OBJ, except a `.bzc` curve, which is refused.
 ///
 /// # Errors
 /// I/O, parse and validation errors, each naming the file (and line where
-/// there is one).
+/// there is one); [`Error::NotAMesh`] for a `.bzc` curve.
 pub fn load(path: &Path) -> Result<Mesh> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     from_bytes(&bytes, &path.display().to_string())
@@ -32,6 +32,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// As [`load`].
 pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Mesh> {
     match ext(Path::new(file)).as_str() {
+        "bzc" => Err(not_a_mesh(file)),
         "ct" => ct::parse(text(bytes, file)?, file),
         "bez" => bezier::tessellate(&bezier::parse_bez(text(bytes, file)?, file)?, BEZ_RESOLUTION)
             .map_err(|source| Error::Mesh { file: file.to_string(), line: None, source }),
@@ -58,6 +59,7 @@ pub fn load_repaired(path: &Path) -> Result<(Mesh, RepairReport)> {
 /// As [`load_repaired`].
 pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
     match ext(Path::new(file)).as_str() {
+        "bzc" => Err(not_a_mesh(file)),
         "ct" => {
             let raw = ct::parse_raw(text(bytes, file)?, file)?;
             let lines = raw.triangle_lines;
@@ -71,6 +73,11 @@ pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairRepo
             .map_err(|source| Error::Mesh { file: file.to_string(), line: None, source }),
         _ => obj::from_bytes_repaired(bytes, file),
     }
+}
+
+/// [`Error::NotAMesh`] for a `.bzc` curve given where a mesh is read.
+fn not_a_mesh(file: &str) -> Error {
+    Error::NotAMesh { file: file.to_string(), what: "a Bezier curve (.bzc)" }
 }
 
 /// The bytes of `file` as text; invalid UTF-8 is a parse error at its line.
@@ -106,6 +113,7 @@ pub fn analyze(path: &Path) -> Result<(Mesh, RepairReport)> {
 pub fn analyze_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
     let file = file.to_string();
     let (positions, triangles, base) = match ext(Path::new(&file)).as_str() {
+        "bzc" => return Err(not_a_mesh(&file)),
         "ct" => {
             let raw = ct::parse_raw(text(bytes, &file)?, &file)?;
             (raw.positions, raw.triangles, 0)

@@ -86,8 +86,7 @@ fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
 /// [`Error::Parse`] with the line number for anything that is not valid OBJ.
 pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
     let mut raw = RawObj::default();
-    let mut poly: Vec<u32> = Vec::with_capacity(8);
-    let mut poly_uv: Vec<u32> = Vec::with_capacity(8);
+    let mut poly = Polygon::default();
     for (lineno, line) in bytes.split(|&b| b == b'\n').enumerate() {
         let ln = lineno + 1;
         let line = line.strip_suffix(b"\r").unwrap_or(line);
@@ -97,97 +96,13 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
         let line = line.split('#').next().unwrap_or("");
         let mut toks = line.split_ascii_whitespace();
         let Some(key) = toks.next() else { continue };
+        let at = Loc { file, ln };
         match key {
-            "v" => {
-                let xyz: [f32; 3] = floats(&mut toks, file, ln, "vertex")?;
-                if xyz.iter().any(|x| !x.is_finite()) {
-                    return Err(Error::Mesh {
-                        file: file.into(),
-                        line: Some(ln),
-                        source: MeshError::NonFinite { vertex: raw.positions.len() + 1 },
-                    });
-                }
-                // Optional per-vertex colour `v x y z r g b` (a common extension); a
-                // lone fourth value is the homogeneous w and is ignored.
-                if let (Some(r), Some(g)) = (toks.next(), toks.next()) {
-                    let rgb: [f32; 3] = floats(&mut [r, g].into_iter().chain(toks), file, ln, "colour")?;
-                    if rgb.iter().any(|x| !x.is_finite()) {
-                        return Err(parse_err(file, ln, "vertex colour is not finite"));
-                    }
-                    // kept only while every vertex so far has one
-                    if raw.colors.len() == raw.positions.len() {
-                        raw.colors.push(Vec3::from_array(rgb).clamp(Vec3::ZERO, Vec3::ONE));
-                    }
-                }
-                raw.positions.push(Vec3::from_array(xyz));
-                raw.vertex_lines.push(ln as u32);
-            }
-            "vt" => {
-                let uv: [f32; 2] = floats(&mut toks, file, ln, "texture coordinate")?;
-                if uv.iter().any(|x| !x.is_finite()) {
-                    return Err(parse_err(file, ln, "texture coordinate is not finite"));
-                }
-                raw.uvs.push(Vec2::from_array(uv));
-            }
-            "f" => {
-                poly.clear();
-                poly_uv.clear();
-                for t in toks {
-                    let mut parts = t.split('/');
-                    let idx = parts.next().unwrap_or("");
-                    match parts.next().filter(|x| !x.is_empty()) {
-                        None => poly_uv.push(NO_UV),
-                        Some(vt) => {
-                            let j: i64 = vt
-                                .parse()
-                                .map_err(|_| parse_err(file, ln, format!("'{t}' has a bad texture index")))?;
-                            let m = raw.uvs.len() as i64;
-                            let abs = if j < 0 { m + j } else { j - 1 };
-                            if j == 0 || abs < 0 || abs >= m {
-                                return Err(parse_err(
-                                    file,
-                                    ln,
-                                    format!("texture index {j} out of range ({m} vt records so far)"),
-                                ));
-                            }
-                            poly_uv.push(abs as u32);
-                        }
-                    }
-                    let i: i64 =
-                        idx.parse().map_err(|_| parse_err(file, ln, format!("'{t}' is not a vertex index")))?;
-                    let n = raw.positions.len() as i64;
-                    // 1-based, or negative = relative to the last vertex so far
-                    let abs = if i < 0 { n + i } else { i - 1 };
-                    if i == 0 || abs < 0 || abs >= u32::MAX as i64 {
-                        return Err(Error::Mesh {
-                            file: file.into(),
-                            line: Some(ln),
-                            source: MeshError::IndexOutOfRange {
-                                face: raw.triangle_lines.len(),
-                                index: i,
-                                len: n as usize,
-                            },
-                        });
-                    }
-                    poly.push(abs as u32);
-                }
-                if poly.len() < 3 {
-                    return Err(parse_err(file, ln, format!("face has {} vertices, needs at least 3", poly.len())));
-                }
-                if poly.len() > 3 {
-                    raw.polygons += 1;
-                }
-                for k in 1..poly.len() - 1 {
-                    raw.triangles.extend_from_slice(&[poly[0], poly[k], poly[k + 1]]);
-                    raw.corner_uv.extend_from_slice(&[poly_uv[0], poly_uv[k], poly_uv[k + 1]]);
-                    raw.triangle_lines.push(ln as u32);
-                }
-            }
+            "v" => vertex_record(&mut raw, toks, at)?,
+            "vt" => texture_record(&mut raw, toks, at)?,
+            "f" => face_record(&mut raw, &mut poly, toks, at)?,
             "t" => parse_tag(&mut toks, file, ln, &mut raw)?,
-            "vn" | "vp" | "o" | "g" | "s" | "usemtl" | "mtllib" | "l" | "p" | "cstype" | "deg" | "curv" | "curv2"
-            | "surf" | "parm" | "trim" | "hole" | "end" | "bmat" | "step" | "mg" | "lod" | "usemap" | "maplib"
-            | "shadow_obj" | "trace_obj" | "ctech" | "stech" | "con" | "sp" => {}
-            other if other.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') && other.len() < 32 => {}
+            other if is_ignored_keyword(other) => {}
             other => {
                 let shown: String = other.chars().take(20).collect();
                 return Err(parse_err(file, ln, format!("unexpected '{shown}': is this an OBJ file?")));
@@ -291,6 +206,156 @@ fn apply_tags(mesh: Mesh, raw_tags: &Tags, lines: (&[u32], &[u32]), used: &[bool
         other => Error::Mesh { file: file.to_string(), line: None, source: other },
     })?;
     Ok(Mesh { ct, positions })
+}
+
+/// Where a record is: the file (for messages) and its 1-based line.
+#[derive(Clone, Copy)]
+struct Loc<'a> {
+    file: &'a str,
+    ln: usize,
+}
+
+/// Records we read past: the rest of the OBJ keywords (normals, groups,
+/// materials, free-form geometry), and any other short identifier, which is
+/// taken for an extension.
+fn is_ignored_keyword(key: &str) -> bool {
+    matches!(
+        key,
+        "vn" | "vp"
+            | "o"
+            | "g"
+            | "s"
+            | "usemtl"
+            | "mtllib"
+            | "l"
+            | "p"
+            | "cstype"
+            | "deg"
+            | "curv"
+            | "curv2"
+            | "surf"
+            | "parm"
+            | "trim"
+            | "hole"
+            | "end"
+            | "bmat"
+            | "step"
+            | "mg"
+            | "lod"
+            | "usemap"
+            | "maplib"
+            | "shadow_obj"
+            | "trace_obj"
+            | "ctech"
+            | "stech"
+            | "con"
+            | "sp"
+    ) || (key.bytes().all(|b| b.is_ascii_alphanumeric() || b == b'_') && key.len() < 32)
+}
+
+/// A `v x y z [r g b]` record.
+fn vertex_record<'a>(raw: &mut RawObj, mut toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
+    let Loc { file, ln } = at;
+    let xyz: [f32; 3] = floats(&mut toks, file, ln, "vertex")?;
+    if xyz.iter().any(|x| !x.is_finite()) {
+        return Err(Error::Mesh {
+            file: file.into(),
+            line: Some(ln),
+            source: MeshError::NonFinite { vertex: raw.positions.len() + 1 },
+        });
+    }
+    // Optional per-vertex colour `v x y z r g b` (a common extension); a
+    // lone fourth value is the homogeneous w and is ignored.
+    if let (Some(r), Some(g)) = (toks.next(), toks.next()) {
+        let rgb: [f32; 3] = floats(&mut [r, g].into_iter().chain(toks), file, ln, "colour")?;
+        if rgb.iter().any(|x| !x.is_finite()) {
+            return Err(parse_err(file, ln, "vertex colour is not finite"));
+        }
+        // kept only while every vertex so far has one
+        if raw.colors.len() == raw.positions.len() {
+            raw.colors.push(Vec3::from_array(rgb).clamp(Vec3::ZERO, Vec3::ONE));
+        }
+    }
+    raw.positions.push(Vec3::from_array(xyz));
+    raw.vertex_lines.push(ln as u32);
+    Ok(())
+}
+
+/// A `vt u v [w]` record.
+fn texture_record<'a>(raw: &mut RawObj, mut toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
+    let uv: [f32; 2] = floats(&mut toks, at.file, at.ln, "texture coordinate")?;
+    if uv.iter().any(|x| !x.is_finite()) {
+        return Err(parse_err(at.file, at.ln, "texture coordinate is not finite"));
+    }
+    raw.uvs.push(Vec2::from_array(uv));
+    Ok(())
+}
+
+/// The corners of the face record being read (reused between records).
+#[derive(Default)]
+struct Polygon {
+    /// Vertex ids, 0-based.
+    v: Vec<u32>,
+    /// `vt` ids, [`NO_UV`] where a corner has none.
+    uv: Vec<u32>,
+}
+
+/// An `f v[/vt[/vn]] ...` record, triangulated as a fan.
+fn face_record<'a>(raw: &mut RawObj, poly: &mut Polygon, toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
+    let Loc { file, ln } = at;
+    poly.v.clear();
+    poly.uv.clear();
+    for t in toks {
+        let mut parts = t.split('/');
+        let idx = parts.next().unwrap_or("");
+        poly.uv.push(match parts.next().filter(|x| !x.is_empty()) {
+            None => NO_UV,
+            Some(vt) => texture_index(vt, t, raw.uvs.len(), at)?,
+        });
+        poly.v.push(vertex_index(idx, t, raw, at)?);
+    }
+    if poly.v.len() < 3 {
+        return Err(parse_err(file, ln, format!("face has {} vertices, needs at least 3", poly.v.len())));
+    }
+    if poly.v.len() > 3 {
+        raw.polygons += 1;
+    }
+    let (pv, puv) = (&poly.v, &poly.uv);
+    for k in 1..pv.len() - 1 {
+        raw.triangles.extend_from_slice(&[pv[0], pv[k], pv[k + 1]]);
+        raw.corner_uv.extend_from_slice(&[puv[0], puv[k], puv[k + 1]]);
+        raw.triangle_lines.push(ln as u32);
+    }
+    Ok(())
+}
+
+/// The 0-based id of the `vt` index `vt` of face corner `t`, with `m` `vt`
+/// records so far (1-based, or negative = relative to the last one).
+fn texture_index(vt: &str, t: &str, m: usize, at: Loc) -> Result<u32> {
+    let j: i64 = vt.parse().map_err(|_| parse_err(at.file, at.ln, format!("'{t}' has a bad texture index")))?;
+    let m = m as i64;
+    let abs = if j < 0 { m + j } else { j - 1 };
+    if j == 0 || abs < 0 || abs >= m {
+        return Err(parse_err(at.file, at.ln, format!("texture index {j} out of range ({m} vt records so far)")));
+    }
+    Ok(abs as u32)
+}
+
+/// The 0-based id of the vertex index `idx` of face corner `t` (1-based, or
+/// negative = relative to the last vertex so far). An index past the
+/// vertices read so far is accepted here and checked when the mesh is built.
+fn vertex_index(idx: &str, t: &str, raw: &RawObj, at: Loc) -> Result<u32> {
+    let i: i64 = idx.parse().map_err(|_| parse_err(at.file, at.ln, format!("'{t}' is not a vertex index")))?;
+    let n = raw.positions.len() as i64;
+    let abs = if i < 0 { n + i } else { i - 1 };
+    if i == 0 || abs < 0 || abs >= u32::MAX as i64 {
+        return Err(Error::Mesh {
+            file: at.file.into(),
+            line: Some(at.ln),
+            source: MeshError::IndexOutOfRange { face: raw.triangle_lines.len(), index: i, len: n as usize },
+        });
+    }
+    Ok(abs as u32)
 }
 
 /// Loads and validates an OBJ file.

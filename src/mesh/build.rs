@@ -94,7 +94,7 @@ impl CornerTable {
         };
         let orig = |x: u32| kept.as_ref().map_or(x, |k| k[x as usize]);
         let nvk = kept.as_ref().map_or(nv, Vec::len);
-        let o = build_o(&v, nvk).map_err(|e| match e {
+        let o_table = build_o(&v, nvk).map_err(|e| match e {
             MeshError::NonManifoldEdge { v0, v1, faces, examples } => {
                 MeshError::NonManifoldEdge { v0: orig(v0), v1: orig(v1), faces, examples }
             }
@@ -103,7 +103,7 @@ impl CornerTable {
             }
             other => other,
         })?;
-        let ct = CornerTable::from_vo(v, o, nvk).map_err(|e| match e {
+        let ct = CornerTable::from_vo(v, o_table, nvk).map_err(|e| match e {
             MeshError::NonManifoldVertex { vertex, fans } => {
                 MeshError::NonManifoldVertex { vertex: orig(vertex), fans }
             }
@@ -112,88 +112,120 @@ impl CornerTable {
         Ok((ct, report, kept))
     }
 
-    /// Completes a table from V and a valid O: fills `C[v]` and valences and
-    /// checks that every vertex has exactly one fan.
+    /// Completes a table from V and a valid O: checks both, fills `C[v]` and
+    /// the valences, and checks that every vertex has exactly one fan. This
+    /// is where the invariants listed on [`CornerTable`] are established for
+    /// every table read or built ([`CornerTable::build`] ends here too).
     ///
     /// # Errors
-    /// [`MeshError::NonManifoldVertex`] or [`MeshError::BadOppositeTable`]
-    /// (when `o` is not an orientation-consistent involution); a vertex id
-    /// that no corner uses gives [`MeshError::TooManyElements`].
+    /// [`MeshError::BadOppositeTable`] naming the first corner whose O entry
+    /// is out of range, paired with itself, not paired back, or not facing
+    /// the same edge reversed (or when V and O differ in length);
+    /// [`MeshError::IndexOutOfRange`] for a vertex id `>= nv`;
+    /// [`MeshError::DegenerateFace`] for a triangle using a vertex twice;
+    /// [`MeshError::NonManifoldVertex`]; [`MeshError::UnusedVertex`] for a
+    /// vertex id no corner uses; [`MeshError::TooManyElements`] past 32-bit
+    /// corner ids (of the table four times as large that a split makes).
     pub fn from_vo(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
-        let nc = v.len();
-        if o.len() != nc || !nc.is_multiple_of(3) {
-            return Err(MeshError::BadOppositeTable { corner: 0, msg: "V and O have different lengths".into() });
-        }
-        // O must be an involution that pairs the same edge, oppositely oriented.
-        for c in 0..nc as u32 {
-            let x = o[c as usize];
-            if x == BORDER {
-                continue;
-            }
-            let bad = |msg: &str| Err(MeshError::BadOppositeTable { corner: c as usize, msg: msg.into() });
-            if x as usize >= nc || x == c {
-                return bad("opposite corner out of range");
-            }
-            if o[x as usize] != c {
-                return bad("o(o(c)) != c");
-            }
-            if v[n(x) as usize] != v[p(c) as usize] || v[p(x) as usize] != v[n(c) as usize] {
-                return bad("the opposite corner does not face the same edge in the opposite direction");
-            }
-        }
-        let mut vc = vec![BORDER; nv];
-        let mut valence = vec![0u32; nv];
-        let mut visited = vec![false; nc];
-        let ct_tmp = CornerTable { v, o, vc: Vec::new(), valence: Vec::new(), sharpness: None };
-        for c0 in 0..nc as u32 {
+        check_v(&v, nv)?;
+        check_o(&v, &o)?;
+        let mut ct = CornerTable { v, o, vc: vec![BORDER; nv], valence: vec![0u32; nv], sharpness: None };
+        let mut visited = vec![false; ct.v.len()];
+        for c0 in 0..ct.v.len() as u32 {
             if visited[c0 as usize] {
                 continue;
             }
-            // unswing to the start of the fan (or all the way round)
-            let mut start = c0;
-            let mut closed = false;
-            loop {
-                match ct_tmp.u(start) {
-                    None => break,
-                    Some(x) if x == c0 => {
-                        closed = true;
-                        break;
-                    }
-                    Some(x) => start = x,
-                }
-            }
-            if closed {
-                start = c0;
-            }
-            let mut count = 0u32;
-            let mut c = start;
-            loop {
-                if visited[c as usize] {
-                    break; // only reachable with a corrupt O; guarded above
-                }
-                visited[c as usize] = true;
-                count += 1;
-                match ct_tmp.s(c) {
-                    Some(x) if x != start => c = x,
-                    _ => break,
-                }
-            }
-            let vert = ct_tmp.v[c0 as usize];
-            if vert as usize >= nv {
-                return Err(MeshError::TooManyElements { what: format!("vertex id {vert} >= vertex count {nv}") });
-            }
-            if vc[vert as usize] != BORDER {
-                let fans = count_fans(&ct_tmp, vert);
+            let (start, count, closed) = walk_fan(&ct, c0, &mut visited);
+            let vert = ct.v[c0 as usize];
+            if ct.vc[vert as usize] != BORDER {
+                let fans = count_fans(&ct, vert);
                 return Err(MeshError::NonManifoldVertex { vertex: vert, fans });
             }
-            vc[vert as usize] = start;
-            valence[vert as usize] = count + u32::from(!closed);
+            ct.vc[vert as usize] = start;
+            ct.valence[vert as usize] = count + u32::from(!closed);
         }
-        if let Some(missing) = vc.iter().position(|&x| x == BORDER) {
-            return Err(MeshError::TooManyElements { what: format!("vertex {missing} is used by no triangle") });
+        if let Some(missing) = ct.vc.iter().position(|&x| x == BORDER) {
+            return Err(MeshError::UnusedVertex { vertex: missing as u32 });
         }
-        Ok(CornerTable { vc, valence, ..ct_tmp })
+        Ok(ct)
     }
+}
+
+/// V of a table for `nv` vertices: whole triangles within 32-bit corner ids
+/// (with room for a split), vertex ids in range, no vertex twice in a triangle.
+fn check_v(v: &[u32], nv: usize) -> Result<(), MeshError> {
+    if v.len() >= (u32::MAX as usize) / 4 || nv >= u32::MAX as usize {
+        return Err(MeshError::TooManyElements { what: format!("{} corners, {nv} vertices", v.len()) });
+    }
+    for (face, tri) in v.chunks(3).enumerate() {
+        if let Some(&i) = tri.iter().find(|&&i| i as usize >= nv) {
+            return Err(MeshError::IndexOutOfRange { face, index: i64::from(i), len: nv });
+        }
+        if let [a, b, c] = *tri
+            && (a == b || a == c || b == c)
+        {
+            return Err(MeshError::DegenerateFace { face, vertex: if a == b || a == c { a } else { b } });
+        }
+    }
+    Ok(())
+}
+
+/// O must be an involution without fixed points that pairs each corner with
+/// the corner facing the same edge in the opposite direction.
+fn check_o(v: &[u32], o: &[u32]) -> Result<(), MeshError> {
+    let nc = v.len();
+    if o.len() != nc || !nc.is_multiple_of(3) {
+        return Err(MeshError::BadOppositeTable { corner: 0, msg: "V and O have different lengths".into() });
+    }
+    for c in 0..nc as u32 {
+        let x = o[c as usize];
+        if x == BORDER {
+            continue;
+        }
+        let bad = |msg: &str| Err(MeshError::BadOppositeTable { corner: c as usize, msg: msg.into() });
+        if x as usize >= nc || x == c {
+            return bad("opposite corner out of range");
+        }
+        if o[x as usize] != c {
+            return bad("o(o(c)) != c");
+        }
+        if v[n(x) as usize] != v[p(c) as usize] || v[p(x) as usize] != v[n(c) as usize] {
+            return bad("the opposite corner does not face the same edge in the opposite direction");
+        }
+    }
+    Ok(())
+}
+
+/// Walks the fan of corner `c0` (in a table whose O is checked), marking
+/// its corners visited: `(first corner, corners, closed)`. The first corner
+/// is `c0` for a closed fan and the one after the border otherwise.
+fn walk_fan(ct: &CornerTable, c0: u32, visited: &mut [bool]) -> (u32, u32, bool) {
+    // unswing to the start of the fan (or all the way round)
+    let mut start = c0;
+    let mut closed = false;
+    while let Some(x) = ct.u(start) {
+        if x == c0 {
+            closed = true;
+            break;
+        }
+        start = x;
+    }
+    if closed {
+        start = c0;
+    }
+    let mut count = 0u32;
+    let mut c = start;
+    // a checked O pairs corners of one vertex, so the swing stays in this
+    // fan and ends at the border or back at the start
+    while !visited[c as usize] {
+        visited[c as usize] = true;
+        count += 1;
+        match ct.s(c) {
+            Some(x) if x != start => c = x,
+            _ => break,
+        }
+    }
+    (start, count, closed)
 }
 
 /// Number of separate fans at vertex `vert` (only called on the error path).
@@ -328,6 +360,38 @@ mod tests {
         assert_eq!(CornerTable::build(5, &bow, None).unwrap_err(), MeshError::NonManifoldVertex { vertex: 2, fans: 2 });
         let nan = [Vec3::ZERO, Vec3::X, Vec3::new(f32::NAN, 0.0, 0.0)];
         assert_eq!(CornerTable::build(3, &[0, 1, 2], Some(&nan)).unwrap_err(), MeshError::NonFinite { vertex: 2 });
+    }
+
+    #[test]
+    fn from_vo_refuses_every_broken_invariant() {
+        let bad_o = |v: Vec<u32>, o: Vec<u32>, nv: usize| match CornerTable::from_vo(v, o, nv) {
+            Err(MeshError::BadOppositeTable { corner, .. }) => corner,
+            other => panic!("expected a bad opposite table, got {other:?}"),
+        };
+        // the square (0,1,2), (0,2,3): its diagonal is faced by corners 1 and 5
+        let sq = vec![0, 1, 2, 0, 2, 3];
+        let good = vec![BORDER, 5, BORDER, BORDER, BORDER, 1];
+        assert!(CornerTable::from_vo(sq.clone(), good, 4).is_ok());
+        assert_eq!(bad_o(sq.clone(), vec![BORDER, 6, BORDER, BORDER, BORDER, 1], 4), 1, "out of range");
+        assert_eq!(bad_o(sq.clone(), vec![BORDER, 1, BORDER, BORDER, BORDER, BORDER], 4), 1, "paired with itself");
+        assert_eq!(bad_o(sq.clone(), vec![BORDER, 5, BORDER, BORDER, BORDER, BORDER], 4), 1, "asymmetric");
+        assert_eq!(bad_o(sq.clone(), vec![BORDER, 4, BORDER, BORDER, 1, BORDER], 4), 1, "not the same edge");
+        assert_eq!(bad_o(sq.clone(), vec![BORDER; 5], 4), 0, "lengths differ");
+        // a vertex id past the vertex count, a vertex no corner uses
+        assert_eq!(
+            CornerTable::from_vo(vec![0, 1, 5], vec![BORDER; 3], 3).unwrap_err(),
+            MeshError::IndexOutOfRange { face: 0, index: 5, len: 3 }
+        );
+        assert_eq!(
+            CornerTable::from_vo(vec![0, 1, 2], vec![BORDER; 3], 4).unwrap_err(),
+            MeshError::UnusedVertex { vertex: 3 }
+        );
+        // a triangle using a vertex twice, with its two corners of that vertex
+        // paired: a consistent involution, but an interior vertex of valence 1
+        assert_eq!(
+            CornerTable::from_vo(vec![0, 1, 1], vec![BORDER, 2, 1], 2).unwrap_err(),
+            MeshError::DegenerateFace { face: 0, vertex: 1 }
+        );
     }
 
     #[test]

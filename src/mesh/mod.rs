@@ -18,6 +18,7 @@ pub mod cut;
 pub mod edit;
 pub mod inspect;
 pub mod normals;
+pub mod pick;
 pub mod repair;
 pub mod shapes;
 pub mod sharpness;
@@ -55,12 +56,12 @@ pub fn p(c: u32) -> u32 {
 pub fn t(c: u32) -> u32 {
     c / 3
 }
-/// Whether corner `c`, whose opposite is `o`, names its edge once for the
+/// Whether corner `c`, whose raw O entry is `o_entry`, names its edge once for the
 /// mesh: a border corner always does, an interior edge by its smaller corner.
 /// (`BORDER` is `u32::MAX`, so this is `c < o`.)
 #[inline(always)]
-pub fn owns_edge(c: u32, o: u32) -> bool {
-    c < o
+pub fn owns_edge(c: u32, o_entry: u32) -> bool {
+    c < o_entry
 }
 
 /// Connectivity of a triangle mesh: V, O, one corner per vertex and valences.
@@ -69,13 +70,25 @@ pub fn owns_edge(c: u32, o: u32) -> bool {
 /// constructors ([`CornerTable::build`], [`CornerTable::from_vo`]), by the
 /// 1-to-4 [`split`] of a valid table and by the edits of [`edit`], each of
 /// which keeps the invariants that the rest of the crate relies on (the
-/// split's parallel writes among them):
+/// split's parallel raw-pointer writes, indexed by O, among them):
 ///
-/// * `V` has `3 F` entries, each `< num_vertices()`;
+/// * `V` has `3 F` entries, each `< num_vertices()`, no triangle using a
+///   vertex twice; corner and vertex ids are below [`BORDER`];
 /// * `O` has `3 F` entries, each [`BORDER`] or a corner `x < 3 F` with
 ///   `O[x] = c`, `x != c`, and the two corners' edges the same one reversed;
-/// * `C[v]` is a corner of `v`, the first of its fan for a boundary vertex;
-///   `valence[v]` is its number of incident edges.
+/// * every vertex has exactly one fan; `C[v]` is a corner of `v`, the first
+///   of its fan for a boundary vertex; `valence[v]` is its number of
+///   incident edges.
+///
+/// Where they are established: `from_vo` checks V and O entry by entry and
+/// walks every fan to fill C and the valences (`build` makes O from V and
+/// then goes through `from_vo`; `Default` is the empty table). The split
+/// writes V', O', C' and the valences by the formulas of schemes.md 7.4-7.5
+/// from a table that has the invariants (`tests/topology.rs` checks them
+/// against a rebuild for every scheme and level). Each edit changes O in
+/// pairs, both ends of every entry it writes, and recomputes C and the
+/// valence of each vertex it touches from its fan (`tests/edit.rs` checks
+/// a rebuild after every edit).
 ///
 /// Outside the crate the fields cannot be set, nor the struct be built by
 /// hand:
@@ -271,7 +284,7 @@ impl CornerTable {
     /// The corner owning each edge (see [`owns_edge`]), in corner order: the
     /// edge is the one opposite it, from `v(n(c))` to `v(p(c))`.
     pub fn edge_owners(&self) -> impl Iterator<Item = u32> + '_ {
-        self.o.iter().enumerate().map(|(c, &o)| (c as u32, o)).filter(|&(c, o)| owns_edge(c, o)).map(|(c, _)| c)
+        self.o.iter().enumerate().map(|(c, &x)| (c as u32, x)).filter(|&(c, x)| owns_edge(c, x)).map(|(c, _)| c)
     }
     /// Number of edges: each interior edge has two corners, each border edge one.
     pub fn num_edges(&self) -> usize {

@@ -4,41 +4,41 @@
 //! [`repair`] takes the raw positions and triangles (indices already checked by
 //! the caller or reported as [`MeshError::IndexOutOfRange`]) and runs, in order:
 //!
-//! 1. **Degenerate faces** are dropped: a face that uses one vertex twice, or
-//!    two of whose corners have bit-identical positions (zero area by
-//!    construction; collinear faces with distinct positions are kept, they are
-//!    topologically valid).
-//! 2. **Duplicate faces** are dropped: faces with the same vertex set, in any
-//!    rotation or orientation; the first one is kept.
-//! 3. **Edge classification.** Every corner owns the edge opposite it. Corners
-//!    are sorted by undirected edge: an edge with one face is a border, with
-//!    two faces it is *glued* (a candidate for O), with three or more it is a
-//!    **non-manifold edge and cut**: none of its faces is glued across it, so
-//!    each of them ends up with a border edge there.
-//! 4. **Orientation.** A breadth-first search over faces across glued edges
-//!    gives every face a flip bit so that both faces of a glued edge run along
-//!    it in opposite directions. Where the search meets a face again with the
-//!    other bit (a Möbius-like, non-orientable component) that edge is cut
-//!    instead. In each component the smaller set of faces is flipped
-//!    (`(a, b, c)` becomes `(a, c, b)`), so a mostly-consistent mesh keeps its
-//!    own orientation.
-//! 5. **Vertex fans.** Union-find over corners: the two corners of each vertex
-//!    of a glued edge are joined. Each class is one fan, and every fan of a
-//!    vertex gets its own copy of the vertex, which separates bowtie vertices
+//! 1. **Degenerate faces** are dropped (`drop_degenerate_faces`): a face that uses
+//!    one vertex twice, or two of whose corners have bit-identical positions (zero
+//!    area by construction; collinear faces with distinct positions are kept, they
+//!    are topologically valid).
+//! 2. **Duplicate faces** are dropped (`drop_duplicate_faces`): faces with the same
+//!    vertex set, in any rotation or orientation; the first one is kept.
+//! 3. **Edge classification** (`classify_edges`). Every corner owns the edge
+//!    opposite it. Corners are sorted by undirected edge: an edge with one face is
+//!    a border, with two faces it is *glued* (a candidate for O), with three or
+//!    more it is a **non-manifold edge and cut**: none of its faces is glued across
+//!    it, so each of them ends up with a border edge there.
+//! 4. **Orientation** (`orient_faces`). A breadth-first search over faces across
+//!    glued edges gives every face a flip bit so that both faces of a glued edge
+//!    run along it in opposite directions. Where the search meets a face again with
+//!    the other bit (a Möbius-like, non-orientable component) that edge is cut
+//!    instead. In each component the smaller set of faces is flipped (`(a, b, c)`
+//!    becomes `(a, c, b)`), so a mostly-consistent mesh keeps its own orientation.
+//! 5. **Vertex fans** (`number_fans`). Union-find over corners: the two corners of
+//!    each vertex of a glued edge are joined. Each class is one fan, and every fan
+//!    of a vertex gets its own copy of the vertex, which separates bowtie vertices
 //!    and the faces of cut edges. Copies are numbered vertex by vertex, fans in
 //!    order of their first corner, so an already valid mesh keeps its ids.
-//! 6. **Re-gluing.** Two faces of a cut edge can still share both its vertex
-//!    copies: the fan of each endpoint goes around and reaches the other face
-//!    (two tetrahedra sharing an edge: each one's two faces on it). They are
-//!    glued again, which merges no fans and changes no ids, so each
-//!    tetrahedron comes out closed. Such a pair is always oppositely oriented:
-//!    the glued edges around one vertex are all consistent after step 4, and
-//!    faces around a vertex cannot be inconsistent across exactly one edge.
-//!    Three faces cannot share both copies either (a fan has two ends). The
-//!    code still handles the impossible case defensively, by cutting one more
-//!    edge at the shared endpoint and redoing step 5 (cuts only split fans,
-//!    so that would end, at worst with separate triangles).
-//! 7. **Unreferenced vertices** (used by no remaining face) are dropped.
+//! 6. **Re-gluing** (`reglue_or_cut`; `separate_fans` repeats 5 and 6). Two faces
+//!    of a cut edge can still share both its vertex copies: the fan of each
+//!    endpoint goes around and reaches the other face (two tetrahedra sharing an
+//!    edge: each one's two faces on it). They are glued again, which merges no fans
+//!    and changes no ids, so each tetrahedron comes out closed. Such a pair is
+//!    always oppositely oriented: the glued edges around one vertex are all
+//!    consistent after step 4, and faces around a vertex cannot be inconsistent
+//!    across exactly one edge. Three faces cannot share both copies either (a fan
+//!    has two ends). The code still handles the impossible case defensively, by
+//!    cutting one more edge at the shared endpoint and redoing step 5 (cuts only
+//!    split fans, so that would end, at worst with separate triangles).
+//! 7. **Unreferenced vertices** (used by no remaining face) are dropped
+//!    (`count_copies` reports them, with the split ones).
 //!
 //! The result is then built by [`Mesh::from_triangles`], which validates it
 //! once more. Everything is O(n log n) (two sorts by edge key) and
@@ -294,12 +294,52 @@ pub fn analyze(positions: &[Vec3], triangles: &[u32]) -> Result<RepairReport, Me
 /// # Errors
 /// As [`repair`].
 pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> Result<(Mesh, RepairReport), MeshError> {
+    let mut rep = check_input(&positions, triangles, cap)?;
+    let nv = positions.len();
+    // 1. and 2.: the kept faces; `orig[t]` is the input id of face t
+    let mut keep = drop_degenerate_faces(&positions, triangles, &mut rep);
+    drop_duplicate_faces(triangles, &mut keep, &mut rep);
+    let orig: Vec<u32> = (0..keep.len() as u32).filter(|&f| keep[f as usize]).collect();
+    if orig.is_empty() {
+        return Err(MeshError::Empty);
+    }
+    let mut v: Vec<u32> =
+        orig.iter().flat_map(|&f| triangles[3 * f as usize..3 * f as usize + 3].iter().copied()).collect();
+    // 3. edge classification: mate[c] is the glued corner across the edge opposite c
+    let mut mate = classify_edges(&v, nv, &mut rep);
+    // 4. orientation
+    orient_faces(&mut v, &mut mate, &orig, &mut rep);
+    // 5. and 6. fans -> vertex copies, re-gluing
+    let (new_v, origin) = separate_fans(&v, &mut mate, nv, &mut rep);
+    // 7. splits and unreferenced vertices
+    count_copies(&origin, nv, &mut rep);
+    let out_pos: Vec<Vec3> = origin.iter().map(|&x| positions[x as usize]).collect();
+    drop(positions);
+    let mesh = Mesh::from_triangles(out_pos, &new_v)?;
+    rep.faces_out = mesh.ct.num_triangles();
+    rep.vertices_out = mesh.positions.len();
+    Ok((mesh, rep))
+}
+
+/// The size, range and finiteness checks (not repairable: these are errors
+/// in the data) and an empty report with `cap` examples per kind.
+fn check_input(positions: &[Vec3], triangles: &[u32], cap: usize) -> Result<RepairReport, MeshError> {
     let nv = positions.len();
     let nt = triangles.len() / 3;
     if 3 * nt >= (u32::MAX as usize) / 4 || nv >= u32::MAX as usize {
         return Err(MeshError::TooManyElements { what: format!("{nt} triangles, {nv} vertices") });
     }
-    let mut rep = RepairReport {
+    for (f, tri) in triangles.chunks_exact(3).enumerate() {
+        for &i in tri {
+            if i as usize >= nv {
+                return Err(MeshError::IndexOutOfRange { face: f, index: i64::from(i), len: nv });
+            }
+            if !positions[i as usize].is_finite() {
+                return Err(MeshError::NonFinite { vertex: i as usize });
+            }
+        }
+    }
+    Ok(RepairReport {
         faces_in: nt,
         vertices_in: nv,
         degenerate_faces: Tally::with_cap(cap),
@@ -311,20 +351,13 @@ pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> R
         split_vertices: Tally::with_cap(cap),
         unreferenced_vertices: Tally::with_cap(cap),
         ..Default::default()
-    };
-    // range and finiteness (not repairable: these are errors in the data)
-    for (f, tri) in triangles.chunks_exact(3).enumerate() {
-        for &i in tri {
-            if i as usize >= nv {
-                return Err(MeshError::IndexOutOfRange { face: f, index: i64::from(i), len: nv });
-            }
-            if !positions[i as usize].is_finite() {
-                return Err(MeshError::NonFinite { vertex: i as usize });
-            }
-        }
-    }
-    // 1. degenerate faces
-    let mut keep = vec![true; nt];
+    })
+}
+
+/// Step 1: which faces to keep, dropping those that use a vertex twice or
+/// have two bit-identical corner positions.
+fn drop_degenerate_faces(positions: &[Vec3], triangles: &[u32], rep: &mut RepairReport) -> Vec<bool> {
+    let mut keep = vec![true; triangles.len() / 3];
     for (f, tri) in triangles.chunks_exact(3).enumerate() {
         let [a, b, c] = [tri[0], tri[1], tri[2]];
         let (pa, pb, pc) = (positions[a as usize], positions[b as usize], positions[c as usize]);
@@ -333,8 +366,13 @@ pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> R
             rep.degenerate_faces.push(f);
         }
     }
-    // 2. duplicate faces (same vertex set): sort by the sorted triple
-    let mut keys: Vec<([u32; 3], u32)> = (0..nt as u32)
+    keep
+}
+
+/// Step 2: drops every kept face whose vertex set an earlier kept face has
+/// (a sort by the sorted triple).
+fn drop_duplicate_faces(triangles: &[u32], keep: &mut [bool], rep: &mut RepairReport) {
+    let mut keys: Vec<([u32; 3], u32)> = (0..keep.len() as u32)
         .filter(|&f| keep[f as usize])
         .map(|f| {
             let mut k = [triangles[3 * f as usize], triangles[3 * f as usize + 1], triangles[3 * f as usize + 2]];
@@ -352,21 +390,17 @@ pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> R
         keep[f] = false;
         rep.duplicate_faces.push(f);
     }
-    drop(keys);
-    // the kept faces, renumbered; `orig[t]` is the input id of face t
-    let orig: Vec<u32> = (0..nt as u32).filter(|&f| keep[f as usize]).collect();
-    if orig.is_empty() {
-        return Err(MeshError::Empty);
-    }
-    let mut v: Vec<u32> =
-        orig.iter().flat_map(|&f| triangles[3 * f as usize..3 * f as usize + 3].iter().copied()).collect();
-    let nc = v.len();
+}
 
-    // 3. edge classification: mate[c] is the glued corner across the edge opposite c
+/// Step 3: glues the two corners of every edge with exactly two faces
+/// (`mate`, returned; [`BORDER`] elsewhere), reports edges with three or
+/// more as non-manifold (cut), and vertices whose faces form two or more
+/// fans even with every shared edge joined as bowties.
+fn classify_edges(v: &[u32], nv: usize, rep: &mut RepairReport) -> Vec<u32> {
+    let nc = v.len();
     let mut mate = vec![BORDER; nc];
     let mut all_edges = Dsu::new(nc); // fans with every shared edge joined (bowtie detection)
-    let by_edge = corners_by_edge(&v);
-    for run in runs(&by_edge) {
+    for run in runs(&corners_by_edge(v)) {
         let key = run[0].0;
         let edge = [(key >> 32) as u32, key as u32];
         if run.len() == 2 {
@@ -379,32 +413,68 @@ pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> R
         // join the corners of both endpoints across every face of the edge
         for w in run.windows(2) {
             for x in edge {
-                all_edges.union(corner_of(&v, w[0].1, x), corner_of(&v, w[1].1, x));
+                all_edges.union(corner_of(v, w[0].1, x), corner_of(v, w[1].1, x));
             }
         }
     }
-    drop(by_edge);
     // bowties: vertices with two or more classes even with all edges joined
-    {
-        let mut fans = vec![0u32; nv];
-        for c in 0..nc as u32 {
-            let x = v[c as usize] as usize;
-            let r = all_edges.find(c);
-            // count distinct roots per vertex: a root is counted at its own corner
-            if r == c {
-                fans[x] += 1;
-            }
-        }
-        for (x, &k) in fans.iter().enumerate() {
-            if k > 1 {
-                rep.non_manifold_vertices.push(x as u32);
-            }
+    let mut fans = vec![0u32; nv];
+    for c in 0..nc as u32 {
+        // count distinct roots per vertex: a root is counted at its own corner
+        if all_edges.find(c) == c {
+            fans[v[c as usize] as usize] += 1;
         }
     }
-    drop(all_edges);
+    for (x, &k) in fans.iter().enumerate() {
+        if k > 1 {
+            rep.non_manifold_vertices.push(x as u32);
+        }
+    }
+    mate
+}
 
-    // 4. orientation: BFS across glued edges, flip bit per face
-    let nf = orig.len();
+/// Step 4: a flip bit per face from a breadth-first search across glued
+/// edges (an edge where the search meets a face again with the other bit is
+/// cut), the smaller part of each component flipped, then applied to `v`
+/// and `mate`: `(a, b, c)` becomes `(a, c, b)`.
+fn orient_faces(v: &mut Vec<u32>, mate: &mut Vec<u32>, orig: &[u32], rep: &mut RepairReport) {
+    let flip = flip_bits(v, mate, rep);
+    if flip.contains(&1) {
+        apply_flips(v, mate, &flip, orig, rep);
+    }
+    debug_assert!((0..v.len() as u32).all(|c| {
+        let m = mate[c as usize];
+        m == BORDER || (v[n(c) as usize] == v[p(m) as usize] && v[p(c) as usize] == v[n(m) as usize])
+    }));
+}
+
+/// Reverses the faces whose `flip` bit is set, in `v` and `mate`.
+fn apply_flips(v: &mut Vec<u32>, mate: &mut Vec<u32>, flip: &[u8], orig: &[u32], rep: &mut RepairReport) {
+    // (a, b, c) -> (a, c, b) swaps corners 1 and 2 of the face
+    let perm = |c: u32| -> u32 {
+        if flip[(c / 3) as usize] == 1 && !c.is_multiple_of(3) { if c % 3 == 1 { c + 1 } else { c - 1 } } else { c }
+    };
+    let nc = v.len();
+    let mut v2 = vec![0u32; nc];
+    let mut m2 = vec![BORDER; nc];
+    for c in 0..nc as u32 {
+        v2[perm(c) as usize] = v[c as usize];
+        let m = mate[c as usize];
+        m2[perm(c) as usize] = if m == BORDER { BORDER } else { perm(m) };
+    }
+    *v = v2;
+    *mate = m2;
+    for (t, &fl) in flip.iter().enumerate() {
+        if fl == 1 {
+            rep.flipped_faces.push(orig[t] as usize);
+        }
+    }
+}
+
+/// The flip bit of every face (step 4's search), cutting the glued edges
+/// where a component turns out non-orientable.
+fn flip_bits(v: &[u32], mate: &mut [u32], rep: &mut RepairReport) -> Vec<u8> {
+    let nf = v.len() / 3;
     let mut flip = vec![u8::MAX; nf];
     let mut queue: Vec<u32> = Vec::with_capacity(nf);
     for seed in 0..nf as u32 {
@@ -447,110 +517,25 @@ pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> R
             }
         }
     }
-    drop(queue);
-    // apply: (a, b, c) -> (a, c, b) swaps corners 1 and 2 of the face
-    let perm = |c: u32| -> u32 {
-        if flip[(c / 3) as usize] == 1 && !c.is_multiple_of(3) { if c % 3 == 1 { c + 1 } else { c - 1 } } else { c }
-    };
-    if flip.contains(&1) {
-        let mut v2 = vec![0u32; nc];
-        let mut m2 = vec![BORDER; nc];
-        for c in 0..nc as u32 {
-            v2[perm(c) as usize] = v[c as usize];
-            let m = mate[c as usize];
-            m2[perm(c) as usize] = if m == BORDER { BORDER } else { perm(m) };
-        }
-        v = v2;
-        mate = m2;
-        for (t, &fl) in flip.iter().enumerate() {
-            if fl == 1 {
-                rep.flipped_faces.push(orig[t] as usize);
-            }
-        }
-    }
-    debug_assert!((0..nc as u32).all(|c| {
-        let m = mate[c as usize];
-        m == BORDER || (v[n(c) as usize] == v[p(m) as usize] && v[p(c) as usize] == v[n(m) as usize])
-    }));
+    flip
+}
 
-    // 5./6. fans -> vertex copies, until no two unglued faces share an edge's copies
+/// Rounds of step 5 (numbering the fans) and step 6 (re-gluing or cutting
+/// faces of a cut edge that still share its copies) until nothing is cut:
+/// the new V and, per new vertex, its input vertex.
+fn separate_fans(v: &[u32], mate: &mut [u32], nv: usize, rep: &mut RepairReport) -> (Vec<u32>, Vec<u32>) {
+    const MAX_ROUNDS: u32 = 64;
     let mut rounds = 0u32;
-    let rounds_exhausted = |r: u32| r >= 64;
-    let (new_v, origin) = loop {
-        let mut dsu = Dsu::new(nc);
-        for c in 0..nc as u32 {
-            let m = mate[c as usize];
-            if m != BORDER && c < m {
-                // c's edge runs a -> b, m's runs b -> a
-                dsu.union(n(c), p(m));
-                dsu.union(p(c), n(m));
-            }
-        }
-        // number the classes vertex by vertex (counting sort of corners by vertex)
-        let mut start = vec![0u32; nv + 1];
-        for &x in &v {
-            start[x as usize + 1] += 1;
-        }
-        for i in 0..nv {
-            start[i + 1] += start[i];
-        }
-        let mut fill = start.clone();
-        let mut by_vertex = vec![0u32; nc];
-        for c in 0..nc as u32 {
-            let x = v[c as usize] as usize;
-            by_vertex[fill[x] as usize] = c;
-            fill[x] += 1;
-        }
-        let mut id_of_root = vec![BORDER; nc];
-        let mut origin: Vec<u32> = Vec::with_capacity(nv);
-        for x in 0..nv {
-            for &c in &by_vertex[start[x] as usize..start[x + 1] as usize] {
-                let r = dsu.find(c) as usize;
-                if id_of_root[r] == BORDER {
-                    id_of_root[r] = origin.len() as u32;
-                    origin.push(x as u32);
-                }
-            }
-        }
-        let new_v: Vec<u32> = (0..nc as u32).map(|c| id_of_root[dsu.find(c) as usize]).collect();
-        // separation check on the new ids: an edge whose copies are shared by
-        // faces that are not glued across it
-        let mut cut_any = false;
-        for run in runs(&corners_by_edge(&new_v)) {
-            if run.len() == 1 || (run.len() == 2 && mate[run[0].1 as usize] == run[1].1) {
-                continue;
-            }
-            let (c0, c1) = (run[0].1, run[1].1);
-            if run.len() == 2 && new_v[n(c0) as usize] == new_v[p(c1) as usize] && !rounds_exhausted(rounds) {
-                // a consistent pair: both corners are already in one fan at
-                // each end, so gluing merges no fans and changes no ids
-                mate[c0 as usize] = c1;
-                mate[c1 as usize] = c0;
-                continue;
-            }
-            for &(_, c) in &run[1..] {
-                // cut the face's other glued edge at one endpoint of this edge
-                for k in [p(c), n(c)] {
-                    let m = mate[k as usize];
-                    if m != BORDER {
-                        let (a, b) = (v[n(k) as usize], v[p(k) as usize]);
-                        rep.extra_cuts.push([a.min(b), a.max(b)]);
-                        mate[k as usize] = BORDER;
-                        mate[m as usize] = BORDER;
-                        cut_any = true;
-                        break;
-                    }
-                }
-            }
-        }
-        if !cut_any {
-            break (new_v, origin);
+    loop {
+        let (new_v, origin) = number_fans(v, mate, nv);
+        if !reglue_or_cut(v, &new_v, mate, rounds >= MAX_ROUNDS, rep) {
+            return (new_v, origin);
         }
         rounds += 1;
-        if rounds_exhausted(rounds) {
+        if rounds >= MAX_ROUNDS {
             // safety net, not expected to be reached: separate triangles are always valid
             debug_assert!(false, "repair: separation did not converge");
-            for c in 0..nc {
+            for c in 0..mate.len() {
                 if mate[c] != BORDER && (c as u32) < mate[c] {
                     let (a, b) = (v[n(c as u32) as usize], v[p(c as u32) as usize]);
                     rep.extra_cuts.push([a.min(b), a.max(b)]);
@@ -558,11 +543,95 @@ pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> R
             }
             mate.fill(BORDER);
         }
-    };
+    }
+}
 
-    // report splits and unreferenced vertices
+/// Step 5: union-find over corners joined across glued edges; every class
+/// (fan) gets its own vertex, numbered vertex by vertex, fans in order of
+/// their first corner. Returns the new V and the input vertex of each new one.
+fn number_fans(v: &[u32], mate: &[u32], nv: usize) -> (Vec<u32>, Vec<u32>) {
+    let nc = v.len();
+    let mut dsu = Dsu::new(nc);
+    for c in 0..nc as u32 {
+        let m = mate[c as usize];
+        if m != BORDER && c < m {
+            // c's edge runs a -> b, m's runs b -> a
+            dsu.union(n(c), p(m));
+            dsu.union(p(c), n(m));
+        }
+    }
+    // number the classes vertex by vertex (counting sort of corners by vertex)
+    let mut start = vec![0u32; nv + 1];
+    for &x in v {
+        start[x as usize + 1] += 1;
+    }
+    for i in 0..nv {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut by_vertex = vec![0u32; nc];
+    for c in 0..nc as u32 {
+        let x = v[c as usize] as usize;
+        by_vertex[fill[x] as usize] = c;
+        fill[x] += 1;
+    }
+    let mut id_of_root = vec![BORDER; nc];
+    let mut origin: Vec<u32> = Vec::with_capacity(nv);
+    for x in 0..nv {
+        for &c in &by_vertex[start[x] as usize..start[x + 1] as usize] {
+            let r = dsu.find(c) as usize;
+            if id_of_root[r] == BORDER {
+                id_of_root[r] = origin.len() as u32;
+                origin.push(x as u32);
+            }
+        }
+    }
+    let new_v: Vec<u32> = (0..nc as u32).map(|c| id_of_root[dsu.find(c) as usize]).collect();
+    (new_v, origin)
+}
+
+/// Step 6, on the new ids: an edge whose copies are shared by faces that are
+/// not glued across it is glued again when the two run oppositely (this
+/// merges no fans), otherwise (or when `exhausted`) each face but the first
+/// gets one more glued edge cut at that edge's endpoint. Returns whether
+/// anything was cut (step 5 must then be redone).
+fn reglue_or_cut(v: &[u32], new_v: &[u32], mate: &mut [u32], exhausted: bool, rep: &mut RepairReport) -> bool {
+    let mut cut_any = false;
+    for run in runs(&corners_by_edge(new_v)) {
+        if run.len() == 1 || (run.len() == 2 && mate[run[0].1 as usize] == run[1].1) {
+            continue;
+        }
+        let (c0, c1) = (run[0].1, run[1].1);
+        if run.len() == 2 && new_v[n(c0) as usize] == new_v[p(c1) as usize] && !exhausted {
+            // a consistent pair: both corners are already in one fan at
+            // each end, so gluing merges no fans and changes no ids
+            mate[c0 as usize] = c1;
+            mate[c1 as usize] = c0;
+            continue;
+        }
+        for &(_, c) in &run[1..] {
+            // cut the face's other glued edge at one endpoint of this edge
+            for k in [p(c), n(c)] {
+                let m = mate[k as usize];
+                if m != BORDER {
+                    let (a, b) = (v[n(k) as usize], v[p(k) as usize]);
+                    rep.extra_cuts.push([a.min(b), a.max(b)]);
+                    mate[k as usize] = BORDER;
+                    mate[m as usize] = BORDER;
+                    cut_any = true;
+                    break;
+                }
+            }
+        }
+    }
+    cut_any
+}
+
+/// Step 7 (and the split counts): input vertices with no copy are
+/// unreferenced, those with several were split.
+fn count_copies(origin: &[u32], nv: usize, rep: &mut RepairReport) {
     let mut copies = vec![0u32; nv];
-    for &x in &origin {
+    for &x in origin {
         copies[x as usize] += 1;
     }
     for (x, &k) in copies.iter().enumerate() {
@@ -575,12 +644,6 @@ pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> R
             }
         }
     }
-    let out_pos: Vec<Vec3> = origin.iter().map(|&x| positions[x as usize]).collect();
-    drop(positions);
-    let mesh = Mesh::from_triangles(out_pos, &new_v)?;
-    rep.faces_out = mesh.ct.num_triangles();
-    rep.vertices_out = mesh.positions.len();
-    Ok((mesh, rep))
 }
 
 #[cfg(test)]

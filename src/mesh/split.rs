@@ -44,7 +44,8 @@ pub struct EdgeNumbering {
 #[derive(Clone, Copy)]
 struct SharedMut(*mut u32);
 // SAFETY: used only for writes to elements that exactly one thread writes
-// (see number_edges), and read only after the parallel loop has joined.
+// (see number_edges_with and NewVertexTables), and read only after the
+// parallel loop has joined.
 unsafe impl Send for SharedMut {}
 unsafe impl Sync for SharedMut {}
 
@@ -93,12 +94,13 @@ fn count_owners(ct: &CornerTable) -> Vec<u32> {
 /// [`number_edges`] from the per-chunk owner `counts`, calling
 /// `each(id, owner, opposite)` for every edge, in parallel, while the
 /// numbering pass has the three at hand (the split fills the new vertices'
-/// `C` and valence this way, without another pass).
+/// `C` and valence this way, without another pass). `opposite` is the raw
+/// O entry of the owner: a corner, or [`BORDER`].
 fn number_edges_with(ct: &CornerTable, counts: &[u32], each: impl Fn(u32, u32, u32) + Sync) -> EdgeNumbering {
-    let o = ct.o_table();
+    let o_table = ct.o_table();
     let ne: u32 = counts.iter().sum();
     let mut owners: Vec<u32> = crate::mem::zeroed(ne as usize);
-    let mut w: Vec<u32> = crate::mem::zeroed(o.len());
+    let mut w: Vec<u32> = crate::mem::zeroed(o_table.len());
     // carve `owners` into one slice per chunk
     let mut slices = Vec::with_capacity(counts.len());
     let mut rest: &mut [u32] = &mut owners;
@@ -110,8 +112,8 @@ fn number_edges_with(ct: &CornerTable, counts: &[u32], each: impl Fn(u32, u32, u
         rest = b;
     }
     let wp = SharedMut(w.as_mut_ptr());
-    let nc = o.len();
-    o.par_chunks(CHUNK).zip(slices).enumerate().for_each(|(k, (och, (first, own)))| {
+    let nc = o_table.len();
+    o_table.par_chunks(CHUNK).zip(slices).enumerate().for_each(|(k, (och, (first, own)))| {
         let base = (k * CHUNK) as u32;
         let mut e = 0usize;
         for (i, &x) in och.iter().enumerate() {
@@ -121,10 +123,20 @@ fn number_edges_with(ct: &CornerTable, counts: &[u32], each: impl Fn(u32, u32, u
                 own[e] = c;
                 e += 1;
                 each(id, c, x);
-                // SAFETY: c < nc; x < nc for a valid table (checked at build);
-                // every corner is written once: by itself if it owns its edge,
-                // otherwise by its opposite (the owner). O is an involution, so
-                // no two threads write the same element.
+                // SAFETY: `w` has `nc` elements and `c < nc` (it indexes the
+                // O table). `x` is `O[c]`; the O invariant of `CornerTable`
+                // (see its docs: every entry is BORDER or a corner `x < nc`
+                // with `O[x] = c` and `x != c`) is established by each of its
+                // constructors: `from_vo` checks it entry by entry (`build`
+                // goes through `from_vo`), `split_with_boundary` writes the
+                // formulas of schemes.md 7.5 from a table that has it
+                // (`tests/topology.rs` compares them with a rebuild), and the
+                // edits of `edit.rs` re-pair both ends of every entry they
+                // change (`tests/edit.rs` checks a rebuild after each). So
+                // `x < nc` here, and since O pairs corners, every corner is
+                // written exactly once: by itself when it owns its edge,
+                // otherwise by its opposite, the owner. No two threads write
+                // the same element and nothing reads `w` before the join.
                 unsafe {
                     debug_assert!((c as usize) < nc);
                     *wp.get().add(c as usize) = id;
@@ -141,6 +153,11 @@ fn number_edges_with(ct: &CornerTable, counts: &[u32], each: impl Fn(u32, u32, u
 
 /// Splits every triangle into four. Returns the new table and the edge
 /// numbering of the old one (edge `e` became vertex `old.num_vertices() + e`).
+///
+/// # Panics
+/// If the new table's corner or vertex ids would not fit below [`BORDER`]
+/// (more than about 358 million old triangles). [`crate::subdivide`] and the
+/// stencil plan refuse such levels beforehand with [`crate::Error::TooLarge`].
 pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
     split_timed(old).0
 }
@@ -168,23 +185,63 @@ pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f6
 /// vertices' boundary flags.
 pub(crate) type SplitLevel = (CornerTable, EdgeNumbering, Option<Vec<bool>>);
 
+/// `A(c)`: the first corner of the corner triangle of `v(c)` in a split of a
+/// table with `nt` triangles (schemes.md 7.4).
+#[inline(always)]
+fn corner_triangle(nt: usize, c: u32) -> u32 {
+    (3 * nt * (c as usize % 3 + 1) + 3 * (c as usize / 3)) as u32
+}
+
 /// [`split_timed`]; given the old vertices' boundary flags, also returns the
 /// new ones (an old vertex keeps its flag, an edge vertex is on the boundary
 /// iff its edge is a border edge), written by the numbering pass, so that
 /// the next level need not find them by chasing `O[p(C[v])]`.
+///
+/// Two passes: the numbering pass ([`number_edges_and_vertices`]: edge ids,
+/// and the new vertices' `C`, valence and boundary flag) and the writing
+/// pass ([`write_v_and_o`]: the new V and O, one old triangle at a time;
+/// then [`carry_old_vertices`]: the old vertices' `C` and valence).
 pub(crate) fn split_with_boundary(
     old: &CornerTable,
     old_boundary: Option<&[bool]>,
     creasing: Creasing,
 ) -> (SplitLevel, (f64, f64)) {
+    // the new table's ids (corners up to 12 F, vertices up to V + E <= 2 * 3 F
+    // as every vertex has a corner) must stay below BORDER, or its O would
+    // wrap and lose the invariant that the next split's raw writes rely on
+    let nc = old.num_corners() as u64;
+    assert!(
+        4 * nc < u64::from(BORDER),
+        "split: {nc} corners are too many for 32-bit ids after a split (subdivide refuses this level)"
+    );
     let t0 = std::time::Instant::now();
-    let nt = old.num_triangles();
-    let nvu = old.num_vertices();
-    let nv = nvu as u32;
-    let nc = 3 * nt;
-    let (ov, oo) = (old.v_table(), old.o_table());
-    // A(c): first corner of the corner triangle of v(c) (schemes.md 7.4)
-    let a = |c: u32| (3 * nt * (c as usize % 3 + 1) + 3 * (c as usize / 3)) as u32;
+    let NewVertexTables { edges, mut vc, mut valence, boundary } = number_edges_and_vertices(old, old_boundary);
+    let t1 = std::time::Instant::now();
+    let (v2, o2) = write_v_and_o(old, &edges.w);
+    carry_old_vertices(old, &mut vc, &mut valence);
+    let times = (ms(t1 - t0), ms(t1.elapsed()));
+    // sharp features are sparse: carried from the old table's, beside O
+    let sharpness = old.sharpness().and_then(|s| s.split(old, creasing));
+    ((CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness), edges, boundary), times)
+}
+
+/// What the numbering pass of a split produces: the old table's edge
+/// numbering and the new table's per-vertex arrays.
+struct NewVertexTables {
+    edges: EdgeNumbering,
+    vc: Vec<u32>,
+    valence: Vec<u32>,
+    boundary: Option<Vec<bool>>,
+}
+
+/// The numbering pass of a split: numbers the old edges and fills the new
+/// vertices' part of the `C` and valence tables (and all boundary flags when
+/// the old ones are given; an old vertex keeps its flag): edge vertex
+/// `V + e` has valence 6 and `C' = c` (interior edge, owner `c`) or valence
+/// 4 and `C' = p(A(p(c)))`, the first corner of its fan (border). The old
+/// vertices' part is [`carry_old_vertices`].
+fn number_edges_and_vertices(old: &CornerTable, old_boundary: Option<&[bool]>) -> NewVertexTables {
+    let (nt, nvu) = (old.num_triangles(), old.num_vertices());
     let counts = count_owners(old);
     let ne = counts.iter().map(|&k| k as usize).sum::<usize>();
     let mut vc: Vec<u32> = crate::mem::zeroed(nvu + ne);
@@ -203,11 +260,9 @@ pub(crate) fn split_with_boundary(
                 // SAFETY: as for C and valence below.
                 unsafe { *bp.get().add(id as usize) = x == BORDER };
             }
-            // an edge vertex has valence 6 (interior) or 4 (border); its C is
-            // the central corner c (interior) or p(A(p(c))), the first corner
-            // of its fan (border)
-            let (d, k) = if x == BORDER { (p(a(p(c))), 4) } else { (c, 6) };
-            // SAFETY: id < ne, the length of both tails, and every id is
+            let (d, k) = if x == BORDER { (p(corner_triangle(nt, p(c))), 4) } else { (c, 6) };
+            // SAFETY: the three tails have `ne` elements; `id < ne` (ids are
+            // the prefix sums of `counts`, `ne` their total) and every id is
             // written once (each edge has one owner).
             unsafe {
                 *vcp.get().add(id as usize) = d;
@@ -215,9 +270,27 @@ pub(crate) fn split_with_boundary(
             }
         })
     };
-    let t1 = std::time::Instant::now();
-    let ew = &edges.w;
+    NewVertexTables { edges, vc, valence, boundary }
+}
 
+/// The old vertices' part of the new `C` and valence tables: an old vertex
+/// keeps its valence and its `C` moves to its corner triangle, `C'[v] = A(C[v])`.
+fn carry_old_vertices(old: &CornerTable, vc: &mut [u32], valence: &mut [u32]) {
+    let (nt, nvu) = (old.num_triangles(), old.num_vertices());
+    vc[..nvu].par_iter_mut().zip(old.c_table().par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| {
+        *d = corner_triangle(nt, c);
+    });
+    valence[..nvu].copy_from_slice(old.valences());
+}
+
+/// The writing pass of a split: the new V and O tables, written in eight
+/// streams (V and O of the central triangles and of the three corner
+/// triangles), one old triangle at a time, from the old V and O and the
+/// edge ids `ew` of the numbering pass.
+fn write_v_and_o(old: &CornerTable, ew: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let nt = old.num_triangles();
+    let nc = 3 * nt;
+    let nv = old.num_vertices() as u32;
     // p(A(n(x))) and n(A(p(x))) for a corner x = 3u + j of the old table are
     // x + DN[j] and x + DP[j] (wrapping): A(n(x)) = 3nt((j+1)%3 + 1) + 3u.
     let nt3 = 3 * nt as u32;
@@ -228,67 +301,58 @@ pub(crate) fn split_with_boundary(
 
     let mut v2: Vec<u32> = crate::mem::zeroed(4 * nc);
     let mut o2: Vec<u32> = crate::mem::zeroed(4 * nc);
-    {
-        fn tri(s: &mut [u32]) -> &mut [[u32; 3]] {
-            bytemuck::cast_slice_mut(s)
-        }
-        let (b0, rest) = v2.split_at_mut(nc);
-        let (b1, rest) = rest.split_at_mut(nc);
-        let (b2, b3) = rest.split_at_mut(nc);
-        let (q0, rest) = o2.split_at_mut(nc);
-        let (q1, rest) = rest.split_at_mut(nc);
-        let (q2, q3) = rest.split_at_mut(nc);
-        let (b0, b1, b2, b3) = (tri(b0), tri(b1), tri(b2), tri(b3));
-        let (q0, q1, q2, q3) = (tri(q0), tri(q1), tri(q2), tri(q3));
-        let ew3: &[[u32; 3]] = bytemuck::cast_slice(ew);
-        let ov3: &[[u32; 3]] = bytemuck::cast_slice(ov);
-        let oo3: &[[u32; 3]] = bytemuck::cast_slice(oo);
-        let g = CHUNK / 3;
-        b0.par_chunks_mut(g)
-            .zip(b1.par_chunks_mut(g))
-            .zip(b2.par_chunks_mut(g))
-            .zip(b3.par_chunks_mut(g))
-            .zip(q0.par_chunks_mut(g))
-            .zip(q1.par_chunks_mut(g))
-            .zip(q2.par_chunks_mut(g))
-            .zip(q3.par_chunks_mut(g))
-            .enumerate()
-            .for_each(|(k, (((((((b0, b1), b2), b3), q0), q1), q2), q3))| {
-                let t0 = k * g;
-                let len = b0.len();
-                let (ew3, ov3, oo3) = (&ew3[t0..t0 + len], &ov3[t0..t0 + len], &oo3[t0..t0 + len]);
-                let (b1, b2, b3) = (&mut b1[..len], &mut b2[..len], &mut b3[..len]);
-                let (q0, q1, q2, q3) = (&mut q0[..len], &mut q1[..len], &mut q2[..len], &mut q3[..len]);
-                for t in 0..len {
-                    let c0 = 3 * (t0 + t) as u32;
-                    let e = ew3[t];
-                    let ws = [nv + e[0], nv + e[1], nv + e[2]];
-                    let vv = ov3[t];
-                    let x = oo3[t];
-                    // central triangle: the three edge vertices
-                    b0[t] = ws;
-                    // corner triangle k: (V[c], W[p(c)], W[n(c)]) for c = c0 + k
-                    b1[t] = [vv[0], ws[2], ws[1]];
-                    b2[t] = [vv[1], ws[0], ws[2]];
-                    b3[t] = [vv[2], ws[1], ws[0]];
-                    // O'[c] = A(c) for the central corners
-                    q0[t] = [nt3 + c0, 2 * nt3 + c0, 3 * nt3 + c0];
-                    // corner triangle k: (c, p(A(n(O[n(c)]))), n(A(p(O[p(c)]))))
-                    let (an, ap) = (x.map(across_n), x.map(across_p));
-                    q1[t] = [c0, an[1], ap[2]];
-                    q2[t] = [c0 + 1, an[2], ap[0]];
-                    q3[t] = [c0 + 2, an[0], ap[1]];
-                }
-            });
+    fn tri(s: &mut [u32]) -> &mut [[u32; 3]] {
+        bytemuck::cast_slice_mut(s)
     }
-    let (vc_old, _) = vc.split_at_mut(nvu);
-    let (val_old, _) = valence.split_at_mut(nvu);
-    // an old vertex keeps its valence; its C moves to its corner triangle
-    vc_old.par_iter_mut().zip(old.c_table().par_iter()).with_min_len(CHUNK).for_each(|(d, &c)| *d = a(c));
-    val_old.copy_from_slice(old.valences());
-    let times = (ms(t1 - t0), ms(t1.elapsed()));
-    let sharpness = old.sharpness().and_then(|s| s.split(old, creasing));
-    ((CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness), edges, boundary), times)
+    let (b0, rest) = v2.split_at_mut(nc);
+    let (b1, rest) = rest.split_at_mut(nc);
+    let (b2, b3) = rest.split_at_mut(nc);
+    let (q0, rest) = o2.split_at_mut(nc);
+    let (q1, rest) = rest.split_at_mut(nc);
+    let (q2, q3) = rest.split_at_mut(nc);
+    let (b0, b1, b2, b3) = (tri(b0), tri(b1), tri(b2), tri(b3));
+    let (q0, q1, q2, q3) = (tri(q0), tri(q1), tri(q2), tri(q3));
+    let ew3: &[[u32; 3]] = bytemuck::cast_slice(ew);
+    let old_v3: &[[u32; 3]] = bytemuck::cast_slice(old.v_table());
+    let old_o3: &[[u32; 3]] = bytemuck::cast_slice(old.o_table());
+    let g = CHUNK / 3;
+    b0.par_chunks_mut(g)
+        .zip(b1.par_chunks_mut(g))
+        .zip(b2.par_chunks_mut(g))
+        .zip(b3.par_chunks_mut(g))
+        .zip(q0.par_chunks_mut(g))
+        .zip(q1.par_chunks_mut(g))
+        .zip(q2.par_chunks_mut(g))
+        .zip(q3.par_chunks_mut(g))
+        .enumerate()
+        .for_each(|(k, (((((((b0, b1), b2), b3), q0), q1), q2), q3))| {
+            let t0 = k * g;
+            let len = b0.len();
+            let (ew3, old_v3, old_o3) = (&ew3[t0..t0 + len], &old_v3[t0..t0 + len], &old_o3[t0..t0 + len]);
+            let (b1, b2, b3) = (&mut b1[..len], &mut b2[..len], &mut b3[..len]);
+            let (q0, q1, q2, q3) = (&mut q0[..len], &mut q1[..len], &mut q2[..len], &mut q3[..len]);
+            for t in 0..len {
+                let c0 = 3 * (t0 + t) as u32;
+                let e = ew3[t];
+                let ws = [nv + e[0], nv + e[1], nv + e[2]];
+                let vv = old_v3[t];
+                let x = old_o3[t];
+                // central triangle: the three edge vertices
+                b0[t] = ws;
+                // corner triangle k: (V[c], W[p(c)], W[n(c)]) for c = c0 + k
+                b1[t] = [vv[0], ws[2], ws[1]];
+                b2[t] = [vv[1], ws[0], ws[2]];
+                b3[t] = [vv[2], ws[1], ws[0]];
+                // O'[c] = A(c) for the central corners
+                q0[t] = [nt3 + c0, 2 * nt3 + c0, 3 * nt3 + c0];
+                // corner triangle k: (c, p(A(n(O[n(c)]))), n(A(p(O[p(c)]))))
+                let (an, ap) = (x.map(across_n), x.map(across_p));
+                q1[t] = [c0, an[1], ap[2]];
+                q2[t] = [c0 + 1, an[2], ap[0]];
+                q3[t] = [c0 + 2, an[0], ap[1]];
+            }
+        });
+    (v2, o2)
 }
 
 /// One split with every new vertex at the midpoint of its edge: linear

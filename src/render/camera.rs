@@ -102,6 +102,16 @@ impl Camera {
         self.view_proj(aspect).project_point3(p)
     }
 
+    /// The ray through a point of a viewport of the given aspect, given in
+    /// its normalised device coordinates (`cursor`, y up): the point on the
+    /// near plane and the unit direction away from the eye.
+    pub fn ray(&self, cursor: Vec2, aspect: f32) -> (Vec3, Vec3) {
+        let inv = self.view_proj(aspect).inverse();
+        let near = inv.project_point3(cursor.extend(0.0));
+        let far = inv.project_point3(cursor.extend(1.0));
+        (near, (far - near).normalize_or_zero())
+    }
+
     /// Centres the bounds `(lo, hi)` and moves back until their bounding sphere
     /// fits the view, keeping the direction.
     pub fn fit(&mut self, lo: Vec3, hi: Vec3, aspect: f32) {

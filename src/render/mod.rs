@@ -8,7 +8,10 @@ pub mod blit;
 pub mod camera;
 pub mod export;
 pub mod gpu;
+pub mod gpu_mesh;
 pub mod offscreen;
+pub mod pipelines;
+pub mod readback;
 pub mod scene;
 
 pub use camera::Camera;

@@ -3,9 +3,12 @@
 use super::Look;
 use super::camera::Camera;
 use super::gpu::Gpu;
+use super::readback::{Readback, capture_texture};
 use super::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
 use crate::{Error, Mesh, Result};
 use image::RgbaImage;
+
+pub use super::readback::{padded_bytes_per_row, read_rows};
 
 /// Format of offscreen images: sRGB, so the shader writes linear colour.
 pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
@@ -19,8 +22,7 @@ pub struct Offscreen {
     targets: Targets,
     texture: wgpu::Texture,
     view: wgpu::TextureView,
-    readback: wgpu::Buffer,
-    padded_row: u32,
+    readback: Readback,
 }
 
 impl Offscreen {
@@ -38,25 +40,9 @@ impl Offscreen {
         let samples = gpu.msaa_samples(OFFSCREEN_FORMAT);
         let renderer = Renderer::new(&gpu.device, OFFSCREEN_FORMAT, samples);
         let targets = Targets::new(&gpu.device, &renderer, width, height);
-        let texture = gpu.device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("offscreen"),
-            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: OFFSCREEN_FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&Default::default());
-        let padded_row = padded_bytes_per_row(width);
-        let readback = gpu.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("readback"),
-            size: u64::from(padded_row) * u64::from(height),
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        Ok(Offscreen { gpu, renderer, targets, texture, view, readback, padded_row })
+        let (texture, view) = capture_texture(&gpu.device, "offscreen", OFFSCREEN_FORMAT, width, height);
+        let readback = Readback::new(&gpu.device, width, height);
+        Ok(Offscreen { gpu, renderer, targets, texture, view, readback })
     }
 
     /// Image size.
@@ -93,52 +79,11 @@ impl Offscreen {
     /// # Errors
     /// [`Error::Gpu`] when the readback fails.
     pub fn render(&mut self, draws: &[ViewportDraw]) -> Result<RgbaImage> {
-        let (w, h) = self.size();
         let device = &self.gpu.device;
         let mut encoder = device.create_command_encoder(&Default::default());
         self.renderer.encode(device, &self.gpu.queue, &mut encoder, &self.targets, &self.view, draws);
-        encoder.copy_texture_to_buffer(
-            self.texture.as_image_copy(),
-            wgpu::TexelCopyBufferInfo {
-                buffer: &self.readback,
-                layout: wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(self.padded_row),
-                    rows_per_image: Some(h),
-                },
-            },
-            self.texture.size(),
-        );
+        self.readback.copy_from(&mut encoder, &self.texture);
         self.gpu.queue.submit([encoder.finish()]);
-        read_rows(device, &self.readback, self.padded_row, w, h)
+        self.readback.read(device)
     }
-}
-
-/// Row pitch of a texture-to-buffer copy: 4 bytes per pixel rounded up to
-/// wgpu's 256-byte alignment.
-pub fn padded_bytes_per_row(width: u32) -> u32 {
-    (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
-}
-
-/// Maps `buffer` and copies its `h` rows of `w` RGBA pixels into an image.
-///
-/// # Errors
-/// [`Error::Gpu`] when mapping fails.
-pub fn read_rows(device: &wgpu::Device, buffer: &wgpu::Buffer, padded: u32, w: u32, h: u32) -> Result<RgbaImage> {
-    let slice = buffer.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| Error::Gpu(format!("waiting for the GPU: {e}")))?;
-    rx.recv().map_err(|e| Error::Gpu(format!("readback: {e}")))?.map_err(|e| Error::Gpu(format!("readback: {e}")))?;
-    let mut pixels = Vec::with_capacity((w * h * 4) as usize);
-    {
-        let data = slice.get_mapped_range().map_err(|e| Error::Gpu(format!("readback: {e}")))?;
-        for row in data.chunks_exact(padded as usize).take(h as usize) {
-            pixels.extend_from_slice(&row[..(w * 4) as usize]);
-        }
-    }
-    buffer.unmap();
-    RgbaImage::from_raw(w, h, pixels).ok_or_else(|| Error::Gpu("readback size mismatch".into()))
 }

@@ -59,9 +59,9 @@ pub(crate) fn eight_point<S: Sink>(ct: &CornerTable, c: u32, o: u32, s: &mut S) 
 /// result is bit-identical).
 #[inline(always)]
 pub(crate) fn eight_point_interior(ct: &CornerTable, pos: &[Vec3], c: u32, o: u32) -> Option<Vec3> {
-    let (v, oo) = (ct.v_table(), ct.o_table());
+    let (v, o_table) = (ct.v_table(), ct.o_table());
     let (nc, pc, no, po) = (n(c), p(c), n(o), p(o));
-    let x = [oo[nc as usize], oo[pc as usize], oo[no as usize], oo[po as usize]];
+    let x = [o_table[nc as usize], o_table[pc as usize], o_table[no as usize], o_table[po as usize]];
     if x.contains(&BORDER) {
         return None;
     }
@@ -76,15 +76,15 @@ pub(crate) fn eight_point_interior(ct: &CornerTable, pos: &[Vec3], c: u32, o: u3
 
 impl Rules for Butterfly {
     /// Direct evaluation: interior edges with four interior outer edges (all
-    /// but a thin band along the boundary) through [`eight_point_interior`],
+    /// but a thin band along the boundary) through `eight_point_interior`,
     /// the rest through the emitted stencils.
     fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
         let t0 = Instant::now();
         vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
         let t1 = Instant::now();
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
-            let o = lv.o_table()[c as usize];
-            *q = match (o != BORDER).then(|| eight_point_interior(lv, pos, c, o)).flatten() {
+            let o_raw = lv.o_table()[c as usize];
+            *q = match (o_raw != BORDER).then(|| eight_point_interior(lv, pos, c, o_raw)).flatten() {
                 Some(e) => e,
                 None => {
                     let mut acc = Accumulate::new(pos);

@@ -324,6 +324,21 @@ mod tests {
         }
     }
 
+    #[test]
+    fn warren_limit_is_the_fixed_point_of_warren_subdivision() {
+        // Six levels of Warren-weighted Loop subdivision bring the icosahedron's
+        // (valence-5) vertices within 4^-6 of their limit (radial eigenvalue
+        // 5/8 - n beta = 1/4); Loop's beta has another limit, 0.016 away.
+        let ico = crate::mesh::shapes::icosahedron();
+        let warren = crate::Options { loop_beta: LoopBeta::Warren, ..Default::default() };
+        let fine = crate::subdivide(&ico, crate::Scheme::Loop, 6, &warren).expect("small mesh").0;
+        let (with_warren, with_loop) = (loop_limit_positions_with(&ico, LoopBeta::Warren), loop_limit_positions(&ico));
+        for v in 0..ico.positions.len() {
+            assert!(fine.positions[v].distance(with_warren[v]) < 1e-4, "vertex {v}");
+            assert!(fine.positions[v].distance(with_loop[v]) > 1e-2, "vertex {v}: the betas differ");
+        }
+    }
+
     /// The boundary 1-ring subdivision matrix of our Loop rules, rows and
     /// columns ordered `v, e_0, ..., e_m`.
     fn boundary_matrix(m: usize) -> Vec<Vec<f64>> {

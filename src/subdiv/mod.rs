@@ -1,4 +1,4 @@
-//! Subdivision: the shared 1-to-4 [`split`](crate::mesh::split) plus one file of rules per scheme.
+//! Subdivision: the shared 1-to-4 [`split`] plus one file of rules per scheme.
 //!
 //! A level = `split` (new V, O, C, valences; edge numbering) + edge points for
 //! every edge + vertex points (Loop, Jarek) or a copy (interpolating schemes).

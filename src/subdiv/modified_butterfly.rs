@@ -15,6 +15,7 @@
 //! `e_0 .. e_{k-1}` around it with `e_0` the other endpoint:
 //! ```text
 //!   e = 3/4 v + sum_j s_j e_j
+//!   k = 2: s = (3/8, -1/8)       (derived here, see `ev_weights`)
 //!   k = 3: s = (5/12, -1/12, -1/12)
 //!   k = 4: s = (3/8, 0, -1/8, 0)
 //!   k >= 5: s_j = (1/4 + cos(2 pi j/k) + 1/2 cos(4 pi j/k)) / k
@@ -52,10 +53,23 @@ pub struct ModifiedButterfly {
 }
 
 /// Zorin's extraordinary weights `s_j` for valence `k` (hard-coded tables for
-/// k = 3 and 4; the cosine formula for k >= 5).
+/// k = 3 and 4; the cosine formula for k >= 5), and our rule for k = 2.
+///
+/// Valence 2 (derived here; no published table): an interior vertex of
+/// valence 2 only occurs in a "pillow", two triangles glued back to back.
+/// The cosine formula gives `s = (7/8, -1/8)` there, summing to 3/4 instead
+/// of 1/4 (at k <= 2 the `cos(4 pi j/k)` term no longer sums to zero), so
+/// the edge point would not be affine invariant (weights summing to 3/2).
+/// We use the unique circulant with the eigenvalues Zorin's rule is built
+/// on (schemes.md 3.4): mode 0 = `s_0 + s_1` = 1/4 and mode 1 = `s_0 - s_1`
+/// = 1/2, i.e. `s = (3/8, -1/8)`, the same values as the k = 4 table's
+/// `s_0` and `s_2`; with the 3/4 on the vertex the stencil sums to one.
+/// Valences 0 and 1 cannot occur at an interior vertex of a valid table
+/// (`CornerTable` refuses degenerate faces); they get empty weights.
 pub fn ev_weights(k: u32) -> Vec<f64> {
     match k {
-        0..=2 => vec![0.25; k as usize], // cannot occur at an interior vertex
+        0 | 1 => Vec::new(),
+        2 => vec![3.0 / 8.0, -1.0 / 8.0],
         3 => vec![5.0 / 12.0, -1.0 / 12.0, -1.0 / 12.0],
         4 => vec![3.0 / 8.0, 0.0, -1.0 / 8.0, 0.0],
         _ => (0..k)
@@ -258,25 +272,25 @@ impl Rules for ModifiedButterfly {
         let fast_regular = self.w == 0.0;
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
             let mut acc = Accumulate::new(pos);
-            let o = lv.o_table()[c as usize];
-            if o == BORDER {
+            let o_raw = lv.o_table()[c as usize];
+            if o_raw == BORDER {
                 self.edge_cold(lv, c, &mut acc);
             } else {
                 let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
                 let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
                 if k1 == REGULAR && k2 == REGULAR && fast_regular {
                     // both ends interior: every outer edge is interior too
-                    match eight_point_interior(lv, pos, c, o) {
+                    match eight_point_interior(lv, pos, c, o_raw) {
                         Some(e) => acc.sum = e,
-                        None => eight_point(lv, c, o, &mut acc),
+                        None => eight_point(lv, c, o_raw, &mut acc),
                     }
                 } else if k1 == RING && k2 == RING {
                     self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
-                    self.ev_ring(&rings, a2, n(o), 0.5, &mut acc);
+                    self.ev_ring(&rings, a2, n(o_raw), 0.5, &mut acc);
                 } else if k1 == RING && k2 < SLOW {
                     self.ev_ring(&rings, a1, n(c), 1.0, &mut acc);
                 } else if k2 == RING && k1 < SLOW {
-                    self.ev_ring(&rings, a2, n(o), 1.0, &mut acc);
+                    self.ev_ring(&rings, a2, n(o_raw), 1.0, &mut acc);
                 } else {
                     self.edge_cold(lv, c, &mut acc);
                 }
@@ -349,9 +363,20 @@ mod tests {
     use super::*;
     #[test]
     fn ev_weights_sum_to_quarter_and_match_tables() {
-        for k in 3..40 {
+        for k in 2..40 {
             let s: f64 = ev_weights(k).iter().sum();
             assert!((s - 0.25).abs() < 1e-12, "k={k} sum={s}");
+        }
+        // the eigen-structure of schemes.md 3.4: mode 1 of the circulant
+        // (sum_j s_j cos(2 pi j / k)) is 1/2 for every valence, the k = 2
+        // rule included
+        for k in 2..40 {
+            let m1: f64 = ev_weights(k)
+                .iter()
+                .enumerate()
+                .map(|(j, s)| s * (std::f64::consts::TAU * j as f64 / f64::from(k)).cos())
+                .sum();
+            assert!((m1 - 0.5).abs() < 1e-12, "k={k} mode 1 = {m1}");
         }
         let w5 = ev_weights(5);
         assert!((w5[0] - 0.35).abs() < 1e-12 && (w5[1] - 0.030902).abs() < 1e-6);

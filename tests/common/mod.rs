@@ -132,6 +132,38 @@ pub fn disk_fan(k: usize, rings: usize) -> Mesh {
     Mesh::from_triangles(pos, &tris).expect("disk fan is valid")
 }
 
+/// Two triangles glued back to back (`f 1 2 3`, `f 1 3 2`): a closed
+/// "pillow" whose three vertices are interior with valence 2, the only way
+/// an interior vertex of valence 2 can occur in a manifold mesh.
+pub fn pillow() -> Mesh {
+    Mesh::from_triangles(vec![Vec3::ZERO, Vec3::X, Vec3::Y], &[0, 1, 2, 0, 2, 1]).expect("pillow is valid")
+}
+
+/// Regular octahedron: every vertex interior with valence 4.
+pub fn octahedron() -> Mesh {
+    let pos = vec![Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z];
+    let tris = [0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5];
+    Mesh::from_triangles(pos, &tris).expect("octahedron is valid")
+}
+
+/// Closed meshes with interior vertices of valence 2, 3 and 4, alone and (after
+/// one midpoint split) beside regular valence-6 vertices; positions moved off
+/// their symmetric places so that no stencil term cancels by accident.
+pub fn low_valence_meshes() -> Vec<(String, Mesh)> {
+    let mut rng = Rng(0x2545f4914f6cdd1d);
+    let mut out = Vec::new();
+    for (name, m) in [("pillow", pillow()), ("tetrahedron", bundled("tetrahedron.obj")), ("octahedron", octahedron())] {
+        let mut m = m;
+        for p in &mut m.positions {
+            *p += rng.vec3() * 0.2;
+        }
+        let split = subdiv::mesh::split::split_linear(&m);
+        out.push((format!("{name} (valence {})", m.ct.valence(0)), m));
+        out.push((format!("{name} split once"), split));
+    }
+    out
+}
+
 /// Every test mesh: bundled models plus open ones.
 pub fn all_meshes() -> Vec<(String, Mesh)> {
     let mut v: Vec<(String, Mesh)> = BUNDLED.iter().map(|n| (n.to_string(), bundled(n))).collect();

@@ -1,0 +1,248 @@
+//! Commands: everything that changes the viewer, as values. The panel
+//! returns them, the workers' results arrive as them, and
+//! [`Viewer::apply`] is the one place that carries them out (the pattern of
+//! egui's demo app, `wrap_app.rs`: UI code never mutates the world).
+
+use super::Viewer;
+use super::display::Display;
+use super::doc::{MAX_LEVEL, Problem, Request};
+use super::jobs::Finished;
+use super::model::Curve;
+use crate::Error;
+use crate::anim::tweak::Tweak;
+use crate::render::export::{ExportStyle, ExportTarget};
+use glam::{Vec2, Vec3};
+use std::path::PathBuf;
+
+/// One change to the viewer.
+#[must_use = "a command does nothing until `Viewer::apply` carries it out"]
+pub enum Command {
+    /// Back to the built-in tetrahedron.
+    OpenBuiltin,
+    /// Open a model or curve file (repaired when repair-on-open is set).
+    Open(PathBuf),
+    /// Open a file with repair (after it failed without).
+    RepairAndOpen(PathBuf),
+    /// Repair every file opened from now on.
+    SetRepairOnOpen(bool),
+    /// New segment count or construction parameter of the shown curve.
+    EditCurve(Curve),
+    /// Back from the curve to the mesh.
+    CloseCurve,
+    /// Subdivide as asked (scheme, level, options).
+    Subdivide(Request),
+    /// Set the modified butterfly's tension without subdividing yet (while its slider is dragged).
+    SetTension(f32),
+    /// One level more (refused with the reason past the memory limit).
+    LevelUp,
+    /// One level less.
+    LevelDown,
+    /// New display options.
+    SetDisplay(Display),
+    /// Taubin-smooth the control mesh this many steps.
+    Smooth(u32),
+    /// Back to the control mesh as loaded.
+    Revert,
+    /// Pick the control-mesh edge under a ray (clears the pick when it misses).
+    Pick {
+        /// Ray origin (world).
+        origin: Vec3,
+        /// Unit ray direction.
+        dir: Vec3,
+    },
+    /// Flip the picked edge.
+    FlipPicked,
+    /// Split the picked edge at its midpoint.
+    SplitPicked,
+    /// Play or pause (starting the animation mode when it is off).
+    TogglePlay,
+    /// Pause and step this many frames.
+    Step(i64),
+    /// Leave the animation mode.
+    StopAnimation,
+    /// New path refinement (rebuilds a running animation).
+    SetPathRefinement {
+        /// Refinement count n.
+        refine: u32,
+        /// Tweak.
+        tweak: Tweak,
+    },
+    /// Loop the playback or not.
+    SetLooping(bool),
+    /// Playback rate.
+    SetFps(f32),
+    /// Jump to a frame.
+    SetFrame(usize),
+    /// Export the animation.
+    Export(ExportTarget, ExportStyle),
+    /// Cancel a running export.
+    CancelExport,
+    /// Hide the error.
+    DismissError,
+    /// Hide the notice.
+    DismissNotice,
+    /// Orbit the camera by a mouse motion in pixels.
+    Orbit(Vec2),
+    /// Pan the camera by a mouse motion in pixels, in a viewport `height` pixels tall.
+    Pan {
+        /// Motion in pixels.
+        delta: Vec2,
+        /// Viewport height in pixels.
+        height: f32,
+    },
+    /// Zoom about the cursor.
+    Zoom {
+        /// Distance factor (< 1 zooms in).
+        factor: f32,
+        /// Cursor in the viewport's NDC.
+        cursor: Vec2,
+        /// The viewport's aspect.
+        aspect: f32,
+    },
+    /// Orthographic or perspective projection.
+    SetOrthographic(bool),
+    /// Frame what is shown.
+    Fit,
+    /// Reset the camera direction and frame what is shown.
+    ResetCamera,
+    /// Save a screenshot of the next frame.
+    Screenshot,
+    /// A worker finished.
+    Finished(Box<Finished>),
+}
+
+impl Viewer {
+    /// Carries out one command. A new control mesh that is not an edit (a
+    /// new model, or reverting the edits) is framed.
+    pub fn apply(&mut self, command: Command) {
+        let control = self.doc.model.control.version();
+        let (doc, view) = (&mut self.doc, &mut self.view);
+        match command {
+            Command::OpenBuiltin => doc.open_builtin(),
+            Command::Open(path) => doc.open(path),
+            Command::RepairAndOpen(path) => doc.repair_and_open(path),
+            Command::SetRepairOnOpen(on) => doc.repair_on_open = on,
+            Command::EditCurve(curve) => doc.model.curve.set(Some(curve)),
+            Command::CloseCurve => {
+                doc.model.curve.set(None);
+                view.reset = true;
+            }
+            Command::Subdivide(request) => {
+                doc.request = request;
+                doc.request_subdivision();
+            }
+            Command::SetTension(w) => doc.request.opts.tension = w,
+            Command::LevelUp => self.level_up(),
+            Command::LevelDown => self.level_down(),
+            Command::SetDisplay(display) => {
+                let reshade = doc.display.reshades_result(&display);
+                doc.display = display;
+                if reshade {
+                    doc.reshade();
+                }
+            }
+            Command::Smooth(steps) => doc.smooth(steps),
+            Command::Revert => doc.revert(),
+            Command::Pick { origin, dir } => {
+                let picked = crate::mesh::pick::pick_edge(&doc.model.control.mesh, origin, dir);
+                doc.model.picked.set(picked);
+            }
+            Command::FlipPicked => doc.flip_picked(),
+            Command::SplitPicked => doc.split_picked(),
+            Command::TogglePlay => self.toggle_play(),
+            Command::Step(frames) => self.step(frames),
+            Command::StopAnimation => {
+                doc.stop_animation();
+                // the control mesh is shown unanimated again, framed like a new one
+                view.fit |= doc.model.original.is_none();
+            }
+            Command::SetPathRefinement { refine, tweak } => {
+                (doc.anim.refine, doc.anim.tweak) = (refine, tweak);
+                if doc.anim.active {
+                    doc.request_animation();
+                }
+            }
+            Command::SetLooping(on) => self.with_clock(|c| c.looping = on),
+            Command::SetFps(fps) => self.with_clock(|c| c.fps = fps),
+            Command::SetFrame(f) => self.with_clock(|c| c.set_frame(f)),
+            Command::Export(target, style) => doc.export(target, style),
+            Command::CancelExport => doc.jobs.cancel_export(),
+            Command::DismissError => doc.status.error = None,
+            Command::DismissNotice => doc.status.notice = None,
+            Command::Finished(finished) => self.finished(*finished),
+            camera => self.apply_camera(camera),
+        }
+        if self.doc.model.control.version() != control && self.doc.model.original.is_none() {
+            self.view.fit = true;
+        }
+    }
+
+    fn apply_camera(&mut self, command: Command) {
+        let view = &mut self.view;
+        match command {
+            Command::Orbit(delta) => view.camera.orbit(delta),
+            Command::Pan { delta, height } => view.camera.pan(delta, height),
+            Command::Zoom { factor, cursor, aspect } => view.camera.zoom_to(factor, cursor, aspect),
+            Command::SetOrthographic(on) => view.camera.orthographic = on,
+            Command::Fit => view.fit = true,
+            Command::ResetCamera => view.reset = true,
+            Command::Screenshot => view.screenshot = true,
+            _ => unreachable!("Viewer::apply handles every other command"),
+        }
+    }
+
+    fn finished(&mut self, finished: Finished) {
+        let had_curve = self.doc.model.curve.is_some();
+        self.doc.adopt_finished(finished);
+        if !had_curve && self.doc.model.curve.is_some() {
+            self.view.fit_curve = true;
+        }
+    }
+
+    fn level_up(&mut self) {
+        let doc = &mut self.doc;
+        if doc.request.level < doc.max_level() {
+            doc.request.level += 1;
+            doc.request_subdivision();
+        } else {
+            let why = doc
+                .level_refusal(doc.request.level + 1)
+                .unwrap_or_else(|| Error::Usage(format!("level {MAX_LEVEL} is the highest offered")));
+            doc.fail(Problem::Other(why));
+        }
+    }
+
+    fn level_down(&mut self) {
+        if self.doc.request.level > 0 {
+            self.doc.request.level -= 1;
+            self.doc.request_subdivision();
+        }
+    }
+
+    fn toggle_play(&mut self) {
+        let anim = &mut self.doc.anim;
+        match &mut anim.playback {
+            Some(p) => p.clock.playing = !p.clock.playing,
+            None if !anim.active => self.doc.request_animation(),
+            None => {}
+        }
+    }
+
+    fn step(&mut self, frames: i64) {
+        let anim = &mut self.doc.anim;
+        match &mut anim.playback {
+            Some(p) => {
+                p.clock.playing = false;
+                p.clock.step(frames);
+            }
+            None if !anim.active => self.doc.request_animation(),
+            None => {}
+        }
+    }
+
+    fn with_clock(&mut self, f: impl FnOnce(&mut crate::anim::player::Clock)) {
+        if let Some(p) = &mut self.doc.anim.playback {
+            f(&mut p.clock);
+        }
+    }
+}

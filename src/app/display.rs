@@ -1,0 +1,170 @@
+//! Display options: how the document is drawn, never what it contains.
+//!
+//! Most options only change the look of the 3D viewports ([`Display::look`]);
+//! three of them change the shown result itself (its positions, normals or
+//! colours, [`Display::reshades_result`]), and applying those recomputes it
+//! from the subdivision output.
+
+use crate::render::{Look, Surface};
+
+/// Which normals shade the result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum NormalMode {
+    /// Area-weighted average of the face normals around each vertex.
+    #[default]
+    FanAverage,
+    /// Exact normals of the Loop limit surface (tangent masks).
+    LoopLimit,
+    /// Butterfly tangent masks.
+    Butterfly,
+}
+
+impl NormalMode {
+    /// All modes, in menu order.
+    pub const ALL: [NormalMode; 3] = [NormalMode::FanAverage, NormalMode::LoopLimit, NormalMode::Butterfly];
+    /// Menu label.
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalMode::FanAverage => "fan-averaged",
+            NormalMode::LoopLimit => "Loop limit",
+            NormalMode::Butterfly => "butterfly masks",
+        }
+    }
+}
+
+/// Per-vertex colouring of the result.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Coloring {
+    /// The material colour.
+    #[default]
+    None,
+    /// The level that created each vertex ("shells").
+    Shells,
+    /// Distance from the control mesh's surface.
+    Displacement,
+    /// The colours of the file (`v x y z r g b`), refined with the scheme's weights.
+    File,
+    /// A checker texture through the file's texture coordinates (`vt`).
+    Checker,
+}
+
+impl Coloring {
+    /// All modes, in menu order.
+    pub const ALL: [Coloring; 5] =
+        [Coloring::None, Coloring::Shells, Coloring::Displacement, Coloring::File, Coloring::Checker];
+    /// Menu label.
+    pub fn name(self) -> &'static str {
+        match self {
+            Coloring::None => "none",
+            Coloring::Shells => "level shells",
+            Coloring::Displacement => "displacement from control",
+            Coloring::File => "colours of the file",
+            Coloring::Checker => "texture (checker through vt)",
+        }
+    }
+}
+
+impl std::str::FromStr for Coloring {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "" | "none" => Ok(Coloring::None),
+            "shells" | "levels" => Ok(Coloring::Shells),
+            "displacement" => Ok(Coloring::Displacement),
+            "file" | "colors" | "colours" => Ok(Coloring::File),
+            "checker" | "uv" | "texture" => Ok(Coloring::Checker),
+            _ => Err(format!("unknown colouring '{s}' (none, shells, displacement, file, checker)")),
+        }
+    }
+}
+
+/// Everything the panel's display and surface controls (and their keys) set.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Display {
+    /// Face fill.
+    pub surface: Surface,
+    /// Wireframe on.
+    pub wireframe: bool,
+    /// Control mesh overlay.
+    pub control: bool,
+    /// Vertex normals as segments.
+    pub normals: bool,
+    /// Control mesh and result in two viewports.
+    pub side_by_side: bool,
+    /// The camera turns around the model.
+    pub turntable: bool,
+    /// Multisampling on.
+    pub msaa: bool,
+    /// Clicks in the 3D area pick control-mesh edges.
+    pub pick: bool,
+    /// Shading normals of the result.
+    pub normal_mode: NormalMode,
+    /// Show the Loop limit positions instead of the level's points.
+    pub snap_limit: bool,
+    /// Per-vertex colouring of the result.
+    pub coloring: Coloring,
+}
+
+impl Display {
+    /// Defaults, with the wireframe on or off.
+    pub fn new(wireframe: bool) -> Display {
+        Display {
+            surface: Surface::Smooth,
+            wireframe,
+            control: false,
+            normals: false,
+            side_by_side: false,
+            turntable: false,
+            msaa: false,
+            pick: false,
+            normal_mode: NormalMode::default(),
+            snap_limit: false,
+            coloring: Coloring::default(),
+        }
+    }
+
+    /// The look of the result viewport, without colours (what an export draws).
+    pub fn plain_look(&self) -> Look {
+        Look {
+            surface: self.surface,
+            wireframe: self.wireframe,
+            control: self.control,
+            normals: self.normals,
+            colors: false,
+            uv_checker: false,
+        }
+    }
+
+    /// The look of the result viewport in the window, with the colouring.
+    pub fn look(&self) -> Look {
+        Look {
+            colors: self.coloring != Coloring::None,
+            uv_checker: self.coloring == Coloring::Checker,
+            ..self.plain_look()
+        }
+    }
+
+    /// Whether going from `self` to `next` changes the shown result (its
+    /// points, normals or colours), not only how it is drawn.
+    pub fn reshades_result(&self, next: &Display) -> bool {
+        (self.normal_mode, self.snap_limit, self.coloring) != (next.normal_mode, next.snap_limit, next.coloring)
+    }
+
+    /// The next face fill of the S key; hiding the faces turns the wireframe on.
+    pub fn cycle_surface(&mut self) {
+        self.surface = match self.surface {
+            Surface::Smooth => Surface::Flat,
+            Surface::Flat => Surface::Hidden,
+            Surface::Hidden => Surface::Smooth,
+        };
+        if self.surface == Surface::Hidden {
+            self.wireframe = true;
+        }
+    }
+}
+
+impl Default for Display {
+    fn default() -> Self {
+        Display::new(false)
+    }
+}

@@ -1,0 +1,447 @@
+//! Worker threads: loading, subdividing, building an animation, exporting.
+//!
+//! Every long task runs on its own thread and reports one [`Finished`]
+//! message through the channel that [`Jobs`] owns. Each kind of task but the
+//! export has a ticket counter: a newer request supersedes an older one,
+//! whose message is dropped by [`Jobs::poll`], and a superseded subdivision
+//! stops after its current level and sends nothing. A running task shows in
+//! its busy slot ([`Slots`]) until its message is polled. The document
+//! adopts what [`Jobs::poll`] returns; nothing here touches the document.
+
+use super::model::{Curve, Shown};
+use crate::anim::paths::Paths;
+use crate::anim::player::Animation;
+use crate::anim::tweak::Tweak;
+use crate::mesh::attributes::Attributes;
+use crate::render::export::{ExportStyle, ExportTarget, export_animation};
+use crate::subdiv::{Stats, predict_faces, subdivide_with_progress};
+use crate::{Mesh, Options, Result, Scheme, bundled};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::{Arc, Condvar, Mutex};
+use std::time::{Duration, Instant};
+
+/// Largest proxy mesh (see [`super::model::Model::proxy`]).
+pub const PROXY_FACES: u64 = 150_000;
+
+/// A running task shown in the panel.
+#[derive(Clone)]
+pub struct Busy {
+    /// What is running.
+    pub what: String,
+    /// Units done (levels, frames).
+    pub done: Arc<AtomicUsize>,
+    /// Units in all.
+    pub total: usize,
+    /// Started at.
+    pub since: Instant,
+}
+
+impl Busy {
+    fn new(what: String, total: usize) -> Busy {
+        Busy { what, done: Default::default(), total, since: Instant::now() }
+    }
+}
+
+/// The busy slots, one per kind of task.
+#[derive(Default)]
+pub struct Slots {
+    /// Running load.
+    pub loading: Option<Busy>,
+    /// Running subdivision.
+    pub subdividing: Option<Busy>,
+    /// Running animation build.
+    pub building: Option<Busy>,
+    /// Running export.
+    pub exporting: Option<Busy>,
+}
+
+/// A loaded model.
+pub struct Opened {
+    /// The file.
+    pub path: PathBuf,
+    /// Its mesh.
+    pub mesh: Mesh,
+    /// The animation paths found for it (None: none, or for another vertex count).
+    pub paths: Option<Paths>,
+    /// What the repair did, when it did something.
+    pub report: Option<String>,
+    /// Its colours and texture coordinates.
+    pub attrs: Attributes,
+}
+
+/// A finished subdivision.
+pub struct Subdivided {
+    /// The output, with fan normals and topology.
+    pub shown: Shown,
+    /// A lower level of at most [`PROXY_FACES`] triangles, for big outputs.
+    pub proxy: Option<Shown>,
+    /// Phase times of both legs (proxy, then the rest).
+    pub stats: Stats,
+    /// Wall time of the job, ms.
+    pub ms: f64,
+    /// The control mesh's attributes refined to the output.
+    pub attrs: Attributes,
+    /// What was asked for.
+    pub level: u32,
+    /// The scheme used.
+    pub scheme: Scheme,
+    /// The options used.
+    pub opts: Options,
+}
+
+/// What a worker sends back.
+pub enum Finished {
+    /// A model file was read (or failed to).
+    Loaded {
+        /// The file asked for (offered for repair when it is invalid).
+        path: PathBuf,
+        /// The model.
+        result: Result<Opened>,
+    },
+    /// A `.bzc` curve was read.
+    Curve(Result<Curve>),
+    /// A subdivision finished.
+    Subdivided(Result<Box<Subdivided>>),
+    /// An animation plan was built.
+    Animated(Result<Animation>),
+    /// An export finished: frames written and where.
+    Exported(Result<(usize, PathBuf)>),
+}
+
+/// The inputs of a subdivision.
+pub struct SubdivisionJob {
+    /// The control mesh.
+    pub control: Shown,
+    /// Its attributes from the file.
+    pub attrs: Attributes,
+    /// Scheme.
+    pub scheme: Scheme,
+    /// Level.
+    pub level: u32,
+    /// Scheme options.
+    pub opts: Options,
+}
+
+/// The inputs of an animation plan (also what an export renders).
+#[derive(Clone)]
+pub struct AnimationJob {
+    /// The control mesh.
+    pub mesh: Arc<Mesh>,
+    /// Its animation paths.
+    pub paths: Paths,
+    /// Path tweak.
+    pub tweak: Tweak,
+    /// Path refinement count.
+    pub refine: u32,
+    /// Scheme.
+    pub scheme: Scheme,
+    /// Level.
+    pub level: u32,
+    /// Scheme options.
+    pub opts: Options,
+}
+
+impl AnimationJob {
+    fn build(&self) -> Result<Animation> {
+        Animation::new(&self.mesh, &self.paths, self.tweak, self.refine, self.scheme, self.level, &self.opts)
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Load,
+    Subdivide,
+    Animate,
+    Export,
+}
+
+struct Message {
+    kind: Kind,
+    ticket: u64,
+    finished: Finished,
+}
+
+/// How many worker threads are alive, with a signal when one ends.
+#[derive(Default)]
+struct Workers {
+    alive: Mutex<usize>,
+    ended: Condvar,
+}
+
+/// Held by a worker thread; its drop (after the thread's message is sent)
+/// counts the thread as ended.
+struct WorkerGuard(Arc<Workers>);
+
+impl Drop for WorkerGuard {
+    fn drop(&mut self) {
+        let mut alive = self.0.alive.lock().unwrap_or_else(|e| e.into_inner());
+        *alive = alive.saturating_sub(1);
+        self.0.ended.notify_all();
+    }
+}
+
+/// The worker channel, the tickets and the busy slots.
+pub struct Jobs {
+    tx: Sender<Message>,
+    rx: Receiver<Message>,
+    load_ticket: Arc<AtomicU64>,
+    subdivide_ticket: Arc<AtomicU64>,
+    animate_ticket: Arc<AtomicU64>,
+    export_cancel: Arc<AtomicU64>,
+    /// What is running.
+    pub busy: Slots,
+    workers: Arc<Workers>,
+}
+
+impl Default for Jobs {
+    fn default() -> Self {
+        Jobs::new()
+    }
+}
+
+impl Jobs {
+    /// No task running.
+    pub fn new() -> Jobs {
+        let (tx, rx) = channel();
+        Jobs {
+            tx,
+            rx,
+            load_ticket: Default::default(),
+            subdivide_ticket: Default::default(),
+            animate_ticket: Default::default(),
+            export_cancel: Default::default(),
+            busy: Slots::default(),
+            workers: Default::default(),
+        }
+    }
+
+    /// Whether any task is running.
+    pub fn busy(&self) -> bool {
+        let b = &self.busy;
+        b.loading.is_some() || b.subdividing.is_some() || b.building.is_some() || b.exporting.is_some()
+    }
+
+    fn ticket(&self, kind: Kind) -> Option<&Arc<AtomicU64>> {
+        match kind {
+            Kind::Load => Some(&self.load_ticket),
+            Kind::Subdivide => Some(&self.subdivide_ticket),
+            Kind::Animate => Some(&self.animate_ticket),
+            Kind::Export => None,
+        }
+    }
+
+    /// A new ticket of `kind`: every running task of that kind is superseded.
+    fn next_ticket(&self, kind: Kind) -> u64 {
+        self.ticket(kind).map_or(0, |t| t.fetch_add(1, Ordering::SeqCst) + 1)
+    }
+
+    fn slot(&mut self, kind: Kind) -> &mut Option<Busy> {
+        match kind {
+            Kind::Load => &mut self.busy.loading,
+            Kind::Subdivide => &mut self.busy.subdividing,
+            Kind::Animate => &mut self.busy.building,
+            Kind::Export => &mut self.busy.exporting,
+        }
+    }
+
+    /// Runs `work` on a new thread; its result comes back as a message of
+    /// `kind` with `ticket` (`None`: the work decided to send nothing).
+    fn spawn(&self, kind: Kind, ticket: u64, work: impl FnOnce() -> Option<Finished> + Send + 'static) {
+        *self.workers.alive.lock().unwrap_or_else(|e| e.into_inner()) += 1;
+        let guard = WorkerGuard(self.workers.clone());
+        let tx = self.tx.clone();
+        std::thread::spawn(move || {
+            let _guard = guard;
+            if let Some(finished) = work() {
+                // The receiver is gone only when the viewer is closing.
+                let _ = tx.send(Message { kind, ticket, finished });
+            }
+        });
+    }
+
+    /// The messages of current tasks (superseded ones are dropped), each
+    /// clearing its busy slot.
+    pub fn poll(&mut self) -> Vec<Finished> {
+        let mut out = Vec::new();
+        while let Ok(m) = self.rx.try_recv() {
+            if self.ticket(m.kind).is_some_and(|t| t.load(Ordering::SeqCst) != m.ticket) {
+                continue;
+            }
+            *self.slot(m.kind) = None;
+            out.push(m.finished);
+        }
+        out
+    }
+
+    /// Waits until no worker thread is alive (superseded ones included), at
+    /// most `timeout`; whether they all ended. Their messages are then all
+    /// in the channel, for [`Jobs::poll`].
+    pub fn wait_for_workers(&self, timeout: Duration) -> bool {
+        let alive = self.workers.alive.lock().unwrap_or_else(|e| e.into_inner());
+        let (alive, _) =
+            self.workers.ended.wait_timeout_while(alive, timeout, |n| *n > 0).unwrap_or_else(|e| e.into_inner());
+        *alive == 0
+    }
+
+    /// Opens a model file (a `.bzc` curve, or a mesh, repaired or not).
+    pub fn load(&mut self, path: PathBuf, repair: bool) {
+        let ticket = self.next_ticket(Kind::Load);
+        self.busy.loading = Some(Busy::new(format!("loading {}", path.display()), 1));
+        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc")) {
+            self.spawn(Kind::Load, ticket, move || Some(Finished::Curve(load_curve(&path))));
+        } else {
+            self.spawn(Kind::Load, ticket, move || {
+                let result = load_model(&path, repair);
+                Some(Finished::Loaded { path, result })
+            });
+        }
+    }
+
+    /// Drops any running load (its model will not be adopted).
+    pub fn cancel_load(&mut self) {
+        self.next_ticket(Kind::Load);
+        self.busy.loading = None;
+    }
+
+    /// Subdivides on a worker (superseding any running subdivision).
+    pub fn subdivide(&mut self, job: SubdivisionJob) {
+        let ticket = self.next_ticket(Kind::Subdivide);
+        let busy = Busy::new(format!("{} level {}", job.scheme.name(), job.level), job.level as usize);
+        let done = busy.done.clone();
+        self.busy.subdividing = Some(busy);
+        let latest = self.subdivide_ticket.clone();
+        self.spawn(Kind::Subdivide, ticket, move || {
+            let live = || latest.load(Ordering::SeqCst) == ticket;
+            let result = run_subdivision(&job, &done, &live).map(Box::new);
+            // A superseded run stopped early: its partial mesh is not the level asked for.
+            live().then_some(Finished::Subdivided(result))
+        });
+    }
+
+    /// Drops any running subdivision.
+    pub fn cancel_subdivision(&mut self) {
+        self.next_ticket(Kind::Subdivide);
+        self.busy.subdividing = None;
+    }
+
+    /// Builds an animation plan on a worker (superseding any running build).
+    pub fn animate(&mut self, job: AnimationJob) {
+        let ticket = self.next_ticket(Kind::Animate);
+        self.busy.building = Some(Busy::new(format!("animation plan, {} level {}", job.scheme.name(), job.level), 1));
+        self.spawn(Kind::Animate, ticket, move || Some(Finished::Animated(job.build())));
+    }
+
+    /// Drops any running animation build.
+    pub fn cancel_animation(&mut self) {
+        self.next_ticket(Kind::Animate);
+        self.busy.building = None;
+    }
+
+    /// Renders every frame of the animation to `target` on a worker with its
+    /// own GPU device; does nothing while an export runs.
+    pub fn export(&mut self, job: AnimationJob, target: ExportTarget, style: ExportStyle) {
+        if self.busy.exporting.is_some() {
+            return;
+        }
+        let frames = job.paths.keys_per_vertex << job.refine.min(20);
+        let out = match &target {
+            ExportTarget::Gif(p) | ExportTarget::Frames(p) => p.clone(),
+        };
+        let busy = Busy::new(format!("exporting {} frames to {}", frames, out.display()), frames);
+        let done = busy.done.clone();
+        self.busy.exporting = Some(busy);
+        let cancel = self.export_cancel.clone();
+        let cancel_at = cancel.load(Ordering::SeqCst);
+        self.spawn(Kind::Export, 0, move || {
+            let result = job.build().and_then(|mut anim| {
+                export_animation(&mut anim, &job.mesh, &target, &style, |d, _| {
+                    done.store(d, Ordering::Relaxed);
+                    cancel.load(Ordering::SeqCst) == cancel_at
+                })
+                .map(|n| (n, out))
+            });
+            Some(Finished::Exported(result))
+        });
+    }
+
+    /// Cancels a running export (it stops after its current frame).
+    pub fn cancel_export(&mut self) {
+        self.export_cancel.fetch_add(1, Ordering::SeqCst);
+    }
+}
+
+/// A `.bzc` file as a curve with the default view of its construction.
+fn load_curve(path: &std::path::Path) -> Result<Curve> {
+    bundled::load_curve(path).map(|control| Curve {
+        name: path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+        control,
+        segments: 64,
+        t: 0.5,
+        construction: true,
+    })
+}
+
+/// A model file (repaired when asked) with its attributes and matching paths.
+fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened> {
+    let (mesh, report, attrs) = if repair {
+        let (m, r) = bundled::load_repaired(path)?;
+        (m, (!r.is_empty()).then(|| format!("repaired: {r}")), Attributes::default())
+    } else if path.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
+        let (m, a) = bundled::load_with_attributes(path)?;
+        (m, None, a)
+    } else {
+        (bundled::load(path)?, None, Attributes::default())
+    };
+    let paths = match bundled::paths_for(path) {
+        Some(p) => {
+            let paths = p.load()?;
+            // A .paths for another vertex count is ignored (a generated one is used).
+            paths.check_model(&mesh, &p.describe()).ok().map(|_| paths)
+        }
+        None => None,
+    };
+    Ok(Opened { path: path.to_path_buf(), mesh, paths, report, attrs })
+}
+
+/// The highest level below `level` with at most [`PROXY_FACES`] triangles,
+/// when `level` itself has more.
+fn proxy_level(mesh: &Mesh, level: u32) -> Option<u32> {
+    (predict_faces(&mesh.ct, level) > PROXY_FACES)
+        .then(|| (0..level).rev().find(|&l| predict_faces(&mesh.ct, l) <= PROXY_FACES))
+        .flatten()
+}
+
+/// The subdivision of `job`, through its proxy level when the output is big
+/// (the proxy is a step on the way, not computed twice). `done` counts the
+/// levels; `live` says whether the job is still wanted (checked per level).
+fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> bool) -> Result<Subdivided> {
+    let t0 = Instant::now();
+    let (control, scheme, level, opts) = (&job.control, job.scheme, job.level, job.opts);
+    let run = |from: &Mesh, first: u32, levels: u32| {
+        subdivide_with_progress(from, scheme, levels, &opts, |l, _| {
+            done.store((first + l) as usize, Ordering::Relaxed);
+            live()
+        })
+    };
+    let proxy_level = proxy_level(&control.mesh, level);
+    let (proxy, first_stats) = match proxy_level {
+        Some(0) => (Some(control.clone()), Stats::default()),
+        Some(l) => {
+            let (p, s) = run(&control.mesh, 0, l)?;
+            (Some(Shown::new(Arc::new(p))), s)
+        }
+        None => (None, Stats::default()),
+    };
+    let (from, first) = match &proxy {
+        Some(p) => (p.mesh.clone(), proxy_level.unwrap_or(0)),
+        None => (control.mesh.clone(), 0),
+    };
+    let (fine, stats) = run(&from, first, level - first)?;
+    let shown = if level == 0 { control.clone() } else { Shown::new(Arc::new(fine)) };
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    let attrs =
+        crate::subdiv::attributes::refine(&control.mesh.ct, &job.attrs, scheme, level, &opts).unwrap_or_default();
+    Ok(Subdivided { shown, proxy, stats: first_stats.then(stats), ms, attrs, level, scheme, opts })
+}

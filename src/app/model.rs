@@ -1,0 +1,240 @@
+//! The model: the control mesh, its subdivision and what is shown of it.
+//!
+//! ```text
+//! control --(worker: subdivide)--> raw (+ proxy, + refined attributes)
+//!    raw --(display options: limit snapping, normals, colours)--> result
+//! ```
+//! Every artefact the window uploads carries a version ([`Versioned`]),
+//! bumped whenever it is replaced; the window compares the versions with
+//! those it uploaded and uploads only what changed.
+
+use super::display::{Coloring, Display, NormalMode};
+use crate::mesh::attributes::Attributes;
+use crate::mesh::topology::{Topology, topology};
+use crate::subdiv::{LoopBeta, Stats};
+use crate::{Error, Mesh, Scheme};
+use glam::{Vec2, Vec3};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// A value with a counter bumped on every change, so that a consumer (the
+/// window's GPU copies) can tell whether what it holds is current.
+#[derive(Clone, Debug)]
+pub struct Versioned<T> {
+    value: T,
+    version: u64,
+}
+
+impl<T> Versioned<T> {
+    /// A first version (1; a consumer that has seen nothing holds 0).
+    pub fn new(value: T) -> Versioned<T> {
+        Versioned { value, version: 1 }
+    }
+    /// The current version.
+    pub fn version(&self) -> u64 {
+        self.version
+    }
+    /// Replaces the value (a new version).
+    pub fn set(&mut self, value: T) {
+        self.value = value;
+        self.version += 1;
+    }
+    /// The value for changing it in place (a new version).
+    pub fn edit(&mut self) -> &mut T {
+        self.version += 1;
+        &mut self.value
+    }
+}
+
+impl<T> std::ops::Deref for Versioned<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        &self.value
+    }
+}
+
+/// A mesh with its normals and counts, ready to upload. Cloning shares the
+/// arrays.
+#[derive(Clone)]
+pub struct Shown {
+    /// The mesh.
+    pub mesh: Arc<Mesh>,
+    /// Unit vertex normals (fan-averaged unless a display option chose others).
+    pub normals: Arc<Vec<Vec3>>,
+    /// V/E/F, genus, boundary loops...
+    pub topo: Topology,
+}
+
+impl Shown {
+    /// Computes the fan-averaged normals and the topology (worker threads do this).
+    pub fn new(mesh: Arc<Mesh>) -> Shown {
+        let normals = Arc::new(mesh.vertex_normals());
+        let topo = topology(&mesh.ct);
+        Shown { mesh, normals, topo }
+    }
+}
+
+/// A planar Bezier curve opened from a `.bzc` file, shown instead of the mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// File name.
+    pub name: String,
+    /// Control points.
+    pub control: Vec<Vec2>,
+    /// Polyline segments drawn.
+    pub segments: usize,
+    /// Parameter of the de Casteljau construction shown.
+    pub t: f32,
+    /// Show the construction at `t`.
+    pub construction: bool,
+}
+
+/// How the subdivision output came about: what the panel reports about it.
+#[derive(Clone, Debug, Default)]
+pub struct Made {
+    /// Level of the output.
+    pub level: u32,
+    /// Scheme of the output.
+    pub scheme: Scheme,
+    /// Loop's vertex weights of the output (what limit snapping must use).
+    pub loop_beta: LoopBeta,
+    /// Phase times of the subdivision.
+    pub stats: Option<Stats>,
+    /// Wall time of the subdivision job, ms.
+    pub job_ms: f64,
+}
+
+/// What the 3D view shows of the subdivision output.
+#[derive(Clone)]
+pub struct Shaded {
+    /// Mesh, normals and topology after the display options.
+    pub shown: Shown,
+    /// Per-vertex colours (with the colouring), linear RGB.
+    pub colors: Option<Vec<Vec3>>,
+    /// Largest value behind the colours (levels, or a distance), for the legend.
+    pub color_max: f32,
+}
+
+/// Vertex colours and corner texture coordinates: of the control mesh (from
+/// its file) and refined to the subdivision output.
+#[derive(Clone, Debug, Default)]
+pub struct Attrs {
+    /// The control mesh's, from its file.
+    pub file: Attributes,
+    /// `file` refined to the subdivision output.
+    pub refined: Attributes,
+}
+
+/// The control mesh, its subdivision and what is shown of them.
+pub struct Model {
+    /// Display name of the model.
+    pub name: String,
+    /// File it came from (None: built in).
+    pub path: Option<PathBuf>,
+    /// The control mesh.
+    pub control: Versioned<Shown>,
+    /// The control mesh as loaded, before smoothing or edge edits.
+    pub original: Option<Arc<Mesh>>,
+    /// The subdivision output (the control mesh at level 0).
+    pub raw: Shown,
+    /// How `raw` was made.
+    pub made: Made,
+    /// A lower level of the same subdivision (at most
+    /// [`super::jobs::PROXY_FACES`] triangles), drawn instead of a big result
+    /// while the camera moves; it changes with `result`.
+    pub proxy: Option<Shown>,
+    /// What is shown of `raw`.
+    pub result: Versioned<Shaded>,
+    /// Colours and texture coordinates.
+    pub attrs: Attrs,
+    /// A picked control-mesh corner: the edge opposite it is selected.
+    pub picked: Versioned<Option<u32>>,
+    /// A Bezier curve shown instead of the mesh.
+    pub curve: Versioned<Option<Curve>>,
+}
+
+impl Model {
+    /// A model of `mesh` at level 0, shown plainly.
+    pub fn new(name: String, mesh: Mesh) -> Model {
+        let shown = Shown::new(Arc::new(mesh));
+        Model {
+            name,
+            path: None,
+            control: Versioned::new(shown.clone()),
+            original: None,
+            raw: shown.clone(),
+            made: Made::default(),
+            proxy: None,
+            result: Versioned::new(Shaded { shown, colors: None, color_max: 0.0 }),
+            attrs: Attrs::default(),
+            picked: Versioned::new(None),
+            curve: Versioned::new(None),
+        }
+    }
+
+    /// Rebuilds the shown result from the subdivision output and `display`
+    /// (limit snapping, normals, colours); an error of the colouring is
+    /// returned (the result is then shown uncoloured).
+    pub fn reshade(&mut self, display: &Display) -> Option<Error> {
+        let shown = snapped_and_normals(&self.raw, display, self.made.loop_beta);
+        let (colors, color_max, error) = match result_colors(self, &shown.mesh, display.coloring) {
+            Ok((c, max)) => (c, max, None),
+            Err(e) => (None, 0.0, Some(e)),
+        };
+        self.result.set(Shaded { shown, colors, color_max });
+        error
+    }
+
+    /// The vertex ids of the picked edge.
+    pub fn picked_edge(&self) -> Option<(u32, u32)> {
+        let c = (*self.picked)?;
+        let ct = &self.control.mesh.ct;
+        ((c as usize) < ct.num_corners())
+            .then(|| (ct.v_table()[crate::mesh::n(c) as usize], ct.v_table()[crate::mesh::p(c) as usize]))
+    }
+}
+
+/// `raw` with its points moved to the Loop limit (with the weights `beta`
+/// it was made with) when asked, and the normals of the normal mode.
+fn snapped_and_normals(raw: &Shown, display: &Display, beta: LoopBeta) -> Shown {
+    use crate::subdiv::limit::{butterfly_normals, loop_limit_normals, loop_limit_positions_with};
+    let mesh = if display.snap_limit {
+        Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions: loop_limit_positions_with(&raw.mesh, beta) })
+    } else {
+        raw.mesh.clone()
+    };
+    let normals = match display.normal_mode {
+        // the worker's fan normals, unless the points moved to the limit
+        NormalMode::FanAverage if !display.snap_limit => raw.normals.clone(),
+        NormalMode::FanAverage => Arc::new(mesh.vertex_normals()),
+        NormalMode::LoopLimit => Arc::new(loop_limit_normals(&mesh)),
+        NormalMode::Butterfly => Arc::new(butterfly_normals(&mesh)),
+    };
+    // snapping moves points, not connectivity: the topology is the raw one
+    Shown { mesh, normals, topo: raw.topo.clone() }
+}
+
+/// The per-vertex colours of `mesh` (the shown result of `model`) for a
+/// colouring, and the largest value behind them.
+fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Result<(Option<Vec<Vec3>>, f32)> {
+    use crate::mesh::inspect::{colormap, displacement_from_control, vertex_counts_per_level, vertex_creation_level};
+    let nv = mesh.positions.len();
+    let level = model.made.level;
+    let ramp = |t: &[f32]| t.iter().map(|&t| Vec3::from(colormap(t))).collect::<Vec<_>>();
+    Ok(match coloring {
+        Coloring::None | Coloring::Checker => (None, 0.0),
+        Coloring::Shells => {
+            let counts = vertex_counts_per_level(&model.control.mesh.ct, level);
+            let lv = vertex_creation_level(&counts, nv);
+            let t: Vec<f32> = lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect();
+            (Some(ramp(&t)), level as f32)
+        }
+        Coloring::File => (model.attrs.refined.colors.clone().filter(|c| c.len() == nv), 1.0),
+        Coloring::Displacement => {
+            let d = displacement_from_control(&model.control.mesh, mesh, level)?;
+            let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
+            let t: Vec<f32> = d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 }).collect();
+            (Some(ramp(&t)), max)
+        }
+    })
+}

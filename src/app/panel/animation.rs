@@ -1,0 +1,130 @@
+//! The animation section: playback, path refinement, clock, export.
+
+use super::{PanelState, sep};
+use crate::anim::tweak::Tweak;
+use crate::app::command::Command;
+use crate::app::display::Display;
+use crate::app::doc::Doc;
+use crate::render::export::{ExportStyle, ExportTarget};
+use egui::RichText;
+use std::path::PathBuf;
+use std::sync::atomic::Ordering;
+
+/// Play/step/stop, refinement and tweak, the clock of a built plan, export.
+pub fn animation_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &Display) -> Vec<Command> {
+    let anim = &doc.anim;
+    ui.label(RichText::new("Animation").strong());
+    ui.label(RichText::new(format!("paths: {}", anim.paths_source)).small().weak());
+    let mut out = Vec::new();
+    ui.horizontal(|ui| {
+        if ui.button(if anim.playing() { "Pause" } else { "Play" }).on_hover_text("Space").clicked() {
+            out.push(Command::TogglePlay);
+        }
+        if ui.button("< Step").on_hover_text("step back (Left)").clicked() {
+            out.push(Command::Step(-1));
+        }
+        if ui.button("Step >").on_hover_text("step forward (Right)").clicked() {
+            out.push(Command::Step(1));
+        }
+        if ui.add_enabled(anim.active, egui::Button::new("Stop")).clicked() {
+            out.push(Command::StopAnimation);
+        }
+    });
+    let (mut refine, mut tweak) = (anim.refine, anim.tweak);
+    let mut rebuild = false;
+    ui.horizontal(|ui| {
+        rebuild |= ui.add(egui::Slider::new(&mut refine, 0..=8).text("refine n")).changed();
+    });
+    egui::ComboBox::from_label("Tweak").selected_text(tweak.name()).show_ui(ui, |ui| {
+        for t in Tweak::ALL {
+            rebuild |= ui.selectable_value(&mut tweak, t, t.name()).changed();
+        }
+    });
+    if rebuild {
+        out.push(Command::SetPathRefinement { refine, tweak });
+    }
+    out.extend(clock_rows(ui, doc));
+    out.extend(export_rows(ui, doc, panel, display));
+    out
+}
+
+/// Loop, rate and frame of a built plan, and its cost per frame; a spinner while it builds.
+fn clock_rows(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
+    let mut out = Vec::new();
+    if let Some(p) = &doc.anim.playback {
+        let (mut looping, mut fps, mut f) = (p.clock.looping, p.clock.fps, p.clock.frame());
+        if ui.checkbox(&mut looping, "Loop").changed() {
+            out.push(Command::SetLooping(looping));
+        }
+        if ui.add(egui::Slider::new(&mut fps, 1.0..=120.0).text("frames/s")).changed() {
+            out.push(Command::SetFps(fps));
+        }
+        let n = p.clock.frames();
+        if ui.add(egui::Slider::new(&mut f, 0..=n - 1).text(format!("frame of {n}"))).changed() {
+            out.push(Command::SetFrame(f));
+        }
+        let (plan, normals) = p.player.last_timing;
+        ui.label(format!(
+            "per frame: plan {:.2} ms + normals {:.2} ms ({} triangles)",
+            plan.as_secs_f64() * 1e3,
+            normals.as_secs_f64() * 1e3,
+            sep(p.player.topology().num_triangles() as u64)
+        ));
+    } else if let Some(b) = &doc.jobs.busy.building {
+        ui.horizontal(|ui| {
+            ui.spinner();
+            ui.label(&b.what);
+        });
+    }
+    out
+}
+
+/// Where and how big to export, the GIF and PNG buttons, progress and cancel.
+fn export_rows(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &Display) -> Vec<Command> {
+    let mut out = Vec::new();
+    ui.horizontal(|ui| {
+        ui.label("Export");
+        ui.add(egui::TextEdit::singleline(&mut panel.export_path).desired_width(150.0));
+    });
+    ui.horizontal(|ui| {
+        egui::ComboBox::from_id_salt("export size").selected_text(format!("{0}×{0}", panel.export_size)).show_ui(
+            ui,
+            |ui| {
+                for s in [240, 320, 480, 640, 800] {
+                    ui.selectable_value(&mut panel.export_size, s, format!("{s}×{s}"));
+                }
+            },
+        );
+        let style = ExportStyle { size: (panel.export_size, panel.export_size), look: display.plain_look(), fps: 30.0 };
+        let busy = doc.jobs.busy.exporting.is_some();
+        if ui.add_enabled(!busy, egui::Button::new("GIF")).on_hover_text("all K*2^n frames as one GIF").clicked() {
+            let mut p = PathBuf::from(panel.export_path.trim());
+            if p.extension().is_none_or(|e| e != "gif") {
+                p.set_extension("gif");
+            }
+            out.push(Command::Export(ExportTarget::Gif(p), style));
+        }
+        if ui
+            .add_enabled(!busy, egui::Button::new("PNG frames"))
+            .on_hover_text("numbered PNGs in a directory")
+            .clicked()
+        {
+            let dir = PathBuf::from(panel.export_path.trim()).with_extension("");
+            out.push(Command::Export(ExportTarget::Frames(dir), style));
+        }
+    });
+    if let Some(b) = &doc.jobs.busy.exporting {
+        let d = b.done.load(Ordering::Relaxed);
+        ui.horizontal(|ui| {
+            ui.add(
+                egui::ProgressBar::new(d as f32 / b.total.max(1) as f32)
+                    .text(format!("{d}/{} frames", b.total))
+                    .desired_width(180.0),
+            );
+            if ui.button("Cancel").clicked() {
+                out.push(Command::CancelExport);
+            }
+        });
+    }
+    out
+}

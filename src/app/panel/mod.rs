@@ -1,0 +1,150 @@
+//! The egui side panel, the 3D area's mouse and keyboard handling, and the
+//! file browser.
+//!
+//! Every section reads the document and the view and returns the
+//! [`Command`]s its widgets asked for; nothing here changes the document.
+//! Widgets bound to several display options edit one draft [`Display`],
+//! sent as a single [`Command::SetDisplay`] when it changed. Only the
+//! panel's own widget state ([`PanelState`]: text fields, the browser's
+//! folder) is changed in place.
+
+mod animation;
+mod browser;
+mod input;
+mod model;
+mod overlay;
+mod stats;
+mod subdivision;
+mod tools;
+
+use super::command::Command;
+use super::display::Display;
+use super::doc::Doc;
+use super::view::View;
+use crate::render::Surface;
+use egui::RichText;
+use std::path::PathBuf;
+
+/// Keyboard help shown at the bottom of the panel.
+pub const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor. \
+Keys: W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
+B side by side, T turntable, Space play/pause, Left/Right step frame, P screenshot.";
+
+/// The panel's own widget state.
+pub struct PanelState {
+    /// Path typed in the Open field.
+    pub open_path: String,
+    /// File browser open, and its directory.
+    pub browser: Option<PathBuf>,
+    /// Bundled model files (`bundled:NAME`).
+    pub bundled: Vec<PathBuf>,
+    /// Export file or directory.
+    pub export_path: String,
+    /// Export image side.
+    pub export_size: u32,
+    /// Taubin steps per click.
+    pub smooth_steps: u32,
+}
+
+impl PanelState {
+    /// Defaults; `bundled` lists the models compiled into the binary.
+    pub fn new() -> PanelState {
+        PanelState {
+            open_path: String::new(),
+            browser: None,
+            bundled: crate::bundled::MODELS.iter().map(|m| PathBuf::from(m.cli_name())).collect(),
+            export_path: "subdiv-animation.gif".into(),
+            export_size: 480,
+            smooth_steps: 10,
+        }
+    }
+}
+
+impl Default for PanelState {
+    fn default() -> Self {
+        PanelState::new()
+    }
+}
+
+/// `1234567` as `1,234,567`.
+fn sep(n: u64) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, ch) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(ch);
+    }
+    out
+}
+
+/// Draws the panel and handles the 3D area's input; returns the 3D area in
+/// points and the commands asked for.
+pub fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelState) -> (egui::Rect, Vec<Command>) {
+    let mut out = Vec::new();
+    let mut display = doc.display;
+    egui::Panel::left("controls").default_size(300.0).resizable(true).show(ui, |ui| {
+        egui::ScrollArea::vertical().show(ui, |ui| {
+            ui.heading("subdiv");
+            out.extend(model::model_section(ui, doc, panel));
+            ui.separator();
+            out.extend(subdivision::subdivision_section(ui, doc));
+            ui.separator();
+            out.extend(display_section(ui, view, &mut display));
+            ui.separator();
+            out.extend(animation::animation_section(ui, doc, panel, &display));
+            ui.separator();
+            out.extend(tools::tools_section(ui, doc, panel, &mut display));
+            ui.separator();
+            out.extend(stats::stats_section(ui, doc, view));
+            ui.separator();
+            ui.label(RichText::new(HELP).small().weak());
+        });
+    });
+    let rect = ui.available_rect_before_wrap();
+    out.extend(input::scene_input(ui, rect, view, &mut display));
+    overlay::overlay(ui, rect, doc, view, &display);
+    out.extend(browser::file_browser(ui.ctx(), panel));
+    if display != doc.display {
+        out.push(Command::SetDisplay(display));
+    }
+    (rect, out)
+}
+
+fn display_section(ui: &mut egui::Ui, view: &View, display: &mut Display) -> Vec<Command> {
+    let mut out = Vec::new();
+    ui.horizontal(|ui| {
+        ui.label("Shading");
+        ui.selectable_value(&mut display.surface, Surface::Smooth, "Phong");
+        ui.selectable_value(&mut display.surface, Surface::Flat, "Flat");
+        ui.selectable_value(&mut display.surface, Surface::Hidden, "None");
+    });
+    ui.horizontal_wrapped(|ui| {
+        ui.checkbox(&mut display.wireframe, "Wireframe (W)");
+        ui.checkbox(&mut display.control, "Control mesh (C)");
+        ui.checkbox(&mut display.normals, "Normals (N)");
+        ui.checkbox(&mut display.side_by_side, "Side by side (B)");
+        let mut ortho = view.camera.orthographic;
+        if ui.checkbox(&mut ortho, "Orthographic (O)").changed() {
+            out.push(Command::SetOrthographic(ortho));
+        }
+        ui.checkbox(&mut display.turntable, "Turntable (T)");
+        if view.stats.msaa_available {
+            ui.checkbox(&mut display.msaa, "Anti-aliasing (MSAA)")
+                .on_hover_text("4x multisampling; costly on a software rasteriser with big meshes");
+        }
+    });
+    ui.horizontal(|ui| {
+        if ui.button("Fit (F)").clicked() {
+            out.push(Command::Fit);
+        }
+        if ui.button("Reset camera (R)").clicked() {
+            out.push(Command::ResetCamera);
+        }
+        if ui.button("Screenshot (P)").clicked() {
+            out.push(Command::Screenshot);
+        }
+    });
+    out
+}

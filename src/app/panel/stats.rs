@@ -1,0 +1,79 @@
+//! The statistics section, the error and the notice.
+
+use super::sep;
+use crate::app::command::Command;
+use crate::app::doc::Doc;
+use crate::app::view::View;
+use egui::{Color32, RichText};
+
+/// Counts of the control mesh and the result, phase times, frame times;
+/// the error and the notice with their dismiss buttons.
+pub fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Command> {
+    let m = &doc.model;
+    let (c, t) = (&m.control.topo, &m.result.shown.topo);
+    ui.label(RichText::new("Statistics").strong());
+    egui::Grid::new("stats").num_columns(3).striped(true).show(ui, |ui| {
+        ui.label("");
+        ui.label("control");
+        ui.label(format!("level {}", m.made.level));
+        ui.end_row();
+        for (name, a, b) in [
+            ("vertices", c.vertices, t.vertices),
+            ("edges", c.edges, t.edges),
+            ("faces", c.faces, t.faces),
+            ("boundary loops", c.boundary_loops, t.boundary_loops),
+            ("components", c.components, t.components),
+        ] {
+            ui.label(name);
+            ui.label(sep(a as u64));
+            ui.label(sep(b as u64));
+            ui.end_row();
+        }
+        ui.label("genus");
+        ui.label(c.genus.to_string());
+        ui.label(t.genus.to_string());
+        ui.end_row();
+    });
+    if let Some(s) = &m.made.stats {
+        ui.label(format!(
+            "{} ×{}: {:.1} ms (split+O {:.1}, edge points {:.1}, vertex points {:.1}); job {:.1} ms",
+            m.made.scheme.name(),
+            m.made.level,
+            s.total_ms,
+            s.split_ms,
+            s.edge_ms,
+            s.vertex_ms,
+            m.made.job_ms
+        ));
+    }
+    let st = &view.stats;
+    ui.label(format!(
+        "frame {:.1} ms ({:.0} fps), last upload {:.1} ms",
+        st.frame_ms,
+        1000.0 / st.frame_ms.max(0.01),
+        st.upload_ms
+    ));
+    ui.label(RichText::new(format!("{} · 3D renders {}", st.adapter, st.scene_renders)).small().weak());
+    status_lines(ui, doc)
+}
+
+fn status_lines(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
+    let mut out = Vec::new();
+    if let Some(e) = &doc.status.error {
+        ui.horizontal_wrapped(|ui| {
+            ui.label(RichText::new(e.to_string()).color(Color32::from_rgb(255, 110, 90)));
+            if ui.small_button("dismiss").clicked() {
+                out.push(Command::DismissError);
+            }
+        });
+    }
+    if let Some(n) = &doc.status.notice {
+        ui.horizontal_wrapped(|ui| {
+            ui.label(RichText::new(n).color(Color32::from_rgb(120, 220, 130)));
+            if ui.small_button("ok").clicked() {
+                out.push(Command::DismissNotice);
+            }
+        });
+    }
+    out
+}

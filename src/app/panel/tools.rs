@@ -1,0 +1,67 @@
+//! The surface and tools section: normals, limit snapping, colouring,
+//! smoothing, picking and editing control edges.
+
+use super::PanelState;
+use crate::app::command::Command;
+use crate::app::display::{Coloring, Display, NormalMode};
+use crate::app::doc::Doc;
+use egui::RichText;
+
+/// Normals, snapping and colouring edit the draft `display`; the tools return commands.
+pub fn tools_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &mut Display) -> Vec<Command> {
+    ui.label(RichText::new("Surface and tools").strong());
+    egui::ComboBox::from_label("Normals").selected_text(display.normal_mode.name()).show_ui(ui, |ui| {
+        for m in NormalMode::ALL {
+            ui.selectable_value(&mut display.normal_mode, m, m.name());
+        }
+    });
+    ui.checkbox(&mut display.snap_limit, "Snap to Loop limit positions")
+        .on_hover_text("move every vertex to its limit point on the Loop surface");
+    egui::ComboBox::from_label("Colour").selected_text(display.coloring.name()).show_ui(ui, |ui| {
+        for c in Coloring::ALL {
+            ui.selectable_value(&mut display.coloring, c, c.name());
+        }
+    });
+    coloring_legend(ui, doc, display.coloring);
+    let mut out = Vec::new();
+    ui.horizontal(|ui| {
+        ui.add(egui::DragValue::new(&mut panel.smooth_steps).range(1..=200).suffix(" steps"));
+        if ui.button("Smooth (Taubin)").on_hover_text("lambda 0.6307, mu -0.6732 on the control mesh").clicked() {
+            out.push(Command::Smooth(panel.smooth_steps));
+        }
+        if ui.add_enabled(doc.model.original.is_some(), egui::Button::new("Revert")).clicked() {
+            out.push(Command::Revert);
+        }
+    });
+    ui.checkbox(&mut display.pick, "Pick control edges (click)");
+    if let Some((a, b)) = doc.model.picked_edge() {
+        ui.horizontal(|ui| {
+            ui.label(format!("edge ({a}, {b})"));
+            if ui.button("Flip").clicked() {
+                out.push(Command::FlipPicked);
+            }
+            if ui.button("Split").clicked() {
+                out.push(Command::SplitPicked);
+            }
+        });
+    }
+    out
+}
+
+/// What the colours mean, or why there are none.
+fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, coloring: Coloring) {
+    let m = &doc.model;
+    let text = match coloring {
+        Coloring::Shells => format!("dark: level 0 vertices … bright: level {}", m.made.level),
+        Coloring::Displacement => format!("dark: on the control mesh … bright: {:.4} away", m.result.color_max),
+        Coloring::File if m.attrs.file.colors.is_none() => {
+            "this model has no vertex colours (OBJ `v x y z r g b`)".into()
+        }
+        Coloring::Checker if m.attrs.file.uv.is_none() => {
+            "this model has no texture coordinates (OBJ `vt`); try models/cube_uv.obj".into()
+        }
+        Coloring::Checker => "UVs per corner (seams kept), linear inside each triangle".into(),
+        Coloring::File | Coloring::None => return,
+    };
+    ui.label(RichText::new(text).small());
+}

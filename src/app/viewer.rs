@@ -1,0 +1,55 @@
+//! The viewer without its window: the document, the view and the panel's
+//! own widget state. A frame of UI is [`Viewer::ui`]: the panel draws and
+//! returns commands, [`Viewer::apply`] carries them out, then the camera
+//! settles. The headless tests drive exactly this, through egui without a
+//! window.
+
+use super::command::Command;
+use super::doc::Doc;
+use super::panel::{self, PanelState};
+use super::view::View;
+
+/// The document, the view and the panel's widget state.
+pub struct Viewer {
+    /// What is shown.
+    pub doc: Doc,
+    /// Camera and frame statistics.
+    pub view: View,
+    /// Text fields, the file browser, export settings.
+    pub panel: PanelState,
+}
+
+impl Default for Viewer {
+    fn default() -> Self {
+        Viewer::new()
+    }
+}
+
+impl Viewer {
+    /// The built-in tetrahedron, nothing running.
+    pub fn new() -> Viewer {
+        Viewer { doc: Doc::new(), view: View::default(), panel: PanelState::new() }
+    }
+
+    /// Adopts what the workers finished; whether anything arrived.
+    pub fn poll(&mut self) -> bool {
+        let finished = self.doc.jobs.poll();
+        let any = !finished.is_empty();
+        for f in finished {
+            self.apply(Command::Finished(Box::new(f)));
+        }
+        any
+    }
+
+    /// One frame of the panel and the 3D area's input: draws, applies the
+    /// commands, settles the camera. Returns the 3D area (points).
+    pub fn ui(&mut self, ui: &mut egui::Ui) -> egui::Rect {
+        let (rect, commands) = panel::show(ui, &self.doc, &self.view, &mut self.panel);
+        self.view.scene_rect = rect;
+        for c in commands {
+            self.apply(c);
+        }
+        self.view.settle_camera(&self.doc);
+        rect
+    }
+}

@@ -1,0 +1,240 @@
+//! Meshes on the GPU: vertex buffers (positions, normals, optional colours),
+//! triangle and edge index buffers, normal segments and highlighted
+//! segments. Built from the corner table's flat arrays; the renderer
+//! ([`super::scene`]) only reads them.
+//!
+//! The wireframe is a line list of the mesh's edges, each edge once (taken
+//! from the corner table's edge owners), indexing the same vertex buffer: no
+//! polygon-mode feature is needed.
+
+use crate::mesh::{BORDER, n, p};
+use crate::{CornerTable, Error, Result};
+use glam::Vec3;
+use wgpu::util::DeviceExt;
+
+/// A mesh on the GPU: positions and normals (separate buffers, so per-frame
+/// animation updates copy the slices as they are), triangle and edge indices.
+pub struct GpuMesh {
+    pub(super) positions: wgpu::Buffer,
+    pub(super) normals: wgpu::Buffer,
+    pub(super) triangles: wgpu::Buffer,
+    pub(super) edges: wgpu::Buffer,
+    pub(super) vertex_count: usize,
+    pub(super) triangle_indices: u32,
+    pub(super) edge_indices: u32,
+    pub(super) normal_lines: Option<(wgpu::Buffer, u32)>,
+    pub(super) normal_length: f32,
+    /// Which faces may be skipped (closed meshes only).
+    pub cull: Cull,
+    pub(super) colors: Option<wgpu::Buffer>,
+    pub(super) highlight: Option<(wgpu::Buffer, u32)>,
+}
+
+/// Face culling of a mesh.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cull {
+    /// Draw both sides (open meshes: their inside can be seen).
+    None = 0,
+    /// Closed, outward oriented: skip back faces.
+    Back = 1,
+    /// Closed, inward oriented: skip front faces.
+    Front = 2,
+}
+
+/// Closed meshes skip the faces turned away from the eye; which side is
+/// "away" follows the sign of the enclosed volume (the corner table makes the
+/// orientation consistent, not necessarily outward).
+pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
+    if ct.o_table().contains(&BORDER) {
+        return Cull::None;
+    }
+    let volume: f64 = ct
+        .v_table()
+        .chunks_exact(3)
+        .map(|t| {
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| positions[i as usize].as_dvec3());
+            a.dot(b.cross(c))
+        })
+        .sum();
+    if volume >= 0.0 { Cull::Back } else { Cull::Front }
+}
+
+/// Segments from each point along its normal, `length` long.
+fn normal_segments(positions: &[Vec3], normals: &[Vec3], length: f32) -> Vec<Vec3> {
+    positions.iter().zip(normals).flat_map(|(q, n)| [*q, *q + *n * length]).collect()
+}
+
+/// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]).
+pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
+    ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
+}
+
+fn buffer(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    // wgpu rejects nothing of size 0, but some backends dislike it: keep 16 bytes at least.
+    let mut padded;
+    let contents = if bytes.len() < 16 {
+        padded = bytes.to_vec();
+        padded.resize(16, 0);
+        &padded[..]
+    } else {
+        bytes
+    };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
+}
+
+impl GpuMesh {
+    /// Uploads a mesh with its vertex normals.
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] when a buffer would exceed the device's limit.
+    pub fn new(device: &wgpu::Device, ct: &CornerTable, positions: &[Vec3], normals: &[Vec3]) -> Result<GpuMesh> {
+        let edges = edge_indices(ct);
+        let limit = device.limits().max_buffer_size;
+        let biggest = (ct.v_table().len().max(edges.len()) * 4).max(positions.len() * 12) as u64;
+        if biggest > limit {
+            return Err(Error::Gpu(format!(
+                "the mesh needs a {} buffer but the graphics device allows {}",
+                crate::error::human_bytes(biggest),
+                crate::error::human_bytes(limit)
+            )));
+        }
+        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        Ok(GpuMesh {
+            positions: buffer(device, "positions", bytemuck::cast_slice(positions), vertex),
+            normals: buffer(device, "normals", bytemuck::cast_slice(normals), vertex),
+            triangles: buffer(device, "triangles", bytemuck::cast_slice(ct.v_table()), wgpu::BufferUsages::INDEX),
+            edges: buffer(device, "edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
+            vertex_count: positions.len(),
+            triangle_indices: ct.v_table().len() as u32,
+            edge_indices: edges.len() as u32,
+            normal_lines: None,
+            normal_length: 0.05,
+            cull: cull_for(ct, positions),
+            colors: None,
+            highlight: None,
+        })
+    }
+
+    /// One GPU vertex per corner, carrying a per-corner attribute in the
+    /// colour slot (texture coordinates for the checker, `(u, v, 0)`), so
+    /// seams between charts stay sharp. Edges are the corner table's.
+    pub fn unwelded(
+        device: &wgpu::Device,
+        ct: &CornerTable,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        corner_attr: &[Vec3],
+    ) -> Result<GpuMesh> {
+        let pos: Vec<Vec3> = ct.v_table().iter().map(|&v| positions[v as usize]).collect();
+        let nrm: Vec<Vec3> = ct.v_table().iter().map(|&v| normals[v as usize]).collect();
+        let identity: Vec<u32> = (0..ct.v_table().len() as u32).collect();
+        // the same edges, between the corners' own GPU vertices
+        let edges: Vec<u32> = ct.edge_owners().flat_map(|c| [n(c), p(c)]).collect();
+        let limit = device.limits().max_buffer_size;
+        if (pos.len() * 12) as u64 > limit {
+            return Err(Error::Gpu(format!(
+                "the mesh needs {} per buffer, the device allows {}",
+                crate::error::human_bytes((pos.len() * 12) as u64),
+                crate::error::human_bytes(limit)
+            )));
+        }
+        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        let mut attr = corner_attr.to_vec();
+        attr.resize(pos.len(), Vec3::ZERO);
+        Ok(GpuMesh {
+            positions: buffer(device, "corner positions", bytemuck::cast_slice(&pos), vertex),
+            normals: buffer(device, "corner normals", bytemuck::cast_slice(&nrm), vertex),
+            triangles: buffer(device, "corner triangles", bytemuck::cast_slice(&identity), wgpu::BufferUsages::INDEX),
+            edges: buffer(device, "corner edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
+            vertex_count: pos.len(),
+            triangle_indices: identity.len() as u32,
+            edge_indices: edges.len() as u32,
+            normal_lines: None,
+            normal_length: 0.05,
+            cull: cull_for(ct, positions),
+            colors: Some(buffer(device, "corner uv", bytemuck::cast_slice(&attr), wgpu::BufferUsages::VERTEX)),
+            highlight: None,
+        })
+    }
+
+    /// Lines only (no faces): `points` joined by the index pairs in `pairs`
+    /// (a curve and its control polygon).
+    pub fn lines(device: &wgpu::Device, points: &[Vec3], pairs: &[u32]) -> GpuMesh {
+        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        let normals = vec![Vec3::Z; points.len()];
+        GpuMesh {
+            positions: buffer(device, "line points", bytemuck::cast_slice(points), vertex),
+            normals: buffer(device, "line normals", bytemuck::cast_slice(&normals), vertex),
+            triangles: buffer(device, "no triangles", &[], wgpu::BufferUsages::INDEX),
+            edges: buffer(device, "line pairs", bytemuck::cast_slice(pairs), wgpu::BufferUsages::INDEX),
+            vertex_count: points.len(),
+            triangle_indices: 0,
+            edge_indices: pairs.len() as u32,
+            normal_lines: None,
+            normal_length: 0.05,
+            cull: Cull::None,
+            colors: None,
+            highlight: None,
+        }
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.vertex_count
+    }
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangle_indices as usize / 3
+    }
+
+    /// Replaces positions and normals (same vertex count, same topology):
+    /// the per-frame path of the animation; nothing is reallocated.
+    pub fn update(&mut self, queue: &wgpu::Queue, positions: &[Vec3], normals: &[Vec3]) {
+        let k = self.vertex_count.min(positions.len()).min(normals.len());
+        queue.write_buffer(&self.positions, 0, bytemuck::cast_slice(&positions[..k]));
+        queue.write_buffer(&self.normals, 0, bytemuck::cast_slice(&normals[..k]));
+        if let Some((buf, count)) = &self.normal_lines {
+            let segs = normal_segments(&positions[..k], &normals[..k], self.normal_length);
+            if segs.len() as u32 == *count {
+                queue.write_buffer(buf, 0, bytemuck::cast_slice(&segs));
+            }
+        }
+    }
+
+    /// Builds the segments, `length` long, that display the vertex normals.
+    pub fn set_normal_lines(&mut self, device: &wgpu::Device, positions: &[Vec3], normals: &[Vec3], length: f32) {
+        self.normal_length = length;
+        let v = normal_segments(positions, normals, length);
+        let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        self.normal_lines = Some((buffer(device, "normal lines", bytemuck::cast_slice(&v), usage), v.len() as u32));
+    }
+
+    /// Whether the normal segments are built.
+    pub fn has_normal_lines(&self) -> bool {
+        self.normal_lines.is_some()
+    }
+
+    /// Sets per-vertex colours (linear RGB, one per vertex), shown when the
+    /// look asks for colours.
+    pub fn set_colors(&mut self, device: &wgpu::Device, colors: &[Vec3]) {
+        let mut c = colors.to_vec();
+        c.resize(self.vertex_count, Vec3::ONE);
+        self.colors = Some(buffer(device, "colors", bytemuck::cast_slice(&c), wgpu::BufferUsages::VERTEX));
+    }
+
+    /// Segments (point pairs) drawn highlighted over this mesh, e.g. a
+    /// picked edge; empty clears them.
+    pub fn set_highlight(&mut self, device: &wgpu::Device, segments: &[Vec3]) {
+        self.highlight = (!segments.is_empty()).then(|| {
+            (
+                buffer(device, "highlight", bytemuck::cast_slice(segments), wgpu::BufferUsages::VERTEX),
+                segments.len() as u32,
+            )
+        });
+    }
+
+    /// Drops the normal segments.
+    pub fn clear_normal_lines(&mut self) {
+        self.normal_lines = None;
+    }
+}

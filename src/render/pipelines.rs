@@ -1,0 +1,194 @@
+//! The render pipelines of shaders/mesh.wgsl, built once per colour format
+//! and sample count.
+//!
+//! | pipeline      | vertex shader       | buffers               | colour | depth      | per cull mode |
+//! |---------------|---------------------|-----------------------|--------|------------|---------------|
+//! | `mesh`        | `vs_mesh`           | position, normal      | yes    | write, <   | yes           |
+//! | `mesh_colored`| `vs_mesh_colored`   | position, normal, rgb | yes    | write, <   | yes           |
+//! | `depth_only`  | `vs_mesh`           | position, normal      | no     | write, <   | yes           |
+//! | `lines`       | `vs_line`           | position              | yes    | write, <=  | no            |
+//!
+//! The per-cull arrays are indexed by [`super::gpu_mesh::Cull`] `as usize`:
+//! closed meshes skip the faces turned away from the eye.
+
+use super::DEPTH_FORMAT;
+
+/// Vertex buffer 0: positions (`@location(0)`).
+pub const POS_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+};
+/// Vertex buffer 1: normals (`@location(1)`).
+pub const NRM_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![1 => Float32x3],
+};
+/// Vertex buffer 2: per-vertex colours or texture coordinates (`@location(2)`).
+pub const COLOR_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Vertex,
+    attributes: &wgpu::vertex_attr_array![2 => Float32x3],
+};
+
+/// Cull modes in the order of [`super::gpu_mesh::Cull`].
+const CULLS: [Option<wgpu::Face>; 3] = [None, Some(wgpu::Face::Back), Some(wgpu::Face::Front)];
+
+/// The pipelines and the bind group layouts they were made with.
+pub struct Pipelines {
+    /// Shaded faces, material colour.
+    pub mesh: [wgpu::RenderPipeline; 3],
+    /// Shaded faces, per-vertex colour.
+    pub mesh_colored: [wgpu::RenderPipeline; 3],
+    /// Faces into the depth buffer only (hidden-line wireframe).
+    pub depth_only: [wgpu::RenderPipeline; 3],
+    /// Line lists (wireframe, control mesh, normals, highlights).
+    pub lines: wgpu::RenderPipeline,
+    /// Group 0: the per-viewport `View` uniform.
+    pub view_layout: wgpu::BindGroupLayout,
+    /// Group 1 of the line pipeline: the `LineStyle` uniform.
+    pub style_layout: wgpu::BindGroupLayout,
+}
+
+/// What varies between the pipelines.
+struct Spec<'a> {
+    label: &'a str,
+    layout: &'a wgpu::PipelineLayout,
+    vertex_shader: &'a str,
+    buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
+    topology: wgpu::PrimitiveTopology,
+    write_color: bool,
+    depth_compare: wgpu::CompareFunction,
+    cull_mode: Option<wgpu::Face>,
+}
+
+/// What every pipeline shares.
+struct Factory<'a> {
+    device: &'a wgpu::Device,
+    shader: wgpu::ShaderModule,
+    format: wgpu::TextureFormat,
+    samples: u32,
+}
+
+impl Factory<'_> {
+    fn build(&self, spec: &Spec) -> wgpu::RenderPipeline {
+        let fragment_shader = if spec.vertex_shader == "vs_line" { "fs_line" } else { "fs_mesh" };
+        let write_mask = if spec.write_color { wgpu::ColorWrites::ALL } else { wgpu::ColorWrites::empty() };
+        self.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(spec.label),
+            layout: Some(spec.layout),
+            vertex: wgpu::VertexState {
+                module: &self.shader,
+                entry_point: Some(spec.vertex_shader),
+                compilation_options: Default::default(),
+                buffers: spec.buffers,
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: spec.topology,
+                cull_mode: spec.cull_mode,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(spec.depth_compare),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: wgpu::MultisampleState { count: self.samples, mask: !0, alpha_to_coverage_enabled: false },
+            fragment: Some(wgpu::FragmentState {
+                module: &self.shader,
+                entry_point: Some(fragment_shader),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState { format: self.format, blend: None, write_mask })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    }
+
+    /// One triangle pipeline per cull mode.
+    fn per_cull(&self, spec: Spec) -> [wgpu::RenderPipeline; 3] {
+        CULLS.map(|cull_mode| self.build(&Spec { cull_mode, ..spec }))
+    }
+}
+
+/// A bind group layout with one uniform buffer at binding 0.
+pub fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some(label),
+        entries: &[wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        }],
+    })
+}
+
+/// A bind group of `layout` (from [`uniform_layout`]) holding `buf`.
+pub fn uniform_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buf: &wgpu::Buffer) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: None,
+        layout,
+        entries: &[wgpu::BindGroupEntry { binding: 0, resource: buf.as_entire_binding() }],
+    })
+}
+
+fn pipeline_layout(
+    device: &wgpu::Device,
+    label: &str,
+    groups: &[Option<&wgpu::BindGroupLayout>],
+) -> wgpu::PipelineLayout {
+    device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: groups,
+        immediate_size: 0,
+    })
+}
+
+impl Pipelines {
+    /// Every pipeline for colour targets of `format` with `samples` MSAA samples.
+    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, samples: u32) -> Pipelines {
+        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("mesh.wgsl"),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/mesh.wgsl").into()),
+        });
+        let factory = Factory { device, shader, format, samples };
+        let view_layout = uniform_layout(device, "view");
+        let style_layout = uniform_layout(device, "line style");
+        let mesh_layout = pipeline_layout(device, "mesh", &[Some(&view_layout)]);
+        let line_layout = pipeline_layout(device, "lines", &[Some(&view_layout), Some(&style_layout)]);
+        let shaded = [Some(POS_LAYOUT), Some(NRM_LAYOUT)];
+        let colored = [Some(POS_LAYOUT), Some(NRM_LAYOUT), Some(COLOR_LAYOUT)];
+        let faces = |label, vertex_shader, buffers, write_color| Spec {
+            label,
+            layout: &mesh_layout,
+            vertex_shader,
+            buffers,
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            write_color,
+            depth_compare: wgpu::CompareFunction::Less,
+            cull_mode: None,
+        };
+        let mesh = factory.per_cull(faces("mesh", "vs_mesh", &shaded, true));
+        let mesh_colored = factory.per_cull(faces("mesh colored", "vs_mesh_colored", &colored, true));
+        let depth_only = factory.per_cull(faces("depth only", "vs_mesh", &shaded, false));
+        let lines = factory.build(&Spec {
+            label: "lines",
+            layout: &line_layout,
+            vertex_shader: "vs_line",
+            buffers: &[Some(POS_LAYOUT)],
+            topology: wgpu::PrimitiveTopology::LineList,
+            write_color: true,
+            depth_compare: wgpu::CompareFunction::LessEqual,
+            cull_mode: None,
+        });
+        Pipelines { mesh, mesh_colored, depth_only, lines, view_layout, style_layout }
+    }
+}
