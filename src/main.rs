@@ -34,6 +34,8 @@ struct SchemeArgs {
     /// Refuse levels predicted to need more than this (e.g. 2G, 500M; default: 80% of available memory).
     #[arg(long, value_parser = parse_bytes)]
     max_memory: Option<u64>,
+    #[command(flatten)]
+    features: FeatureArgs,
 }
 
 impl SchemeArgs {
@@ -42,8 +44,36 @@ impl SchemeArgs {
             loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
             tension: self.tension,
             max_memory: self.max_memory,
-            ..Options::default()
+            creasing: self.features.creasing,
+            boundary: self.features.boundary,
         }
+    }
+}
+
+/// Sharp features: the model's own tags (OBJ `t crease` / `t corner`, .ct
+/// `creases` / `corners`) plus these options (OpenSubdiv's names).
+#[derive(clap::Args, Clone, Default)]
+struct FeatureArgs {
+    /// Make every edge whose two faces' normals differ by more than DEG degrees infinitely sharp.
+    #[arg(long, value_name = "DEG")]
+    crease_angle: Option<f32>,
+    /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
+    #[arg(long, default_value = "edge")]
+    boundary: subdiv::mesh::BoundaryInterpolation,
+    /// How semi-sharp creases decay: uniform (s - 1 per level) or chaikin.
+    #[arg(long, default_value = "uniform")]
+    creasing: subdiv::mesh::Creasing,
+}
+
+impl FeatureArgs {
+    /// `mesh` with the edges sharper than `--crease-angle` tagged.
+    fn apply(&self, mesh: Mesh) -> Result<Mesh> {
+        let Some(deg) = self.crease_angle else { return Ok(mesh) };
+        if !(0.0..=180.0).contains(&deg) {
+            return Err(Error::Usage(format!("--crease-angle {deg}: give an angle from 0 to 180 degrees")));
+        }
+        let Mesh { ct, positions } = mesh;
+        Ok(Mesh { ct: ct.with_angle_creases(&positions, deg), positions })
     }
 }
 
@@ -128,6 +158,8 @@ enum Cmd {
         /// Always analyse and describe the repaired mesh, even when the input is valid.
         #[arg(long)]
         repair: bool,
+        #[command(flatten)]
+        features: FeatureArgs,
     },
     /// List the bundled models (open any of them as bundled:NAME).
     Models,
@@ -237,7 +269,7 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
             println!("{} -> {}: Loop limit positions", input.display(), output.display());
             Ok(())
         }
-        Some(Cmd::Info { input, json, repair }) => info_cmd(&input, json, repair),
+        Some(Cmd::Info { input, json, repair, features }) => info_cmd(&input, json, repair, &features),
         Some(Cmd::Models) => {
             models_cmd();
             Ok(())
@@ -371,6 +403,7 @@ fn animate_cmd(a: AnimateArgs) -> Result<()> {
             (mesh, Some(paths))
         }
     };
+    let mesh = a.scheme.features.apply(mesh)?;
     let paths = match (&a.paths, default_paths) {
         (Some(p), _) => {
             let paths = Paths::load(p)?;
@@ -436,7 +469,7 @@ fn render_cmd(
     control: bool,
 ) -> Result<()> {
     let shading: subdiv::render::Shading = shading.parse().map_err(Error::Usage)?;
-    let mesh = bundled::load(input)?;
+    let mesh = scheme.features.apply(bundled::load(input)?)?;
     let (fine, _) = subdiv::subdivide(&mesh, scheme.scheme, levels, &scheme.options())?;
     let opts = subdiv::render::RenderOptions { shading, width: size.0, height: size.1, orthographic: ortho };
     subdiv::render::render_png(&fine, control.then_some(&mesh), &opts, output)
@@ -468,6 +501,7 @@ fn subdivide_cmd(
     } else {
         (bundled::load(input)?, Default::default())
     };
+    let mesh = s.features.apply(mesh)?;
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
     // Texture coordinates and colours ride along (OBJ in and out; see subdiv::attributes).
@@ -596,7 +630,7 @@ fn json_escape(s: &str) -> String {
     s.replace('\\', "\\\\").replace('"', "\\\"")
 }
 
-fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
+fn info_cmd(input: &Path, json: bool, repair: bool, features: &FeatureArgs) -> Result<()> {
     if is_curve(input) {
         return curve_info(input, json);
     }
@@ -610,6 +644,8 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
             (m, r.unreferenced_vertices.count, r.vertices_in, Some(r))
         }
     };
+    let mesh = features.apply(mesh)?;
+    let sharp = subdiv::subdiv::features::summary(&mesh.ct, features.boundary);
     let (nm_edges, nm_vertices) =
         report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));
     let t = topology(&mesh.ct);
@@ -618,7 +654,7 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
         t.valence_histogram.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, c)| format!("{k}:{c}")).collect();
     if json {
         println!(
-            "{{\"file\":\"{}\",\"vertices\":{},\"edges\":{},\"faces\":{},\"closed\":{},\"boundary_loops\":{},\"border_edges\":{},\"components\":{},\"euler\":{},\"genus\":{},\"unreferenced_dropped\":{dropped},\"non_manifold_edges\":{nm_edges},\"non_manifold_vertices\":{nm_vertices},\"repaired\":{},\"valence\":{{{}}}}}",
+            "{{\"file\":\"{}\",\"vertices\":{},\"edges\":{},\"faces\":{},\"closed\":{},\"boundary_loops\":{},\"border_edges\":{},\"components\":{},\"euler\":{},\"genus\":{},\"unreferenced_dropped\":{dropped},\"non_manifold_edges\":{nm_edges},\"non_manifold_vertices\":{nm_vertices},\"repaired\":{},\"sharp_edges\":{},\"infinitely_sharp_edges\":{},\"sharp_vertices\":{},\"corners\":{},\"darts\":{},\"crease_vertices\":{},\"valence\":{{{}}}}}",
             json_escape(&input.display().to_string()),
             t.vertices,
             t.edges,
@@ -630,6 +666,12 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
             t.euler,
             t.genus,
             report.is_some(),
+            sharp.sharp_edges,
+            sharp.infinite_edges,
+            sharp.sharp_vertices,
+            sharp.corners,
+            sharp.darts,
+            sharp.crease_vertices,
             hist.iter()
                 .map(|h| {
                     let (k, c) = h.split_once(':').unwrap_or(("0", "0"));
@@ -668,6 +710,15 @@ fn info_cmd(input: &Path, json: bool, repair: bool) -> Result<()> {
             }
         }
     }
+    println!(
+        "sharp features:  {} sharp edges ({} infinitely sharp), {} sharp vertices; {} corners, {} darts, {} crease vertices",
+        sharp.sharp_edges,
+        sharp.infinite_edges,
+        sharp.sharp_vertices,
+        sharp.corners,
+        sharp.darts,
+        sharp.crease_vertices
+    );
     println!("valence:         {}", hist.join(" "));
     println!("bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     if let Some(r) = &report {

@@ -201,3 +201,34 @@ fn smooth_and_limit_keep_the_topology() {
     let err = run_fail(&["smooth", input.to_str().unwrap(), tmp("x.obj").to_str().unwrap(), "--mu", "0.5"]);
     assert!(err.contains("mu < -lambda"), "{err}");
 }
+
+#[test]
+fn crease_options_tag_subdivide_and_count() {
+    // --crease-angle makes the cube's 12 edges sharp: the output keeps them
+    // as tags and every point on the cube's faces
+    let out = tmp("cube_sharp.obj");
+    let o = bin()
+        .args(["subdivide", "bundled:cube.obj", out.to_str().unwrap(), "--levels", "2", "--crease-angle", "40"])
+        .args(["--scheme", "loop", "--boundary", "edge-and-corner", "--creasing", "chaikin"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1/0 ")).count(), 12 * 4, "each edge in 4 pieces");
+    let back = subdiv::io::load(&out).unwrap();
+    for q in &back.positions {
+        let on_face = (0..3).any(|k| q[k].abs() < 1e-5 || (q[k] - 1.0).abs() < 1e-5);
+        assert!(on_face, "{q} is inside the cube");
+    }
+    let info = bin().args(["info", "bundled:cube.obj", "--crease-angle", "40"]).output().unwrap();
+    let info = String::from_utf8_lossy(&info.stdout).to_string();
+    assert!(info.contains("12 sharp edges (12 infinitely sharp)") && info.contains("8 corners"), "{info}");
+    let o = bin()
+        .args(["subdivide", "bundled:cube.obj", out.to_str().unwrap(), "--boundary", "sideways"])
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && e.contains("sideways") && e.contains("edge-and-corner"), "{e}");
+    let e = run_fail(&["subdivide", "bundled:cube.obj", out.to_str().unwrap(), "--crease-angle", "400"]);
+    assert!(e.contains("--crease-angle"), "{e}");
+}

@@ -35,28 +35,44 @@ impl CornerTable {
     /// ignored). The result is a valid table: O stays an involution, every
     /// sector is one fan with its first corner in `C`.
     pub fn cut_at(&self, corners: &[u32]) -> Cut {
-        let mut o = self.o.clone();
+        let mut table = self.clone();
+        table.sharpness = None;
+        let copies = table.cut_in_place(corners);
+        Cut { table, copies }
+    }
+
+    /// [`CornerTable::cut_at`] in place: returns the copies (cut vertex
+    /// `num_vertices() + i`, numbered before the cut, is a copy of
+    /// `copies[i]`). Costs the work at the cut only.
+    pub fn cut_in_place(&mut self, corners: &[u32]) -> Vec<u32> {
+        // the touched vertices' corners, read from the uncut fans
         let mut touched = Vec::with_capacity(2 * corners.len());
         for &c in corners {
-            if let Some(x) = self.o(c) {
-                o[c as usize] = BORDER;
-                o[x as usize] = BORDER;
+            if self.o(c).is_some() {
                 touched.push(self.vtx(n(c)));
                 touched.push(self.vtx(p(c)));
             }
         }
         touched.sort_unstable();
         touched.dedup();
-        let mut v = self.v.clone();
-        let mut vc = self.vc.clone();
-        let mut valence = self.valence.clone();
-        let mut copies = Vec::new();
-        let nv = self.num_vertices() as u32;
-        let mut fan = Vec::new();
-        let mut seen = Vec::new();
+        let mut fan_start = Vec::with_capacity(touched.len() + 1);
+        let mut fans = Vec::new();
         for &x in &touched {
-            fan.clear();
-            fan.extend(self.fan(x));
+            fan_start.push(fans.len());
+            fans.extend(self.fan(x));
+        }
+        fan_start.push(fans.len());
+        for &c in corners {
+            if let Some(x) = self.o(c) {
+                self.o[c as usize] = BORDER;
+                self.o[x as usize] = BORDER;
+            }
+        }
+        let nv = self.num_vertices() as u32;
+        let mut copies = Vec::new();
+        let mut seen = Vec::new();
+        for (k, &x) in touched.iter().enumerate() {
+            let fan = &fans[fan_start[k]..fan_start[k + 1]];
             seen.clear();
             seen.resize(fan.len(), false);
             let mut first_sector = true;
@@ -67,42 +83,41 @@ impl CornerTable {
                 // every touched vertex has a cut edge, so its fan is open in
                 // the cut O and unswinging stops within the fan
                 let mut start = fan[i];
-                while o[p(start) as usize] != BORDER {
-                    start = p(o[p(start) as usize]);
+                while self.o[p(start) as usize] != BORDER {
+                    start = p(self.o[p(start) as usize]);
                 }
-                let mut count = 0u32;
-                let mut c = start;
                 // the first sector keeps the vertex id, the others are copies
-                let sector_id = if first_sector {
+                let id = if first_sector {
                     x
                 } else {
                     copies.push(x);
                     nv + copies.len() as u32 - 1
                 };
                 first_sector = false;
+                let mut count = 0u32;
+                let mut c = start;
                 loop {
                     if let Some(j) = fan.iter().position(|&f| f == c) {
                         seen[j] = true;
                     }
-                    v[c as usize] = sector_id;
+                    self.v[c as usize] = id;
                     count += 1;
-                    let next = o[n(c) as usize];
+                    let next = self.o[n(c) as usize];
                     if next == BORDER {
                         break;
                     }
                     c = n(next);
                 }
-                if sector_id == x {
-                    vc[x as usize] = start;
-                    valence[x as usize] = count + 1;
+                if id == x {
+                    self.vc[x as usize] = start;
+                    self.valence[x as usize] = count + 1;
                 } else {
-                    vc.push(start);
-                    valence.push(count + 1);
+                    self.vc.push(start);
+                    self.valence.push(count + 1);
                 }
             }
         }
-        let table = CornerTable { v, o, vc, valence, sharpness: None };
-        Cut { table, copies }
+        copies
     }
 }
 

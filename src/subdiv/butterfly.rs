@@ -102,7 +102,7 @@ impl Rules for Butterfly {
     #[inline]
     fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         match ct.features {
-            Some(f) => super::features::four_point_crease(f, c, s),
+            Some(f) => super::features::four_point_crease(f, ct, c, s),
             None => self.edge(ct, c, s),
         }
     }

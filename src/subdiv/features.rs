@@ -35,6 +35,7 @@ use super::rules::{Accumulate, Level, Rules, Sink};
 use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
 use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
 use glam::Vec3;
+use rayon::prelude::*;
 use std::borrow::Cow;
 
 /// Which mask a vertex point uses.
@@ -87,13 +88,16 @@ pub struct EdgeFeature {
     pub weight: f32,
 }
 
-/// The sharp features of one level, classified (see the module docs).
-#[derive(Clone, Debug)]
-pub struct Features<'a> {
-    /// The level's (uncut) table.
-    pub ct: &'a CornerTable,
+/// The sharp features of one level, classified (see the module docs). Ids
+/// are those of the uncut level; where the level is cut open
+/// ([`Features::set_cut`]) the cut table's extra vertices map back through
+/// [`Features::original`].
+#[derive(Clone, Debug, Default)]
+pub struct Features {
     vertices: Vec<VertexFeature>,
     edges: Vec<EdgeFeature>,
+    nv: u32,
+    copies: Vec<u32>,
 }
 
 /// One incident edge of a vertex: the neighbour and the edge's sharpness
@@ -105,10 +109,11 @@ struct Incident {
     next: f32,
 }
 
-impl<'a> Features<'a> {
+impl Features {
     /// Classifies the sharp features of `ct`, or `None` when it has no
     /// sharpness (its borders are handled by every scheme's boundary rules).
-    pub fn of(ct: &'a CornerTable, creasing: Creasing) -> Option<Features<'a>> {
+    /// Parallel over the feature vertices and edges.
+    pub fn of(ct: &CornerTable, creasing: Creasing) -> Option<Features> {
         let sharp = ct.sharpness()?;
         let decay = sharp.edge_decay(ct, creasing);
         let mut candidates: Vec<u32> = sharp.sharp_vertices().iter().map(|&(v, _)| v).collect();
@@ -118,17 +123,23 @@ impl<'a> Features<'a> {
         }
         candidates.sort_unstable();
         candidates.dedup();
-        let mut inc = Vec::new();
-        let vertices: Vec<VertexFeature> =
-            candidates.iter().map(|&v| classify_vertex(ct, &decay, v, sharp.vertex(v), &mut inc)).collect();
+        let vertices: Vec<VertexFeature> = candidates
+            .par_iter()
+            .with_min_len(256)
+            .map_init(Vec::new, |inc, &v| classify_vertex(ct, &decay, v, sharp.vertex(v), inc))
+            .collect();
         let mut edges: Vec<EdgeFeature> = sharp
             .sharp_corners()
-            .iter()
+            .par_iter()
+            .with_min_len(256)
             .filter(|&&(c, _)| owns_edge(c, ct.o_entry(c)))
             .map(|&(c, _)| EdgeFeature { owner: c, weight: edge_weight(ct, &decay, c) })
             .collect();
         // border edges at a feature vertex: their crease curve may end there
         for &v in &candidates {
+            if !ct.is_boundary_vertex(v) {
+                continue;
+            }
             for c in ct.fan(v) {
                 for e in [p(c), n(c)] {
                     if ct.o_entry(e) == BORDER {
@@ -137,9 +148,32 @@ impl<'a> Features<'a> {
                 }
             }
         }
-        edges.sort_by_key(|e| e.owner);
+        edges.par_sort_unstable_by_key(|e| e.owner);
         edges.dedup_by_key(|e| e.owner);
-        Some(Features { ct, vertices, edges })
+        Some(Features { vertices, edges, nv: ct.num_vertices() as u32, copies: Vec::new() })
+    }
+
+    /// Records that the level is evaluated cut open: cut vertex
+    /// `nv + i` is a copy of `copies[i]`.
+    pub fn set_cut(&mut self, copies: Vec<u32>) {
+        self.copies = copies;
+    }
+
+    /// The uncut level's vertex that vertex `v` of the level's (possibly
+    /// cut) table stands for.
+    #[inline]
+    pub fn original(&self, v: u32) -> u32 {
+        if v < self.nv { v } else { self.copies[(v - self.nv) as usize] }
+    }
+
+    /// The uncut level's vertex count.
+    pub fn num_vertices(&self) -> u32 {
+        self.nv
+    }
+
+    /// The copies made by the cut ([`Features::set_cut`]).
+    pub fn copies(&self) -> &[u32] {
+        &self.copies
     }
 
     /// The classified vertices, sorted by vertex.
@@ -166,22 +200,24 @@ impl<'a> Features<'a> {
 
     /// The corners of the edges that are creases at this level (weight 1,
     /// not border): where the level is cut for [`Rules::CUT_AT_CREASES`].
-    pub fn cut_corners(&self) -> Vec<u32> {
-        self.edges.iter().filter(|e| e.weight >= 1.0 && self.ct.o_entry(e.owner) != BORDER).map(|e| e.owner).collect()
+    pub fn cut_corners(&self, ct: &CornerTable) -> Vec<u32> {
+        self.edges.iter().filter(|e| e.weight >= 1.0 && ct.o_entry(e.owner) != BORDER).map(|e| e.owner).collect()
     }
 
     /// The neighbour of `v` that continues the crease through `v` beyond
     /// `from` (the other end of `v`'s second crease edge), or `None` where
     /// the crease curve ends at `v` (a dart or a corner). A vertex without
-    /// a feature is a regular boundary vertex: its crease is the border.
-    pub fn crease_continues(&self, v: u32, from: u32) -> Option<u32> {
+    /// a feature is a regular boundary vertex: its crease is the border,
+    /// found in `ct`, the level's table (the cut does not touch it).
+    pub fn crease_continues(&self, ct: &CornerTable, v: u32, from: u32) -> Option<u32> {
         match self.vertex(v) {
             Some(f) => match f.parent {
                 Mask::Crease(a, b) => Some(if a == from { b } else { a }),
                 _ => None,
             },
             None => {
-                let (a, b) = self.ct.boundary_neighbours(v)?;
+                let (a, b) = ct.boundary_neighbours(v)?;
+                let (a, b) = (self.original(a), self.original(b));
                 Some(if a == from { b } else { a })
             }
         }
@@ -316,17 +352,16 @@ pub fn edge_stencil<R: Rules, S: Sink>(r: &R, lv: &Level, c: u32, s: &mut S) {
 }
 
 /// The interpolating 4-point curve rule (Dyn, Levin, Gregory 1987) along the
-/// crease through the edge owned by `c` of the uncut table `f.ct`:
+/// crease through the edge owned by `c` (of the level `ct`, cut or not):
 /// `-1/16 p0 + 9/16 p1 + 9/16 p2 - 1/16 p3`. Where the crease curve ends
 /// (a dart or a corner) the missing point is replaced by the quadratic
 /// through the other three (`3/8 p1 + 3/4 p2 - 1/8 p3`, the 4-point rule
 /// with `p0 = 3 p1 - 3 p2 + p3`), and an edge ending at both ends is
 /// split at its midpoint. Points along a crease therefore depend on the
 /// crease polygon alone.
-pub fn four_point_crease<S: Sink>(f: &Features, c: u32, s: &mut S) {
-    let ct = f.ct;
-    let (p1, p2) = (ct.vtx(n(c)), ct.vtx(p(c)));
-    match (f.crease_continues(p1, p2), f.crease_continues(p2, p1)) {
+pub fn four_point_crease<S: Sink>(f: &Features, ct: &CornerTable, c: u32, s: &mut S) {
+    let (p1, p2) = (f.original(ct.vtx(n(c))), f.original(ct.vtx(p(c))));
+    match (f.crease_continues(ct, p1, p2), f.crease_continues(ct, p2, p1)) {
         (Some(p0), Some(p3)) => {
             s.add(p0, -1.0 / 16.0);
             s.add(p1, 9.0 / 16.0);
@@ -386,37 +421,50 @@ pub fn with_boundary_corners(ct: &CornerTable, boundary: BoundaryInterpolation) 
     Cow::Owned(ct.clone().with_sharpness(sharp))
 }
 
-/// One level of `r` on a table with sharp features `f` (one-shot
+/// One level of `r` on the table `ct` with sharp features `f` (one-shot
 /// subdivision): the scheme's own evaluation with the smooth and boundary
-/// rules (on the cut table for [`Rules::CUT_AT_CREASES`]), then the points
-/// of the feature vertices and edges again through their stencils. `w`
-/// holds each corner's edge id. Returns (vertex ms, edge ms).
+/// rules, then the points of the feature vertices and edges again through
+/// their stencils. For [`Rules::CUT_AT_CREASES`] the level is first cut
+/// open along its creases, in place (`ct`, `pos` and `boundary` are this
+/// level's, discarded after). `w` holds each corner's edge id. Returns
+/// (vertex ms, edge ms).
 #[allow(clippy::too_many_arguments)]
 pub fn apply<R: Rules>(
     r: &R,
-    f: &Features,
-    boundary: Vec<bool>,
+    mut f: Features,
+    ct: Cow<'_, CornerTable>,
+    pos: Cow<'_, [Vec3]>,
+    mut boundary: Vec<bool>,
     owners: &[u32],
     w: &[u32],
-    pos: &[Vec3],
     vout: &mut [Vec3],
     eout: &mut [Vec3],
 ) -> (f64, f64) {
     if R::CUT_AT_CREASES {
-        let cut = f.ct.cut_at(&f.cut_corners());
-        let mut pos_cut = Vec::with_capacity(pos.len() + cut.copies.len());
-        pos_cut.extend_from_slice(pos);
-        pos_cut.extend(cut.copies.iter().map(|&v| pos[v as usize]));
-        let lv = Level::new(&cut.table).with_features(Some(f));
-        let mut vcut = vec![Vec3::ZERO; cut.table.num_vertices()];
-        let times = r.apply(&lv, owners, &pos_cut, &mut vcut, eout);
+        let (mut ct, mut pos) = (ct.into_owned(), pos.into_owned());
+        let corners = f.cut_corners(&ct);
+        // the cut's ends are on its border (ids taken before the cut renames
+        // their later sectors, which are new vertices, on the border too)
+        for &c in &corners {
+            boundary[ct.vtx(n(c)) as usize] = true;
+            boundary[ct.vtx(p(c)) as usize] = true;
+        }
+        let copies = ct.cut_in_place(&corners);
+        boundary.resize(ct.num_vertices(), true);
+        for &v in &copies {
+            pos.push(pos[v as usize]);
+        }
+        f.set_cut(copies);
+        let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
+        let mut vcut = vec![Vec3::ZERO; ct.num_vertices()];
+        let times = r.apply(&lv, owners, &pos, &mut vcut, eout);
         vout.copy_from_slice(&vcut[..vout.len()]);
-        correct(r, &lv, f, w, &pos_cut, vout, eout);
+        correct(r, &lv, &f, w, &pos, vout, eout);
         times
     } else {
-        let lv = Level::with_boundary(f.ct, boundary).with_features(Some(f));
-        let times = r.apply(&lv, owners, pos, vout, eout);
-        correct(r, &lv, f, w, pos, vout, eout);
+        let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
+        let times = r.apply(&lv, owners, &pos, vout, eout);
+        correct(r, &lv, &f, w, &pos, vout, eout);
         times
     }
 }
@@ -424,16 +472,33 @@ pub fn apply<R: Rules>(
 /// The feature vertices' and edges' points through their stencils.
 fn correct<R: Rules>(r: &R, lv: &Level, f: &Features, w: &[u32], pos: &[Vec3], vout: &mut [Vec3], eout: &mut [Vec3]) {
     if R::MOVES_VERTICES {
-        for vf in f.vertices().iter().filter(|vf| vf.parent != Mask::Smooth) {
-            let mut acc = Accumulate::new(pos);
-            vertex_stencil(r, lv, vf.vertex, &mut acc);
-            vout[vf.vertex as usize] = acc.sum;
+        let points: Vec<(usize, Vec3)> = f
+            .vertices()
+            .par_iter()
+            .with_min_len(256)
+            .filter(|vf| vf.parent != Mask::Smooth)
+            .map(|vf| {
+                let mut acc = Accumulate::new(pos);
+                vertex_stencil(r, lv, vf.vertex, &mut acc);
+                (vf.vertex as usize, acc.sum)
+            })
+            .collect();
+        for (v, q) in points {
+            vout[v] = q;
         }
     }
-    for ef in f.edges() {
-        let mut acc = Accumulate::new(pos);
-        edge_stencil(r, lv, ef.owner, &mut acc);
-        eout[w[ef.owner as usize] as usize] = acc.sum;
+    let points: Vec<(usize, Vec3)> = f
+        .edges()
+        .par_iter()
+        .with_min_len(256)
+        .map(|ef| {
+            let mut acc = Accumulate::new(pos);
+            edge_stencil(r, lv, ef.owner, &mut acc);
+            (w[ef.owner as usize] as usize, acc.sum)
+        })
+        .collect();
+    for (e, q) in points {
+        eout[e] = q;
     }
 }
 

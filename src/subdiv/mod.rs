@@ -22,6 +22,7 @@ use crate::mesh::{CornerTable, Mesh, split};
 use crate::{Error, Result};
 use glam::Vec3;
 use rules::{Level, Rules};
+use std::borrow::Cow;
 use std::time::Instant;
 
 pub use loop_::LoopBeta;
@@ -225,8 +226,8 @@ pub(crate) trait RulesFn<T> {
 /// One level: split plus the scheme's points. `boundary` holds the input
 /// level's vertex boundary flags when the previous level produced them.
 struct OneLevel<'a> {
-    ct: &'a CornerTable,
-    positions: &'a [Vec3],
+    ct: Cow<'a, CornerTable>,
+    positions: Cow<'a, [Vec3]>,
     boundary: Option<Vec<bool>>,
     creasing: Creasing,
     stats: &'a mut Stats,
@@ -234,7 +235,7 @@ struct OneLevel<'a> {
 
 impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
     fn call<R: Rules>(self, r: &R) -> (Mesh, Option<Vec<bool>>) {
-        let old = self.ct;
+        let old: &CornerTable = &self.ct;
         let boundary = self.boundary.unwrap_or_else(|| rules::boundary_flags(old));
         let t0 = Instant::now();
         let ((ct, edges, next_boundary), (number_ms, _)) =
@@ -245,14 +246,14 @@ impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
         let split::EdgeNumbering { owners, w } = edges;
         let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
         let (vpart, epart) = positions.split_at_mut(old.num_vertices());
-        let (vms, ems) = match &features {
+        let (vms, ems) = match features {
             None => {
                 // the per-corner edge ids are the split's alone: free them
                 // before the points are written (lower peak memory)
                 drop(w);
-                r.apply(&Level::with_boundary(old, boundary), &owners, self.positions, vpart, epart)
+                r.apply(&Level::with_boundary(old, boundary), &owners, &self.positions, vpart, epart)
             }
-            Some(f) => features::apply(r, f, boundary, &owners, &w, self.positions, vpart, epart),
+            Some(f) => features::apply(r, f, self.ct, self.positions, boundary, &owners, &w, vpart, epart),
         };
         self.stats.vertex_ms += vms;
         self.stats.edge_ms += ems;
@@ -287,11 +288,13 @@ pub fn subdivide_with_progress(
     check_levels_fit(&mesh.ct, 0, levels, limit)?;
     let mut cur: Option<Mesh> = None;
     let mut boundary: Option<Vec<bool>> = None;
-    let base = features::with_boundary_corners(&mesh.ct, opts.boundary);
+    let mut base = Some(features::with_boundary_corners(&mesh.ct, opts.boundary));
     for level in 1..=levels {
-        let (ct, positions) = match &cur {
-            Some(m) => (&m.ct, &m.positions[..]),
-            None => (&*base, &mesh.positions[..]),
+        // each level after the first owns (and may cut, see features::apply)
+        // the one before it
+        let (ct, positions) = match cur.take() {
+            Some(m) => (Cow::Owned(m.ct), Cow::Owned(m.positions)),
+            None => (base.take().unwrap_or(Cow::Borrowed(&mesh.ct)), Cow::Borrowed(&mesh.positions[..])),
         };
         let one = OneLevel { ct, positions, boundary: boundary.take(), creasing: opts.creasing, stats: &mut stats };
         let (next, next_boundary) = with_rules(scheme, opts, one);

@@ -23,7 +23,7 @@ pub struct Level<'a> {
     /// `boundary[v]`: is vertex `v` on the boundary?
     pub boundary: Vec<bool>,
     /// The level's sharp features, classified (`None`: no sharpness).
-    pub features: Option<&'a Features<'a>>,
+    pub features: Option<&'a Features>,
 }
 
 impl<'a> Level<'a> {
@@ -36,7 +36,7 @@ impl<'a> Level<'a> {
         Level { ct, boundary, features: None }
     }
     /// This level with its sharp features.
-    pub fn with_features(mut self, features: Option<&'a Features<'a>>) -> Self {
+    pub fn with_features(mut self, features: Option<&'a Features>) -> Self {
         self.features = features;
         self
     }
@@ -130,9 +130,9 @@ pub trait Rules: Sync {
     /// read the crease from `ct.features`.
     #[inline]
     fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
-        let f = ct.features.map_or(ct.ct, |f| f.ct);
-        s.add(f.vtx(n(c)), 0.5);
-        s.add(f.vtx(p(c)), 0.5);
+        let original = |v: u32| ct.features.map_or(v, |f| f.original(v));
+        s.add(original(ct.vtx(n(c))), 0.5);
+        s.add(original(ct.vtx(p(c))), 0.5);
     }
     /// The curve rule of vertex `v` on a crease through its neighbours `a`
     /// and `b` (the default: `v` stays).

@@ -78,7 +78,8 @@ pub struct PlanScratch {
 }
 
 struct RecordLevel<'a> {
-    ct: &'a CornerTable,
+    /// The level, owned: it may be cut open along its creases.
+    ct: CornerTable,
     owners: &'a [u32],
     creasing: Creasing,
 }
@@ -113,14 +114,18 @@ fn record_rows(rows: usize, f: impl Fn(usize, &mut Record) + Sync) -> (Vec<u32>,
 
 impl RulesFn<LevelPlan> for RecordLevel<'_> {
     fn call<R: Rules>(self, r: &R) -> LevelPlan {
-        let nv = self.ct.num_vertices();
+        let mut table = self.ct;
+        let nv = table.num_vertices();
         let ne = self.owners.len();
-        let f = Features::of(self.ct, self.creasing);
+        let mut f = Features::of(&table, self.creasing);
         // schemes whose stencils reach across edges see a creased level cut
         // open along its creases; the cut's extra vertices map back to theirs
-        let cut = f.as_ref().filter(|_| R::CUT_AT_CREASES).map(|f| f.ct.cut_at(&f.cut_corners()));
-        let lv = Level::new(cut.as_ref().map_or(self.ct, |c| &c.table)).with_features(f.as_ref());
-        let copies: &[u32] = cut.as_ref().map_or(&[], |c| &c.copies);
+        if let Some(f) = f.as_mut().filter(|_| R::CUT_AT_CREASES) {
+            let corners = f.cut_corners(&table);
+            f.set_cut(table.cut_in_place(&corners));
+        }
+        let lv = Level::new(&table).with_features(f.as_ref());
+        let copies: &[u32] = f.as_ref().map_or(&[], |f| f.copies());
         let (ct, owners) = (&lv, self.owners);
         let row = |i: usize, rec: &mut Record| {
             let mut s = Unsplit { sink: rec, nv: nv as u32, copies };
@@ -149,7 +154,7 @@ impl StencilPlan {
         let mut plans = Vec::with_capacity(levels as usize);
         for _ in 1..=levels {
             let (next, edges) = split::split_with(&cur, opts.creasing);
-            let record = RecordLevel { ct: &cur, owners: &edges.owners, creasing: opts.creasing };
+            let record = RecordLevel { ct: cur, owners: &edges.owners, creasing: opts.creasing };
             plans.push(with_rules(scheme, opts, record));
             cur = next;
         }
