@@ -335,6 +335,7 @@ fn view(a: ViewArgs) -> Result<()> {
         turntable: a.turntable,
         repair: a.repair,
         coloring: a.color.parse().map_err(Error::Usage)?,
+        crease_angle: a.scheme.features.crease_angle,
     })
 }
 

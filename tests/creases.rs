@@ -381,3 +381,27 @@ fn the_crease_angle_finds_the_cube_edges_and_info_counts_them() {
     );
     assert_eq!(b.sharp_vertices, a.sharp_vertices + 2, "{a:?} {b:?}");
 }
+
+#[test]
+fn loop_limit_positions_follow_the_crease_curve() {
+    // a vertex keeps its id through every split, so its limit at level 2 is
+    // where four more levels take it
+    let (m, ring) = torus_with_loop(INFINITE);
+    let l2 = sub(&m, Scheme::Loop, 2, &Options::default());
+    let l6 = sub(&m, Scheme::Loop, 6, &Options::default());
+    let lim = subdiv::subdiv::limit::loop_limit_positions(&l2);
+    let smooth = subdiv::subdiv::limit::loop_limit_positions(&Mesh {
+        ct: l2.ct.clone().with_tags(&Tags::default()).unwrap(),
+        positions: l2.positions.clone(),
+    });
+    let (mut worst, mut worst_smooth) = (0.0f32, 0.0f32);
+    for v in 0..l2.positions.len() {
+        if on_loop(l2.positions[v]) {
+            worst = worst.max(lim[v].distance(l6.positions[v]));
+            worst_smooth = worst_smooth.max(smooth[v].distance(l6.positions[v]));
+        }
+    }
+    assert!(!ring.is_empty());
+    assert!(worst < 2e-4, "crease limit {worst}");
+    assert!(worst_smooth > 20.0 * worst, "the smooth mask is visibly off the crease ({worst_smooth} vs {worst})");
+}

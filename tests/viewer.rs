@@ -411,3 +411,75 @@ fn a_new_model_is_framed_and_an_edit_keeps_the_view() {
     assert_eq!(v.view.camera.distance, framed.distance);
     assert_ne!(v.view.camera.distance, zoomed.distance);
 }
+
+#[test]
+fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
+    let mut v = Viewer::new();
+    v.apply(Command::Open("bundled:cube.obj".into()));
+    settle(&mut v);
+    // the angle tags the cube's 12 edges (not the diagonals)
+    v.apply(Command::AutoCrease(40.0));
+    let ct = &v.doc.model.control.mesh.ct;
+    let s = subdiv::subdiv::features::summary(ct, Default::default());
+    assert_eq!((s.sharp_edges, s.corners), (12, 8));
+    // every change re-subdivides on the worker: the cube stays a cube
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    let raw = &v.doc.model.raw.mesh;
+    for q in &raw.positions {
+        assert!((0..3).any(|k| q[k].abs() < 1e-5 || (q[k] - 1.0).abs() < 1e-5), "{q} left the cube's faces");
+    }
+    // drawn cut open along the creases: a point on a cube edge has one copy
+    // per side, each with its own face's normal
+    let shown = &v.doc.model.result.shown;
+    assert!(shown.mesh.positions.len() > raw.positions.len(), "the creases are cut for shading");
+    let mid_edge = (0..shown.mesh.positions.len())
+        .find(|&i| {
+            let q = shown.mesh.positions[i];
+            (q - Vec3::new(0.5, 0.0, 0.0)).length() < 1e-5
+        })
+        .expect("the midpoint of the cube edge (0,0,0)-(1,0,0)");
+    let copies: Vec<Vec3> = (0..shown.mesh.positions.len())
+        .filter(|&i| shown.mesh.positions[i].distance(shown.mesh.positions[mid_edge]) < 1e-6)
+        .map(|i| shown.normals[i])
+        .collect();
+    assert_eq!(copies.len(), 2, "one vertex per side of the edge");
+    for n in &copies {
+        assert!(n.abs().max_element() > 0.999, "a side's normal is its face's ({n})");
+    }
+    // the slider sets a picked edge's sharpness; a click toggles it
+    let c = v
+        .doc
+        .model
+        .control
+        .mesh
+        .ct
+        .edge_owners()
+        .find(|&c| v.doc.model.control.mesh.ct.edge_sharpness(c) > 0.0)
+        .unwrap();
+    v.apply(Command::SetSharpness { corner: c, sharpness: 2.5 });
+    assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(c), 2.5);
+    v.apply(Command::ClearCreases);
+    assert!(v.doc.model.control.mesh.ct.sharpness().is_none());
+    set_display(&mut v, |d| {
+        d.pick = true;
+        d.click_creases = true;
+    });
+    let cube = v.doc.model.control.mesh.clone();
+    // a ray onto the middle of the edge (0,0,0)-(1,0,0), from below-front
+    let origin = Vec3::new(0.5, -3.0, -3.0);
+    let dir = (Vec3::new(0.5, 0.0, 0.0) - origin).normalize();
+    v.apply(Command::Pick { origin, dir });
+    let picked = (*v.doc.model.picked).expect("the ray picks an edge");
+    assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(picked), subdiv::mesh::sharpness::INFINITE);
+    assert_eq!(cube.ct.edge_sharpness(picked), 0.0);
+    v.apply(Command::Pick { origin, dir });
+    assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(picked), 0.0, "a second click smooths it again");
+    v.apply(Command::Pick { origin, dir });
+    // saved with its tag
+    let path = common::scratch_dir("viewer-creases").join("control.obj");
+    v.apply(Command::SaveControl(path.clone()));
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1/0 ")).count(), 1, "{text}");
+    assert!(subdiv::io::load(&path).unwrap().ct.sharpness().is_some());
+}

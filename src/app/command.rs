@@ -50,6 +50,21 @@ pub enum Command {
         /// Unit ray direction.
         dir: Vec3,
     },
+    /// Set the sharpness of the control edge opposite `corner` (0 smooth,
+    /// 10 infinitely sharp).
+    SetSharpness {
+        /// A corner facing the edge.
+        corner: u32,
+        /// Its new sharpness.
+        sharpness: f32,
+    },
+    /// Make every control edge sharper than this dihedral angle (degrees)
+    /// infinitely sharp, on top of the file's own tags.
+    AutoCrease(f32),
+    /// Make every control edge and vertex smooth.
+    ClearCreases,
+    /// Save the control mesh (OBJ or .ct by extension, with its tags).
+    SaveControl(PathBuf),
     /// Flip the picked edge.
     FlipPicked,
     /// Split the picked edge at its midpoint.
@@ -146,7 +161,14 @@ impl Viewer {
             Command::Pick { origin, dir } => {
                 let picked = crate::mesh::pick::pick_edge(&doc.model.control.mesh, origin, dir);
                 doc.model.picked.set(picked);
+                if let (Some(c), true) = (picked, doc.display.click_creases) {
+                    doc.toggle_crease(c);
+                }
             }
+            Command::SetSharpness { corner, sharpness } => doc.set_sharpness(corner, sharpness),
+            Command::AutoCrease(degrees) => doc.auto_crease(degrees),
+            Command::ClearCreases => doc.set_control_tags(&crate::mesh::Tags::default()),
+            Command::SaveControl(path) => doc.save_control(&path),
             Command::FlipPicked => doc.flip_picked(),
             Command::SplitPicked => doc.split_picked(),
             Command::TogglePlay => self.toggle_play(),

@@ -103,6 +103,10 @@ pub struct Display {
     pub snap_limit: bool,
     /// Per-vertex colouring of the result.
     pub coloring: Coloring,
+    /// Sharp edges (creases) drawn in their own colour.
+    pub sharp_edges: bool,
+    /// With `pick`, a click also toggles the picked edge's crease.
+    pub click_creases: bool,
 }
 
 impl Display {
@@ -120,6 +124,8 @@ impl Display {
             normal_mode: NormalMode::default(),
             snap_limit: false,
             coloring: Coloring::default(),
+            sharp_edges: true,
+            click_creases: false,
         }
     }
 
@@ -132,6 +138,7 @@ impl Display {
             normals: self.normals,
             colors: false,
             uv_checker: false,
+            sharp: self.sharp_edges,
         }
     }
 

@@ -12,6 +12,7 @@ use super::jobs::{AnimationJob, Finished, Jobs, Opened, Subdivided, SubdivisionJ
 use super::model::{Curve, Made, Model, Shown};
 use crate::anim::paths::Paths;
 use crate::mesh::edit::EditError;
+use crate::mesh::sharpness::{CreaseTag, INFINITE, Tags};
 use crate::render::export::{ExportStyle, ExportTarget};
 use crate::subdiv::{check_levels_fit, default_memory_limit, predict_faces};
 use crate::{Error, Mesh, Options, Scheme, bundled};
@@ -323,6 +324,66 @@ impl Doc {
         if let Some(m) = self.model.original.take() {
             self.replace_control(Arc::unwrap_or_clone(m));
             self.model.original = None;
+        }
+    }
+
+    /// The control mesh with the sharpness `tags` give it (tags whose edge
+    /// or vertex is gone are dropped), re-subdivided; the pick stays.
+    pub fn set_control_tags(&mut self, tags: &crate::mesh::Tags) {
+        let control = &self.model.control.mesh;
+        let mut tags = tags.clone();
+        tags.creases.retain(|t| control.ct.corner_opposite(t.v0, t.v1).is_some());
+        tags.corners.retain(|t| (t.vertex as usize) < control.positions.len());
+        let ct = match control.ct.clone().with_tags(&tags) {
+            Ok(ct) => ct,
+            Err(e) => return self.fail(Problem::Other(crate::Error::Invalid(e))),
+        };
+        let picked = *self.model.picked;
+        self.replace_control(Mesh { ct, positions: control.positions.clone() });
+        self.model.picked.set(picked);
+    }
+
+    /// The control mesh's tags with the edge opposite `c` at `sharpness`.
+    pub fn set_sharpness(&mut self, c: u32, sharpness: f32) {
+        let ct = &self.model.control.mesh.ct;
+        if c as usize >= ct.num_corners() || ct.o(c).is_none() {
+            return;
+        }
+        let (a, b) = (ct.vtx(crate::mesh::n(c)), ct.vtx(crate::mesh::p(c)));
+        let mut tags = ct.sharpness().map(|s| s.to_tags(ct)).unwrap_or_default();
+        tags.creases.retain(|t| (t.v0.min(t.v1), t.v0.max(t.v1)) != (a.min(b), a.max(b)));
+        let sharpness = if sharpness.is_finite() { sharpness.clamp(0.0, INFINITE) } else { 0.0 };
+        tags.creases.push(CreaseTag { v0: a, v1: b, sharpness });
+        self.set_control_tags(&tags);
+    }
+
+    /// Makes the edge opposite `c` infinitely sharp, or smooth if it was sharp.
+    pub fn toggle_crease(&mut self, c: u32) {
+        let ct = &self.model.control.mesh.ct;
+        let sharp = ct.o(c).is_some() && ct.edge_sharpness(c) > 0.0;
+        self.set_sharpness(c, if sharp { 0.0 } else { INFINITE });
+    }
+
+    /// The tags of the control mesh as loaded (before any edit) plus every
+    /// edge sharper than `degrees` made infinitely sharp.
+    pub fn auto_crease(&mut self, degrees: f32) {
+        let m = &self.model;
+        let loaded = m.original.as_deref().unwrap_or(&m.control.mesh);
+        let file_tags = loaded.ct.sharpness().map(|s| s.to_tags(&loaded.ct)).unwrap_or_default();
+        let control = &m.control.mesh;
+        let auto =
+            control.ct.clone().with_tags(&Tags::default()).map(|ct| ct.with_angle_creases(&control.positions, degrees));
+        let mut tags = auto.ok().and_then(|ct| ct.sharpness().map(|s| s.to_tags(&ct))).unwrap_or_default();
+        tags.creases.extend(file_tags.creases);
+        tags.corners.extend(file_tags.corners);
+        self.set_control_tags(&tags);
+    }
+
+    /// Writes the control mesh (its tags kept: OBJ `t crease`, .ct sections).
+    pub fn save_control(&mut self, path: &std::path::Path) {
+        match crate::io::save(path, &self.model.control.mesh) {
+            Ok(()) => self.status.notice = Some(format!("saved {}", path.display())),
+            Err(e) => self.fail(Problem::Other(e)),
         }
     }
 

@@ -79,6 +79,8 @@ pub struct ViewOptions {
     pub repair: bool,
     /// Initial colouring.
     pub coloring: Coloring,
+    /// Tag the edges sharper than this dihedral angle (degrees) on opening.
+    pub crease_angle: Option<f32>,
 }
 
 /// Longest a `--frames` run may wait for its work before giving up.
@@ -267,6 +269,11 @@ impl App {
         }
         doc.request.level = opts.level;
         open_initial(doc, &opts)?;
+        if let Some(deg) = opts.crease_angle {
+            doc.auto_crease(deg);
+            viewer.panel.crease_angle = deg;
+        }
+        let doc = &mut viewer.doc;
         if let Some(e) = doc.level_refusal(doc.request.level) {
             return Err(e);
         }

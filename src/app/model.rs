@@ -63,14 +63,43 @@ pub struct Shown {
     pub normals: Arc<Vec<Vec3>>,
     /// V/E/F, genus, boundary loops...
     pub topo: Topology,
+    /// Where the mesh has sharp edges: how it is drawn (see [`Creased`]).
+    pub creased: Option<Arc<Creased>>,
+}
+
+/// A mesh with sharp edges as it is drawn: cut open along them
+/// ([`crate::mesh::cut`]), so that each side of a crease gets its own
+/// normal and a crease shows as a crease, not as a smeared highlight.
+pub struct Creased {
+    /// The cut table (same corners; the extra vertices are copies).
+    pub ct: crate::CornerTable,
+    /// For cut vertex `nv + i`, the vertex it is a copy of.
+    pub copies: Vec<u32>,
+    /// Fan-averaged normals of the cut mesh: per side along the creases.
+    pub normals: Vec<Vec3>,
+}
+
+impl Creased {
+    /// `values` (one per vertex of the uncut mesh) extended to the copies.
+    pub fn extend<T: Copy>(&self, values: &[T]) -> Vec<T> {
+        let mut out = Vec::with_capacity(values.len() + self.copies.len());
+        out.extend_from_slice(values);
+        out.extend(self.copies.iter().map(|&v| values[v as usize]));
+        out
+    }
 }
 
 impl Shown {
-    /// Computes the fan-averaged normals and the topology (worker threads do this).
+    /// Computes the fan-averaged normals and the topology, and the cut
+    /// mesh of a mesh with sharp edges (worker threads do this).
     pub fn new(mesh: Arc<Mesh>) -> Shown {
         let normals = Arc::new(mesh.vertex_normals());
         let topo = topology(&mesh.ct);
-        Shown { mesh, normals, topo }
+        let creased = mesh.ct.cut_at_sharp_edges().map(|cut| {
+            let normals = crate::mesh::normals::vertex_normals(&cut.table, &cut.positions(&mesh.positions));
+            Arc::new(Creased { ct: cut.table, copies: cut.copies, normals })
+        });
+        Shown { mesh, normals, topo, creased }
     }
 }
 
@@ -176,10 +205,19 @@ impl Model {
     /// (limit snapping, normals, colours); an error of the colouring is
     /// returned (the result is then shown uncoloured).
     pub fn reshade(&mut self, display: &Display) -> Option<Error> {
-        let shown = snapped_and_normals(&self.raw, display, self.made.loop_beta);
+        let creased = self.raw.creased.clone();
+        let shown = match creased {
+            // the normals are the cut mesh's (creased_view)
+            Some(_) => Shown { mesh: snapped(&self.raw, display, self.made.loop_beta), ..self.raw.clone() },
+            None => snapped_and_normals(&self.raw, display, self.made.loop_beta),
+        };
         let (colors, color_max, error) = match result_colors(self, &shown.mesh, display.coloring) {
             Ok((c, max)) => (c, max, None),
             Err(e) => (None, 0.0, Some(e)),
+        };
+        let (shown, colors) = match &creased {
+            Some(cr) => (creased_view(&shown, cr, display), colors.map(|c| cr.extend(&c))),
+            None => (shown, colors),
         };
         self.result.set(Shaded { shown, colors, color_max });
         error
@@ -197,12 +235,8 @@ impl Model {
 /// `raw` with its points moved to the Loop limit (with the weights `beta`
 /// it was made with) when asked, and the normals of the normal mode.
 fn snapped_and_normals(raw: &Shown, display: &Display, beta: LoopBeta) -> Shown {
-    use crate::subdiv::limit::{butterfly_normals, loop_limit_normals, loop_limit_positions_with};
-    let mesh = if display.snap_limit {
-        Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions: loop_limit_positions_with(&raw.mesh, beta) })
-    } else {
-        raw.mesh.clone()
-    };
+    use crate::subdiv::limit::{butterfly_normals, loop_limit_normals};
+    let mesh = snapped(raw, display, beta);
     let normals = match display.normal_mode {
         // the worker's fan normals, unless the points moved to the limit
         NormalMode::FanAverage if !display.snap_limit => raw.normals.clone(),
@@ -211,7 +245,34 @@ fn snapped_and_normals(raw: &Shown, display: &Display, beta: LoopBeta) -> Shown 
         NormalMode::Butterfly => Arc::new(butterfly_normals(&mesh)),
     };
     // snapping moves points, not connectivity: the topology is the raw one
-    Shown { mesh, normals, topo: raw.topo.clone() }
+    Shown { mesh, normals, topo: raw.topo.clone(), creased: raw.creased.clone() }
+}
+
+/// `raw`'s mesh, with its points moved to the Loop limit when asked.
+fn snapped(raw: &Shown, display: &Display, beta: LoopBeta) -> Arc<Mesh> {
+    use crate::subdiv::limit::loop_limit_positions_with;
+    if display.snap_limit {
+        Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions: loop_limit_positions_with(&raw.mesh, beta) })
+    } else {
+        raw.mesh.clone()
+    }
+}
+
+/// `shown` (the raw result after snapping, uncut) drawn cut open along its
+/// creases: positions copied to the cut's extra vertices, normals per side
+/// (the worker's fan normals when nothing moved the points; else the
+/// normal mode's, computed on the cut mesh, where a crease vertex is a
+/// boundary vertex of each side).
+fn creased_view(shown: &Shown, cr: &Creased, display: &Display) -> Shown {
+    use crate::subdiv::limit::{butterfly_normals, loop_limit_normals};
+    let mesh = Arc::new(Mesh { ct: cr.ct.clone(), positions: cr.extend(&shown.mesh.positions) });
+    let normals = match display.normal_mode {
+        NormalMode::FanAverage if !display.snap_limit => cr.normals.clone(),
+        NormalMode::FanAverage => mesh.vertex_normals(),
+        NormalMode::LoopLimit => loop_limit_normals(&mesh),
+        NormalMode::Butterfly => butterfly_normals(&mesh),
+    };
+    Shown { mesh, normals: Arc::new(normals), topo: shown.topo.clone(), creased: None }
 }
 
 /// The per-vertex colours of `mesh` (the shown result of `model`) for a

@@ -35,8 +35,8 @@ impl CornerTable {
     /// ignored). The result is a valid table: O stays an involution, every
     /// sector is one fan with its first corner in `C`.
     pub fn cut_at(&self, corners: &[u32]) -> Cut {
+        // the sharpness stays: its corners are the same, now on the border
         let mut table = self.clone();
-        table.sharpness = None;
         let copies = table.cut_in_place(corners);
         Cut { table, copies }
     }

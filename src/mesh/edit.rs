@@ -49,6 +49,34 @@ pub enum EditError {
 /// [`EditError`]: no such corner, a border edge, a diagonal that already
 /// exists (or `w == d`), or an interior endpoint of valence 3.
 pub fn flip_edge(ct: &mut CornerTable, c: u32) -> Result<(), EditError> {
+    // sharpness is kept by vertex pairs: a flipped sharp edge is gone
+    let tags = ct.sharpness.take().map(|s| s.to_tags(ct));
+    let done = flip_topology(ct, c);
+    restore_tags(ct, tags, None);
+    done
+}
+
+/// Sharpness tags re-applied after an edit; a tag on `split = (a, b, m)`'s
+/// edge goes to both halves, a tag whose edge is gone is dropped.
+fn restore_tags(ct: &mut CornerTable, tags: Option<super::Tags>, split: Option<(u32, u32, u32)>) {
+    let Some(mut tags) = tags else { return };
+    if let Some((a, b, m)) = split {
+        let halves: Vec<_> = tags
+            .creases
+            .iter()
+            .filter(|t| (t.v0, t.v1) == (a, b) || (t.v0, t.v1) == (b, a))
+            .flat_map(|t| [super::sharpness::CreaseTag { v1: m, ..*t }, super::sharpness::CreaseTag { v0: m, ..*t }])
+            .collect();
+        tags.creases.extend(halves);
+    }
+    tags.creases.retain(|t| ct.corner_opposite(t.v0, t.v1).is_some());
+    tags.corners.retain(|t| (t.vertex as usize) < ct.num_vertices());
+    // every tag names an existing edge or vertex now, with a value checked
+    // when it was first made
+    ct.sharpness = super::Sharpness::from_tags(ct, &tags).ok().flatten().map(Box::new);
+}
+
+fn flip_topology(ct: &mut CornerTable, c: u32) -> Result<(), EditError> {
     if c as usize >= ct.num_corners() {
         return Err(EditError::NoSuchCorner { corner: c, corners: ct.num_corners() });
     }
@@ -102,6 +130,14 @@ pub fn flip_edge(ct: &mut CornerTable, c: u32) -> Result<(), EditError> {
 /// # Panics
 /// If `c` is not a corner of `mesh` or the table would exceed 32-bit ids.
 pub fn split_edge(mesh: &mut Mesh, c: u32, t: f32) -> u32 {
+    let tags = mesh.ct.sharpness.take().map(|s| s.to_tags(&mesh.ct));
+    let ends = (mesh.ct.vtx(n(c)), mesh.ct.vtx(p(c)));
+    let m = split_topology(mesh, c, t);
+    restore_tags(&mut mesh.ct, tags, Some((ends.0, ends.1, m)));
+    m
+}
+
+fn split_topology(mesh: &mut Mesh, c: u32, t: f32) -> u32 {
     let ct = &mut mesh.ct;
     assert!((c as usize) < ct.num_corners(), "split_edge: corner {c} does not exist");
     assert!(ct.num_corners() + 6 < BORDER as usize, "split_edge: too many corners");

@@ -28,6 +28,8 @@ pub struct GpuMesh {
     pub cull: Cull,
     pub(super) colors: Option<wgpu::Buffer>,
     pub(super) highlight: Option<(wgpu::Buffer, u32)>,
+    /// The sharp edges (sharpness > 0) as vertex pairs into `positions`.
+    pub(super) sharp: Option<(wgpu::Buffer, u32)>,
 }
 
 /// Face culling of a mesh.
@@ -64,9 +66,38 @@ fn normal_segments(positions: &[Vec3], normals: &[Vec3], length: f32) -> Vec<Vec
     positions.iter().zip(normals).flat_map(|(q, n)| [*q, *q + *n * length]).collect()
 }
 
+/// The sharp edges (sharpness > 0, borders excluded unless tagged) as pairs
+/// of vertex ids.
+pub fn sharp_edge_indices(ct: &CornerTable) -> Vec<u32> {
+    let Some(s) = ct.sharpness() else { return Vec::new() };
+    s.sharp_corners()
+        .iter()
+        .filter(|&&(c, _)| crate::mesh::owns_edge(c, ct.o_entry(c)))
+        .flat_map(|&(c, _)| [ct.vtx(n(c)), ct.vtx(p(c))])
+        .collect()
+}
+
+/// [`sharp_edge_indices`] for a mesh with one GPU vertex per corner: the
+/// pairs of corners that end each sharp edge.
+fn sharp_corner_pairs(ct: &CornerTable) -> Vec<u32> {
+    let Some(s) = ct.sharpness() else { return Vec::new() };
+    s.sharp_corners()
+        .iter()
+        .filter(|&&(c, _)| crate::mesh::owns_edge(c, ct.o_entry(c)))
+        .flat_map(|&(c, _)| [n(c), p(c)])
+        .collect()
+}
+
 /// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]).
 pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
     ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
+}
+
+/// An index buffer of `indices`, `None` when there are none.
+fn index_buffer(device: &wgpu::Device, label: &str, indices: &[u32]) -> Option<(wgpu::Buffer, u32)> {
+    (!indices.is_empty()).then(|| {
+        (buffer(device, label, bytemuck::cast_slice(indices), wgpu::BufferUsages::INDEX), indices.len() as u32)
+    })
 }
 
 fn buffer(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -112,6 +143,7 @@ impl GpuMesh {
             cull: cull_for(ct, positions),
             colors: None,
             highlight: None,
+            sharp: index_buffer(device, "sharp edges", &sharp_edge_indices(ct)),
         })
     }
 
@@ -154,6 +186,7 @@ impl GpuMesh {
             cull: cull_for(ct, positions),
             colors: Some(buffer(device, "corner uv", bytemuck::cast_slice(&attr), wgpu::BufferUsages::VERTEX)),
             highlight: None,
+            sharp: index_buffer(device, "sharp edges", &sharp_corner_pairs(ct)),
         })
     }
 
@@ -175,6 +208,7 @@ impl GpuMesh {
             cull: Cull::None,
             colors: None,
             highlight: None,
+            sharp: None,
         }
     }
 

@@ -52,6 +52,8 @@ pub struct Look {
     pub colors: bool,
     /// The colour attribute holds texture coordinates: show a checker texture.
     pub uv_checker: bool,
+    /// Sharp edges (creases) drawn in their own colour.
+    pub sharp: bool,
 }
 
 /// Shading modes of the command line.

@@ -28,6 +28,8 @@ const WIRE_DARK: [f32; 4] = [0.015, 0.02, 0.035, 1.0];
 const WIRE_LIGHT: [f32; 4] = [0.80, 0.84, 0.92, 1.0];
 const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 1.0];
 const NORMALS: [f32; 4] = [0.15, 0.85, 0.25, 1.0];
+/// Sharp edges (creases): magenta, apart from the orange cage and green normals.
+const SHARP: [f32; 4] = [0.92, 0.12, 0.62, 1.0];
 
 /// Direction towards the key light (world, not normalised): upper left front.
 pub const KEY_LIGHT: Vec3 = Vec3::new(-0.45, 0.75, 0.5);
@@ -112,11 +114,12 @@ pub struct ViewportDraw<'a> {
 }
 
 /// Line colours, in the order of [`Renderer`]'s style bind groups.
-const STYLES: [[f32; 4]; 4] = [WIRE_DARK, WIRE_LIGHT, CONTROL, NORMALS];
+const STYLES: [[f32; 4]; 5] = [WIRE_DARK, WIRE_LIGHT, CONTROL, NORMALS, SHARP];
 const STYLE_WIRE_DARK: usize = 0;
 const STYLE_WIRE_LIGHT: usize = 1;
 const STYLE_CONTROL: usize = 2;
 const STYLE_NORMALS: usize = 3;
+const STYLE_SHARP: usize = 4;
 
 /// Pipelines and per-viewport uniforms.
 pub struct Renderer {
@@ -126,7 +129,7 @@ pub struct Renderer {
     pub samples: u32,
     pipelines: Pipelines,
     views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
-    styles: [wgpu::BindGroup; 4],
+    styles: [wgpu::BindGroup; 5],
 }
 
 impl Renderer {
@@ -260,11 +263,17 @@ impl Renderer {
             if let (true, Some((buf, count))) = (d.look.normals, &m.normal_lines) {
                 self.draw_segments(pass, buf, *count, STYLE_NORMALS);
             }
+            if let (true, Some(sharp)) = (d.look.sharp, &m.sharp) {
+                self.draw_indexed_lines(pass, m, sharp, STYLE_SHARP);
+            }
         }
         if let (true, Some(c)) = (d.look.control, d.control)
             && c.edge_indices > 0
         {
             self.draw_edges(pass, c, STYLE_CONTROL);
+            if let (true, Some(sharp)) = (d.look.sharp, &c.sharp) {
+                self.draw_indexed_lines(pass, c, sharp, STYLE_SHARP);
+            }
         }
         for m in [d.control, d.mesh].into_iter().flatten() {
             if let Some((buf, count)) = &m.highlight {
@@ -303,6 +312,21 @@ impl Renderer {
         pass.set_vertex_buffer(0, m.positions.slice(..));
         pass.set_index_buffer(m.edges.slice(..), wgpu::IndexFormat::Uint32);
         pass.draw_indexed(0..m.edge_indices, 0, 0..1);
+    }
+
+    /// Lines between the vertices of `m` that `indices` pairs, in one style.
+    fn draw_indexed_lines(
+        &self,
+        pass: &mut wgpu::RenderPass,
+        m: &GpuMesh,
+        indices: &(wgpu::Buffer, u32),
+        style: usize,
+    ) {
+        pass.set_pipeline(&self.pipelines.lines);
+        pass.set_bind_group(1, &self.styles[style], &[]);
+        pass.set_vertex_buffer(0, m.positions.slice(..));
+        pass.set_index_buffer(indices.0.slice(..), wgpu::IndexFormat::Uint32);
+        pass.draw_indexed(0..indices.1, 0, 0..1);
     }
 
     /// `count` points of `buf`, two per segment, as lines of one style.

@@ -78,6 +78,7 @@
 use super::LoopBeta;
 use crate::mesh::normals::vertex_normals;
 use crate::mesh::{CornerTable, Mesh};
+use crate::subdiv::features::Mask;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -90,8 +91,32 @@ pub fn loop_limit_positions(mesh: &Mesh) -> Vec<Vec3> {
 
 /// Loop limit positions for the vertex weights `beta` (Loop's or Warren's):
 /// the masks of the module docs. The limit of a boundary vertex does not
-/// depend on `beta`.
+/// depend on `beta`. On sharp features (creases.md 5; OpenSubdiv
+/// `assignCreaseLimitMask`, `assignCornerLimitMask`) a crease vertex takes
+/// its crease curve's B-spline limit `2/3 v + 1/6 (a + b)` and a corner
+/// stays; the rule is the vertex's at this level, so an edge still
+/// semi-sharp here counts as sharp (the limit of a crease that would decay
+/// later is neither, OpenSubdiv leaves that choice to the caller too).
 pub fn loop_limit_positions_with(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
+    let mut out = smooth_limit_positions(mesh, beta);
+    if let Some(f) = crate::subdiv::features::Features::of(&mesh.ct, crate::mesh::Creasing::Uniform) {
+        let pos = &mesh.positions;
+        for vf in f.vertices() {
+            let v = vf.vertex as usize;
+            match vf.parent {
+                Mask::Crease(a, b) => {
+                    out[v] = pos[v] * (2.0 / 3.0) + (pos[a as usize] + pos[b as usize]) * (1.0 / 6.0);
+                }
+                Mask::Corner => out[v] = pos[v],
+                Mask::Smooth => {}
+            }
+        }
+    }
+    out
+}
+
+/// [`loop_limit_positions_with`] without sharp features (borders only).
+fn smooth_limit_positions(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
     let ct = &mesh.ct;
     let pos = &mesh.positions;
     (0..ct.num_vertices() as u32)

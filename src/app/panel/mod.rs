@@ -10,6 +10,7 @@
 
 mod animation;
 mod browser;
+mod creases;
 mod input;
 mod model;
 mod overlay;
@@ -44,6 +45,10 @@ pub struct PanelState {
     pub export_size: u32,
     /// Taubin steps per click.
     pub smooth_steps: u32,
+    /// Dihedral angle above which "Tag" makes edges sharp, degrees.
+    pub crease_angle: f32,
+    /// Where "Save control" writes.
+    pub save_path: String,
 }
 
 impl PanelState {
@@ -56,6 +61,8 @@ impl PanelState {
             export_path: "subdiv-animation.gif".into(),
             export_size: 480,
             smooth_steps: 10,
+            crease_angle: 40.0,
+            save_path: "control.obj".into(),
         }
     }
 }
@@ -96,6 +103,10 @@ pub fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelState) -
             out.extend(animation::animation_section(ui, doc, panel, &display));
             ui.separator();
             out.extend(tools::tools_section(ui, doc, panel, &mut display));
+            ui.separator();
+            egui::CollapsingHeader::new(RichText::new("Sharp features").strong()).default_open(true).show(ui, |ui| {
+                out.extend(creases::creases_section(ui, doc, panel, &mut display));
+            });
             ui.separator();
             out.extend(stats::stats_section(ui, doc, view));
             ui.separator();
