@@ -405,3 +405,44 @@ fn loop_limit_positions_follow_the_crease_curve() {
     assert!(worst < 2e-4, "crease limit {worst}");
     assert!(worst_smooth > 20.0 * worst, "the smooth mask is visibly off the crease ({worst_smooth} vs {worst})");
 }
+
+/// The smallest angle (degrees) between the normals of the two faces of any
+/// infinitely sharp edge of `m`.
+fn min_sharp_dihedral(m: &Mesh) -> f32 {
+    let fnorm = subdiv::mesh::normals::face_normals(&m.ct, &m.positions);
+    let s = m.ct.sharpness().expect("sharp edges");
+    s.sharp_corners()
+        .iter()
+        .filter(|&&(_, x)| x >= INFINITE)
+        .filter_map(|&(c, _)| {
+            let o = m.ct.o(c)?;
+            let (a, b) = (fnorm[(c / 3) as usize].normalize(), fnorm[(o / 3) as usize].normalize());
+            Some(a.dot(b).clamp(-1.0, 1.0).acos().to_degrees())
+        })
+        .fold(180.0, f32::min)
+}
+
+#[test]
+fn the_l_prism_keeps_its_sharp_edges_at_every_level_and_scheme() {
+    // its feature edges (90 and 270 degrees) tagged by angle stay sharp: the
+    // faces on either side keep meeting at a real angle, where untagged
+    // subdivision rounds them off
+    let m = common::bundled("lprism.obj");
+    let tagged = Mesh { ct: m.ct.clone().with_angle_creases(&m.positions, 40.0), positions: m.positions.clone() };
+    for s in Scheme::ALL {
+        for levels in 1..=3 {
+            let fine = sub(&tagged, s, levels, &Options::default());
+            let angle = min_sharp_dihedral(&fine);
+            assert!(angle > 80.0, "{s} L{levels}: a sharp edge's faces meet at only {angle} degrees");
+        }
+    }
+    // untagged, Loop rounds the same edges (measured on the edges that the
+    // tags would have kept)
+    let smooth = sub(&m, Scheme::Loop, 3, &Options::default());
+    let sharp_fine = sub(&tagged, Scheme::Loop, 3, &Options::default());
+    let rounded = Mesh {
+        ct: smooth.ct.clone().with_tags(&sharp_fine.ct.sharpness().unwrap().to_tags(&sharp_fine.ct)).unwrap(),
+        ..smooth
+    };
+    assert!(min_sharp_dihedral(&rounded) < 30.0);
+}
