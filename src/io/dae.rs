@@ -1,6 +1,6 @@
 //! COLLADA (`.dae`) in: the `<triangles>`, `<polylist>` and `<polygons>` of
 //! every `<geometry>`'s `<mesh>`, with the first `TEXCOORD` input kept per
-//! corner when every primitive has one. Geometries are taken as stored
+//! corner (primitives without one get (0, 0)). Geometries are taken as stored
 //! (instancing and node transforms are not applied; the original projects'
 //! COLLADA files hold one geometry in place). XML through `roxmltree`
 //! (read-only, no dependencies, kept up to date); the COLLADA structure by
@@ -85,6 +85,7 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
     let mut raw = RawMesh::default();
     let mut pos_source: Option<String> = None;
     let mut uv: Option<Vec<Vec2>> = Some(Vec::new());
+    let mut has_uv = false;
     for (k, prim) in
         mesh.children().filter(|c| matches!(c.tag_name().name(), "triangles" | "polylist" | "polygons")).enumerate()
     {
@@ -105,6 +106,7 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
             return Err(err("primitives of one mesh use different position sources".into()));
         }
         let tex = inputs.iter().find(|i| i.0 == "TEXCOORD");
+        has_uv |= tex.is_some();
         let polys = polygons(prim, file, &here)?;
         let ix_err = |t: String| err(format!("'{t}' is not an index"));
         let mut corners: Vec<[u32; 2]> = Vec::new();
@@ -120,7 +122,9 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
             for i in 1..corners.len() - 1 {
                 for c in [corners[0], corners[i], corners[i + 1]] {
                     raw.triangles.push(c[0]);
-                    if let (Some(out), Some((.., src))) = (&mut uv, tex) {
+                    if let (Some(out), None) = (&mut uv, tex) {
+                        out.push(Vec2::ZERO);
+                    } else if let (Some(out), Some((.., src))) = (&mut uv, tex) {
                         let s = sources.get(src).ok_or_else(|| err(format!("no source '{src}'")))?;
                         let at = c[1] as usize * s.stride;
                         let t = s
@@ -132,9 +136,6 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
                 }
             }
         }
-        if tex.is_none() {
-            uv = None;
-        }
     }
     let psrc = pos_source.unwrap_or_default();
     let s = sources.get(&psrc).ok_or_else(|| format_err(file, at, format!("no position source '{psrc}'")))?;
@@ -145,7 +146,11 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
     if let Some(v) = raw.positions.iter().position(|p| !p.is_finite()) {
         return Err(format_err(file, format!("{at} vertex {v}"), "non-finite position"));
     }
-    raw.uv = uv.filter(|u| u.len() == raw.triangles.len());
+    let nv = raw.positions.len();
+    if let Some(&i) = raw.triangles.iter().find(|&&i| i as usize >= nv) {
+        return Err(format_err(file, at, format!("vertex index {i}, but there are only {nv} positions")));
+    }
+    raw.uv = uv.filter(|u| u.len() == raw.triangles.len() && has_uv);
     Ok(raw)
 }
 

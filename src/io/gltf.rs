@@ -6,8 +6,9 @@
 //! parsing). Every triangle primitive (triangles, strips and fans) of every
 //! mesh node of the default scene (or of every root node when there is no
 //! scene) is taken with its node's world transform (a mirroring transform
-//! flips the winding back), with `TEXCOORD_0` (per corner) and `COLOR_0`
-//! kept when every primitive has them, and the material index per triangle.
+//! flips the winding back), with `TEXCOORD_0` (per corner), `COLOR_0` and
+//! the material index per triangle kept (primitives without them get
+//! defaults).
 //! glTF splits vertices at every normal and UV seam, so coincident vertices
 //! are welded ([`RawMesh::weld`]) to make the surface connected again.
 //! Every accessor's range is checked against its buffer view and buffer
@@ -38,7 +39,7 @@ const MAX_VISITS: usize = 1 << 16;
 /// [`Error::Format`] naming the file and the element (buffer, accessor,
 /// mesh, node).
 pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
-    let g = gltf::Gltf::from_slice(bytes).map_err(|e| format_err(file, "document", e.to_string()))?;
+    let g = document(bytes, file)?;
     let buffers = load_buffers(&g, file)?;
     let roots: Vec<gltf::Node> = match g.default_scene().or_else(|| g.scenes().next()) {
         Some(s) => s.nodes().collect(),
@@ -59,6 +60,25 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
     let mut raw = out.raw.ok_or_else(|| format_err(file, "scene", "no mesh node with triangles"))?;
     raw.weld();
     Ok(raw)
+}
+
+/// Parses and validates the JSON. The POSITION accessor of every primitive
+/// is checked first: `gltf-json` 1.4's validation indexes it unchecked and
+/// panics on a missing one (found by `tests/io.rs`'s fuzzing).
+fn document(bytes: &[u8], file: &str) -> Result<gltf::Gltf> {
+    let err = |e: gltf::Error| format_err(file, "document", e.to_string());
+    let g = gltf::Gltf::from_slice_without_validation(bytes).map_err(err)?;
+    let json = g.document.into_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let pos = prim.attributes.get(&gltf::json::validation::Checked::Valid(gltf::Semantic::Positions));
+            if let Some(i) = pos.filter(|i| i.value() >= json.accessors.len()) {
+                let at = format!("mesh {m} primitive {p}");
+                return Err(format_err(file, at, format!("POSITION accessor {} does not exist", i.value())));
+            }
+        }
+    }
+    Ok(gltf::Gltf { document: gltf::Document::from_json(json).map_err(err)?, blob: g.blob })
 }
 
 struct Walk<'a> {

@@ -281,7 +281,7 @@ fn read_vertices(
         [Some(r), Some(g), Some(b)] => Some([r, g, b]),
         _ => None,
     };
-    let scale = rgb.map(|[r, ..]| if el.props[r].ty.is_int() { 1.0 / 255.0 } else { 1.0 });
+    let scale: Option<f32> = rgb.map(|[r, ..]| if el.props[r].ty.is_int() { 255.0 } else { 1.0 });
     let uv = match [el.index(&["u", "s", "texture_u"]), el.index(&["v", "t", "texture_v"])] {
         [Some(u), Some(v)] => Some([u, v]),
         _ => None,
@@ -301,9 +301,7 @@ fn read_vertices(
         }
         raw.positions.push(p);
         if let (Some(c), Some([ri, gi, bi]), Some(s)) = (&mut colors, rgb, scale) {
-            c.push(
-                (Vec3::new(vals[ri] as f32, vals[gi] as f32, vals[bi] as f32) * s as f32).clamp(Vec3::ZERO, Vec3::ONE),
-            );
+            c.push((Vec3::new(vals[ri] as f32, vals[gi] as f32, vals[bi] as f32) / s).clamp(Vec3::ZERO, Vec3::ONE));
         }
         if let (Some(t), Some([ui, vi])) = (&mut uvs, uv) {
             t.push(Vec2::new(vals[ui] as f32, vals[vi] as f32));

@@ -86,8 +86,9 @@ impl RawMesh {
         self.colors = colors;
     }
 
-    /// Appends `other`, renumbering its vertices; attributes are kept only
-    /// where both have them (the missing side gets defaults).
+    /// Appends `other`, renumbering its vertices; an attribute that either
+    /// side has is kept, the side without it getting defaults (texture
+    /// coordinates (0, 0), white, material 0).
     pub fn append(&mut self, other: RawMesh) {
         let base = self.positions.len() as u32;
         let (nc0, nv0) = (self.triangles.len(), self.positions.len());
