@@ -46,12 +46,21 @@ pub enum Coloring {
     File,
     /// A checker texture through the file's texture coordinates (`vt`).
     Checker,
+    /// The OBJ's MTL materials per group: `Kd` times `map_Kd` through the
+    /// refined texture coordinates (see [`crate::render::materials`]).
+    Material,
 }
 
 impl Coloring {
     /// All modes, in menu order.
-    pub const ALL: [Coloring; 5] =
-        [Coloring::None, Coloring::Shells, Coloring::Displacement, Coloring::File, Coloring::Checker];
+    pub const ALL: [Coloring; 6] = [
+        Coloring::None,
+        Coloring::Shells,
+        Coloring::Displacement,
+        Coloring::File,
+        Coloring::Checker,
+        Coloring::Material,
+    ];
     /// Menu label.
     pub fn name(self) -> &'static str {
         match self {
@@ -60,6 +69,7 @@ impl Coloring {
             Coloring::Displacement => "displacement from control",
             Coloring::File => "colours of the file",
             Coloring::Checker => "texture (checker through vt)",
+            Coloring::Material => "materials (MTL Kd and map_Kd)",
         }
     }
 }
@@ -73,7 +83,8 @@ impl std::str::FromStr for Coloring {
             "displacement" => Ok(Coloring::Displacement),
             "file" | "colors" | "colours" => Ok(Coloring::File),
             "checker" | "uv" | "texture" => Ok(Coloring::Checker),
-            _ => Err(format!("unknown colouring '{s}' (none, shells, displacement, file, checker)")),
+            "material" | "materials" | "mtl" => Ok(Coloring::Material),
+            _ => Err(format!("unknown colouring '{s}' (none, shells, displacement, file, checker, material)")),
         }
     }
 }

@@ -43,6 +43,8 @@ pub struct GpuScene {
     /// A Bezier curve: its polyline and its control polygon (with the construction highlighted).
     pub curve: Option<(GpuMesh, GpuMesh)>,
     seen: Seen,
+    /// Decoded material textures, by file.
+    textures: crate::render::materials::Textures,
     /// Changes whenever anything drawn changed.
     pub version: u64,
 }
@@ -134,13 +136,15 @@ impl GpuScene {
         }
         let r = &result.shown;
         let checker = doc.display.coloring == super::display::Coloring::Checker;
-        let uv = doc.model.attrs.refined.uv.as_ref().filter(|u| checker && u.len() == r.mesh.ct.v_table().len());
-        let mesh = match uv {
-            Some(uv) => {
+        let refined = &doc.model.attrs.refined;
+        let corner_uv = refined.uv.as_deref().filter(|u| u.len() == r.mesh.ct.v_table().len());
+        let mesh = match (self.corner_attribute(doc, corner_uv), corner_uv) {
+            (Some(attr), _) => GpuMesh::unwelded(device, &r.mesh.ct, &r.mesh.positions, &r.normals, &attr),
+            (None, Some(uv)) if checker => {
                 let attr: Vec<Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
                 GpuMesh::unwelded(device, &r.mesh.ct, &r.mesh.positions, &r.normals, &attr)
             }
-            None => upload(device, r),
+            _ => upload(device, r),
         };
         let mut errors = Vec::new();
         self.result = mesh.map_err(|e| errors.push(e)).ok();
@@ -153,6 +157,17 @@ impl GpuScene {
             doc.fail(Problem::Other(e));
         }
         true
+    }
+
+    /// The per-corner material colours of the shown result, when the
+    /// colouring is `Material` and the model has material groups.
+    fn corner_attribute(&mut self, doc: &Doc, uv: Option<&[Vec2]>) -> Option<Vec<Vec3>> {
+        let groups = doc.model.attrs.refined.materials.as_ref()?;
+        let nt = doc.model.result.shown.mesh.ct.num_triangles();
+        if doc.display.coloring != super::display::Coloring::Material || groups.face.len() != nt {
+            return None;
+        }
+        Some(crate::render::materials::corner_colors(groups, uv, &mut self.textures))
     }
 
     fn sync_curve(&mut self, device: &wgpu::Device, doc: &Doc) {

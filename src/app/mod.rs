@@ -275,7 +275,12 @@ impl App {
         if let Some(e) = doc.level_refusal(doc.request.level) {
             return Err(e);
         }
-        doc.display = Display { turntable: opts.turntable, coloring: opts.coloring, ..Display::new(opts.wireframe) };
+        // a model with MTL materials opens showing them unless a colouring was asked for
+        let coloring = match opts.coloring {
+            Coloring::None if doc.model.attrs.file.materials.is_some() => Coloring::Material,
+            c => c,
+        };
+        doc.display = Display { turntable: opts.turntable, coloring, ..Display::new(opts.wireframe) };
         doc.reshade();
         if doc.request.level > 0 {
             doc.request_subdivision();

@@ -283,7 +283,7 @@ fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Resul
     let level = model.made.level;
     let ramp = |t: &[f32]| t.iter().map(|&t| Vec3::from(colormap(t))).collect::<Vec<_>>();
     Ok(match coloring {
-        Coloring::None | Coloring::Checker => (None, 0.0),
+        Coloring::None | Coloring::Checker | Coloring::Material => (None, 0.0),
         Coloring::Shells => {
             let counts = vertex_counts_per_level(&model.control.mesh.ct, level);
             let lv = vertex_creation_level(&counts, nv);

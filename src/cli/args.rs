@@ -128,16 +128,18 @@ impl FeatureArgs {
 /// How a drawing command colours the surface.
 #[derive(clap::Args, Clone)]
 pub struct ColorArgs {
-    /// Colouring: none, shells (the level that made each vertex), displacement
-    /// (from the control mesh), file (the file's vertex colours) or checker
-    /// (a checker through the file's texture coordinates).
-    #[arg(long, default_value = "none")]
+    /// Colouring: auto (the OBJ's MTL materials when it has usemtl groups,
+    /// else none), none, shells (the level that made each vertex),
+    /// displacement (from the control mesh), file (the file's vertex
+    /// colours), checker (a checker through the file's texture coordinates)
+    /// or material (Kd and map_Kd of the MTL per group, through the refined UVs).
+    #[arg(long, default_value = "auto")]
     pub color: String,
 }
 
 impl Default for ColorArgs {
     fn default() -> Self {
-        ColorArgs { color: "none".into() }
+        ColorArgs { color: "auto".into() }
     }
 }
 

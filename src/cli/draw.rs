@@ -131,13 +131,20 @@ mod gpu {
             }
             Coloring::File => {
                 let Some(c) = attrs.colors.clone() else { return Err(missing("colors")) };
-                let a = refined(Attributes { colors: Some(c), uv: None })?;
+                let a = refined(Attributes { colors: Some(c), ..Default::default() })?;
                 Paint::Colors(a.colors.ok_or_else(|| missing("colors"))?)
             }
             Coloring::Checker => {
                 let Some(uv) = attrs.uv.clone() else { return Err(missing("texture coordinates")) };
-                let a = refined(Attributes { colors: None, uv: Some(uv) })?;
+                let a = refined(Attributes { uv: Some(uv), ..Default::default() })?;
                 Paint::Checker(a.uv.ok_or_else(|| missing("texture coordinates"))?)
+            }
+            Coloring::Material => {
+                let Some(m) = attrs.materials.clone() else { return Err(missing("materials (usemtl)")) };
+                let a = refined(Attributes { uv: attrs.uv.clone(), materials: Some(m), ..Default::default() })?;
+                let groups = a.materials.ok_or_else(|| missing("materials (usemtl)"))?;
+                let mut textures = subdiv::render::materials::Textures::default();
+                Paint::Corners(subdiv::render::materials::corner_colors(&groups, a.uv.as_deref(), &mut textures))
             }
         })
     }
@@ -145,10 +152,14 @@ mod gpu {
     /// `subdiv render`.
     pub fn render(a: &RenderArgs) -> Result<()> {
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
-        let coloring: Coloring = a.color.color.parse().map_err(Error::Usage)?;
         let s = &a.sub.scheme;
         let levels = a.sub.levels_or(0);
         let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+        let coloring: Coloring = match a.color.color.as_str() {
+            "auto" if attrs.materials.is_some() => Coloring::Material,
+            "auto" => Coloring::None,
+            c => c.parse().map_err(Error::Usage)?,
+        };
         let mesh = s.features.apply(mesh)?;
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
         let paint = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
@@ -201,7 +212,7 @@ mod gpu {
             Coloring::None => None,
             Coloring::Shells => Some(shells(&mesh, level, nv)),
             Coloring::File => {
-                let only = Attributes { colors: attrs.colors, uv: None };
+                let only = Attributes { colors: attrs.colors, ..Default::default() };
                 let r = subdiv::subdiv::attributes::refine(&mesh.ct, &only, s.scheme, level, &s.options())?;
                 Some(r.colors.ok_or_else(|| Error::Usage("--color file: the model has no colors".into()))?)
             }

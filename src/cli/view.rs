@@ -55,7 +55,11 @@ pub fn view(a: ViewArgs) -> Result<()> {
         play: a.play,
         turntable: a.turntable,
         repair: a.from.repair,
-        coloring: a.color.color.parse().map_err(Error::Usage)?,
+        // auto: none, and the viewer shows a model's materials when it has them
+        coloring: match a.color.color.as_str() {
+            "auto" => subdiv::app::display::Coloring::None,
+            c => c.parse().map_err(Error::Usage)?,
+        },
         crease_angle: s.features.crease_angle,
     })
 }

@@ -12,13 +12,13 @@
 
 use super::atomic_write;
 use crate::mesh::Mesh;
-use crate::mesh::attributes::Attributes;
+use crate::mesh::attributes::{Attributes, Material, MaterialGroups};
 use crate::mesh::repair::{RepairReport, repair};
 use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// What the parser read besides the mesh.
 #[derive(Clone, Debug, Default)]
@@ -56,7 +56,16 @@ pub struct RawObj {
     pub crease_lines: Vec<u32>,
     /// Line of every corner tag.
     pub corner_lines: Vec<u32>,
+    /// The material names of `usemtl` records, in order of first use.
+    pub material_names: Vec<String>,
+    /// Index into `material_names` of every triangle ([`NO_MATERIAL`] before any `usemtl`).
+    pub face_material: Vec<u32>,
+    /// The files of `mtllib` records, as written.
+    pub mtllibs: Vec<String>,
 }
+
+/// A triangle before any `usemtl` in [`RawObj::face_material`].
+pub const NO_MATERIAL: u32 = u32::MAX;
 
 /// A corner without a texture coordinate in [`RawObj::corner_uv`].
 pub const NO_UV: u32 = u32::MAX;
@@ -87,6 +96,7 @@ fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
 pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
     let mut raw = RawObj::default();
     let mut poly = Polygon::default();
+    let mut material = NO_MATERIAL;
     for (lineno, line) in bytes.split(|&b| b == b'\n').enumerate() {
         let ln = lineno + 1;
         let line = line.strip_suffix(b"\r").unwrap_or(line);
@@ -100,7 +110,21 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
         match key {
             "v" => vertex_record(&mut raw, toks, at)?,
             "vt" => texture_record(&mut raw, toks, at)?,
-            "f" => face_record(&mut raw, &mut poly, toks, at)?,
+            "f" => {
+                face_record(&mut raw, &mut poly, toks, at)?;
+                raw.face_material.resize(raw.triangle_lines.len(), material);
+            }
+            "usemtl" => {
+                let name = line.trim_start().strip_prefix("usemtl").unwrap_or("").trim();
+                material = match raw.material_names.iter().position(|n| n == name) {
+                    Some(i) => i as u32,
+                    None => {
+                        raw.material_names.push(name.to_string());
+                        raw.material_names.len() as u32 - 1
+                    }
+                };
+            }
+            "mtllib" => raw.mtllibs.extend(toks.map(str::to_string)),
             "t" => parse_tag(&mut toks, file, ln, &mut raw)?,
             other if is_ignored_keyword(other) => {}
             other => {
@@ -225,8 +249,6 @@ fn is_ignored_keyword(key: &str) -> bool {
             | "o"
             | "g"
             | "s"
-            | "usemtl"
-            | "mtllib"
             | "l"
             | "p"
             | "cstype"
@@ -427,10 +449,58 @@ pub fn from_bytes_with_attributes(bytes: &[u8], file: &str) -> Result<(Mesh, Att
     let colors =
         (raw.colors.len() == raw.positions.len() && !raw.colors.is_empty()).then(|| std::mem::take(&mut raw.colors));
     let used = used_records(raw.positions.len(), &raw.triangles);
+    let materials = material_groups(&mut raw, file);
     let (mesh, _) = build(raw, file)?;
     // the build keeps used vertices in record order
     let colors = colors.map(|c| c.into_iter().zip(&used).filter(|(_, u)| **u).map(|(c, _)| c).collect());
-    Ok((mesh, Attributes { uv, colors }))
+    Ok((mesh, Attributes { uv, colors, materials }))
+}
+
+/// The material groups of an OBJ that has `usemtl` records: `Kd` and
+/// `map_Kd` of each material read from its `mtllib` files through tobj
+/// (relative to the OBJ's directory). A library that cannot be read, or a
+/// material it lacks, is a warning in the log, not an error: that material
+/// is drawn grey. Faces before the first `usemtl` get a material `default`.
+fn material_groups(raw: &mut RawObj, file: &str) -> Option<MaterialGroups> {
+    if raw.material_names.is_empty() {
+        return None;
+    }
+    let mut face = std::mem::take(&mut raw.face_material);
+    let mut names = std::mem::take(&mut raw.material_names);
+    if face.contains(&NO_MATERIAL) {
+        names.push("default".into());
+        let d = names.len() as u32 - 1;
+        face.iter_mut().filter(|m| **m == NO_MATERIAL).for_each(|m| *m = d);
+    }
+    let dir = Path::new(file).parent().unwrap_or(Path::new("."));
+    let mut found: Vec<(tobj::Material, PathBuf)> = Vec::new();
+    for lib in &raw.mtllibs {
+        let path = dir.join(lib);
+        match tobj::load_mtl(&path) {
+            Ok((mats, _)) => found.extend(mats.into_iter().map(|m| (m, path.clone()))),
+            Err(e) => log::warn!("{file}: mtllib {}: {e}", path.display()),
+        }
+    }
+    let list = names
+        .iter()
+        .map(|n| match found.iter().find(|(m, _)| &m.name == n) {
+            Some((m, lib)) => Material {
+                name: n.clone(),
+                diffuse: m.diffuse.map_or(Vec3::splat(0.8), Vec3::from),
+                diffuse_texture: m
+                    .diffuse_texture
+                    .as_ref()
+                    .map(|t| lib.parent().unwrap_or(Path::new(".")).join(t.trim())),
+            },
+            None => {
+                if n != "default" {
+                    log::warn!("{file}: material '{n}' is in no mtllib that could be read; drawn grey");
+                }
+                Material::named(n)
+            }
+        })
+        .collect();
+    Some(MaterialGroups { face, list, libraries: std::mem::take(&mut raw.mtllibs) })
 }
 
 /// Which of `n` vertex records some triangle uses.
@@ -584,7 +654,9 @@ pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
 
 /// Formats OBJ text for `mesh` with its attributes: `v x y z r g b` when
 /// there are colours, one `vt` per corner and `f a/ta b/tb c/tc` when there
-/// are texture coordinates. Without attributes this is [`write_obj`].
+/// are texture coordinates, the `mtllib` records and a `usemtl` wherever the
+/// material changes when there are material groups. Without attributes this
+/// is [`write_obj`].
 ///
 /// # Errors
 /// The first error of `sink`.
@@ -617,6 +689,10 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
             o.push(b'\n');
         })?;
     }
+    let mats = attrs.materials.as_ref().filter(|m| m.face.len() == mesh.ct.num_triangles());
+    for lib in mats.map(|m| m.libraries.as_slice()).unwrap_or_default() {
+        record(&mut out, &mut |o| o.extend_from_slice(format!("mtllib {lib}\n").as_bytes()))?;
+    }
     let uv = attrs.uv.as_ref().filter(|u| u.len() == mesh.ct.v_table().len());
     for t in uv.into_iter().flatten() {
         record(&mut out, &mut |o| {
@@ -628,7 +704,15 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
             o.push(b'\n');
         })?;
     }
+    let mut current = u32::MAX;
     for (t, tri) in mesh.ct.v_table().chunks_exact(3).enumerate() {
+        if let Some(m) = mats
+            && m.face[t] != current
+        {
+            current = m.face[t];
+            let name = m.list.get(current as usize).map_or("default", |x| x.name.as_str());
+            record(&mut out, &mut |o| o.extend_from_slice(format!("usemtl {name}\n").as_bytes()))?;
+        }
         record(&mut out, &mut |o| {
             o.push(b'f');
             for (k, v) in tri.iter().enumerate() {

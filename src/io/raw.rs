@@ -42,7 +42,7 @@ impl RawMesh {
         })?;
         let colors =
             colors.zip(used).map(|(c, used)| c.into_iter().zip(used).filter(|(_, u)| *u).map(|(c, _)| c).collect());
-        Ok((mesh, Attributes { uv, colors }))
+        Ok((mesh, Attributes { uv, colors, materials: None }))
     }
 
     /// Repairs into a mesh (see [`crate::mesh::repair()`]); attributes are not kept.

@@ -30,13 +30,61 @@ pub struct Attributes {
     pub uv: Option<Vec<Vec2>>,
     /// Linear RGB colours in [0, 1], one per vertex.
     pub colors: Option<Vec<Vec3>>,
+    /// Material groups: which material each triangle uses.
+    pub materials: Option<MaterialGroups>,
 }
 
 impl Attributes {
     /// Whether there is anything to carry.
     pub fn is_empty(&self) -> bool {
-        self.uv.is_none() && self.colors.is_none()
+        self.uv.is_none() && self.colors.is_none() && self.materials.is_none()
     }
+}
+
+/// One material of an OBJ's MTL library (what is drawn of it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Its name (`newmtl`, `usemtl`).
+    pub name: String,
+    /// Diffuse colour `Kd` (linear RGB; 0.8 grey when the library has none).
+    pub diffuse: Vec3,
+    /// Diffuse texture `map_Kd`, resolved against the library's directory.
+    pub diffuse_texture: Option<std::path::PathBuf>,
+}
+
+impl Material {
+    /// A material with only a name (its library was not found or lacks it).
+    pub fn named(name: &str) -> Material {
+        Material { name: name.to_string(), diffuse: Vec3::splat(0.8), diffuse_texture: None }
+    }
+}
+
+/// Material groups of a mesh: a material id per triangle, the materials,
+/// and the library files named by the OBJ (`mtllib`, written back as given).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MaterialGroups {
+    /// Index into `list` of every triangle.
+    pub face: Vec<u32>,
+    /// The materials.
+    pub list: Vec<Material>,
+    /// The `mtllib` names, as in the file.
+    pub libraries: Vec<String>,
+}
+
+/// Per-triangle ids after `levels` 1-to-4 splits: every child triangle
+/// inherits its parent's id. In the split layout (schemes.md 7.4) triangle
+/// `t` of `nt` keeps its id for the central child and its corner children
+/// are `nt * (k + 1) + t` for k = 0, 1, 2, so each level repeats the list four times.
+pub fn refine_face_ids(ids: &[u32], levels: u32) -> Vec<u32> {
+    let mut out = ids.to_vec();
+    for _ in 0..levels {
+        let n = out.len();
+        out.reserve(3 * n);
+        for _ in 0..3 {
+            out.extend_from_within(..n);
+        }
+    }
+    out
 }
 
 /// Corner UVs after one 1-to-4 split (linear inside each triangle).

@@ -9,6 +9,7 @@ pub mod camera;
 pub mod export;
 pub mod gpu;
 pub mod gpu_mesh;
+pub mod materials;
 pub mod offscreen;
 pub mod pipelines;
 pub mod readback;
@@ -146,6 +147,8 @@ pub enum Paint {
     Colors(Vec<glam::Vec3>),
     /// A checker through texture coordinates, one per corner.
     Checker(Vec<glam::Vec2>),
+    /// Linear RGB colours, one per corner (materials, see [`materials`]).
+    Corners(Vec<glam::Vec3>),
 }
 
 /// [`render_image`] with the faces painted by `paint`.
@@ -172,6 +175,10 @@ pub fn render_image_painted(
             let attr: Vec<glam::Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
             (look.colors, look.uv_checker) = (true, true);
             GpuMesh::unwelded(&off.gpu.device, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), &attr)?
+        }
+        Paint::Corners(c) => {
+            look.colors = true;
+            GpuMesh::unwelded(&off.gpu.device, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), c)?
         }
     };
     let gc = control.map(|c| off.upload(c)).transpose()?;

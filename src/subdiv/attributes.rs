@@ -43,5 +43,9 @@ pub fn refine(ct: &CornerTable, attrs: &Attributes, scheme: Scheme, levels: u32,
     Ok(Attributes {
         uv: attrs.uv.as_ref().map(|uv| refine_corner_uvs(uv, levels)),
         colors: attrs.colors.as_ref().map(|c| refine_colors(ct, c, scheme, levels, opts)).transpose()?,
+        materials: attrs.materials.as_ref().map(|m| crate::mesh::attributes::MaterialGroups {
+            face: crate::mesh::attributes::refine_face_ids(&m.face, levels),
+            ..m.clone()
+        }),
     })
 }

@@ -55,7 +55,13 @@ pub fn model_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState) -> Ve
             panel.browser = Some(start.or_else(|| std::env::current_dir().ok()).unwrap_or_else(|| PathBuf::from("/")));
         }
     });
-    ui.label(RichText::new("…or drop a file on the window (.obj, .ct, .bez patches, .bzc curves)").small().weak());
+    ui.label(
+        RichText::new(
+            "…or drop a file on the window (.obj .ply .stl .off .gltf .glb .dae .ct, .bez patches, .bzc curves)",
+        )
+        .small()
+        .weak(),
+    );
     let mut repair = doc.repair_on_open;
     if ui
         .checkbox(&mut repair, "Repair on open")

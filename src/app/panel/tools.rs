@@ -61,6 +61,13 @@ fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, coloring: Coloring) {
             "this model has no texture coordinates (OBJ `vt`); try models/cube_uv.obj".into()
         }
         Coloring::Checker => "UVs per corner (seams kept), linear inside each triangle".into(),
+        Coloring::Material => match &m.attrs.file.materials {
+            None => "this model has no materials (OBJ `usemtl` with an `mtllib`)".into(),
+            Some(g) => format!(
+                "{} materials; textures sampled at the corners of the shown mesh (sharper with each level)",
+                g.list.len()
+            ),
+        },
         Coloring::File | Coloring::None => return,
     };
     ui.label(RichText::new(text).small());
