@@ -15,38 +15,92 @@ pub enum MeshError {
     Empty,
     /// A face refers to a vertex that does not exist.
     #[error("face {face} uses vertex index {index}, but there are only {len} vertices")]
-    IndexOutOfRange { face: usize, index: i64, len: usize },
+    IndexOutOfRange {
+        /// The face id (input order, 0-based).
+        face: usize,
+        /// The index as written.
+        index: i64,
+        /// How many there are.
+        len: usize,
+    },
     /// A face uses the same vertex twice (it has no area and no valid corners).
     #[error("face {face} is degenerate: it uses vertex {vertex} twice")]
-    DegenerateFace { face: usize, vertex: u32 },
+    DegenerateFace {
+        /// The face id (input order, 0-based).
+        face: usize,
+        /// The vertex id.
+        vertex: u32,
+    },
     /// A coordinate is NaN or infinite.
     #[error("vertex {vertex} has a non-finite coordinate (NaN or infinity)")]
-    NonFinite { vertex: usize },
+    NonFinite {
+        /// The vertex id.
+        vertex: usize,
+    },
     /// More than two faces share an edge.
     #[error("non-manifold edge ({v0}, {v1}): shared by {faces} faces (faces {examples:?})")]
-    NonManifoldEdge { v0: u32, v1: u32, faces: usize, examples: Vec<usize> },
+    NonManifoldEdge {
+        /// First vertex of the edge.
+        v0: u32,
+        /// Second vertex of the edge.
+        v1: u32,
+        /// How many faces share it.
+        faces: usize,
+        /// Some of those faces.
+        examples: Vec<usize>,
+    },
     /// Two faces traverse an edge in the same direction.
     #[error("inconsistent orientation: faces {f0} and {f1} both run along edge ({v0} -> {v1}); flip one of them")]
-    InconsistentOrientation { v0: u32, v1: u32, f0: usize, f1: usize },
+    InconsistentOrientation {
+        /// First vertex of the edge.
+        v0: u32,
+        /// Second vertex of the edge.
+        v1: u32,
+        /// The first face.
+        f0: usize,
+        /// The second face.
+        f1: usize,
+    },
     /// A vertex joins two or more separate fans of faces ("bowtie").
     #[error("non-manifold vertex {vertex}: its faces form {fans} separate fans")]
-    NonManifoldVertex { vertex: u32, fans: usize },
+    NonManifoldVertex {
+        /// The vertex id.
+        vertex: u32,
+        /// How many separate fans.
+        fans: usize,
+    },
     /// A vertex that no triangle uses, where every vertex must be used (a
     /// corner table given as V and O; [`crate::CornerTable::build`] drops
     /// such vertices instead).
     #[error("vertex {vertex} is used by no triangle")]
-    UnusedVertex { vertex: u32 },
+    UnusedVertex {
+        /// The vertex id.
+        vertex: u32,
+    },
     /// An index or count does not fit the 32-bit corner table.
     #[error("mesh too large for 32-bit corner ids: {what}")]
-    TooManyElements { what: String },
+    TooManyElements {
+        /// What does not fit.
+        what: String,
+    },
     /// A crease or corner tag names something that does not exist, or an
     /// invalid sharpness. `index` counts the crease tags first, then the
     /// corner tags, in file order.
     #[error("sharpness tag {index}: {msg}")]
-    BadTag { index: usize, msg: String },
+    BadTag {
+        /// The index as written.
+        index: usize,
+        /// What is wrong.
+        msg: String,
+    },
     /// The opposite table stored in a file contradicts the triangles.
     #[error("stored opposite table is inconsistent at corner {corner}: {msg}")]
-    BadOppositeTable { corner: usize, msg: String },
+    BadOppositeTable {
+        /// The corner id.
+        corner: usize,
+        /// What is wrong.
+        msg: String,
+    },
 }
 
 impl MeshError {
@@ -95,13 +149,22 @@ pub enum Error {
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {
+        /// The file.
         path: String,
+        /// The operating system's error.
         #[source]
         source: std::io::Error,
     },
     /// A file could not be parsed.
     #[error("{file}:{line}: {msg}")]
-    Parse { file: String, line: usize, msg: String },
+    Parse {
+        /// The file.
+        file: String,
+        /// The line (1-based).
+        line: usize,
+        /// What is wrong.
+        msg: String,
+    },
     /// A binary or structured file (PLY, STL, glTF, COLLADA) is malformed:
     /// `element` names where ("vertex 12", "header", "accessor 3").
     #[error("{file}: {element}: {msg}")]
@@ -116,8 +179,11 @@ pub enum Error {
     /// The mesh in a file is not a valid manifold triangle mesh.
     #[error("{file}{}: {source}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Mesh {
+        /// The file.
         file: String,
+        /// The line of the offending record, where the format has lines.
         line: Option<usize>,
+        /// What is wrong with the mesh.
         #[source]
         source: MeshError,
     },
@@ -126,7 +192,16 @@ pub enum Error {
     Invalid(#[from] MeshError),
     /// The next subdivision level would need more memory than allowed.
     #[error("level {level} would need about {} but the limit is {} ({faces} faces); use fewer levels or raise --max-memory", human_bytes(*bytes), human_bytes(*limit))]
-    TooLarge { level: u32, faces: u64, bytes: u64, limit: u64 },
+    TooLarge {
+        /// The level that would not fit.
+        level: u32,
+        /// How many faces share it.
+        faces: u64,
+        /// The bytes it would need.
+        bytes: u64,
+        /// The limit in force.
+        limit: u64,
+    },
     /// An argument is out of its range, or options that do not go together.
     #[error("{0}")]
     Usage(String),

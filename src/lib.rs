@@ -29,6 +29,8 @@
 //! previous level, a *stencil* in terms of any earlier level; *even* points
 //! are the old vertices' new positions, *odd* points the new edge vertices.
 
+#![warn(missing_docs)]
+
 pub mod anim;
 pub mod bundled;
 pub mod error;

@@ -17,7 +17,7 @@
 //! results arrive as [`Command::Finished`]; [`Viewer::apply`] (command.rs)
 //! is the one place that changes the document.
 //!
-//! One frame ([`App`]'s `redraw`): adopt finished worker tasks, upload what
+//! One frame (`App::redraw`): adopt finished worker tasks, upload what
 //! changed by version and advance the animation (gpu_scene.rs: per frame only
 //! the stencil plan and the normals are evaluated and copied into the
 //! existing vertex buffers), run the panel, acquire the surface frame

@@ -21,18 +21,34 @@ use super::{BORDER, CornerTable, Mesh, n, p};
 pub enum EditError {
     /// The corner id is not in the table.
     #[error("corner {corner} does not exist ({corners} corners)")]
-    NoSuchCorner { corner: u32, corners: usize },
+    NoSuchCorner {
+        /// The corner id.
+        corner: u32,
+        /// How many corners the table has.
+        corners: usize,
+    },
     /// The edge is on the border (one triangle only).
     #[error("the edge opposite corner {corner} is a border edge")]
-    BorderEdge { corner: u32 },
+    BorderEdge {
+        /// The corner id.
+        corner: u32,
+    },
     /// The new diagonal already exists elsewhere in the mesh (or would be a
     /// loop `w == d`): flipping would create a duplicate or degenerate edge.
     #[error("flipping would create edge ({v0}, {v1}), which already exists")]
-    DuplicateEdge { v0: u32, v1: u32 },
+    DuplicateEdge {
+        /// First vertex of the edge.
+        v0: u32,
+        /// Second vertex of the edge.
+        v1: u32,
+    },
     /// An endpoint of the edge would be left with fewer than 3 edges
     /// (interior) and its two triangles would fold onto each other.
     #[error("flipping would leave vertex {vertex} with fewer than 3 edges")]
-    LowValence { vertex: u32 },
+    LowValence {
+        /// The vertex id.
+        vertex: u32,
+    },
 }
 
 /// Flips the edge opposite corner `c`: the two triangles `(w, a, b)` and
