@@ -250,6 +250,16 @@ fn gltf_takes_every_mesh_node_with_its_transform() {
         })
         .sum();
     assert!((vol - 9.0 * tvol).abs() < 1e-3 * tvol.abs(), "volume {vol}, want 9 x {tvol}");
+    // what the fuzzer found panicking inside the gltf crate is refused, naming the element
+    let missing = gltf_text(4).replace("\"POSITION\":0", "\"POSITION\":7");
+    let e = io::from_bytes(missing.as_bytes(), "m.gltf").unwrap_err().to_string();
+    assert!(e.contains("m.gltf") && e.contains("mesh 0 primitive 0") && e.contains("accessor 7"), "{e}");
+    let bytes_not_floats = gltf_text(4).replacen("\"componentType\":5126", "\"componentType\":5121", 1);
+    let e = io::from_bytes(bytes_not_floats.as_bytes(), "u8.gltf").unwrap_err().to_string();
+    assert!(e.contains("u8.gltf") && e.contains("accessor 0") && e.contains("not allowed"), "{e}");
+    let float_indices = gltf_text(4).replace("\"componentType\":5123", "\"componentType\":5126");
+    let e = io::from_bytes(float_indices.as_bytes(), "fi.gltf").unwrap_err().to_string();
+    assert!(e.contains("fi.gltf") && e.contains("accessor 1"), "{e}");
     // an accessor claiming more than its view holds is refused, naming it
     let e = io::from_bytes(gltf_text(1_000_000_000_000).as_bytes(), "big.gltf").unwrap_err().to_string();
     assert!(e.contains("big.gltf") && e.contains("accessor 0"), "{e}");

@@ -24,6 +24,7 @@ use crate::mesh::Mesh;
 use crate::mesh::attributes::Attributes;
 use crate::{Error, Result};
 use glam::{Mat4, Vec2, Vec3};
+use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 use std::path::Path;
 
@@ -118,11 +119,18 @@ impl Walk<'_> {
             log::info!("{file}: {at}: skipped ({:?}, not triangles)", prim.mode());
             return Ok(None);
         }
-        for (_, acc) in prim.attributes() {
+        for (semantic, acc) in prim.attributes() {
             check_accessor(&acc, self.buffers, file)?;
+            check_kind(&semantic, &acc, file)?;
         }
         if let Some(acc) = prim.indices() {
             check_accessor(&acc, self.buffers, file)?;
+            let ok = matches!(acc.data_type(), DataType::U8 | DataType::U16 | DataType::U32)
+                && acc.dimensions() == Dimensions::Scalar;
+            if !ok {
+                let what = format!("{:?} {:?} indices (unsigned scalars needed)", acc.data_type(), acc.dimensions());
+                return Err(format_err(file, format!("accessor {}", acc.index()), what));
+            }
         }
         let reader = prim.reader(|b| self.buffers.get(b.index()).map(|v| v.as_slice()));
         let missing = || format_err(file, at, "no readable POSITION attribute");
@@ -162,6 +170,25 @@ fn triangulate(mode: Mode, ix: &[u32]) -> Vec<u32> {
         Mode::TriangleFan => (1..ix.len().saturating_sub(1)).flat_map(|i| [ix[0], ix[i], ix[i + 1]]).collect(),
         _ => ix[..ix.len() / 3 * 3].to_vec(),
     }
+}
+
+/// Refuses an attribute accessor whose component type and dimensions the
+/// glTF spec does not allow for its semantic (the `gltf` crate's readers
+/// reach `unreachable!` on those; found by fuzzing).
+fn check_kind(semantic: &gltf::Semantic, acc: &gltf::Accessor, file: &str) -> Result<()> {
+    use DataType::{F32, U8, U16};
+    let (t, d) = (acc.data_type(), acc.dimensions());
+    let ok = match semantic {
+        gltf::Semantic::Positions | gltf::Semantic::Normals => (t, d) == (F32, Dimensions::Vec3),
+        gltf::Semantic::TexCoords(_) => matches!(t, F32 | U8 | U16) && d == Dimensions::Vec2,
+        gltf::Semantic::Colors(_) => matches!(t, F32 | U8 | U16) && matches!(d, Dimensions::Vec3 | Dimensions::Vec4),
+        _ => true,
+    };
+    if ok {
+        return Ok(());
+    }
+    let what = format!("{t:?} {d:?} is not allowed for {semantic:?}");
+    Err(format_err(file, format!("accessor {}", acc.index()), what))
 }
 
 /// Refuses an accessor whose bytes are not all inside its view and buffer
