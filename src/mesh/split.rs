@@ -386,8 +386,10 @@ fn split_generations(old: &CornerTable) -> Generations {
     og.par_chunks(g).zip(g1.par_chunks_mut(g)).zip(g2.par_chunks_mut(g)).zip(g3.par_chunks_mut(g)).for_each(
         |(((og, g1), g2), g3)| {
             let old3: &[[u8; 3]] = bytemuck::cast_slice(og);
-            let (g1, g2, g3): (&mut [[u8; 3]], &mut [[u8; 3]], &mut [[u8; 3]]) =
-                (bytemuck::cast_slice_mut(g1), bytemuck::cast_slice_mut(g2), bytemuck::cast_slice_mut(g3));
+            fn tri(s: &mut [u8]) -> &mut [[u8; 3]] {
+                bytemuck::cast_slice_mut(s)
+            }
+            let (g1, g2, g3) = (tri(g1), tri(g2), tri(g3));
             for (t, x) in old3.iter().enumerate() {
                 // corner triangle k of c = 3t + k: (A, n(A), p(A)) face
                 // (interior, half of the edge opposite n(c), half of p(c)'s)

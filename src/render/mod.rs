@@ -54,6 +54,44 @@ pub struct Look {
     pub uv_checker: bool,
     /// Sharp edges (creases) drawn in their own colour.
     pub sharp: bool,
+    /// Which edges the wireframe draws, by generation.
+    pub wire_edges: WireEdges,
+}
+
+/// The edges a wireframe draws, by the level at which each was made (see
+/// [`crate::mesh::Generations`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum WireEdges {
+    /// Every edge of the mesh.
+    #[default]
+    All,
+    /// The edges made up to this level: 0 draws only the pieces of the
+    /// control mesh's edges (its curves on the smooth surface).
+    UpTo(u8),
+}
+
+impl WireEdges {
+    /// The highest generation drawn.
+    pub fn max_generation(self) -> u8 {
+        match self {
+            WireEdges::All => u8::MAX,
+            WireEdges::UpTo(k) => k,
+        }
+    }
+}
+
+impl std::str::FromStr for WireEdges {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "all" => Ok(WireEdges::All),
+            "control" => Ok(WireEdges::UpTo(0)),
+            _ => s
+                .parse::<u8>()
+                .map(WireEdges::UpTo)
+                .map_err(|_| format!("unknown wire level '{s}' (expected all, control or a level 0..=255)")),
+        }
+    }
 }
 
 /// Shading modes of the command line.
