@@ -169,13 +169,18 @@ fn fs_line() -> @location(0) vec4<f32> {
 // they fade out (the spacing of an edge of generation g in a level-L mesh is
 // the triangle's altitude, 1 / fwidth(b), times 2^(L - g)): a fine mesh keeps
 // its shading and shows its coarser generations, down to the control edges.
+// A line is drawn by the two triangles along it only, so where it passes a
+// vertex the triangles that only touch that vertex would cut it; each
+// vertex on a shown edge is drawn as a disk too (its distance from the
+// fragment solved from the barycentric gradients), which closes the gaps.
 // Over shaded faces a line darkens the colour (lightens it on dark faces)
 // instead of painting it over.
 
 @group(2) @binding(0) var<storage, read> mesh_positions: array<f32>;
 @group(2) @binding(1) var<storage, read> mesh_normals: array<f32>;
 @group(2) @binding(2) var<storage, read> mesh_corners: array<u32>;
-// four generations (bytes) per word, corner c in byte c % 4 of word c / 4
+// per corner c, in half-word c % 2 of word c / 2: the generation of the edge
+// opposite c (low byte) and the lowest generation of the edges at v(c)
 @group(2) @binding(3) var<storage, read> mesh_generations: array<u32>;
 @group(2) @binding(4) var<storage, read> mesh_colors: array<f32>;
 
@@ -188,10 +193,14 @@ struct WireOut {
     // per edge (opposite corner k): 0 = not drawn, else the spacing of the
     // edges of its generation in altitudes of this triangle, 2^(level - g)
     @location(4) @interpolate(flat) spacing: vec3<f32>,
+    // per vertex k: the same for its disk (the lowest generation at it)
+    @location(5) @interpolate(flat) vertex_spacing: vec3<f32>,
 };
 
-fn generation(c: u32) -> u32 {
-    return (mesh_generations[c / 4u] >> (8u * (c % 4u))) & 255u;
+// (edge generation, vertex generation) of corner c
+fn generation(c: u32) -> vec2<u32> {
+    let h = mesh_generations[c / 2u] >> (16u * (c % 2u));
+    return vec2<u32>(h & 255u, (h >> 8u) & 255u);
 }
 
 fn fetch3(which: u32, i: u32) -> vec3<f32> {
@@ -220,11 +229,16 @@ fn vs_wire(@builtin(vertex_index) c: u32) -> WireOut {
     let k = c % 3u;
     o.bary = vec3<f32>(f32(k == 0u), f32(k == 1u), f32(k == 2u));
     let t = c - k;
-    let g = vec3<u32>(generation(t), generation(t + 1u), generation(t + 2u));
+    let g0 = generation(t);
+    let g1 = generation(t + 1u);
+    let g2 = generation(t + 2u);
+    let g = vec3<u32>(g0.x, g1.x, g2.x);
+    let gv = vec3<u32>(g0.y, g1.y, g2.y);
     // every triangle of a split level has an edge of that level (its inner one)
-    let level = f32(max(g.x, max(g.y, g.z)));
-    let shown = g <= vec3<u32>(u32(u.wire.y));
-    o.spacing = select(vec3<f32>(0.0), exp2(vec3<f32>(level) - vec3<f32>(g)), shown);
+    let level = vec3<f32>(f32(max(g.x, max(g.y, g.z))));
+    let most = vec3<u32>(u32(u.wire.y));
+    o.spacing = select(vec3<f32>(0.0), exp2(level - vec3<f32>(g)), g <= most);
+    o.vertex_spacing = select(vec3<f32>(0.0), exp2(level - vec3<f32>(gv)), gv <= most);
     return o;
 }
 
@@ -232,27 +246,47 @@ fn vs_wire(@builtin(vertex_index) c: u32) -> WireOut {
 // faded by the spacing of the edges of its generation, so where the finest
 // edges would crowd, the coarser generations (down to the control edges)
 // remain.
-fn wire_coverage(bary: vec3<f32>, spacing: vec3<f32>) -> f32 {
-    let fw = max(fwidth(bary), vec3<f32>(1e-6));
-    let dist = bary / fw;
-    let half = 0.5 * u.wire.x;
-    let line = vec3<f32>(1.0) - smoothstep(vec3<f32>(half - 0.5), vec3<f32>(half + 0.75), dist);
+fn wire_coverage(bary: vec3<f32>, spacing: vec3<f32>, vertex_spacing: vec3<f32>) -> f32 {
+    let gx = dpdx(bary);
+    let gy = dpdy(bary);
+    let fw = max(abs(gx) + abs(gy), vec3<f32>(1e-6));
     // the triangle's size in pixels, sqrt(2 area): the Jacobian of two
     // barycentrics over the screen is 1 / (2 area); steadier from one
     // triangle to the next than the smallest altitude, so a line does not
     // flicker along its length
-    let jac = abs(dpdx(bary.x) * dpdy(bary.y) - dpdy(bary.x) * dpdx(bary.y));
-    let altitude = inverseSqrt(max(jac, 1e-12));
+    let jac = gx.x * gy.y - gy.x * gx.y;
+    let size = inverseSqrt(max(abs(jac), 1e-12));
+    // distances in pixels: to the edge opposite each corner, and to each
+    // corner (the screen offset d from corner k solves grad(b_i) . d = b_i
+    // for the other two, whose barycentrics are 0 at k)
+    let to_edge = bary / fw;
+    let inv = 1.0 / select(jac, 1e-12, abs(jac) < 1e-12);
+    // from corner 2: grad b0 . d = b0, grad b1 . d = b1
+    let d2 = vec2<f32>(bary.x * gy.y - gy.x * bary.y, gx.x * bary.y - bary.x * gx.y) * inv;
+    // the offsets from corners 0 and 1 differ by the edge vectors, which
+    // are the offsets of those corners from corner 2: e = d2 at b = (1,0,0)
+    let e0 = vec2<f32>(gy.y, -gx.y) * inv;
+    let e1 = vec2<f32>(-gy.x, gx.x) * inv;
+    let to_vertex = vec3<f32>(length(d2 - e0), length(d2 - e1), length(d2));
+    let half = 0.5 * u.wire.x;
+    let ramp0 = vec3<f32>(half - 0.5);
+    let ramp1 = vec3<f32>(half + 0.75);
+    let line = vec3<f32>(1.0) - smoothstep(ramp0, ramp1, to_edge);
+    let disk = vec3<f32>(1.0) - smoothstep(ramp0, ramp1, to_vertex);
     // (wire only keeps a trace of the densest lines, or nothing would show)
-    let least = select(0.0, 0.25, u.wire.z > 0.5);
-    let fade = max(smoothstep(vec3<f32>(2.5 * u.wire.x), vec3<f32>(9.0 * u.wire.x), spacing * altitude), vec3<f32>(least));
+    let least = vec3<f32>(select(0.0, 0.25, u.wire.z > 0.5));
+    let near = vec3<f32>(2.5 * u.wire.x);
+    let far = vec3<f32>(9.0 * u.wire.x);
+    let fade = max(smoothstep(near, far, spacing * size), least);
+    let vfade = max(smoothstep(near, far, vertex_spacing * size), least);
     let a = select(vec3<f32>(0.0), line * fade, spacing > vec3<f32>(0.0));
-    return max(a.x, max(a.y, a.z));
+    let v = select(vec3<f32>(0.0), disk * vfade, vertex_spacing > vec3<f32>(0.0));
+    return max(max(a.x, max(a.y, a.z)), max(v.x, max(v.y, v.z)));
 }
 
 @fragment
 fn fs_wire(i: WireOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    let a = wire_coverage(i.bary, i.spacing);
+    let a = wire_coverage(i.bary, i.spacing, i.vertex_spacing);
     if u.wire.z > 0.5 {
         // wire only: light lines over the background (blended), the face
         // still writes depth and so hides the lines behind it

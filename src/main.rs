@@ -186,7 +186,25 @@ enum Cmd {
         /// Overlay the control mesh.
         #[arg(long)]
         control: bool,
+        #[command(flatten)]
+        look: RenderLook,
     },
+}
+
+/// The wireframe and picture options of `render`.
+#[derive(clap::Args)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+struct RenderLook {
+    /// Wireframe edges drawn (with --shading wire or phong+wire): all, control
+    /// (the control mesh's edges on the surface) or K (the edges made up to level K).
+    #[arg(long, default_value = "all")]
+    wire_level: String,
+    /// Transparent background (alpha 0; the object stays opaque).
+    #[arg(long)]
+    transparent: bool,
+    /// Render N times the size (lines N times as wide: the same picture, sharper).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
+    scale: u32,
 }
 
 fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
@@ -274,8 +292,8 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
             models_cmd();
             Ok(())
         }
-        Some(Cmd::Render { input, output, scheme, levels, shading, size, ortho, control }) => {
-            render_cmd(&input, &output, &scheme, levels, &shading, size, ortho, control)
+        Some(Cmd::Render { input, output, scheme, levels, shading, size, ortho, control, look }) => {
+            render_cmd(&input, &output, &scheme, levels, &shading, size, ortho, control, &look)
         }
     }
 }
@@ -468,17 +486,31 @@ fn render_cmd(
     size: (u32, u32),
     ortho: bool,
     control: bool,
+    look: &RenderLook,
 ) -> Result<()> {
     let shading: subdiv::render::Shading = shading.parse().map_err(Error::Usage)?;
+    let wire_edges = look.wire_level.parse().map_err(Error::Usage)?;
     let mesh = scheme.features.apply(bundled::load(input)?)?;
     let (fine, _) = subdiv::subdivide(&mesh, scheme.scheme, levels, &scheme.options())?;
-    let opts = subdiv::render::RenderOptions { shading, width: size.0, height: size.1, orthographic: ortho };
+    let shot = subdiv::render::Shot { scale: look.scale, transparent: look.transparent };
+    let (width, height) = size;
+    let opts = subdiv::render::RenderOptions { shading, width, height, orthographic: ortho, wire_edges, shot };
     subdiv::render::render_png(&fine, control.then_some(&mesh), &opts, output)
 }
 
 #[cfg(not(feature = "viewer"))]
 #[allow(clippy::too_many_arguments)]
-fn render_cmd(_: &Path, _: &Path, _: &SchemeArgs, _: u32, _: &str, _: (u32, u32), _: bool, _: bool) -> Result<()> {
+fn render_cmd(
+    _: &Path,
+    _: &Path,
+    _: &SchemeArgs,
+    _: u32,
+    _: &str,
+    _: (u32, u32),
+    _: bool,
+    _: bool,
+    _: &RenderLook,
+) -> Result<()> {
     Err(Error::Usage("built without the 'viewer' feature: rendering is not available".into()))
 }
 

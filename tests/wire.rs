@@ -133,3 +133,28 @@ fn control_edges_only_draw_fewer_wire_pixels_than_all_edges() {
     assert!(c > 0.02, "the control edges draw {:.2}% of the object", 100.0 * c);
     assert!(c < b && b < a, "the filter does not thin the wire: {a} {b} {c}");
 }
+
+#[test]
+fn a_transparent_shot_has_alpha_0_around_an_opaque_object_and_scale_2_twice_the_size() {
+    use subdiv::render::{Shot, render_image};
+    if offscreen().is_none() {
+        return;
+    }
+    let (_, fine) = level("cube.obj", 2);
+    let opts =
+        |shot| RenderOptions { width: 160, height: 120, shading: Shading::PhongWire, shot, ..Default::default() };
+    let plain = render_image(&fine, None, &opts(Shot::default())).unwrap();
+    let shot = render_image(&fine, None, &opts(Shot { scale: 2, transparent: true })).unwrap();
+    assert_eq!(plain.dimensions(), (160, 120));
+    assert_eq!(shot.dimensions(), (320, 240));
+    assert_eq!(plain.get_pixel(0, 0).0[3], 255, "an ordinary render is opaque");
+    for (x, y) in [(0, 0), (319, 0), (0, 239), (319, 239)] {
+        assert_eq!(shot.get_pixel(x, y).0[3], 0, "corner ({x},{y})");
+    }
+    assert_eq!(shot.get_pixel(160, 120).0[3], 255, "the object is opaque");
+    let opaque = shot.pixels().filter(|p| p.0[3] == 255).count();
+    let object = object_mask(&plain).iter().filter(|&&o| o).count();
+    // the object covers four times the pixels at twice the size
+    let ratio = opaque as f64 / object as f64;
+    assert!((3.6..4.4).contains(&ratio), "opaque {opaque} vs object {object} at scale 1");
+}

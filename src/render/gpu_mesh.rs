@@ -101,15 +101,25 @@ pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
     ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
 }
 
-/// The edge generation of every corner (see [`crate::mesh::Generations`]),
-/// packed four to a word, little end first, as the shader reads them.
+/// Per corner `c`, as the wire shader reads them: the generation of the
+/// edge opposite `c` (see [`crate::mesh::Generations`]) in the low byte, the
+/// lowest generation of the edges at its vertex `v(c)` in the high byte of
+/// a half-word; two corners to a word, corner `2i` in the low half.
 pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
     let nc = ct.num_corners();
-    let mut words = vec![0u32; nc.div_ceil(4)];
-    if let Some(g) = ct.generations() {
-        for (w, chunk) in words.iter_mut().zip(g.corner.chunks(4)) {
-            *w = chunk.iter().rev().fold(0u32, |acc, &b| (acc << 8) | u32::from(b));
+    let mut words = vec![0u32; nc.div_ceil(2)];
+    let Some(g) = ct.generations() else { return words };
+    // the edge opposite c ends at v(n(c)) and v(p(c))
+    let mut at_vertex = vec![u8::MAX; ct.num_vertices()];
+    for (c, &e) in g.corner.iter().enumerate() {
+        for end in [n(c as u32), p(c as u32)] {
+            let v = &mut at_vertex[ct.vtx(end) as usize];
+            *v = (*v).min(e);
         }
+    }
+    for (c, &e) in g.corner.iter().enumerate() {
+        let half = u32::from(e) | u32::from(at_vertex[ct.vtx(c as u32) as usize]) << 8;
+        words[c / 2] |= half << (16 * (c % 2));
     }
     words
 }

@@ -145,11 +145,47 @@ pub struct RenderOptions {
     pub height: u32,
     /// Orthographic instead of perspective projection.
     pub orthographic: bool,
+    /// Which edges the wireframe draws.
+    pub wire_edges: WireEdges,
+    /// How the image is taken (transparent background, scale).
+    pub shot: Shot,
 }
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        RenderOptions { shading: Shading::Phong, width: 800, height: 600, orthographic: false }
+        RenderOptions {
+            shading: Shading::Phong,
+            width: 800,
+            height: 600,
+            orthographic: false,
+            wire_edges: WireEdges::All,
+            shot: Shot::default(),
+        }
+    }
+}
+
+/// How a picture is taken: the image is `scale` times the size asked for
+/// (lines `scale` times as wide, so it looks the same, only sharper), on a
+/// transparent background (alpha 0, the object opaque) when `transparent`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shot {
+    /// Pixels per requested pixel, 1 or more.
+    pub scale: u32,
+    /// Alpha 0 where nothing is drawn.
+    pub transparent: bool,
+}
+
+impl Default for Shot {
+    fn default() -> Self {
+        Shot { scale: 1, transparent: false }
+    }
+}
+
+impl Shot {
+    /// The image size of a `width` x `height` view.
+    pub fn size(self, width: u32, height: u32) -> (u32, u32) {
+        let k = self.scale.max(1);
+        (width.saturating_mul(k), height.saturating_mul(k))
     }
 }
 
@@ -167,10 +203,12 @@ pub fn default_camera(frame: &Mesh, opts: &RenderOptions) -> Camera {
 /// # Errors
 /// [`Error::Gpu`] without an adapter; size errors.
 pub fn render_image(mesh: &Mesh, control: Option<&Mesh>, opts: &RenderOptions) -> Result<image::RgbaImage> {
-    let mut off = Offscreen::new(opts.width, opts.height)?;
+    let (w, h) = opts.shot.size(opts.width, opts.height);
+    let mut off = Offscreen::new(w, h)?;
+    off.set_shot(opts.shot);
     let gm = off.upload(mesh)?;
     let gc = control.map(|c| off.upload(c)).transpose()?;
-    let look = Look { control: gc.is_some(), ..opts.shading.look() };
+    let look = Look { control: gc.is_some(), wire_edges: opts.wire_edges, ..opts.shading.look() };
     off.render_one(default_camera(control.unwrap_or(mesh), opts), &gm, gc.as_ref(), look)
 }
 

@@ -45,6 +45,14 @@ impl Offscreen {
         Ok(Offscreen { gpu, renderer, targets, texture, view, readback })
     }
 
+    /// Takes the next images as `shot` says: its scale widens the lines
+    /// (the target keeps its size; make it `shot.size(...)`), its
+    /// transparency clears the background to alpha 0.
+    pub fn set_shot(&mut self, shot: super::Shot) {
+        self.renderer.pixel_scale = shot.scale.max(1) as f32;
+        self.renderer.transparent = shot.transparent;
+    }
+
     /// Image size.
     pub fn size(&self) -> (u32, u32) {
         self.targets.size

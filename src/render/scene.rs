@@ -137,6 +137,8 @@ pub struct Renderer {
     /// Pixels per logical pixel: line widths are multiplied by it (a
     /// screenshot `N` times the window's size sets `N`).
     pub pixel_scale: f32,
+    /// Clear the background to alpha 0 (a screenshot for compositing).
+    pub transparent: bool,
     pipelines: Pipelines,
     views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
     styles: [wgpu::BindGroup; 5],
@@ -154,7 +156,7 @@ impl Renderer {
             });
             uniform_group(device, &pipelines.style_layout, &buf)
         });
-        Renderer { format, samples, pixel_scale: 1.0, pipelines, views: Vec::new(), styles }
+        Renderer { format, samples, pixel_scale: 1.0, transparent: false, pipelines, views: Vec::new(), styles }
     }
 
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
@@ -257,7 +259,7 @@ impl Renderer {
                 depth_slice: None,
                 resolve_target,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: if self.transparent { 0.0 } else { 1.0 } }),
                     store: wgpu::StoreOp::Store,
                 },
             })],
