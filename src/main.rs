@@ -258,7 +258,7 @@ fn main() -> ExitCode {
 
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
-        None => view(ViewArgs::default()),
+        None => first_launch(),
         Some(Cmd::View(args)) => view(args),
         Some(Cmd::Animate(args)) => animate_cmd(args),
         Some(Cmd::Subdivide { input, output, scheme, levels, stats, json, repair }) => {
@@ -312,6 +312,9 @@ struct ViewArgs {
     /// Start with the wireframe shown.
     #[arg(long)]
     wireframe: bool,
+    /// Start with the control mesh (cage) shown.
+    #[arg(long)]
+    control: bool,
     /// Render N frames, then exit (for CI).
     #[arg(long)]
     frames: Option<u32>,
@@ -354,7 +357,19 @@ fn view(a: ViewArgs) -> Result<()> {
         repair: a.repair,
         coloring: a.color.parse().map_err(Error::Usage)?,
         crease_angle: a.scheme.features.crease_angle,
+        control: a.control,
     })
+}
+
+/// `subdiv` alone: the viewer with something worth seeing (see `ViewOptions::first_launch`).
+#[cfg(feature = "viewer")]
+fn first_launch() -> Result<()> {
+    subdiv::app::run(subdiv::app::ViewOptions::first_launch())
+}
+
+#[cfg(not(feature = "viewer"))]
+fn first_launch() -> Result<()> {
+    view(ViewArgs::default())
 }
 
 /// `subdiv animate` arguments.

@@ -158,3 +158,29 @@ fn a_transparent_shot_has_alpha_0_around_an_opaque_object_and_scale_2_twice_the_
     let ratio = opaque as f64 / object as f64;
     assert!((3.6..4.4).contains(&ratio), "opaque {opaque} vs object {object} at scale 1");
 }
+
+#[test]
+fn a_window_screenshot_renders_its_viewports_at_n_times_their_size() {
+    // what P does in the window: the same draws, offscreen on the window's device
+    use subdiv::render::offscreen::shoot;
+    use subdiv::render::{Shot, ViewportDraw};
+    let Some(off) = offscreen() else { return };
+    let (control, fine) = level("tetrahedron.obj", 2);
+    let gm = off.upload(&fine).unwrap();
+    let gc = off.upload(&control).unwrap();
+    let opts = RenderOptions { width: 200, height: 100, ..Default::default() };
+    let look = Look { control: true, ..Shading::PhongWire.look() };
+    let shot = Shot { scale: 2, transparent: true };
+    let (w, h) = shot.size(200, 100);
+    let draws = [ViewportDraw {
+        rect: [0.0, 0.0, w as f32, h as f32],
+        camera: default_camera(&control, &opts),
+        mesh: Some(&gm),
+        control: Some(&gc),
+        look,
+    }];
+    let img = shoot(&off.gpu.device, &off.gpu.queue, 1, (w, h), shot, &draws).unwrap();
+    assert_eq!(img.dimensions(), (400, 200));
+    assert_eq!(img.get_pixel(0, 0).0[3], 0);
+    assert_eq!(img.get_pixel(200, 100).0[3], 255);
+}

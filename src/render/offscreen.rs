@@ -95,3 +95,37 @@ impl Offscreen {
         self.readback.read(device)
     }
 }
+
+/// Renders `draws` (rectangles in pixels of a `size` image) on an existing
+/// device into a new offscreen target taken as `shot` says, and reads it
+/// back: the window's screenshots, at any multiple of its size, without
+/// touching its own targets.
+///
+/// # Errors
+/// [`Error::Usage`] for a size the device cannot hold, [`Error::Gpu`] when
+/// the readback fails.
+pub fn shoot(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    samples: u32,
+    size: (u32, u32),
+    shot: super::Shot,
+    draws: &[ViewportDraw],
+) -> Result<RgbaImage> {
+    let (w, h) = size;
+    let max = device.limits().max_texture_dimension_2d;
+    if w == 0 || h == 0 || w > max || h > max {
+        return Err(Error::Usage(format!("screenshot size {w}x{h} is outside 1..={max} pixels per side")));
+    }
+    let mut renderer = Renderer::new(device, OFFSCREEN_FORMAT, samples);
+    renderer.pixel_scale = shot.scale.max(1) as f32;
+    renderer.transparent = shot.transparent;
+    let targets = Targets::new(device, &renderer, w, h);
+    let (texture, view) = capture_texture(device, "screenshot", OFFSCREEN_FORMAT, w, h);
+    let readback = Readback::new(device, w, h);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    renderer.encode(device, queue, &mut encoder, &targets, &view, draws);
+    readback.copy_from(&mut encoder, &texture);
+    queue.submit([encoder.finish()]);
+    readback.read(device)
+}
