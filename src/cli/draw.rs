@@ -32,6 +32,24 @@ pub struct RenderArgs {
     /// Overlay the control mesh.
     #[arg(long)]
     control: bool,
+    #[command(flatten)]
+    look: RenderLook,
+}
+
+/// The wireframe and picture options of `render`.
+#[derive(clap::Args)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub struct RenderLook {
+    /// Wireframe edges drawn (with --shading wire or phong+wire): all, control
+    /// (the control mesh's edges on the surface) or K (the edges made up to level K).
+    #[arg(long, default_value = "all")]
+    wire_level: String,
+    /// Transparent background (alpha 0; the object stays opaque).
+    #[arg(long)]
+    transparent: bool,
+    /// Render N times the size (lines N times as wide: the same picture, sharper).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
+    scale: u32,
 }
 
 /// `subdiv animate` arguments.
@@ -153,7 +171,9 @@ mod gpu {
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
         let paint = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
         let (width, height) = a.size;
-        let opts = subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho };
+        let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
+        let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
+        let opts = subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot };
         let img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
         subdiv::render::save_png(&img, &a.output)
     }
