@@ -361,7 +361,7 @@ struct AnimateArgs {
     #[arg(long, default_value = "jarek")]
     tweak: String,
     /// Write one looping GIF here.
-    #[arg(long, conflicts_with = "frames_dir", required_unless_present = "frames_dir")]
+    #[arg(long, conflicts_with = "frames_dir", required_unless_present_any = ["frames_dir", "stats"])]
     gif: Option<PathBuf>,
     /// Write frame_0000.png, ... into this directory.
     #[arg(long)]
@@ -378,13 +378,16 @@ struct AnimateArgs {
     /// Frames per second stored in the GIF.
     #[arg(long, default_value_t = 30.0)]
     fps: f32,
+    /// Print plan_ms= (recording the plan) and frame_ms= (median per frame,
+    /// positions and normals); without --gif/--frames-dir every frame is
+    /// evaluated and nothing is written.
+    #[arg(long)]
+    stats: bool,
 }
 
-#[cfg(feature = "viewer")]
-fn animate_cmd(a: AnimateArgs) -> Result<()> {
+/// The model, its paths and the recorded animation of `subdiv animate`.
+fn animation_of(a: &AnimateArgs) -> Result<(Mesh, subdiv::anim::Paths, subdiv::anim::Animation)> {
     use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
-    use subdiv::render::export::{ExportStyle, ExportTarget, export_animation};
-    let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
     let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
     let (mesh, default_paths) = match &a.model {
         Some(m) => {
@@ -414,7 +417,48 @@ fn animate_cmd(a: AnimateArgs) -> Result<()> {
         (None, Some(paths)) => paths,
         (None, None) => Paths::generated(&mesh, 4),
     };
-    let mut anim = Animation::new(&mesh, &paths, tweak, a.refine, a.scheme.scheme, a.level, &a.scheme.options())?;
+    let anim = Animation::new(&mesh, &paths, tweak, a.refine, a.scheme.scheme, a.level, &a.scheme.options())?;
+    Ok((mesh, paths, anim))
+}
+
+/// `subdiv animate --stats` without an output: evaluates every frame (at
+/// least 32 evaluations, cycling) and prints the plan and per-frame times.
+fn animate_stats(anim: &mut subdiv::anim::Animation) {
+    let n = anim.frame_count().max(32);
+    let (mut times, mut stencils, mut normals) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+    for f in 0..n {
+        let t = Instant::now();
+        std::hint::black_box(anim.evaluate(f).1.len());
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        stencils.push(anim.last_timing.0.as_secs_f64() * 1e3);
+        normals.push(anim.last_timing.1.as_secs_f64() * 1e3);
+    }
+    let median = |t: &mut Vec<f64>| {
+        t.sort_by(f64::total_cmp);
+        t[t.len() / 2]
+    };
+    println!(
+        "plan_ms={:.3} frame_ms={:.3} frame_min_ms={:.3} (stencils_ms={:.3} normals_ms={:.3}) evaluations={n} frames={} triangles={} threads={}",
+        anim.plan_ms(),
+        median(&mut times),
+        times[0],
+        median(&mut stencils),
+        median(&mut normals),
+        anim.frame_count(),
+        anim.topology().num_triangles(),
+        rayon::current_num_threads()
+    );
+}
+
+#[cfg(feature = "viewer")]
+fn animate_cmd(a: AnimateArgs) -> Result<()> {
+    use subdiv::render::export::{ExportStyle, ExportTarget, export_animation};
+    let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
+    let (mesh, paths, mut anim) = animation_of(&a)?;
+    if a.stats && a.gif.is_none() && a.frames_dir.is_none() {
+        animate_stats(&mut anim);
+        return Ok(());
+    }
     let target = match (a.gif, a.frames_dir) {
         (Some(g), _) => ExportTarget::Gif(g),
         (None, Some(d)) => ExportTarget::Frames(d),
@@ -442,11 +486,19 @@ fn animate_cmd(a: AnimateArgs) -> Result<()> {
         t0.elapsed().as_secs_f64()
     );
     debug_assert_eq!(n, total);
+    if a.stats {
+        // the median of the last 64 evaluations (the export's)
+        println!("plan_ms={:.3} frame_ms={:.3}", anim.plan_ms(), anim.frame_ms().unwrap_or(0.0));
+    }
     Ok(())
 }
 
 #[cfg(not(feature = "viewer"))]
-fn animate_cmd(_a: AnimateArgs) -> Result<()> {
+fn animate_cmd(a: AnimateArgs) -> Result<()> {
+    if a.stats && a.gif.is_none() && a.frames_dir.is_none() {
+        animate_stats(&mut animation_of(&a)?.2);
+        return Ok(());
+    }
     Err(Error::Usage("built without the 'viewer' feature: animation export is not available".into()))
 }
 

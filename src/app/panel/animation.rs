@@ -65,11 +65,21 @@ fn clock_rows(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
         }
         let (plan, normals) = p.player.last_timing;
         ui.label(format!(
-            "per frame: plan {:.2} ms + normals {:.2} ms ({} triangles)",
-            plan.as_secs_f64() * 1e3,
-            normals.as_secs_f64() * 1e3,
+            "plan_ms {:.1}  frame_ms {:.2} (median, {} triangles)",
+            p.player.plan_ms(),
+            p.player.frame_ms().unwrap_or(0.0),
             sep(p.player.topology().num_triangles() as u64)
-        ));
+        ))
+        .on_hover_text("plan_ms: recording the stencil plan; frame_ms: positions and normals per frame, the median of the last 64, as `subdiv animate --stats` prints");
+        ui.label(
+            RichText::new(format!(
+                "last frame: stencils {:.2} ms + normals {:.2} ms",
+                plan.as_secs_f64() * 1e3,
+                normals.as_secs_f64() * 1e3
+            ))
+            .small()
+            .weak(),
+        );
     } else if let Some(b) = &doc.jobs.busy.building {
         ui.horizontal(|ui| {
             ui.spinner();
