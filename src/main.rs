@@ -383,6 +383,9 @@ struct AnimateArgs {
     /// evaluated and nothing is written.
     #[arg(long)]
     stats: bool,
+    /// Where --stats evaluates the frames: cpu, or gpu (compute passes).
+    #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu"])]
+    eval: String,
 }
 
 /// The model, its paths and the recorded animation of `subdiv animate`.
@@ -421,6 +424,23 @@ fn animation_of(a: &AnimateArgs) -> Result<(Mesh, subdiv::anim::Paths, subdiv::a
     Ok((mesh, paths, anim))
 }
 
+/// `subdiv animate --stats --eval gpu`: every frame through the compute passes.
+#[cfg(feature = "viewer")]
+fn animate_stats_gpu(anim: &mut subdiv::anim::Animation) -> Result<()> {
+    let n = anim.frame_count().max(32);
+    let (mut times, upload_ms, adapter) = subdiv::render::gpu_anim::time_frames(anim, n)?;
+    times.sort_by(f64::total_cmp);
+    println!(
+        "plan_ms={:.3} frame_ms={:.3} frame_min_ms={:.3} (gpu upload_ms={upload_ms:.3}) evaluations={n} frames={} triangles={} adapter=\"{adapter}\"",
+        anim.plan_ms(),
+        times[n / 2],
+        times[0],
+        anim.frame_count(),
+        anim.topology().num_triangles(),
+    );
+    Ok(())
+}
+
 /// `subdiv animate --stats` without an output: evaluates every frame (at
 /// least 32 evaluations, cycling) and prints the plan and per-frame times.
 fn animate_stats(anim: &mut subdiv::anim::Animation) {
@@ -456,8 +476,14 @@ fn animate_cmd(a: AnimateArgs) -> Result<()> {
     let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
     let (mesh, paths, mut anim) = animation_of(&a)?;
     if a.stats && a.gif.is_none() && a.frames_dir.is_none() {
+        if a.eval == "gpu" {
+            return animate_stats_gpu(&mut anim);
+        }
         animate_stats(&mut anim);
         return Ok(());
+    }
+    if a.eval == "gpu" {
+        return Err(Error::Usage("--eval gpu times frames with --stats; exports evaluate on the CPU".into()));
     }
     let target = match (a.gif, a.frames_dir) {
         (Some(g), _) => ExportTarget::Gif(g),
@@ -495,6 +521,9 @@ fn animate_cmd(a: AnimateArgs) -> Result<()> {
 
 #[cfg(not(feature = "viewer"))]
 fn animate_cmd(a: AnimateArgs) -> Result<()> {
+    if a.eval == "gpu" {
+        return Err(Error::Usage("built without the 'viewer' feature: no GPU evaluation".into()));
+    }
     if a.stats && a.gif.is_none() && a.frames_dir.is_none() {
         animate_stats(&mut animation_of(&a)?.2);
         return Ok(());

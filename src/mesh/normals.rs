@@ -123,6 +123,22 @@ fn chained_ring(ct: &CornerTable, v: u32, ring: &mut Vec<u32>) -> Option<()> {
     (ring.len() <= MAX_RING).then_some(())
 }
 
+/// Every vertex's one-ring as a plain CSR list (`offsets`, `ids`; a closed
+/// ring repeats its first neighbour at the end), the faces around `v` being
+/// `(v, ids[k], ids[k+1])`: the layout the GPU's normal pass reads. `None`
+/// as for [`VertexRings::new`].
+pub fn ring_lists(ct: &CornerTable) -> Option<(Vec<u32>, Vec<u32>)> {
+    let nv = ct.num_vertices();
+    let (mut offsets, mut ids, mut ring) = (Vec::with_capacity(nv + 1), Vec::new(), Vec::new());
+    offsets.push(0u32);
+    for v in 0..nv {
+        chained_ring(ct, v as u32, &mut ring)?;
+        ids.extend_from_slice(&ring);
+        offsets.push(u32::try_from(ids.len()).ok()?);
+    }
+    Some((offsets, ids))
+}
+
 impl VertexRings {
     /// The rings of every vertex of `ct`, or `None` when a vertex has more
     /// than 254 neighbours (then use [`VertexFaces`]).

@@ -129,7 +129,15 @@ impl GpuMesh {
                 crate::error::human_bytes(limit)
             )));
         }
-        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        // storage and copy source too where the device computes: the
+        // animation's compute passes write them (render::gpu_anim), and
+        // tests read them back
+        let compute = if super::gpu_anim::supports_compute(device) {
+            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC
+        } else {
+            wgpu::BufferUsages::empty()
+        };
+        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST | compute;
         Ok(GpuMesh {
             positions: buffer(device, "positions", bytemuck::cast_slice(positions), vertex),
             normals: buffer(device, "normals", bytemuck::cast_slice(normals), vertex),

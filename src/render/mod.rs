@@ -8,6 +8,7 @@ pub mod blit;
 pub mod camera;
 pub mod export;
 pub mod gpu;
+pub mod gpu_anim;
 pub mod gpu_mesh;
 pub mod offscreen;
 pub mod pipelines;
