@@ -71,34 +71,37 @@ impl VertexFaces {
     }
 }
 
-/// Vertices evaluated together, one per lane (two SSE registers).
-const LANES: usize = 8;
+/// Vertices per parallel chunk of [`VertexRings`].
+const RING_CHUNK: usize = 2048;
 
-/// Groups of [`LANES`] vertices per parallel chunk.
-const GROUPS_PER_CHUNK: usize = 256;
-
-/// Most ring entries a vertex may have in a [`VertexRings`].
+/// Most polygon entries a vertex may have in a [`VertexRings`] (a byte).
 const MAX_RING: usize = 255;
 
-/// Every vertex's one-ring in fan order, packed for per-frame normals.
+/// Every vertex's one-ring as a polygon, packed for per-frame normals.
 ///
-/// The faces around `v` are `(v, r_i, r_i+1)`, so the sum of their
-/// (unnormalised, area-weighted) normals is `sum (r_i - v) x (r_i+1 - v)`:
-/// normals straight from the positions, with no face-normal array written
-/// and gathered back. A boundary fan stores its `k + 1` neighbours, a closed
-/// fan its `k` and the first again. Vertices go in groups of [`LANES`]
-/// consecutive ones, their rings interleaved entry by entry and padded to
-/// the group's longest by repeating a ring's last entry (the pair then
-/// adds `d x d = 0` exactly): the sums of a group are computed lane by lane
-/// in arrays the compiler vectorises, one cross product per ring entry.
+/// The area-weighted normal of `v` (the sum of its faces' cross products,
+/// twice their areas) is twice the vector area of the polygon its fan
+/// spans: for a closed fan the ring `r_0 .. r_k-1` itself (`v` drops out:
+/// `sum (r_i - v) x (r_i+1 - v) = sum r_i x r_i+1`), for a boundary fan
+/// `v, r_0 .. r_k`. Twice a polygon's vector area pairs the triangles of the
+/// fan from its first point `p_0`: `a x b + b x c = b x (c - a)`, so
+///
+/// ```text
+/// 2A = sum over i = 1, 3, 5, ..   (p_i+1 - p_0) x (p_i+2 - p_i)
+///      (+ (p_m-2 - p_0) x (p_m-1 - p_0) when the m - 2 triangles are odd)
+/// ```
+///
+/// two cross products for a valence-6 vertex instead of six, every
+/// difference between points of one ring (as well conditioned as the face
+/// normals' edges). One header byte per vertex holds the polygon's length
+/// and one start offset per chunk lets chunks run in parallel.
 #[derive(Clone, Debug, Default)]
 pub struct VertexRings {
-    vertices: usize,
-    /// Entries per lane of every group (at least 1).
+    /// Polygon length of every vertex.
     len: Vec<u8>,
-    /// Group after group: `len * LANES` vertex ids, entry-major.
+    /// The polygons, vertex after vertex.
     ring: Vec<u32>,
-    /// Offset into `ring` of group `k * GROUPS_PER_CHUNK`.
+    /// Offset into `ring` of vertex `k * RING_CHUNK`.
     chunk_start: Vec<u32>,
 }
 
@@ -123,6 +126,15 @@ fn chained_ring(ct: &CornerTable, v: u32, ring: &mut Vec<u32>) -> Option<()> {
     (ring.len() <= MAX_RING).then_some(())
 }
 
+/// The polygon of `v` (see [`VertexRings`]) from its chained ring.
+fn fan_polygon(v: u32, ring: &mut Vec<u32>) {
+    if ring.len() > 1 && ring.first() == ring.last() {
+        ring.pop();
+    } else if !ring.is_empty() {
+        ring.insert(0, v);
+    }
+}
+
 /// Every vertex's one-ring as a plain CSR list (`offsets`, `ids`; a closed
 /// ring repeats its first neighbour at the end), the faces around `v` being
 /// `(v, ids[k], ids[k+1])`: the layout the GPU's normal pass reads. `None`
@@ -140,46 +152,31 @@ pub fn ring_lists(ct: &CornerTable) -> Option<(Vec<u32>, Vec<u32>)> {
 }
 
 impl VertexRings {
-    /// The rings of every vertex of `ct`, or `None` when a vertex has more
-    /// than 254 neighbours (then use [`VertexFaces`]).
+    /// The polygons of every vertex of `ct`, or `None` when a vertex has
+    /// more than 253 neighbours (then use [`VertexFaces`]).
     pub fn new(ct: &CornerTable) -> Option<VertexRings> {
         let nv = ct.num_vertices();
-        let groups = nv.div_ceil(LANES);
-        let parts: Vec<Option<(Vec<u8>, Vec<u32>)>> = (0..groups.div_ceil(GROUPS_PER_CHUNK))
+        let parts: Vec<Option<(Vec<u8>, Vec<u32>)>> = (0..nv.div_ceil(RING_CHUNK))
             .into_par_iter()
             .map(|k| {
-                let (mut len, mut ring) = (Vec::with_capacity(GROUPS_PER_CHUNK), Vec::new());
-                let mut lanes: [Vec<u32>; LANES] = Default::default();
-                for g in k * GROUPS_PER_CHUNK..((k + 1) * GROUPS_PER_CHUNK).min(groups) {
-                    for (l, lane) in lanes.iter_mut().enumerate() {
-                        let v = g * LANES + l;
-                        if v < nv {
-                            chained_ring(ct, v as u32, lane)?;
-                        } else {
-                            lane.clear();
-                        }
-                        if lane.is_empty() {
-                            // no faces (or past the end): d = 0, normal Z
-                            lane.push(v.min(nv - 1) as u32);
-                        }
-                    }
-                    let m = lanes.iter().map(Vec::len).max().unwrap_or(1);
-                    len.push(m as u8);
-                    for e in 0..m {
-                        ring.extend(lanes.iter().map(|lane| lane[e.min(lane.len() - 1)]));
-                    }
+                let (mut len, mut ring, mut poly) = (Vec::with_capacity(RING_CHUNK), Vec::new(), Vec::new());
+                for v in k * RING_CHUNK..((k + 1) * RING_CHUNK).min(nv) {
+                    chained_ring(ct, v as u32, &mut poly)?;
+                    fan_polygon(v as u32, &mut poly);
+                    len.push(u8::try_from(poly.len()).ok()?);
+                    ring.extend_from_slice(&poly);
                 }
                 Some((len, ring))
             })
             .collect();
-        let mut out =
-            VertexRings { vertices: nv, len: Vec::with_capacity(groups), ring: Vec::new(), chunk_start: Vec::new() };
+        let mut out = VertexRings { len: Vec::with_capacity(nv), ring: Vec::new(), chunk_start: Vec::new() };
         for part in parts {
             let (len, ring) = part?;
-            out.chunk_start.push(out.ring.len() as u32);
+            out.chunk_start.push(u32::try_from(out.ring.len()).ok()?);
             out.len.extend_from_slice(&len);
             out.ring.extend_from_slice(&ring);
         }
+        u32::try_from(out.ring.len()).ok()?;
         Some(out)
     }
 
@@ -190,35 +187,56 @@ impl VertexRings {
     /// If `pos` or `out` does not have one entry per vertex of the table the
     /// rings were built from (a caller bug, not input data).
     pub fn normals_into(&self, pos: &[Vec3], out: &mut [Vec3]) {
-        assert!(pos.len() == self.vertices && out.len() == self.vertices, "one position and normal per vertex");
-        out.par_chunks_mut(GROUPS_PER_CHUNK * LANES)
-            .zip(self.len.par_chunks(GROUPS_PER_CHUNK))
-            .zip(&self.chunk_start)
-            .enumerate()
-            .for_each(|(k, ((out, len), &start))| {
+        assert!(pos.len() == self.len.len() && out.len() == self.len.len(), "one position and normal per vertex");
+        out.par_chunks_mut(RING_CHUNK).zip(self.len.par_chunks(RING_CHUNK)).zip(&self.chunk_start).for_each(
+            |((out, len), &start)| {
                 let mut o = start as usize;
-                for (g, (out, &m)) in out.chunks_mut(LANES).zip(len).enumerate() {
+                for (nrm, &m) in out.iter_mut().zip(len) {
                     let m = m as usize;
-                    let ring = &self.ring[o..o + m * LANES];
-                    prefetch(pos, self.ring.get(o + PREFETCH..o + PREFETCH + m * LANES).unwrap_or(&[]));
-                    o += m * LANES;
-                    let base = (k * GROUPS_PER_CHUNK + g) * LANES;
-                    let sum = group_normals(pos, base, ring);
-                    for (l, nrm) in out.iter_mut().enumerate() {
-                        let s = Vec3::new(sum[0][l], sum[1][l], sum[2][l]);
-                        *nrm = s.try_normalize().unwrap_or(Vec3::Z);
-                    }
+                    let poly = &self.ring[o..o + m];
+                    prefetch(pos, self.ring.get(o + PREFETCH..o + PREFETCH + m).unwrap_or(&[]));
+                    o += m;
+                    *nrm = polygon_area2(pos, poly).try_normalize().unwrap_or(Vec3::Z);
                 }
-            });
+            },
+        );
     }
 }
 
-/// Ring entries ahead of the current group whose positions are prefetched.
-const PREFETCH: usize = 4 * 7 * LANES;
+/// Twice the vector area of the polygon `poly` of positions (see
+/// [`VertexRings`]); zero below three points.
+#[inline(always)]
+fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3 {
+    // SAFETY: every polygon entry is a vertex id of the table the rings were
+    // built from (`new` keeps only ids checked against its vertex count, and
+    // the fields are private), and `pos.len()` is that count, asserted by the
+    // only caller.
+    let at = |j: u32| unsafe { *pos.get_unchecked(j as usize) };
+    let m = poly.len();
+    if m < 3 {
+        return Vec3::ZERO;
+    }
+    let p0 = at(poly[0]);
+    let mut s = Vec3::ZERO;
+    let mut i = 1;
+    while i + 2 < m {
+        let (a, b, c) = (at(poly[i]), at(poly[i + 1]), at(poly[i + 2]));
+        s += (b - p0).cross(c - a);
+        i += 2;
+    }
+    if i + 2 == m {
+        // one triangle left: (p_m-2, p_m-1)
+        s += (at(poly[m - 2]) - p0).cross(at(poly[m - 1]) - p0);
+    }
+    s
+}
 
-/// Asks the cache for the positions of vertices `ids` (the rings a few
-/// groups ahead): the gathers are scattered over the whole position array,
-/// and loading them early hides the latency of the outer caches.
+/// Polygon entries ahead of the current vertex whose positions are prefetched.
+const PREFETCH: usize = 64;
+
+/// Asks the cache for the positions of vertices `ids` (the polygons a few
+/// vertices ahead): the gathers are scattered over the whole position
+/// array, and loading them early hides the latency of the outer caches.
 #[inline(always)]
 fn prefetch(pos: &[Vec3], ids: &[u32]) {
     #[cfg(target_arch = "x86_64")]
@@ -234,39 +252,6 @@ fn prefetch(pos: &[Vec3], ids: &[u32]) {
     }
     #[cfg(not(target_arch = "x86_64"))]
     let _ = (pos, ids);
-}
-
-/// The unnormalised normals of the [`LANES`] vertices from `base` (x, y, z
-/// lanes), from their interleaved padded rings.
-#[inline(always)]
-fn group_normals(pos: &[Vec3], base: usize, ring: &[u32]) -> [[f32; LANES]; 3] {
-    // SAFETY (both closures): every ring entry is a vertex id of the table the
-    // rings were built from (`new` checks each against the vertex count and
-    // pads with ids below it; the fields are private), and `pos.len()` is
-    // that count, asserted by the only caller.
-    let get = |j: u32| unsafe { *pos.get_unchecked(j as usize) };
-    let v: [Vec3; LANES] = std::array::from_fn(|l| pos[(base + l).min(pos.len() - 1)]);
-    let (mut px, mut py, mut pz) = ([0f32; LANES], [0f32; LANES], [0f32; LANES]);
-    for l in 0..LANES {
-        let d = get(ring[l]) - v[l];
-        (px[l], py[l], pz[l]) = (d.x, d.y, d.z);
-    }
-    let (mut sx, mut sy, mut sz) = ([0f32; LANES], [0f32; LANES], [0f32; LANES]);
-    for entry in ring.chunks_exact(LANES).skip(1) {
-        let (mut dx, mut dy, mut dz) = ([0f32; LANES], [0f32; LANES], [0f32; LANES]);
-        for l in 0..LANES {
-            let d = get(entry[l]) - v[l];
-            (dx[l], dy[l], dz[l]) = (d.x, d.y, d.z);
-        }
-        for l in 0..LANES {
-            // (px, py, pz) x (dx, dy, dz), as glam's Vec3::cross
-            sx[l] += py[l] * dz[l] - dy[l] * pz[l];
-            sy[l] += pz[l] * dx[l] - dz[l] * px[l];
-            sz[l] += px[l] * dy[l] - dx[l] * py[l];
-        }
-        (px, py, pz) = (dx, dy, dz);
-    }
-    [sx, sy, sz]
 }
 
 #[cfg(test)]
