@@ -219,9 +219,11 @@ impl FramesRun {
             Some(p) => {
                 let (plan, normals) = p.player.last_timing;
                 let timing = format!(
-                    " anim_plan_ms={:.2} anim_normals_ms={:.2}",
+                    " anim_plan_ms={:.2} anim_normals_ms={:.2} plan_ms={:.1} anim_frame_ms={:.2}",
                     plan.as_secs_f64() * 1e3,
-                    normals.as_secs_f64() * 1e3
+                    normals.as_secs_f64() * 1e3,
+                    p.player.plan_ms(),
+                    p.player.frame_ms().unwrap_or(0.0)
                 );
                 let tris = if doc.anim.active { p.player.topology().num_triangles() } else { result_tris(doc) };
                 (tris, timing)

@@ -45,6 +45,14 @@ pub fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Command> 
             m.made.job_ms
         ));
     }
+    if let Some(p) = &doc.anim.playback {
+        // the figures `subdiv animate --stats` prints
+        ui.label(format!(
+            "animation: plan_ms {:.1}, frame_ms {:.2} (median; positions and normals)",
+            p.player.plan_ms(),
+            p.player.frame_ms().unwrap_or(0.0)
+        ));
+    }
     let st = &view.stats;
     ui.label(format!(
         "frame {:.1} ms ({:.0} fps), last upload {:.1} ms",
