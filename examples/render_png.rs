@@ -15,7 +15,7 @@ fn main() -> subdiv::Result<()> {
 
     let control = bundled::load(&input)?;
     let (fine, _) = subdivide(&control, Scheme::ModifiedButterfly, levels, &Default::default())?;
-    let opts = RenderOptions { shading: Shading::PhongWire, width: 640, height: 480, orthographic: false };
+    let opts = RenderOptions { shading: Shading::PhongWire, width: 640, height: 480, ..Default::default() };
     // the control mesh overlaid, the camera framed on it
     render_png(&fine, Some(&control), &opts, &output)?;
     let img = image::open(&output).map_err(|e| subdiv::Error::Usage(format!("{}: {e}", output.display())))?;

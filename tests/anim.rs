@@ -33,6 +33,10 @@ fn tetrahedron_paths_fit_the_model_and_give_k_times_2_pow_n_frames() {
             assert!((*x - *y).abs().max_element() < 1e-6);
         }
         assert!(nrm.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
+        // the packed one-ring normals are the area-weighted normals of the mesh
+        for (n, m) in nrm.iter().zip(full.vertex_normals()) {
+            assert!(n.distance(m) < 1e-4, "frame {f}: normal {n} vs {m}");
+        }
     }
     // the mismatching model is refused with both counts
     let e = p.check_model(&bundled("cube.obj"), "tetrahedron.paths").unwrap_err();

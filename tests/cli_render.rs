@@ -173,3 +173,19 @@ fn render_takes_repair_levels_alias_and_color() {
     let e = String::from_utf8_lossy(&r.stderr);
     assert!(!r.status.success() && e.contains("no colors"), "{e}");
 }
+
+#[test]
+fn render_takes_a_wire_level_a_scale_and_a_transparent_background() {
+    let out = tmp("torus-shot.png");
+    let tor = model_path("torus.obj");
+    let args = ["render", tor.to_str().unwrap(), out.to_str().unwrap(), "-n", "2", "--shading", "phong+wire"];
+    let extra = ["--wire-level", "control", "--transparent", "--scale", "2", "--size", "100x80"];
+    let Some(o) = run(&[&args[..], &extra[..]].concat()) else { return };
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&out).unwrap().to_rgba8();
+    assert_eq!(img.dimensions(), (200, 160));
+    assert_eq!(img.get_pixel(0, 0).0[3], 0);
+    let bad = run(&[&args[..], &["--wire-level", "fine"][..]].concat()).unwrap();
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown wire level 'fine'"));
+}

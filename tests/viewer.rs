@@ -503,3 +503,21 @@ fn every_mesh_format_opens_in_the_viewer_with_its_colours() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn wire_edges_and_screenshot_settings_reach_the_look_and_the_view() {
+    use subdiv::render::{Shot, WireEdges};
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    frame(&ctx, &mut v, vec![key(egui::Key::W)]);
+    assert_eq!(v.doc.display.look().wire_edges, WireEdges::All);
+    set_display(&mut v, |d| d.wire_edges = WireEdges::UpTo(0));
+    assert_eq!(v.doc.display.look().wire_edges, WireEdges::UpTo(0));
+    // the panel (with the wire's edge choice shown) keeps the choice
+    frame(&ctx, &mut v, vec![]);
+    assert_eq!(v.doc.display.wire_edges, WireEdges::UpTo(0));
+    v.apply(Command::SetShot(Shot { scale: 3, transparent: true }));
+    assert_eq!(v.view.shot, Shot { scale: 3, transparent: true });
+    frame(&ctx, &mut v, vec![key(egui::Key::P)]);
+    assert!(v.view.screenshot, "P asks for a screenshot");
+}

@@ -8,7 +8,7 @@
 
 use super::paths::Paths;
 use super::tweak::{Tweak, refine_closed};
-use crate::mesh::normals::{VertexFaces, face_normals_into};
+use crate::mesh::normals::{VertexFaces, VertexRings, face_normals_into};
 use crate::subdiv::stencil::{PlanScratch, StencilPlan};
 use crate::{CornerTable, Error, Mesh, Options, Result, Scheme};
 use glam::Vec3;
@@ -28,10 +28,26 @@ pub struct Animation {
     scratch: PlanScratch,
     positions: Vec<Vec3>,
     normals: Vec<Vec3>,
-    fnorm: Vec<Vec3>,
-    vertex_faces: VertexFaces,
+    normals_by: NormalsBy,
     /// Time of the last [`Animation::evaluate`]: (stencils, normals).
     pub last_timing: (Duration, Duration),
+    /// Time [`Animation::new`] took to record the plan and its normal rings.
+    pub plan_time: Duration,
+    /// The last [`RECENT`] evaluation times (stencils plus normals), a ring.
+    recent: Box<[Duration]>,
+    evaluations: usize,
+}
+
+/// Evaluation times kept for [`Animation::frame_ms`].
+const RECENT: usize = 64;
+
+/// How the per-frame normals are gathered.
+enum NormalsBy {
+    /// Straight from the positions through packed one-rings (the usual case).
+    Rings(VertexRings),
+    /// Face normals gathered per vertex (a vertex with more than 127 ring
+    /// entries): a face-normal buffer and the faces around every vertex.
+    Faces(Vec<Vec3>, VertexFaces),
 }
 
 impl Animation {
@@ -68,19 +84,29 @@ impl Animation {
                 *slot = per_vertex[v][f];
             }
         });
+        let t0 = Instant::now();
         let plan = StencilPlan::build(&control.ct, scheme, level, opts)?;
-        let vertex_faces = VertexFaces::new(&plan.ct);
+        let normals_by = match VertexRings::new(&plan.ct) {
+            Some(r) => NormalsBy::Rings(r),
+            None => NormalsBy::Faces(Vec::new(), VertexFaces::new(&plan.ct)),
+        };
+        let plan_time = t0.elapsed();
+        // every buffer a frame writes, allocated (and backed by huge pages) now
+        let fine = plan.ct.num_vertices();
+        let scratch = PlanScratch::for_plan(&plan);
         Ok(Animation {
             plan,
             frames,
             nv,
             curves,
-            scratch: PlanScratch::default(),
-            positions: Vec::new(),
-            normals: Vec::new(),
-            fnorm: Vec::new(),
-            vertex_faces,
+            scratch,
+            positions: crate::mem::zeroed(fine),
+            normals: crate::mem::zeroed(fine),
+            normals_by,
             last_timing: Default::default(),
+            plan_time,
+            recent: vec![Duration::ZERO; RECENT].into_boxed_slice(),
+            evaluations: 0,
         })
     }
 
@@ -109,12 +135,38 @@ impl Animation {
         let control = &self.curves[f * self.nv..(f + 1) * self.nv];
         self.plan.apply(control, &mut self.scratch, &mut self.positions);
         let t1 = Instant::now();
-        self.fnorm.resize(self.plan.ct.num_triangles(), Vec3::ZERO);
         self.normals.resize(self.positions.len(), Vec3::ZERO);
-        face_normals_into(&self.plan.ct, &self.positions, &mut self.fnorm);
-        self.vertex_faces.normals_into(&self.fnorm, &mut self.normals);
+        match &mut self.normals_by {
+            NormalsBy::Rings(r) => r.normals_into(&self.positions, &mut self.normals),
+            NormalsBy::Faces(fnorm, faces) => {
+                fnorm.resize(self.plan.ct.num_triangles(), Vec3::ZERO);
+                face_normals_into(&self.plan.ct, &self.positions, fnorm);
+                faces.normals_into(fnorm, &mut self.normals);
+            }
+        }
         self.last_timing = (t1 - t0, t1.elapsed());
+        self.recent[self.evaluations % RECENT] = t0.elapsed();
+        self.evaluations += 1;
         (&self.positions, &self.normals)
+    }
+
+    /// Milliseconds [`Animation::new`] took to record the plan.
+    pub fn plan_ms(&self) -> f64 {
+        self.plan_time.as_secs_f64() * 1e3
+    }
+
+    /// Median milliseconds of the last (up to 64) evaluations, positions and
+    /// normals together; `None` before the first.
+    pub fn frame_ms(&self) -> Option<f64> {
+        let n = self.evaluations.min(RECENT);
+        if n == 0 {
+            return None;
+        }
+        let mut t = [Duration::ZERO; RECENT];
+        let t = &mut t[..n];
+        t.copy_from_slice(&self.recent[..n]);
+        t.sort_unstable();
+        Some(t[n / 2].as_secs_f64() * 1e3)
     }
 
     /// [`Animation::evaluate`] with the topology, borrowed together (for a

@@ -37,13 +37,29 @@ pub struct Animation {
     pub active: bool,
     /// The plan when built.
     pub playback: Option<Playback>,
+    /// Evaluate the frames with the GPU's compute passes when it has them
+    /// (`render::gpu_anim`), else on the CPU.
+    pub gpu_eval: bool,
+    /// Whether the window's adapter can (set by the window; `None` before
+    /// its first frame).
+    pub gpu_compute: Option<bool>,
     builds: u64,
 }
 
 impl Animation {
     /// Off, with these paths.
     pub fn new(paths: Paths, paths_source: String) -> Animation {
-        Animation { paths, paths_source, refine: 5, tweak: Tweak::Jarek, active: false, playback: None, builds: 0 }
+        Animation {
+            paths,
+            paths_source,
+            refine: 5,
+            tweak: Tweak::Jarek,
+            active: false,
+            playback: None,
+            gpu_eval: true,
+            gpu_compute: None,
+            builds: 0,
+        }
     }
 
     /// Whether the clock runs.

@@ -84,6 +84,8 @@ pub enum Command {
     },
     /// Loop the playback or not.
     SetLooping(bool),
+    /// Evaluate animation frames on the GPU (where it computes) or the CPU.
+    SetGpuEval(bool),
     /// Playback rate.
     SetFps(f32),
     /// Jump to a frame.
@@ -122,6 +124,8 @@ pub enum Command {
     ResetCamera,
     /// Save a screenshot of the next frame.
     Screenshot,
+    /// How screenshots are taken (scale, transparency).
+    SetShot(crate::render::Shot),
     /// A worker finished.
     Finished(Box<Finished>),
 }
@@ -185,6 +189,7 @@ impl Viewer {
                 }
             }
             Command::SetLooping(on) => self.with_clock(|c| c.looping = on),
+            Command::SetGpuEval(on) => doc.anim.gpu_eval = on,
             Command::SetFps(fps) => self.with_clock(|c| c.fps = fps),
             Command::SetFrame(f) => self.with_clock(|c| c.set_frame(f)),
             Command::Export(target, style) => doc.export(target, style),
@@ -209,6 +214,7 @@ impl Viewer {
             Command::Fit => view.fit = true,
             Command::ResetCamera => view.reset = true,
             Command::Screenshot => view.screenshot = true,
+            Command::SetShot(shot) => view.shot = shot,
             _ => unreachable!("Viewer::apply handles every other command"),
         }
     }

@@ -14,6 +14,7 @@ use super::model::{Curve, Shown};
 use crate::Result;
 use crate::io::bezier::{curve_polyline, de_casteljau_construction};
 use crate::render::GpuMesh;
+use crate::render::gpu_anim::{GpuAnimator, supports_compute};
 use glam::{Vec2, Vec3};
 
 /// What was uploaded last: the document versions, the animation frame.
@@ -40,6 +41,8 @@ pub struct GpuScene {
     pub proxy: Option<GpuMesh>,
     /// The animated result.
     pub anim: Option<GpuMesh>,
+    /// The compute passes writing `anim` (GPU evaluation), with its plan id.
+    animator: Option<(u64, GpuAnimator)>,
     /// A Bezier curve: its polyline and its control polygon (with the construction highlighted).
     pub curve: Option<(GpuMesh, GpuMesh)>,
     seen: Seen,
@@ -196,10 +199,32 @@ impl GpuScene {
             return;
         }
         let fresh = self.seen.frame.is_none_or(|(id, _)| id != p.id);
-        let (topo, pos, nrm) = p.player.evaluate_with_topology(f);
-        match &mut self.anim {
-            Some(m) if !fresh => m.update(queue, pos, nrm),
-            _ => self.anim = GpuMesh::new(device, topo, pos, nrm).ok(),
+        let compute = *doc.anim.gpu_compute.get_or_insert_with(|| supports_compute(device));
+        // normal segments are kept current by CPU updates only
+        let on_gpu = compute && doc.anim.gpu_eval && !doc.display.normals && !fresh && self.anim.is_some();
+        if on_gpu && self.animator.as_ref().is_none_or(|(id, _)| *id != p.id) {
+            let built = self.anim.as_ref().map(|m| GpuAnimator::new(device, p.player.plan(), m));
+            self.animator = match built {
+                Some(Ok(a)) => Some((p.id, a)),
+                _ => None,
+            };
+        }
+        match (&self.animator, on_gpu) {
+            (Some((_, a)), true) => {
+                if let Err(e) = a.update(device, queue, p.player.control(f)) {
+                    doc.status.error = Some(e.into());
+                }
+            }
+            _ => {
+                let (topo, pos, nrm) = p.player.evaluate_with_topology(f);
+                match &mut self.anim {
+                    Some(m) if !fresh => m.update(queue, pos, nrm),
+                    _ => {
+                        self.anim = GpuMesh::new(device, topo, pos, nrm).ok();
+                        self.animator = None;
+                    }
+                }
+            }
         }
         let cpos = p.player.control(f);
         if let Some(c) = &mut self.control {

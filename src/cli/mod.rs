@@ -99,7 +99,7 @@ pub fn main() -> ExitCode {
 
 fn run(cmd: Option<Cmd>) -> Result<()> {
     match cmd {
-        None => view::view(view::ViewArgs::default()),
+        None => view::first_launch(),
         Some(Cmd::View(args)) => view::view(args),
         Some(Cmd::Animate(args)) => draw::animate(args),
         Some(Cmd::Subdivide(args)) => mesh_ops::subdivide(&args),

@@ -19,6 +19,9 @@ pub struct ViewArgs {
     /// Start with the wireframe shown.
     #[arg(long)]
     wireframe: bool,
+    /// Start with the control mesh (cage) shown.
+    #[arg(long)]
+    control: bool,
     /// Render N frames, then exit (for CI).
     #[arg(long)]
     frames: Option<u32>,
@@ -61,7 +64,20 @@ pub fn view(a: ViewArgs) -> Result<()> {
             c => c.parse().map_err(Error::Usage)?,
         },
         crease_angle: s.features.crease_angle,
+        control: a.control,
     })
+}
+
+/// `subdiv` alone: the viewer with something worth seeing (see `ViewOptions::first_launch`).
+#[cfg(feature = "viewer")]
+pub fn first_launch() -> Result<()> {
+    subdiv::app::run(subdiv::app::ViewOptions::first_launch())
+}
+
+/// `subdiv` alone without the viewer: the same refusal as `view`.
+#[cfg(not(feature = "viewer"))]
+pub fn first_launch() -> Result<()> {
+    view(ViewArgs::default())
 }
 
 /// `subdiv view` without the viewer.

@@ -71,9 +71,206 @@ impl VertexFaces {
     }
 }
 
+/// Vertices per parallel chunk of [`VertexRings`].
+const RING_CHUNK: usize = 2048;
+
+/// Most polygon entries a vertex may have in a [`VertexRings`] (a byte).
+const MAX_RING: usize = 255;
+
+/// Every vertex's one-ring as a polygon, packed for per-frame normals.
+///
+/// The area-weighted normal of `v` (the sum of its faces' cross products,
+/// twice their areas) is twice the vector area of the polygon its fan
+/// spans: for a closed fan the ring `r_0 .. r_k-1` itself (`v` drops out:
+/// `sum (r_i - v) x (r_i+1 - v) = sum r_i x r_i+1`), for a boundary fan
+/// `v, r_0 .. r_k`. Twice a polygon's vector area pairs the triangles of the
+/// fan from its first point `p_0`: `a x b + b x c = b x (c - a)`, so
+///
+/// ```text
+/// 2A = sum over i = 1, 3, 5, ..   (p_i+1 - p_0) x (p_i+2 - p_i)
+///      (+ (p_m-2 - p_0) x (p_m-1 - p_0) when the m - 2 triangles are odd)
+/// ```
+///
+/// two cross products for a valence-6 vertex instead of six, every
+/// difference between points of one ring (as well conditioned as the face
+/// normals' edges). One header byte per vertex holds the polygon's length
+/// and one start offset per chunk lets chunks run in parallel.
+#[derive(Clone, Debug, Default)]
+pub struct VertexRings {
+    /// Polygon length of every vertex.
+    len: Vec<u8>,
+    /// The polygons, vertex after vertex.
+    ring: Vec<u32>,
+    /// Offset into `ring` of vertex `k * RING_CHUNK`.
+    chunk_start: Vec<u32>,
+}
+
+/// The chained one-ring of `v`, the first entry repeated when it closes,
+/// or `None` when the fan's faces do not chain (impossible under the
+/// table's invariants) or an id is out of range.
+fn chained_ring(ct: &CornerTable, v: u32, ring: &mut Vec<u32>) -> Option<()> {
+    use super::{n, p};
+    let nv = ct.num_vertices();
+    let v_of = |c: u32| ct.v_table()[c as usize];
+    ring.clear();
+    for c in ct.fan(v) {
+        let (a, b) = (v_of(n(c)), v_of(p(c)));
+        if a as usize >= nv || b as usize >= nv || ring.last().is_some_and(|&l| l != a) {
+            return None;
+        }
+        if ring.is_empty() {
+            ring.push(a);
+        }
+        ring.push(b);
+    }
+    (ring.len() <= MAX_RING).then_some(())
+}
+
+/// The polygon of `v` (see [`VertexRings`]) from its chained ring.
+fn fan_polygon(v: u32, ring: &mut Vec<u32>) {
+    if ring.len() > 1 && ring.first() == ring.last() {
+        ring.pop();
+    } else if !ring.is_empty() {
+        ring.insert(0, v);
+    }
+}
+
+/// Every vertex's one-ring as a plain CSR list (`offsets`, `ids`; a closed
+/// ring repeats its first neighbour at the end), the faces around `v` being
+/// `(v, ids[k], ids[k+1])`: the layout the GPU's normal pass reads. `None`
+/// as for [`VertexRings::new`].
+pub fn ring_lists(ct: &CornerTable) -> Option<(Vec<u32>, Vec<u32>)> {
+    let nv = ct.num_vertices();
+    let (mut offsets, mut ids, mut ring) = (Vec::with_capacity(nv + 1), Vec::new(), Vec::new());
+    offsets.push(0u32);
+    for v in 0..nv {
+        chained_ring(ct, v as u32, &mut ring)?;
+        ids.extend_from_slice(&ring);
+        offsets.push(u32::try_from(ids.len()).ok()?);
+    }
+    Some((offsets, ids))
+}
+
+impl VertexRings {
+    /// The polygons of every vertex of `ct`, or `None` when a vertex has
+    /// more than 253 neighbours (then use [`VertexFaces`]).
+    pub fn new(ct: &CornerTable) -> Option<VertexRings> {
+        let nv = ct.num_vertices();
+        let parts: Vec<Option<(Vec<u8>, Vec<u32>)>> = (0..nv.div_ceil(RING_CHUNK))
+            .into_par_iter()
+            .map(|k| {
+                let (mut len, mut ring, mut poly) = (Vec::with_capacity(RING_CHUNK), Vec::new(), Vec::new());
+                for v in k * RING_CHUNK..((k + 1) * RING_CHUNK).min(nv) {
+                    chained_ring(ct, v as u32, &mut poly)?;
+                    fan_polygon(v as u32, &mut poly);
+                    len.push(u8::try_from(poly.len()).ok()?);
+                    ring.extend_from_slice(&poly);
+                }
+                Some((len, ring))
+            })
+            .collect();
+        let mut out = VertexRings { len: Vec::with_capacity(nv), ring: Vec::new(), chunk_start: Vec::new() };
+        for part in parts {
+            let (len, ring) = part?;
+            out.chunk_start.push(u32::try_from(out.ring.len()).ok()?);
+            out.len.extend_from_slice(&len);
+            out.ring.extend_from_slice(&ring);
+        }
+        u32::try_from(out.ring.len()).ok()?;
+        Some(out)
+    }
+
+    /// Area-weighted unit vertex normals of positions `pos` into `out`
+    /// (a vertex without faces of non-zero area gets `Vec3::Z`).
+    ///
+    /// # Panics
+    /// If `pos` or `out` does not have one entry per vertex of the table the
+    /// rings were built from (a caller bug, not input data).
+    pub fn normals_into(&self, pos: &[Vec3], out: &mut [Vec3]) {
+        assert!(pos.len() == self.len.len() && out.len() == self.len.len(), "one position and normal per vertex");
+        out.par_chunks_mut(RING_CHUNK).zip(self.len.par_chunks(RING_CHUNK)).zip(&self.chunk_start).for_each(
+            |((out, len), &start)| {
+                let mut o = start as usize;
+                for (nrm, &m) in out.iter_mut().zip(len) {
+                    let m = m as usize;
+                    let poly = &self.ring[o..o + m];
+                    prefetch(pos, self.ring.get(o + PREFETCH..o + PREFETCH + m).unwrap_or(&[]));
+                    o += m;
+                    *nrm = polygon_area2(pos, poly).try_normalize().unwrap_or(Vec3::Z);
+                }
+            },
+        );
+    }
+}
+
+/// Twice the vector area of the polygon `poly` of positions (see
+/// [`VertexRings`]); zero below three points.
+#[inline(always)]
+fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3 {
+    // SAFETY: every polygon entry is a vertex id of the table the rings were
+    // built from (`new` keeps only ids checked against its vertex count, and
+    // the fields are private), and `pos.len()` is that count, asserted by the
+    // only caller.
+    let at = |j: u32| unsafe { *pos.get_unchecked(j as usize) };
+    let m = poly.len();
+    if m < 3 {
+        return Vec3::ZERO;
+    }
+    let p0 = at(poly[0]);
+    let mut s = Vec3::ZERO;
+    let mut i = 1;
+    while i + 2 < m {
+        let (a, b, c) = (at(poly[i]), at(poly[i + 1]), at(poly[i + 2]));
+        s += (b - p0).cross(c - a);
+        i += 2;
+    }
+    if i + 2 == m {
+        // one triangle left: (p_m-2, p_m-1)
+        s += (at(poly[m - 2]) - p0).cross(at(poly[m - 1]) - p0);
+    }
+    s
+}
+
+/// Polygon entries ahead of the current vertex whose positions are prefetched.
+const PREFETCH: usize = 64;
+
+/// Asks the cache for the positions of vertices `ids` (the polygons a few
+/// vertices ahead): the gathers are scattered over the whole position
+/// array, and loading them early hides the latency of the outer caches.
+#[inline(always)]
+fn prefetch(pos: &[Vec3], ids: &[u32]) {
+    #[cfg(target_arch = "x86_64")]
+    for &j in ids {
+        if let Some(p) = pos.get(j as usize) {
+            // SAFETY: SSE is part of every x86_64 target; a prefetch is a
+            // hint that reads nothing architecturally and cannot fault, and
+            // the pointer is to an element of `pos` anyway.
+            unsafe {
+                std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>((p as *const Vec3).cast());
+            }
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (pos, ids);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ring_normals_equal_face_normal_gathers() {
+        // open and closed fans, valences 3 to 6; a torus-free set of bundled shapes
+        for m in [crate::mesh::shapes::icosphere(3), crate::mesh::shapes::grid(5), crate::mesh::shapes::icosphere(0)] {
+            let want = vertex_normals(&m.ct, &m.positions);
+            let rings = VertexRings::new(&m.ct).expect("small valences pack");
+            let mut got = vec![Vec3::ZERO; want.len()];
+            rings.normals_into(&m.positions, &mut got);
+            for (v, (g, w)) in got.iter().zip(&want).enumerate() {
+                assert!((*g - *w).length() < 1e-5, "vertex {v}: {g} vs {w}");
+            }
+        }
+    }
 
     #[test]
     fn gathered_normals_equal_fan_walks() {

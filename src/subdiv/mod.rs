@@ -14,6 +14,7 @@ pub mod limit;
 pub mod loop_;
 pub mod midpoint;
 pub mod modified_butterfly;
+pub mod packed;
 pub mod rules;
 pub mod stencil;
 

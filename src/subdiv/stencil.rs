@@ -10,6 +10,7 @@
 //! small: a composed control-to-final matrix would have L-ring support.
 
 use super::features::{Features, Unsplit, edge_stencil, vertex_stencil, with_boundary_corners};
+use super::packed::PackedLevel;
 use super::rules::{Level, Record, Rules};
 use super::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
 use crate::Result;
@@ -68,6 +69,9 @@ pub struct StencilPlan {
     pub levels: Vec<LevelPlan>,
     /// Topology of the finest level.
     pub ct: CornerTable,
+    /// `levels` packed for [`StencilPlan::apply`] (built with them; `None`
+    /// where a level has too many distinct weight vectors to pack).
+    packed: Vec<Option<PackedLevel>>,
 }
 
 /// Reusable buffers for [`StencilPlan::apply`].
@@ -75,6 +79,18 @@ pub struct StencilPlan {
 pub struct PlanScratch {
     a: Vec<Vec3>,
     b: Vec<Vec3>,
+}
+
+impl PlanScratch {
+    /// Buffers sized for `plan`'s intermediate levels up front, so that no
+    /// evaluation allocates (large ones backed by huge pages, see
+    /// [`crate::mem`]).
+    pub fn for_plan(plan: &StencilPlan) -> PlanScratch {
+        // every level but the last passes through a and b
+        let (_, rest) = plan.levels.split_last().unwrap_or((&LevelPlan::default(), &[]));
+        let n = rest.iter().map(LevelPlan::n_out).max().unwrap_or(0);
+        PlanScratch { a: crate::mem::zeroed(n), b: crate::mem::zeroed(n) }
+    }
 }
 
 struct RecordLevel<'a> {
@@ -158,7 +174,8 @@ impl StencilPlan {
             plans.push(with_rules(scheme, opts, record));
             cur = next;
         }
-        Ok(StencilPlan { scheme, levels: plans, ct: cur })
+        let packed = plans.par_iter().map(PackedLevel::pack).collect();
+        Ok(StencilPlan { scheme, levels: plans, ct: cur, packed })
     }
 
     /// Number of control vertices the plan expects.
@@ -174,7 +191,7 @@ impl StencilPlan {
     pub fn apply(&self, control: &[Vec3], scratch: &mut PlanScratch, out: &mut Vec<Vec3>) {
         assert_eq!(control.len(), self.n_control(), "control vertex count does not match the plan");
         out.resize(self.ct.num_vertices(), Vec3::ZERO);
-        let Some((last, rest)) = self.levels.split_last() else {
+        let Some((_, rest)) = self.levels.split_last() else {
             out.copy_from_slice(control);
             return;
         };
@@ -182,14 +199,31 @@ impl StencilPlan {
         for (i, lvl) in rest.iter().enumerate() {
             if i == 0 {
                 a.resize(lvl.n_out(), Vec3::ZERO);
-                lvl.apply(control, a);
+                self.apply_level(i, control, a);
             } else {
                 b.resize(lvl.n_out(), Vec3::ZERO);
-                lvl.apply(a, b);
+                self.apply_level(i, a, b);
                 std::mem::swap(a, b);
             }
         }
         let src: &[Vec3] = if rest.is_empty() { control } else { a };
-        last.apply(src, out);
+        self.apply_level(rest.len(), src, out);
+    }
+
+    /// Level `i`, packed where it could be packed (bit-identical either way).
+    fn apply_level(&self, i: usize, input: &[Vec3], out: &mut [Vec3]) {
+        match &self.packed[i] {
+            Some(p) => p.apply(input, out),
+            None => self.levels[i].apply(input, out),
+        }
+    }
+
+    /// Bytes of stencil tables read per evaluation (packed where packed).
+    pub fn table_bytes(&self) -> usize {
+        self.levels
+            .iter()
+            .zip(&self.packed)
+            .map(|(l, p)| p.as_ref().map_or(l.offsets.len() * 4 + l.indices.len() * 8, PackedLevel::table_bytes))
+            .sum()
     }
 }

@@ -13,7 +13,6 @@ use std::sync::atomic::Ordering;
 /// Play/step/stop, refinement and tweak, the clock of a built plan, export.
 pub fn animation_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &Display) -> Vec<Command> {
     let anim = &doc.anim;
-    ui.label(RichText::new("Animation").strong());
     ui.label(RichText::new(format!("paths: {}", anim.paths_source)).small().weak());
     let mut out = Vec::new();
     ui.horizontal(|ui| {
@@ -63,13 +62,33 @@ fn clock_rows(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
         if ui.add(egui::Slider::new(&mut f, 0..=n - 1).text(format!("frame of {n}"))).changed() {
             out.push(Command::SetFrame(f));
         }
+        let compute = doc.anim.gpu_compute == Some(true);
+        let mut gpu = doc.anim.gpu_eval && compute;
+        let tip = if compute {
+            "stencils and normals as compute passes into the drawn buffers"
+        } else {
+            "this adapter has no compute shaders"
+        };
+        if ui.add_enabled(compute, egui::Checkbox::new(&mut gpu, "Evaluate on the GPU")).on_hover_text(tip).changed() {
+            out.push(Command::SetGpuEval(gpu));
+        }
         let (plan, normals) = p.player.last_timing;
         ui.label(format!(
-            "per frame: plan {:.2} ms + normals {:.2} ms ({} triangles)",
-            plan.as_secs_f64() * 1e3,
-            normals.as_secs_f64() * 1e3,
+            "plan_ms {:.1}  frame_ms {:.2} (CPU median, {} triangles)",
+            p.player.plan_ms(),
+            p.player.frame_ms().unwrap_or(0.0),
             sep(p.player.topology().num_triangles() as u64)
-        ));
+        ))
+        .on_hover_text("plan_ms: recording the stencil plan; frame_ms: positions and normals per frame, the median of the last 64, as `subdiv animate --stats` prints");
+        ui.label(
+            RichText::new(format!(
+                "last frame: stencils {:.2} ms + normals {:.2} ms",
+                plan.as_secs_f64() * 1e3,
+                normals.as_secs_f64() * 1e3
+            ))
+            .small()
+            .weak(),
+        );
     } else if let Some(b) = &doc.jobs.busy.building {
         ui.horizontal(|ui| {
             ui.spinner();

@@ -11,7 +11,6 @@ use egui::{Color32, RichText};
 pub fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Command> {
     let m = &doc.model;
     let (c, t) = (&m.control.topo, &m.result.shown.topo);
-    ui.label(RichText::new("Statistics").strong());
     egui::Grid::new("stats").num_columns(3).striped(true).show(ui, |ui| {
         ui.label("");
         ui.label("control");
@@ -44,6 +43,14 @@ pub fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Command> 
             s.edge_ms,
             s.vertex_ms,
             m.made.job_ms
+        ));
+    }
+    if let Some(p) = &doc.anim.playback {
+        // the figures `subdiv animate --stats` prints
+        ui.label(format!(
+            "animation: plan_ms {:.1}, frame_ms {:.2} (median; positions and normals)",
+            p.player.plan_ms(),
+            p.player.frame_ms().unwrap_or(0.0)
         ));
     }
     let st = &view.stats;

@@ -1,0 +1,295 @@
+//! Animation evaluated on the GPU (compute passes of shaders/anim.wgsl).
+//!
+//! A [`GpuAnimator`] holds a recorded [`StencilPlan`] on the device: per
+//! level its CSR rows (offsets, indices, weights) and an output buffer, and
+//! the finest level's one-rings for the normals. Per frame only the control
+//! positions go up ([`GpuAnimator::update`]); one dispatch per level and one
+//! for the normals then write the finest positions and normals straight into
+//! the [`GpuMesh`]'s vertex buffers, which the renderer draws as they are.
+//! The rows are the ones the CPU evaluates, so both agree to rounding (the
+//! GPU may fuse multiply-adds).
+
+use super::gpu_mesh::GpuMesh;
+use crate::mesh::normals::ring_lists;
+use crate::subdiv::stencil::StencilPlan;
+use crate::{Error, Result};
+use bytemuck::{Pod, Zeroable};
+use glam::Vec3;
+use wgpu::util::DeviceExt;
+
+/// Threads per workgroup (`@workgroup_size` in the shader).
+const WORKGROUP: u32 = 64;
+
+/// The shader's `Params`.
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct Params {
+    copied: u32,
+    rows: u32,
+    _pad: [u32; 2],
+}
+
+/// One dispatch: its bind group and thread count.
+struct Pass {
+    group: wgpu::BindGroup,
+    threads: u32,
+}
+
+/// A stencil plan and its normal rings on the device (see the module docs).
+pub struct GpuAnimator {
+    control: wgpu::Buffer,
+    n_control: usize,
+    level: wgpu::ComputePipeline,
+    normals: wgpu::ComputePipeline,
+    /// One per level, then the normals.
+    passes: Vec<Pass>,
+    /// Keeps the intermediate levels' buffers alive.
+    _buffers: Vec<wgpu::Buffer>,
+}
+
+/// Whether `device` can run the animation passes (compute with six storage
+/// buffers per stage; lavapipe can).
+pub fn supports_compute(device: &wgpu::Device) -> bool {
+    device.limits().max_storage_buffers_per_shader_stage >= 6
+        && device.limits().max_compute_workgroups_per_dimension > 0
+}
+
+fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
+    // a binding may not be empty: pad to one word
+    let contents: &[u8] = if bytes.is_empty() { &[0; 4] } else { bytes };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+fn layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entry = |binding: u32, ty: wgpu::BufferBindingType| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset: false, min_binding_size: None },
+        count: None,
+    };
+    let ro = wgpu::BufferBindingType::Storage { read_only: true };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("anim"),
+        entries: &[
+            entry(0, wgpu::BufferBindingType::Uniform),
+            entry(1, ro),
+            entry(2, ro),
+            entry(3, ro),
+            entry(4, ro),
+            entry(5, wgpu::BufferBindingType::Storage { read_only: false }),
+        ],
+    })
+}
+
+fn pipeline(device: &wgpu::Device, layout: &wgpu::PipelineLayout, entry: &str) -> wgpu::ComputePipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some("anim.wgsl"),
+        source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/anim.wgsl").into()),
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(entry),
+        layout: Some(layout),
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// The bind group of one dispatch: `params`, then the five buffers.
+fn group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    params: Params,
+    bufs: [&wgpu::Buffer; 5],
+) -> wgpu::BindGroup {
+    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("anim params"),
+        contents: bytemuck::bytes_of(&params),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() }];
+    for (i, b) in bufs.into_iter().enumerate() {
+        entries.push(wgpu::BindGroupEntry { binding: i as u32 + 1, resource: b.as_entire_binding() });
+    }
+    device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some("anim"), layout, entries: &entries })
+}
+
+impl GpuAnimator {
+    /// Uploads `plan` and the rings of its finest level; the passes write into
+    /// `mesh` (built on the plan's finest topology).
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] when the mesh does not match the plan, a buffer exceeds
+    /// the device's limits, or a vertex has too many neighbours for a ring.
+    pub fn new(device: &wgpu::Device, plan: &StencilPlan, mesh: &GpuMesh) -> Result<GpuAnimator> {
+        if mesh.vertex_count() != plan.ct.num_vertices() {
+            return Err(Error::Gpu(format!(
+                "the GPU mesh has {} vertices, the plan {}",
+                mesh.vertex_count(),
+                plan.ct.num_vertices()
+            )));
+        }
+        let max = device.limits().max_storage_buffer_binding_size as usize;
+        let too_big = |bytes: usize| bytes > max;
+        let bgl = layout(device);
+        let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("anim"),
+            bind_group_layouts: &[Some(&bgl)],
+            immediate_size: 0,
+        });
+        let n_control = plan.n_control();
+        let control = storage(device, "anim control", &vec![0u8; n_control * 12]);
+        let (mut passes, mut buffers) = (Vec::new(), Vec::new());
+        let mut src = control.clone();
+        let last = plan.levels.len().saturating_sub(1);
+        for (i, lv) in plan.levels.iter().enumerate() {
+            if too_big(lv.indices.len() * 4) || too_big(lv.n_out() * 12) {
+                return Err(Error::Gpu(format!("level {} does not fit in one GPU buffer ({max} bytes)", i + 1)));
+            }
+            let offsets = storage(device, "anim offsets", bytemuck::cast_slice(&lv.offsets));
+            let indices = storage(device, "anim indices", bytemuck::cast_slice(&lv.indices));
+            let weights = storage(device, "anim weights", bytemuck::cast_slice(&lv.weights));
+            let dst = if i == last { None } else { Some(storage(device, "anim level", &vec![0u8; lv.n_out() * 12])) };
+            let copied = if lv.copy_vertices { lv.n_in as u32 } else { 0 };
+            let params = Params { copied, rows: (lv.offsets.len() - 1) as u32, _pad: [0; 2] };
+            let out = dst.as_ref().unwrap_or(&mesh.positions);
+            let group = group(device, &bgl, params, [&src, &offsets, &indices, &weights, out]);
+            passes.push(Pass { group, threads: lv.n_out() as u32 });
+            buffers.extend([offsets, indices, weights]);
+            if let Some(d) = dst {
+                src = d.clone();
+                buffers.push(d);
+            }
+        }
+        let (offsets, ids) = ring_lists(&plan.ct)
+            .ok_or_else(|| Error::Gpu("a vertex has too many neighbours for the GPU normals".into()))?;
+        let offsets = storage(device, "ring offsets", bytemuck::cast_slice(&offsets));
+        let ids = storage(device, "rings", bytemuck::cast_slice(&ids));
+        let nv = plan.ct.num_vertices() as u32;
+        let params = Params { copied: 0, rows: nv, _pad: [0; 2] };
+        // binding 4 (weights) is unused by `normals`; any buffer fills it
+        let normals_group = group(device, &bgl, params, [&mesh.positions, &offsets, &ids, &ids, &mesh.normals]);
+        passes.push(Pass { group: normals_group, threads: nv });
+        buffers.extend([offsets, ids]);
+        Ok(GpuAnimator {
+            control,
+            n_control,
+            level: pipeline(device, &pl, "level"),
+            normals: pipeline(device, &pl, "normals"),
+            passes,
+            _buffers: buffers,
+        })
+    }
+
+    /// Uploads the frame's control positions and records the passes; the
+    /// caller submits `encoder` (before drawing the mesh).
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when `control` does not have the plan's vertex count.
+    pub fn encode(&self, queue: &wgpu::Queue, encoder: &mut wgpu::CommandEncoder, control: &[Vec3]) -> Result<()> {
+        if control.len() != self.n_control {
+            return Err(Error::Usage(format!(
+                "{} control positions for a plan of {} vertices",
+                control.len(),
+                self.n_control
+            )));
+        }
+        queue.write_buffer(&self.control, 0, bytemuck::cast_slice(control));
+        let mut pass =
+            encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("anim"), timestamp_writes: None });
+        let n = self.passes.len();
+        for (i, p) in self.passes.iter().enumerate() {
+            pass.set_pipeline(if i + 1 == n { &self.normals } else { &self.level });
+            pass.set_bind_group(0, &p.group, &[]);
+            let groups = p.threads.div_ceil(WORKGROUP).max(1);
+            let x = groups.min(65535);
+            pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
+        }
+        Ok(())
+    }
+
+    /// [`GpuAnimator::encode`] in its own submission.
+    ///
+    /// # Errors
+    /// As [`GpuAnimator::encode`].
+    pub fn update(&self, device: &wgpu::Device, queue: &wgpu::Queue, control: &[Vec3]) -> Result<()> {
+        let mut encoder = device.create_command_encoder(&Default::default());
+        self.encode(queue, &mut encoder, control)?;
+        queue.submit([encoder.finish()]);
+        Ok(())
+    }
+}
+
+/// Reads a buffer of packed `Vec3`s back (tests, `animate --eval gpu`'s check).
+///
+/// # Errors
+/// [`Error::Gpu`] when mapping fails.
+pub fn read_vec3(device: &wgpu::Device, queue: &wgpu::Queue, buffer: &wgpu::Buffer, n: usize) -> Result<Vec<Vec3>> {
+    let bytes = (n * 12) as u64;
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("vec3 readback"),
+        size: bytes.max(4),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, bytes);
+    queue.submit([encoder.finish()]);
+    let slice = staging.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| Error::Gpu(format!("waiting for the GPU: {e}")))?;
+    rx.recv().map_err(|e| Error::Gpu(format!("readback: {e}")))?.map_err(|e| Error::Gpu(format!("readback: {e}")))?;
+    let out = {
+        let data = slice.get_mapped_range().map_err(|e| Error::Gpu(format!("readback: {e}")))?;
+        bytemuck::cast_slice::<u8, Vec3>(&data[..bytes as usize]).to_vec()
+    };
+    staging.unmap();
+    Ok(out)
+}
+
+impl GpuMesh {
+    /// The positions buffer (packed `Vec3`s; storage and copy source too).
+    pub fn positions_buffer(&self) -> &wgpu::Buffer {
+        &self.positions
+    }
+    /// The normals buffer (as [`GpuMesh::positions_buffer`]).
+    pub fn normals_buffer(&self) -> &wgpu::Buffer {
+        &self.normals
+    }
+}
+
+/// Times `frames` evaluations of `anim` on a headless device: per frame the
+/// upload of the control positions, the passes and the wait for them (ms).
+/// Returns the times, the upload time of the plan (ms) and the adapter.
+///
+/// # Errors
+/// [`Error::Gpu`] without an adapter with compute, or when the plan does not
+/// fit on the device.
+pub fn time_frames(anim: &mut crate::anim::Animation, frames: usize) -> Result<(Vec<f64>, f64, String)> {
+    let gpu = super::gpu::Gpu::headless()?;
+    if !supports_compute(&gpu.device) {
+        return Err(Error::Gpu(format!("{} has no compute shaders with six storage buffers", gpu.describe())));
+    }
+    let t0 = std::time::Instant::now();
+    let (ct, p, n) = anim.evaluate_with_topology(0);
+    let mesh = GpuMesh::new(&gpu.device, ct, p, n)?;
+    let animator = GpuAnimator::new(&gpu.device, anim.plan(), &mesh)?;
+    let upload_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let wait = |d: &wgpu::Device| d.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| Error::Gpu(e.to_string()));
+    let mut times = Vec::with_capacity(frames);
+    for f in 0..frames {
+        let t = std::time::Instant::now();
+        animator.update(&gpu.device, &gpu.queue, anim.control(f))?;
+        wait(&gpu.device)?;
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+    }
+    Ok((times, upload_ms, gpu.describe()))
+}

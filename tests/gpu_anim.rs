@@ -1,0 +1,110 @@
+//! The animation's compute passes (render::gpu_anim) against the CPU plan:
+//! the same positions within 1e-5 relative and the same normals, on the
+//! bundled tetrahedron animation and a creased model, for several schemes,
+//! and frames drawn from either the same image. Runs on any wgpu adapter
+//! (lavapipe in CI); skips only when no adapter exists and
+//! SUBDIV_REQUIRE_GPU is unset.
+#![cfg(feature = "viewer")]
+
+mod common;
+
+use common::bundled;
+use subdiv::anim::{Animation, Paths, Tweak};
+use subdiv::render::gpu_anim::{GpuAnimator, read_vec3};
+use subdiv::render::{Camera, GpuMesh, Look, Offscreen};
+use subdiv::{Mesh, Options, Scheme};
+
+fn offscreen(w: u32, h: u32) -> Option<Offscreen> {
+    match Offscreen::new(w, h) {
+        Ok(o) => Some(o),
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
+            eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
+            None
+        }
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    }
+}
+
+fn tetrahedron() -> (Mesh, Paths) {
+    let paths = Paths::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
+    (bundled("tetrahedron.obj"), paths)
+}
+
+fn creased() -> (Mesh, Paths) {
+    let m = subdiv::io::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/creases/ico_crease.obj"),
+    )
+    .unwrap();
+    assert!(m.ct.sharpness().is_some(), "the fixture has creases");
+    let p = Paths::generated(&m, 4);
+    (m, p)
+}
+
+/// The GPU mesh and animator of `anim`, first filled with frame 0 from the CPU.
+fn gpu_of(off: &Offscreen, anim: &mut Animation) -> (GpuMesh, GpuAnimator) {
+    let (ct, p, n) = anim.evaluate_with_topology(0);
+    let mesh = GpuMesh::new(&off.gpu.device, ct, p, n).unwrap();
+    let a = GpuAnimator::new(&off.gpu.device, anim.plan(), &mesh).unwrap();
+    (mesh, a)
+}
+
+#[test]
+fn gpu_positions_and_normals_equal_the_cpu_plan() {
+    let Some(off) = offscreen(16, 16) else { return };
+    let (dev, queue) = (&off.gpu.device, &off.gpu.queue);
+    let cases = [
+        ("tetrahedron", tetrahedron(), Scheme::Loop, 4),
+        ("tetrahedron", tetrahedron(), Scheme::ModifiedButterfly, 3),
+        ("ico_crease", creased(), Scheme::Loop, 2),
+        ("ico_crease", creased(), Scheme::Butterfly, 2),
+        ("ico_crease", creased(), Scheme::Jarek, 2),
+    ];
+    for (name, (m, paths), scheme, level) in cases {
+        let mut anim = Animation::new(&m, &paths, Tweak::Jarek, 3, scheme, level, &Options::default()).unwrap();
+        let (mesh, gpu) = gpu_of(&off, &mut anim);
+        for f in [5, 17, anim.frame_count() - 1] {
+            gpu.update(dev, queue, anim.control(f)).unwrap();
+            let n = anim.topology().num_vertices();
+            let gp = read_vec3(dev, queue, mesh.positions_buffer(), n).unwrap();
+            let gn = read_vec3(dev, queue, mesh.normals_buffer(), n).unwrap();
+            let (cp, cn) = anim.evaluate(f);
+            let scale = cp.iter().fold(1.0f32, |s, p| s.max(p.abs().max_element()));
+            for (i, (g, c)) in gp.iter().zip(cp).enumerate() {
+                assert!(
+                    (*g - *c).abs().max_element() <= 1e-5 * scale,
+                    "{name} {scheme} frame {f} vertex {i}: {g} vs {c}"
+                );
+            }
+            for (i, (g, c)) in gn.iter().zip(cn).enumerate() {
+                assert!(g.distance(*c) < 1e-3, "{name} {scheme} frame {f} normal {i}: {g} vs {c}");
+            }
+            // the frame really moved the buffers away from frame 0
+            assert!(gp.iter().zip(anim.control(0)).any(|(g, c)| g.distance(*c) > 1e-3));
+        }
+    }
+}
+
+#[test]
+fn frames_evaluated_on_the_gpu_draw_the_cpu_image() {
+    let Some(mut off) = offscreen(128, 128) else { return };
+    let (m, paths) = tetrahedron();
+    let mut anim = Animation::new(&m, &paths, Tweak::Jarek, 3, Scheme::Loop, 3, &Options::default()).unwrap();
+    let (lo, hi) = subdiv::render::export::motion_bounds(&anim);
+    let cam = Camera::framing(lo, hi, 1.0);
+    let (gpu_mesh, gpu) = gpu_of(&off, &mut anim);
+    let (ct, p, n) = anim.evaluate_with_topology(0);
+    let mut cpu_mesh = GpuMesh::new(&off.gpu.device, ct, p, n).unwrap();
+    let first = off.render_one(cam, &cpu_mesh, None, Look::default()).unwrap();
+    for f in [7, anim.frame_count() / 2] {
+        gpu.update(&off.gpu.device, &off.gpu.queue, anim.control(f)).unwrap();
+        let (p, n) = anim.evaluate(f);
+        cpu_mesh.update(&off.gpu.queue, p, n);
+        let by_cpu = off.render_one(cam, &cpu_mesh, None, Look::default()).unwrap();
+        let by_gpu = off.render_one(cam, &gpu_mesh, None, Look::default()).unwrap();
+        let differ = |a: &image::RgbaImage, b: &image::RgbaImage, tol: u8| {
+            a.pixels().zip(b.pixels()).filter(|(p, q)| (0..3).any(|i| p.0[i].abs_diff(q.0[i]) > tol)).count()
+        };
+        assert!(differ(&first, &by_cpu, 8) > 50, "frame {f} moves");
+        assert!(differ(&by_cpu, &by_gpu, 2) <= 3, "frame {f}: {} pixels differ", differ(&by_cpu, &by_gpu, 2));
+    }
+}
