@@ -1,7 +1,8 @@
 //! # subdiv: triangle-mesh subdivision on a corner table
 //!
 //! The library is four layers, data flowing one way:
-//! [`io`] (OBJ, `.ct`, `.paths`) → [`mesh`] (Rossignac's corner table: V, O,
+//! [`io`] (OBJ with MTL materials, `.ct`, PLY, STL, OFF, glTF, COLLADA,
+//! `.paths`) → [`mesh`] (Rossignac's corner table: V, O,
 //! one corner per vertex, valences) → [`subdiv`] (the shared 1-to-4 split with
 //! a linear-time O update, one file of rules per scheme, stencil plans) →
 //! [`anim`] (split-and-tweak paths). The renderer and the window (feature
