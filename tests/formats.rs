@@ -250,6 +250,14 @@ fn gltf_takes_every_mesh_node_with_its_transform() {
         })
         .sum();
     assert!((vol - 9.0 * tvol).abs() < 1e-3 * tvol.abs(), "volume {vol}, want 9 x {tvol}");
+    // a material's base colour factor becomes the group's diffuse colour
+    let red = gltf_text(4).replace("\"indices\":1}", "\"indices\":1,\"material\":0}").replace(
+        "\"buffers\"",
+        "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}}],\"buffers\"",
+    );
+    let (_, a) = io::from_bytes_with_attributes(red.as_bytes(), "red.gltf").unwrap();
+    let g = a.materials.expect("material groups from the glTF materials");
+    assert_eq!((g.face, g.list.len(), g.list[0].diffuse), (vec![0; 8], 1, Vec3::X));
     // what the fuzzer found panicking inside the gltf crate is refused, naming the element
     let missing = gltf_text(4).replace("\"POSITION\":0", "\"POSITION\":7");
     let e = io::from_bytes(missing.as_bytes(), "m.gltf").unwrap_err().to_string();

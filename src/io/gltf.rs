@@ -60,7 +60,29 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
     }
     let mut raw = out.raw.ok_or_else(|| format_err(file, "scene", "no mesh node with triangles"))?;
     raw.weld();
+    if raw.materials.is_some() {
+        raw.material_list = g.materials().map(|m| material(&m, file)).collect();
+    }
     Ok(raw)
+}
+
+/// What is drawn of a glTF material: its base colour factor (linear RGB) as
+/// the diffuse colour and its base colour texture when that is a file beside
+/// the model (an image stored in a buffer is not decoded: logged, untextured).
+fn material(m: &gltf::Material, file: &str) -> crate::mesh::attributes::Material {
+    let pbr = m.pbr_metallic_roughness();
+    let [r, g, b, _] = pbr.base_color_factor();
+    let texture = pbr.base_color_texture().and_then(|t| match t.texture().source().source() {
+        gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+            Some(Path::new(file).parent().unwrap_or(Path::new(".")).join(percent_decode(uri)))
+        }
+        _ => {
+            log::info!("{file}: material {}: embedded base colour texture not decoded", m.index().unwrap_or(0));
+            None
+        }
+    });
+    let name = format!("material {}", m.index().unwrap_or(0));
+    crate::mesh::attributes::Material { name, diffuse: Vec3::new(r, g, b), diffuse_texture: texture }
 }
 
 /// Parses and validates the JSON. The POSITION accessor of every primitive
@@ -156,7 +178,7 @@ impl Walk<'_> {
         let colors: Option<Vec<Vec3>> = reader.read_colors(0).map(|c| c.into_rgb_f32().map(Vec3::from).collect());
         let colors = colors.filter(|c| c.len() == positions.len());
         let materials = prim.material().index().map(|i| vec![i as u32; triangles.len() / 3]);
-        Ok(Some(RawMesh { positions, triangles, uv, colors, materials }))
+        Ok(Some(RawMesh { positions, triangles, uv, colors, materials, material_list: Vec::new() }))
     }
 }
 

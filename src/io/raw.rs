@@ -22,8 +22,10 @@ pub struct RawMesh {
     pub uv: Option<Vec<Vec2>>,
     /// Linear RGB colours in [0, 1], one per vertex.
     pub colors: Option<Vec<Vec3>>,
-    /// Material id of each triangle (into the file's material list), if any.
+    /// Material id of each triangle (into `material_list`), if any.
     pub materials: Option<Vec<u32>>,
+    /// The file's materials (ids past its end are drawn as a grey default).
+    pub material_list: Vec<crate::mesh::attributes::Material>,
 }
 
 impl RawMesh {
@@ -33,7 +35,15 @@ impl RawMesh {
     /// # Errors
     /// [`Error::Mesh`] naming `file` (vertex ids 0-based, as stored).
     pub fn build(self, file: &str) -> Result<(Mesh, Attributes)> {
-        let RawMesh { positions, triangles, uv, colors, .. } = self;
+        let RawMesh { positions, triangles, uv, colors, materials, mut material_list } = self;
+        let materials = materials.filter(|m| m.len() == triangles.len() / 3).map(|face| {
+            let n = face.iter().max().map_or(0, |&m| m as usize + 1);
+            while material_list.len() < n {
+                material_list
+                    .push(crate::mesh::attributes::Material::named(&format!("material {}", material_list.len())));
+            }
+            crate::mesh::attributes::MaterialGroups { face, list: material_list, libraries: Vec::new() }
+        });
         let used = colors.as_ref().map(|_| used_vertices(positions.len(), &triangles));
         let mesh = Mesh::from_triangles(positions, &triangles).map_err(|source| Error::Mesh {
             file: file.to_string(),
@@ -42,7 +52,7 @@ impl RawMesh {
         })?;
         let colors =
             colors.zip(used).map(|(c, used)| c.into_iter().zip(used).filter(|(_, u)| *u).map(|(c, _)| c).collect());
-        Ok((mesh, Attributes { uv, colors, materials: None }))
+        Ok((mesh, Attributes { uv, colors, materials }))
     }
 
     /// Repairs into a mesh (see [`crate::mesh::repair()`]); attributes are not kept.
