@@ -116,6 +116,28 @@ fn ply_tetra(enc: &str, big: bool) -> Vec<u8> {
 }
 
 #[test]
+fn glb_texture_coordinates_use_the_gltf_convention() {
+    // OBJ's v runs up the image, glTF's down: the .glb stores 1 - v
+    let dir = scratch_dir("formats-glb-uv");
+    let (mesh, attrs) = io::obj::load_with_attributes(&model_path("cube_uv.obj")).unwrap();
+    let uv = attrs.uv.clone().unwrap();
+    let path = dir.join("cube_uv.glb");
+    io::save_with(&path, &mesh, &attrs).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    let json_len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json = std::str::from_utf8(&bytes[20..20 + json_len]).unwrap();
+    let bin = &bytes[20 + json_len + 8..];
+    // the TEXCOORD_0 accessor is the third (after POSITION and NORMAL), its view follows theirs
+    assert!(json.contains("\"TEXCOORD_0\":2"), "{json}");
+    let n = mesh.ct.v_table().len();
+    let at = 2 * 12 * n;
+    let f = |k: usize| f32::from_le_bytes(bin[at + 4 * k..at + 4 * k + 4].try_into().unwrap());
+    for (c, t) in uv.iter().enumerate() {
+        assert_eq!((f(2 * c), f(2 * c + 1)), (t.x, 1.0 - t.y), "corner {c}");
+    }
+}
+
+#[test]
 fn ply_reads_ascii_and_both_binary_encodings_with_colours() {
     let tetra = bundled("tetrahedron.obj");
     for (enc, big) in [("ascii", false), ("binary_little_endian", false), ("binary_big_endian", true)] {

@@ -8,7 +8,8 @@
 //! scene) is taken with its node's world transform (a mirroring transform
 //! flips the winding back), with `TEXCOORD_0` (per corner), `COLOR_0` and
 //! the material index per triangle kept (primitives without them get
-//! defaults).
+//! defaults). glTF's `v` runs down the image: it is flipped on reading and
+//! on writing, so texture coordinates follow OBJ's convention everywhere.
 //! glTF splits vertices at every normal and UV seam, so coincident vertices
 //! are welded ([`RawMesh::weld`]) to make the surface connected again.
 //! Every accessor's range is checked against its buffer view and buffer
@@ -173,7 +174,9 @@ impl Walk<'_> {
         if m.determinant() < 0.0 {
             triangles.chunks_exact_mut(3).for_each(|t| t.swap(1, 2));
         }
-        let uv: Option<Vec<Vec2>> = reader.read_tex_coords(0).map(|t| t.into_f32().map(Vec2::from).collect());
+        // glTF's v runs down the image, OBJ's (and ours) up
+        let uv: Option<Vec<Vec2>> =
+            reader.read_tex_coords(0).map(|t| t.into_f32().map(|[u, v]| Vec2::new(u, 1.0 - v)).collect());
         let uv = uv.filter(|u| u.len() == positions.len()).map(|u| triangles.iter().map(|&i| u[i as usize]).collect());
         let colors: Option<Vec<Vec3>> = reader.read_colors(0).map(|c| c.into_rgb_f32().map(Vec3::from).collect());
         let colors = colors.filter(|c| c.len() == positions.len());
@@ -373,7 +376,8 @@ pub fn save(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     p.push(Some("POSITION"), &pick(&mesh.positions), n, "VEC3", 5126, &minmax);
     p.push(Some("NORMAL"), &pick(&normals), n, "VEC3", 5126, "");
     if let Some(uv) = uv {
-        p.push(Some("TEXCOORD_0"), &f32_bytes(uv.iter().flat_map(|t| t.to_array())), n, "VEC2", 5126, "");
+        let flipped = f32_bytes(uv.iter().flat_map(|t| [t.x, 1.0 - t.y]));
+        p.push(Some("TEXCOORD_0"), &flipped, n, "VEC2", 5126, "");
     }
     if let Some(c) = colors {
         p.push(Some("COLOR_0"), &pick(c), n, "VEC3", 5126, "");
