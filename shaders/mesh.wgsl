@@ -31,6 +31,8 @@ struct View {
     // drawn, z: 1 = wire only (the faces are not shaded), w = strength of
     // the darkening over shaded faces
     wire: vec4<f32>,
+    // x, y: the viewport's size in pixels, z: the radius of dots in pixels
+    viewport: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> u: View;
@@ -133,11 +135,10 @@ fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<
     return finish(shade(i.world, i.normal, i.color, front));
 }
 
-@vertex
-fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
+// Lines are pulled towards the eye so they win the depth test against the
+// faces they lie on. Scaling about the eye (perspective) keeps their screen position.
+fn line_clip(pos: vec3<f32>) -> vec4<f32> {
     var p = u.view * vec4<f32>(pos, 1.0);
-    // Pull lines towards the eye so they win the depth test against the faces
-    // they lie on. Scaling about the eye (perspective) keeps their screen position.
     if u.params.z > 0.5 {
         p.z += u.line.y;
     } else {
@@ -146,9 +147,57 @@ fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
     return u.proj * p;
 }
 
+@vertex
+fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
+    return line_clip(pos);
+}
+
 @fragment
 fn fs_line() -> @location(0) vec4<f32> {
     return finish(style.color.rgb);
+}
+
+// The cage where the surface hides it: the same lines, faint (no depth test).
+@fragment
+fn fs_line_hidden() -> @location(0) vec4<f32> {
+    return vec4<f32>(finish(style.color.rgb).rgb, 0.3);
+}
+
+// Dots: a quad of two triangles per point (instance), a constant size in
+// pixels, pulled towards the eye like the lines; round with a smooth rim.
+struct DotOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) local: vec2<f32>,
+};
+
+@vertex
+fn vs_dot(@builtin(vertex_index) i: u32, @location(0) pos: vec3<f32>) -> DotOut {
+    var corners = array<vec2<f32>, 6>(
+        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
+        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(-1.0, 1.0),
+    );
+    let k = corners[i];
+    var o: DotOut;
+    let c = line_clip(pos);
+    // one pixel more than the radius, for the rim's smoothstep
+    let r = u.viewport.z + 1.0;
+    o.clip = c + vec4<f32>(k * r * 2.0 / max(u.viewport.xy, vec2<f32>(1.0)) * c.w, 0.0, 0.0);
+    o.local = k * r;
+    return o;
+}
+
+fn dot_alpha(local: vec2<f32>) -> f32 {
+    return 1.0 - smoothstep(u.viewport.z - 0.75, u.viewport.z + 0.5, length(local));
+}
+
+@fragment
+fn fs_dot(i: DotOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(finish(style.color.rgb).rgb, dot_alpha(i.local));
+}
+
+@fragment
+fn fs_dot_hidden(i: DotOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(finish(style.color.rgb).rgb, 0.3 * dot_alpha(i.local));
 }
 
 // ---- The single-pass wireframe --------------------------------------------

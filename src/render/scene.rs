@@ -66,6 +66,7 @@ struct ViewUniform {
     params: [f32; 4],
     line: [f32; 4],
     wire: [f32; 4],
+    viewport: [f32; 4],
 }
 
 const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "uniforms are arrays of vec4");
@@ -125,6 +126,8 @@ const STYLE_SHARP: usize = 4;
 
 /// Width of wireframe lines in pixels (at [`Renderer::pixel_scale`] 1).
 pub const WIRE_WIDTH: f32 = 1.5;
+/// Radius of the control cage's vertex dots in pixels (at scale 1).
+pub const DOT_RADIUS: f32 = 3.0;
 /// How strongly a wire line darkens the shading under it (0..1).
 pub const WIRE_STRENGTH: f32 = 0.8;
 
@@ -185,6 +188,7 @@ impl Renderer {
                 f32::from(d.look.surface == Surface::Hidden),
                 WIRE_STRENGTH,
             ],
+            viewport: [d.rect[2], d.rect[3], DOT_RADIUS * self.pixel_scale, 0.0],
         }
     }
 
@@ -300,7 +304,7 @@ impl Renderer {
         if let (true, Some(c)) = (d.look.control, d.control)
             && c.edge_indices > 0
         {
-            self.draw_edges(pass, c, STYLE_CONTROL);
+            self.draw_cage(pass, c);
             if let (true, Some(sharp)) = (d.look.sharp, &c.sharp) {
                 self.draw_indexed_lines(pass, c, sharp, STYLE_SHARP);
             }
@@ -330,6 +334,23 @@ impl Renderer {
             pass.set_pipeline(&self.pipelines.mesh[cull]);
         }
         pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+    }
+
+    /// The control cage: its edges and vertices (dots), faint where the
+    /// surface hides them, full where they show.
+    fn draw_cage(&self, pass: &mut wgpu::RenderPass, c: &GpuMesh) {
+        let p = &self.pipelines;
+        pass.set_bind_group(1, &self.styles[STYLE_CONTROL], &[]);
+        pass.set_vertex_buffer(0, c.positions.slice(..));
+        pass.set_index_buffer(c.edges.slice(..), wgpu::IndexFormat::Uint32);
+        for lines in [&p.lines_hidden, &p.lines] {
+            pass.set_pipeline(lines);
+            pass.draw_indexed(0..c.edge_indices, 0, 0..1);
+        }
+        for dots in [&p.dots_hidden, &p.dots] {
+            pass.set_pipeline(dots);
+            pass.draw(0..6, 0..c.vertex_count as u32);
+        }
     }
 
     /// A mesh's edge list as lines of one style.
