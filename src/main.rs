@@ -174,7 +174,7 @@ enum Cmd {
         /// Number of levels.
         #[arg(long, short = 'n', default_value_t = 0)]
         levels: u32,
-        /// phong, flat, wire or phong+wire.
+        /// phong, flat, studio (matcap), wire or phong+wire.
         #[arg(long, default_value = "phong")]
         shading: String,
         /// Image size WxH.

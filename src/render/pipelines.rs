@@ -7,6 +7,7 @@
 //! | `mesh_colored`| `vs_mesh_colored`   | position, normal, rgb | yes    | write, <   | yes           |
 //! | `wire`        | `vs_wire`, `fs_wire`| none: storage, group 2| blend  | write, <   | yes           |
 //! | `lines`       | `vs_line`           | position              | yes    | write, <=  | no            |
+//! | `background`  | `vs_background`     | none                  | yes    | always     | no            |
 //! | `lines_hidden`| `vs_line`, `fs_line_hidden` | position      | blend  | always     | no            |
 //! | `dots`        | `vs_dot`, `fs_dot`  | position per instance | blend  | <=         | no            |
 //! | `dots_hidden` | `vs_dot`, `fs_dot_hidden` | position per instance | blend | always | no            |
@@ -63,6 +64,8 @@ pub struct Pipelines {
     pub wire: [wgpu::RenderPipeline; 3],
     /// Line lists (wireframe, control mesh, normals, highlights).
     pub lines: wgpu::RenderPipeline,
+    /// The viewport's background gradient (one full-viewport triangle).
+    pub background: wgpu::RenderPipeline,
     /// Line lists where they are hidden: faint, no depth test or write.
     pub lines_hidden: wgpu::RenderPipeline,
     /// Round dots of a constant size in pixels, one per point (instanced quads).
@@ -267,12 +270,25 @@ impl Pipelines {
             ..line_spec
         };
         let dots = factory.build(&dot_spec);
+        let background = factory.build(&Spec {
+            label: "background",
+            layout: &mesh_layout,
+            vertex_shader: "vs_background",
+            buffers: &[],
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            fragment_shader: "fs_background",
+            depth_write: false,
+            depth_compare: always,
+            blend: None,
+            ..line_spec
+        });
         let dots_hidden = factory.build(&Spec { fragment_shader: "fs_dot_hidden", depth_compare: always, ..dot_spec });
         Pipelines {
             mesh,
             mesh_colored,
             wire,
             lines,
+            background,
             lines_hidden,
             dots,
             dots_hidden,

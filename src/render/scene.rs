@@ -18,8 +18,13 @@ use wgpu::util::DeviceExt;
 
 pub use super::gpu_mesh::{Cull, GpuMesh, cull_for, edge_indices};
 
-/// Background colour (linear RGB) of every view.
+/// Background colour (linear RGB) of the window outside the viewports.
 pub const BACKGROUND: [f64; 3] = [0.045, 0.05, 0.065];
+/// The quiet vertical gradient behind every viewport (linear RGB): its top
+/// and bottom rows (shaders/mesh.wgsl, `fs_background`).
+pub const BACKGROUND_TOP: Vec3 = Vec3::new(0.075, 0.08, 0.1);
+/// See [`BACKGROUND_TOP`].
+pub const BACKGROUND_BOTTOM: Vec3 = Vec3::new(0.025, 0.027, 0.036);
 
 /// Linear colour of front faces (the material).
 pub const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
@@ -46,6 +51,18 @@ pub const HEADLIGHT_INTENSITY: f32 = 0.6;
 /// The 8-bit sRGB value the background has in a rendered image.
 pub fn background_srgb8() -> [u8; 3] {
     BACKGROUND.map(|c| {
+        let s = if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        (s * 255.0).round().clamp(0.0, 255.0) as u8
+    })
+}
+
+/// The 8-bit sRGB value of the background gradient in row `y` of a
+/// viewport `height` pixels high (what an opaque render shows where nothing
+/// is drawn).
+pub fn background_srgb8_at(y: u32, height: u32) -> [u8; 3] {
+    let t = (y as f32 + 0.5) / height.max(1) as f32;
+    let c = BACKGROUND_TOP.lerp(BACKGROUND_BOTTOM, t);
+    c.to_array().map(|c| {
         let s = if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
         (s * 255.0).round().clamp(0.0, 255.0) as u8
     })
@@ -176,7 +193,11 @@ impl Renderer {
             front_color: FRONT.to_array(),
             back_color: BACK.to_array(),
             params: [
-                f32::from(d.look.surface == Surface::Flat),
+                match d.look.surface {
+                    Surface::Flat => 1.0,
+                    Surface::Studio => 2.0,
+                    _ => 0.0,
+                },
                 f32::from(!self.format.is_srgb()),
                 f32::from(cam.orthographic),
                 HEADLIGHT_INTENSITY,
@@ -188,7 +209,7 @@ impl Renderer {
                 f32::from(d.look.surface == Surface::Hidden),
                 WIRE_STRENGTH,
             ],
-            viewport: [d.rect[2], d.rect[3], DOT_RADIUS * self.pixel_scale, 0.0],
+            viewport: [d.rect[2], d.rect[3], DOT_RADIUS * self.pixel_scale, d.rect[1]],
         }
     }
 
@@ -280,6 +301,10 @@ impl Renderer {
 
     /// Everything one viewport shows, in drawing order.
     fn draw_viewport(&self, pass: &mut wgpu::RenderPass, d: &ViewportDraw) {
+        if !self.transparent {
+            pass.set_pipeline(&self.pipelines.background);
+            pass.draw(0..3, 0..1);
+        }
         if let Some(m) = d.mesh {
             let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
             if let Some(group) = wire_group {
@@ -319,7 +344,7 @@ impl Renderer {
     /// The shaded faces (material or per-vertex colour); nothing when the
     /// surface is hidden.
     fn draw_faces(&self, pass: &mut wgpu::RenderPass, m: &GpuMesh, look: Look) {
-        let shaded = matches!(look.surface, Surface::Smooth | Surface::Flat);
+        let shaded = look.surface != Surface::Hidden;
         if m.triangle_indices == 0 || !shaded {
             return;
         }
