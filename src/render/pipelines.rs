@@ -168,6 +168,39 @@ impl Factory<'_> {
     }
 }
 
+/// The line list and dot pipelines (with `layout`: view and line style):
+/// lines, lines where hidden, dots, dots where hidden.
+fn lines_and_dots(factory: &Factory, layout: &wgpu::PipelineLayout) -> [wgpu::RenderPipeline; 4] {
+    let line_spec = Spec {
+        label: "lines",
+        layout,
+        vertex_shader: "vs_line",
+        buffers: &[Some(POS_LAYOUT)],
+        topology: wgpu::PrimitiveTopology::LineList,
+        fragment_shader: "fs_line",
+        depth_write: true,
+        depth_compare: wgpu::CompareFunction::LessEqual,
+        cull_mode: None,
+        blend: None,
+    };
+    let blend = Some(wgpu::BlendState::ALPHA_BLENDING);
+    let always = wgpu::CompareFunction::Always;
+    let hidden =
+        Spec { fragment_shader: "fs_line_hidden", depth_write: false, depth_compare: always, blend, ..line_spec };
+    let dot_spec = Spec {
+        label: "dots",
+        vertex_shader: "vs_dot",
+        buffers: &[Some(POS_INSTANCE_LAYOUT)],
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        fragment_shader: "fs_dot",
+        depth_write: false,
+        blend,
+        ..line_spec
+    };
+    let dots_hidden = Spec { fragment_shader: "fs_dot_hidden", depth_compare: always, ..dot_spec };
+    [&line_spec, &hidden, &dot_spec, &dots_hidden].map(|spec| factory.build(spec))
+}
+
 /// A bind group layout with one uniform buffer at binding 0.
 pub fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -242,47 +275,15 @@ impl Pipelines {
             blend: Some(wgpu::BlendState::ALPHA_BLENDING),
             ..faces("wire", "vs_wire", &[], "fs_wire")
         });
-        let line_spec = Spec {
-            label: "lines",
-            layout: &line_layout,
-            vertex_shader: "vs_line",
-            buffers: &[Some(POS_LAYOUT)],
-            topology: wgpu::PrimitiveTopology::LineList,
-            fragment_shader: "fs_line",
-            depth_write: true,
-            depth_compare: wgpu::CompareFunction::LessEqual,
-            cull_mode: None,
-            blend: None,
-        };
-        let lines = factory.build(&line_spec);
-        let blend = Some(wgpu::BlendState::ALPHA_BLENDING);
-        let always = wgpu::CompareFunction::Always;
-        let hidden =
-            Spec { fragment_shader: "fs_line_hidden", depth_write: false, depth_compare: always, blend, ..line_spec };
-        let lines_hidden = factory.build(&hidden);
-        let dot_spec = Spec {
-            vertex_shader: "vs_dot",
-            buffers: &[Some(POS_INSTANCE_LAYOUT)],
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            fragment_shader: "fs_dot",
-            depth_write: false,
-            blend,
-            ..line_spec
-        };
-        let dots = factory.build(&dot_spec);
+        let [lines, lines_hidden, dots, dots_hidden] = lines_and_dots(&factory, &line_layout);
         let background = factory.build(&Spec {
             label: "background",
             layout: &mesh_layout,
-            vertex_shader: "vs_background",
-            buffers: &[],
-            topology: wgpu::PrimitiveTopology::TriangleList,
-            fragment_shader: "fs_background",
-            depth_write: false,
-            depth_compare: always,
             blend: None,
-            ..line_spec
+            depth_write: false,
+            depth_compare: wgpu::CompareFunction::Always,
+            ..faces("background", "vs_background", &[], "fs_background")
         });
-        let dots_hidden = factory.build(&Spec { fragment_shader: "fs_dot_hidden", depth_compare: always, ..dot_spec });
         Pipelines {
             mesh,
             mesh_colored,
