@@ -138,12 +138,10 @@ fn open_initial(doc: &mut doc::Doc, opts: &ViewOptions) -> Result<()> {
             }
             doc.repair_on_open = true;
             mesh
-        } else if model.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
+        } else {
             let (mesh, attrs) = crate::bundled::load_with_attributes(model)?;
             doc.model.attrs.file = attrs;
             mesh
-        } else {
-            crate::bundled::load(model)?
         };
         let paths = match &opts.paths {
             Some(p) => {

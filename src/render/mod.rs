@@ -211,12 +211,50 @@ pub fn default_camera(frame: &Mesh, opts: &RenderOptions) -> Camera {
 /// # Errors
 /// [`Error::Gpu`] without an adapter; size errors.
 pub fn render_image(mesh: &Mesh, control: Option<&Mesh>, opts: &RenderOptions) -> Result<image::RgbaImage> {
+    render_image_painted(mesh, control, opts, &Paint::Material)
+}
+
+/// What colours the faces of an offscreen render besides the material.
+#[derive(Clone, Debug, Default)]
+pub enum Paint {
+    /// The material colour.
+    #[default]
+    Material,
+    /// Linear RGB colours, one per vertex.
+    Colors(Vec<glam::Vec3>),
+    /// A checker through texture coordinates, one per corner.
+    Checker(Vec<glam::Vec2>),
+}
+
+/// [`render_image`] with the faces painted by `paint`.
+///
+/// # Errors
+/// As [`render_image`].
+pub fn render_image_painted(
+    mesh: &Mesh,
+    control: Option<&Mesh>,
+    opts: &RenderOptions,
+    paint: &Paint,
+) -> Result<image::RgbaImage> {
     let (w, h) = opts.shot.size(opts.width, opts.height);
     let mut off = Offscreen::new(w, h)?;
     off.set_shot(opts.shot);
-    let gm = off.upload(mesh)?;
+    let mut look = Look { control: control.is_some(), wire_edges: opts.wire_edges, ..opts.shading.look() };
+    let gm = match paint {
+        Paint::Material => off.upload(mesh)?,
+        Paint::Colors(c) => {
+            let mut gm = off.upload(mesh)?;
+            gm.set_colors(&off.gpu.device, c);
+            look.colors = true;
+            gm
+        }
+        Paint::Checker(uv) => {
+            let attr: Vec<glam::Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
+            (look.colors, look.uv_checker) = (true, true);
+            GpuMesh::unwelded(&off.gpu.device, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), &attr)?
+        }
+    };
     let gc = control.map(|c| off.upload(c)).transpose()?;
-    let look = Look { control: gc.is_some(), wire_edges: opts.wire_edges, ..opts.shading.look() };
     off.render_one(default_camera(control.unwrap_or(mesh), opts), &gm, gc.as_ref(), look)
 }
 
