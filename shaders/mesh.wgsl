@@ -186,7 +186,7 @@ fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
 
 @fragment
 fn fs_line() -> @location(0) vec4<f32> {
-    return finish(style.color.rgb);
+    return vec4<f32>(finish(style.color.rgb).rgb, style.color.a);
 }
 
 // The cage where the surface hides it: the same lines, faint (no depth test).

@@ -272,3 +272,24 @@ fn studio_differs_from_phong_and_the_background_is_a_quiet_vertical_gradient() {
     let (top, bottom) = (luminance(phong.get_pixel(0, 0).0), luminance(phong.get_pixel(0, 119).0));
     assert!(top > bottom + 15.0 && top < bottom + 60.0, "background top {top:.0}, bottom {bottom:.0}");
 }
+
+#[test]
+fn without_msaa_the_fxaa_pass_smooths_silhouettes() {
+    let Some(mut off) = offscreen(160, 120) else { return };
+    let (control, mesh) = fine("cube.obj", Scheme::Loop, 1);
+    off.renderer.fxaa = false;
+    let aliased = render(&mut off, &mesh, Some(&control), Shading::Flat.look(), false);
+    off.renderer.fxaa = true;
+    let smoothed = render(&mut off, &mesh, Some(&control), Shading::Flat.look(), false);
+    let changed =
+        aliased.pixels().zip(smoothed.pixels()).filter(|(p, q)| (0..3).any(|i| p.0[i].abs_diff(q.0[i]) > 3)).count();
+    if off.renderer.samples > 1 {
+        // with MSAA the pass is skipped
+        assert_eq!(changed, 0);
+        return;
+    }
+    // the pass touches the edges only: a few hundred pixels, not the faces
+    assert!(changed > 50 && changed < 160 * 120 / 10, "{changed} pixels changed");
+    // and it keeps flat regions: the centre of a face is the same
+    assert_eq!(aliased.get_pixel(80, 60), smoothed.get_pixel(80, 60));
+}

@@ -181,7 +181,7 @@ fn lines_and_dots(factory: &Factory, layout: &wgpu::PipelineLayout) -> [wgpu::Re
         depth_write: true,
         depth_compare: wgpu::CompareFunction::LessEqual,
         cull_mode: None,
-        blend: None,
+        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
     };
     let blend = Some(wgpu::BlendState::ALPHA_BLENDING);
     let always = wgpu::CompareFunction::Always;

@@ -32,7 +32,11 @@ pub const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
 const BACK: Vec4 = Vec4::new(0.62, 0.30, 0.16, 1.0);
 const WIRE_DARK: [f32; 4] = [0.015, 0.02, 0.035, 1.0];
 const WIRE_LIGHT: [f32; 4] = [0.80, 0.84, 0.92, 1.0];
-const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 1.0];
+/// The cage: translucent, so the surface reads through a dense one.
+const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 0.75];
+/// Cages with more vertices than this are drawn without dots and without
+/// their hidden part: on a dense cage they would cover the surface.
+pub const CAGE_DETAIL_UP_TO: usize = 500;
 const NORMALS: [f32; 4] = [0.15, 0.85, 0.25, 1.0];
 /// Sharp edges (creases): magenta, apart from the orange cage and green normals.
 const SHARP: [f32; 4] = [0.92, 0.12, 0.62, 1.0];
@@ -91,6 +95,8 @@ const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "un
 /// Multisampled colour and depth attachments of one size.
 pub struct Targets {
     msaa: Option<wgpu::TextureView>,
+    /// Without MSAA: the scene before the FXAA pass, and its bind group.
+    post: Option<(wgpu::TextureView, wgpu::BindGroup)>,
     depth: wgpu::TextureView,
     /// Size in pixels.
     pub size: (u32, u32),
@@ -115,7 +121,23 @@ impl Targets {
                 .create_view(&Default::default())
         };
         let msaa = (renderer.samples > 1).then(|| make(renderer.format, "msaa colour"));
-        Targets { msaa, depth: make(DEPTH_FORMAT, "depth"), size: (size.width, size.height) }
+        let post = (renderer.samples == 1).then(|| {
+            let view = device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some("before fxaa"),
+                    size,
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: renderer.format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default());
+            let group = renderer.fxaa_pass.bind(device, &view);
+            (view, group)
+        });
+        Targets { msaa, post, depth: make(DEPTH_FORMAT, "depth"), size: (size.width, size.height) }
     }
 }
 
@@ -159,6 +181,9 @@ pub struct Renderer {
     pub pixel_scale: f32,
     /// Clear the background to alpha 0 (a screenshot for compositing).
     pub transparent: bool,
+    /// Without MSAA, smooth edges with the FXAA pass (on by default).
+    pub fxaa: bool,
+    fxaa_pass: super::blit::Blit,
     pipelines: Pipelines,
     views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
     styles: [wgpu::BindGroup; 5],
@@ -176,7 +201,18 @@ impl Renderer {
             });
             uniform_group(device, &pipelines.style_layout, &buf)
         });
-        Renderer { format, samples, pixel_scale: 1.0, transparent: false, pipelines, views: Vec::new(), styles }
+        let fxaa_pass = super::blit::Blit::fxaa(device, format);
+        Renderer {
+            format,
+            samples,
+            pixel_scale: 1.0,
+            transparent: false,
+            fxaa: true,
+            fxaa_pass,
+            pipelines,
+            views: Vec::new(),
+            styles,
+        }
     }
 
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
@@ -229,7 +265,10 @@ impl Renderer {
         for m in draws.iter().filter(|d| d.look.wireframe).filter_map(|d| d.mesh) {
             m.data_group(device, &self.pipelines.mesh_data_layout);
         }
-        let mut pass = self.begin_pass(encoder, targets, resolve);
+        // without MSAA the scene goes through the FXAA pass on its way to `resolve`
+        let post = targets.post.as_ref().filter(|_| self.fxaa);
+        let scene = post.map_or(resolve, |(view, _)| view);
+        let mut pass = self.begin_pass(encoder, targets, scene);
         let (tw, th) = (targets.size.0 as f32, targets.size.1 as f32);
         for (d, (_, group)) in draws.iter().zip(&self.views) {
             let [x, y, w, h] = d.rect;
@@ -243,6 +282,10 @@ impl Renderer {
             pass.set_scissor_rect(x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32);
             pass.set_bind_group(0, group, &[]);
             self.draw_viewport(&mut pass, d);
+        }
+        drop(pass);
+        if let Some((_, group)) = post {
+            self.fxaa_pass.draw(encoder, group, resolve);
         }
     }
 
@@ -368,13 +411,18 @@ impl Renderer {
         pass.set_bind_group(1, &self.styles[STYLE_CONTROL], &[]);
         pass.set_vertex_buffer(0, c.positions.slice(..));
         pass.set_index_buffer(c.edges.slice(..), wgpu::IndexFormat::Uint32);
-        for lines in [&p.lines_hidden, &p.lines] {
-            pass.set_pipeline(lines);
+        let detail = c.vertex_count <= CAGE_DETAIL_UP_TO;
+        if detail {
+            pass.set_pipeline(&p.lines_hidden);
             pass.draw_indexed(0..c.edge_indices, 0, 0..1);
         }
-        for dots in [&p.dots_hidden, &p.dots] {
-            pass.set_pipeline(dots);
-            pass.draw(0..6, 0..c.vertex_count as u32);
+        pass.set_pipeline(&p.lines);
+        pass.draw_indexed(0..c.edge_indices, 0, 0..1);
+        if detail {
+            for dots in [&p.dots_hidden, &p.dots] {
+                pass.set_pipeline(dots);
+                pass.draw(0..6, 0..c.vertex_count as u32);
+            }
         }
     }
 
