@@ -25,8 +25,11 @@ fn main() -> subdiv::Result<()> {
     let cam = default_camera(&control, &opts);
     let phong = off.render_one(cam, &gm, None, Shading::Phong.look())?;
     let wired = off.render_one(cam, &gm, None, Look { wire_edges: edges, ..Shading::PhongWire.look() })?;
-    let bg = *phong.get_pixel(0, 0);
-    let object: Vec<bool> = phong.pixels().map(|p| (0..3).any(|i| p.0[i].abs_diff(bg.0[i]) > 2)).collect();
+    // the background is a vertical gradient: compare with the row's first pixel
+    let object: Vec<bool> = phong
+        .enumerate_pixels()
+        .map(|(_, y, p)| (0..3).any(|i| p.0[i].abs_diff(phong.get_pixel(0, y).0[i]) > 2))
+        .collect();
     let total = object.iter().filter(|&&o| o).count().max(1) as f64;
     let share = |by: f64| {
         phong

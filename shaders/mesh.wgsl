@@ -31,6 +31,9 @@ struct View {
     // drawn, z: 1 = wire only (the faces are not shaded), w = strength of
     // the darkening over shaded faces
     wire: vec4<f32>,
+    // x, y: the viewport's size in pixels, z: the radius of dots in pixels,
+    // w: the viewport's top row in the target
+    viewport: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> u: View;
@@ -96,7 +99,7 @@ fn shade(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, front: bool) -> 
         v = normalize(u.eye.xyz - world);
     }
     var n: vec3<f32>;
-    if u.params.x > 0.5 {
+    if abs(u.params.x - 1.0) < 0.5 {
         n = cross(dpdx(world), dpdy(world));
         let len = length(n);
         n = select(v, n / len, len > 1e-20);
@@ -118,6 +121,9 @@ fn shade(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, front: bool) -> 
         front_base = select(vec3<f32>(0.85, 0.85, 0.8), vec3<f32>(0.08, 0.12, 0.35), odd == 1);
     }
     let base = select(u.back_color.rgb, front_base, front);
+    if u.params.x > 1.5 {
+        return studio(n, base, front);
+    }
     // The headlight shines from the eye along the view direction (l = v), so a face
     // seen head-on gets its full diffuse and specular; the key and fill lights,
     // fixed in the world, give silhouettes their shape.
@@ -128,16 +134,43 @@ fn shade(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, front: bool) -> 
     return c;
 }
 
+// Studio (a procedural matcap): the normal in view space looks up clay lit
+// by a soft key light above left, a cool sky above and a warm bounce
+// below, a broad highlight and a rim, all fixed to the camera.
+fn studio(n_world: vec3<f32>, base: vec3<f32>, front: bool) -> vec3<f32> {
+    let n = normalize((u.view * vec4<f32>(n_world, 0.0)).xyz);
+    let clay = select(base, vec3<f32>(0.58, 0.54, 0.5), front && u.line.z < 0.5 && u.line.w < 0.5);
+    let sky = mix(vec3<f32>(0.32, 0.26, 0.22), vec3<f32>(0.7, 0.78, 0.9), 0.5 + 0.5 * n.y);
+    let key = max(dot(n, normalize(vec3<f32>(-0.45, 0.6, 0.65))), 0.0);
+    let high = pow(max(dot(n, normalize(vec3<f32>(-0.3, 0.45, 0.85))), 0.0), 24.0);
+    let rim = pow(1.0 - clamp(n.z, 0.0, 1.0), 3.0);
+    return clay * (0.35 * sky + 0.75 * key) + vec3<f32>(0.22 * high) + 0.25 * rim * vec3<f32>(0.75, 0.82, 0.95);
+}
+
+// The background: one triangle over the whole viewport, a quiet vertical
+// gradient (render/scene.rs: BACKGROUND_TOP to BACKGROUND_BOTTOM, linear).
+@vertex
+fn vs_background(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let x = f32(i32(i & 1u) * 4 - 1);
+    let y = f32(i32(i >> 1u) * 4 - 1);
+    return vec4<f32>(x, y, 0.5, 1.0);
+}
+
+@fragment
+fn fs_background(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
+    let t = clamp((p.y - u.viewport.w) / max(u.viewport.y, 1.0), 0.0, 1.0);
+    return finish(mix(vec3<f32>(0.075, 0.08, 0.1), vec3<f32>(0.025, 0.027, 0.036), t));
+}
+
 @fragment
 fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     return finish(shade(i.world, i.normal, i.color, front));
 }
 
-@vertex
-fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
+// Lines are pulled towards the eye so they win the depth test against the
+// faces they lie on. Scaling about the eye (perspective) keeps their screen position.
+fn line_clip(pos: vec3<f32>) -> vec4<f32> {
     var p = u.view * vec4<f32>(pos, 1.0);
-    // Pull lines towards the eye so they win the depth test against the faces
-    // they lie on. Scaling about the eye (perspective) keeps their screen position.
     if u.params.z > 0.5 {
         p.z += u.line.y;
     } else {
@@ -146,9 +179,57 @@ fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
     return u.proj * p;
 }
 
+@vertex
+fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
+    return line_clip(pos);
+}
+
 @fragment
 fn fs_line() -> @location(0) vec4<f32> {
-    return finish(style.color.rgb);
+    return vec4<f32>(finish(style.color.rgb).rgb, style.color.a);
+}
+
+// The cage where the surface hides it: the same lines, faint (no depth test).
+@fragment
+fn fs_line_hidden() -> @location(0) vec4<f32> {
+    return vec4<f32>(finish(style.color.rgb).rgb, 0.3);
+}
+
+// Dots: a quad of two triangles per point (instance), a constant size in
+// pixels, pulled towards the eye like the lines; round with a smooth rim.
+struct DotOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) local: vec2<f32>,
+};
+
+@vertex
+fn vs_dot(@builtin(vertex_index) i: u32, @location(0) pos: vec3<f32>) -> DotOut {
+    var corners = array<vec2<f32>, 6>(
+        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, -1.0), vec2<f32>(1.0, 1.0),
+        vec2<f32>(-1.0, -1.0), vec2<f32>(1.0, 1.0), vec2<f32>(-1.0, 1.0),
+    );
+    let k = corners[i];
+    var o: DotOut;
+    let c = line_clip(pos);
+    // one pixel more than the radius, for the rim's smoothstep
+    let r = u.viewport.z + 1.0;
+    o.clip = c + vec4<f32>(k * r * 2.0 / max(u.viewport.xy, vec2<f32>(1.0)) * c.w, 0.0, 0.0);
+    o.local = k * r;
+    return o;
+}
+
+fn dot_alpha(local: vec2<f32>) -> f32 {
+    return 1.0 - smoothstep(u.viewport.z - 0.75, u.viewport.z + 0.5, length(local));
+}
+
+@fragment
+fn fs_dot(i: DotOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(finish(style.color.rgb).rgb, dot_alpha(i.local));
+}
+
+@fragment
+fn fs_dot_hidden(i: DotOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(finish(style.color.rgb).rgb, 0.3 * dot_alpha(i.local));
 }
 
 // ---- The single-pass wireframe --------------------------------------------

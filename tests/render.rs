@@ -8,7 +8,7 @@ mod common;
 use common::{bundled, hemisphere};
 use glam::Vec3;
 use image::RgbaImage;
-use subdiv::render::scene::background_srgb8;
+use subdiv::render::scene::background_srgb8_at;
 use subdiv::render::{Camera, Look, Offscreen, Shading, Surface, default_camera};
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
@@ -32,8 +32,10 @@ fn render(off: &mut Offscreen, mesh: &Mesh, control: Option<&Mesh>, look: Look, 
     off.render_one(cam, &gm, gc.as_ref(), look).unwrap()
 }
 
+/// Whether pixel (x, y) shows the background: the vertical gradient's value
+/// in its row.
 fn is_background(img: &RgbaImage, x: u32, y: u32) -> bool {
-    let bg = background_srgb8();
+    let bg = background_srgb8_at(y, img.height());
     let p = img.get_pixel(x, y).0;
     (0..3).all(|i| (i32::from(p[i]) - i32::from(bg[i])).abs() <= 1)
 }
@@ -67,7 +69,7 @@ fn every_bundled_model_covers_the_centre_and_leaves_the_corners_background() {
         let hits = covered.filter(|&(x, y)| !is_background(&img, x as u32, y as u32)).count();
         // The torus has a hole in the middle, so ask for the centre region to be mostly covered elsewhere.
         if name == "torus.obj" {
-            let object = img.pixels().filter(|p| !(0..3).all(|i| p.0[i].abs_diff(background_srgb8()[i]) <= 1)).count();
+            let object = img.enumerate_pixels().filter(|&(x, y, _)| !is_background(&img, x, y)).count();
             assert!(object > 161 * 120 / 8, "{name}: only {object} object pixels");
         } else {
             assert!(hits >= 40, "{name}: centre not covered ({hits}/49)");
@@ -255,4 +257,39 @@ fn a_face_seen_head_on_is_lit_by_the_headlight_from_the_eye() {
         let w = (srgb(want[i]) * 255.0).round();
         assert!((f32::from(got[i]) - w).abs() <= 2.0, "channel {i}: rendered {got:?}, documented {want} ({w})");
     }
+}
+
+#[test]
+fn studio_differs_from_phong_and_the_background_is_a_quiet_vertical_gradient() {
+    let Some(mut off) = offscreen(160, 120) else { return };
+    let (control, mesh) = fine("torus.obj", Scheme::Loop, 2);
+    let phong = render(&mut off, &mesh, Some(&control), Shading::Phong.look(), false);
+    let studio = render(&mut off, &mesh, Some(&control), Shading::Studio.look(), false);
+    assert!(differing_pixels(&phong, &studio) > 160 * 120 / 10, "studio looks like Phong");
+    // the studio clay is neutral, Phong's material blue
+    let bluish = |img: &RgbaImage| img.pixels().filter(|p| p.0[2] > p.0[0] + 25).count();
+    assert!(bluish(&studio) * 4 < bluish(&phong), "studio {} vs phong {}", bluish(&studio), bluish(&phong));
+    let (top, bottom) = (luminance(phong.get_pixel(0, 0).0), luminance(phong.get_pixel(0, 119).0));
+    assert!(top > bottom + 15.0 && top < bottom + 60.0, "background top {top:.0}, bottom {bottom:.0}");
+}
+
+#[test]
+fn without_msaa_the_fxaa_pass_smooths_silhouettes() {
+    let Some(mut off) = offscreen(160, 120) else { return };
+    let (control, mesh) = fine("cube.obj", Scheme::Loop, 1);
+    off.renderer.fxaa = false;
+    let aliased = render(&mut off, &mesh, Some(&control), Shading::Flat.look(), false);
+    off.renderer.fxaa = true;
+    let smoothed = render(&mut off, &mesh, Some(&control), Shading::Flat.look(), false);
+    let changed =
+        aliased.pixels().zip(smoothed.pixels()).filter(|(p, q)| (0..3).any(|i| p.0[i].abs_diff(q.0[i]) > 3)).count();
+    if off.renderer.samples > 1 {
+        // with MSAA the pass is skipped
+        assert_eq!(changed, 0);
+        return;
+    }
+    // the pass touches the edges only: a few hundred pixels, not the faces
+    assert!(changed > 50 && changed < 160 * 120 / 10, "{changed} pixels changed");
+    // and it keeps flat regions: the centre of a face is the same
+    assert_eq!(aliased.get_pixel(80, 60), smoothed.get_pixel(80, 60));
 }

@@ -48,10 +48,10 @@ fn luminance(p: &image::Rgba<u8>) -> f64 {
     0.2126 * f64::from(p.0[0]) + 0.7152 * f64::from(p.0[1]) + 0.0722 * f64::from(p.0[2])
 }
 
-/// Pixels of `img` that differ from the corner pixel (the background).
+/// Pixels of `img` that differ from the first pixel of their row (the
+/// background: a vertical gradient).
 fn object_mask(img: &RgbaImage) -> Vec<bool> {
-    let bg = *img.get_pixel(0, 0);
-    img.pixels().map(|p| (0..3).any(|i| p.0[i].abs_diff(bg.0[i]) > 2)).collect()
+    img.enumerate_pixels().map(|(_, y, p)| (0..3).any(|i| p.0[i].abs_diff(img.get_pixel(0, y).0[i]) > 2)).collect()
 }
 
 /// Share of the object's pixels (in `plain`) whose luminance changes by
@@ -107,16 +107,18 @@ fn wire_lines_are_anti_aliased() {
     let Some(mut off) = offscreen() else { return };
     let (control, fine) = level("cube.obj", 1);
     let [img] = renders(&mut off, &control, &fine, &[Shading::Wire.look()]).try_into().unwrap();
-    let bg = luminance(img.get_pixel(0, 0));
-    let lums: Vec<f64> = img.pixels().map(luminance).collect();
-    let ink = lums.iter().cloned().fold(bg, f64::max);
-    assert!(ink > bg + 60.0, "no line brighter than the background ({bg:.0} to {ink:.0})");
-    let mut distinct: Vec<i64> = lums.iter().map(|&l| l.round() as i64).collect();
+    // above the background of its row (a vertical gradient), by how much
+    let above: Vec<f64> =
+        img.enumerate_pixels().map(|(_, y, p)| luminance(p) - luminance(img.get_pixel(0, y))).collect();
+    let ink = above.iter().cloned().fold(0.0, f64::max);
+    assert!(ink > 60.0, "no line brighter than the background (at most {ink:.0} above it)");
+    let line: Vec<f64> = above.iter().cloned().filter(|&l| l > 4.0).collect();
+    let mut distinct: Vec<i64> = line.iter().map(|&l| l.round() as i64).collect();
     distinct.sort_unstable();
     distinct.dedup();
-    let lit = lums.iter().filter(|&&l| l > bg + 4.0).count();
-    let partial = lums.iter().filter(|&&l| l > bg + 4.0 && l < ink - 4.0).count();
-    eprintln!("{} distinct luminances, {partial} of {lit} line pixels partly covered", distinct.len());
+    let lit = line.len();
+    let partial = line.iter().filter(|&&l| l < ink - 4.0).count();
+    eprintln!("{} distinct shades above the background, {partial} of {lit} line pixels partly covered", distinct.len());
     assert!(distinct.len() >= 40, "only {} distinct luminances", distinct.len());
     assert!(partial * 3 > lit, "{partial} of {lit} line pixels are intermediate shades");
 }

@@ -176,7 +176,8 @@ impl Display {
     pub fn cycle_surface(&mut self) {
         self.surface = match self.surface {
             Surface::Smooth => Surface::Flat,
-            Surface::Flat => Surface::Hidden,
+            Surface::Flat => Surface::Studio,
+            Surface::Studio => Surface::Hidden,
             Surface::Hidden => Surface::Smooth,
         };
         if self.surface == Surface::Hidden {

@@ -357,7 +357,7 @@ impl Win {
         let display = &viewer.doc.display;
         let r = [0.0, 0.0, w as f32, h as f32];
         let draws = viewport_draws(s, result, viewer.view.camera, display.look(), display.side_by_side, r);
-        let samples = self.gpu.msaa_samples(crate::render::offscreen::OFFSCREEN_FORMAT);
+        let samples = self.gpu.default_samples(crate::render::offscreen::OFFSCREEN_FORMAT);
         crate::render::offscreen::shoot(&self.gpu.device, &self.gpu.queue, samples, (w, h), shot, &draws)
     }
 

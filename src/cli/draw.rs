@@ -22,7 +22,7 @@ pub struct RenderArgs {
     sub: SubdivArgs,
     #[command(flatten)]
     color: ColorArgs,
-    /// phong, flat, wire or phong+wire.
+    /// phong, flat, studio (matcap), wire or phong+wire.
     #[arg(long, default_value = "phong")]
     shading: String,
     /// Image size WxH.
@@ -86,7 +86,7 @@ pub struct AnimateArgs {
     /// Image size WxH.
     #[arg(long, default_value = "480x480", value_parser = parse_size)]
     size: (u32, u32),
-    /// phong, flat, wire or phong+wire.
+    /// phong, flat, studio (matcap), wire or phong+wire.
     #[arg(long, default_value = "phong")]
     shading: String,
     /// Overlay the moving control mesh.

@@ -12,9 +12,19 @@ pub struct Blit {
 impl Blit {
     /// A pipeline writing `format` targets.
     pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
+        Blit::with_shader(device, format, include_str!("../../shaders/blit.wgsl"), "fs_blit")
+    }
+
+    /// The post-process anti-aliasing pass (shaders/fxaa.wgsl): the same
+    /// full-screen copy, each pixel blended across the edge it lies on.
+    pub fn fxaa(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
+        Blit::with_shader(device, format, include_str!("../../shaders/fxaa.wgsl"), "fs_fxaa")
+    }
+
+    fn with_shader(device: &wgpu::Device, format: wgpu::TextureFormat, source: &str, fragment: &str) -> Blit {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("blit.wgsl"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/blit.wgsl").into()),
+            label: Some(fragment),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("blit"),
@@ -48,7 +58,7 @@ impl Blit {
             multisample: Default::default(),
             fragment: Some(wgpu::FragmentState {
                 module: &shader,
-                entry_point: Some("fs_blit"),
+                entry_point: Some(fragment),
                 compilation_options: Default::default(),
                 targets: &[Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })],
             }),

@@ -64,6 +64,14 @@ impl Gpu {
         self.adapter.get_info().device_type == wgpu::DeviceType::Cpu
     }
 
+    /// The sample count offscreen renders use: 1 on a software rasteriser,
+    /// where 4x MSAA costs two to three times the frame and the FXAA pass
+    /// smooths the edges instead, else [`Self::msaa_samples`]; `SUBDIV_MSAA`
+    /// overrides both.
+    pub fn default_samples(&self, format: wgpu::TextureFormat) -> u32 {
+        if self.is_software() && std::env::var_os("SUBDIV_MSAA").is_none() { 1 } else { self.msaa_samples(format) }
+    }
+
     /// Largest supported MSAA sample count (up to 4) usable with both `format`
     /// and the depth format. `SUBDIV_MSAA=1` (or 4) overrides.
     pub fn msaa_samples(&self, format: wgpu::TextureFormat) -> u32 {

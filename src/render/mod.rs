@@ -35,6 +35,10 @@ pub enum Surface {
     Smooth,
     /// Flat shading, one normal per face.
     Flat,
+    /// Studio: a procedural matcap (clay under a soft key light, a sky
+    /// above and a rim), from the normal in view space, so the light turns
+    /// with the camera and every side reads alike.
+    Studio,
     /// Faces not drawn (they still hide the lines behind them when the wireframe is on).
     Hidden,
 }
@@ -104,6 +108,8 @@ pub enum Shading {
     Phong,
     /// Flat (one normal per face).
     Flat,
+    /// Studio matcap.
+    Studio,
     /// Wireframe only (hidden lines removed).
     Wire,
     /// Phong with the wireframe over it.
@@ -116,6 +122,7 @@ impl Shading {
         let (surface, wireframe) = match self {
             Shading::Phong => (Surface::Smooth, false),
             Shading::Flat => (Surface::Flat, false),
+            Shading::Studio => (Surface::Studio, false),
             Shading::Wire => (Surface::Hidden, true),
             Shading::PhongWire => (Surface::Smooth, true),
         };
@@ -129,9 +136,10 @@ impl std::str::FromStr for Shading {
         match s {
             "phong" | "smooth" => Ok(Shading::Phong),
             "flat" => Ok(Shading::Flat),
+            "studio" | "matcap" => Ok(Shading::Studio),
             "wire" | "wireframe" => Ok(Shading::Wire),
             "phong+wire" | "phong-wire" => Ok(Shading::PhongWire),
-            _ => Err(format!("unknown shading '{s}' (expected phong, flat, wire or phong+wire)")),
+            _ => Err(format!("unknown shading '{s}' (expected phong, flat, studio, wire or phong+wire)")),
         }
     }
 }

@@ -37,7 +37,7 @@ impl Offscreen {
         if width == 0 || height == 0 || width > max || height > max {
             return Err(Error::Usage(format!("image size {width}x{height} is outside 1..={max} pixels per side")));
         }
-        let samples = gpu.msaa_samples(OFFSCREEN_FORMAT);
+        let samples = gpu.default_samples(OFFSCREEN_FORMAT);
         let renderer = Renderer::new(&gpu.device, OFFSCREEN_FORMAT, samples);
         let targets = Targets::new(&gpu.device, &renderer, width, height);
         let (texture, view) = capture_texture(&gpu.device, "offscreen", OFFSCREEN_FORMAT, width, height);

@@ -7,6 +7,13 @@
 //! | `mesh_colored`| `vs_mesh_colored`   | position, normal, rgb | yes    | write, <   | yes           |
 //! | `wire`        | `vs_wire`, `fs_wire`| none: storage, group 2| blend  | write, <   | yes           |
 //! | `lines`       | `vs_line`           | position              | yes    | write, <=  | no            |
+//! | `background`  | `vs_background`     | none                  | yes    | always     | no            |
+//! | `lines_hidden`| `vs_line`, `fs_line_hidden` | position      | blend  | always     | no            |
+//! | `dots`        | `vs_dot`, `fs_dot`  | position per instance | blend  | <=         | no            |
+//! | `dots_hidden` | `vs_dot`, `fs_dot_hidden` | position per instance | blend | always | no            |
+//!
+//! The `_hidden` pipelines draw the control cage faintly where the surface
+//! hides it (translucent cage); the dots are its vertices.
 //!
 //! `wire` draws the faces and their wireframe in one pass, without an index
 //! buffer: it reads the mesh from the storage buffers of group 2 by the
@@ -36,6 +43,13 @@ pub const COLOR_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLa
     attributes: &wgpu::vertex_attr_array![2 => Float32x3],
 };
 
+/// Vertex buffer 0 stepped per instance: one point per dot (`@location(0)`).
+pub const POS_INSTANCE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+    array_stride: 12,
+    step_mode: wgpu::VertexStepMode::Instance,
+    attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+};
+
 /// Cull modes in the order of [`super::gpu_mesh::Cull`].
 const CULLS: [Option<wgpu::Face>; 3] = [None, Some(wgpu::Face::Back), Some(wgpu::Face::Front)];
 
@@ -50,6 +64,14 @@ pub struct Pipelines {
     pub wire: [wgpu::RenderPipeline; 3],
     /// Line lists (wireframe, control mesh, normals, highlights).
     pub lines: wgpu::RenderPipeline,
+    /// The viewport's background gradient (one full-viewport triangle).
+    pub background: wgpu::RenderPipeline,
+    /// Line lists where they are hidden: faint, no depth test or write.
+    pub lines_hidden: wgpu::RenderPipeline,
+    /// Round dots of a constant size in pixels, one per point (instanced quads).
+    pub dots: wgpu::RenderPipeline,
+    /// The dots where they are hidden: faint.
+    pub dots_hidden: wgpu::RenderPipeline,
     /// Group 0: the per-viewport `View` uniform.
     pub view_layout: wgpu::BindGroupLayout,
     /// Group 1 of the line pipeline: the `LineStyle` uniform.
@@ -88,7 +110,8 @@ struct Spec<'a> {
     vertex_shader: &'a str,
     buffers: &'a [Option<wgpu::VertexBufferLayout<'a>>],
     topology: wgpu::PrimitiveTopology,
-    write_color: bool,
+    fragment_shader: &'a str,
+    depth_write: bool,
     depth_compare: wgpu::CompareFunction,
     cull_mode: Option<wgpu::Face>,
     blend: Option<wgpu::BlendState>,
@@ -104,12 +127,8 @@ struct Factory<'a> {
 
 impl Factory<'_> {
     fn build(&self, spec: &Spec) -> wgpu::RenderPipeline {
-        let fragment_shader = match spec.vertex_shader {
-            "vs_line" => "fs_line",
-            "vs_wire" => "fs_wire",
-            _ => "fs_mesh",
-        };
-        let write_mask = if spec.write_color { wgpu::ColorWrites::ALL } else { wgpu::ColorWrites::empty() };
+        let fragment_shader = spec.fragment_shader;
+        let write_mask = wgpu::ColorWrites::ALL;
         self.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(spec.label),
             layout: Some(spec.layout),
@@ -126,7 +145,7 @@ impl Factory<'_> {
             },
             depth_stencil: Some(wgpu::DepthStencilState {
                 format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
+                depth_write_enabled: Some(spec.depth_write),
                 depth_compare: Some(spec.depth_compare),
                 stencil: Default::default(),
                 bias: Default::default(),
@@ -147,6 +166,39 @@ impl Factory<'_> {
     fn per_cull(&self, spec: Spec) -> [wgpu::RenderPipeline; 3] {
         CULLS.map(|cull_mode| self.build(&Spec { cull_mode, ..spec }))
     }
+}
+
+/// The line list and dot pipelines (with `layout`: view and line style):
+/// lines, lines where hidden, dots, dots where hidden.
+fn lines_and_dots(factory: &Factory, layout: &wgpu::PipelineLayout) -> [wgpu::RenderPipeline; 4] {
+    let line_spec = Spec {
+        label: "lines",
+        layout,
+        vertex_shader: "vs_line",
+        buffers: &[Some(POS_LAYOUT)],
+        topology: wgpu::PrimitiveTopology::LineList,
+        fragment_shader: "fs_line",
+        depth_write: true,
+        depth_compare: wgpu::CompareFunction::LessEqual,
+        cull_mode: None,
+        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+    };
+    let blend = Some(wgpu::BlendState::ALPHA_BLENDING);
+    let always = wgpu::CompareFunction::Always;
+    let hidden =
+        Spec { fragment_shader: "fs_line_hidden", depth_write: false, depth_compare: always, blend, ..line_spec };
+    let dot_spec = Spec {
+        label: "dots",
+        vertex_shader: "vs_dot",
+        buffers: &[Some(POS_INSTANCE_LAYOUT)],
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        fragment_shader: "fs_dot",
+        depth_write: false,
+        blend,
+        ..line_spec
+    };
+    let dots_hidden = Spec { fragment_shader: "fs_dot_hidden", depth_compare: always, ..dot_spec };
+    [&line_spec, &hidden, &dot_spec, &dots_hidden].map(|spec| factory.build(spec))
 }
 
 /// A bind group layout with one uniform buffer at binding 0.
@@ -203,36 +255,47 @@ impl Pipelines {
         let wire_layout = pipeline_layout(device, "wire", &[Some(&view_layout), None, Some(&mesh_data_layout)]);
         let shaded = [Some(POS_LAYOUT), Some(NRM_LAYOUT)];
         let colored = [Some(POS_LAYOUT), Some(NRM_LAYOUT), Some(COLOR_LAYOUT)];
-        let faces = |label, vertex_shader, buffers, write_color| Spec {
+        let faces = |label, vertex_shader, buffers, fragment_shader| Spec {
             label,
             layout: &mesh_layout,
             vertex_shader,
             buffers,
             topology: wgpu::PrimitiveTopology::TriangleList,
-            write_color,
+            fragment_shader,
+            depth_write: true,
             depth_compare: wgpu::CompareFunction::Less,
             cull_mode: None,
             blend: None,
         };
-        let mesh = factory.per_cull(faces("mesh", "vs_mesh", &shaded, true));
-        let mesh_colored = factory.per_cull(faces("mesh colored", "vs_mesh_colored", &colored, true));
+        let mesh = factory.per_cull(faces("mesh", "vs_mesh", &shaded, "fs_mesh"));
+        let mesh_colored = factory.per_cull(faces("mesh colored", "vs_mesh_colored", &colored, "fs_mesh"));
         let wire = factory.per_cull(Spec {
             layout: &wire_layout,
             buffers: &[],
             blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-            ..faces("wire", "vs_wire", &[], true)
+            ..faces("wire", "vs_wire", &[], "fs_wire")
         });
-        let lines = factory.build(&Spec {
-            label: "lines",
-            layout: &line_layout,
-            vertex_shader: "vs_line",
-            buffers: &[Some(POS_LAYOUT)],
-            topology: wgpu::PrimitiveTopology::LineList,
-            write_color: true,
-            depth_compare: wgpu::CompareFunction::LessEqual,
-            cull_mode: None,
+        let [lines, lines_hidden, dots, dots_hidden] = lines_and_dots(&factory, &line_layout);
+        let background = factory.build(&Spec {
+            label: "background",
+            layout: &mesh_layout,
             blend: None,
+            depth_write: false,
+            depth_compare: wgpu::CompareFunction::Always,
+            ..faces("background", "vs_background", &[], "fs_background")
         });
-        Pipelines { mesh, mesh_colored, wire, lines, view_layout, style_layout, mesh_data_layout }
+        Pipelines {
+            mesh,
+            mesh_colored,
+            wire,
+            lines,
+            background,
+            lines_hidden,
+            dots,
+            dots_hidden,
+            view_layout,
+            style_layout,
+            mesh_data_layout,
+        }
     }
 }

@@ -18,8 +18,13 @@ use wgpu::util::DeviceExt;
 
 pub use super::gpu_mesh::{Cull, GpuMesh, cull_for, edge_indices};
 
-/// Background colour (linear RGB) of every view.
+/// Background colour (linear RGB) of the window outside the viewports.
 pub const BACKGROUND: [f64; 3] = [0.045, 0.05, 0.065];
+/// The quiet vertical gradient behind every viewport (linear RGB): its top
+/// and bottom rows (shaders/mesh.wgsl, `fs_background`).
+pub const BACKGROUND_TOP: Vec3 = Vec3::new(0.075, 0.08, 0.1);
+/// See [`BACKGROUND_TOP`].
+pub const BACKGROUND_BOTTOM: Vec3 = Vec3::new(0.025, 0.027, 0.036);
 
 /// Linear colour of front faces (the material).
 pub const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
@@ -27,7 +32,11 @@ pub const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
 const BACK: Vec4 = Vec4::new(0.62, 0.30, 0.16, 1.0);
 const WIRE_DARK: [f32; 4] = [0.015, 0.02, 0.035, 1.0];
 const WIRE_LIGHT: [f32; 4] = [0.80, 0.84, 0.92, 1.0];
-const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 1.0];
+/// The cage: translucent, so the surface reads through a dense one.
+const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 0.75];
+/// Cages with more vertices than this are drawn without dots and without
+/// their hidden part: on a dense cage they would cover the surface.
+pub const CAGE_DETAIL_UP_TO: usize = 500;
 const NORMALS: [f32; 4] = [0.15, 0.85, 0.25, 1.0];
 /// Sharp edges (creases): magenta, apart from the orange cage and green normals.
 const SHARP: [f32; 4] = [0.92, 0.12, 0.62, 1.0];
@@ -51,6 +60,18 @@ pub fn background_srgb8() -> [u8; 3] {
     })
 }
 
+/// The 8-bit sRGB value of the background gradient in row `y` of a
+/// viewport `height` pixels high (what an opaque render shows where nothing
+/// is drawn).
+pub fn background_srgb8_at(y: u32, height: u32) -> [u8; 3] {
+    let t = (y as f32 + 0.5) / height.max(1) as f32;
+    let c = BACKGROUND_TOP.lerp(BACKGROUND_BOTTOM, t);
+    c.to_array().map(|c| {
+        let s = if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+        (s * 255.0).round().clamp(0.0, 255.0) as u8
+    })
+}
+
 /// Per-viewport uniforms (see `View` in shaders/mesh.wgsl).
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
@@ -66,6 +87,7 @@ struct ViewUniform {
     params: [f32; 4],
     line: [f32; 4],
     wire: [f32; 4],
+    viewport: [f32; 4],
 }
 
 const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "uniforms are arrays of vec4");
@@ -73,6 +95,8 @@ const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "un
 /// Multisampled colour and depth attachments of one size.
 pub struct Targets {
     msaa: Option<wgpu::TextureView>,
+    /// Without MSAA: the scene before the FXAA pass, and its bind group.
+    post: Option<(wgpu::TextureView, wgpu::BindGroup)>,
     depth: wgpu::TextureView,
     /// Size in pixels.
     pub size: (u32, u32),
@@ -97,7 +121,23 @@ impl Targets {
                 .create_view(&Default::default())
         };
         let msaa = (renderer.samples > 1).then(|| make(renderer.format, "msaa colour"));
-        Targets { msaa, depth: make(DEPTH_FORMAT, "depth"), size: (size.width, size.height) }
+        let post = (renderer.samples == 1).then(|| {
+            let view = device
+                .create_texture(&wgpu::TextureDescriptor {
+                    label: Some("before fxaa"),
+                    size,
+                    mip_level_count: 1,
+                    sample_count: 1,
+                    dimension: wgpu::TextureDimension::D2,
+                    format: renderer.format,
+                    usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                    view_formats: &[],
+                })
+                .create_view(&Default::default());
+            let group = renderer.fxaa_pass.bind(device, &view);
+            (view, group)
+        });
+        Targets { msaa, post, depth: make(DEPTH_FORMAT, "depth"), size: (size.width, size.height) }
     }
 }
 
@@ -125,6 +165,8 @@ const STYLE_SHARP: usize = 4;
 
 /// Width of wireframe lines in pixels (at [`Renderer::pixel_scale`] 1).
 pub const WIRE_WIDTH: f32 = 1.5;
+/// Radius of the control cage's vertex dots in pixels (at scale 1).
+pub const DOT_RADIUS: f32 = 3.0;
 /// How strongly a wire line darkens the shading under it (0..1).
 pub const WIRE_STRENGTH: f32 = 0.8;
 
@@ -139,6 +181,9 @@ pub struct Renderer {
     pub pixel_scale: f32,
     /// Clear the background to alpha 0 (a screenshot for compositing).
     pub transparent: bool,
+    /// Without MSAA, smooth edges with the FXAA pass (on by default).
+    pub fxaa: bool,
+    fxaa_pass: super::blit::Blit,
     pipelines: Pipelines,
     views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
     styles: [wgpu::BindGroup; 5],
@@ -156,7 +201,18 @@ impl Renderer {
             });
             uniform_group(device, &pipelines.style_layout, &buf)
         });
-        Renderer { format, samples, pixel_scale: 1.0, transparent: false, pipelines, views: Vec::new(), styles }
+        let fxaa_pass = super::blit::Blit::fxaa(device, format);
+        Renderer {
+            format,
+            samples,
+            pixel_scale: 1.0,
+            transparent: false,
+            fxaa: true,
+            fxaa_pass,
+            pipelines,
+            views: Vec::new(),
+            styles,
+        }
     }
 
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
@@ -173,7 +229,11 @@ impl Renderer {
             front_color: FRONT.to_array(),
             back_color: BACK.to_array(),
             params: [
-                f32::from(d.look.surface == Surface::Flat),
+                match d.look.surface {
+                    Surface::Flat => 1.0,
+                    Surface::Studio => 2.0,
+                    _ => 0.0,
+                },
                 f32::from(!self.format.is_srgb()),
                 f32::from(cam.orthographic),
                 HEADLIGHT_INTENSITY,
@@ -185,6 +245,7 @@ impl Renderer {
                 f32::from(d.look.surface == Surface::Hidden),
                 WIRE_STRENGTH,
             ],
+            viewport: [d.rect[2], d.rect[3], DOT_RADIUS * self.pixel_scale, d.rect[1]],
         }
     }
 
@@ -204,7 +265,10 @@ impl Renderer {
         for m in draws.iter().filter(|d| d.look.wireframe).filter_map(|d| d.mesh) {
             m.data_group(device, &self.pipelines.mesh_data_layout);
         }
-        let mut pass = self.begin_pass(encoder, targets, resolve);
+        // without MSAA the scene goes through the FXAA pass on its way to `resolve`
+        let post = targets.post.as_ref().filter(|_| self.fxaa);
+        let scene = post.map_or(resolve, |(view, _)| view);
+        let mut pass = self.begin_pass(encoder, targets, scene);
         let (tw, th) = (targets.size.0 as f32, targets.size.1 as f32);
         for (d, (_, group)) in draws.iter().zip(&self.views) {
             let [x, y, w, h] = d.rect;
@@ -218,6 +282,10 @@ impl Renderer {
             pass.set_scissor_rect(x0 as u32, y0 as u32, (x1 - x0) as u32, (y1 - y0) as u32);
             pass.set_bind_group(0, group, &[]);
             self.draw_viewport(&mut pass, d);
+        }
+        drop(pass);
+        if let Some((_, group)) = post {
+            self.fxaa_pass.draw(encoder, group, resolve);
         }
     }
 
@@ -276,6 +344,10 @@ impl Renderer {
 
     /// Everything one viewport shows, in drawing order.
     fn draw_viewport(&self, pass: &mut wgpu::RenderPass, d: &ViewportDraw) {
+        if !self.transparent {
+            pass.set_pipeline(&self.pipelines.background);
+            pass.draw(0..3, 0..1);
+        }
         if let Some(m) = d.mesh {
             let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
             if let Some(group) = wire_group {
@@ -300,7 +372,7 @@ impl Renderer {
         if let (true, Some(c)) = (d.look.control, d.control)
             && c.edge_indices > 0
         {
-            self.draw_edges(pass, c, STYLE_CONTROL);
+            self.draw_cage(pass, c);
             if let (true, Some(sharp)) = (d.look.sharp, &c.sharp) {
                 self.draw_indexed_lines(pass, c, sharp, STYLE_SHARP);
             }
@@ -315,7 +387,7 @@ impl Renderer {
     /// The shaded faces (material or per-vertex colour); nothing when the
     /// surface is hidden.
     fn draw_faces(&self, pass: &mut wgpu::RenderPass, m: &GpuMesh, look: Look) {
-        let shaded = matches!(look.surface, Surface::Smooth | Surface::Flat);
+        let shaded = look.surface != Surface::Hidden;
         if m.triangle_indices == 0 || !shaded {
             return;
         }
@@ -330,6 +402,28 @@ impl Renderer {
             pass.set_pipeline(&self.pipelines.mesh[cull]);
         }
         pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+    }
+
+    /// The control cage: its edges and vertices (dots), faint where the
+    /// surface hides them, full where they show.
+    fn draw_cage(&self, pass: &mut wgpu::RenderPass, c: &GpuMesh) {
+        let p = &self.pipelines;
+        pass.set_bind_group(1, &self.styles[STYLE_CONTROL], &[]);
+        pass.set_vertex_buffer(0, c.positions.slice(..));
+        pass.set_index_buffer(c.edges.slice(..), wgpu::IndexFormat::Uint32);
+        let detail = c.vertex_count <= CAGE_DETAIL_UP_TO;
+        if detail {
+            pass.set_pipeline(&p.lines_hidden);
+            pass.draw_indexed(0..c.edge_indices, 0, 0..1);
+        }
+        pass.set_pipeline(&p.lines);
+        pass.draw_indexed(0..c.edge_indices, 0, 0..1);
+        if detail {
+            for dots in [&p.dots_hidden, &p.dots] {
+                pass.set_pipeline(dots);
+                pass.draw(0..6, 0..c.vertex_count as u32);
+            }
+        }
     }
 
     /// A mesh's edge list as lines of one style.

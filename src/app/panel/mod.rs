@@ -173,6 +173,7 @@ fn display_section(ui: &mut egui::Ui, doc: &Doc, view: &View, display: &mut Disp
         ui.label("Shading");
         ui.selectable_value(&mut display.surface, Surface::Smooth, "Phong");
         ui.selectable_value(&mut display.surface, Surface::Flat, "Flat");
+        ui.selectable_value(&mut display.surface, Surface::Studio, "Studio");
         ui.selectable_value(&mut display.surface, Surface::Hidden, "None");
     });
     ui.horizontal_wrapped(|ui| {
