@@ -24,8 +24,13 @@ struct View {
     params: vec4<f32>,
     // x: line pull towards the camera (fraction of view depth, perspective),
     // y: the same in world units (orthographic), z: 1 = the colour attribute
-    // holds texture coordinates (checker texture)
+    // holds texture coordinates (checker texture), w: 1 = the wireframe pipeline
+    // takes per-vertex colours (or texture coordinates) from `mesh_colors`
     line: vec4<f32>,
+    // the wireframe: x = line width in pixels, y = highest edge generation
+    // drawn, z: 1 = wire only (the faces are not shaded), w = strength of
+    // the darkening over shaded faces
+    wire: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> u: View;
@@ -81,33 +86,34 @@ fn light(n: vec3<f32>, v: vec3<f32>, l: vec3<f32>, intensity: f32, base: vec3<f3
     return intensity * (0.75 * d * base + vec3<f32>(0.35 * s));
 }
 
-@fragment
-fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+// The lit colour (linear RGB) of a fragment at `world` with the interpolated
+// `normal` and base colour `color` (or texture coordinates, for the checker).
+fn shade(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, front: bool) -> vec3<f32> {
     var v: vec3<f32>;
     if u.params.z > 0.5 {
         v = -normalize(u.forward.xyz);
     } else {
-        v = normalize(u.eye.xyz - i.world);
+        v = normalize(u.eye.xyz - world);
     }
     var n: vec3<f32>;
     if u.params.x > 0.5 {
-        n = cross(dpdx(i.world), dpdy(i.world));
+        n = cross(dpdx(world), dpdy(world));
         let len = length(n);
         n = select(v, n / len, len > 1e-20);
         if dot(n, v) < 0.0 {
             n = -n;
         }
     } else {
-        let len = length(i.normal);
-        n = select(v, i.normal / len, len > 1e-20);
+        let len = length(normal);
+        n = select(v, normal / len, len > 1e-20);
         if !front {
             n = -n;
         }
     }
-    var front_base = i.color;
+    var front_base = color;
     if u.line.z > 0.5 {
         // Checker texture from the interpolated texture coordinates (8 x 8 squares per unit).
-        let cell = floor(i.color.xy * 8.0);
+        let cell = floor(color.xy * 8.0);
         let odd = (i32(cell.x) + i32(cell.y)) & 1;
         front_base = select(vec3<f32>(0.85, 0.85, 0.8), vec3<f32>(0.08, 0.12, 0.35), odd == 1);
     }
@@ -119,10 +125,13 @@ fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<
     c += light(n, v, v, u.params.w, base);
     c += light(n, v, normalize(u.key_light.xyz), u.key_light.w, base);
     c += light(n, v, normalize(u.fill_light.xyz), u.fill_light.w, base);
-    return finish(c);
+    return c;
 }
 
-// A depth-only pass uses vs_mesh with no colour writes (hidden-line wireframe).
+@fragment
+fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return finish(shade(i.world, i.normal, i.color, front));
+}
 
 @vertex
 fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
@@ -140,4 +149,153 @@ fn vs_line(@location(0) pos: vec3<f32>) -> @builtin(position) vec4<f32> {
 @fragment
 fn fs_line() -> @location(0) vec4<f32> {
     return finish(style.color.rgb);
+}
+
+// ---- The single-pass wireframe --------------------------------------------
+//
+// Drawn without an index buffer: vertex `i` of the draw is corner `i` of the
+// corner table, whose vertex, position, normal and edge generation are read
+// from storage buffers. Each corner carries the barycentric coordinate that
+// is 1 at itself and 0 on the edge opposite it, so in the fragment shader
+// b_k / fwidth(b_k) is the distance in pixels to the edge opposite corner k:
+// the line is drawn where it is below half the width, with a smoothstep over
+// about a pixel (anti-aliasing, no MSAA needed). The faces themselves hide the
+// lines behind them (the depth test of the same pass), and no line is drawn
+// twice or needs a depth offset.
+//
+// Edges are filtered by generation (the level at which they were made: 0 on
+// the control mesh's edges): an edge is drawn when its generation is at most
+// wire.y. Density: where the shown lines would be closer than a few pixels
+// they fade out (the spacing of an edge of generation g in a level-L mesh is
+// the triangle's altitude, 1 / fwidth(b), times 2^(L - g)): a fine mesh keeps
+// its shading and shows its coarser generations, down to the control edges.
+// A line is drawn by the two triangles along it only, so where it passes a
+// vertex the triangles that only touch that vertex would cut it; each
+// vertex on a shown edge is drawn as a disk too (its distance from the
+// fragment solved from the barycentric gradients), which closes the gaps.
+// Over shaded faces a line darkens the colour (lightens it on dark faces)
+// instead of painting it over.
+
+@group(2) @binding(0) var<storage, read> mesh_positions: array<f32>;
+@group(2) @binding(1) var<storage, read> mesh_normals: array<f32>;
+@group(2) @binding(2) var<storage, read> mesh_corners: array<u32>;
+// per corner c, in half-word c % 2 of word c / 2: the generation of the edge
+// opposite c (low byte) and the lowest generation of the edges at v(c)
+@group(2) @binding(3) var<storage, read> mesh_generations: array<u32>;
+@group(2) @binding(4) var<storage, read> mesh_colors: array<f32>;
+
+struct WireOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec3<f32>,
+    @location(3) bary: vec3<f32>,
+    // per edge (opposite corner k): 0 = not drawn, else the spacing of the
+    // edges of its generation in altitudes of this triangle, 2^(level - g)
+    @location(4) @interpolate(flat) spacing: vec3<f32>,
+    // per vertex k: the same for its disk (the lowest generation at it)
+    @location(5) @interpolate(flat) vertex_spacing: vec3<f32>,
+};
+
+// (edge generation, vertex generation) of corner c
+fn generation(c: u32) -> vec2<u32> {
+    let h = mesh_generations[c / 2u] >> (16u * (c % 2u));
+    return vec2<u32>(h & 255u, (h >> 8u) & 255u);
+}
+
+fn fetch3(which: u32, i: u32) -> vec3<f32> {
+    if which == 0u {
+        return vec3<f32>(mesh_positions[3u * i], mesh_positions[3u * i + 1u], mesh_positions[3u * i + 2u]);
+    }
+    if which == 1u {
+        return vec3<f32>(mesh_normals[3u * i], mesh_normals[3u * i + 1u], mesh_normals[3u * i + 2u]);
+    }
+    return vec3<f32>(mesh_colors[3u * i], mesh_colors[3u * i + 1u], mesh_colors[3u * i + 2u]);
+}
+
+@vertex
+fn vs_wire(@builtin(vertex_index) c: u32) -> WireOut {
+    let v = mesh_corners[c];
+    var color = u.front_color.rgb;
+    if u.line.w > 0.5 {
+        color = fetch3(2u, v);
+    }
+    let m = mesh_vertex(fetch3(0u, v), fetch3(1u, v), color);
+    var o: WireOut;
+    o.clip = m.clip;
+    o.world = m.world;
+    o.normal = m.normal;
+    o.color = m.color;
+    let k = c % 3u;
+    o.bary = vec3<f32>(f32(k == 0u), f32(k == 1u), f32(k == 2u));
+    let t = c - k;
+    let g0 = generation(t);
+    let g1 = generation(t + 1u);
+    let g2 = generation(t + 2u);
+    let g = vec3<u32>(g0.x, g1.x, g2.x);
+    let gv = vec3<u32>(g0.y, g1.y, g2.y);
+    // every triangle of a split level has an edge of that level (its inner one)
+    let level = vec3<f32>(f32(max(g.x, max(g.y, g.z))));
+    let most = vec3<u32>(u32(u.wire.y));
+    o.spacing = select(vec3<f32>(0.0), exp2(level - vec3<f32>(g)), g <= most);
+    o.vertex_spacing = select(vec3<f32>(0.0), exp2(level - vec3<f32>(gv)), gv <= most);
+    return o;
+}
+
+// Coverage of the wire at this fragment (0..1): per shown edge, the line
+// faded by the spacing of the edges of its generation, so where the finest
+// edges would crowd, the coarser generations (down to the control edges)
+// remain.
+fn wire_coverage(bary: vec3<f32>, spacing: vec3<f32>, vertex_spacing: vec3<f32>) -> f32 {
+    let gx = dpdx(bary);
+    let gy = dpdy(bary);
+    let fw = max(abs(gx) + abs(gy), vec3<f32>(1e-6));
+    // the triangle's size in pixels, sqrt(2 area): the Jacobian of two
+    // barycentrics over the screen is 1 / (2 area); steadier from one
+    // triangle to the next than the smallest altitude, so a line does not
+    // flicker along its length
+    let jac = gx.x * gy.y - gy.x * gx.y;
+    let size = inverseSqrt(max(abs(jac), 1e-12));
+    // distances in pixels: to the edge opposite each corner, and to each
+    // corner (the screen offset d from corner k solves grad(b_i) . d = b_i
+    // for the other two, whose barycentrics are 0 at k)
+    let to_edge = bary / fw;
+    let inv = 1.0 / select(jac, 1e-12, abs(jac) < 1e-12);
+    // from corner 2: grad b0 . d = b0, grad b1 . d = b1
+    let d2 = vec2<f32>(bary.x * gy.y - gy.x * bary.y, gx.x * bary.y - bary.x * gx.y) * inv;
+    // the offsets from corners 0 and 1 differ by the edge vectors, which
+    // are the offsets of those corners from corner 2: e = d2 at b = (1,0,0)
+    let e0 = vec2<f32>(gy.y, -gx.y) * inv;
+    let e1 = vec2<f32>(-gy.x, gx.x) * inv;
+    let to_vertex = vec3<f32>(length(d2 - e0), length(d2 - e1), length(d2));
+    let half = 0.5 * u.wire.x;
+    let ramp0 = vec3<f32>(half - 0.5);
+    let ramp1 = vec3<f32>(half + 0.75);
+    let line = vec3<f32>(1.0) - smoothstep(ramp0, ramp1, to_edge);
+    let disk = vec3<f32>(1.0) - smoothstep(ramp0, ramp1, to_vertex);
+    // (wire only keeps a trace of the densest lines, or nothing would show)
+    let least = vec3<f32>(select(0.0, 0.25, u.wire.z > 0.5));
+    let near = vec3<f32>(2.5 * u.wire.x);
+    let far = vec3<f32>(9.0 * u.wire.x);
+    let fade = max(smoothstep(near, far, spacing * size), least);
+    let vfade = max(smoothstep(near, far, vertex_spacing * size), least);
+    let a = select(vec3<f32>(0.0), line * fade, spacing > vec3<f32>(0.0));
+    let v = select(vec3<f32>(0.0), disk * vfade, vertex_spacing > vec3<f32>(0.0));
+    return max(max(a.x, max(a.y, a.z)), max(v.x, max(v.y, v.z)));
+}
+
+@fragment
+fn fs_wire(i: WireOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    let a = wire_coverage(i.bary, i.spacing, i.vertex_spacing);
+    if u.wire.z > 0.5 {
+        // wire only: light lines over the background (blended), the face
+        // still writes depth and so hides the lines behind it
+        let ink = select(vec3<f32>(0.55, 0.5, 0.45), vec3<f32>(0.80, 0.84, 0.92), front);
+        return vec4<f32>(finish(ink).rgb, a);
+    }
+    let c = clamp(shade(i.world, i.normal, i.color, front), vec3<f32>(0.0), vec3<f32>(1.0));
+    let lum = dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
+    // darken lit faces, lighten faces in shadow
+    let ink = select(c * 0.2, mix(c, vec3<f32>(0.75, 0.8, 0.9), 0.55), lum < 0.06);
+    return finish(mix(c, ink, a * u.wire.w));
 }

@@ -121,13 +121,13 @@ pub fn load_repaired(arg: &Path) -> Result<(Mesh, crate::mesh::RepairReport)> {
     io::from_bytes_repaired(&read(arg)?, &arg.display().to_string())
 }
 
-/// Loads an OBJ model argument with its attributes (see
-/// [`io::obj::from_bytes_with_attributes`]).
+/// Loads a model argument with its attributes (see
+/// [`io::from_bytes_with_attributes`]).
 ///
 /// # Errors
 /// As [`read`] and the OBJ reader.
 pub fn load_with_attributes(arg: &Path) -> Result<(Mesh, crate::mesh::attributes::Attributes)> {
-    io::obj::from_bytes_with_attributes(&read(arg)?, &arg.display().to_string())
+    io::from_bytes_with_attributes(&read(arg)?, &arg.display().to_string())
 }
 
 /// Analyzes the mesh a model argument names (see [`io::analyze_bytes`]).

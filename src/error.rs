@@ -102,6 +102,17 @@ pub enum Error {
     /// A file could not be parsed.
     #[error("{file}:{line}: {msg}")]
     Parse { file: String, line: usize, msg: String },
+    /// A binary or structured file (PLY, STL, glTF, COLLADA) is malformed:
+    /// `element` names where ("vertex 12", "header", "accessor 3").
+    #[error("{file}: {element}: {msg}")]
+    Format {
+        /// The file.
+        file: String,
+        /// The element of the file that is wrong.
+        element: String,
+        /// What is wrong with it.
+        msg: String,
+    },
     /// The mesh in a file is not a valid manifold triangle mesh.
     #[error("{file}{}: {source}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Mesh {

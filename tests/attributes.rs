@@ -107,6 +107,7 @@ fn bad_texture_and_colour_records_name_the_line() {
 }
 
 #[test]
+#[cfg(feature = "cli")]
 fn subdivide_command_carries_attributes_into_obj() {
     let dir = scratch_dir("attrs");
     let input = dir.join("quad.obj");

@@ -3,7 +3,6 @@
 //! lists and opens every one of them from memory.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use subdiv::bundled::MODELS;
 
 fn checkout() -> &'static Path {
@@ -51,98 +50,107 @@ fn nothing_in_src_finds_files_through_the_build_machine() {
     }
 }
 
-/// The built binary copied into a fresh directory, run from there.
-struct Installed {
-    dir: PathBuf,
-    exe: PathBuf,
-}
+/// The installed binary (needs the `cli` feature).
+#[cfg(feature = "cli")]
+mod installed {
+    use super::*;
+    use std::process::{Command, Output};
+    /// The built binary copied into a fresh directory, run from there.
+    struct Installed {
+        dir: PathBuf,
+        exe: PathBuf,
+    }
 
-impl Installed {
-    fn new() -> Installed {
-        let dir = std::env::temp_dir().join(format!("subdiv-installed-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        let exe = dir.join("subdiv");
-        std::fs::copy(env!("CARGO_BIN_EXE_subdiv"), &exe).unwrap();
-        Installed { dir, exe }
+    impl Installed {
+        fn new() -> Installed {
+            let dir = std::env::temp_dir().join(format!("subdiv-installed-{}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&dir);
+            std::fs::create_dir_all(&dir).unwrap();
+            let exe = dir.join("subdiv");
+            std::fs::copy(env!("CARGO_BIN_EXE_subdiv"), &exe).unwrap();
+            Installed { dir, exe }
+        }
+        fn run(&self, args: &[&str]) -> Output {
+            Command::new(&self.exe).args(args).current_dir(&self.dir).env_remove("CARGO_MANIFEST_DIR").output().unwrap()
+        }
+        fn ok(&self, args: &[&str]) -> String {
+            let o = self.run(args);
+            assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+            String::from_utf8(o.stdout).unwrap()
+        }
     }
-    fn run(&self, args: &[&str]) -> Output {
-        Command::new(&self.exe).args(args).current_dir(&self.dir).env_remove("CARGO_MANIFEST_DIR").output().unwrap()
-    }
-    fn ok(&self, args: &[&str]) -> String {
-        let o = self.run(args);
-        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
-        String::from_utf8(o.stdout).unwrap()
-    }
-}
 
-impl Drop for Installed {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.dir);
+    impl Drop for Installed {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.dir);
+        }
     }
-}
 
-/// The number after `key` on the line starting with `key` in `info` output.
-fn field(info: &str, key: &str) -> usize {
-    let line = info.lines().find(|l| l.starts_with(key)).unwrap_or_else(|| panic!("no '{key}' in\n{info}"));
-    line[key.len()..].split_whitespace().next().unwrap().parse().unwrap()
-}
+    /// The number after `key` on the line starting with `key` in `info` output.
+    fn field(info: &str, key: &str) -> usize {
+        let line = info.lines().find(|l| l.starts_with(key)).unwrap_or_else(|| panic!("no '{key}' in\n{info}"));
+        line[key.len()..].split_whitespace().next().unwrap().parse().unwrap()
+    }
 
-#[test]
-fn an_installed_binary_lists_and_opens_every_bundled_model() {
-    let bin = Installed::new();
-    assert!(!bin.dir.join("models").exists());
-    // `subdiv models`: one line per model, `bundled:NAME  description`
-    let listing = bin.ok(&["models"]);
-    let listed: Vec<(&str, &str)> =
-        listing.lines().map(|l| l.split_once("  ").map(|(n, w)| (n, w.trim())).expect("NAME  description")).collect();
-    let expected: Vec<(String, &str)> = MODELS.iter().map(|m| (m.cli_name(), m.what)).collect();
-    assert_eq!(listed.len(), expected.len(), "{listing}");
-    for ((name, what), (want_name, want_what)) in listed.iter().zip(&expected) {
-        assert_eq!((*name, *what), (want_name.as_str(), *want_what));
+    #[test]
+    fn an_installed_binary_lists_and_opens_every_bundled_model() {
+        let bin = Installed::new();
+        assert!(!bin.dir.join("models").exists());
+        // `subdiv models`: one line per model, `bundled:NAME  description`
+        let listing = bin.ok(&["models"]);
+        let listed: Vec<(&str, &str)> = listing
+            .lines()
+            .map(|l| l.split_once("  ").map(|(n, w)| (n, w.trim())).expect("NAME  description"))
+            .collect();
+        let expected: Vec<(String, &str)> = MODELS.iter().map(|m| (m.cli_name(), m.what)).collect();
+        assert_eq!(listed.len(), expected.len(), "{listing}");
+        for ((name, what), (want_name, want_what)) in listed.iter().zip(&expected) {
+            assert_eq!((*name, *what), (want_name.as_str(), *want_what));
+        }
+        for m in MODELS {
+            let name = m.cli_name();
+            if m.is_curve() {
+                let info = bin.ok(&["info", &name]);
+                let points = m.bytes.split(|b| b.is_ascii_whitespace()).find(|t| !t.is_empty()).unwrap();
+                let n: usize = std::str::from_utf8(points).unwrap().parse().unwrap();
+                assert!(info.contains("Bezier curve"), "{info}");
+                assert_eq!(field(&info, "control points:"), n, "{info}");
+                assert!(info.contains(&format!("(degree {})", n - 1)), "{info}");
+                // where a mesh is needed it is refused by name, not misread as OBJ
+                let o = bin.run(&["subdivide", &name, "out.obj"]);
+                let err = String::from_utf8_lossy(&o.stderr);
+                assert!(!o.status.success() && err.contains(&name) && err.contains("not a mesh"), "{err}");
+                continue;
+            }
+            let needs_repair = m.what.contains("needs repair");
+            let args: Vec<&str> = if needs_repair { vec!["info", "--repair", &name] } else { vec!["info", &name] };
+            let info = bin.ok(&args);
+            assert!(info.starts_with(&format!("file:            {name}\n")), "{info}");
+            let faces = field(&info, "faces:");
+            assert!(faces > 0 && field(&info, "vertices:") > 0, "{info}");
+            if !needs_repair {
+                assert!(info.contains("manifold:        yes"), "{name}: {info}");
+            }
+            // a description that gives the triangle count tells the truth
+            if let Some(k) = m.what.split(" triangles").next().and_then(|s| s.rsplit(' ').next()?.parse::<usize>().ok())
+            {
+                assert_eq!(faces, k, "{name}: described as {k} triangles");
+            }
+            // and it subdivides from memory, the output written where we run
+            let out = format!("{}-1.obj", m.file_name.replace('.', "_"));
+            let mut args = vec!["subdivide", &name, &out, "-n", "1"];
+            if needs_repair {
+                args.push("--repair");
+            }
+            bin.ok(&args);
+            let fine = subdiv::io::load(&bin.dir.join(&out)).unwrap();
+            assert_eq!(fine.ct.num_triangles(), 4 * faces, "{name}");
+        }
+        let o = bin.run(&["info", "bundled:no-such.obj"]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains("no bundled model 'no-such.obj'") && err.contains("subdiv models"),
+            "{err}"
+        );
     }
-    for m in MODELS {
-        let name = m.cli_name();
-        if m.is_curve() {
-            let info = bin.ok(&["info", &name]);
-            let points = m.bytes.split(|b| b.is_ascii_whitespace()).find(|t| !t.is_empty()).unwrap();
-            let n: usize = std::str::from_utf8(points).unwrap().parse().unwrap();
-            assert!(info.contains("Bezier curve"), "{info}");
-            assert_eq!(field(&info, "control points:"), n, "{info}");
-            assert!(info.contains(&format!("(degree {})", n - 1)), "{info}");
-            // where a mesh is needed it is refused by name, not misread as OBJ
-            let o = bin.run(&["subdivide", &name, "out.obj"]);
-            let err = String::from_utf8_lossy(&o.stderr);
-            assert!(!o.status.success() && err.contains(&name) && err.contains("not a mesh"), "{err}");
-            continue;
-        }
-        let needs_repair = m.what.contains("needs repair");
-        let args: Vec<&str> = if needs_repair { vec!["info", "--repair", &name] } else { vec!["info", &name] };
-        let info = bin.ok(&args);
-        assert!(info.starts_with(&format!("file:            {name}\n")), "{info}");
-        let faces = field(&info, "faces:");
-        assert!(faces > 0 && field(&info, "vertices:") > 0, "{info}");
-        if !needs_repair {
-            assert!(info.contains("manifold:        yes"), "{name}: {info}");
-        }
-        // a description that gives the triangle count tells the truth
-        if let Some(k) = m.what.split(" triangles").next().and_then(|s| s.rsplit(' ').next()?.parse::<usize>().ok()) {
-            assert_eq!(faces, k, "{name}: described as {k} triangles");
-        }
-        // and it subdivides from memory, the output written where we run
-        let out = format!("{}-1.obj", m.file_name.replace('.', "_"));
-        let mut args = vec!["subdivide", &name, &out, "-n", "1"];
-        if needs_repair {
-            args.push("--repair");
-        }
-        bin.ok(&args);
-        let fine = subdiv::io::load(&bin.dir.join(&out)).unwrap();
-        assert_eq!(fine.ct.num_triangles(), 4 * faces, "{name}");
-    }
-    let o = bin.run(&["info", "bundled:no-such.obj"]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        !o.status.success() && err.contains("no bundled model 'no-such.obj'") && err.contains("subdiv models"),
-        "{err}"
-    );
 }

@@ -1,5 +1,6 @@
 //! The command line: outputs, --stats, and bad input giving one clear message,
 //! a non-zero exit, no panic and no half-written file.
+#![cfg(feature = "cli")]
 
 mod common;
 use common::*;
@@ -247,4 +248,95 @@ fn animate_stats_times_every_frame_without_writing() {
     assert_eq!((field("frames=") as u32, field("triangles=") as u32, field("evaluations=") as u32), (16, 256, 32));
     // without --stats an output is still required
     assert!(!bin().args(["animate", "--level", "1"]).output().unwrap().status.success());
+}
+
+#[test]
+fn every_mesh_command_takes_repair_and_levels_has_its_aliases() {
+    let fin = write("opt-fin.obj", FIN_OBJ);
+    let f = fin.to_str().unwrap();
+    for cmd in ["subdivide", "smooth", "limit"] {
+        let out = tmp(&format!("opt-{cmd}.obj"));
+        let o = out.to_str().unwrap();
+        let err = run_fail(&[cmd, f, o]);
+        assert!(err.contains("non-manifold edge"), "{cmd} without --repair: {err}");
+        let r = bin().args([cmd, f, o, "--repair"]).output().unwrap();
+        assert!(r.status.success(), "{cmd} --repair: {}", String::from_utf8_lossy(&r.stderr));
+        assert!(String::from_utf8_lossy(&r.stderr).contains("repair:"), "{cmd}: the report on stderr");
+        assert!(subdiv::io::load(&out).is_ok());
+    }
+    // --levels, --level, -n and -l are one option
+    let faces = |args: &[&str]| -> u64 {
+        let out = tmp("opt-levels.obj");
+        let mut all = vec!["subdivide", "bundled:cube.obj", out.to_str().unwrap(), "--json"];
+        all.extend_from_slice(args);
+        let o = bin().args(&all).output().unwrap();
+        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        v["faces"].as_u64().unwrap()
+    };
+    assert_eq!(faces(&[]), 12 * 4, "subdivide's default is one level");
+    for args in [["--levels", "2"], ["--level", "2"], ["-n", "2"], ["-l", "2"]] {
+        assert_eq!(faces(&args), 12 * 16, "{args:?}");
+    }
+}
+
+#[test]
+fn json_output_is_valid_for_any_file_name() {
+    // a quote, a backslash, a control character and a newline in the name
+    let name = "we\"ird\\\u{1}\n.obj";
+    let input = tmp(name);
+    std::fs::copy(model_path("cube.obj"), &input).unwrap();
+    let o = bin().args(["info", "--json", input.to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("info --json is JSON");
+    assert_eq!(v["file"].as_str().unwrap(), input.to_str().unwrap());
+    let cube = subdiv::io::load(&model_path("cube.obj")).unwrap();
+    let hist = subdiv::mesh::topology::topology(&cube.ct).valence_histogram;
+    assert_eq!(v["faces"].as_u64(), Some(12));
+    for (k, &n) in hist.iter().enumerate().filter(|(_, n)| **n > 0) {
+        assert_eq!(v["valence"][k.to_string()].as_u64(), Some(n as u64), "valence {k}");
+    }
+    let out = tmp("json-out\u{7}.ply");
+    let o = bin().args(["subdivide", "--json", input.to_str().unwrap(), out.to_str().unwrap()]).output().unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("subdivide --json is JSON");
+    assert_eq!(v["output"].as_str().unwrap(), out.to_str().unwrap());
+    assert_eq!(v["faces"].as_u64(), Some(48));
+    let o = bin().args(["info", "--json", "bundled:curve.bzc"]).output().unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("curve info --json is JSON");
+    assert_eq!(v["kind"], "bezier_curve");
+}
+
+#[test]
+fn completions_for_each_shell_name_the_commands_and_options() {
+    for shell in ["bash", "zsh", "fish"] {
+        let o = bin().args(["completions", shell]).output().unwrap();
+        assert!(o.status.success(), "{shell}: {}", String::from_utf8_lossy(&o.stderr));
+        let s = String::from_utf8_lossy(&o.stdout);
+        for word in ["subdivide", "render", "completions", "levels", "crease-angle", "repair"] {
+            assert!(s.contains(word), "{shell} completion lacks {word}");
+        }
+    }
+    let o = bin().args(["completions", "tcsh"]).output().unwrap();
+    assert!(!o.status.success());
+}
+
+#[test]
+fn quiet_and_verbose_set_what_stderr_shows() {
+    let fin = write("q-fin.obj", FIN_OBJ);
+    let out = tmp("q-out.obj");
+    let args = ["subdivide", "--repair", fin.to_str().unwrap(), out.to_str().unwrap()];
+    let stderr = |pre: &[&str]| {
+        let o = bin().args(pre).args(args).env_remove("RUST_LOG").output().unwrap();
+        assert!(o.status.success());
+        String::from_utf8_lossy(&o.stderr).to_string()
+    };
+    let normal = stderr(&[]);
+    assert!(normal.contains("repair:") && !normal.contains("subdiv: info:"), "{normal}");
+    let quiet = stderr(&["-q"]);
+    assert!(quiet.is_empty(), "-q: {quiet}");
+    let verbose = stderr(&["-v"]);
+    assert!(verbose.contains("subdiv: info: [subdiv::cli::args] read ") && verbose.contains("9 vertices"), "{verbose}");
+    // errors are printed whatever the level
+    let o = bin().args(["-q", "subdivide", "/nonexistent.obj", out.to_str().unwrap()]).output().unwrap();
+    assert!(String::from_utf8_lossy(&o.stderr).contains("No such file"));
 }

@@ -1,7 +1,7 @@
 //! `subdiv render` and `subdiv animate`: files written whole, right sizes and
 //! frame counts; refusals leave existing files alone. Skips only without a GPU
 //! adapter when SUBDIV_REQUIRE_GPU is unset.
-#![cfg(feature = "viewer")]
+#![cfg(all(feature = "viewer", feature = "cli"))]
 
 mod common;
 use common::{model_path, scratch_dir};
@@ -135,4 +135,57 @@ fn refused_animations_leave_existing_files_alone() {
         assert!(err.contains("error"), "{err}");
         assert_eq!(std::fs::read(&gif).unwrap(), b"previous");
     }
+}
+
+#[test]
+fn render_takes_repair_levels_alias_and_color() {
+    let fin = tmp("fin.obj");
+    std::fs::write(&fin, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n").unwrap();
+    let out = tmp("fin.png");
+    let (f, o) = (fin.to_str().unwrap(), out.to_str().unwrap());
+    let Some(r) = run(&["render", f, o, "--size", "32x32"]) else { return };
+    assert!(!r.status.success(), "a non-manifold model is refused without --repair");
+    let Some(r) = run(&["render", f, o, "--size", "32x32", "--repair", "--level", "1"]) else { return };
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    // --color shells paints the level-2 vertices in the colour ramp: the picture changes
+    let img = |color: &str| {
+        let out = tmp(&format!("torus-{color}.png"));
+        let tor = model_path("torus.obj");
+        let r = run(&[
+            "render",
+            tor.to_str().unwrap(),
+            out.to_str().unwrap(),
+            "-l",
+            "2",
+            "--size",
+            "96x64",
+            "--color",
+            color,
+        ])
+        .unwrap();
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        image::open(&out).unwrap().to_rgba8()
+    };
+    let (plain, shells) = (img("none"), img("shells"));
+    let differ = plain.pixels().zip(shells.pixels()).filter(|(a, b)| a != b).count();
+    assert!(differ > 500, "only {differ} pixels changed");
+    let Some(r) = run(&["render", model_path("torus.obj").to_str().unwrap(), o, "--color", "file"]) else { return };
+    let e = String::from_utf8_lossy(&r.stderr);
+    assert!(!r.status.success() && e.contains("no colors"), "{e}");
+}
+
+#[test]
+fn render_takes_a_wire_level_a_scale_and_a_transparent_background() {
+    let out = tmp("torus-shot.png");
+    let tor = model_path("torus.obj");
+    let args = ["render", tor.to_str().unwrap(), out.to_str().unwrap(), "-n", "2", "--shading", "phong+wire"];
+    let extra = ["--wire-level", "control", "--transparent", "--scale", "2", "--size", "100x80"];
+    let Some(o) = run(&[&args[..], &extra[..]].concat()) else { return };
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&out).unwrap().to_rgba8();
+    assert_eq!(img.dimensions(), (200, 160));
+    assert_eq!(img.get_pixel(0, 0).0[3], 0);
+    let bad = run(&[&args[..], &["--wire-level", "fine"][..]].concat()).unwrap();
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown wire level 'fine'"));
 }

@@ -131,6 +131,7 @@ fn parsers_never_panic_on_mutated_input() {
     let paths_seed =
         std::fs::read(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
     seeds.push(paths_seed);
+    seeds.extend(format_seeds());
     let mut rng = Rng(12345);
     let mut rnd = |n: usize| ((rng.next_f32() + 1.0) * 0.5 * n as f32) as usize % n.max(1);
     let tokens: [&[u8]; 10] = [b"-1", b"0", b"nan", b"1e39", b"\n", b" ", b"f", b"v", b"99999999999", b"/"];
@@ -168,7 +169,50 @@ fn parsers_never_panic_on_mutated_input() {
             let _ = subdiv::io::ct::parse(s, "fuzz.ct");
             let _ = subdiv::anim::paths::Paths::parse(s, "fuzz.paths");
         }
+        // every other reader, by extension and by content sniffing
+        for name in ["fuzz.ply", "fuzz.stl", "fuzz.off", "fuzz.glb", "fuzz.gltf", "fuzz.dae", "fuzz"] {
+            if let Ok((m, _)) = subdiv::io::from_bytes_with_attributes(&data, name) {
+                assert!(subdiv::mesh::topology::check_invariants(&m.ct).is_ok(), "{name}");
+            }
+            if let Ok((m, _)) = subdiv::io::from_bytes_repaired(&data, name) {
+                let (fine, _) = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default()).unwrap();
+                assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok(), "{name}");
+            }
+        }
     }
+}
+
+/// Seeds in every mesh format: the bundled models written by each writer,
+/// an ASCII PLY, an ASCII STL, a `.gltf` with an embedded buffer and a
+/// COLLADA file.
+fn format_seeds() -> Vec<Vec<u8>> {
+    let dir = scratch_dir("io-fuzz-seeds");
+    let mut seeds = Vec::new();
+    for name in ["tetrahedron.obj", "cube_uv.obj"] {
+        let (mesh, mut attrs) = obj::load_with_attributes(&model_path(name)).unwrap();
+        attrs.colors = Some(mesh.positions.iter().map(|p| p.abs().min(glam::Vec3::ONE)).collect());
+        for ext in ["ply", "stl", "off", "glb"] {
+            let path = dir.join(format!("{name}.{ext}"));
+            subdiv::io::save_with(&path, &mesh, &attrs).unwrap();
+            seeds.push(std::fs::read(&path).unwrap());
+        }
+    }
+    seeds.push(
+        b"ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n1 1 1 255 0 0\n1 -1 -1 0 255 0\n-1 1 -1 0 0 255\n-1 -1 1 9 9 9\n3 0 1 2\n3 0 2 3\n3 0 3 1\n3 1 3 2\n"
+            .to_vec(),
+    );
+    seeds.push(b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n".to_vec());
+    // one triangle: three positions and u16 indices 0 1 2, base64
+    seeds.push(br#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"translation":[1,2,3]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],"buffers":[{"byteLength":42,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIA"}],"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]}"#.to_vec());
+    seeds.push(br##"<?xml version="1.0"?><COLLADA><library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count="15">0 0 0 1 0 0 1 1 0 0 1 0 2 0.5 0</float_array><technique_common><accessor source="#pa" count="5" stride="3"/></technique_common></source><vertices id="v"><input semantic="POSITION" source="#p"/></vertices><polylist count="1"><input semantic="VERTEX" source="#v" offset="0"/><vcount>4</vcount><p>0 1 2 3</p></polylist><triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>1 4 2</p></triangles></mesh></geometry></library_geometries></COLLADA>"##.to_vec());
+    for s in &seeds[seeds.len() - 2..] {
+        let name = if s.starts_with(b"{") { "seed.gltf" } else { "seed.dae" };
+        subdiv::io::from_bytes(s, name)
+            .map(|_| ())
+            .or_else(|e| if name == "seed.dae" { Ok(()) } else { Err(e) })
+            .unwrap();
+    }
+    seeds
 }
 
 #[test]

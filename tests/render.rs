@@ -25,7 +25,7 @@ fn offscreen(w: u32, h: u32) -> Option<Offscreen> {
 
 fn render(off: &mut Offscreen, mesh: &Mesh, control: Option<&Mesh>, look: Look, ortho: bool) -> RgbaImage {
     let (w, h) = off.size();
-    let opts = subdiv::render::RenderOptions { shading: Shading::Phong, width: w, height: h, orthographic: ortho };
+    let opts = subdiv::render::RenderOptions { width: w, height: h, orthographic: ortho, ..Default::default() };
     let cam = default_camera(control.unwrap_or(mesh), &opts);
     let gm = off.upload(mesh).unwrap();
     let gc = control.map(|c| off.upload(c).unwrap());

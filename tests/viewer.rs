@@ -483,3 +483,41 @@ fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
     assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1/0 ")).count(), 1, "{text}");
     assert!(subdiv::io::load(&path).unwrap().ct.sharpness().is_some());
 }
+
+#[test]
+fn every_mesh_format_opens_in_the_viewer_with_its_colours() {
+    // what a dropped file or the browser hands to Command::Open
+    let dir = common::scratch_dir("viewer-formats");
+    let (mesh, mut attrs) = subdiv::io::obj::load_with_attributes(&common::model_path("cube_uv.obj")).unwrap();
+    attrs.colors = Some(mesh.positions.iter().map(|p| p.clamp(glam::Vec3::ZERO, glam::Vec3::ONE)).collect());
+    for ext in subdiv::io::WRITE_EXTENSIONS {
+        let path = dir.join(format!("cube.{ext}"));
+        subdiv::io::save_with(&path, &mesh, &attrs).unwrap();
+        let mut v = Viewer::new();
+        v.apply(Command::Open(path));
+        settle(&mut v);
+        assert!(v.doc.status.error.is_none(), "{ext}: {:?}", error_text(&v));
+        assert_eq!(v.doc.model.control.topo.faces, 12, "{ext}");
+        let keeps = matches!(*ext, "obj" | "glb" | "ply" | "off");
+        assert_eq!(v.doc.model.attrs.file.colors.is_some(), keeps, "{ext}: colours");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn wire_edges_and_screenshot_settings_reach_the_look_and_the_view() {
+    use subdiv::render::{Shot, WireEdges};
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    frame(&ctx, &mut v, vec![key(egui::Key::W)]);
+    assert_eq!(v.doc.display.look().wire_edges, WireEdges::All);
+    set_display(&mut v, |d| d.wire_edges = WireEdges::UpTo(0));
+    assert_eq!(v.doc.display.look().wire_edges, WireEdges::UpTo(0));
+    // the panel (with the wire's edge choice shown) keeps the choice
+    frame(&ctx, &mut v, vec![]);
+    assert_eq!(v.doc.display.wire_edges, WireEdges::UpTo(0));
+    v.apply(Command::SetShot(Shot { scale: 3, transparent: true }));
+    assert_eq!(v.view.shot, Shot { scale: 3, transparent: true });
+    frame(&ctx, &mut v, vec![key(egui::Key::P)]);
+    assert!(v.view.screenshot, "P asks for a screenshot");
+}

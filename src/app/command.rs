@@ -124,6 +124,8 @@ pub enum Command {
     ResetCamera,
     /// Save a screenshot of the next frame.
     Screenshot,
+    /// How screenshots are taken (scale, transparency).
+    SetShot(crate::render::Shot),
     /// A worker finished.
     Finished(Box<Finished>),
 }
@@ -212,6 +214,7 @@ impl Viewer {
             Command::Fit => view.fit = true,
             Command::ResetCamera => view.reset = true,
             Command::Screenshot => view.screenshot = true,
+            Command::SetShot(shot) => view.shot = shot,
             _ => unreachable!("Viewer::apply handles every other command"),
         }
     }

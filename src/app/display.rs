@@ -5,7 +5,7 @@
 //! colours, [`Display::reshades_result`]), and applying those recomputes it
 //! from the subdivision output.
 
-use crate::render::{Look, Surface};
+use crate::render::{Look, Surface, WireEdges};
 
 /// Which normals shade the result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -107,6 +107,8 @@ pub struct Display {
     pub sharp_edges: bool,
     /// With `pick`, a click also toggles the picked edge's crease.
     pub click_creases: bool,
+    /// Which edges the wireframe draws (all, control only, up to a level).
+    pub wire_edges: WireEdges,
 }
 
 impl Display {
@@ -126,6 +128,7 @@ impl Display {
             coloring: Coloring::default(),
             sharp_edges: true,
             click_creases: false,
+            wire_edges: WireEdges::All,
         }
     }
 
@@ -139,6 +142,7 @@ impl Display {
             colors: false,
             uv_checker: false,
             sharp: self.sharp_edges,
+            wire_edges: self.wire_edges,
         }
     }
 

@@ -388,11 +388,10 @@ fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened> {
     let (mesh, report, attrs) = if repair {
         let (m, r) = bundled::load_repaired(path)?;
         (m, (!r.is_empty()).then(|| format!("repaired: {r}")), Attributes::default())
-    } else if path.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
+    } else {
+        // any format; texture coordinates and colours where it has them
         let (m, a) = bundled::load_with_attributes(path)?;
         (m, None, a)
-    } else {
-        (bundled::load(path)?, None, Attributes::default())
     };
     let paths = match bundled::paths_for(path) {
         Some(p) => {

@@ -81,6 +81,19 @@ pub struct ViewOptions {
     pub coloring: Coloring,
     /// Tag the edges sharper than this dihedral angle (degrees) on opening.
     pub crease_angle: Option<f32>,
+    /// Start with the control mesh (the cage) shown.
+    pub control: bool,
+}
+
+impl ViewOptions {
+    /// What `subdiv` with no arguments shows a new user: the bundled
+    /// tetrahedron at level 3 with the butterfly scheme (the original
+    /// assignment's), under its translucent cage. Interpolating, so the
+    /// surface passes through the cage's corners and the levels visibly
+    /// round it off; four faces make the cage easy to read.
+    pub fn first_launch() -> ViewOptions {
+        ViewOptions { scheme: Scheme::Butterfly, level: 3, control: true, ..ViewOptions::default() }
+    }
 }
 
 /// Longest a `--frames` run may wait for its work before giving up.
@@ -125,12 +138,10 @@ fn open_initial(doc: &mut doc::Doc, opts: &ViewOptions) -> Result<()> {
             }
             doc.repair_on_open = true;
             mesh
-        } else if model.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj")) {
+        } else {
             let (mesh, attrs) = crate::bundled::load_with_attributes(model)?;
             doc.model.attrs.file = attrs;
             mesh
-        } else {
-            crate::bundled::load(model)?
         };
         let paths = match &opts.paths {
             Some(p) => {
@@ -279,7 +290,12 @@ impl App {
         if let Some(e) = doc.level_refusal(doc.request.level) {
             return Err(e);
         }
-        doc.display = Display { turntable: opts.turntable, coloring: opts.coloring, ..Display::new(opts.wireframe) };
+        doc.display = Display {
+            turntable: opts.turntable,
+            coloring: opts.coloring,
+            control: opts.control,
+            ..Display::new(opts.wireframe)
+        };
         doc.reshade();
         if doc.request.level > 0 {
             doc.request_subdivision();
@@ -336,15 +352,21 @@ impl App {
             viewer.view.stats.scene_renders += 1;
             viewer.view.stats.encode_ms = t.elapsed().as_secs_f64() * 1e3;
         }
-        // The frames-mode exit and the P key both take a screenshot of this frame.
+        // The frames-mode exit captures this frame, panel and all; the P key
+        // renders the 3D area offscreen, as View::shot says (scale, transparency).
         let finishing = self.run.count(raw_dt, viewer.doc.busy());
         let shot = self.run.shot_path(finishing, std::mem::take(&mut viewer.view.screenshot));
-        let capture = shot.as_ref().map(|_| win.capture());
+        let capture = shot.as_ref().filter(|_| finishing).map(|_| win.capture());
+        let ppp = egui.pixels_per_point();
         win.composite(&mut encoder, &target, capture.as_ref(), &egui);
         win.present(encoder, user, frame);
         win.end_egui(egui);
-        if let (Some(path), Some(c)) = (shot, capture) {
-            let saved = win.read_capture(&c).and_then(|img| crate::render::save_png(&img, &path));
+        if let Some(path) = shot {
+            let img = match &capture {
+                Some(c) => win.read_capture(c),
+                None => win.scene_shot(viewer, ppp, viewer.view.shot),
+            };
+            let saved = img.and_then(|img| crate::render::save_png(&img, &path));
             match saved {
                 Ok(()) => viewer.doc.status.notice = Some(format!("saved {}", path.display())),
                 Err(e) if finishing => self.fatal = Some(e),

@@ -37,6 +37,8 @@ pub struct View {
     pub scene_rect: egui::Rect,
     /// A screenshot was asked for (P).
     pub screenshot: bool,
+    /// How P and the panel's button take it (scale, transparency).
+    pub shot: crate::render::Shot,
     /// A file is hovering over the window.
     pub hovering_file: bool,
     /// Frame times and counters.
@@ -52,6 +54,7 @@ impl Default for View {
             reset: false,
             scene_rect: egui::Rect::NOTHING,
             screenshot: false,
+            shot: crate::render::Shot::default(),
             hovering_file: false,
             stats: FrameStats::default(),
         }

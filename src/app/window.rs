@@ -341,6 +341,26 @@ impl Win {
         true
     }
 
+    /// The 3D area alone (no panel), rendered offscreen at `shot.scale`
+    /// times its size in pixels (`ppp` pixels per point), lines as wide
+    /// relative to it, on a transparent background if asked: what P and the
+    /// panel's button save.
+    ///
+    /// # Errors
+    /// [`Error::Usage`] for a size the device cannot hold; readback errors.
+    pub fn scene_shot(&self, viewer: &Viewer, ppp: f32, shot: crate::render::Shot) -> Result<image::RgbaImage> {
+        let rect = viewer.view.scene_rect;
+        let px = |v: f32| (v * ppp).round().max(1.0) as u32;
+        let (w, h) = shot.size(px(rect.width()), px(rect.height()));
+        let s = &self.scene;
+        let result = if viewer.doc.anim.active { s.anim.as_ref().or(s.result.as_ref()) } else { s.result.as_ref() };
+        let display = &viewer.doc.display;
+        let r = [0.0, 0.0, w as f32, h as f32];
+        let draws = viewport_draws(s, result, viewer.view.camera, display.look(), display.side_by_side, r);
+        let samples = self.gpu.msaa_samples(crate::render::offscreen::OFFSCREEN_FORMAT);
+        crate::render::offscreen::shoot(&self.gpu.device, &self.gpu.queue, samples, (w, h), shot, &draws)
+    }
+
     /// Whether the result is big enough to be drawn through its proxy while the camera moves.
     pub fn has_big_result(&self) -> bool {
         self.scene.proxy.is_some() && self.scene.result.as_ref().is_some_and(|m| m.triangle_count() > PROXY_ABOVE)

@@ -1,11 +1,101 @@
-//! Reading and writing meshes: Wavefront OBJ, the corner-table text format
-//! `.ct` (with its O table), and binary PLY output. Every writer goes through
-//! [`atomic_write`], so a failure never leaves a truncated file behind.
+//! Reading and writing meshes. In: Wavefront OBJ, the corner-table text
+//! format `.ct` (with its O table), `.bez` Bezier patches, PLY (ASCII and
+//! binary), STL (ASCII and binary), OFF, glTF 2.0 (`.gltf`, `.glb`) and
+//! COLLADA (`.dae`). Out: OBJ, `.ct`, PLY, STL, OFF and `.glb`. The format is
+//! chosen by extension ([`Format::of`]), by content where the extension says
+//! nothing. Every writer goes through [`atomic_write`], so a failure never
+//! leaves a truncated file behind. No reader panics or allocates more than
+//! its input can hold (`tests/io.rs` fuzzes them all).
 
 pub mod bezier;
 pub mod ct;
+pub mod dae;
+pub mod gltf;
 pub mod obj;
+pub mod off;
 pub mod ply;
+pub mod raw;
+pub mod stl;
+
+/// The mesh formats, as [`Format::of`] tells them apart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// Wavefront OBJ (`.obj`; also any unknown extension).
+    Obj,
+    /// The corner-table text format (`.ct`).
+    Ct,
+    /// Bicubic Bezier patches (`.bez`).
+    Bez,
+    /// A Bezier curve (`.bzc`): not a mesh.
+    Bzc,
+    /// Stanford PLY (`.ply`).
+    Ply,
+    /// STL (`.stl`).
+    Stl,
+    /// Object File Format (`.off`).
+    Off,
+    /// glTF 2.0 (`.gltf`, `.glb`).
+    Gltf,
+    /// COLLADA (`.dae`).
+    Dae,
+}
+
+/// The extensions every reader accepts (lower case, no dot): what file
+/// dialogs and drag and drop offer.
+pub const READ_EXTENSIONS: &[&str] = &["obj", "ct", "bez", "bzc", "ply", "stl", "off", "gltf", "glb", "dae"];
+
+/// The extensions [`save`] writes.
+pub const WRITE_EXTENSIONS: &[&str] = &["obj", "ct", "ply", "stl", "off", "glb"];
+
+impl Format {
+    /// The format of `file` by its extension; without a known one, by the
+    /// first bytes of its content (`ply`, `solid` or a binary STL's size,
+    /// `OFF`, `glTF` or `{`, `<`), else OBJ.
+    pub fn of(file: &str, bytes: &[u8]) -> Format {
+        match ext(Path::new(file)).as_str() {
+            "obj" => Format::Obj,
+            "ct" => Format::Ct,
+            "bez" => Format::Bez,
+            "bzc" => Format::Bzc,
+            "ply" => Format::Ply,
+            "stl" => Format::Stl,
+            "off" => Format::Off,
+            "gltf" | "glb" => Format::Gltf,
+            "dae" => Format::Dae,
+            _ => Format::sniff(bytes),
+        }
+    }
+
+    fn sniff(bytes: &[u8]) -> Format {
+        let start = bytes.iter().position(|b| !b.is_ascii_whitespace()).unwrap_or(bytes.len());
+        let head = &bytes[start..];
+        if bytes.starts_with(b"ply") {
+            Format::Ply
+        } else if bytes.starts_with(b"glTF") || head.starts_with(b"{") {
+            Format::Gltf
+        } else if head.starts_with(b"<") {
+            Format::Dae
+        } else if stl::is_binary(bytes) || head.starts_with(b"solid") {
+            Format::Stl
+        } else if head.starts_with(b"OFF") || head.starts_with(b"COFF") {
+            Format::Off
+        } else {
+            Format::Obj
+        }
+    }
+
+    /// Reads the formats that go through [`raw::RawMesh`].
+    fn raw(self, bytes: &[u8], file: &str) -> Option<Result<raw::RawMesh>> {
+        Some(match self {
+            Format::Ply => ply::parse(bytes, file),
+            Format::Stl => stl::parse(bytes, file),
+            Format::Off => off::parse(bytes, file),
+            Format::Gltf => gltf::parse(bytes, file),
+            Format::Dae => dae::parse(bytes, file),
+            _ => return None,
+        })
+    }
+}
 
 use crate::mesh::Mesh;
 use crate::mesh::repair::{RepairReport, repair};
@@ -31,12 +121,32 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// # Errors
 /// As [`load`].
 pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Mesh> {
-    match ext(Path::new(file)).as_str() {
-        "bzc" => Err(not_a_mesh(file)),
-        "ct" => ct::parse(text(bytes, file)?, file),
-        "bez" => bezier::tessellate(&bezier::parse_bez(text(bytes, file)?, file)?, BEZ_RESOLUTION)
+    let format = Format::of(file, bytes);
+    if let Some(raw) = format.raw(bytes, file) {
+        return raw?.build(file).map(|(m, _)| m);
+    }
+    match format {
+        Format::Bzc => Err(not_a_mesh(file)),
+        Format::Ct => ct::parse(text(bytes, file)?, file),
+        Format::Bez => bezier::tessellate(&bezier::parse_bez(text(bytes, file)?, file)?, BEZ_RESOLUTION)
             .map_err(|source| Error::Mesh { file: file.to_string(), line: None, source }),
         _ => obj::from_bytes(bytes, file).map(|(m, _)| m),
+    }
+}
+
+/// [`from_bytes`] with the file's attributes: texture coordinates and
+/// vertex colours where the format has them (empty otherwise).
+///
+/// # Errors
+/// As [`load`].
+pub fn from_bytes_with_attributes(bytes: &[u8], file: &str) -> Result<(Mesh, crate::mesh::attributes::Attributes)> {
+    let format = Format::of(file, bytes);
+    if let Some(raw) = format.raw(bytes, file) {
+        return raw?.build(file);
+    }
+    match format {
+        Format::Obj => obj::from_bytes_with_attributes(bytes, file),
+        _ => Ok((from_bytes(bytes, file)?, Default::default())),
     }
 }
 
@@ -58,9 +168,13 @@ pub fn load_repaired(path: &Path) -> Result<(Mesh, RepairReport)> {
 /// # Errors
 /// As [`load_repaired`].
 pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
-    match ext(Path::new(file)).as_str() {
-        "bzc" => Err(not_a_mesh(file)),
-        "ct" => {
+    let format = Format::of(file, bytes);
+    if let Some(raw) = format.raw(bytes, file) {
+        return raw?.repaired(file);
+    }
+    match format {
+        Format::Bzc => Err(not_a_mesh(file)),
+        Format::Ct => {
             let raw = ct::parse_raw(text(bytes, file)?, file)?;
             let lines = raw.triangle_lines;
             repair(raw.positions, &raw.triangles).map_err(|e| Error::Mesh {
@@ -69,7 +183,7 @@ pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairRepo
                 source: e,
             })
         }
-        "bez" => bezier::tessellate_repaired(&bezier::parse_bez(text(bytes, file)?, file)?, BEZ_RESOLUTION)
+        Format::Bez => bezier::tessellate_repaired(&bezier::parse_bez(text(bytes, file)?, file)?, BEZ_RESOLUTION)
             .map_err(|source| Error::Mesh { file: file.to_string(), line: None, source }),
         _ => obj::from_bytes_repaired(bytes, file),
     }
@@ -112,20 +226,26 @@ pub fn analyze(path: &Path) -> Result<(Mesh, RepairReport)> {
 /// As [`load_repaired`].
 pub fn analyze_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
     let file = file.to_string();
-    let (positions, triangles, base) = match ext(Path::new(&file)).as_str() {
-        "bzc" => return Err(not_a_mesh(&file)),
-        "ct" => {
-            let raw = ct::parse_raw(text(bytes, &file)?, &file)?;
-            (raw.positions, raw.triangles, 0)
-        }
-        "bez" => {
-            let raw = bezier::tessellate_raw(&bezier::parse_bez(text(bytes, &file)?, &file)?, BEZ_RESOLUTION)
-                .map_err(|source| Error::Mesh { file: file.clone(), line: None, source })?;
-            (raw.positions, raw.triangles, 0)
-        }
-        _ => {
-            let raw = obj::parse(bytes, &file)?;
-            (raw.positions, raw.triangles, 1)
+    let format = Format::of(&file, bytes);
+    let (positions, triangles, base) = if let Some(raw) = format.raw(bytes, &file) {
+        let raw = raw?;
+        (raw.positions, raw.triangles, 0)
+    } else {
+        match format {
+            Format::Bzc => return Err(not_a_mesh(&file)),
+            Format::Ct => {
+                let raw = ct::parse_raw(text(bytes, &file)?, &file)?;
+                (raw.positions, raw.triangles, 0)
+            }
+            Format::Bez => {
+                let raw = bezier::tessellate_raw(&bezier::parse_bez(text(bytes, &file)?, &file)?, BEZ_RESOLUTION)
+                    .map_err(|source| Error::Mesh { file: file.clone(), line: None, source })?;
+                (raw.positions, raw.triangles, 0)
+            }
+            _ => {
+                let raw = obj::parse(bytes, &file)?;
+                (raw.positions, raw.triangles, 1)
+            }
         }
     };
     let (mesh, mut report) = crate::mesh::repair::repair_with_cap(positions, &triangles, usize::MAX)
@@ -134,20 +254,41 @@ pub fn analyze_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
     Ok((mesh, report))
 }
 
-/// Saves a mesh as `.obj`, `.ply` or `.ct`, chosen by extension.
+/// Saves a mesh as `.obj`, `.ply`, `.ct`, `.stl`, `.off` or `.glb`, chosen
+/// by extension.
 ///
 /// # Errors
 /// An unknown extension or an I/O error.
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+    save_with(path, mesh, &Default::default())
+}
+
+/// Whether [`save_with`] writes texture coordinates or colours to `path`'s
+/// format: OBJ and `.glb` keep both, PLY and OFF colours only.
+pub fn keeps_attributes(path: &Path) -> bool {
+    matches!(ext(path).as_str(), "obj" | "glb" | "ply" | "off")
+}
+
+/// [`save`] with the mesh's attributes where the format keeps them (see
+/// [`keeps_attributes`]); elsewhere they are dropped.
+///
+/// # Errors
+/// As [`save`].
+pub fn save_with(path: &Path, mesh: &Mesh, attrs: &crate::mesh::attributes::Attributes) -> Result<()> {
+    let colors = attrs.colors.as_deref();
     match ext(path).as_str() {
-        "obj" => obj::save(path, mesh),
-        "ply" => ply::save(path, mesh),
+        "obj" if attrs.is_empty() => obj::save(path, mesh),
+        "obj" => obj::save_with(path, mesh, attrs),
+        "ply" => ply::save_with(path, mesh, colors),
         "ct" => ct::save(path, mesh),
+        "stl" => stl::save(path, mesh),
+        "off" => off::save_with(path, mesh, colors),
+        "glb" => gltf::save(path, mesh, attrs),
         other => Err(Error::UnknownFormat {
             path: path.display().to_string(),
             ext: other.to_string(),
             direction: "output",
-            known: ".obj, .ply or .ct",
+            known: ".obj, .ply, .ct, .stl, .off or .glb",
         }),
     }
 }

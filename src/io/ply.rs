@@ -1,28 +1,365 @@
-//! Binary little-endian PLY output (vertices as float xyz, faces as uchar
-//! count + int indices), written atomically.
+//! PLY (Stanford polygon files): ASCII, binary little endian and binary big
+//! endian in; binary little endian out (float `x y z`, `uchar red green blue`
+//! when the mesh has colours, faces as `uchar` count + `int` indices).
+//!
+//! Read: the `vertex` element's `x y z`, colours (`red green blue` or `r g b`,
+//! integers scaled by 1/255, floats as they are), per-vertex texture
+//! coordinates (`u v`, `s t` or `texture_u texture_v`, carried per corner);
+//! the `face` element's `vertex_indices` (or `vertex_index`) lists, polygons
+//! fanned into triangles. Other elements and properties are skipped. Every
+//! count in the header is checked against the bytes that follow before
+//! anything is allocated; errors name the file and the element
+//! (`vertex 12`, `face 3`, `header line 4`).
+//!
+//! Hand-written rather than through `ply-rs`: that crate has had no release
+//! since 2020, allocates what the header claims and panics on some
+//! malformed input; this reader is 300 lines with none of those.
 
 use super::atomic_write;
+use super::raw::{RawMesh, check_count, format_err};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
+use glam::{Vec2, Vec3};
 use std::path::Path;
 
-/// Saves `mesh` as binary PLY.
+/// A scalar type of the header.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Ty {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Ty {
+    fn parse(s: &str) -> Option<Ty> {
+        Some(match s {
+            "char" | "int8" => Ty::I8,
+            "uchar" | "uint8" => Ty::U8,
+            "short" | "int16" => Ty::I16,
+            "ushort" | "uint16" => Ty::U16,
+            "int" | "int32" => Ty::I32,
+            "uint" | "uint32" => Ty::U32,
+            "float" | "float32" => Ty::F32,
+            "double" | "float64" => Ty::F64,
+            _ => return None,
+        })
+    }
+    fn size(self) -> usize {
+        match self {
+            Ty::I8 | Ty::U8 => 1,
+            Ty::I16 | Ty::U16 => 2,
+            Ty::I32 | Ty::U32 | Ty::F32 => 4,
+            Ty::F64 => 8,
+        }
+    }
+    fn is_int(self) -> bool {
+        !matches!(self, Ty::F32 | Ty::F64)
+    }
+}
+
+#[derive(Clone, Debug)]
+struct Property {
+    name: String,
+    ty: Ty,
+    /// `Some(count type)` for a list property.
+    list: Option<Ty>,
+}
+
+#[derive(Clone, Debug)]
+struct Element {
+    name: String,
+    count: u64,
+    props: Vec<Property>,
+}
+
+impl Element {
+    /// The fewest bytes one record can take in `enc`.
+    fn min_bytes(&self, enc: Encoding) -> u64 {
+        match enc {
+            // a value and a separator each
+            Encoding::Ascii => 2 * self.props.len().max(1) as u64,
+            _ => self.props.iter().map(|p| p.list.unwrap_or(p.ty).size() as u64).sum::<u64>().max(1),
+        }
+    }
+    fn index(&self, names: &[&str]) -> Option<usize> {
+        self.props.iter().position(|p| p.list.is_none() && names.contains(&p.name.as_str()))
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Encoding {
+    Ascii,
+    Little,
+    Big,
+}
+
+/// The parsed header and where the body starts.
+struct Header {
+    enc: Encoding,
+    elements: Vec<Element>,
+    body: usize,
+}
+
+fn parse_header(bytes: &[u8], file: &str) -> Result<Header> {
+    let end = find(bytes, b"end_header").ok_or_else(|| format_err(file, "header", "no end_header line"))?;
+    let nl = bytes[end..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |i| end + i + 1);
+    let text = std::str::from_utf8(&bytes[..end]).map_err(|_| format_err(file, "header", "not text"))?;
+    let mut lines = text.lines().enumerate();
+    if lines.next().map(|(_, l)| l.trim()) != Some("ply") {
+        return Err(format_err(file, "header line 1", "not a PLY file (no 'ply' magic)"));
+    }
+    let (mut enc, mut elements) = (None, Vec::<Element>::new());
+    for (i, line) in lines {
+        let at = || format!("header line {}", i + 1);
+        let w: Vec<&str> = line.split_whitespace().collect();
+        match w.as_slice() {
+            [] | ["comment", ..] | ["obj_info", ..] => {}
+            ["format", f, _] => {
+                enc = Some(match *f {
+                    "ascii" => Encoding::Ascii,
+                    "binary_little_endian" => Encoding::Little,
+                    "binary_big_endian" => Encoding::Big,
+                    other => return Err(format_err(file, at(), format!("unknown format '{other}'"))),
+                })
+            }
+            ["element", name, count] => {
+                let count = count.parse().map_err(|_| format_err(file, at(), format!("bad count '{count}'")))?;
+                elements.push(Element { name: name.to_string(), count, props: Vec::new() });
+            }
+            ["property", "list", ct, ty, name] => {
+                let (Some(ct), Some(ty)) = (Ty::parse(ct), Ty::parse(ty)) else {
+                    return Err(format_err(file, at(), format!("unknown list types '{ct} {ty}'")));
+                };
+                if !ct.is_int() || !ty.is_int() {
+                    return Err(format_err(file, at(), "list counts and indices must be integers"));
+                }
+                let el = elements.last_mut().ok_or_else(|| format_err(file, at(), "property before any element"))?;
+                el.props.push(Property { name: name.to_string(), ty, list: Some(ct) });
+            }
+            ["property", ty, name] => {
+                let ty = Ty::parse(ty).ok_or_else(|| format_err(file, at(), format!("unknown type '{ty}'")))?;
+                let el = elements.last_mut().ok_or_else(|| format_err(file, at(), "property before any element"))?;
+                el.props.push(Property { name: name.to_string(), ty, list: None });
+            }
+            _ => return Err(format_err(file, at(), format!("cannot read '{}'", line.trim()))),
+        }
+    }
+    let enc = enc.ok_or_else(|| format_err(file, "header", "no format line"))?;
+    Ok(Header { enc, elements, body: nl })
+}
+
+fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
+    hay.windows(needle.len()).position(|w| w == needle)
+}
+
+/// Reads values of the body one at a time.
+struct Body<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    enc: Encoding,
+}
+
+impl Body<'_> {
+    fn remaining(&self) -> usize {
+        self.bytes.len() - self.pos
+    }
+
+    fn value(&mut self, ty: Ty) -> Option<f64> {
+        if self.enc == Encoding::Ascii {
+            return self.token()?.parse().ok();
+        }
+        let n = ty.size();
+        let b = self.bytes.get(self.pos..self.pos + n)?;
+        self.pos += n;
+        let mut a = [0u8; 8];
+        a[..n].copy_from_slice(b);
+        if self.enc == Encoding::Big {
+            a[..n].reverse();
+        }
+        Some(match ty {
+            Ty::I8 => f64::from(a[0] as i8),
+            Ty::U8 => f64::from(a[0]),
+            Ty::I16 => f64::from(i16::from_le_bytes([a[0], a[1]])),
+            Ty::U16 => f64::from(u16::from_le_bytes([a[0], a[1]])),
+            Ty::I32 => f64::from(i32::from_le_bytes([a[0], a[1], a[2], a[3]])),
+            Ty::U32 => f64::from(u32::from_le_bytes([a[0], a[1], a[2], a[3]])),
+            Ty::F32 => f64::from(f32::from_le_bytes([a[0], a[1], a[2], a[3]])),
+            Ty::F64 => f64::from_le_bytes(a),
+        })
+    }
+
+    fn token(&mut self) -> Option<&str> {
+        let rest = &self.bytes[self.pos..];
+        let start = rest.iter().position(|b| !b.is_ascii_whitespace())?;
+        let len = rest[start..].iter().position(|b| b.is_ascii_whitespace()).unwrap_or(rest.len() - start);
+        self.pos += start + len;
+        std::str::from_utf8(&rest[start..start + len]).ok()
+    }
+}
+
+/// Reads a PLY file's triangles with colours and texture coordinates.
+///
+/// # Errors
+/// [`Error::Format`] naming the file and the element: a bad header, a count
+/// the file cannot hold, a truncated or unreadable record, a face with fewer
+/// than 3 vertices or an index out of range.
+pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
+    let h = parse_header(bytes, file)?;
+    let mut body = Body { bytes, pos: h.body, enc: h.enc };
+    let mut raw = RawMesh::default();
+    let mut vertex_uv: Option<Vec<Vec2>> = None;
+    for el in &h.elements {
+        let count = check_count(file, &el.name, el.count, el.min_bytes(h.enc), body.remaining())?;
+        match el.name.as_str() {
+            "vertex" => read_vertices(&mut body, el, count, file, &mut raw, &mut vertex_uv)?,
+            "face" => read_faces(&mut body, el, count, file, &mut raw)?,
+            _ => {
+                for r in 0..count {
+                    record(&mut body, el, file, r, |_, _| Ok(()))?;
+                }
+            }
+        }
+    }
+    let nv = raw.positions.len();
+    if let Some(&bad) = raw.triangles.iter().find(|&&i| i as usize >= nv) {
+        return Err(format_err(file, "face", format!("vertex index {bad}, but there are only {nv} vertices")));
+    }
+    if let Some(uv) = vertex_uv {
+        raw.uv = Some(raw.triangles.iter().map(|&i| uv[i as usize]).collect());
+    }
+    Ok(raw)
+}
+
+/// Reads one record of `el`, calling `f(property index, values)` for each
+/// property (one value, or a list's values).
+fn record(
+    body: &mut Body,
+    el: &Element,
+    file: &str,
+    r: usize,
+    mut f: impl FnMut(usize, &[f64]) -> Result<()>,
+) -> Result<()> {
+    let at = || format!("{} {r}", el.name);
+    let mut list = Vec::new();
+    for (k, p) in el.props.iter().enumerate() {
+        let bad = || format_err(file, at(), format!("property '{}': truncated or not a number", p.name));
+        match p.list {
+            None => f(k, &[body.value(p.ty).ok_or_else(bad)?])?,
+            Some(ct) => {
+                let n = body.value(ct).ok_or_else(bad)?;
+                let n = check_count(file, &at(), n.max(0.0) as u64, p.ty.size().min(2) as u64, body.remaining())?;
+                list.clear();
+                for _ in 0..n {
+                    list.push(body.value(p.ty).ok_or_else(bad)?);
+                }
+                f(k, &list)?;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn read_vertices(
+    body: &mut Body,
+    el: &Element,
+    count: usize,
+    file: &str,
+    raw: &mut RawMesh,
+    uv_out: &mut Option<Vec<Vec2>>,
+) -> Result<()> {
+    let xyz = [el.index(&["x"]), el.index(&["y"]), el.index(&["z"])];
+    let [Some(x), Some(y), Some(z)] = xyz else {
+        return Err(format_err(file, "vertex", "needs properties x, y and z"));
+    };
+    let rgb = [el.index(&["red", "r"]), el.index(&["green", "g"]), el.index(&["blue", "b"])];
+    let rgb = match rgb {
+        [Some(r), Some(g), Some(b)] => Some([r, g, b]),
+        _ => None,
+    };
+    let scale: Option<f32> = rgb.map(|[r, ..]| if el.props[r].ty.is_int() { 255.0 } else { 1.0 });
+    let uv = match [el.index(&["u", "s", "texture_u"]), el.index(&["v", "t", "texture_v"])] {
+        [Some(u), Some(v)] => Some([u, v]),
+        _ => None,
+    };
+    raw.positions.reserve_exact(count);
+    let mut colors = rgb.map(|_| Vec::with_capacity(count));
+    let mut uvs = uv.map(|_| Vec::with_capacity(count));
+    let mut vals = vec![0.0f64; el.props.len()];
+    for r in 0..count {
+        record(body, el, file, r, |k, v| {
+            vals[k] = v.first().copied().unwrap_or(0.0);
+            Ok(())
+        })?;
+        let p = Vec3::new(vals[x] as f32, vals[y] as f32, vals[z] as f32);
+        if !p.is_finite() {
+            return Err(format_err(file, format!("vertex {r}"), "non-finite coordinate"));
+        }
+        raw.positions.push(p);
+        if let (Some(c), Some([ri, gi, bi]), Some(s)) = (&mut colors, rgb, scale) {
+            c.push((Vec3::new(vals[ri] as f32, vals[gi] as f32, vals[bi] as f32) / s).clamp(Vec3::ZERO, Vec3::ONE));
+        }
+        if let (Some(t), Some([ui, vi])) = (&mut uvs, uv) {
+            t.push(Vec2::new(vals[ui] as f32, vals[vi] as f32));
+        }
+    }
+    raw.colors = colors;
+    *uv_out = uvs;
+    Ok(())
+}
+
+fn read_faces(body: &mut Body, el: &Element, count: usize, file: &str, raw: &mut RawMesh) -> Result<()> {
+    let Some(k) = el.props.iter().position(|p| p.list.is_some() && p.name.starts_with("vertex_ind")) else {
+        return Err(format_err(file, "face", "needs a list property vertex_indices"));
+    };
+    raw.triangles.reserve(count.saturating_mul(3));
+    for r in 0..count {
+        record(body, el, file, r, |j, v| {
+            if j != k {
+                return Ok(());
+            }
+            if v.len() < 3 {
+                return Err(format_err(file, format!("face {r}"), format!("{} vertices (3 or more needed)", v.len())));
+            }
+            if let Some(bad) = v.iter().find(|&&i| !(0.0..u32::MAX as f64).contains(&i) || i.fract() != 0.0) {
+                return Err(format_err(file, format!("face {r}"), format!("bad vertex index {bad}")));
+            }
+            for i in 1..v.len() - 1 {
+                raw.triangles.extend([v[0] as u32, v[i] as u32, v[i + 1] as u32]);
+            }
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+/// Saves `mesh` as binary PLY, with per-vertex colours when given (one per
+/// vertex, linear RGB in [0, 1], stored as `uchar`).
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
+    let colors = colors.filter(|c| c.len() == mesh.positions.len());
     atomic_write(path, |w| {
         let io = |e| Error::io(path, e);
+        let rgb = if colors.is_some() { "property uchar red\nproperty uchar green\nproperty uchar blue\n" } else { "" };
         let header = format!(
-            "ply\nformat binary_little_endian 1.0\ncomment written by subdiv\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+            "ply\nformat binary_little_endian 1.0\ncomment written by subdiv\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n{rgb}element face {}\nproperty list uchar int vertex_indices\nend_header\n",
             mesh.positions.len(),
             mesh.ct.num_triangles()
         );
         w.write_all(header.as_bytes()).map_err(io)?;
         let mut buf = Vec::with_capacity(1 << 20);
-        for q in &mesh.positions {
+        for (i, q) in mesh.positions.iter().enumerate() {
             for x in q.to_array() {
                 buf.extend_from_slice(&x.to_le_bytes());
+            }
+            if let Some(c) = colors {
+                buf.extend(c[i].to_array().map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8));
             }
             if buf.len() > (1 << 20) - 64 {
                 w.write_all(&buf).map_err(io)?;
@@ -41,4 +378,12 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
         }
         w.write_all(&buf).map_err(io)
     })
+}
+
+/// Saves `mesh` as binary PLY (no colours).
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+    save_with(path, mesh, None)
 }

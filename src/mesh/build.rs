@@ -129,7 +129,8 @@ impl CornerTable {
     pub fn from_vo(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
         check_v(&v, nv)?;
         check_o(&v, &o)?;
-        let mut ct = CornerTable { v, o, vc: vec![BORDER; nv], valence: vec![0u32; nv], sharpness: None };
+        let mut ct =
+            CornerTable { v, o, vc: vec![BORDER; nv], valence: vec![0u32; nv], sharpness: None, generations: None };
         let mut visited = vec![false; ct.v.len()];
         for c0 in 0..ct.v.len() as u32 {
             if visited[c0 as usize] {

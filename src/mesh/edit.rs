@@ -51,6 +51,8 @@ pub enum EditError {
 pub fn flip_edge(ct: &mut CornerTable, c: u32) -> Result<(), EditError> {
     // sharpness is kept by vertex pairs: a flipped sharp edge is gone
     let tags = ct.sharpness.take().map(|s| s.to_tags(ct));
+    // an edited table is a new control table: its edges are generation 0
+    ct.clear_generations();
     let done = flip_topology(ct, c);
     restore_tags(ct, tags, None);
     done
@@ -131,6 +133,7 @@ fn flip_topology(ct: &mut CornerTable, c: u32) -> Result<(), EditError> {
 /// If `c` is not a corner of `mesh` or the table would exceed 32-bit ids.
 pub fn split_edge(mesh: &mut Mesh, c: u32, t: f32) -> u32 {
     let tags = mesh.ct.sharpness.take().map(|s| s.to_tags(&mesh.ct));
+    mesh.ct.clear_generations();
     let ends = (mesh.ct.vtx(n(c)), mesh.ct.vtx(p(c)));
     let m = split_topology(mesh, c, t);
     restore_tags(&mut mesh.ct, tags, Some((ends.0, ends.1, m)));

@@ -114,6 +114,23 @@ pub struct CornerTable {
     valence: Vec<u32>,
     /// Sharp edges and vertices, when there are any.
     sharpness: Option<Box<Sharpness>>,
+    /// Edge generations, when the table comes from splits (`None`: a
+    /// control table, every edge of generation 0).
+    generations: Option<Box<Generations>>,
+}
+
+/// The level at which every edge was created, kept per corner: `corner[c]`
+/// is the generation of the edge opposite `c` (from `v(n(c))` to `v(p(c))`),
+/// so both corners of an interior edge hold the same value. Generation 0 is
+/// a piece of a control-mesh edge; generation `j >= 1` an edge made inside a
+/// triangle by the `j`-th split. Written by the split from its parent's
+/// (see [`split`]), never recomputed. Saturates at 255.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Generations {
+    /// How many splits made this table (the newest generation).
+    pub level: u8,
+    /// Generation of the edge opposite each corner.
+    pub corner: Vec<u8>,
 }
 
 impl CornerTable {
@@ -159,7 +176,7 @@ impl CornerTable {
     }
     /// The tables, for the crate's own constructors and edits.
     pub(crate) fn from_parts(v: Vec<u32>, o: Vec<u32>, vc: Vec<u32>, valence: Vec<u32>) -> CornerTable {
-        CornerTable { v, o, vc, valence, sharpness: None }
+        CornerTable { v, o, vc, valence, sharpness: None, generations: None }
     }
     /// Sharp edges and vertices (`None`: every edge but the border is
     /// smooth, every vertex smooth).
@@ -182,6 +199,32 @@ impl CornerTable {
     pub(crate) fn with_sharpness(mut self, sharpness: Option<Sharpness>) -> CornerTable {
         self.sharpness = sharpness.map(Box::new);
         self
+    }
+    /// The edge generations (`None`: a control table, all of generation 0).
+    #[inline]
+    pub fn generations(&self) -> Option<&Generations> {
+        self.generations.as_deref()
+    }
+    /// The level this table was made at: 0 for a control table.
+    #[inline]
+    pub fn level(&self) -> u8 {
+        self.generations.as_ref().map_or(0, |g| g.level)
+    }
+    /// Generation of the edge opposite corner `c` (0 on a control table).
+    #[inline]
+    pub fn edge_generation(&self, c: u32) -> u8 {
+        self.generations.as_ref().map_or(0, |g| g.corner[c as usize])
+    }
+    /// This table with `generations`, which must have been made for it by
+    /// the split of its parent.
+    pub(crate) fn with_generations(mut self, generations: Option<Generations>) -> CornerTable {
+        self.generations = generations.map(Box::new);
+        self
+    }
+    /// Forgets the generations (an edit changed the edges: the table counts
+    /// as a new control table).
+    pub(crate) fn clear_generations(&mut self) {
+        self.generations = None;
     }
     /// Sharpness of the edge opposite corner `c`: [`sharpness::INFINITE`]
     /// on the border, the tagged value (or 0) inside.

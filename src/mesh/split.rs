@@ -19,11 +19,17 @@
 //! prefix sum gives each chunk its first edge id. New vertex ids: old vertices
 //! keep theirs, edge `e` becomes vertex `V + e`.
 //!
+//! Edge generations (see [`super::Generations`], one byte per corner: the
+//! generation of the edge opposite it) propagate beside O, for the new level
+//! `j`: the six corners facing the three interior edges of a split triangle
+//! (`c` and `A(c)`) get `j`, and a corner facing half of an old edge inherits
+//! that edge's generation: `g'[n(A(c))] = g[n(c)]`, `g'[p(A(c))] = g[p(c)]`.
+//!
 //! `C'` and valences propagate too: an old vertex keeps its valence and
 //! `C'[v] = A(C[v])`; an edge vertex has valence 6 (interior) or 4 (border)
 //! and `C' = c` (interior) or `p(A(p(c)))` (border, the first corner of its fan).
 
-use super::{BORDER, CornerTable, Creasing, Mesh, n, owns_edge, p};
+use super::{BORDER, CornerTable, Creasing, Generations, Mesh, n, owns_edge, p};
 use rayon::prelude::*;
 
 /// Corners per parallel work item: big enough to amortise scheduling, small
@@ -222,7 +228,9 @@ pub(crate) fn split_with_boundary(
     let times = (ms(t1 - t0), ms(t1.elapsed()));
     // sharp features are sparse: carried from the old table's, beside O
     let sharpness = old.sharpness().and_then(|s| s.split(old, creasing));
-    ((CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness), edges, boundary), times)
+    let generations = split_generations(old);
+    let ct = CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness).with_generations(Some(generations));
+    ((ct, edges, boundary), times)
 }
 
 /// What the numbering pass of a split produces: the old table's edge
@@ -353,6 +361,45 @@ fn write_v_and_o(old: &CornerTable, ew: &[u32]) -> (Vec<u32>, Vec<u32>) {
             }
         });
     (v2, o2)
+}
+
+/// The edge generations of the split of `old` (module docs): four streams,
+/// the central triangles' and the three corner triangles', one old triangle
+/// at a time, like [`write_v_and_o`].
+fn split_generations(old: &CornerTable) -> Generations {
+    let nc = old.num_corners();
+    let level = old.level().saturating_add(1);
+    let mut corner: Vec<u8> = vec![level; 4 * nc];
+    // the central corners (the first nc) face interior edges: already `level`
+    let (g1, rest) = corner[nc..].split_at_mut(nc);
+    let (g2, g3) = rest.split_at_mut(nc);
+    let zeros;
+    let og: &[u8] = match old.generations() {
+        Some(g) => &g.corner,
+        None => {
+            zeros = vec![0u8; nc];
+            &zeros
+        }
+    };
+    // whole triangles per chunk
+    let g = 3 * (CHUNK / 3);
+    og.par_chunks(g).zip(g1.par_chunks_mut(g)).zip(g2.par_chunks_mut(g)).zip(g3.par_chunks_mut(g)).for_each(
+        |(((og, g1), g2), g3)| {
+            let old3: &[[u8; 3]] = bytemuck::cast_slice(og);
+            fn tri(s: &mut [u8]) -> &mut [[u8; 3]] {
+                bytemuck::cast_slice_mut(s)
+            }
+            let (g1, g2, g3) = (tri(g1), tri(g2), tri(g3));
+            for (t, x) in old3.iter().enumerate() {
+                // corner triangle k of c = 3t + k: (A, n(A), p(A)) face
+                // (interior, half of the edge opposite n(c), half of p(c)'s)
+                g1[t] = [level, x[1], x[2]];
+                g2[t] = [level, x[2], x[0]];
+                g3[t] = [level, x[0], x[1]];
+            }
+        },
+    );
+    Generations { level, corner }
 }
 
 /// One split with every new vertex at the midpoint of its edge: linear

@@ -62,6 +62,22 @@ pub fn export_animation(
     control: &Mesh,
     target: &ExportTarget,
     style: &ExportStyle,
+    progress: impl FnMut(usize, usize) -> bool,
+) -> Result<usize> {
+    export_animation_painted(anim, control, target, style, None, progress)
+}
+
+/// [`export_animation`] with per-vertex `colors` (linear RGB, one per vertex
+/// of the subdivided topology, the same every frame) shown on the surface.
+///
+/// # Errors
+/// As [`export_animation`].
+pub fn export_animation_painted(
+    anim: &mut Animation,
+    control: &Mesh,
+    target: &ExportTarget,
+    style: &ExportStyle,
+    colors: Option<&[Vec3]>,
     mut progress: impl FnMut(usize, usize) -> bool,
 ) -> Result<usize> {
     let (w, h) = style.size;
@@ -77,6 +93,10 @@ pub fn export_animation(
     let total = anim.frame_count();
     let (topo, pos, nrm) = anim.evaluate_with_topology(0);
     let mut fine = GpuMesh::new(&off.gpu.device, topo, pos, nrm)?;
+    let look = Look { colors: colors.is_some(), ..style.look };
+    if let Some(c) = colors {
+        fine.set_colors(&off.gpu.device, c);
+    }
     let mut coarse =
         GpuMesh::new(&off.gpu.device, &control.ct, anim.control(0), &vertex_normals(&control.ct, anim.control(0)))?;
     let mut render = |f: usize, off: &mut Offscreen| -> Result<image::RgbaImage> {
@@ -84,7 +104,7 @@ pub fn export_animation(
         fine.update(&off.gpu.queue, pos, nrm);
         let cpos = anim.control(f);
         coarse.update(&off.gpu.queue, cpos, &vertex_normals(&control.ct, cpos));
-        off.render_one(camera, &fine, Some(&coarse), style.look)
+        off.render_one(camera, &fine, Some(&coarse), look)
     };
     let cancelled = || Error::cancelled("export");
     match target {

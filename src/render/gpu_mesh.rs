@@ -3,9 +3,12 @@
 //! segments. Built from the corner table's flat arrays; the renderer
 //! ([`super::scene`]) only reads them.
 //!
-//! The wireframe is a line list of the mesh's edges, each edge once (taken
-//! from the corner table's edge owners), indexing the same vertex buffer: no
-//! polygon-mode feature is needed.
+//! The wireframe is drawn by the faces themselves (the `wire` pipeline,
+//! shaders/mesh.wgsl), which read positions, normals, the V table, the edge
+//! generations and the colours as storage buffers, one vertex per corner:
+//! the buffers double as vertex, index and storage buffers, nothing is
+//! copied. The edge list (a line list, each edge once) remains for meshes
+//! drawn as lines: the control cage and curves.
 
 use crate::mesh::{BORDER, n, p};
 use crate::{CornerTable, Error, Result};
@@ -30,6 +33,11 @@ pub struct GpuMesh {
     pub(super) highlight: Option<(wgpu::Buffer, u32)>,
     /// The sharp edges (sharpness > 0) as vertex pairs into `positions`.
     pub(super) sharp: Option<(wgpu::Buffer, u32)>,
+    /// Edge generation of every corner, four bytes to a word.
+    pub(super) generations: wgpu::Buffer,
+    /// The storage bind group of the wire pipeline, made on first use
+    /// (`None` inside: a buffer exceeds the device's storage binding size).
+    pub(super) data_group: std::sync::OnceLock<Option<wgpu::BindGroup>>,
 }
 
 /// Face culling of a mesh.
@@ -93,11 +101,45 @@ pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
     ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
 }
 
+/// Per corner `c`, as the wire shader reads them: the generation of the
+/// edge opposite `c` (see [`crate::mesh::Generations`]) in the low byte, the
+/// lowest generation of the edges at its vertex `v(c)` in the high byte of
+/// a half-word; two corners to a word, corner `2i` in the low half.
+pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
+    let nc = ct.num_corners();
+    let mut words = vec![0u32; nc.div_ceil(2)];
+    let Some(g) = ct.generations() else { return words };
+    // the edge opposite c ends at v(n(c)) and v(p(c))
+    let mut at_vertex = vec![u8::MAX; ct.num_vertices()];
+    for (c, &e) in g.corner.iter().enumerate() {
+        for end in [n(c as u32), p(c as u32)] {
+            let v = &mut at_vertex[ct.vtx(end) as usize];
+            *v = (*v).min(e);
+        }
+    }
+    for (c, &e) in g.corner.iter().enumerate() {
+        let half = u32::from(e) | u32::from(at_vertex[ct.vtx(c as u32) as usize]) << 8;
+        words[c / 2] |= half << (16 * (c % 2));
+    }
+    words
+}
+
 /// An index buffer of `indices`, `None` when there are none.
 fn index_buffer(device: &wgpu::Device, label: &str, indices: &[u32]) -> Option<(wgpu::Buffer, u32)> {
     (!indices.is_empty()).then(|| {
         (buffer(device, label, bytemuck::cast_slice(indices), wgpu::BufferUsages::INDEX), indices.len() as u32)
     })
+}
+
+/// Vertex attributes, also read as storage by the wire pipeline and
+/// rewritten by animation.
+const VERTEX_STORAGE: wgpu::BufferUsages =
+    wgpu::BufferUsages::VERTEX.union(wgpu::BufferUsages::STORAGE).union(wgpu::BufferUsages::COPY_DST);
+/// The V table: an index buffer, also read as storage by the wire pipeline.
+const INDEX_STORAGE: wgpu::BufferUsages = wgpu::BufferUsages::INDEX.union(wgpu::BufferUsages::STORAGE);
+
+fn generation_buffer(device: &wgpu::Device, ct: &CornerTable) -> wgpu::Buffer {
+    buffer(device, "generations", bytemuck::cast_slice(&packed_generations(ct)), wgpu::BufferUsages::STORAGE)
 }
 
 fn buffer(device: &wgpu::Device, label: &str, bytes: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
@@ -129,19 +171,13 @@ impl GpuMesh {
                 crate::error::human_bytes(limit)
             )));
         }
-        // storage and copy source too where the device computes: the
-        // animation's compute passes write them (render::gpu_anim), and
-        // tests read them back
-        let compute = if super::gpu_anim::supports_compute(device) {
-            wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC
-        } else {
-            wgpu::BufferUsages::empty()
-        };
-        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST | compute;
+        // a copy source too: tests read what the animation's compute passes
+        // (render::gpu_anim) wrote back
+        let vertex = VERTEX_STORAGE.union(wgpu::BufferUsages::COPY_SRC);
         Ok(GpuMesh {
             positions: buffer(device, "positions", bytemuck::cast_slice(positions), vertex),
             normals: buffer(device, "normals", bytemuck::cast_slice(normals), vertex),
-            triangles: buffer(device, "triangles", bytemuck::cast_slice(ct.v_table()), wgpu::BufferUsages::INDEX),
+            triangles: buffer(device, "triangles", bytemuck::cast_slice(ct.v_table()), INDEX_STORAGE),
             edges: buffer(device, "edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
             vertex_count: positions.len(),
             triangle_indices: ct.v_table().len() as u32,
@@ -152,6 +188,8 @@ impl GpuMesh {
             colors: None,
             highlight: None,
             sharp: index_buffer(device, "sharp edges", &sharp_edge_indices(ct)),
+            generations: generation_buffer(device, ct),
+            data_group: std::sync::OnceLock::new(),
         })
     }
 
@@ -178,13 +216,13 @@ impl GpuMesh {
                 crate::error::human_bytes(limit)
             )));
         }
-        let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        let vertex = VERTEX_STORAGE;
         let mut attr = corner_attr.to_vec();
         attr.resize(pos.len(), Vec3::ZERO);
         Ok(GpuMesh {
             positions: buffer(device, "corner positions", bytemuck::cast_slice(&pos), vertex),
             normals: buffer(device, "corner normals", bytemuck::cast_slice(&nrm), vertex),
-            triangles: buffer(device, "corner triangles", bytemuck::cast_slice(&identity), wgpu::BufferUsages::INDEX),
+            triangles: buffer(device, "corner triangles", bytemuck::cast_slice(&identity), INDEX_STORAGE),
             edges: buffer(device, "corner edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
             vertex_count: pos.len(),
             triangle_indices: identity.len() as u32,
@@ -192,9 +230,11 @@ impl GpuMesh {
             normal_lines: None,
             normal_length: 0.05,
             cull: cull_for(ct, positions),
-            colors: Some(buffer(device, "corner uv", bytemuck::cast_slice(&attr), wgpu::BufferUsages::VERTEX)),
+            colors: Some(buffer(device, "corner uv", bytemuck::cast_slice(&attr), VERTEX_STORAGE)),
             highlight: None,
             sharp: index_buffer(device, "sharp edges", &sharp_corner_pairs(ct)),
+            generations: generation_buffer(device, ct),
+            data_group: std::sync::OnceLock::new(),
         })
     }
 
@@ -217,6 +257,8 @@ impl GpuMesh {
             colors: None,
             highlight: None,
             sharp: None,
+            generations: buffer(device, "no generations", &[], wgpu::BufferUsages::STORAGE),
+            data_group: std::sync::OnceLock::new(),
         }
     }
 
@@ -261,7 +303,35 @@ impl GpuMesh {
     pub fn set_colors(&mut self, device: &wgpu::Device, colors: &[Vec3]) {
         let mut c = colors.to_vec();
         c.resize(self.vertex_count, Vec3::ONE);
-        self.colors = Some(buffer(device, "colors", bytemuck::cast_slice(&c), wgpu::BufferUsages::VERTEX));
+        self.colors = Some(buffer(device, "colors", bytemuck::cast_slice(&c), VERTEX_STORAGE));
+        // the wire pipeline's bind group held the old colours
+        self.data_group = std::sync::OnceLock::new();
+    }
+
+    /// The storage bind group of the wire pipeline (made once), `None` when a
+    /// buffer exceeds the device's storage binding size (the wire is then
+    /// not drawn) or the mesh has no faces.
+    pub(super) fn data_group(&self, device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> Option<&wgpu::BindGroup> {
+        self.data_group
+            .get_or_init(|| {
+                let colors = self.colors.as_ref().unwrap_or(&self.normals);
+                let buffers = [&self.positions, &self.normals, &self.triangles, &self.generations, colors];
+                let limit = device.limits().max_storage_buffer_binding_size;
+                if self.triangle_indices == 0 || buffers.iter().any(|b| b.size() > limit) {
+                    return None;
+                }
+                let entries: Vec<wgpu::BindGroupEntry> = buffers
+                    .iter()
+                    .enumerate()
+                    .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32, resource: b.as_entire_binding() })
+                    .collect();
+                Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("mesh data"),
+                    layout,
+                    entries: &entries,
+                }))
+            })
+            .as_ref()
     }
 
     /// Segments (point pairs) drawn highlighted over this mesh, e.g. a

@@ -55,6 +55,44 @@ pub struct Look {
     pub uv_checker: bool,
     /// Sharp edges (creases) drawn in their own colour.
     pub sharp: bool,
+    /// Which edges the wireframe draws, by generation.
+    pub wire_edges: WireEdges,
+}
+
+/// The edges a wireframe draws, by the level at which each was made (see
+/// [`crate::mesh::Generations`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum WireEdges {
+    /// Every edge of the mesh.
+    #[default]
+    All,
+    /// The edges made up to this level: 0 draws only the pieces of the
+    /// control mesh's edges (its curves on the smooth surface).
+    UpTo(u8),
+}
+
+impl WireEdges {
+    /// The highest generation drawn.
+    pub fn max_generation(self) -> u8 {
+        match self {
+            WireEdges::All => u8::MAX,
+            WireEdges::UpTo(k) => k,
+        }
+    }
+}
+
+impl std::str::FromStr for WireEdges {
+    type Err = String;
+    fn from_str(s: &str) -> std::result::Result<Self, String> {
+        match s {
+            "all" => Ok(WireEdges::All),
+            "control" => Ok(WireEdges::UpTo(0)),
+            _ => s
+                .parse::<u8>()
+                .map(WireEdges::UpTo)
+                .map_err(|_| format!("unknown wire level '{s}' (expected all, control or a level 0..=255)")),
+        }
+    }
 }
 
 /// Shading modes of the command line.
@@ -108,11 +146,47 @@ pub struct RenderOptions {
     pub height: u32,
     /// Orthographic instead of perspective projection.
     pub orthographic: bool,
+    /// Which edges the wireframe draws.
+    pub wire_edges: WireEdges,
+    /// How the image is taken (transparent background, scale).
+    pub shot: Shot,
 }
 
 impl Default for RenderOptions {
     fn default() -> Self {
-        RenderOptions { shading: Shading::Phong, width: 800, height: 600, orthographic: false }
+        RenderOptions {
+            shading: Shading::Phong,
+            width: 800,
+            height: 600,
+            orthographic: false,
+            wire_edges: WireEdges::All,
+            shot: Shot::default(),
+        }
+    }
+}
+
+/// How a picture is taken: the image is `scale` times the size asked for
+/// (lines `scale` times as wide, so it looks the same, only sharper), on a
+/// transparent background (alpha 0, the object opaque) when `transparent`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shot {
+    /// Pixels per requested pixel, 1 or more.
+    pub scale: u32,
+    /// Alpha 0 where nothing is drawn.
+    pub transparent: bool,
+}
+
+impl Default for Shot {
+    fn default() -> Self {
+        Shot { scale: 1, transparent: false }
+    }
+}
+
+impl Shot {
+    /// The image size of a `width` x `height` view.
+    pub fn size(self, width: u32, height: u32) -> (u32, u32) {
+        let k = self.scale.max(1);
+        (width.saturating_mul(k), height.saturating_mul(k))
     }
 }
 
@@ -130,10 +204,54 @@ pub fn default_camera(frame: &Mesh, opts: &RenderOptions) -> Camera {
 /// # Errors
 /// [`Error::Gpu`] without an adapter; size errors.
 pub fn render_image(mesh: &Mesh, control: Option<&Mesh>, opts: &RenderOptions) -> Result<image::RgbaImage> {
-    let mut off = Offscreen::new(opts.width, opts.height)?;
+    let (w, h) = opts.shot.size(opts.width, opts.height);
+    let mut off = Offscreen::new(w, h)?;
+    off.set_shot(opts.shot);
     let gm = off.upload(mesh)?;
     let gc = control.map(|c| off.upload(c)).transpose()?;
-    let look = Look { control: gc.is_some(), ..opts.shading.look() };
+    let look = Look { control: gc.is_some(), wire_edges: opts.wire_edges, ..opts.shading.look() };
+    off.render_one(default_camera(control.unwrap_or(mesh), opts), &gm, gc.as_ref(), look)
+}
+
+/// What colours the faces of an offscreen render besides the material.
+#[derive(Clone, Debug, Default)]
+pub enum Paint {
+    /// The material colour.
+    #[default]
+    Material,
+    /// Linear RGB colours, one per vertex.
+    Colors(Vec<glam::Vec3>),
+    /// A checker through texture coordinates, one per corner.
+    Checker(Vec<glam::Vec2>),
+}
+
+/// [`render_image`] with the faces painted by `paint`.
+///
+/// # Errors
+/// As [`render_image`].
+pub fn render_image_painted(
+    mesh: &Mesh,
+    control: Option<&Mesh>,
+    opts: &RenderOptions,
+    paint: &Paint,
+) -> Result<image::RgbaImage> {
+    let mut off = Offscreen::new(opts.width, opts.height)?;
+    let mut look = Look { control: control.is_some(), ..opts.shading.look() };
+    let gm = match paint {
+        Paint::Material => off.upload(mesh)?,
+        Paint::Colors(c) => {
+            let mut gm = off.upload(mesh)?;
+            gm.set_colors(&off.gpu.device, c);
+            look.colors = true;
+            gm
+        }
+        Paint::Checker(uv) => {
+            let attr: Vec<glam::Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
+            (look.colors, look.uv_checker) = (true, true);
+            GpuMesh::unwelded(&off.gpu.device, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), &attr)?
+        }
+    };
+    let gc = control.map(|c| off.upload(c)).transpose()?;
     off.render_one(default_camera(control.unwrap_or(mesh), opts), &gm, gc.as_ref(), look)
 }
 

@@ -45,6 +45,14 @@ impl Offscreen {
         Ok(Offscreen { gpu, renderer, targets, texture, view, readback })
     }
 
+    /// Takes the next images as `shot` says: its scale widens the lines
+    /// (the target keeps its size; make it `shot.size(...)`), its
+    /// transparency clears the background to alpha 0.
+    pub fn set_shot(&mut self, shot: super::Shot) {
+        self.renderer.pixel_scale = shot.scale.max(1) as f32;
+        self.renderer.transparent = shot.transparent;
+    }
+
     /// Image size.
     pub fn size(&self) -> (u32, u32) {
         self.targets.size
@@ -86,4 +94,38 @@ impl Offscreen {
         self.gpu.queue.submit([encoder.finish()]);
         self.readback.read(device)
     }
+}
+
+/// Renders `draws` (rectangles in pixels of a `size` image) on an existing
+/// device into a new offscreen target taken as `shot` says, and reads it
+/// back: the window's screenshots, at any multiple of its size, without
+/// touching its own targets.
+///
+/// # Errors
+/// [`Error::Usage`] for a size the device cannot hold, [`Error::Gpu`] when
+/// the readback fails.
+pub fn shoot(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    samples: u32,
+    size: (u32, u32),
+    shot: super::Shot,
+    draws: &[ViewportDraw],
+) -> Result<RgbaImage> {
+    let (w, h) = size;
+    let max = device.limits().max_texture_dimension_2d;
+    if w == 0 || h == 0 || w > max || h > max {
+        return Err(Error::Usage(format!("screenshot size {w}x{h} is outside 1..={max} pixels per side")));
+    }
+    let mut renderer = Renderer::new(device, OFFSCREEN_FORMAT, samples);
+    renderer.pixel_scale = shot.scale.max(1) as f32;
+    renderer.transparent = shot.transparent;
+    let targets = Targets::new(device, &renderer, w, h);
+    let (texture, view) = capture_texture(device, "screenshot", OFFSCREEN_FORMAT, w, h);
+    let readback = Readback::new(device, w, h);
+    let mut encoder = device.create_command_encoder(&Default::default());
+    renderer.encode(device, queue, &mut encoder, &targets, &view, draws);
+    readback.copy_from(&mut encoder, &texture);
+    queue.submit([encoder.finish()]);
+    readback.read(device)
 }

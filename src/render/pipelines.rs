@@ -5,8 +5,12 @@
 //! |---------------|---------------------|-----------------------|--------|------------|---------------|
 //! | `mesh`        | `vs_mesh`           | position, normal      | yes    | write, <   | yes           |
 //! | `mesh_colored`| `vs_mesh_colored`   | position, normal, rgb | yes    | write, <   | yes           |
-//! | `depth_only`  | `vs_mesh`           | position, normal      | no     | write, <   | yes           |
+//! | `wire`        | `vs_wire`, `fs_wire`| none: storage, group 2| blend  | write, <   | yes           |
 //! | `lines`       | `vs_line`           | position              | yes    | write, <=  | no            |
+//!
+//! `wire` draws the faces and their wireframe in one pass, without an index
+//! buffer: it reads the mesh from the storage buffers of group 2 by the
+//! vertex index (one vertex per corner, see shaders/mesh.wgsl).
 //!
 //! The per-cull arrays are indexed by [`super::gpu_mesh::Cull`] `as usize`:
 //! closed meshes skip the faces turned away from the eye.
@@ -41,14 +45,40 @@ pub struct Pipelines {
     pub mesh: [wgpu::RenderPipeline; 3],
     /// Shaded faces, per-vertex colour.
     pub mesh_colored: [wgpu::RenderPipeline; 3],
-    /// Faces into the depth buffer only (hidden-line wireframe).
-    pub depth_only: [wgpu::RenderPipeline; 3],
+    /// Faces with their wireframe, one pass (also wire only: faces that
+    /// only hide the lines behind them), blended over the target.
+    pub wire: [wgpu::RenderPipeline; 3],
     /// Line lists (wireframe, control mesh, normals, highlights).
     pub lines: wgpu::RenderPipeline,
     /// Group 0: the per-viewport `View` uniform.
     pub view_layout: wgpu::BindGroupLayout,
     /// Group 1 of the line pipeline: the `LineStyle` uniform.
     pub style_layout: wgpu::BindGroupLayout,
+    /// Group 2 of the wire pipeline: the mesh's storage buffers.
+    pub mesh_data_layout: wgpu::BindGroupLayout,
+}
+
+/// The storage buffers of the wire pipeline, in binding order (see
+/// shaders/mesh.wgsl): positions, normals, corner vertices, generations,
+/// colours.
+pub const MESH_DATA_BINDINGS: u32 = 5;
+
+/// The bind group layout of [`MESH_DATA_BINDINGS`] read-only storage buffers,
+/// seen by the vertex stage.
+fn mesh_data_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = (0..MESH_DATA_BINDINGS)
+        .map(|binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::VERTEX,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        })
+        .collect();
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some("mesh data"), entries: &entries })
 }
 
 /// What varies between the pipelines.
@@ -61,6 +91,7 @@ struct Spec<'a> {
     write_color: bool,
     depth_compare: wgpu::CompareFunction,
     cull_mode: Option<wgpu::Face>,
+    blend: Option<wgpu::BlendState>,
 }
 
 /// What every pipeline shares.
@@ -73,7 +104,11 @@ struct Factory<'a> {
 
 impl Factory<'_> {
     fn build(&self, spec: &Spec) -> wgpu::RenderPipeline {
-        let fragment_shader = if spec.vertex_shader == "vs_line" { "fs_line" } else { "fs_mesh" };
+        let fragment_shader = match spec.vertex_shader {
+            "vs_line" => "fs_line",
+            "vs_wire" => "fs_wire",
+            _ => "fs_mesh",
+        };
         let write_mask = if spec.write_color { wgpu::ColorWrites::ALL } else { wgpu::ColorWrites::empty() };
         self.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(spec.label),
@@ -101,7 +136,7 @@ impl Factory<'_> {
                 module: &self.shader,
                 entry_point: Some(fragment_shader),
                 compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState { format: self.format, blend: None, write_mask })],
+                targets: &[Some(wgpu::ColorTargetState { format: self.format, blend: spec.blend, write_mask })],
             }),
             multiview_mask: None,
             cache: None,
@@ -164,6 +199,8 @@ impl Pipelines {
         let style_layout = uniform_layout(device, "line style");
         let mesh_layout = pipeline_layout(device, "mesh", &[Some(&view_layout)]);
         let line_layout = pipeline_layout(device, "lines", &[Some(&view_layout), Some(&style_layout)]);
+        let mesh_data_layout = mesh_data_layout(device);
+        let wire_layout = pipeline_layout(device, "wire", &[Some(&view_layout), None, Some(&mesh_data_layout)]);
         let shaded = [Some(POS_LAYOUT), Some(NRM_LAYOUT)];
         let colored = [Some(POS_LAYOUT), Some(NRM_LAYOUT), Some(COLOR_LAYOUT)];
         let faces = |label, vertex_shader, buffers, write_color| Spec {
@@ -175,10 +212,16 @@ impl Pipelines {
             write_color,
             depth_compare: wgpu::CompareFunction::Less,
             cull_mode: None,
+            blend: None,
         };
         let mesh = factory.per_cull(faces("mesh", "vs_mesh", &shaded, true));
         let mesh_colored = factory.per_cull(faces("mesh colored", "vs_mesh_colored", &colored, true));
-        let depth_only = factory.per_cull(faces("depth only", "vs_mesh", &shaded, false));
+        let wire = factory.per_cull(Spec {
+            layout: &wire_layout,
+            buffers: &[],
+            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+            ..faces("wire", "vs_wire", &[], true)
+        });
         let lines = factory.build(&Spec {
             label: "lines",
             layout: &line_layout,
@@ -188,7 +231,8 @@ impl Pipelines {
             write_color: true,
             depth_compare: wgpu::CompareFunction::LessEqual,
             cull_mode: None,
+            blend: None,
         });
-        Pipelines { mesh, mesh_colored, depth_only, lines, view_layout, style_layout }
+        Pipelines { mesh, mesh_colored, wire, lines, view_layout, style_layout, mesh_data_layout }
     }
 }

@@ -2,11 +2,12 @@
 //! (shaders/mesh.wgsl): per-viewport uniforms, then one render pass that
 //! clears the targets and draws every viewport.
 //!
-//! Per viewport, in this order: the faces (shaded, or depth-only for a
-//! hidden-line wireframe), the wireframe, the normal segments, the control
-//! mesh's edges, the highlighted segments. Hidden lines are removed by the
-//! faces in the depth buffer; lines are pulled slightly towards the eye so
-//! they win against the faces they lie on.
+//! Per viewport, in this order: the faces (shaded; with the wireframe on,
+//! the faces and their wireframe in one pass of the `wire` pipeline), the
+//! normal segments, the control mesh's edges, the highlighted segments. The
+//! wireframe's hidden lines are hidden by the faces of the same pass; the
+//! line lists (cage, normals, highlights) are pulled slightly towards the
+//! eye so they win against the faces they lie on.
 
 use super::camera::Camera;
 use super::pipelines::{Pipelines, uniform_group};
@@ -64,6 +65,7 @@ struct ViewUniform {
     back_color: [f32; 4],
     params: [f32; 4],
     line: [f32; 4],
+    wire: [f32; 4],
 }
 
 const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "uniforms are arrays of vec4");
@@ -121,12 +123,22 @@ const STYLE_CONTROL: usize = 2;
 const STYLE_NORMALS: usize = 3;
 const STYLE_SHARP: usize = 4;
 
+/// Width of wireframe lines in pixels (at [`Renderer::pixel_scale`] 1).
+pub const WIRE_WIDTH: f32 = 1.5;
+/// How strongly a wire line darkens the shading under it (0..1).
+pub const WIRE_STRENGTH: f32 = 0.8;
+
 /// Pipelines and per-viewport uniforms.
 pub struct Renderer {
     /// Colour target format.
     pub format: wgpu::TextureFormat,
     /// MSAA sample count of the pipelines.
     pub samples: u32,
+    /// Pixels per logical pixel: line widths are multiplied by it (a
+    /// screenshot `N` times the window's size sets `N`).
+    pub pixel_scale: f32,
+    /// Clear the background to alpha 0 (a screenshot for compositing).
+    pub transparent: bool,
     pipelines: Pipelines,
     views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
     styles: [wgpu::BindGroup; 5],
@@ -144,12 +156,13 @@ impl Renderer {
             });
             uniform_group(device, &pipelines.style_layout, &buf)
         });
-        Renderer { format, samples, pipelines, views: Vec::new(), styles }
+        Renderer { format, samples, pixel_scale: 1.0, transparent: false, pipelines, views: Vec::new(), styles }
     }
 
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
         let aspect = d.rect[2] / d.rect[3].max(1.0);
         let cam = &d.camera;
+        let colors = d.look.colors && d.mesh.is_some_and(|m| m.colors.is_some());
         ViewUniform {
             proj: cam.proj(aspect).to_cols_array_2d(),
             view: cam.view().to_cols_array_2d(),
@@ -165,7 +178,13 @@ impl Renderer {
                 f32::from(cam.orthographic),
                 HEADLIGHT_INTENSITY,
             ],
-            line: [0.0015, 0.004 * cam.radius, f32::from(d.look.uv_checker), 0.0],
+            line: [0.0015, 0.004 * cam.radius, f32::from(d.look.uv_checker), f32::from(colors)],
+            wire: [
+                WIRE_WIDTH * self.pixel_scale,
+                f32::from(d.look.wire_edges.max_generation()),
+                f32::from(d.look.surface == Surface::Hidden),
+                WIRE_STRENGTH,
+            ],
         }
     }
 
@@ -182,6 +201,9 @@ impl Renderer {
         draws: &[ViewportDraw],
     ) {
         self.write_uniforms(device, queue, draws);
+        for m in draws.iter().filter(|d| d.look.wireframe).filter_map(|d| d.mesh) {
+            m.data_group(device, &self.pipelines.mesh_data_layout);
+        }
         let mut pass = self.begin_pass(encoder, targets, resolve);
         let (tw, th) = (targets.size.0 as f32, targets.size.1 as f32);
         for (d, (_, group)) in draws.iter().zip(&self.views) {
@@ -237,7 +259,7 @@ impl Renderer {
                 depth_slice: None,
                 resolve_target,
                 ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: 1.0 }),
+                    load: wgpu::LoadOp::Clear(wgpu::Color { r, g, b, a: if self.transparent { 0.0 } else { 1.0 } }),
                     store: wgpu::StoreOp::Store,
                 },
             })],
@@ -255,8 +277,16 @@ impl Renderer {
     /// Everything one viewport shows, in drawing order.
     fn draw_viewport(&self, pass: &mut wgpu::RenderPass, d: &ViewportDraw) {
         if let Some(m) = d.mesh {
-            self.draw_faces(pass, m, d.look);
-            if d.look.wireframe && m.edge_indices > 0 {
+            let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
+            if let Some(group) = wire_group {
+                pass.set_pipeline(&self.pipelines.wire[m.cull as usize]);
+                pass.set_bind_group(2, group, &[]);
+                pass.draw(0..m.triangle_indices, 0..1);
+            } else {
+                self.draw_faces(pass, m, d.look);
+            }
+            if d.look.wireframe && m.triangle_indices == 0 && m.edge_indices > 0 {
+                // a mesh of lines only (a curve): its edges are the wireframe
                 let style = if d.look.surface == Surface::Hidden { STYLE_WIRE_LIGHT } else { STYLE_WIRE_DARK };
                 self.draw_edges(pass, m, style);
             }
@@ -282,21 +312,18 @@ impl Renderer {
         }
     }
 
-    /// The faces: shaded (material or per-vertex colour), or only into the
-    /// depth buffer when the surface is hidden but the wireframe is on.
+    /// The shaded faces (material or per-vertex colour); nothing when the
+    /// surface is hidden.
     fn draw_faces(&self, pass: &mut wgpu::RenderPass, m: &GpuMesh, look: Look) {
         let shaded = matches!(look.surface, Surface::Smooth | Surface::Flat);
-        if m.triangle_indices == 0 || !(shaded || look.wireframe) {
+        if m.triangle_indices == 0 || !shaded {
             return;
         }
         let cull = m.cull as usize;
         pass.set_vertex_buffer(0, m.positions.slice(..));
         pass.set_vertex_buffer(1, m.normals.slice(..));
         pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
-        if !shaded {
-            // Hidden-line wireframe: the faces only fill the depth buffer.
-            pass.set_pipeline(&self.pipelines.depth_only[cull]);
-        } else if let (Some(colors), true) = (&m.colors, look.colors) {
+        if let (Some(colors), true) = (&m.colors, look.colors) {
             pass.set_pipeline(&self.pipelines.mesh_colored[cull]);
             pass.set_vertex_buffer(2, colors.slice(..));
         } else {

@@ -5,8 +5,13 @@ use crate::app::command::Command;
 use egui::{Color32, RichText};
 use std::path::{Path, PathBuf};
 
-/// Model and curve files the viewer opens.
-const OPENS: [&str; 4] = ["obj", "ct", "bez", "bzc"];
+/// Whether the viewer opens `p` (a model or curve file of any format the
+/// readers know, [`crate::io::READ_EXTENSIONS`]).
+pub fn opens(p: &Path) -> bool {
+    p.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| crate::io::READ_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+}
 
 /// The browser window while it is open: folders to walk into, model files to open.
 pub fn file_browser(ctx: &egui::Context, panel: &mut PanelState) -> Option<Command> {
@@ -52,10 +57,24 @@ fn list_folder(ui: &mut egui::Ui, dir: &Path, next: &mut Option<PathBuf>, chosen
             if ui.selectable_label(false, format!("[dir] {name}/")).clicked() {
                 *next = Some(p);
             }
-        } else if p.extension().and_then(|e| e.to_str()).is_some_and(|e| OPENS.contains(&e))
-            && ui.selectable_label(false, name).clicked()
-        {
+        } else if opens(&p) && ui.selectable_label(false, name).clicked() {
             *chosen = Some(p);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::opens;
+    use std::path::Path;
+
+    #[test]
+    fn the_browser_lists_every_readable_format_in_any_case() {
+        for f in ["a.obj", "a.ct", "a.bez", "a.bzc", "a.ply", "a.STL", "a.off", "a.gltf", "a.Glb", "a.dae"] {
+            assert!(opens(Path::new(f)), "{f}");
+        }
+        for f in ["a.png", "a", "a.paths", "a.mtl"] {
+            assert!(!opens(Path::new(f)), "{f}");
         }
     }
 }

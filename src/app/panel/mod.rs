@@ -22,7 +22,7 @@ use super::command::Command;
 use super::display::Display;
 use super::doc::Doc;
 use super::view::View;
-use crate::render::Surface;
+use crate::render::{Surface, WireEdges};
 use egui::RichText;
 use std::path::PathBuf;
 
@@ -92,23 +92,21 @@ pub fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelState) -
     let mut out = Vec::new();
     let mut display = doc.display;
     egui::Panel::left("controls").default_size(300.0).resizable(true).show(ui, |ui| {
-        egui::ScrollArea::vertical().show(ui, |ui| {
+        // the whole panel scrolls, so a small window reaches every section;
+        // each section folds, and egui keeps its open state by its title
+        egui::ScrollArea::vertical().auto_shrink([false, false]).show(ui, |ui| {
             ui.heading("subdiv");
             out.extend(model::model_section(ui, doc, panel));
-            ui.separator();
-            out.extend(subdivision::subdivision_section(ui, doc));
-            ui.separator();
-            out.extend(display_section(ui, view, &mut display));
-            ui.separator();
-            out.extend(animation::animation_section(ui, doc, panel, &display));
-            ui.separator();
-            out.extend(tools::tools_section(ui, doc, panel, &mut display));
-            ui.separator();
-            egui::CollapsingHeader::new(RichText::new("Sharp features").strong()).default_open(true).show(ui, |ui| {
+            section(ui, "Subdivision", true, |ui| out.extend(subdivision::subdivision_section(ui, doc)));
+            section(ui, "Display", true, |ui| out.extend(display_section(ui, doc, view, &mut display)));
+            section(ui, "Animation", false, |ui| out.extend(animation::animation_section(ui, doc, panel, &display)));
+            section(ui, "Surface and tools", false, |ui| {
+                out.extend(tools::tools_section(ui, doc, panel, &mut display));
+            });
+            section(ui, "Sharp features", false, |ui| {
                 out.extend(creases::creases_section(ui, doc, panel, &mut display));
             });
-            ui.separator();
-            out.extend(stats::stats_section(ui, doc, view));
+            section(ui, "Statistics", true, |ui| out.extend(stats::stats_section(ui, doc, view)));
             ui.separator();
             ui.label(RichText::new(HELP).small().weak());
         });
@@ -123,7 +121,53 @@ pub fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelState) -
     (rect, out)
 }
 
-fn display_section(ui: &mut egui::Ui, view: &View, display: &mut Display) -> Vec<Command> {
+/// A foldable section, open at first when `open`.
+fn section(ui: &mut egui::Ui, title: &str, open: bool, body: impl FnOnce(&mut egui::Ui)) {
+    egui::CollapsingHeader::new(RichText::new(title).strong()).default_open(open).show(ui, body);
+}
+
+/// Which edges the wireframe draws: all, the control edges, or those made
+/// up to a level (at most the level shown).
+fn wire_edges_row(ui: &mut egui::Ui, doc: &Doc, display: &mut Display) {
+    let shown = doc.request.level.min(u32::from(u8::MAX)) as u8;
+    ui.horizontal_wrapped(|ui| {
+        ui.label("Edges");
+        ui.selectable_value(&mut display.wire_edges, WireEdges::All, "all");
+        ui.selectable_value(&mut display.wire_edges, WireEdges::UpTo(0), "control");
+        let mut k = match display.wire_edges {
+            WireEdges::UpTo(k) if k > 0 => k,
+            _ => shown.max(1),
+        };
+        let up_to = matches!(display.wire_edges, WireEdges::UpTo(k) if k > 0);
+        if ui.selectable_label(up_to, "up to level").clicked() {
+            display.wire_edges = WireEdges::UpTo(k);
+        }
+        if ui.add_enabled(up_to, egui::DragValue::new(&mut k).range(1..=shown.max(1))).changed() {
+            display.wire_edges = WireEdges::UpTo(k);
+        }
+    })
+    .response
+    .on_hover_text("Edges by the level that made them: control = the control mesh's edges on the surface");
+}
+
+/// The screenshot button with its scale and transparency.
+fn screenshot_row(ui: &mut egui::Ui, view: &View) -> Vec<Command> {
+    let mut out = Vec::new();
+    let mut shot = view.shot;
+    ui.horizontal(|ui| {
+        if ui.button("Screenshot (P)").on_hover_text("The 3D area, rendered offscreen").clicked() {
+            out.push(Command::Screenshot);
+        }
+        ui.add(egui::DragValue::new(&mut shot.scale).range(1..=4).suffix("x"));
+        ui.checkbox(&mut shot.transparent, "transparent");
+    });
+    if shot != view.shot {
+        out.push(Command::SetShot(shot));
+    }
+    out
+}
+
+fn display_section(ui: &mut egui::Ui, doc: &Doc, view: &View, display: &mut Display) -> Vec<Command> {
     let mut out = Vec::new();
     ui.horizontal(|ui| {
         ui.label("Shading");
@@ -146,6 +190,9 @@ fn display_section(ui: &mut egui::Ui, view: &View, display: &mut Display) -> Vec
                 .on_hover_text("4x multisampling; costly on a software rasteriser with big meshes");
         }
     });
+    if display.wireframe {
+        wire_edges_row(ui, doc, display);
+    }
     ui.horizontal(|ui| {
         if ui.button("Fit (F)").clicked() {
             out.push(Command::Fit);
@@ -153,9 +200,7 @@ fn display_section(ui: &mut egui::Ui, view: &View, display: &mut Display) -> Vec
         if ui.button("Reset camera (R)").clicked() {
             out.push(Command::ResetCamera);
         }
-        if ui.button("Screenshot (P)").clicked() {
-            out.push(Command::Screenshot);
-        }
     });
+    out.extend(screenshot_row(ui, view));
     out
 }

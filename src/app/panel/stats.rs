@@ -11,7 +11,6 @@ use egui::{Color32, RichText};
 pub fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Command> {
     let m = &doc.model;
     let (c, t) = (&m.control.topo, &m.result.shown.topo);
-    ui.label(RichText::new("Statistics").strong());
     egui::Grid::new("stats").num_columns(3).striped(true).show(ui, |ui| {
         ui.label("");
         ui.label("control");

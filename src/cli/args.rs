@@ -1,0 +1,170 @@
+//! The option groups shared by the commands (flattened into each with
+//! `#[command(flatten)]`), so one option has one name, one meaning and one
+//! help text everywhere: [`InputArgs`] on every command that reads a mesh,
+//! [`SubdivArgs`] (scheme, sharp features, levels) on every command that
+//! subdivides, [`ColorArgs`] on every command that draws.
+
+use std::path::Path;
+use subdiv::mesh::attributes::Attributes;
+use subdiv::{Error, LoopBeta, Mesh, Options, Result, Scheme, bundled};
+
+/// How a mesh is read.
+#[derive(clap::Args, Clone, Default)]
+pub struct InputArgs {
+    /// Repair the input first (cut non-manifold edges, split non-manifold
+    /// vertices, fix orientation, drop degenerate and duplicate faces)
+    /// instead of refusing it; the repair report goes to stderr.
+    #[arg(long)]
+    pub repair: bool,
+}
+
+impl InputArgs {
+    /// The mesh `input` names (a file or `bundled:NAME`), repaired when asked
+    /// (the report on stderr unless `-q`).
+    pub fn load(&self, input: &Path) -> Result<Mesh> {
+        Ok(self.load_with_attributes(input)?.0)
+    }
+
+    /// [`InputArgs::load`] with the file's texture coordinates and colours
+    /// (none after a repair, which renumbers the vertices).
+    pub fn load_with_attributes(&self, input: &Path) -> Result<(Mesh, Attributes)> {
+        let (m, a) = if self.repair {
+            let (m, report) = bundled::load_repaired(input)?;
+            if super::logging::warnings_shown() {
+                eprint!("{report}");
+            }
+            (m, Attributes::default())
+        } else {
+            bundled::load_with_attributes(input)?
+        };
+        log::info!(
+            "read {}: {} vertices, {} triangles{}{}",
+            input.display(),
+            m.positions.len(),
+            m.ct.num_triangles(),
+            if a.uv.is_some() { ", texture coordinates" } else { "" },
+            if a.colors.is_some() { ", colours" } else { "" }
+        );
+        Ok((m, a))
+    }
+}
+
+/// The subdivision: scheme, its options, sharp features and the number of levels.
+#[derive(clap::Args, Clone, Default)]
+pub struct SubdivArgs {
+    #[command(flatten)]
+    pub scheme: SchemeArgs,
+    /// Subdivision levels (default: 1 for subdivide, 0 for render and view, 5 for animate).
+    #[arg(long, short = 'n', visible_alias = "level", short_alias = 'l', value_name = "N")]
+    pub levels: Option<u32>,
+}
+
+impl SubdivArgs {
+    /// The levels asked for, or this command's `default`.
+    pub fn levels_or(&self, default: u32) -> u32 {
+        self.levels.unwrap_or(default)
+    }
+}
+
+/// A scheme and its options.
+#[derive(clap::Args, Clone, Default)]
+pub struct SchemeArgs {
+    /// Scheme: midpoint, loop, butterfly, modified-butterfly, jarek.
+    #[arg(long, short, default_value = "loop")]
+    pub scheme: Scheme,
+    /// Use Warren's beta for Loop instead of Loop's.
+    #[arg(long)]
+    pub warren: bool,
+    /// Modified-butterfly tension w (0 = Zorin's default).
+    #[arg(long, default_value_t = 0.0)]
+    pub tension: f32,
+    /// Refuse levels predicted to need more than this (e.g. 2G, 500M; default: 80% of available memory).
+    #[arg(long, value_parser = parse_bytes)]
+    pub max_memory: Option<u64>,
+    #[command(flatten)]
+    pub features: FeatureArgs,
+}
+
+impl SchemeArgs {
+    /// The library's options for these arguments.
+    pub fn options(&self) -> Options {
+        Options {
+            loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
+            tension: self.tension,
+            max_memory: self.max_memory,
+            creasing: self.features.creasing,
+            boundary: self.features.boundary,
+        }
+    }
+}
+
+/// Sharp features: the model's own tags (OBJ `t crease` / `t corner`, .ct
+/// `creases` / `corners`) plus these options (OpenSubdiv's names).
+#[derive(clap::Args, Clone, Default)]
+pub struct FeatureArgs {
+    /// Make every edge whose two faces' normals differ by more than DEG degrees infinitely sharp.
+    #[arg(long, value_name = "DEG")]
+    pub crease_angle: Option<f32>,
+    /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
+    #[arg(long, default_value = "edge")]
+    pub boundary: subdiv::mesh::BoundaryInterpolation,
+    /// How semi-sharp creases decay: uniform (s - 1 per level) or chaikin.
+    #[arg(long, default_value = "uniform")]
+    pub creasing: subdiv::mesh::Creasing,
+}
+
+impl FeatureArgs {
+    /// `mesh` with the edges sharper than `--crease-angle` tagged.
+    pub fn apply(&self, mesh: Mesh) -> Result<Mesh> {
+        let Some(deg) = self.crease_angle else { return Ok(mesh) };
+        if !(0.0..=180.0).contains(&deg) {
+            return Err(Error::Usage(format!("--crease-angle {deg}: give an angle from 0 to 180 degrees")));
+        }
+        let Mesh { ct, positions } = mesh;
+        Ok(Mesh { ct: ct.with_angle_creases(&positions, deg), positions })
+    }
+}
+
+/// How a drawing command colours the surface.
+#[derive(clap::Args, Clone)]
+pub struct ColorArgs {
+    /// Colouring: none, shells (the level that made each vertex), displacement
+    /// (from the control mesh), file (the file's vertex colours) or checker
+    /// (a checker through the file's texture coordinates).
+    #[arg(long, default_value = "none")]
+    pub color: String,
+}
+
+impl Default for ColorArgs {
+    fn default() -> Self {
+        ColorArgs { color: "none".into() }
+    }
+}
+
+/// `WxH`, each side 1..=16384.
+pub fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}' is not WxH"))?;
+    let w: u32 = w.parse().map_err(|_| format!("bad width in '{s}'"))?;
+    let h: u32 = h.parse().map_err(|_| format!("bad height in '{s}'"))?;
+    if w == 0 || h == 0 || w > 16384 || h > 16384 {
+        return Err(format!("size {w}x{h} out of range (1..16384)"));
+    }
+    Ok((w, h))
+}
+
+/// A byte count with an optional K, M, G or T suffix.
+pub fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
+    let s = s.trim();
+    let (num, mult) = match s.chars().last().map(|c| c.to_ascii_uppercase()) {
+        Some('K') => (&s[..s.len() - 1], 1u64 << 10),
+        Some('M') => (&s[..s.len() - 1], 1 << 20),
+        Some('G') => (&s[..s.len() - 1], 1 << 30),
+        Some('T') => (&s[..s.len() - 1], 1 << 40),
+        _ => (s, 1),
+    };
+    let x: f64 = num.parse().map_err(|_| format!("'{s}' is not a size (e.g. 512M, 2G)"))?;
+    if !(x.is_finite() && x >= 0.0) {
+        return Err(format!("'{s}' is not a size"));
+    }
+    Ok((x * mult as f64) as u64)
+}

@@ -1,0 +1,275 @@
+//! The commands that draw offscreen: `render` (one PNG) and `animate` (a GIF
+//! or numbered PNGs). Both need the `viewer` feature.
+
+use super::args::{ColorArgs, InputArgs, SubdivArgs, parse_size};
+use std::path::PathBuf;
+#[cfg(not(feature = "viewer"))]
+use subdiv::Result;
+
+/// `subdiv render` arguments.
+#[derive(clap::Args)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub struct RenderArgs {
+    /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Output PNG.
+    output: PathBuf,
+    #[command(flatten)]
+    from: InputArgs,
+    #[command(flatten)]
+    sub: SubdivArgs,
+    #[command(flatten)]
+    color: ColorArgs,
+    /// phong, flat, wire or phong+wire.
+    #[arg(long, default_value = "phong")]
+    shading: String,
+    /// Image size WxH.
+    #[arg(long, default_value = "800x600", value_parser = parse_size)]
+    size: (u32, u32),
+    /// Orthographic projection.
+    #[arg(long)]
+    ortho: bool,
+    /// Overlay the control mesh.
+    #[arg(long)]
+    control: bool,
+    #[command(flatten)]
+    look: RenderLook,
+}
+
+/// The wireframe and picture options of `render`.
+#[derive(clap::Args)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub struct RenderLook {
+    /// Wireframe edges drawn (with --shading wire or phong+wire): all, control
+    /// (the control mesh's edges on the surface) or K (the edges made up to level K).
+    #[arg(long, default_value = "all")]
+    wire_level: String,
+    /// Transparent background (alpha 0; the object stays opaque).
+    #[arg(long)]
+    transparent: bool,
+    /// Render N times the size (lines N times as wide: the same picture, sharper).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
+    scale: u32,
+}
+
+/// `subdiv animate` arguments.
+#[derive(clap::Args)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub struct AnimateArgs {
+    /// Model: a file or bundled:NAME (default: the bundled tetrahedron).
+    #[arg(long)]
+    model: Option<PathBuf>,
+    /// Key paths (.paths; default: beside the model or in paths/, else generated loops).
+    #[arg(long)]
+    paths: Option<PathBuf>,
+    #[command(flatten)]
+    from: InputArgs,
+    #[command(flatten)]
+    sub: SubdivArgs,
+    /// Colouring: none, shells (the level that made each vertex) or file (the model's vertex colours).
+    #[arg(long, default_value = "none")]
+    color: String,
+    /// Path refinements n: K keys give K * 2^n frames.
+    #[arg(long, default_value_t = 5)]
+    refine: u32,
+    /// Path tweak: bspline, four-point or jarek.
+    #[arg(long, default_value = "jarek")]
+    tweak: String,
+    /// Write one looping GIF here.
+    #[arg(long, conflicts_with = "frames_dir", required_unless_present_any = ["frames_dir", "stats"])]
+    gif: Option<PathBuf>,
+    /// Write frame_0000.png, ... into this directory.
+    #[arg(long)]
+    frames_dir: Option<PathBuf>,
+    /// Image size WxH.
+    #[arg(long, default_value = "480x480", value_parser = parse_size)]
+    size: (u32, u32),
+    /// phong, flat, wire or phong+wire.
+    #[arg(long, default_value = "phong")]
+    shading: String,
+    /// Overlay the moving control mesh.
+    #[arg(long)]
+    control: bool,
+    /// Frames per second stored in the GIF.
+    #[arg(long, default_value_t = 30.0)]
+    fps: f32,
+    /// Print plan_ms= (recording the plan) and frame_ms= (median per frame,
+    /// positions and normals); without --gif/--frames-dir every frame is
+    /// evaluated and nothing is written.
+    #[arg(long)]
+    stats: bool,
+    /// Where --stats evaluates the frames: cpu, or gpu (compute passes).
+    #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu"])]
+    eval: String,
+}
+
+#[cfg(not(feature = "viewer"))]
+pub fn render(_: &RenderArgs) -> Result<()> {
+    Err(subdiv::Error::Usage("built without the 'viewer' feature: rendering is not available".into()))
+}
+
+#[cfg(not(feature = "viewer"))]
+pub fn animate(_: AnimateArgs) -> Result<()> {
+    Err(subdiv::Error::Usage("built without the 'viewer' feature: animation export is not available".into()))
+}
+
+#[cfg(feature = "viewer")]
+pub use gpu::{animate, render};
+
+#[cfg(feature = "viewer")]
+mod gpu {
+    use super::super::progress;
+    use super::{AnimateArgs, RenderArgs};
+    use glam::Vec3;
+    use subdiv::app::display::Coloring;
+    use subdiv::mesh::attributes::Attributes;
+    use subdiv::mesh::inspect::{colormap, displacement_from_control, vertex_counts_per_level, vertex_creation_level};
+    use subdiv::render::Paint;
+    use subdiv::{Error, Mesh, Result, Scheme, bundled};
+
+    fn ramp(t: impl Iterator<Item = f32>) -> Vec<Vec3> {
+        t.map(|t| Vec3::from(colormap(t))).collect()
+    }
+
+    /// The colours of the levels that made each vertex of a `levels`-deep refinement of `control`.
+    fn shells(control: &Mesh, levels: u32, nv: usize) -> Vec<Vec3> {
+        let lv = vertex_creation_level(&vertex_counts_per_level(&control.ct, levels), nv);
+        ramp(lv.iter().map(|&l| f32::from(l) / levels.max(1) as f32))
+    }
+
+    /// The paint of a colouring for `fine`, `levels` levels of `scheme` over `control`.
+    fn paint(
+        coloring: Coloring,
+        control: &Mesh,
+        fine: &Mesh,
+        attrs: &Attributes,
+        (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
+    ) -> Result<Paint> {
+        let refined = |a: Attributes| subdiv::subdiv::attributes::refine(&control.ct, &a, scheme, levels, opts);
+        let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
+        Ok(match coloring {
+            Coloring::None => Paint::Material,
+            Coloring::Shells => Paint::Colors(shells(control, levels, fine.positions.len())),
+            Coloring::Displacement => {
+                let d = displacement_from_control(control, fine, levels)?;
+                let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
+                Paint::Colors(ramp(d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 })))
+            }
+            Coloring::File => {
+                let Some(c) = attrs.colors.clone() else { return Err(missing("colors")) };
+                let a = refined(Attributes { colors: Some(c), uv: None })?;
+                Paint::Colors(a.colors.ok_or_else(|| missing("colors"))?)
+            }
+            Coloring::Checker => {
+                let Some(uv) = attrs.uv.clone() else { return Err(missing("texture coordinates")) };
+                let a = refined(Attributes { colors: None, uv: Some(uv) })?;
+                Paint::Checker(a.uv.ok_or_else(|| missing("texture coordinates"))?)
+            }
+        })
+    }
+
+    /// `subdiv render`.
+    pub fn render(a: &RenderArgs) -> Result<()> {
+        let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
+        let coloring: Coloring = a.color.color.parse().map_err(Error::Usage)?;
+        let s = &a.sub.scheme;
+        let levels = a.sub.levels_or(0);
+        let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+        let mesh = s.features.apply(mesh)?;
+        let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
+        let paint = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
+        let (width, height) = a.size;
+        let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
+        let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
+        let opts = subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot };
+        let img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
+        subdiv::render::save_png(&img, &a.output)
+    }
+
+    /// The model and its default paths (beside it, bundled, or the tetrahedron's).
+    fn model(a: &AnimateArgs) -> Result<(Mesh, Attributes, Option<subdiv::anim::paths::Paths>)> {
+        let Some(m) = &a.model else {
+            let (mesh, paths) = bundled::tetrahedron()?;
+            return Ok((mesh, Attributes::default(), Some(paths)));
+        };
+        let (mesh, attrs) = a.from.load_with_attributes(m)?;
+        let beside = match bundled::paths_for(m) {
+            Some(src) => {
+                let paths = src.load()?;
+                paths.check_model(&mesh, &src.describe())?;
+                Some(paths)
+            }
+            None => None,
+        };
+        Ok((mesh, attrs, beside))
+    }
+
+    /// `subdiv animate`.
+    pub fn animate(a: AnimateArgs) -> Result<()> {
+        use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
+        use subdiv::render::export::{ExportStyle, ExportTarget, export_animation_painted};
+        let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
+        let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
+        let coloring: Coloring = a.color.parse().map_err(Error::Usage)?;
+        let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
+        let (mesh, attrs, default_paths) = model(&a)?;
+        let mesh = s.features.apply(mesh)?;
+        let paths = match (&a.paths, default_paths) {
+            (Some(p), _) => {
+                let paths = Paths::load(p)?;
+                paths.check_model(&mesh, &p.display().to_string())?;
+                paths
+            }
+            (None, Some(paths)) => paths,
+            (None, None) => Paths::generated(&mesh, 4),
+        };
+        let mut anim = Animation::new(&mesh, &paths, tweak, a.refine, s.scheme, level, &s.options())?;
+        if a.stats && a.gif.is_none() && a.frames_dir.is_none() {
+            return super::super::anim_stats::run(&mut anim, a.eval == "gpu");
+        }
+        if a.eval == "gpu" {
+            return Err(Error::Usage("--eval gpu times frames with --stats; exports evaluate on the CPU".into()));
+        }
+        let nv = anim.topology().num_vertices();
+        let colors = match coloring {
+            Coloring::None => None,
+            Coloring::Shells => Some(shells(&mesh, level, nv)),
+            Coloring::File => {
+                let only = Attributes { colors: attrs.colors, uv: None };
+                let r = subdiv::subdiv::attributes::refine(&mesh.ct, &only, s.scheme, level, &s.options())?;
+                Some(r.colors.ok_or_else(|| Error::Usage("--color file: the model has no colors".into()))?)
+            }
+            other => return Err(Error::Usage(format!("animate --color {}: use none, shells or file", other.name()))),
+        };
+        let target = match (a.gif, a.frames_dir) {
+            (Some(g), _) => ExportTarget::Gif(g),
+            (None, Some(d)) => ExportTarget::Frames(d),
+            (None, None) => return Err(Error::Usage("give --gif FILE or --frames-dir DIR".into())),
+        };
+        let look = subdiv::render::Look { control: a.control, ..shading.look() };
+        let style = ExportStyle { size: a.size, look, fps: a.fps };
+        let t0 = std::time::Instant::now();
+        let total = anim.frame_count();
+        let bar = progress::bar(total as u64, "frames");
+        let n = export_animation_painted(&mut anim, &mesh, &target, &style, colors.as_deref(), |d, _| {
+            bar.set_position(d as u64);
+            true
+        })?;
+        bar.finish_and_clear();
+        let out = match &target {
+            ExportTarget::Gif(p) | ExportTarget::Frames(p) => p.display().to_string(),
+        };
+        println!(
+            "wrote {n} frames ({} keys x 2^{}, {} triangles each) to {out} in {:.2} s",
+            paths.keys_per_vertex,
+            a.refine,
+            anim.topology().num_triangles(),
+            t0.elapsed().as_secs_f64()
+        );
+        if a.stats {
+            // the median of the last 64 evaluations (the export's)
+            println!("plan_ms={:.3} frame_ms={:.3}", anim.plan_ms(), anim.frame_ms().unwrap_or(0.0));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,233 @@
+//! `subdiv info` (meshes and `.bzc` curves) and `subdiv models`.
+
+use super::args::{FeatureArgs, InputArgs};
+use super::print_json;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use subdiv::mesh::topology::topology;
+use subdiv::{Error, Mesh, MeshError, Result, bundled, io};
+
+/// `subdiv info` arguments.
+#[derive(clap::Args)]
+pub struct InfoArgs {
+    /// Input model: a mesh file, a .bzc curve or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Print as JSON.
+    #[arg(long)]
+    json: bool,
+    /// `--repair`: always analyse and describe the repaired mesh, even when the input is valid.
+    #[command(flatten)]
+    from: InputArgs,
+    #[command(flatten)]
+    features: FeatureArgs,
+}
+
+/// `subdiv info --json` of a mesh.
+#[derive(Serialize)]
+struct MeshInfo {
+    file: String,
+    vertices: usize,
+    edges: usize,
+    faces: usize,
+    closed: bool,
+    boundary_loops: usize,
+    border_edges: usize,
+    components: usize,
+    euler: i64,
+    genus: i64,
+    unreferenced_dropped: usize,
+    non_manifold_edges: usize,
+    non_manifold_vertices: usize,
+    repaired: bool,
+    #[serde(flatten)]
+    sharp: SharpInfo,
+    valence: BTreeMap<usize, usize>,
+}
+
+/// The sharp-feature counts of [`MeshInfo`] (flattened into it).
+#[derive(Serialize)]
+struct SharpInfo {
+    sharp_edges: usize,
+    infinitely_sharp_edges: usize,
+    sharp_vertices: usize,
+    corners: usize,
+    darts: usize,
+    crease_vertices: usize,
+}
+
+/// `subdiv info --json` of a curve.
+#[derive(Serialize)]
+struct CurveInfo {
+    file: String,
+    kind: &'static str,
+    control_points: usize,
+    degree: usize,
+    length: f32,
+}
+
+/// Is this load error a topology problem that the repair analysis can describe?
+fn is_topology_error(e: &Error) -> bool {
+    let source = match e {
+        Error::Mesh { source, .. } | Error::Invalid(source) => source,
+        _ => return false,
+    };
+    matches!(
+        source,
+        MeshError::NonManifoldEdge { .. }
+            | MeshError::NonManifoldVertex { .. }
+            | MeshError::InconsistentOrientation { .. }
+            | MeshError::DegenerateFace { .. }
+    )
+}
+
+/// `subdiv models`: one line per bundled model, its command-line name and what it is.
+pub fn models() {
+    let width = bundled::MODELS.iter().map(|m| m.cli_name().len()).max().unwrap_or(0);
+    for m in bundled::MODELS {
+        println!("{:<width$}  {}", m.cli_name(), m.what);
+    }
+}
+
+/// Is this model argument a `.bzc` curve (a file or a bundled one)?
+fn is_curve(input: &Path) -> bool {
+    input.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc"))
+}
+
+/// `subdiv info` of a `.bzc` Bezier curve: control points, degree, ends,
+/// the point at t = 1/2 and the polyline length.
+fn curve_info(input: &Path, json: bool) -> Result<()> {
+    let control = bundled::load_curve(input)?;
+    let at = |t: f32| subdiv::io::bezier::de_casteljau(&control, t).unwrap_or_default();
+    let (first, mid, last) = (at(0.0), at(0.5), at(1.0));
+    let length: f32 =
+        subdiv::io::bezier::curve_polyline(&control, 256).windows(2).map(|w| (w[1] - w[0]).length()).sum();
+    let degree = control.len().saturating_sub(1);
+    if json {
+        let file = input.display().to_string();
+        return print_json(&CurveInfo { file, kind: "bezier_curve", control_points: control.len(), degree, length });
+    }
+    println!("file:            {}", input.display());
+    println!("kind:            Bezier curve (.bzc), not a mesh: no faces to subdivide (`subdiv view` draws it)");
+    println!("control points:  {} (degree {degree})", control.len());
+    println!("ends:            ({:.4}, {:.4}) .. ({:.4}, {:.4})", first.x, first.y, last.x, last.y);
+    println!("point at t=1/2:  ({:.4}, {:.4})", mid.x, mid.y);
+    println!("length:          {length:.4}");
+    Ok(())
+}
+
+/// `subdiv info`.
+pub fn info(a: &InfoArgs) -> Result<()> {
+    let input = a.input.as_path();
+    if is_curve(input) {
+        return curve_info(input, a.json);
+    }
+    let loaded = if a.from.repair { None } else { Some(load_for_info(input)) };
+    let (mesh, dropped, records, report) = match loaded {
+        Some(Ok((m, dropped, records))) => (m, dropped, records, None),
+        Some(Err(e)) if !is_topology_error(&e) => return Err(e),
+        // invalid topology (or --repair): analyse and describe the repaired mesh
+        _ => {
+            let (m, r) = bundled::analyze(input)?;
+            (m, r.unreferenced_vertices.count, r.vertices_in, Some(r))
+        }
+    };
+    let mesh = a.features.apply(mesh)?;
+    let sharp = subdiv::subdiv::features::summary(&mesh.ct, a.features.boundary);
+    let (nm_edges, nm_vertices) =
+        report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));
+    let t = topology(&mesh.ct);
+    let valence: BTreeMap<usize, usize> =
+        t.valence_histogram.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
+    if a.json {
+        return print_json(&MeshInfo {
+            file: input.display().to_string(),
+            vertices: t.vertices,
+            edges: t.edges,
+            faces: t.faces,
+            closed: t.is_closed(),
+            boundary_loops: t.boundary_loops,
+            border_edges: t.border_edges,
+            components: t.components,
+            euler: t.euler,
+            genus: t.genus,
+            unreferenced_dropped: dropped,
+            non_manifold_edges: nm_edges,
+            non_manifold_vertices: nm_vertices,
+            repaired: report.is_some(),
+            sharp: SharpInfo {
+                sharp_edges: sharp.sharp_edges,
+                infinitely_sharp_edges: sharp.infinite_edges,
+                sharp_vertices: sharp.sharp_vertices,
+                corners: sharp.corners,
+                darts: sharp.darts,
+                crease_vertices: sharp.crease_vertices,
+            },
+            valence,
+        });
+    }
+    println!("file:            {}", input.display());
+    println!("vertices:        {} ({records} records, {dropped} unreferenced dropped)", t.vertices);
+    println!("edges:           {}", t.edges);
+    println!("faces:           {}", t.faces);
+    println!("closed:          {}", if t.is_closed() { "yes" } else { "no" });
+    println!("boundary loops:  {} ({} border edges)", t.boundary_loops, t.border_edges);
+    println!("components:      {}", t.components);
+    println!("euler:           {}", t.euler);
+    println!("genus:           {}", t.genus);
+    print_manifold(report.as_ref(), nm_edges, nm_vertices);
+    println!(
+        "sharp features:  {} sharp edges ({} infinitely sharp), {} sharp vertices; {} corners, {} darts, {} crease vertices",
+        sharp.sharp_edges,
+        sharp.infinite_edges,
+        sharp.sharp_vertices,
+        sharp.corners,
+        sharp.darts,
+        sharp.crease_vertices
+    );
+    let hist: Vec<String> = valence.iter().map(|(k, c)| format!("{k}:{c}")).collect();
+    println!("valence:         {}", hist.join(" "));
+    let (lo, hi) = mesh.bounds();
+    println!("bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    if let Some(r) = &report {
+        print!("{r}");
+    }
+    Ok(())
+}
+
+/// The manifold line of `info`, with the offending ids when there are any.
+fn print_manifold(report: Option<&subdiv::mesh::RepairReport>, nm_edges: usize, nm_vertices: usize) {
+    let Some(r) = report else {
+        println!("manifold:        yes (0 non-manifold edges, 0 non-manifold vertices)");
+        return;
+    };
+    let b = r.id_base;
+    println!(
+        "manifold:        {} ({nm_edges} non-manifold edges, {nm_vertices} non-manifold vertices; counts above are of the repaired mesh)",
+        if nm_edges + nm_vertices == 0 { "yes" } else { "no" }
+    );
+    if nm_edges > 0 {
+        let ids: Vec<String> =
+            r.non_manifold_edges.examples.iter().map(|e| format!("{}-{}", e[0] + b, e[1] + b)).collect();
+        println!("non-manifold edges:    {}", ids.join(" "));
+    }
+    if nm_vertices > 0 {
+        let ids: Vec<String> = r.non_manifold_vertices.examples.iter().map(|v| (v + b).to_string()).collect();
+        println!("non-manifold vertices: {}", ids.join(" "));
+    }
+}
+
+/// Loads for `info`: the mesh, unreferenced vertices dropped, vertex records.
+fn load_for_info(input: &Path) -> Result<(Mesh, usize, usize)> {
+    let is_obj = input.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj"));
+    if !is_obj {
+        let m = bundled::load(input)?;
+        let n = m.positions.len();
+        Ok((m, 0, n))
+    } else {
+        // a file or a bundled model: bundled::read gives the bytes of either
+        let bytes = bundled::read(input)?;
+        let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
+        Ok((m, inf.unreferenced, inf.vertex_records))
+    }
+}

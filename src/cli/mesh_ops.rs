@@ -1,0 +1,190 @@
+//! The commands that read a mesh and write one: subdivide, smooth, limit, repair.
+
+use super::args::{InputArgs, SubdivArgs};
+use super::{logging, print_json, progress};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::time::Instant;
+use subdiv::{Error, Mesh, Result, bundled, io};
+
+/// `subdiv subdivide` arguments.
+#[derive(clap::Args)]
+pub struct SubdivideArgs {
+    /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Output mesh (format by extension; written atomically).
+    output: PathBuf,
+    #[command(flatten)]
+    from: InputArgs,
+    #[command(flatten)]
+    sub: SubdivArgs,
+    /// Print timings: `subdivide_ms=<float>` and per-phase times.
+    #[arg(long)]
+    stats: bool,
+    /// Print the result summary as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `subdiv subdivide --json`: one object.
+#[derive(Serialize)]
+struct Summary<'a> {
+    input: &'a str,
+    output: &'a str,
+    scheme: String,
+    levels: u32,
+    input_vertices: usize,
+    input_faces: usize,
+    vertices: usize,
+    faces: usize,
+    subdivide_ms: f64,
+    split_ms: f64,
+    edge_ms: f64,
+    vertex_ms: f64,
+    load_ms: f64,
+    save_ms: f64,
+}
+
+/// Output faces above which a subdivision shows a spinner.
+const BIG_FACES: u64 = 1 << 20;
+
+/// `subdiv subdivide`.
+pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
+    let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
+    let t0 = Instant::now();
+    let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+    let mesh = s.features.apply(mesh)?;
+    let load_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
+    let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
+    let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
+    // Texture coordinates and colours ride along (see subdiv::attributes).
+    let fine_attrs = if attrs.is_empty() {
+        attrs
+    } else if io::keeps_attributes(&a.output) {
+        subdiv::subdiv::attributes::refine(&mesh.ct, &attrs, s.scheme, levels, &s.options())?
+    } else {
+        if logging::warnings_shown() {
+            eprintln!("subdiv: note: {} keeps no texture coordinates or colours", a.output.display());
+        }
+        Default::default()
+    };
+    let t1 = Instant::now();
+    io::save_with(&a.output, &fine, &fine_attrs)?;
+    if let Some(pb) = spin {
+        pb.finish_and_clear();
+    }
+    let save_ms = t1.elapsed().as_secs_f64() * 1e3;
+    if a.stats {
+        println!("subdivide_ms={:.3}", st.total_ms);
+        println!(
+            "phases: split_and_o_ms={:.3} (edge_numbering_ms={:.3}) edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={load_ms:.3} save_ms={save_ms:.3} threads={}",
+            st.split_ms,
+            st.numbering_ms,
+            st.edge_ms,
+            st.vertex_ms,
+            rayon::current_num_threads()
+        );
+    }
+    if a.json {
+        let (input, output) = (a.input.display().to_string(), a.output.display().to_string());
+        print_json(&Summary {
+            input: &input,
+            output: &output,
+            scheme: s.scheme.to_string(),
+            levels,
+            input_vertices: mesh.positions.len(),
+            input_faces: mesh.ct.num_triangles(),
+            vertices: fine.positions.len(),
+            faces: fine.ct.num_triangles(),
+            subdivide_ms: st.total_ms,
+            split_ms: st.split_ms,
+            edge_ms: st.edge_ms,
+            vertex_ms: st.vertex_ms,
+            load_ms,
+            save_ms,
+        })?;
+    } else if !a.stats {
+        println!(
+            "{} -> {}: {} levels of {}, {} vertices, {} faces",
+            a.input.display(),
+            a.output.display(),
+            levels,
+            s.scheme,
+            fine.positions.len(),
+            fine.ct.num_triangles()
+        );
+    }
+    Ok(())
+}
+
+/// Arguments of the commands that read one mesh and write one.
+#[derive(clap::Args)]
+pub struct InOut {
+    /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Output mesh (format by extension; written atomically).
+    output: PathBuf,
+    #[command(flatten)]
+    from: InputArgs,
+}
+
+/// `subdiv smooth` arguments.
+#[derive(clap::Args)]
+pub struct SmoothArgs {
+    #[command(flatten)]
+    io: InOut,
+    /// Number of lambda/mu step pairs.
+    #[arg(long, short = 'n', default_value_t = 10)]
+    steps: u32,
+    /// Shrinking factor lambda (> 0).
+    #[arg(long, default_value_t = subdiv::mesh::smooth::TAUBIN_LAMBDA)]
+    lambda: f32,
+    /// Inflating factor mu (< -lambda).
+    #[arg(long, default_value_t = subdiv::mesh::smooth::TAUBIN_MU, allow_hyphen_values = true)]
+    mu: f32,
+    /// Plain Laplacian smoothing with lambda only (shrinks; for comparison).
+    #[arg(long)]
+    laplacian: bool,
+}
+
+/// `subdiv smooth`.
+pub fn smooth(a: &SmoothArgs) -> Result<()> {
+    let (lambda, mu) = (a.lambda, a.mu);
+    if !(lambda.is_finite() && mu.is_finite() && lambda > 0.0 && (a.laplacian || mu < -lambda)) {
+        return Err(Error::Usage(format!("need lambda > 0 and mu < -lambda (got {lambda}, {mu})")));
+    }
+    let mesh = a.io.from.load(&a.io.input)?;
+    let positions = if a.laplacian {
+        subdiv::mesh::smooth::laplacian(&mesh, a.steps, lambda)
+    } else {
+        subdiv::mesh::smooth::taubin(&mesh, a.steps, lambda, mu)
+    };
+    io::save(&a.io.output, &Mesh { ct: mesh.ct, positions })?;
+    println!("{} -> {}: {} smoothing steps", a.io.input.display(), a.io.output.display(), a.steps);
+    Ok(())
+}
+
+/// `subdiv limit`.
+pub fn limit(a: &InOut) -> Result<()> {
+    let mesh = a.from.load(&a.input)?;
+    let positions = subdiv::subdiv::limit::loop_limit_positions(&mesh);
+    io::save(&a.output, &Mesh { ct: mesh.ct, positions })?;
+    println!("{} -> {}: Loop limit positions", a.input.display(), a.output.display());
+    Ok(())
+}
+
+/// `subdiv repair` (always repairs; `--repair` changes nothing).
+pub fn repair(a: &InOut) -> Result<()> {
+    let (mesh, report) = bundled::load_repaired(&a.input)?;
+    io::save(&a.output, &mesh)?;
+    print!("{report}");
+    println!(
+        "{} -> {}: {} vertices, {} faces",
+        a.input.display(),
+        a.output.display(),
+        mesh.positions.len(),
+        mesh.ct.num_triangles()
+    );
+    Ok(())
+}

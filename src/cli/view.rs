@@ -1,0 +1,85 @@
+//! `subdiv view`: the window.
+
+use super::args::{ColorArgs, InputArgs, SubdivArgs};
+use std::path::PathBuf;
+use subdiv::{Error, Result};
+
+/// `subdiv view` arguments (parsed the same with and without the viewer feature).
+#[derive(clap::Args, Default)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub struct ViewArgs {
+    /// A mesh file, .bez (patches) or .bzc (curve), or bundled:NAME (default: the bundled tetrahedron).
+    model: Option<PathBuf>,
+    #[command(flatten)]
+    from: InputArgs,
+    #[command(flatten)]
+    sub: SubdivArgs,
+    #[command(flatten)]
+    color: ColorArgs,
+    /// Start with the wireframe shown.
+    #[arg(long)]
+    wireframe: bool,
+    /// Start with the control mesh (cage) shown.
+    #[arg(long)]
+    control: bool,
+    /// Render N frames, then exit (for CI).
+    #[arg(long)]
+    frames: Option<u32>,
+    /// Save the last frame to this PNG (with --frames).
+    #[arg(long)]
+    screenshot: Option<PathBuf>,
+    /// Animation paths (.paths) for the model.
+    #[arg(long)]
+    paths: Option<PathBuf>,
+    /// Start playing the animation.
+    #[arg(long)]
+    play: bool,
+    /// Start with the camera turning around the model.
+    #[arg(long)]
+    turntable: bool,
+}
+
+/// `subdiv view`.
+#[cfg(feature = "viewer")]
+pub fn view(a: ViewArgs) -> Result<()> {
+    if a.screenshot.is_some() && a.frames.is_none() {
+        return Err(Error::Usage("--screenshot needs --frames N (or press P in the window)".into()));
+    }
+    let s = &a.sub.scheme;
+    subdiv::app::run(subdiv::app::ViewOptions {
+        model: a.model,
+        scheme: s.scheme,
+        opts: s.options(),
+        level: a.sub.levels_or(0),
+        wireframe: a.wireframe,
+        frames: a.frames,
+        screenshot: a.screenshot,
+        paths: a.paths,
+        play: a.play,
+        turntable: a.turntable,
+        repair: a.from.repair,
+        coloring: a.color.color.parse().map_err(Error::Usage)?,
+        crease_angle: s.features.crease_angle,
+        control: a.control,
+    })
+}
+
+/// `subdiv` alone: the viewer with something worth seeing (see `ViewOptions::first_launch`).
+#[cfg(feature = "viewer")]
+pub fn first_launch() -> Result<()> {
+    subdiv::app::run(subdiv::app::ViewOptions::first_launch())
+}
+
+/// `subdiv` alone without the viewer: the same refusal as `view`.
+#[cfg(not(feature = "viewer"))]
+pub fn first_launch() -> Result<()> {
+    view(ViewArgs::default())
+}
+
+/// `subdiv view` without the viewer.
+#[cfg(not(feature = "viewer"))]
+pub fn view(_a: ViewArgs) -> Result<()> {
+    Err(Error::Usage(
+        "built without the 'viewer' feature: use subdivide / info, or rebuild with default features".into(),
+    ))
+}

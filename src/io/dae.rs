@@ -1,0 +1,188 @@
+//! COLLADA (`.dae`) in: the `<triangles>`, `<polylist>` and `<polygons>` of
+//! every `<geometry>`'s `<mesh>`, with the first `TEXCOORD` input kept per
+//! corner (primitives without one get (0, 0)). Geometries are taken as stored
+//! (instancing and node transforms are not applied; the original projects'
+//! COLLADA files hold one geometry in place). XML through `roxmltree`
+//! (read-only, no dependencies, kept up to date); the COLLADA structure by
+//! hand, since the `collada` crate has had no release since 2019 and
+//! `dae-parser` pulls in a DOM and many more crates. Errors name the file and
+//! the element (`geometry 'Cube-mesh' triangles 0`).
+
+use super::raw::{RawMesh, format_err};
+use crate::Result;
+use glam::{Vec2, Vec3};
+use roxmltree::{Document, Node};
+use std::collections::HashMap;
+
+/// A `<source>`: its floats and the accessor's stride.
+struct Source {
+    floats: Vec<f32>,
+    stride: usize,
+}
+
+/// Reads a COLLADA file.
+///
+/// # Errors
+/// [`crate::Error::Format`] naming the file and element; XML errors with
+/// their position.
+pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
+    let text = super::text(bytes, file)?;
+    let doc = Document::parse(text).map_err(|e| format_err(file, "XML", e.to_string()))?;
+    let mut raw: Option<RawMesh> = None;
+    for (g, geom) in doc.descendants().filter(|n| n.has_tag_name("geometry")).enumerate() {
+        let name = geom.attribute("id").map_or_else(|| format!("geometry {g}"), |id| format!("geometry '{id}'"));
+        let Some(mesh) = child(geom, "mesh") else { continue };
+        let part = read_mesh(mesh, file, &name)?;
+        match &mut raw {
+            Some(r) => r.append(part),
+            None => raw = Some(part),
+        }
+    }
+    raw.filter(|r| !r.triangles.is_empty())
+        .ok_or_else(|| format_err(file, "library_geometries", "no triangles in any geometry"))
+}
+
+fn child<'a>(n: Node<'a, 'a>, tag: &str) -> Option<Node<'a, 'a>> {
+    n.children().find(|c| c.has_tag_name(tag))
+}
+
+fn read_sources(mesh: Node, file: &str, at: &str) -> Result<HashMap<String, Source>> {
+    let mut out = HashMap::new();
+    for s in mesh.children().filter(|c| c.has_tag_name("source")) {
+        let id = s.attribute("id").unwrap_or("").to_string();
+        let Some(arr) = child(s, "float_array") else { continue };
+        let floats = numbers::<f32>(arr.text().unwrap_or(""))
+            .map_err(|t| format_err(file, format!("{at} source '{id}'"), format!("'{t}' is not a number")))?;
+        let stride = child(s, "technique_common")
+            .and_then(|t| child(t, "accessor"))
+            .and_then(|a| a.attribute("stride"))
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(3usize)
+            .max(1);
+        out.insert(id, Source { floats, stride });
+    }
+    Ok(out)
+}
+
+fn numbers<T: std::str::FromStr>(s: &str) -> std::result::Result<Vec<T>, String> {
+    s.split_ascii_whitespace().map(|t| t.parse().map_err(|_| t.chars().take(20).collect())).collect()
+}
+
+/// `#id` to `id`.
+fn target(n: Node) -> String {
+    n.attribute("source").unwrap_or("").trim_start_matches('#').to_string()
+}
+
+fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
+    let sources = read_sources(mesh, file, at)?;
+    // <vertices id> -> its POSITION source
+    let mut vertices: HashMap<String, String> = HashMap::new();
+    for v in mesh.children().filter(|c| c.has_tag_name("vertices")) {
+        if let Some(p) = v.children().find(|i| i.has_tag_name("input") && i.attribute("semantic") == Some("POSITION")) {
+            vertices.insert(v.attribute("id").unwrap_or("").to_string(), target(p));
+        }
+    }
+    let mut raw = RawMesh::default();
+    let mut pos_source: Option<String> = None;
+    let mut uv: Option<Vec<Vec2>> = Some(Vec::new());
+    let mut has_uv = false;
+    for (k, prim) in
+        mesh.children().filter(|c| matches!(c.tag_name().name(), "triangles" | "polylist" | "polygons")).enumerate()
+    {
+        let here = format!("{at} {} {k}", prim.tag_name().name());
+        let err = |msg: String| format_err(file, &here, msg);
+        let inputs: Vec<(String, usize, String)> = prim
+            .children()
+            .filter(|i| i.has_tag_name("input"))
+            .map(|i| {
+                let off = i.attribute("offset").and_then(|o| o.parse().ok()).unwrap_or(0usize);
+                (i.attribute("semantic").unwrap_or("").to_string(), off, target(i))
+            })
+            .collect();
+        let stride = inputs.iter().map(|i| i.1 + 1).max().unwrap_or(1);
+        let (_, voff, vsrc) = inputs.iter().find(|i| i.0 == "VERTEX").ok_or_else(|| err("no VERTEX input".into()))?;
+        let psrc = vertices.get(vsrc).cloned().unwrap_or_else(|| vsrc.clone());
+        if pos_source.get_or_insert_with(|| psrc.clone()) != &psrc {
+            return Err(err("primitives of one mesh use different position sources".into()));
+        }
+        let tex = inputs.iter().find(|i| i.0 == "TEXCOORD");
+        has_uv |= tex.is_some();
+        let polys = polygons(prim, file, &here)?;
+        let ix_err = |t: String| err(format!("'{t}' is not an index"));
+        let mut corners: Vec<[u32; 2]> = Vec::new();
+        for p in polys {
+            let p: Vec<u32> = numbers(&p).map_err(ix_err)?;
+            corners.clear();
+            for c in p.chunks_exact(stride) {
+                corners.push([c[*voff], tex.map_or(0, |t| c[t.1])]);
+            }
+            if corners.len() < 3 {
+                continue;
+            }
+            for i in 1..corners.len() - 1 {
+                for c in [corners[0], corners[i], corners[i + 1]] {
+                    raw.triangles.push(c[0]);
+                    if let (Some(out), None) = (&mut uv, tex) {
+                        out.push(Vec2::ZERO);
+                    } else if let (Some(out), Some((.., src))) = (&mut uv, tex) {
+                        let s = sources.get(src).ok_or_else(|| err(format!("no source '{src}'")))?;
+                        let at = c[1] as usize * s.stride;
+                        let t = s
+                            .floats
+                            .get(at..at + 2)
+                            .ok_or_else(|| err(format!("texture coordinate {} out of range", c[1])))?;
+                        out.push(Vec2::new(t[0], t[1]));
+                    }
+                }
+            }
+        }
+    }
+    let psrc = pos_source.unwrap_or_default();
+    let s = sources.get(&psrc).ok_or_else(|| format_err(file, at, format!("no position source '{psrc}'")))?;
+    if s.stride < 3 {
+        return Err(format_err(file, at, "positions need 3 coordinates"));
+    }
+    raw.positions = s.floats.chunks_exact(s.stride).map(|c| Vec3::new(c[0], c[1], c[2])).collect();
+    if let Some(v) = raw.positions.iter().position(|p| !p.is_finite()) {
+        return Err(format_err(file, format!("{at} vertex {v}"), "non-finite position"));
+    }
+    let nv = raw.positions.len();
+    if let Some(&i) = raw.triangles.iter().find(|&&i| i as usize >= nv) {
+        return Err(format_err(file, at, format!("vertex index {i}, but there are only {nv} positions")));
+    }
+    raw.uv = uv.filter(|u| u.len() == raw.triangles.len() && has_uv);
+    Ok(raw)
+}
+
+/// The index text of each polygon of a primitive: `<triangles>` three
+/// corners at a time, `<polylist>` by its `<vcount>`, `<polygons>` one `<p>` each.
+fn polygons(prim: Node, file: &str, at: &str) -> Result<Vec<String>> {
+    let name = prim.tag_name().name();
+    let ps: Vec<&str> = prim.children().filter(|c| c.has_tag_name("p")).map(|p| p.text().unwrap_or("")).collect();
+    if name == "polygons" {
+        return Ok(ps.into_iter().map(str::to_string).collect());
+    }
+    let stride = prim
+        .children()
+        .filter(|i| i.has_tag_name("input"))
+        .filter_map(|i| i.attribute("offset")?.parse::<usize>().ok())
+        .max()
+        .unwrap_or(0)
+        + 1;
+    let words: Vec<&str> = ps.iter().flat_map(|p| p.split_ascii_whitespace()).collect();
+    let counts: Vec<usize> = if name == "polylist" {
+        let vc = child(prim, "vcount").and_then(|v| v.text()).unwrap_or("");
+        numbers(vc).map_err(|t| format_err(file, at, format!("vcount '{t}' is not a count")))?
+    } else {
+        vec![3; words.len() / (3 * stride)]
+    };
+    let mut out = Vec::with_capacity(counts.len());
+    let mut i = 0usize;
+    for (k, &n) in counts.iter().enumerate() {
+        let end = n.checked_mul(stride).and_then(|w| w.checked_add(i)).filter(|&e| e <= words.len());
+        let end = end.ok_or_else(|| format_err(file, format!("{at} polygon {k}"), "more indices than <p> holds"))?;
+        out.push(words[i..end].join(" "));
+        i = end;
+    }
+    Ok(out)
+}

@@ -1,0 +1,366 @@
+//! glTF 2.0 in (`.gltf` with its buffers embedded as `data:` URIs or in files
+//! beside it, and binary `.glb`), `.glb` out.
+//!
+//! Read through the `gltf` crate (the Khronos format's reference Rust
+//! implementation, kept by the gfx-rs group; its JSON is validated on
+//! parsing). Every triangle primitive (triangles, strips and fans) of every
+//! mesh node of the default scene (or of every root node when there is no
+//! scene) is taken with its node's world transform (a mirroring transform
+//! flips the winding back), with `TEXCOORD_0` (per corner), `COLOR_0` and
+//! the material index per triangle kept (primitives without them get
+//! defaults).
+//! glTF splits vertices at every normal and UV seam, so coincident vertices
+//! are welded ([`RawMesh::weld`]) to make the surface connected again.
+//! Every accessor's range is checked against its buffer view and buffer
+//! before it is read; sparse accessors are refused.
+//!
+//! Written: one mesh, one primitive with `POSITION`, `NORMAL`, `TEXCOORD_0`
+//! and `COLOR_0` when the mesh has them (corners become vertices when there
+//! are texture coordinates, since glTF's are per vertex), `u32` indices.
+
+use super::atomic_write;
+use super::raw::{RawMesh, format_err};
+use crate::mesh::Mesh;
+use crate::mesh::attributes::Attributes;
+use crate::{Error, Result};
+use glam::{Mat4, Vec2, Vec3};
+use gltf::mesh::Mode;
+use std::path::Path;
+
+/// Longest chain of nodes followed, and most node visits (a malformed file
+/// may make its hierarchy a cycle or a huge DAG).
+const MAX_DEPTH: usize = 64;
+const MAX_VISITS: usize = 1 << 16;
+
+/// Reads a `.gltf` or `.glb` file; `file` names it in errors and locates
+/// buffers stored beside it.
+///
+/// # Errors
+/// [`Error::Format`] naming the file and the element (buffer, accessor,
+/// mesh, node).
+pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
+    let g = document(bytes, file)?;
+    let buffers = load_buffers(&g, file)?;
+    let roots: Vec<gltf::Node> = match g.default_scene().or_else(|| g.scenes().next()) {
+        Some(s) => s.nodes().collect(),
+        None => {
+            let mut child = vec![false; g.nodes().len()];
+            for n in g.nodes() {
+                for c in n.children() {
+                    child[c.index()] = true;
+                }
+            }
+            g.nodes().filter(|n| !child[n.index()]).collect()
+        }
+    };
+    let mut out = Walk { raw: None, buffers: &buffers, file, visits: 0 };
+    for n in roots {
+        out.node(&n, Mat4::IDENTITY, 0)?;
+    }
+    let mut raw = out.raw.ok_or_else(|| format_err(file, "scene", "no mesh node with triangles"))?;
+    raw.weld();
+    Ok(raw)
+}
+
+/// Parses and validates the JSON. The POSITION accessor of every primitive
+/// is checked first: `gltf-json` 1.4's validation indexes it unchecked and
+/// panics on a missing one (found by `tests/io.rs`'s fuzzing).
+fn document(bytes: &[u8], file: &str) -> Result<gltf::Gltf> {
+    let err = |e: gltf::Error| format_err(file, "document", e.to_string());
+    let g = gltf::Gltf::from_slice_without_validation(bytes).map_err(err)?;
+    let json = g.document.into_json();
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let pos = prim.attributes.get(&gltf::json::validation::Checked::Valid(gltf::Semantic::Positions));
+            if let Some(i) = pos.filter(|i| i.value() >= json.accessors.len()) {
+                let at = format!("mesh {m} primitive {p}");
+                return Err(format_err(file, at, format!("POSITION accessor {} does not exist", i.value())));
+            }
+        }
+    }
+    Ok(gltf::Gltf { document: gltf::Document::from_json(json).map_err(err)?, blob: g.blob })
+}
+
+struct Walk<'a> {
+    raw: Option<RawMesh>,
+    buffers: &'a [Vec<u8>],
+    file: &'a str,
+    visits: usize,
+}
+
+impl Walk<'_> {
+    fn node(&mut self, node: &gltf::Node, parent: Mat4, depth: usize) -> Result<()> {
+        self.visits += 1;
+        if depth > MAX_DEPTH || self.visits > MAX_VISITS {
+            return Err(format_err(self.file, format!("node {}", node.index()), "node hierarchy too deep or cyclic"));
+        }
+        let m = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            for prim in mesh.primitives() {
+                let at = format!("mesh {} primitive {}", mesh.index(), prim.index());
+                if let Some(p) = self.primitive(&prim, m, &at)? {
+                    match &mut self.raw {
+                        Some(r) => r.append(p),
+                        None => self.raw = Some(p),
+                    }
+                }
+            }
+        }
+        for c in node.children() {
+            self.node(&c, m, depth + 1)?;
+        }
+        Ok(())
+    }
+
+    fn primitive(&self, prim: &gltf::Primitive, m: Mat4, at: &str) -> Result<Option<RawMesh>> {
+        let file = self.file;
+        if !matches!(prim.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+            log::info!("{file}: {at}: skipped ({:?}, not triangles)", prim.mode());
+            return Ok(None);
+        }
+        for (_, acc) in prim.attributes() {
+            check_accessor(&acc, self.buffers, file)?;
+        }
+        if let Some(acc) = prim.indices() {
+            check_accessor(&acc, self.buffers, file)?;
+        }
+        let reader = prim.reader(|b| self.buffers.get(b.index()).map(|v| v.as_slice()));
+        let missing = || format_err(file, at, "no readable POSITION attribute");
+        let positions: Vec<Vec3> =
+            reader.read_positions().ok_or_else(missing)?.map(|p| m.transform_point3(p.into())).collect();
+        if let Some(v) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(format_err(file, format!("{at} vertex {v}"), "non-finite position"));
+        }
+        let nv = positions.len() as u32;
+        let list: Vec<u32> = match reader.read_indices() {
+            Some(ix) => ix.into_u32().collect(),
+            None => (0..nv).collect(),
+        };
+        if let Some(&bad) = list.iter().find(|&&i| i >= nv) {
+            return Err(format_err(file, at, format!("index {bad}, but there are only {nv} vertices")));
+        }
+        let mut triangles = triangulate(prim.mode(), &list);
+        if m.determinant() < 0.0 {
+            triangles.chunks_exact_mut(3).for_each(|t| t.swap(1, 2));
+        }
+        let uv: Option<Vec<Vec2>> = reader.read_tex_coords(0).map(|t| t.into_f32().map(Vec2::from).collect());
+        let uv = uv.filter(|u| u.len() == positions.len()).map(|u| triangles.iter().map(|&i| u[i as usize]).collect());
+        let colors: Option<Vec<Vec3>> = reader.read_colors(0).map(|c| c.into_rgb_f32().map(Vec3::from).collect());
+        let colors = colors.filter(|c| c.len() == positions.len());
+        let materials = prim.material().index().map(|i| vec![i as u32; triangles.len() / 3]);
+        Ok(Some(RawMesh { positions, triangles, uv, colors, materials }))
+    }
+}
+
+/// Triangles of a primitive's index list in `mode` (strips alternate their
+/// winding back, fans share the first vertex).
+fn triangulate(mode: Mode, ix: &[u32]) -> Vec<u32> {
+    match mode {
+        Mode::TriangleStrip => (0..ix.len().saturating_sub(2))
+            .flat_map(|i| if i % 2 == 0 { [ix[i], ix[i + 1], ix[i + 2]] } else { [ix[i + 1], ix[i], ix[i + 2]] })
+            .collect(),
+        Mode::TriangleFan => (1..ix.len().saturating_sub(1)).flat_map(|i| [ix[0], ix[i], ix[i + 1]]).collect(),
+        _ => ix[..ix.len() / 3 * 3].to_vec(),
+    }
+}
+
+/// Refuses an accessor whose bytes are not all inside its view and buffer
+/// (checked arithmetic: no count can overflow) or that is sparse.
+fn check_accessor(acc: &gltf::Accessor, buffers: &[Vec<u8>], file: &str) -> Result<()> {
+    let at = format!("accessor {}", acc.index());
+    if acc.sparse().is_some() {
+        return Err(format_err(file, at, "sparse accessors are not supported"));
+    }
+    let view = acc.view().ok_or_else(|| format_err(file, &at, "no buffer view"))?;
+    let buf = buffers.get(view.buffer().index()).ok_or_else(|| format_err(file, &at, "no buffer"))?;
+    let size = acc.size();
+    let stride = view.stride().unwrap_or(size).max(size);
+    let bytes = match acc.count() {
+        0 => Some(0),
+        n => (n - 1).checked_mul(stride).and_then(|b| b.checked_add(size)),
+    };
+    let end_in_view = bytes.and_then(|b| b.checked_add(acc.offset()));
+    let view_end = view.offset().checked_add(view.length());
+    match (end_in_view, view_end) {
+        (Some(e), Some(ve)) if e <= view.length() && ve <= buf.len() => Ok(()),
+        _ => Err(format_err(
+            file,
+            at,
+            format!(
+                "{} elements do not fit in buffer view {} of buffer {} ({} bytes)",
+                acc.count(),
+                view.index(),
+                view.buffer().index(),
+                buf.len()
+            ),
+        )),
+    }
+}
+
+/// The bytes of every buffer: the GLB's binary chunk, `data:` URIs, or files
+/// beside `file`.
+fn load_buffers(g: &gltf::Gltf, file: &str) -> Result<Vec<Vec<u8>>> {
+    g.buffers()
+        .map(|b| {
+            let at = format!("buffer {}", b.index());
+            let data = match b.source() {
+                gltf::buffer::Source::Bin => g.blob.clone().ok_or_else(|| format_err(file, &at, "no binary chunk"))?,
+                gltf::buffer::Source::Uri(uri) => match uri.strip_prefix("data:") {
+                    Some(d) => {
+                        let (_, b64) =
+                            d.split_once(";base64,").ok_or_else(|| format_err(file, &at, "data URI is not base64"))?;
+                        base64(b64).ok_or_else(|| format_err(file, &at, "bad base64 in data URI"))?
+                    }
+                    None => {
+                        let path = Path::new(file).parent().unwrap_or(Path::new(".")).join(percent_decode(uri));
+                        std::fs::read(&path).map_err(|e| format_err(file, &at, format!("{}: {e}", path.display())))?
+                    }
+                },
+            };
+            if data.len() < b.length() {
+                return Err(format_err(file, at, format!("{} bytes, but {} declared", data.len(), b.length())));
+            }
+            Ok(data)
+        })
+        .collect()
+}
+
+/// `%20` and friends in a relative URI.
+fn percent_decode(s: &str) -> String {
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let hex = |c: u8| (c as char).to_digit(16);
+        match (b[i], b.get(i + 1).copied().and_then(hex), b.get(i + 2).copied().and_then(hex)) {
+            (b'%', Some(h), Some(l)) => {
+                out.push((h * 16 + l) as u8);
+                i += 3;
+            }
+            (c, ..) => {
+                out.push(c);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
+/// Standard base64 (padding optional); `None` on a bad character.
+fn base64(s: &str) -> Option<Vec<u8>> {
+    let val = |c: u8| -> Option<u32> {
+        Some(match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' | b'-' => 62,
+            b'/' | b'_' => 63,
+            _ => return None,
+        } as u32)
+    };
+    let s = s.trim_end_matches('=').as_bytes();
+    let mut out = Vec::with_capacity(s.len() / 4 * 3 + 3);
+    for chunk in s.chunks(4) {
+        let mut acc = 0u32;
+        for (k, &c) in chunk.iter().enumerate() {
+            acc |= val(c)? << (18 - 6 * k);
+        }
+        let n = match chunk.len() {
+            4 => 3,
+            3 => 2,
+            2 => 1,
+            _ => return None,
+        };
+        out.extend_from_slice(&acc.to_be_bytes()[1..1 + n]);
+    }
+    Some(out)
+}
+
+/// The arrays of the one primitive written, and the JSON naming them.
+struct Packed {
+    bin: Vec<u8>,
+    views: Vec<String>,
+    accessors: Vec<String>,
+    attributes: Vec<String>,
+}
+
+impl Packed {
+    fn push(&mut self, name: Option<&str>, data: &[u8], count: usize, ty: &str, ctype: u32, minmax: &str) {
+        let (offset, len) = (self.bin.len(), data.len());
+        self.bin.extend_from_slice(data);
+        let target = if name.is_some() { 34962 } else { 34963 };
+        self.views.push(format!("{{\"buffer\":0,\"byteOffset\":{offset},\"byteLength\":{len},\"target\":{target}}}"));
+        let i = self.accessors.len();
+        self.accessors.push(format!(
+            "{{\"bufferView\":{i},\"componentType\":{ctype},\"count\":{count},\"type\":\"{ty}\"{minmax}}}"
+        ));
+        if let Some(n) = name {
+            self.attributes.push(format!("\"{n}\":{i}"));
+        }
+    }
+}
+
+fn f32_bytes(v: impl IntoIterator<Item = f32>) -> Vec<u8> {
+    v.into_iter().flat_map(f32::to_le_bytes).collect()
+}
+
+/// Saves `mesh` as binary glTF (`.glb`) with vertex normals, and texture
+/// coordinates and colours when `attrs` has them.
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+    let normals = mesh.vertex_normals();
+    let v = mesh.ct.v_table();
+    let uv = attrs.uv.as_ref().filter(|u| u.len() == v.len());
+    let colors = attrs.colors.as_ref().filter(|c| c.len() == mesh.positions.len());
+    // with per-corner UVs every corner is its own vertex
+    let vertex_of: Vec<u32> = if uv.is_some() { v.to_vec() } else { (0..mesh.positions.len() as u32).collect() };
+    let pick = |a: &[Vec3]| f32_bytes(vertex_of.iter().flat_map(|&i| a[i as usize].to_array()));
+    let (lo, hi) = mesh.bounds();
+    let minmax = format!(",\"min\":[{},{},{}],\"max\":[{},{},{}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    let n = vertex_of.len();
+    let mut p = Packed { bin: Vec::new(), views: Vec::new(), accessors: Vec::new(), attributes: Vec::new() };
+    p.push(Some("POSITION"), &pick(&mesh.positions), n, "VEC3", 5126, &minmax);
+    p.push(Some("NORMAL"), &pick(&normals), n, "VEC3", 5126, "");
+    if let Some(uv) = uv {
+        p.push(Some("TEXCOORD_0"), &f32_bytes(uv.iter().flat_map(|t| t.to_array())), n, "VEC2", 5126, "");
+    }
+    if let Some(c) = colors {
+        p.push(Some("COLOR_0"), &pick(c), n, "VEC3", 5126, "");
+    }
+    let indices: Vec<u8> = if uv.is_some() {
+        (0..v.len() as u32).flat_map(u32::to_le_bytes).collect()
+    } else {
+        v.iter().flat_map(|i| i.to_le_bytes()).collect()
+    };
+    p.push(None, &indices, v.len(), "SCALAR", 5125, "");
+    let json = format!(
+        "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"subdiv\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"mesh\":0}}],\"meshes\":[{{\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"mode\":4}}]}}],\"buffers\":[{{\"byteLength\":{}}}],\"bufferViews\":[{}],\"accessors\":[{}]}}",
+        p.attributes.join(","),
+        p.accessors.len() - 1,
+        p.bin.len(),
+        p.views.join(","),
+        p.accessors.join(",")
+    );
+    let mut json = json.into_bytes();
+    json.resize(json.len().next_multiple_of(4), b' ');
+    p.bin.resize(p.bin.len().next_multiple_of(4), 0);
+    let total = 12 + 8 + json.len() + 8 + p.bin.len();
+    let total =
+        u32::try_from(total).map_err(|_| Error::Usage(format!("{}: too large for a .glb (4 GiB)", path.display())))?;
+    atomic_write(path, |w| {
+        let io = |e| Error::io(path, e);
+        let mut head = Vec::with_capacity(28);
+        head.extend_from_slice(b"glTF");
+        head.extend_from_slice(&2u32.to_le_bytes());
+        head.extend_from_slice(&total.to_le_bytes());
+        head.extend_from_slice(&(json.len() as u32).to_le_bytes());
+        head.extend_from_slice(b"JSON");
+        w.write_all(&head).map_err(io)?;
+        w.write_all(&json).map_err(io)?;
+        w.write_all(&(p.bin.len() as u32).to_le_bytes()).map_err(io)?;
+        w.write_all(b"BIN\0").map_err(io)?;
+        w.write_all(&p.bin).map_err(io)
+    })
+}

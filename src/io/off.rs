@@ -1,0 +1,146 @@
+//! OFF (Object File Format, Geomview) in and out: `OFF`, then vertex, face
+//! and edge counts, the vertices, then each face as a count and indices
+//! (polygons fanned into triangles). `COFF` (vertex colours after the
+//! coordinates, integers 0..255 or floats 0..1) is read too; comments start
+//! with `#`. Counts are checked against the text that follows before
+//! anything is allocated; errors name the file and line.
+
+use super::atomic_write;
+use super::raw::{RawMesh, check_count};
+use crate::mesh::Mesh;
+use crate::{Error, Result};
+use glam::Vec3;
+use std::path::Path;
+
+/// Reads an OFF file.
+///
+/// # Errors
+/// [`Error::Parse`] naming the file and line.
+pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
+    let text = super::text(bytes, file)?;
+    // non-empty lines without comments, with their line numbers
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| (i + 1, l.split('#').next().unwrap_or("").trim()))
+        .filter(|(_, l)| !l.is_empty());
+    let err = |line: usize, msg: String| Error::Parse { file: file.to_string(), line, msg };
+    let (l0, first) = lines.next().ok_or_else(|| err(1, "empty file (no OFF header)".into()))?;
+    let mut words: Vec<&str> = first.split_whitespace().collect();
+    let magic = words.first().copied().unwrap_or("");
+    let color = magic.contains('C');
+    if !magic.ends_with("OFF") {
+        return Err(err(l0, format!("not an OFF file (starts with '{magic}')")));
+    }
+    words.remove(0);
+    let (lc, counts) =
+        if words.is_empty() { lines.next().ok_or_else(|| err(l0, "no counts".into()))? } else { (l0, "") };
+    let counts: Vec<&str> = if counts.is_empty() { words } else { counts.split_whitespace().collect() };
+    let num = |s: Option<&&str>| s.and_then(|s| s.parse::<u64>().ok());
+    let (Some(nv), Some(nf)) = (num(counts.first()), num(counts.get(1))) else {
+        return Err(err(lc, "expected 'vertices faces edges' counts".into()));
+    };
+    let rest = text.len();
+    let nv = check_count(file, "vertices", nv, 6, rest)?;
+    let nf = check_count(file, "faces", nf, 8, rest)?;
+    let mut raw = RawMesh { positions: Vec::with_capacity(nv), ..Default::default() };
+    let mut colors = color.then(|| Vec::with_capacity(nv));
+    for v in 0..nv {
+        let (l, line) = lines.next().ok_or_else(|| err(lc, format!("file ends at vertex {v} of {nv}")))?;
+        let x: Vec<f32> = line
+            .split_whitespace()
+            .map(|t| t.parse::<f32>())
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| err(l, format!("vertex {v}: not a number")))?;
+        if x.len() < 3 || !x.iter().all(|c| c.is_finite()) {
+            return Err(err(l, format!("vertex {v}: needs 3 finite coordinates")));
+        }
+        raw.positions.push(Vec3::new(x[0], x[1], x[2]));
+        if let Some(c) = &mut colors {
+            let rgb = Vec3::new(
+                x.get(3).copied().unwrap_or(1.0),
+                x.get(4).copied().unwrap_or(1.0),
+                x.get(5).copied().unwrap_or(1.0),
+            );
+            let ints = x[3..].iter().any(|&c| c > 1.0);
+            c.push(if ints { rgb / 255.0 } else { rgb }.clamp(Vec3::ZERO, Vec3::ONE));
+        }
+    }
+    raw.colors = colors;
+    raw.triangles.reserve(nf.saturating_mul(3));
+    for f in 0..nf {
+        let (l, line) = lines.next().ok_or_else(|| err(lc, format!("file ends at face {f} of {nf}")))?;
+        let mut w = line.split_whitespace().map(|t| t.parse::<u32>());
+        let bad = || err(l, format!("face {f}: expected a count and vertex indices"));
+        let n = w.next().and_then(|r| r.ok()).ok_or_else(bad)? as usize;
+        if n < 3 {
+            return Err(err(l, format!("face {f}: {n} vertices (3 or more needed)")));
+        }
+        let idx: Vec<u32> = w.take(n).collect::<std::result::Result<_, _>>().map_err(|_| bad())?;
+        if idx.len() != n {
+            return Err(bad());
+        }
+        if let Some(&i) = idx.iter().find(|&&i| i as usize >= nv) {
+            return Err(err(l, format!("face {f}: vertex index {i}, but there are only {nv} vertices")));
+        }
+        for k in 1..n - 1 {
+            raw.triangles.extend([idx[0], idx[k], idx[k + 1]]);
+        }
+    }
+    Ok(raw)
+}
+
+/// Saves `mesh` as OFF text (`COFF` with colours when given, one per vertex).
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
+    let colors = colors.filter(|c| c.len() == mesh.positions.len());
+    atomic_write(path, |w| {
+        let io = |e| Error::io(path, e);
+        let magic = if colors.is_some() { "COFF" } else { "OFF" };
+        let mut out = format!("{magic}\n{} {} 0\n", mesh.positions.len(), mesh.ct.num_triangles()).into_bytes();
+        let mut rb = ryu::Buffer::new();
+        for (i, p) in mesh.positions.iter().enumerate() {
+            for (k, x) in p.to_array().into_iter().enumerate() {
+                if k > 0 {
+                    out.push(b' ');
+                }
+                out.extend_from_slice(rb.format(x).as_bytes());
+            }
+            if let Some(c) = colors {
+                for x in c[i].to_array() {
+                    out.push(b' ');
+                    out.extend_from_slice(rb.format(x.clamp(0.0, 1.0)).as_bytes());
+                }
+            }
+            out.push(b'\n');
+            if out.len() > 1 << 20 {
+                w.write_all(&out).map_err(io)?;
+                out.clear();
+            }
+        }
+        let mut ib = itoa::Buffer::new();
+        for t in mesh.ct.v_table().chunks_exact(3) {
+            out.extend_from_slice(b"3");
+            for &i in t {
+                out.push(b' ');
+                out.extend_from_slice(ib.format(i).as_bytes());
+            }
+            out.push(b'\n');
+            if out.len() > 1 << 20 {
+                w.write_all(&out).map_err(io)?;
+                out.clear();
+            }
+        }
+        w.write_all(&out).map_err(io)
+    })
+}
+
+/// Saves `mesh` as OFF text.
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+    save_with(path, mesh, None)
+}

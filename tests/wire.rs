@@ -1,0 +1,186 @@
+//! The single-pass wireframe, asserted on pixels of offscreen 640x480 renders
+//! (like tests/render.rs): readable over the shading at level 3, visible at
+//! level 0, anti-aliased, filtered by edge generation. Skips only when no
+//! adapter exists and SUBDIV_REQUIRE_GPU is unset.
+//!
+//! "Hidden" is the share of the object's pixels (those that differ from the
+//! background in the Phong image) whose luminance changes by more than 60
+//! when the wire is drawn over the shading.
+#![cfg(feature = "viewer")]
+
+mod common;
+
+use common::bundled;
+use image::RgbaImage;
+use subdiv::render::{Look, Offscreen, RenderOptions, Shading, WireEdges, default_camera};
+use subdiv::{Mesh, Options, Scheme, subdivide};
+
+const W: u32 = 640;
+const H: u32 = 480;
+
+fn offscreen() -> Option<Offscreen> {
+    match Offscreen::new(W, H) {
+        Ok(o) => Some(o),
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
+            eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
+            None
+        }
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    }
+}
+
+/// `name` refined `levels` times with Loop, with its control mesh.
+fn level(name: &str, levels: u32) -> (Mesh, Mesh) {
+    let control = bundled(name);
+    let fine = subdivide(&control, Scheme::Loop, levels, &Options::default()).unwrap().0;
+    (control, fine)
+}
+
+/// Renders `mesh` framed by `control` with each look.
+fn renders(off: &mut Offscreen, control: &Mesh, mesh: &Mesh, looks: &[Look]) -> Vec<RgbaImage> {
+    let opts = RenderOptions { width: W, height: H, ..Default::default() };
+    let cam = default_camera(control, &opts);
+    let gm = off.upload(mesh).unwrap();
+    looks.iter().map(|&look| off.render_one(cam, &gm, None, look).unwrap()).collect()
+}
+
+fn luminance(p: &image::Rgba<u8>) -> f64 {
+    0.2126 * f64::from(p.0[0]) + 0.7152 * f64::from(p.0[1]) + 0.0722 * f64::from(p.0[2])
+}
+
+/// Pixels of `img` that differ from the corner pixel (the background).
+fn object_mask(img: &RgbaImage) -> Vec<bool> {
+    let bg = *img.get_pixel(0, 0);
+    img.pixels().map(|p| (0..3).any(|i| p.0[i].abs_diff(bg.0[i]) > 2)).collect()
+}
+
+/// Share of the object's pixels (in `plain`) whose luminance changes by
+/// more than `by` in `wired`.
+fn changed_share(plain: &RgbaImage, wired: &RgbaImage, by: f64) -> f64 {
+    let object = object_mask(plain);
+    let total = object.iter().filter(|&&o| o).count();
+    assert!(total > 1000, "the object covers only {total} pixels");
+    let changed = plain
+        .pixels()
+        .zip(wired.pixels())
+        .zip(&object)
+        .filter(|&((p, q), &o)| o && (luminance(p) - luminance(q)).abs() > by)
+        .count();
+    changed as f64 / total as f64
+}
+
+fn wire(edges: WireEdges) -> Look {
+    Look { wire_edges: edges, ..Shading::PhongWire.look() }
+}
+
+#[test]
+fn the_wire_hides_at_most_40_percent_of_the_shaded_torus_at_level_3() {
+    let Some(mut off) = offscreen() else { return };
+    let (control, fine) = level("torus.obj", 3);
+    let [phong, wired] =
+        renders(&mut off, &control, &fine, &[Shading::Phong.look(), wire(WireEdges::All)]).try_into().unwrap();
+    let hidden = changed_share(&phong, &wired, 60.0);
+    let touched = changed_share(&phong, &wired, 8.0);
+    eprintln!("torus L3: hidden {:.1}%, touched {:.1}%", 100.0 * hidden, 100.0 * touched);
+    assert!(hidden <= 0.40, "the wire hides {:.1}% of the torus", 100.0 * hidden);
+    // readable does not mean gone: the coarser generations still show
+    assert!(touched > 0.05, "the wire changes only {:.1}% of the torus", 100.0 * touched);
+}
+
+#[test]
+fn the_wire_is_clearly_visible_at_level_0() {
+    let Some(mut off) = offscreen() else { return };
+    for name in ["tetrahedron.obj", "cube.obj", "torus.obj"] {
+        let control = bundled(name);
+        let [phong, wired] =
+            renders(&mut off, &control, &control, &[Shading::Phong.look(), wire(WireEdges::All)]).try_into().unwrap();
+        let changed = changed_share(&phong, &wired, 30.0);
+        eprintln!("{name} L0: {:.1}% of the object changes by more than 30", 100.0 * changed);
+        assert!(changed > 0.01, "{name}: the level-0 wire changes {:.2}% of the object", 100.0 * changed);
+    }
+}
+
+#[test]
+fn wire_lines_are_anti_aliased() {
+    // Wire only: one ink over the background, so every shade between the two
+    // comes from the smoothstep across the lines' edges.
+    let Some(mut off) = offscreen() else { return };
+    let (control, fine) = level("cube.obj", 1);
+    let [img] = renders(&mut off, &control, &fine, &[Shading::Wire.look()]).try_into().unwrap();
+    let bg = luminance(img.get_pixel(0, 0));
+    let lums: Vec<f64> = img.pixels().map(luminance).collect();
+    let ink = lums.iter().cloned().fold(bg, f64::max);
+    assert!(ink > bg + 60.0, "no line brighter than the background ({bg:.0} to {ink:.0})");
+    let mut distinct: Vec<i64> = lums.iter().map(|&l| l.round() as i64).collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    let lit = lums.iter().filter(|&&l| l > bg + 4.0).count();
+    let partial = lums.iter().filter(|&&l| l > bg + 4.0 && l < ink - 4.0).count();
+    eprintln!("{} distinct luminances, {partial} of {lit} line pixels partly covered", distinct.len());
+    assert!(distinct.len() >= 40, "only {} distinct luminances", distinct.len());
+    assert!(partial * 3 > lit, "{partial} of {lit} line pixels are intermediate shades");
+}
+
+#[test]
+fn control_edges_only_draw_fewer_wire_pixels_than_all_edges() {
+    let Some(mut off) = offscreen() else { return };
+    // at level 2 of the cube every generation is far enough apart to show
+    let (control, fine) = level("cube.obj", 2);
+    let looks = [Shading::Phong.look(), wire(WireEdges::All), wire(WireEdges::UpTo(1)), wire(WireEdges::UpTo(0))];
+    let [phong, all, up_to_1, control_only] = renders(&mut off, &control, &fine, &looks).try_into().unwrap();
+    let [a, b, c] = [&all, &up_to_1, &control_only].map(|img| changed_share(&phong, img, 8.0));
+    eprintln!("wire pixels: all {:.1}%, up to level 1 {:.1}%, control {:.1}%", 100.0 * a, 100.0 * b, 100.0 * c);
+    assert!(c > 0.02, "the control edges draw {:.2}% of the object", 100.0 * c);
+    assert!(c < b && b < a, "the filter does not thin the wire: {a} {b} {c}");
+}
+
+#[test]
+fn a_transparent_shot_has_alpha_0_around_an_opaque_object_and_scale_2_twice_the_size() {
+    use subdiv::render::{Shot, render_image};
+    if offscreen().is_none() {
+        return;
+    }
+    let (_, fine) = level("cube.obj", 2);
+    let opts =
+        |shot| RenderOptions { width: 160, height: 120, shading: Shading::PhongWire, shot, ..Default::default() };
+    let plain = render_image(&fine, None, &opts(Shot::default())).unwrap();
+    let shot = render_image(&fine, None, &opts(Shot { scale: 2, transparent: true })).unwrap();
+    assert_eq!(plain.dimensions(), (160, 120));
+    assert_eq!(shot.dimensions(), (320, 240));
+    assert_eq!(plain.get_pixel(0, 0).0[3], 255, "an ordinary render is opaque");
+    for (x, y) in [(0, 0), (319, 0), (0, 239), (319, 239)] {
+        assert_eq!(shot.get_pixel(x, y).0[3], 0, "corner ({x},{y})");
+    }
+    assert_eq!(shot.get_pixel(160, 120).0[3], 255, "the object is opaque");
+    let opaque = shot.pixels().filter(|p| p.0[3] == 255).count();
+    let object = object_mask(&plain).iter().filter(|&&o| o).count();
+    // the object covers four times the pixels at twice the size
+    let ratio = opaque as f64 / object as f64;
+    assert!((3.6..4.4).contains(&ratio), "opaque {opaque} vs object {object} at scale 1");
+}
+
+#[test]
+fn a_window_screenshot_renders_its_viewports_at_n_times_their_size() {
+    // what P does in the window: the same draws, offscreen on the window's device
+    use subdiv::render::offscreen::shoot;
+    use subdiv::render::{Shot, ViewportDraw};
+    let Some(off) = offscreen() else { return };
+    let (control, fine) = level("tetrahedron.obj", 2);
+    let gm = off.upload(&fine).unwrap();
+    let gc = off.upload(&control).unwrap();
+    let opts = RenderOptions { width: 200, height: 100, ..Default::default() };
+    let look = Look { control: true, ..Shading::PhongWire.look() };
+    let shot = Shot { scale: 2, transparent: true };
+    let (w, h) = shot.size(200, 100);
+    let draws = [ViewportDraw {
+        rect: [0.0, 0.0, w as f32, h as f32],
+        camera: default_camera(&control, &opts),
+        mesh: Some(&gm),
+        control: Some(&gc),
+        look,
+    }];
+    let img = shoot(&off.gpu.device, &off.gpu.queue, 1, (w, h), shot, &draws).unwrap();
+    assert_eq!(img.dimensions(), (400, 200));
+    assert_eq!(img.get_pixel(0, 0).0[3], 0);
+    assert_eq!(img.get_pixel(200, 100).0[3], 255);
+}
