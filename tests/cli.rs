@@ -235,22 +235,6 @@ fn crease_options_tag_subdivide_and_count() {
 }
 
 #[test]
-fn animate_stats_times_every_frame_without_writing() {
-    let o = bin().args(["animate", "--level", "3", "--refine", "2", "--stats"]).output().unwrap();
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(o.status.success(), "{out} {}", String::from_utf8_lossy(&o.stderr));
-    let field = |k: &str| -> f64 {
-        let v = out.split_whitespace().find_map(|w| w.strip_prefix(k)).unwrap_or_else(|| panic!("{k} in {out}"));
-        v.parse().unwrap()
-    };
-    assert!(field("plan_ms=") > 0.0 && field("frame_ms=") > 0.0, "{out}");
-    // the bundled tetrahedron: 4 keys x 2^2 frames, 4 x 4^3 triangles, at least 32 evaluations
-    assert_eq!((field("frames=") as u32, field("triangles=") as u32, field("evaluations=") as u32), (16, 256, 32));
-    // without --stats an output is still required
-    assert!(!bin().args(["animate", "--level", "1"]).output().unwrap().status.success());
-}
-
-#[test]
 fn every_mesh_command_takes_repair_and_levels_has_its_aliases() {
     let fin = write("opt-fin.obj", FIN_OBJ);
     let f = fin.to_str().unwrap();
@@ -339,4 +323,20 @@ fn quiet_and_verbose_set_what_stderr_shows() {
     // errors are printed whatever the level
     let o = bin().args(["-q", "subdivide", "/nonexistent.obj", out.to_str().unwrap()]).output().unwrap();
     assert!(String::from_utf8_lossy(&o.stderr).contains("No such file"));
+}
+
+#[test]
+fn animate_stats_times_every_frame_without_writing() {
+    let o = bin().args(["animate", "--level", "3", "--refine", "2", "--stats"]).output().unwrap();
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out} {}", String::from_utf8_lossy(&o.stderr));
+    let field = |k: &str| -> f64 {
+        let v = out.split_whitespace().find_map(|w| w.strip_prefix(k)).unwrap_or_else(|| panic!("{k} in {out}"));
+        v.parse().unwrap()
+    };
+    assert!(field("plan_ms=") > 0.0 && field("frame_ms=") > 0.0, "{out}");
+    // the bundled tetrahedron: 4 keys x 2^2 frames, 4 x 4^3 triangles, at least 32 evaluations
+    assert_eq!((field("frames=") as u32, field("triangles=") as u32, field("evaluations=") as u32), (16, 256, 32));
+    // without --stats an output is still required
+    assert!(!bin().args(["animate", "--level", "1"]).output().unwrap().status.success());
 }

@@ -3,8 +3,10 @@
 
 use super::args::{ColorArgs, InputArgs, SubdivArgs, parse_size};
 use std::path::PathBuf;
-#[cfg(not(feature = "viewer"))]
-use subdiv::Result;
+use std::time::Instant;
+use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
+use subdiv::mesh::attributes::Attributes;
+use subdiv::{Error, Mesh, Result, bundled};
 
 /// `subdiv render` arguments.
 #[derive(clap::Args)]
@@ -103,14 +105,95 @@ pub struct AnimateArgs {
     eval: String,
 }
 
-#[cfg(not(feature = "viewer"))]
-pub fn render(_: &RenderArgs) -> Result<()> {
-    Err(subdiv::Error::Usage("built without the 'viewer' feature: rendering is not available".into()))
+impl AnimateArgs {
+    /// `--stats` with no output file: time the frames, write nothing.
+    fn stats_only(&self) -> bool {
+        self.stats && self.gif.is_none() && self.frames_dir.is_none()
+    }
+}
+
+/// The model and its default paths (beside it, bundled, or the tetrahedron's).
+fn model(a: &AnimateArgs) -> Result<(Mesh, Attributes, Option<Paths>)> {
+    let Some(m) = &a.model else {
+        let (mesh, paths) = bundled::tetrahedron()?;
+        return Ok((mesh, Attributes::default(), Some(paths)));
+    };
+    let (mesh, attrs) = a.from.load_with_attributes(m)?;
+    let beside = match bundled::paths_for(m) {
+        Some(src) => {
+            let paths = src.load()?;
+            paths.check_model(&mesh, &src.describe())?;
+            Some(paths)
+        }
+        None => None,
+    };
+    Ok((mesh, attrs, beside))
+}
+
+/// The model (with its crease-angle tags), its attributes, its paths and the
+/// recorded animation of `subdiv animate`.
+fn animation_of(a: &AnimateArgs) -> Result<(Mesh, Attributes, Paths, Animation)> {
+    let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
+    let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
+    let (mesh, attrs, default_paths) = model(a)?;
+    let mesh = s.features.apply(mesh)?;
+    let paths = match (&a.paths, default_paths) {
+        (Some(p), _) => {
+            let paths = Paths::load(p)?;
+            paths.check_model(&mesh, &p.display().to_string())?;
+            paths
+        }
+        (None, Some(paths)) => paths,
+        (None, None) => Paths::generated(&mesh, 4),
+    };
+    let anim = Animation::new(&mesh, &paths, tweak, a.refine, s.scheme, level, &s.options())?;
+    Ok((mesh, attrs, paths, anim))
+}
+
+/// `subdiv animate --stats` without an output: evaluates every frame (at
+/// least 32 evaluations, cycling) and prints the plan and per-frame times.
+fn animate_stats(anim: &mut Animation) {
+    let n = anim.frame_count().max(32);
+    let (mut times, mut stencils, mut normals) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+    for f in 0..n {
+        let t = Instant::now();
+        std::hint::black_box(anim.evaluate(f).1.len());
+        times.push(t.elapsed().as_secs_f64() * 1e3);
+        stencils.push(anim.last_timing.0.as_secs_f64() * 1e3);
+        normals.push(anim.last_timing.1.as_secs_f64() * 1e3);
+    }
+    let median = |t: &mut Vec<f64>| {
+        t.sort_by(f64::total_cmp);
+        t[t.len() / 2]
+    };
+    println!(
+        "plan_ms={:.3} frame_ms={:.3} frame_min_ms={:.3} (stencils_ms={:.3} normals_ms={:.3}) evaluations={n} frames={} triangles={} threads={}",
+        anim.plan_ms(),
+        median(&mut times),
+        times[0],
+        median(&mut stencils),
+        median(&mut normals),
+        anim.frame_count(),
+        anim.topology().num_triangles(),
+        rayon::current_num_threads()
+    );
 }
 
 #[cfg(not(feature = "viewer"))]
-pub fn animate(_: AnimateArgs) -> Result<()> {
-    Err(subdiv::Error::Usage("built without the 'viewer' feature: animation export is not available".into()))
+pub fn render(_: &RenderArgs) -> Result<()> {
+    Err(Error::Usage("built without the 'viewer' feature: rendering is not available".into()))
+}
+
+#[cfg(not(feature = "viewer"))]
+pub fn animate(a: AnimateArgs) -> Result<()> {
+    if a.eval == "gpu" {
+        return Err(Error::Usage("built without the 'viewer' feature: no GPU evaluation".into()));
+    }
+    if a.stats_only() {
+        animate_stats(&mut animation_of(&a)?.3);
+        return Ok(());
+    }
+    Err(Error::Usage("built without the 'viewer' feature: animation export is not available".into()))
 }
 
 #[cfg(feature = "viewer")]
@@ -119,13 +202,13 @@ pub use gpu::{animate, render};
 #[cfg(feature = "viewer")]
 mod gpu {
     use super::super::progress;
-    use super::{AnimateArgs, RenderArgs};
+    use super::{AnimateArgs, RenderArgs, animate_stats, animation_of};
     use glam::Vec3;
     use subdiv::app::display::Coloring;
     use subdiv::mesh::attributes::Attributes;
     use subdiv::mesh::inspect::{colormap, displacement_from_control, vertex_counts_per_level, vertex_creation_level};
     use subdiv::render::Paint;
-    use subdiv::{Error, Mesh, Result, Scheme, bundled};
+    use subdiv::{Error, Mesh, Result, Scheme};
 
     fn ramp(t: impl Iterator<Item = f32>) -> Vec<Vec3> {
         t.map(|t| Vec3::from(colormap(t))).collect()
@@ -186,46 +269,35 @@ mod gpu {
         subdiv::render::save_png(&img, &a.output)
     }
 
-    /// The model and its default paths (beside it, bundled, or the tetrahedron's).
-    fn model(a: &AnimateArgs) -> Result<(Mesh, Attributes, Option<subdiv::anim::paths::Paths>)> {
-        let Some(m) = &a.model else {
-            let (mesh, paths) = bundled::tetrahedron()?;
-            return Ok((mesh, Attributes::default(), Some(paths)));
-        };
-        let (mesh, attrs) = a.from.load_with_attributes(m)?;
-        let beside = match bundled::paths_for(m) {
-            Some(src) => {
-                let paths = src.load()?;
-                paths.check_model(&mesh, &src.describe())?;
-                Some(paths)
-            }
-            None => None,
-        };
-        Ok((mesh, attrs, beside))
+    /// `subdiv animate --stats --eval gpu`: every frame through the compute passes.
+    fn animate_stats_gpu(anim: &mut subdiv::anim::Animation) -> Result<()> {
+        let n = anim.frame_count().max(32);
+        let (mut times, upload_ms, adapter) = subdiv::render::gpu_anim::time_frames(anim, n)?;
+        times.sort_by(f64::total_cmp);
+        println!(
+            "plan_ms={:.3} frame_ms={:.3} frame_min_ms={:.3} (gpu upload_ms={upload_ms:.3}) evaluations={n} frames={} triangles={} adapter=\"{adapter}\"",
+            anim.plan_ms(),
+            times[n / 2],
+            times[0],
+            anim.frame_count(),
+            anim.topology().num_triangles(),
+        );
+        Ok(())
     }
 
     /// `subdiv animate`.
     pub fn animate(a: AnimateArgs) -> Result<()> {
-        use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
         use subdiv::render::export::{ExportStyle, ExportTarget, export_animation_painted};
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
-        let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
         let coloring: Coloring = a.color.parse().map_err(Error::Usage)?;
         let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
-        let (mesh, attrs, default_paths) = model(&a)?;
-        let mesh = s.features.apply(mesh)?;
-        let paths = match (&a.paths, default_paths) {
-            (Some(p), _) => {
-                let paths = Paths::load(p)?;
-                paths.check_model(&mesh, &p.display().to_string())?;
-                paths
+        let (mesh, attrs, paths, mut anim) = animation_of(&a)?;
+        if a.stats_only() {
+            if a.eval == "gpu" {
+                return animate_stats_gpu(&mut anim);
             }
-            (None, Some(paths)) => paths,
-            (None, None) => Paths::generated(&mesh, 4),
-        };
-        let mut anim = Animation::new(&mesh, &paths, tweak, a.refine, s.scheme, level, &s.options())?;
-        if a.stats && a.gif.is_none() && a.frames_dir.is_none() {
-            return super::super::anim_stats::run(&mut anim, a.eval == "gpu");
+            animate_stats(&mut anim);
+            return Ok(());
         }
         if a.eval == "gpu" {
             return Err(Error::Usage("--eval gpu times frames with --stats; exports evaluate on the CPU".into()));

@@ -7,8 +7,6 @@
 //! are in [`args`], the log backend in [`logging`], progress bars in
 //! [`progress`].
 
-#[cfg(feature = "viewer")]
-mod anim_stats;
 pub mod args;
 mod draw;
 mod info;

@@ -171,9 +171,9 @@ impl GpuMesh {
                 crate::error::human_bytes(limit)
             )));
         }
-        // a copy source too: tests read what the animation's compute passes
-        // (render::gpu_anim) wrote back
-        let vertex = VERTEX_STORAGE.union(wgpu::BufferUsages::COPY_SRC);
+        // also a copy source: the animation's compute passes write the
+        // positions and normals (render::gpu_anim) and tests read them back
+        let vertex = VERTEX_STORAGE | wgpu::BufferUsages::COPY_SRC;
         Ok(GpuMesh {
             positions: buffer(device, "positions", bytemuck::cast_slice(positions), vertex),
             normals: buffer(device, "normals", bytemuck::cast_slice(normals), vertex),

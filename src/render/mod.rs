@@ -204,13 +204,7 @@ pub fn default_camera(frame: &Mesh, opts: &RenderOptions) -> Camera {
 /// # Errors
 /// [`Error::Gpu`] without an adapter; size errors.
 pub fn render_image(mesh: &Mesh, control: Option<&Mesh>, opts: &RenderOptions) -> Result<image::RgbaImage> {
-    let (w, h) = opts.shot.size(opts.width, opts.height);
-    let mut off = Offscreen::new(w, h)?;
-    off.set_shot(opts.shot);
-    let gm = off.upload(mesh)?;
-    let gc = control.map(|c| off.upload(c)).transpose()?;
-    let look = Look { control: gc.is_some(), wire_edges: opts.wire_edges, ..opts.shading.look() };
-    off.render_one(default_camera(control.unwrap_or(mesh), opts), &gm, gc.as_ref(), look)
+    render_image_painted(mesh, control, opts, &Paint::Material)
 }
 
 /// What colours the faces of an offscreen render besides the material.
@@ -235,8 +229,10 @@ pub fn render_image_painted(
     opts: &RenderOptions,
     paint: &Paint,
 ) -> Result<image::RgbaImage> {
-    let mut off = Offscreen::new(opts.width, opts.height)?;
-    let mut look = Look { control: control.is_some(), ..opts.shading.look() };
+    let (w, h) = opts.shot.size(opts.width, opts.height);
+    let mut off = Offscreen::new(w, h)?;
+    off.set_shot(opts.shot);
+    let mut look = Look { control: control.is_some(), wire_edges: opts.wire_edges, ..opts.shading.look() };
     let gm = match paint {
         Paint::Material => off.upload(mesh)?,
         Paint::Colors(c) => {
