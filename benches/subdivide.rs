@@ -57,6 +57,17 @@ fn animation(c: &mut Criterion) {
                 black_box(anim.evaluate(f).1.len())
             })
         });
+        // positions only, as OpenSubdiv's StencilTable::UpdateValues (osd_bench --frames)
+        let plan = anim.plan().clone();
+        let mut scratch = subdiv::subdiv::stencil::PlanScratch::for_plan(&plan);
+        let mut out = Vec::new();
+        g.bench_function(BenchmarkId::new("plan_positions", name), |b| {
+            b.iter(|| {
+                f += 1;
+                plan.apply(anim.control(f), &mut scratch, &mut out);
+                black_box(out.len())
+            })
+        });
         let control = Mesh { ct: mesh.ct.clone(), positions: anim.control(3).to_vec() };
         g.bench_function(BenchmarkId::new("full_subdivision_normals", name), |b| {
             b.iter(|| {

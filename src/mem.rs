@@ -35,6 +35,30 @@ pub fn zeroed<T: Zeroable + Clone>(n: usize) -> Vec<T> {
     }
 }
 
+/// How fresh large arrays are backed (`SUBDIV_MEM`, for measuring).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Policy {
+    /// No advice: 4 KiB pages faulted on first touch.
+    Plain,
+    /// `MADV_HUGEPAGE`.
+    Huge,
+    /// `MADV_POPULATE_WRITE`: every page faulted in one call, up front.
+    Populate,
+    /// Both.
+    HugePopulate,
+}
+
+fn policy() -> Policy {
+    static P: std::sync::OnceLock<Policy> = std::sync::OnceLock::new();
+    *P.get_or_init(|| match std::env::var("SUBDIV_MEM").as_deref() {
+        Ok("plain") => Policy::Plain,
+        Ok("populate") => Policy::Populate,
+        Ok("huge-populate") => Policy::HugePopulate,
+        Ok("huge") => Policy::Huge,
+        _ => Policy::Huge,
+    })
+}
+
 #[cfg(target_os = "linux")]
 fn advise_huge(ptr: *mut u8, len: usize) {
     if len < HUGE_MIN {
@@ -44,11 +68,25 @@ fn advise_huge(ptr: *mut u8, len: usize) {
     const HP: usize = 2 << 20;
     let start = (ptr as usize).div_ceil(HP) * HP;
     let end = (ptr as usize + len) / HP * HP;
-    if end > start {
+    let p = policy();
+    if end > start && matches!(p, Policy::Huge | Policy::HugePopulate) {
         // SAFETY: [start, end) lies inside the allocation just made; madvise
         // with MADV_HUGEPAGE changes no contents, only how pages are backed.
         unsafe {
             libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
+        }
+    }
+    if matches!(p, Policy::Populate | Policy::HugePopulate) {
+        const PAGE: usize = 4096;
+        let start = (ptr as usize).div_ceil(PAGE) * PAGE;
+        let end = (ptr as usize + len) / PAGE * PAGE;
+        if end > start {
+            // SAFETY: [start, end) lies inside the allocation just made and
+            // owned by the caller; MADV_POPULATE_WRITE only faults its pages
+            // in (writable, still zero), changing no contents.
+            unsafe {
+                libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_POPULATE_WRITE);
+            }
         }
     }
 }

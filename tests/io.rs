@@ -247,3 +247,19 @@ fn repairing_loaders_repair_topology_but_keep_data_errors() {
     assert!(matches!(e, Error::Mesh { source: MeshError::Empty, .. }), "only degenerate faces: {e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[cfg(target_os = "linux")]
+#[test]
+fn saving_into_a_device_writes_into_it_and_leaves_it_a_device() {
+    use std::os::unix::fs::FileTypeExt;
+    // a .ply name for the format, pointing at /dev/null
+    let link = std::env::temp_dir().join(format!("subdiv-null-{}.ply", std::process::id()));
+    let _ = std::fs::remove_file(&link);
+    std::os::unix::fs::symlink("/dev/null", &link).unwrap();
+    let m = subdiv::mesh::shapes::icosphere(1);
+    subdiv::io::save(&link, &m).unwrap();
+    let meta = std::fs::symlink_metadata(&link).unwrap();
+    assert!(meta.file_type().is_symlink(), "the link was replaced by a file");
+    assert!(std::fs::metadata("/dev/null").unwrap().file_type().is_char_device());
+    std::fs::remove_file(&link).unwrap();
+}

@@ -41,8 +41,9 @@ pub struct GpuScene {
     pub proxy: Option<GpuMesh>,
     /// The animated result.
     pub anim: Option<GpuMesh>,
-    /// The compute passes writing `anim` (GPU evaluation), with its plan id.
-    animator: Option<(u64, GpuAnimator)>,
+    /// The compute passes writing `anim` (GPU evaluation), with its plan id
+    /// (`None` inside: the plan does not fit the device; not retried).
+    animator: Option<(u64, Option<GpuAnimator>)>,
     /// A Bezier curve: its polyline and its control polygon (with the construction highlighted).
     pub curve: Option<(GpuMesh, GpuMesh)>,
     seen: Seen,
@@ -203,14 +204,11 @@ impl GpuScene {
         // normal segments are kept current by CPU updates only
         let on_gpu = compute && doc.anim.gpu_eval && !doc.display.normals && !fresh && self.anim.is_some();
         if on_gpu && self.animator.as_ref().is_none_or(|(id, _)| *id != p.id) {
-            let built = self.anim.as_ref().map(|m| GpuAnimator::new(device, p.player.plan(), m));
-            self.animator = match built {
-                Some(Ok(a)) => Some((p.id, a)),
-                _ => None,
-            };
+            let built = self.anim.as_ref().and_then(|m| GpuAnimator::new(device, p.player.plan(), m).ok());
+            self.animator = Some((p.id, built));
         }
         match (&self.animator, on_gpu) {
-            (Some((_, a)), true) => {
+            (Some((_, Some(a))), true) => {
                 if let Err(e) = a.update(device, queue, p.player.control(f)) {
                     doc.status.error = Some(e.into());
                 }

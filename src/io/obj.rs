@@ -574,7 +574,9 @@ fn push_f32(out: &mut Vec<u8>, buf: &mut ryu::Buffer, x: f32) {
 }
 
 /// Formats OBJ text for `mesh` in parallel chunks and passes them, in order,
-/// to `sink`. Memory stays bounded by one batch of chunks.
+/// to `sink`. Memory stays bounded by two batches of chunks: one batch is
+/// formatted (on a helper thread, in parallel) while the previous one is
+/// written.
 ///
 /// # Errors
 /// The first error of `sink`.
@@ -584,52 +586,62 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
     let pos = &mesh.positions;
     sink(format!("# subdiv: {} vertices, {} triangles\n", pos.len(), mesh.ct.num_triangles()).as_bytes())?;
     let vchunks: Vec<&[Vec3]> = pos.chunks(ROWS).collect();
-    for batch in vchunks.chunks(BATCH) {
-        let texts: Vec<Vec<u8>> = batch
-            .par_iter()
-            .map(|ch| {
-                let mut out = Vec::with_capacity(ch.len() * 32);
-                let mut rb = ryu::Buffer::new();
-                for q in *ch {
-                    out.extend_from_slice(b"v ");
-                    push_f32(&mut out, &mut rb, q.x);
-                    out.push(b' ');
-                    push_f32(&mut out, &mut rb, q.y);
-                    out.push(b' ');
-                    push_f32(&mut out, &mut rb, q.z);
-                    out.push(b'\n');
-                }
-                out
-            })
-            .collect();
-        for t in texts {
-            sink(&t)?;
-        }
-    }
     let tchunks: Vec<&[u32]> = mesh.ct.v_table().chunks(3 * ROWS).collect();
-    for batch in tchunks.chunks(BATCH) {
-        let texts: Vec<Vec<u8>> = batch
-            .par_iter()
-            .map(|ch| {
-                let mut out = Vec::with_capacity(ch.len() * 9);
-                let mut ib = itoa::Buffer::new();
-                for tri in ch.chunks_exact(3) {
-                    out.extend_from_slice(b"f ");
-                    out.extend_from_slice(ib.format(tri[0] + 1).as_bytes());
-                    out.push(b' ');
-                    out.extend_from_slice(ib.format(tri[1] + 1).as_bytes());
-                    out.push(b' ');
-                    out.extend_from_slice(ib.format(tri[2] + 1).as_bytes());
-                    out.push(b'\n');
+    std::thread::scope(|scope| {
+        // one batch in flight: the formatter waits while the writer is behind
+        let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<Vec<u8>>>(1);
+        scope.spawn(move || {
+            for batch in vchunks.chunks(BATCH) {
+                if tx.send(batch.par_iter().map(|ch| vertex_text(ch)).collect()).is_err() {
+                    return; // the writer failed
                 }
-                out
-            })
-            .collect();
-        for t in texts {
-            sink(&t)?;
+            }
+            for batch in tchunks.chunks(BATCH) {
+                if tx.send(batch.par_iter().map(|ch| face_text(ch)).collect()).is_err() {
+                    return;
+                }
+            }
+        });
+        for texts in rx {
+            for t in texts {
+                sink(&t)?;
+            }
         }
-    }
+        Ok::<(), crate::Error>(())
+    })?;
     sink(&tag_records(mesh))
+}
+
+/// `v x y z` lines.
+fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(ch.len() * 32);
+    let mut rb = ryu::Buffer::new();
+    for q in ch {
+        out.extend_from_slice(b"v ");
+        push_f32(&mut out, &mut rb, q.x);
+        out.push(b' ');
+        push_f32(&mut out, &mut rb, q.y);
+        out.push(b' ');
+        push_f32(&mut out, &mut rb, q.z);
+        out.push(b'\n');
+    }
+    out
+}
+
+/// `f a b c` lines (1-based) of V-table triples.
+fn face_text(ch: &[u32]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(ch.len() * 9);
+    let mut ib = itoa::Buffer::new();
+    for tri in ch.chunks_exact(3) {
+        out.extend_from_slice(b"f ");
+        out.extend_from_slice(ib.format(tri[0] + 1).as_bytes());
+        out.push(b' ');
+        out.extend_from_slice(ib.format(tri[1] + 1).as_bytes());
+        out.push(b' ');
+        out.extend_from_slice(ib.format(tri[2] + 1).as_bytes());
+        out.push(b'\n');
+    }
+    out
 }
 
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b

@@ -20,6 +20,7 @@ use super::raw::{RawMesh, check_count, format_err};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
 use glam::{Vec2, Vec3};
+use std::io::Write;
 use std::path::Path;
 
 /// A scalar type of the header.
@@ -353,31 +354,59 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
             mesh.ct.num_triangles()
         );
         w.write_all(header.as_bytes()).map_err(io)?;
-        let mut buf = Vec::with_capacity(1 << 20);
-        for (i, q) in mesh.positions.iter().enumerate() {
-            for x in q.to_array() {
-                buf.extend_from_slice(&x.to_le_bytes());
-            }
-            if let Some(c) = colors {
-                buf.extend(c[i].to_array().map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8));
-            }
-            if buf.len() > (1 << 20) - 64 {
-                w.write_all(&buf).map_err(io)?;
-                buf.clear();
-            }
+        match colors {
+            // little-endian f32 triples are the PLY records as they lie in memory
+            None if cfg!(target_endian = "little") => w.write_all(bytemuck::cast_slice(&mesh.positions)).map_err(io)?,
+            _ => write_vertices(w, &mesh.positions, colors).map_err(io)?,
         }
-        for tri in mesh.ct.v_table().chunks_exact(3) {
-            buf.push(3);
-            for &i in tri {
-                buf.extend_from_slice(&i.to_le_bytes());
-            }
-            if buf.len() > (1 << 20) - 64 {
-                w.write_all(&buf).map_err(io)?;
-                buf.clear();
-            }
-        }
-        w.write_all(&buf).map_err(io)
+        write_faces(w, mesh.ct.v_table()).map_err(io)
     })
+}
+
+/// Vertex records one by one (colours, or a big-endian machine).
+fn write_vertices(w: &mut dyn Write, positions: &[Vec3], colors: Option<&[Vec3]>) -> std::io::Result<()> {
+    let mut buf = Vec::with_capacity(1 << 20);
+    for (i, q) in positions.iter().enumerate() {
+        for x in q.to_array() {
+            buf.extend_from_slice(&x.to_le_bytes());
+        }
+        if let Some(c) = colors {
+            buf.extend(c[i].to_array().map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8));
+        }
+        if buf.len() > (1 << 20) - 64 {
+            w.write_all(&buf)?;
+            buf.clear();
+        }
+    }
+    w.write_all(&buf)
+}
+
+/// Face records (`3 a b c`, 13 bytes), formatted in parallel chunks and
+/// written in order; memory stays bounded by one batch of chunks.
+fn write_faces(w: &mut dyn Write, v: &[u32]) -> std::io::Result<()> {
+    use rayon::prelude::*;
+    const TRIS: usize = 1 << 16;
+    const BATCH: usize = 16;
+    let chunks: Vec<&[u32]> = v.chunks(3 * TRIS).collect();
+    for batch in chunks.chunks(BATCH) {
+        let parts: Vec<Vec<u8>> = batch
+            .par_iter()
+            .map(|ch| {
+                let mut out = Vec::with_capacity(ch.len() / 3 * 13);
+                for tri in ch.chunks_exact(3) {
+                    out.push(3);
+                    for &i in tri {
+                        out.extend_from_slice(&i.to_le_bytes());
+                    }
+                }
+                out
+            })
+            .collect();
+        for p in parts {
+            w.write_all(&p)?;
+        }
+    }
+    Ok(())
 }
 
 /// Saves `mesh` as binary PLY (no colours).

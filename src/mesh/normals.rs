@@ -232,7 +232,7 @@ fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3 {
 }
 
 /// Polygon entries ahead of the current vertex whose positions are prefetched.
-const PREFETCH: usize = 64;
+const PREFETCH: usize = 192;
 
 /// Asks the cache for the positions of vertices `ids` (the polygons a few
 /// vertices ahead): the gathers are scattered over the whole position
