@@ -6,6 +6,14 @@
 //! from `calloc` (fresh zero pages, no user-space memset) and, on Linux,
 //! marked `MADV_HUGEPAGE` before anything touches them, so the kernel backs
 //! them with 2 MiB pages where it can (512 times fewer faults).
+//!
+//! The policy was chosen by measuring cold runs (docs/performance.md, "Page
+//! policy"): against no advice, `MADV_POPULATE_WRITE` (pre-faulting 4 KiB
+//! pages in one call) and both together, huge pages had the best median on
+//! the bunny at level 3 and nefertiti at level 4; pre-faulting huge pages
+//! was worst by far (the kernel compacts memory for every 2 MiB page in one
+//! synchronous call). `SUBDIV_MEM=plain|huge|populate|huge-populate` selects
+//! a policy for such measurements; anything else means `huge`.
 
 use bytemuck::Zeroable;
 
@@ -54,7 +62,6 @@ fn policy() -> Policy {
         Ok("plain") => Policy::Plain,
         Ok("populate") => Policy::Populate,
         Ok("huge-populate") => Policy::HugePopulate,
-        Ok("huge") => Policy::Huge,
         _ => Policy::Huge,
     })
 }
