@@ -3,24 +3,28 @@
 //! A subdivision level writes hundreds of megabytes into fresh memory, and
 //! with 4 KiB pages the first touch of every page (a fault plus the kernel
 //! zeroing it) costs more than the arithmetic. Arrays are therefore taken
-//! from `calloc` (fresh zero pages, no user-space memset) and, on Linux,
-//! marked `MADV_HUGEPAGE` before anything touches them, so the kernel backs
-//! them with 2 MiB pages where it can (512 times fewer faults).
+//! from `calloc` (fresh zero pages, no user-space memset).
 //!
-//! The policy was chosen by measuring cold runs (docs/performance.md, "Page
-//! policy"): against no advice, `MADV_POPULATE_WRITE` (pre-faulting 4 KiB
-//! pages in one call) and both together, huge pages had the best median on
-//! the bunny at level 3 and nefertiti at level 4; pre-faulting huge pages
-//! was worst by far (the kernel compacts memory for every 2 MiB page in one
-//! synchronous call). `SUBDIV_MEM=plain|huge|populate|huge-populate` selects
-//! a policy for such measurements; anything else means `huge`.
+//! No page advice by default. The policy was chosen by measuring cold runs
+//! (one process each, as a user runs a command; docs/performance.md, "Page
+//! policy"): `MADV_HUGEPAGE` has the fastest single runs, but with the
+//! kernel's `defrag = madvise` a fault in an advised region may wait for
+//! memory compaction, so runs vary 2x to 4x (bunny Loop L3 83-166 ms,
+//! nefertiti L4 405-1664 ms on a quiet machine), while plain 4 KiB pages
+//! stay within 7-17% run to run (113-127 ms and 663-775 ms) and have the
+//! better median at nefertiti L4. Pre-faulting (`MADV_POPULATE_WRITE`) was
+//! steady but slower, and with huge pages worst by far (the kernel compacts
+//! memory for every 2 MiB page in one synchronous call). The first run is
+//! the one a user sees, so steadiness wins.
+//! `SUBDIV_MEM=plain|huge|populate|huge-populate` selects a policy for such
+//! measurements; anything else means `plain`.
 
 use bytemuck::Zeroable;
 
 /// Arrays smaller than this are left to the allocator's defaults.
 const HUGE_MIN: usize = 4 << 20;
 
-/// A vector of `n` zeroed elements, backed by huge pages where possible.
+/// A vector of `n` zeroed elements, backed as the page policy says.
 pub fn zeroed<T: Zeroable + Clone>(n: usize) -> Vec<T> {
     // vec![zeroed; n] of a Zeroable type would memset page by page; calloc
     // gives untouched zero pages instead.
@@ -59,10 +63,10 @@ enum Policy {
 fn policy() -> Policy {
     static P: std::sync::OnceLock<Policy> = std::sync::OnceLock::new();
     *P.get_or_init(|| match std::env::var("SUBDIV_MEM").as_deref() {
-        Ok("plain") => Policy::Plain,
+        Ok("huge") => Policy::Huge,
         Ok("populate") => Policy::Populate,
         Ok("huge-populate") => Policy::HugePopulate,
-        _ => Policy::Huge,
+        _ => Policy::Plain,
     })
 }
 
