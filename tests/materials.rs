@@ -149,6 +149,40 @@ mod drawn {
         assert!(reds > 50 && blues > 50 && greens > 100, "{reds} {blues} {greens}");
     }
 
+    #[test]
+    fn a_jpeg_texture_is_read_too() {
+        // most MTL files found in the wild point at JPEG textures
+        let path = model("mtl-jpeg");
+        let dir = path.parent().unwrap();
+        let img =
+            image::RgbImage::from_fn(
+                32,
+                16,
+                |x, _| if x < 16 { image::Rgb([255, 0, 0]) } else { image::Rgb([0, 0, 255]) },
+            );
+        img.save(dir.join("two.jpg")).unwrap();
+        std::fs::write(dir.join("two.mtl"), MTL.replace("two.png", "two.jpg")).unwrap();
+        let (mesh, attrs) = subdiv::io::obj::load_with_attributes(&path).unwrap();
+        let r = subdiv::subdiv::attributes::refine(&mesh.ct, &attrs, Scheme::Loop, 2, &Default::default()).unwrap();
+        let (uv, groups) = (r.uv.unwrap(), r.materials.unwrap());
+        let colors = corner_colors(&groups, Some(&uv), &mut Textures::default());
+        let (mut reds, mut blues) = (0, 0);
+        for (c, (col, t)) in colors.iter().zip(&uv).enumerate() {
+            if groups.face[c / 3] != 0 {
+                continue;
+            }
+            // JPEG is lossy: near the colour, not equal to it
+            if t.x > 0.1 && t.x < 0.4 {
+                assert!(col.x > 0.8 && col.z < 0.2, "corner {c} at {t}: {col}");
+                reds += 1;
+            } else if t.x > 0.6 && t.x < 0.9 {
+                assert!(col.z > 0.8 && col.x < 0.2, "corner {c} at {t}: {col}");
+                blues += 1;
+            }
+        }
+        assert!(reds > 10 && blues > 10, "{reds} {blues}");
+    }
+
     /// Pixels whose colour is mostly `channel`.
     fn count(img: &image::RgbaImage, channel: usize) -> usize {
         img.pixels()

@@ -6,7 +6,7 @@
 //! interpolated across each triangle (the renderer has no texture binding
 //! yet), so detail finer than the refined triangles is lost: the texture
 //! sharpens with each subdivision level. Textures are decoded with `image`
-//! (PNG and GIF in this build), once per file, sRGB to linear, sampled
+//! (PNG, JPEG and GIF), once per file, sRGB to linear, sampled
 //! bilinearly with wrapping and `v` pointing up (OBJ's convention).
 
 use crate::mesh::attributes::MaterialGroups;
