@@ -260,8 +260,9 @@ fn fs_dot_hidden(i: DotOut) -> @location(0) vec4<f32> {
 @group(2) @binding(0) var<storage, read> mesh_positions: array<f32>;
 @group(2) @binding(1) var<storage, read> mesh_normals: array<f32>;
 @group(2) @binding(2) var<storage, read> mesh_corners: array<u32>;
-// per corner c, in half-word c % 2 of word c / 2: the generation of the edge
-// opposite c (low byte) and the lowest generation of the edges at v(c)
+// per triangle t, one word: for its corner k, the generation of the edge
+// opposite it at bit 5k and the lowest generation of the edges at its
+// vertex at bit 15 + 5k (five bits each)
 @group(2) @binding(3) var<storage, read> mesh_generations: array<u32>;
 @group(2) @binding(4) var<storage, read> mesh_colors: array<f32>;
 
@@ -271,17 +272,25 @@ struct WireOut {
     @location(1) normal: vec3<f32>,
     @location(2) color: vec3<f32>,
     @location(3) bary: vec3<f32>,
-    // per edge (opposite corner k): 0 = not drawn, else the spacing of the
-    // edges of its generation in altitudes of this triangle, 2^(level - g)
-    @location(4) @interpolate(flat) spacing: vec3<f32>,
-    // per vertex k: the same for its disk (the lowest generation at it)
-    @location(5) @interpolate(flat) vertex_spacing: vec3<f32>,
+    // the triangle's generations word (see mesh_generations), the same at
+    // its three corners; the fragment shader turns it into line spacings
+    @location(4) @interpolate(flat) generations: u32,
 };
 
-// (edge generation, vertex generation) of corner c
-fn generation(c: u32) -> vec2<u32> {
-    let h = mesh_generations[c / 2u] >> (16u * (c % 2u));
-    return vec2<u32>(h & 255u, (h >> 8u) & 255u);
+// Per edge (opposite corner k) and per vertex (corner k) of a triangle
+// whose generations word is w: 0 = not drawn, else the spacing of the edges
+// of its generation in altitudes of this triangle, 2^(level - g). Computed
+// per fragment rather than per vertex: a dense mesh has fewer fragments
+// than the three vertices per triangle of the wire's draw.
+fn spacings(w: u32) -> array<vec3<f32>, 2> {
+    let e = vec3<u32>(w & 31u, (w >> 5u) & 31u, (w >> 10u) & 31u);
+    let v = vec3<u32>((w >> 15u) & 31u, (w >> 20u) & 31u, (w >> 25u) & 31u);
+    // every triangle of a split level has an edge of that level (its inner one)
+    let level = vec3<f32>(f32(max(e.x, max(e.y, e.z))));
+    let most = vec3<u32>(u32(u.wire.y));
+    let se = select(vec3<f32>(0.0), exp2(level - vec3<f32>(e)), e <= most);
+    let sv = select(vec3<f32>(0.0), exp2(level - vec3<f32>(v)), v <= most);
+    return array<vec3<f32>, 2>(se, sv);
 }
 
 fn fetch3(which: u32, i: u32) -> vec3<f32> {
@@ -309,17 +318,7 @@ fn vs_wire(@builtin(vertex_index) c: u32) -> WireOut {
     o.color = m.color;
     let k = c % 3u;
     o.bary = vec3<f32>(f32(k == 0u), f32(k == 1u), f32(k == 2u));
-    let t = c - k;
-    let g0 = generation(t);
-    let g1 = generation(t + 1u);
-    let g2 = generation(t + 2u);
-    let g = vec3<u32>(g0.x, g1.x, g2.x);
-    let gv = vec3<u32>(g0.y, g1.y, g2.y);
-    // every triangle of a split level has an edge of that level (its inner one)
-    let level = vec3<f32>(f32(max(g.x, max(g.y, g.z))));
-    let most = vec3<u32>(u32(u.wire.y));
-    o.spacing = select(vec3<f32>(0.0), exp2(level - vec3<f32>(g)), g <= most);
-    o.vertex_spacing = select(vec3<f32>(0.0), exp2(level - vec3<f32>(gv)), gv <= most);
+    o.generations = mesh_generations[c / 3u];
     return o;
 }
 
@@ -367,7 +366,8 @@ fn wire_coverage(bary: vec3<f32>, spacing: vec3<f32>, vertex_spacing: vec3<f32>)
 
 @fragment
 fn fs_wire(i: WireOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    let a = wire_coverage(i.bary, i.spacing, i.vertex_spacing);
+    let s = spacings(i.generations);
+    let a = wire_coverage(i.bary, s[0], s[1]);
     if u.wire.z > 0.5 {
         // wire only: light lines over the background (blended), the face
         // still writes depth and so hides the lines behind it

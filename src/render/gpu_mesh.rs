@@ -101,13 +101,15 @@ pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
     ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
 }
 
-/// Per corner `c`, as the wire shader reads them: the generation of the
-/// edge opposite `c` (see [`crate::mesh::Generations`]) in the low byte, the
-/// lowest generation of the edges at its vertex `v(c)` in the high byte of
-/// a half-word; two corners to a word, corner `2i` in the low half.
+/// Per triangle `t`, one word as the wire shader reads it (one load per
+/// vertex instead of three): five bits for each corner `k` of the triangle,
+/// the generation of the edge opposite it (see [`crate::mesh::Generations`])
+/// at bit `5k`, and the lowest generation of the edges at its vertex at bit
+/// `15 + 5k`. Generations above 31 (never reached: level 31 is far past any
+/// memory) are stored as 31.
 pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
     let nc = ct.num_corners();
-    let mut words = vec![0u32; nc.div_ceil(2)];
+    let mut words = vec![0u32; nc / 3];
     let Some(g) = ct.generations() else { return words };
     // the edge opposite c ends at v(n(c)) and v(p(c))
     let mut at_vertex = vec![u8::MAX; ct.num_vertices()];
@@ -118,8 +120,9 @@ pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
         }
     }
     for (c, &e) in g.corner.iter().enumerate() {
-        let half = u32::from(e) | u32::from(at_vertex[ct.vtx(c as u32) as usize]) << 8;
-        words[c / 2] |= half << (16 * (c % 2));
+        let k = 5 * (c % 3) as u32;
+        let at_v = at_vertex[ct.vtx(c as u32) as usize];
+        words[c / 3] |= u32::from(e.min(31)) << k | u32::from(at_v.min(31)) << (15 + k);
     }
     words
 }
