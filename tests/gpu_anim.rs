@@ -8,22 +8,11 @@
 
 mod common;
 
-use common::bundled;
+use common::{bundled, offscreen};
 use subdiv::anim::{Animation, Paths, Tweak};
 use subdiv::render::gpu_anim::{GpuAnimator, read_vec3};
 use subdiv::render::{Camera, GpuMesh, Look, Offscreen};
 use subdiv::{Mesh, Options, Scheme};
-
-fn offscreen(w: u32, h: u32) -> Option<Offscreen> {
-    match Offscreen::new(w, h) {
-        Ok(o) => Some(o),
-        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
-            eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
-            None
-        }
-        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
-    }
-}
 
 fn tetrahedron() -> (Mesh, Paths) {
     let paths = Paths::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();

@@ -5,23 +5,12 @@
 
 mod common;
 
-use common::{bundled, hemisphere};
+use common::{bundled, hemisphere, offscreen};
 use glam::Vec3;
 use image::RgbaImage;
 use subdiv::render::scene::background_srgb8_at;
 use subdiv::render::{Camera, Look, Offscreen, Shading, Surface, default_camera};
 use subdiv::{Mesh, Options, Scheme, subdivide};
-
-fn offscreen(w: u32, h: u32) -> Option<Offscreen> {
-    match Offscreen::new(w, h) {
-        Ok(o) => Some(o),
-        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
-            eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
-            None
-        }
-        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
-    }
-}
 
 fn render(off: &mut Offscreen, mesh: &Mesh, control: Option<&Mesh>, look: Look, ortho: bool) -> RgbaImage {
     let (w, h) = off.size();

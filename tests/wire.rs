@@ -19,14 +19,7 @@ const W: u32 = 640;
 const H: u32 = 480;
 
 fn offscreen() -> Option<Offscreen> {
-    match Offscreen::new(W, H) {
-        Ok(o) => Some(o),
-        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
-            eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
-            None
-        }
-        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
-    }
+    common::offscreen(W, H)
 }
 
 /// `name` refined `levels` times with Loop, with its control mesh.

@@ -14,6 +14,21 @@ pub fn scratch_dir(name: &str) -> PathBuf {
     d
 }
 
+/// An offscreen renderer, or `None` (with a SKIPPED line) when no GPU
+/// adapter exists and `SUBDIV_REQUIRE_GPU` is unset; with it set (as in CI)
+/// a missing adapter fails the test.
+#[cfg(feature = "viewer")]
+pub fn offscreen(w: u32, h: u32) -> Option<subdiv::render::Offscreen> {
+    match subdiv::render::Offscreen::new(w, h) {
+        Ok(o) => Some(o),
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
+            eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
+            None
+        }
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    }
+}
+
 pub fn model_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models").join(name)
 }
