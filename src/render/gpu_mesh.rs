@@ -320,7 +320,15 @@ impl GpuMesh {
                 let colors = self.colors.as_ref().unwrap_or(&self.normals);
                 let buffers = [&self.positions, &self.normals, &self.triangles, &self.generations, colors];
                 let limit = device.limits().max_storage_buffer_binding_size;
-                if self.triangle_indices == 0 || buffers.iter().any(|b| b.size() > limit) {
+                if self.triangle_indices == 0 {
+                    return None;
+                }
+                if let Some(big) = buffers.iter().find(|b| b.size() > limit) {
+                    log::warn!(
+                        "wireframe not drawn: a {} buffer is over the device's storage binding limit of {}",
+                        crate::error::human_bytes(big.size()),
+                        crate::error::human_bytes(limit)
+                    );
                     return None;
                 }
                 let entries: Vec<wgpu::BindGroupEntry> = buffers
