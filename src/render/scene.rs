@@ -34,6 +34,9 @@ const WIRE_DARK: [f32; 4] = [0.015, 0.02, 0.035, 1.0];
 const WIRE_LIGHT: [f32; 4] = [0.80, 0.84, 0.92, 1.0];
 /// The cage: translucent, so the surface reads through a dense one.
 const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 0.75];
+/// A dense cage (over [`CAGE_DETAIL_UP_TO`] vertices): fainter still, so the
+/// shaded surface stays the first thing one sees under it.
+const CONTROL_DENSE: [f32; 4] = [1.0, 0.38, 0.03, 0.45];
 /// Cages with more vertices than this are drawn without dots and without
 /// their hidden part: on a dense cage they would cover the surface.
 pub const CAGE_DETAIL_UP_TO: usize = 500;
@@ -156,12 +159,13 @@ pub struct ViewportDraw<'a> {
 }
 
 /// Line colours, in the order of [`Renderer`]'s style bind groups.
-const STYLES: [[f32; 4]; 5] = [WIRE_DARK, WIRE_LIGHT, CONTROL, NORMALS, SHARP];
+const STYLES: [[f32; 4]; 6] = [WIRE_DARK, WIRE_LIGHT, CONTROL, NORMALS, SHARP, CONTROL_DENSE];
 const STYLE_WIRE_DARK: usize = 0;
 const STYLE_WIRE_LIGHT: usize = 1;
 const STYLE_CONTROL: usize = 2;
 const STYLE_NORMALS: usize = 3;
 const STYLE_SHARP: usize = 4;
+const STYLE_CONTROL_DENSE: usize = 5;
 
 /// Width of wireframe lines in pixels (at [`Renderer::pixel_scale`] 1).
 pub const WIRE_WIDTH: f32 = 1.5;
@@ -186,7 +190,7 @@ pub struct Renderer {
     fxaa_pass: super::blit::Blit,
     pipelines: Pipelines,
     views: Vec<(wgpu::Buffer, wgpu::BindGroup)>,
-    styles: [wgpu::BindGroup; 5],
+    styles: [wgpu::BindGroup; 6],
 }
 
 impl Renderer {
@@ -408,10 +412,11 @@ impl Renderer {
     /// surface hides them, full where they show.
     fn draw_cage(&self, pass: &mut wgpu::RenderPass, c: &GpuMesh) {
         let p = &self.pipelines;
-        pass.set_bind_group(1, &self.styles[STYLE_CONTROL], &[]);
+        let detail = c.vertex_count <= CAGE_DETAIL_UP_TO;
+        let style = if detail { STYLE_CONTROL } else { STYLE_CONTROL_DENSE };
+        pass.set_bind_group(1, &self.styles[style], &[]);
         pass.set_vertex_buffer(0, c.positions.slice(..));
         pass.set_index_buffer(c.edges.slice(..), wgpu::IndexFormat::Uint32);
-        let detail = c.vertex_count <= CAGE_DETAIL_UP_TO;
         if detail {
             pass.set_pipeline(&p.lines_hidden);
             pass.draw_indexed(0..c.edge_indices, 0, 0..1);
