@@ -2,7 +2,7 @@
 //! (schemes.md 4.4), computed per triangle and gathered per vertex in parallel.
 
 use super::CornerTable;
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
 /// Unnormalised face normals (cross product of two edges: length = 2 x area).
@@ -196,7 +196,7 @@ impl VertexRings {
                     let poly = &self.ring[o..o + m];
                     prefetch(pos, self.ring.get(o + PREFETCH..o + PREFETCH + m).unwrap_or(&[]));
                     o += m;
-                    *nrm = polygon_area2(pos, poly).try_normalize().unwrap_or(Vec3::Z);
+                    *nrm = polygon_area2(pos, poly).try_normalize().map_or(Vec3::Z, Vec3::from);
                 }
             },
         );
@@ -206,18 +206,18 @@ impl VertexRings {
 /// Twice the vector area of the polygon `poly` of positions (see
 /// [`VertexRings`]); zero below three points.
 #[inline(always)]
-fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3 {
+fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3A {
     // SAFETY: every polygon entry is a vertex id of the table the rings were
     // built from (`new` keeps only ids checked against its vertex count, and
     // the fields are private), and `pos.len()` is that count, asserted by the
     // only caller.
-    let at = |j: u32| unsafe { *pos.get_unchecked(j as usize) };
+    let at = |j: u32| Vec3A::from(unsafe { *pos.get_unchecked(j as usize) });
     let m = poly.len();
     if m < 3 {
-        return Vec3::ZERO;
+        return Vec3A::ZERO;
     }
     let p0 = at(poly[0]);
-    let mut s = Vec3::ZERO;
+    let mut s = Vec3A::ZERO;
     let mut i = 1;
     while i + 2 < m {
         let (a, b, c) = (at(poly[i]), at(poly[i + 1]), at(poly[i + 2]));

@@ -12,8 +12,8 @@
 //! per frame. The sums are taken in the same order with the same weights as
 //! the CSR rows, so the results are bit-identical to them.
 
-use super::stencil::LevelPlan;
-use glam::Vec3;
+use super::stencil::{LevelPlan, Point, copy_points};
+use glam::Vec3A;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -97,10 +97,10 @@ impl PackedLevel {
     /// # Panics
     /// If `input` has fewer than `n_in` positions or `out` is not the size of
     /// the finer level (a caller bug, not input data).
-    pub fn apply(&self, input: &[Vec3], out: &mut [Vec3]) {
+    pub fn apply<I: Point, O: Point>(&self, input: &[I], out: &mut [O]) {
         assert!(input.len() >= self.n_in, "input has the coarser level's vertices");
         let rows = if self.copy_vertices {
-            out[..self.n_in].copy_from_slice(&input[..self.n_in]);
+            copy_points(&input[..self.n_in], &mut out[..self.n_in]);
             &mut out[self.n_in..]
         } else {
             out
@@ -112,19 +112,24 @@ impl PackedLevel {
                 for (q, &c) in out.iter_mut().zip(class) {
                     let c = c as usize;
                     let w = &self.class_weights[self.class_start[c] as usize..self.class_start[c + 1] as usize];
-                    let idx = &self.indices[o..o + w.len()];
-                    let mut sum = Vec3::ZERO;
-                    for (&j, &w) in idx.iter().zip(w) {
-                        // SAFETY: `pack` copies the indices of a recorded
-                        // level, every one a vertex of the coarser level
-                        // (below `n_in`; the fields are private), and
-                        // `input.len() >= n_in` is asserted above.
-                        sum += unsafe { *input.get_unchecked(j as usize) } * w;
-                    }
-                    *q = sum;
+                    let sum = gather(input, &self.indices[o..o + w.len()], w);
+                    *q = O::store(sum);
                     o += w.len();
                 }
             },
         );
     }
+}
+
+/// One row's weighted sum: the products summed in the CSR row's order.
+#[inline(always)]
+fn gather<I: Point>(input: &[I], idx: &[u32], w: &[f32]) -> Vec3A {
+    let mut sum = Vec3A::ZERO;
+    for (&j, &w) in idx.iter().zip(w) {
+        // SAFETY: `pack` copies the indices of a recorded level, every one a
+        // vertex of the coarser level (below `n_in`; the fields are
+        // private), and `apply` asserts `input.len() >= n_in`.
+        sum += unsafe { *input.get_unchecked(j as usize) }.load() * w;
+    }
+    sum
 }
