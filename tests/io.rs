@@ -132,6 +132,7 @@ fn parsers_never_panic_on_mutated_input() {
         std::fs::read(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
     seeds.push(paths_seed);
     seeds.extend(format_seeds());
+    seeds.extend(hostile_seeds());
     let mut rng = Rng(12345);
     let mut rnd = |n: usize| ((rng.next_f32() + 1.0) * 0.5 * n as f32) as usize % n.max(1);
     let tokens: [&[u8]; 10] = [b"-1", b"0", b"nan", b"1e39", b"\n", b" ", b"f", b"v", b"99999999999", b"/"];
@@ -262,4 +263,49 @@ fn saving_into_a_device_writes_into_it_and_leaves_it_a_device() {
     assert!(meta.file_type().is_symlink(), "the link was replaced by a file");
     assert!(std::fs::metadata("/dev/null").unwrap().file_type().is_char_device());
     std::fs::remove_file(&link).unwrap();
+}
+
+/// A COLLADA triangle with `inputs` (the `<input>` elements of its
+/// `<triangles>`) and index text `p`.
+fn dae_with(inputs: &str, p: &str) -> Vec<u8> {
+    format!(
+        r##"<?xml version="1.0"?><COLLADA><library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array><technique_common><accessor source="#pa" count="3" stride="3"/></technique_common></source><source id="t"><float_array id="ta" count="2">0 0</float_array><technique_common><accessor source="#ta" count="1" stride="18446744073709551615"/></technique_common></source><vertices id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count="1">{inputs}<p>{p}</p></triangles></mesh></geometry></library_geometries></COLLADA>"##
+    )
+    .into_bytes()
+}
+
+/// The hostile files of the regression tests below, as fuzz seeds too: their
+/// mutations probe the guards around the overflow.
+fn hostile_seeds() -> Vec<Vec<u8>> {
+    let vertex = r##"<input semantic="VERTEX" source="#v" offset="0"/>"##;
+    vec![
+        dae_with(r##"<input semantic="VERTEX" source="#v" offset="18446744073709551615"/>"##, "0 1 2"),
+        dae_with(&format!(r##"{vertex}<input semantic="TEXCOORD" source="#t" offset="1"/>"##), "0 0 1 2 2 3"),
+    ]
+}
+
+#[test]
+fn hostile_collada_offsets_and_strides_are_refused_naming_the_element() {
+    let refused = |bytes: Vec<u8>, want: &str| {
+        let e = subdiv::io::from_bytes(&bytes, "h.dae").map(|_| ()).unwrap_err();
+        let s = e.to_string();
+        assert!(matches!(e, Error::Format { .. }), "{s}");
+        assert!(s.starts_with("h.dae: geometry 'g' triangles 0") && s.contains(want), "want '{want}': {s}");
+    };
+    let vertex = r##"<input semantic="VERTEX" source="#v" offset="0"/>"##;
+    // the triangle itself reads
+    assert_eq!(subdiv::io::from_bytes(&dae_with(vertex, "0 1 2"), "ok.dae").unwrap().ct.num_triangles(), 1);
+    // an offset of u64::MAX: the corner size (offset + 1) overflows
+    let max = r##"<input semantic="VERTEX" source="#v" offset="18446744073709551615"/>"##;
+    refused(dae_with(max, "0 1 2"), "offset 18446744073709551615 is too large");
+    let two = format!(r##"{vertex}<input semantic="NORMAL" source="#v" offset="18446744073709551615"/>"##);
+    refused(dae_with(&two, "0 1 2"), "too large");
+    // an offset that is no number is refused, not read as 0
+    let junk = r##"<input semantic="VERTEX" source="#v" offset="-1"/>"##;
+    refused(dae_with(junk, "0 1 2"), "input 0 (VERTEX): offset '-1' is not an index");
+    // no inputs at all (a stride of 0)
+    refused(dae_with("", "0 1 2"), "no <input>");
+    // a texture source whose accessor stride times the index overflows
+    let tex = format!(r##"{vertex}<input semantic="TEXCOORD" source="#t" offset="1"/>"##);
+    refused(dae_with(&tex, "0 0 1 2 2 3"), "texture coordinate 2 out of range");
 }
