@@ -279,6 +279,8 @@ fn dae_with(inputs: &str, p: &str) -> Vec<u8> {
 fn hostile_seeds() -> Vec<Vec<u8>> {
     let vertex = r##"<input semantic="VERTEX" source="#v" offset="0"/>"##;
     vec![
+        PLY_TWO_VERTEX_ELEMENTS.to_vec(),
+        ply_claiming_faces(2),
         dae_with(r##"<input semantic="VERTEX" source="#v" offset="18446744073709551615"/>"##, "0 1 2"),
         dae_with(&format!(r##"{vertex}<input semantic="TEXCOORD" source="#t" offset="1"/>"##), "0 0 1 2 2 3"),
     ]
@@ -308,4 +310,52 @@ fn hostile_collada_offsets_and_strides_are_refused_naming_the_element() {
     // a texture source whose accessor stride times the index overflows
     let tex = format!(r##"{vertex}<input semantic="TEXCOORD" source="#t" offset="1"/>"##);
     refused(dae_with(&tex, "0 0 1 2 2 3"), "texture coordinate 2 out of range");
+}
+
+/// Three vertices, then a second vertex element with texture coordinates:
+/// the uv array would be sized from the second and indexed by the first's ids.
+const PLY_TWO_VERTEX_ELEMENTS: &[u8] = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n5 5 5 0 0\n3 0 1 2\n";
+
+/// A binary PLY with 3 vertices and one face (13 bytes) whose header claims `faces`.
+fn ply_claiming_faces(faces: u64) -> Vec<u8> {
+    let mut b = format!("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face {faces}\nproperty list uchar int vertex_indices\nend_header\n").into_bytes();
+    for p in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+        b.extend(p.iter().flat_map(|x| x.to_le_bytes()));
+    }
+    b.push(3);
+    b.extend([0u32, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
+    b
+}
+
+#[test]
+fn hostile_ply_headers_are_refused_before_reading() {
+    let err = |bytes: &[u8]| subdiv::io::from_bytes(bytes, "h.ply").map(|_| ()).unwrap_err().to_string();
+    // a second vertex (or face) element: refused at its header line
+    let e = err(PLY_TWO_VERTEX_ELEMENTS);
+    assert!(e.starts_with("h.ply: header line 7:") && e.contains("second 'element vertex'"), "{e}");
+    let two_faces = String::from_utf8(PLY_TWO_VERTEX_ELEMENTS.to_vec())
+        .unwrap()
+        .replace("element vertex 1\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\n", "")
+        .replace("end_header", "element face 0\nproperty list uchar int vertex_indices\nend_header");
+    let e = err(two_faces.as_bytes());
+    assert!(e.starts_with("h.ply: header line 9:") && e.contains("second 'element face'"), "{e}");
+    // the file itself, with one face, reads
+    assert_eq!(subdiv::io::from_bytes(&ply_claiming_faces(1), "ok.ply").unwrap().ct.num_triangles(), 1);
+    // a face takes at least 1 count byte and 3 indices of 4 bytes: 13 bytes
+    // left hold one face, not two (nor 2^31), refused before any is read
+    for claim in [2, 1 << 31] {
+        let e = err(&ply_claiming_faces(claim));
+        assert!(e.starts_with("h.ply: face:") && e.contains(&format!("claims {claim} elements")), "{e}");
+        assert!(e.contains("only 13 bytes follow (at least 13 each needed)"), "{e}");
+    }
+    // ASCII: "3 0 1 2" is the fewest bytes (7, with no newline after the last face)
+    let ascii = |faces: &str, body: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face {faces}\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n{body}"
+        )
+    };
+    let ok = subdiv::io::from_bytes(ascii("1", "3 0 1 2").as_bytes(), "a.ply").unwrap();
+    assert_eq!(ok.ct.num_triangles(), 1);
+    let e = err(ascii("2", "3 0 1 2\n").as_bytes());
+    assert!(e.contains("claims 2 elements"), "{e}");
 }
