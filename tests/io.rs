@@ -281,6 +281,7 @@ fn hostile_seeds() -> Vec<Vec<u8>> {
     vec![
         PLY_TWO_VERTEX_ELEMENTS.to_vec(),
         ply_claiming_faces(2),
+        b"OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n".to_vec(),
         dae_with(r##"<input semantic="VERTEX" source="#v" offset="18446744073709551615"/>"##, "0 1 2"),
         dae_with(&format!(r##"{vertex}<input semantic="TEXCOORD" source="#t" offset="1"/>"##), "0 0 1 2 2 3"),
     ]
@@ -358,4 +359,19 @@ fn hostile_ply_headers_are_refused_before_reading() {
     assert_eq!(ok.ct.num_triangles(), 1);
     let e = err(ascii("2", "3 0 1 2\n").as_bytes());
     assert!(e.contains("claims 2 elements"), "{e}");
+}
+
+#[test]
+fn hostile_off_counts_are_refused_together() {
+    // 5 vertices (30 bytes or more) and 3 faces (24 or more) each fit in the
+    // 36 bytes, but not both
+    let text = "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    assert_eq!(text.len(), 36);
+    let e = subdiv::io::from_bytes(text.as_bytes(), "h.off").map(|_| ()).unwrap_err();
+    assert!(matches!(e, Error::Parse { line: 2, .. }), "{e}");
+    let e = e.to_string();
+    assert!(e.starts_with("h.off:2: the header claims 5 vertices and 3 faces, but the file has only 36 bytes"), "{e}");
+    // the right counts read
+    let ok = text.replace("5 3 0", "3 1 0");
+    assert_eq!(subdiv::io::from_bytes(ok.as_bytes(), "ok.off").unwrap().ct.num_triangles(), 1);
 }
