@@ -137,6 +137,19 @@ pub struct ColorArgs {
     pub color: String,
 }
 
+impl ColorArgs {
+    /// The colouring asked for: `None` for `auto` (decided by the model, see
+    /// `Coloring::initial`), every other name its colouring (`none` the
+    /// plain front colour, even on a model with materials).
+    #[cfg(feature = "viewer")]
+    pub fn asked(&self) -> Result<Option<subdiv::app::display::Coloring>> {
+        match self.color.as_str() {
+            "auto" => Ok(None),
+            c => c.parse().map(Some).map_err(Error::Usage),
+        }
+    }
+}
+
 impl Default for ColorArgs {
     fn default() -> Self {
         ColorArgs { color: "auto".into() }
@@ -169,4 +182,22 @@ pub fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
         return Err(format!("'{s}' is not a size"));
     }
     Ok((x * mult as f64) as u64)
+}
+
+#[cfg(all(test, feature = "viewer"))]
+mod tests {
+    use super::ColorArgs;
+    use subdiv::app::display::Coloring;
+
+    #[test]
+    fn color_none_is_asked_for_and_auto_is_not() {
+        let asked = |c: &str| ColorArgs { color: c.into() }.asked();
+        assert_eq!(asked("none").unwrap(), Some(Coloring::None));
+        assert_eq!(asked("auto").unwrap(), None);
+        assert_eq!(asked("material").unwrap(), Some(Coloring::Material));
+        assert!(asked("plaid").unwrap_err().to_string().contains("unknown colouring 'plaid'"));
+        // what view and render open with, on a model with MTL materials
+        assert_eq!(Coloring::initial(asked("none").unwrap(), true), Coloring::None);
+        assert_eq!(Coloring::initial(asked("auto").unwrap(), true), Coloring::Material);
+    }
 }

@@ -264,11 +264,7 @@ mod gpu {
         let s = &a.sub.scheme;
         let levels = a.sub.levels_or(0);
         let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
-        let coloring: Coloring = match a.color.color.as_str() {
-            "auto" if attrs.materials.is_some() => Coloring::Material,
-            "auto" => Coloring::None,
-            c => c.parse().map_err(Error::Usage)?,
-        };
+        let coloring = Coloring::initial(a.color.asked()?, attrs.materials.is_some());
         let mesh = s.features.apply(mesh)?;
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
         let paint = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;

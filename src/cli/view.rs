@@ -58,11 +58,8 @@ pub fn view(a: ViewArgs) -> Result<()> {
         play: a.play,
         turntable: a.turntable,
         repair: a.from.repair,
-        // auto: none, and the viewer shows a model's materials when it has them
-        coloring: match a.color.color.as_str() {
-            "auto" => subdiv::app::display::Coloring::None,
-            c => c.parse().map_err(Error::Usage)?,
-        },
+        // auto: the viewer shows a model's materials when it has them; none stays none
+        coloring: a.color.asked()?,
         crease_angle: s.features.crease_angle,
         control: a.control,
     })
