@@ -234,6 +234,26 @@ fn crease_options_tag_subdivide_and_count() {
     assert!(e.contains("--crease-angle"), "{e}");
 }
 
+/// Runs a command line that clap must refuse (exit status 2, a usage error,
+/// no panic); its stderr.
+fn clap_refuses(args: &[&str]) -> String {
+    let out = bin().args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "a usage error expected for {args:?}: {err}");
+    assert!(err.starts_with("error: ") && !err.contains("panicked"), "{args:?}: {err}");
+    err
+}
+
+#[test]
+fn options_that_would_change_nothing_are_refused() {
+    // repair always repairs
+    let fin = write("noop-fin.obj", FIN_OBJ);
+    let out = tmp("noop-fixed.obj");
+    let e = clap_refuses(&["repair", "--repair", fin.to_str().unwrap(), out.to_str().unwrap()]);
+    assert!(e.contains("unexpected argument '--repair'"), "{e}");
+    assert!(!out.exists());
+}
+
 #[test]
 fn every_mesh_command_takes_repair_and_levels_has_its_aliases() {
     let fin = write("opt-fin.obj", FIN_OBJ);

@@ -129,6 +129,16 @@ pub struct InOut {
     from: InputArgs,
 }
 
+/// `subdiv repair` arguments: no `--repair` (it always repairs) and no
+/// subdivision.
+#[derive(clap::Args)]
+pub struct RepairArgs {
+    /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Output mesh (format by extension; written atomically).
+    output: PathBuf,
+}
+
 /// `subdiv smooth` arguments.
 #[derive(clap::Args)]
 pub struct SmoothArgs {
@@ -174,8 +184,8 @@ pub fn limit(a: &InOut) -> Result<()> {
     Ok(())
 }
 
-/// `subdiv repair` (always repairs; `--repair` changes nothing).
-pub fn repair(a: &InOut) -> Result<()> {
+/// `subdiv repair` (always repairs).
+pub fn repair(a: &RepairArgs) -> Result<()> {
     let (mesh, report) = bundled::load_repaired(&a.input)?;
     io::save(&a.output, &mesh)?;
     print!("{report}");
