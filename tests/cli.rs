@@ -246,6 +246,12 @@ fn clap_refuses(args: &[&str]) -> String {
 
 #[test]
 fn options_that_would_change_nothing_are_refused() {
+    // info counts the control mesh's features and refines nothing: how
+    // semi-sharp creases decay per level has no meaning there
+    let e = clap_refuses(&["info", "bundled:cube.obj", "--creasing", "chaikin"]);
+    assert!(e.contains("unexpected argument '--creasing'"), "{e}");
+    let o = bin().args(["info", "bundled:cube.obj", "--boundary", "edge-and-corner"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // repair always repairs
     let fin = write("noop-fin.obj", FIN_OBJ);
     let out = tmp("noop-fixed.obj");

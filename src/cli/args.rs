@@ -93,27 +93,44 @@ impl SchemeArgs {
             tension: self.tension,
             max_memory: self.max_memory,
             creasing: self.features.creasing,
-            boundary: self.features.boundary,
+            boundary: self.features.sharp.boundary,
         }
     }
 }
 
 /// Sharp features: the model's own tags (OBJ `t crease` / `t corner`, .ct
-/// `creases` / `corners`) plus these options (OpenSubdiv's names).
+/// `creases` / `corners`) plus these options (OpenSubdiv's names), and how
+/// semi-sharp ones decay as the levels refine.
 #[derive(clap::Args, Clone, Default)]
 pub struct FeatureArgs {
-    /// Make every edge whose two faces' normals differ by more than DEG degrees infinitely sharp.
-    #[arg(long, value_name = "DEG")]
-    pub crease_angle: Option<f32>,
-    /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
-    #[arg(long, default_value = "edge")]
-    pub boundary: subdiv::mesh::BoundaryInterpolation,
+    #[command(flatten)]
+    pub sharp: SharpArgs,
     /// How semi-sharp creases decay: uniform (s - 1 per level) or chaikin.
     #[arg(long, default_value = "uniform")]
     pub creasing: subdiv::mesh::Creasing,
 }
 
 impl FeatureArgs {
+    /// `mesh` with the edges sharper than `--crease-angle` tagged.
+    pub fn apply(&self, mesh: Mesh) -> Result<Mesh> {
+        self.sharp.apply(mesh)
+    }
+}
+
+/// Which features of the control mesh are sharp: what `info` counts (it
+/// refines nothing, so the decay of [`FeatureArgs::creasing`] has no meaning
+/// there and `info` does not take it).
+#[derive(clap::Args, Clone, Default)]
+pub struct SharpArgs {
+    /// Make every edge whose two faces' normals differ by more than DEG degrees infinitely sharp.
+    #[arg(long, value_name = "DEG")]
+    pub crease_angle: Option<f32>,
+    /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
+    #[arg(long, default_value = "edge")]
+    pub boundary: subdiv::mesh::BoundaryInterpolation,
+}
+
+impl SharpArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
     pub fn apply(&self, mesh: Mesh) -> Result<Mesh> {
         let Some(deg) = self.crease_angle else { return Ok(mesh) };

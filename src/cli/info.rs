@@ -1,6 +1,6 @@
 //! `subdiv info` (meshes and `.bzc` curves) and `subdiv models`.
 
-use super::args::{FeatureArgs, InputArgs};
+use super::args::{InputArgs, SharpArgs};
 use super::print_json;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -19,8 +19,9 @@ pub struct InfoArgs {
     /// `--repair`: always analyse and describe the repaired mesh, even when the input is valid.
     #[command(flatten)]
     from: InputArgs,
+    /// The sharp features counted (no `--creasing`: info refines nothing).
     #[command(flatten)]
-    features: FeatureArgs,
+    features: SharpArgs,
 }
 
 /// `subdiv info --json` of a mesh.

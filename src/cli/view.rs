@@ -60,7 +60,7 @@ pub fn view(a: ViewArgs) -> Result<()> {
         repair: a.from.repair,
         // auto: the viewer shows a model's materials when it has them; none stays none
         coloring: a.color.asked()?,
-        crease_angle: s.features.crease_angle,
+        crease_angle: s.features.sharp.crease_angle,
         control: a.control,
     })
 }
