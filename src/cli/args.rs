@@ -6,7 +6,7 @@
 
 use std::path::Path;
 use subdiv::mesh::attributes::Attributes;
-use subdiv::{Error, LoopBeta, Mesh, Options, Result, Scheme, bundled};
+use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
 
 /// How a mesh is read.
 #[derive(clap::Args, Clone, Default)]
@@ -112,7 +112,7 @@ pub struct FeatureArgs {
 
 impl FeatureArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
-    pub fn apply(&self, mesh: Mesh) -> Result<Mesh> {
+    pub fn apply(&self, mesh: Mesh) -> Mesh {
         self.sharp.apply(mesh)
     }
 }
@@ -122,8 +122,8 @@ impl FeatureArgs {
 /// there and `info` does not take it).
 #[derive(clap::Args, Clone, Default)]
 pub struct SharpArgs {
-    /// Make every edge whose two faces' normals differ by more than DEG degrees infinitely sharp.
-    #[arg(long, value_name = "DEG")]
+    /// Make every edge whose two faces' normals differ by more than DEG degrees (0 to 180) infinitely sharp.
+    #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true)]
     pub crease_angle: Option<f32>,
     /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
     #[arg(long, default_value = "edge")]
@@ -132,14 +132,18 @@ pub struct SharpArgs {
 
 impl SharpArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
-    pub fn apply(&self, mesh: Mesh) -> Result<Mesh> {
-        let Some(deg) = self.crease_angle else { return Ok(mesh) };
-        if !(0.0..=180.0).contains(&deg) {
-            return Err(Error::Usage(format!("--crease-angle {deg}: give an angle from 0 to 180 degrees")));
-        }
+    pub fn apply(&self, mesh: Mesh) -> Mesh {
+        let Some(deg) = self.crease_angle else { return mesh };
         let Mesh { ct, positions } = mesh;
-        Ok(Mesh { ct: ct.with_angle_creases(&positions, deg), positions })
+        Mesh { ct: ct.with_angle_creases(&positions, deg), positions }
     }
+}
+
+/// A dihedral angle in degrees, 0..=180 (NaN and infinities refused).
+pub fn parse_angle(s: &str) -> std::result::Result<f32, String> {
+    let bad = || format!("'{s}' is not an angle from 0 to 180 degrees");
+    let deg: f32 = s.trim().parse().map_err(|_| bad())?;
+    if (0.0..=180.0).contains(&deg) { Ok(deg) } else { Err(bad()) }
 }
 
 /// How a drawing command colours the surface.
@@ -162,7 +166,7 @@ impl ColorArgs {
     pub fn asked(&self) -> Result<Option<subdiv::app::display::Coloring>> {
         match self.color.as_str() {
             "auto" => Ok(None),
-            c => c.parse().map(Some).map_err(Error::Usage),
+            c => c.parse().map(Some).map_err(subdiv::Error::Usage),
         }
     }
 }
@@ -216,5 +220,19 @@ mod tests {
         // what view and render open with, on a model with MTL materials
         assert_eq!(Coloring::initial(asked("none").unwrap(), true), Coloring::None);
         assert_eq!(Coloring::initial(asked("auto").unwrap(), true), Coloring::Material);
+    }
+}
+
+#[cfg(test)]
+mod angle_tests {
+    #[test]
+    fn crease_angles_outside_0_to_180_and_nan_are_refused() {
+        for ok in ["0", "40", "180", " 90.5 "] {
+            assert!(super::parse_angle(ok).is_ok(), "{ok}");
+        }
+        for bad in ["-1", "180.5", "400", "nan", "NaN", "inf", "-inf", "forty", ""] {
+            let e = super::parse_angle(bad).unwrap_err();
+            assert!(e.contains("not an angle from 0 to 180"), "{bad}: {e}");
+        }
     }
 }

@@ -133,7 +133,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             (m, r.unreferenced_vertices.count, r.vertices_in, Some(r))
         }
     };
-    let mesh = a.features.apply(mesh)?;
+    let mesh = a.features.apply(mesh);
     let sharp = subdiv::subdiv::features::summary(&mesh.ct, a.features.boundary);
     let (nm_edges, nm_vertices) =
         report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));

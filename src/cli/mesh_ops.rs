@@ -53,7 +53,7 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
     let t0 = Instant::now();
     let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
-    let mesh = s.features.apply(mesh)?;
+    let mesh = s.features.apply(mesh);
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
     let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
