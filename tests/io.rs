@@ -206,12 +206,13 @@ fn format_seeds() -> Vec<Vec<u8>> {
     // one triangle: three positions and u16 indices 0 1 2, base64
     seeds.push(br#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"translation":[1,2,3]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],"buffers":[{"byteLength":42,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIA"}],"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]}"#.to_vec());
     seeds.push(br##"<?xml version="1.0"?><COLLADA><library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count="15">0 0 0 1 0 0 1 1 0 0 1 0 2 0.5 0</float_array><technique_common><accessor source="#pa" count="5" stride="3"/></technique_common></source><vertices id="v"><input semantic="POSITION" source="#p"/></vertices><polylist count="1"><input semantic="VERTEX" source="#v" offset="0"/><vcount>4</vcount><p>0 1 2 3</p></polylist><triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>1 4 2</p></triangles></mesh></geometry></library_geometries></COLLADA>"##.to_vec());
-    for s in &seeds[seeds.len() - 2..] {
-        let name = if s.starts_with(b"{") { "seed.gltf" } else { "seed.dae" };
-        subdiv::io::from_bytes(s, name)
-            .map(|_| ())
-            .or_else(|e| if name == "seed.dae" { Ok(()) } else { Err(e) })
-            .unwrap();
+    // the hand-written seeds are valid files: a mutation of a file that
+    // does not parse would probe only its first error
+    let hand = &seeds[seeds.len() - 4..];
+    for (s, (name, triangles)) in hand.iter().zip([("seed.ply", 4), ("seed.stl", 2), ("seed.gltf", 1), ("seed.dae", 3)])
+    {
+        let m = subdiv::io::from_bytes(s, name).unwrap_or_else(|e| panic!("the {name} seed does not parse: {e}"));
+        assert_eq!(m.ct.num_triangles(), triangles, "{name}");
     }
     seeds
 }
