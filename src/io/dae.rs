@@ -20,6 +20,16 @@ struct Source {
     stride: usize,
 }
 
+/// An `<input>` of a primitive.
+struct Input {
+    /// `VERTEX`, `TEXCOORD`, ...
+    semantic: String,
+    /// Its index within each corner's indices.
+    offset: usize,
+    /// The id of its `<source>` (or `<vertices>`), without the `#`.
+    source: String,
+}
+
 /// Reads a COLLADA file.
 ///
 /// # Errors
@@ -92,12 +102,13 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
         let here = format!("{at} {} {k}", prim.tag_name().name());
         let err = |msg: String| format_err(file, &here, msg);
         let (inputs, stride) = read_inputs(prim, file, &here)?;
-        let (_, voff, vsrc) = inputs.iter().find(|i| i.0 == "VERTEX").ok_or_else(|| err("no VERTEX input".into()))?;
+        let Input { offset: voff, source: vsrc, .. } =
+            inputs.iter().find(|i| i.semantic == "VERTEX").ok_or_else(|| err("no VERTEX input".into()))?;
         let psrc = vertices.get(vsrc).cloned().unwrap_or_else(|| vsrc.clone());
         if pos_source.get_or_insert_with(|| psrc.clone()) != &psrc {
             return Err(err("primitives of one mesh use different position sources".into()));
         }
-        let tex = inputs.iter().find(|i| i.0 == "TEXCOORD");
+        let tex = inputs.iter().find(|i| i.semantic == "TEXCOORD");
         has_uv |= tex.is_some();
         let polys = polygons(prim, stride, file, &here)?;
         let ix_err = |t: String| err(format!("'{t}' is not an index"));
@@ -106,7 +117,7 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
             let p: Vec<u32> = numbers(&p).map_err(ix_err)?;
             corners.clear();
             for c in p.chunks_exact(stride) {
-                corners.push([c[*voff], tex.map_or(0, |t| c[t.1])]);
+                corners.push([c[*voff], tex.map_or(0, |t| c[t.offset])]);
             }
             if corners.len() < 3 {
                 continue;
@@ -116,7 +127,7 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
                     raw.triangles.push(c[0]);
                     if let (Some(out), None) = (&mut uv, tex) {
                         out.push(Vec2::ZERO);
-                    } else if let (Some(out), Some((.., src))) = (&mut uv, tex) {
+                    } else if let (Some(out), Some(Input { source: src, .. })) = (&mut uv, tex) {
                         let s = sources.get(src).ok_or_else(|| err(format!("no source '{src}'")))?;
                         let t = (c[1] as usize)
                             .checked_mul(s.stride)
@@ -145,13 +156,13 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
     Ok(raw)
 }
 
-/// A primitive's `<input>`s as (semantic, offset, source id), and the
-/// number of indices per corner (the largest offset + 1).
+/// A primitive's `<input>`s, and the number of indices per corner (the
+/// largest offset + 1).
 ///
 /// # Errors
 /// An offset that is not a number, or one so large that the corner size
 /// does not fit in a `usize`, naming the input; a primitive without inputs.
-fn read_inputs(prim: Node, file: &str, at: &str) -> Result<(Vec<(String, usize, String)>, usize)> {
+fn read_inputs(prim: Node, file: &str, at: &str) -> Result<(Vec<Input>, usize)> {
     let mut inputs = Vec::new();
     for (k, i) in prim.children().filter(|i| i.has_tag_name("input")).enumerate() {
         let semantic = i.attribute("semantic").unwrap_or("").to_string();
@@ -161,9 +172,9 @@ fn read_inputs(prim: Node, file: &str, at: &str) -> Result<(Vec<(String, usize, 
                 format_err(file, format!("{at} input {k} ({semantic})"), format!("offset '{o}' is not an index"))
             })?,
         };
-        inputs.push((semantic, off, target(i)));
+        inputs.push(Input { semantic, offset: off, source: target(i) });
     }
-    let Some(max) = inputs.iter().map(|i| i.1).max() else {
+    let Some(max) = inputs.iter().map(|i| i.offset).max() else {
         return Err(format_err(file, at, "no <input> (every primitive needs a VERTEX input)"));
     };
     let stride = max.checked_add(1).ok_or_else(|| {
