@@ -230,8 +230,55 @@ fn crease_options_tag_subdivide_and_count() {
         .unwrap();
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && e.contains("sideways") && e.contains("edge-and-corner"), "{e}");
-    let e = run_fail(&["subdivide", "bundled:cube.obj", out.to_str().unwrap(), "--crease-angle", "400"]);
+    let e = clap_refuses(&["subdivide", "bundled:cube.obj", out.to_str().unwrap(), "--crease-angle", "400"]);
     assert!(e.contains("--crease-angle"), "{e}");
+}
+
+/// Runs a command line that clap must refuse (exit status 2, a usage error,
+/// no panic); its stderr.
+fn clap_refuses(args: &[&str]) -> String {
+    let out = bin().args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "a usage error expected for {args:?}: {err}");
+    assert!(err.starts_with("error: ") && !err.contains("panicked"), "{args:?}: {err}");
+    err
+}
+
+#[test]
+fn crease_angles_outside_0_to_180_are_refused_by_every_command() {
+    let out = tmp("angle.obj");
+    let o = out.to_str().unwrap();
+    for deg in ["-1", "180.5", "400", "nan", "inf"] {
+        let e = clap_refuses(&["subdivide", "bundled:cube.obj", o, "--crease-angle", deg]);
+        assert!(e.contains(&format!("'{deg}' is not an angle from 0 to 180 degrees")), "{deg}: {e}");
+        assert!(!out.exists());
+        // view too: refused before a model is read or a window opened
+        let e = clap_refuses(&["view", "bundled:cube.obj", "--frames", "1", "--crease-angle", deg]);
+        assert!(e.contains("not an angle from 0 to 180"), "view {deg}: {e}");
+        let e = clap_refuses(&["info", "bundled:cube.obj", "--crease-angle", deg]);
+        assert!(e.contains("not an angle from 0 to 180"), "info {deg}: {e}");
+    }
+    // the ends of the range are angles
+    for deg in ["0", "180"] {
+        let r = bin().args(["subdivide", "bundled:cube.obj", o, "--crease-angle", deg]).output().unwrap();
+        assert!(r.status.success(), "{deg}: {}", String::from_utf8_lossy(&r.stderr));
+    }
+}
+
+#[test]
+fn options_that_would_change_nothing_are_refused() {
+    // info counts the control mesh's features and refines nothing: how
+    // semi-sharp creases decay per level has no meaning there
+    let e = clap_refuses(&["info", "bundled:cube.obj", "--creasing", "chaikin"]);
+    assert!(e.contains("unexpected argument '--creasing'"), "{e}");
+    let o = bin().args(["info", "bundled:cube.obj", "--boundary", "edge-and-corner"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // repair always repairs
+    let fin = write("noop-fin.obj", FIN_OBJ);
+    let out = tmp("noop-fixed.obj");
+    let e = clap_refuses(&["repair", "--repair", fin.to_str().unwrap(), out.to_str().unwrap()]);
+    assert!(e.contains("unexpected argument '--repair'"), "{e}");
+    assert!(!out.exists());
 }
 
 #[test]

@@ -341,10 +341,12 @@ fn collada_reads_triangles_and_polylists_of_every_geometry() {
 
 #[test]
 fn huge_header_counts_are_refused_before_allocating() {
+    // l.ply: 16 bytes after the vertices, enough for one face record, whose
+    // list count (2^32 - 1) is refused
     let cases: [(&str, Vec<u8>, &str); 5] = [
         ("h.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n".to_vec(), "vertex"),
         ("a.ply", b"ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n".to_vec(), "vertex"),
-        ("l.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty uchar x\nproperty uchar y\nproperty uchar z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n\0\0\0\0\0\0\0\0\0\xff\xff\xff\xff".to_vec(), "face 0"),
+        ("l.ply", b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty uchar x\nproperty uchar y\nproperty uchar z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n\0\0\0\0\0\0\0\0\0\xff\xff\xff\xff\0\0\0\0\0\0\0\0\0\0\0\0".to_vec(), "face 0"),
         ("h.off", b"OFF\n1000000000000 1 0\n0 0 0\n".to_vec(), "vertices"),
         ("h.stl", { let mut b = vec![0u8; 84]; b[80..84].copy_from_slice(&u32::MAX.to_le_bytes()); b }, "facets"),
     ];

@@ -132,6 +132,7 @@ fn parsers_never_panic_on_mutated_input() {
         std::fs::read(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
     seeds.push(paths_seed);
     seeds.extend(format_seeds());
+    seeds.extend(hostile_seeds());
     let mut rng = Rng(12345);
     let mut rnd = |n: usize| ((rng.next_f32() + 1.0) * 0.5 * n as f32) as usize % n.max(1);
     let tokens: [&[u8]; 10] = [b"-1", b"0", b"nan", b"1e39", b"\n", b" ", b"f", b"v", b"99999999999", b"/"];
@@ -205,12 +206,13 @@ fn format_seeds() -> Vec<Vec<u8>> {
     // one triangle: three positions and u16 indices 0 1 2, base64
     seeds.push(br#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0,"translation":[1,2,3]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],"buffers":[{"byteLength":42,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIA"}],"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]}"#.to_vec());
     seeds.push(br##"<?xml version="1.0"?><COLLADA><library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count="15">0 0 0 1 0 0 1 1 0 0 1 0 2 0.5 0</float_array><technique_common><accessor source="#pa" count="5" stride="3"/></technique_common></source><vertices id="v"><input semantic="POSITION" source="#p"/></vertices><polylist count="1"><input semantic="VERTEX" source="#v" offset="0"/><vcount>4</vcount><p>0 1 2 3</p></polylist><triangles count="1"><input semantic="VERTEX" source="#v" offset="0"/><p>1 4 2</p></triangles></mesh></geometry></library_geometries></COLLADA>"##.to_vec());
-    for s in &seeds[seeds.len() - 2..] {
-        let name = if s.starts_with(b"{") { "seed.gltf" } else { "seed.dae" };
-        subdiv::io::from_bytes(s, name)
-            .map(|_| ())
-            .or_else(|e| if name == "seed.dae" { Ok(()) } else { Err(e) })
-            .unwrap();
+    // the hand-written seeds are valid files: a mutation of a file that
+    // does not parse would probe only its first error
+    let hand = &seeds[seeds.len() - 4..];
+    for (s, (name, triangles)) in hand.iter().zip([("seed.ply", 4), ("seed.stl", 2), ("seed.gltf", 1), ("seed.dae", 3)])
+    {
+        let m = subdiv::io::from_bytes(s, name).unwrap_or_else(|e| panic!("the {name} seed does not parse: {e}"));
+        assert_eq!(m.ct.num_triangles(), triangles, "{name}");
     }
     seeds
 }
@@ -262,4 +264,115 @@ fn saving_into_a_device_writes_into_it_and_leaves_it_a_device() {
     assert!(meta.file_type().is_symlink(), "the link was replaced by a file");
     assert!(std::fs::metadata("/dev/null").unwrap().file_type().is_char_device());
     std::fs::remove_file(&link).unwrap();
+}
+
+/// A COLLADA triangle with `inputs` (the `<input>` elements of its
+/// `<triangles>`) and index text `p`.
+fn dae_with(inputs: &str, p: &str) -> Vec<u8> {
+    format!(
+        r##"<?xml version="1.0"?><COLLADA><library_geometries><geometry id="g"><mesh><source id="p"><float_array id="pa" count="9">0 0 0 1 0 0 0 1 0</float_array><technique_common><accessor source="#pa" count="3" stride="3"/></technique_common></source><source id="t"><float_array id="ta" count="2">0 0</float_array><technique_common><accessor source="#ta" count="1" stride="18446744073709551615"/></technique_common></source><vertices id="v"><input semantic="POSITION" source="#p"/></vertices><triangles count="1">{inputs}<p>{p}</p></triangles></mesh></geometry></library_geometries></COLLADA>"##
+    )
+    .into_bytes()
+}
+
+/// The hostile files of the regression tests below, as fuzz seeds too: their
+/// mutations probe the guards around the overflow.
+fn hostile_seeds() -> Vec<Vec<u8>> {
+    let vertex = r##"<input semantic="VERTEX" source="#v" offset="0"/>"##;
+    vec![
+        PLY_TWO_VERTEX_ELEMENTS.to_vec(),
+        ply_claiming_faces(2),
+        b"OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n".to_vec(),
+        dae_with(r##"<input semantic="VERTEX" source="#v" offset="18446744073709551615"/>"##, "0 1 2"),
+        dae_with(&format!(r##"{vertex}<input semantic="TEXCOORD" source="#t" offset="1"/>"##), "0 0 1 2 2 3"),
+    ]
+}
+
+#[test]
+fn hostile_collada_offsets_and_strides_are_refused_naming_the_element() {
+    let refused = |bytes: Vec<u8>, want: &str| {
+        let e = subdiv::io::from_bytes(&bytes, "h.dae").map(|_| ()).unwrap_err();
+        let s = e.to_string();
+        assert!(matches!(e, Error::Format { .. }), "{s}");
+        assert!(s.starts_with("h.dae: geometry 'g' triangles 0") && s.contains(want), "want '{want}': {s}");
+    };
+    let vertex = r##"<input semantic="VERTEX" source="#v" offset="0"/>"##;
+    // the triangle itself reads
+    assert_eq!(subdiv::io::from_bytes(&dae_with(vertex, "0 1 2"), "ok.dae").unwrap().ct.num_triangles(), 1);
+    // an offset of u64::MAX: the corner size (offset + 1) overflows
+    let max = r##"<input semantic="VERTEX" source="#v" offset="18446744073709551615"/>"##;
+    refused(dae_with(max, "0 1 2"), "offset 18446744073709551615 is too large");
+    let two = format!(r##"{vertex}<input semantic="NORMAL" source="#v" offset="18446744073709551615"/>"##);
+    refused(dae_with(&two, "0 1 2"), "too large");
+    // an offset that is no number is refused, not read as 0
+    let junk = r##"<input semantic="VERTEX" source="#v" offset="-1"/>"##;
+    refused(dae_with(junk, "0 1 2"), "input 0 (VERTEX): offset '-1' is not an index");
+    // no inputs at all (a stride of 0)
+    refused(dae_with("", "0 1 2"), "no <input>");
+    // a texture source whose accessor stride times the index overflows
+    let tex = format!(r##"{vertex}<input semantic="TEXCOORD" source="#t" offset="1"/>"##);
+    refused(dae_with(&tex, "0 0 1 2 2 3"), "texture coordinate 2 out of range");
+}
+
+/// Three vertices, then a second vertex element with texture coordinates:
+/// the uv array would be sized from the second and indexed by the first's ids.
+const PLY_TWO_VERTEX_ELEMENTS: &[u8] = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n5 5 5 0 0\n3 0 1 2\n";
+
+/// A binary PLY with 3 vertices and one face (13 bytes) whose header claims `faces`.
+fn ply_claiming_faces(faces: u64) -> Vec<u8> {
+    let mut b = format!("ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face {faces}\nproperty list uchar int vertex_indices\nend_header\n").into_bytes();
+    for p in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+        b.extend(p.iter().flat_map(|x| x.to_le_bytes()));
+    }
+    b.push(3);
+    b.extend([0u32, 1, 2].iter().flat_map(|i| i.to_le_bytes()));
+    b
+}
+
+#[test]
+fn hostile_ply_headers_are_refused_before_reading() {
+    let err = |bytes: &[u8]| subdiv::io::from_bytes(bytes, "h.ply").map(|_| ()).unwrap_err().to_string();
+    // a second vertex (or face) element: refused at its header line
+    let e = err(PLY_TWO_VERTEX_ELEMENTS);
+    assert!(e.starts_with("h.ply: header line 7:") && e.contains("second 'element vertex'"), "{e}");
+    let two_faces = String::from_utf8(PLY_TWO_VERTEX_ELEMENTS.to_vec())
+        .unwrap()
+        .replace("element vertex 1\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\n", "")
+        .replace("end_header", "element face 0\nproperty list uchar int vertex_indices\nend_header");
+    let e = err(two_faces.as_bytes());
+    assert!(e.starts_with("h.ply: header line 9:") && e.contains("second 'element face'"), "{e}");
+    // the file itself, with one face, reads
+    assert_eq!(subdiv::io::from_bytes(&ply_claiming_faces(1), "ok.ply").unwrap().ct.num_triangles(), 1);
+    // a face takes at least 1 count byte and 3 indices of 4 bytes: 13 bytes
+    // left hold one face, not two (nor 2^31), refused before any is read
+    for claim in [2, 1 << 31] {
+        let e = err(&ply_claiming_faces(claim));
+        assert!(e.starts_with("h.ply: face:") && e.contains(&format!("claims {claim} elements")), "{e}");
+        assert!(e.contains("only 13 bytes follow (at least 13 each needed)"), "{e}");
+    }
+    // ASCII: "3 0 1 2" is the fewest bytes (7, with no newline after the last face)
+    let ascii = |faces: &str, body: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face {faces}\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n{body}"
+        )
+    };
+    let ok = subdiv::io::from_bytes(ascii("1", "3 0 1 2").as_bytes(), "a.ply").unwrap();
+    assert_eq!(ok.ct.num_triangles(), 1);
+    let e = err(ascii("2", "3 0 1 2\n").as_bytes());
+    assert!(e.contains("claims 2 elements"), "{e}");
+}
+
+#[test]
+fn hostile_off_counts_are_refused_together() {
+    // 5 vertices (30 bytes or more) and 3 faces (24 or more) each fit in the
+    // 36 bytes, but not both
+    let text = "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    assert_eq!(text.len(), 36);
+    let e = subdiv::io::from_bytes(text.as_bytes(), "h.off").map(|_| ()).unwrap_err();
+    assert!(matches!(e, Error::Parse { line: 2, .. }), "{e}");
+    let e = e.to_string();
+    assert!(e.starts_with("h.off:2: the header claims 5 vertices and 3 faces, but the file has only 36 bytes"), "{e}");
+    // the right counts read
+    let ok = text.replace("5 3 0", "3 1 0");
+    assert_eq!(subdiv::io::from_bytes(ok.as_bytes(), "ok.off").unwrap().ct.num_triangles(), 1);
 }

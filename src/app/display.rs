@@ -61,6 +61,12 @@ impl Coloring {
         Coloring::Checker,
         Coloring::Material,
     ];
+    /// The colouring a model opens with: the one asked for, or with none
+    /// asked (`--color auto`) its MTL materials when it has them, else the
+    /// plain front colour. An explicit [`Coloring::None`] stays none.
+    pub fn initial(asked: Option<Coloring>, has_materials: bool) -> Coloring {
+        asked.unwrap_or(if has_materials { Coloring::Material } else { Coloring::None })
+    }
     /// Menu label.
     pub fn name(self) -> &'static str {
         match self {
@@ -189,5 +195,18 @@ impl Display {
 impl Default for Display {
     fn default() -> Self {
         Display::new(false)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Coloring;
+
+    #[test]
+    fn none_asked_stays_none_and_auto_follows_the_materials() {
+        assert_eq!(Coloring::initial(Some(Coloring::None), true), Coloring::None, "--color none on a model with MTL");
+        assert_eq!(Coloring::initial(None, true), Coloring::Material);
+        assert_eq!(Coloring::initial(None, false), Coloring::None);
+        assert_eq!(Coloring::initial(Some(Coloring::Shells), true), Coloring::Shells);
     }
 }

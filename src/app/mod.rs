@@ -77,8 +77,8 @@ pub struct ViewOptions {
     pub turntable: bool,
     /// Repair the model when opening it.
     pub repair: bool,
-    /// Initial colouring.
-    pub coloring: Coloring,
+    /// Initial colouring; `None` is auto (see [`Coloring::initial`]).
+    pub coloring: Option<Coloring>,
     /// Tag the edges sharper than this dihedral angle (degrees) on opening.
     pub crease_angle: Option<f32>,
     /// Start with the control mesh (the cage) shown.
@@ -291,10 +291,7 @@ impl App {
             return Err(e);
         }
         // a model with MTL materials opens showing them unless a colouring was asked for
-        let coloring = match opts.coloring {
-            Coloring::None if doc.model.attrs.file.materials.is_some() => Coloring::Material,
-            c => c,
-        };
+        let coloring = Coloring::initial(opts.coloring, doc.model.attrs.file.materials.is_some());
         doc.display =
             Display { turntable: opts.turntable, coloring, control: opts.control, ..Display::new(opts.wireframe) };
         doc.reshade();

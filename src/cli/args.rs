@@ -6,7 +6,7 @@
 
 use std::path::Path;
 use subdiv::mesh::attributes::Attributes;
-use subdiv::{Error, LoopBeta, Mesh, Options, Result, Scheme, bundled};
+use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
 
 /// How a mesh is read.
 #[derive(clap::Args, Clone, Default)]
@@ -93,21 +93,18 @@ impl SchemeArgs {
             tension: self.tension,
             max_memory: self.max_memory,
             creasing: self.features.creasing,
-            boundary: self.features.boundary,
+            boundary: self.features.sharp.boundary,
         }
     }
 }
 
 /// Sharp features: the model's own tags (OBJ `t crease` / `t corner`, .ct
-/// `creases` / `corners`) plus these options (OpenSubdiv's names).
+/// `creases` / `corners`) plus these options (OpenSubdiv's names), and how
+/// semi-sharp ones decay as the levels refine.
 #[derive(clap::Args, Clone, Default)]
 pub struct FeatureArgs {
-    /// Make every edge whose two faces' normals differ by more than DEG degrees infinitely sharp.
-    #[arg(long, value_name = "DEG")]
-    pub crease_angle: Option<f32>,
-    /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
-    #[arg(long, default_value = "edge")]
-    pub boundary: subdiv::mesh::BoundaryInterpolation,
+    #[command(flatten)]
+    pub sharp: SharpArgs,
     /// How semi-sharp creases decay: uniform (s - 1 per level) or chaikin.
     #[arg(long, default_value = "uniform")]
     pub creasing: subdiv::mesh::Creasing,
@@ -115,14 +112,38 @@ pub struct FeatureArgs {
 
 impl FeatureArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
-    pub fn apply(&self, mesh: Mesh) -> Result<Mesh> {
-        let Some(deg) = self.crease_angle else { return Ok(mesh) };
-        if !(0.0..=180.0).contains(&deg) {
-            return Err(Error::Usage(format!("--crease-angle {deg}: give an angle from 0 to 180 degrees")));
-        }
-        let Mesh { ct, positions } = mesh;
-        Ok(Mesh { ct: ct.with_angle_creases(&positions, deg), positions })
+    pub fn apply(&self, mesh: Mesh) -> Mesh {
+        self.sharp.apply(mesh)
     }
+}
+
+/// Which features of the control mesh are sharp: what `info` counts (it
+/// refines nothing, so the decay of [`FeatureArgs::creasing`] has no meaning
+/// there and `info` does not take it).
+#[derive(clap::Args, Clone, Default)]
+pub struct SharpArgs {
+    /// Make every edge whose two faces' normals differ by more than DEG degrees (0 to 180) infinitely sharp.
+    #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true)]
+    pub crease_angle: Option<f32>,
+    /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
+    #[arg(long, default_value = "edge")]
+    pub boundary: subdiv::mesh::BoundaryInterpolation,
+}
+
+impl SharpArgs {
+    /// `mesh` with the edges sharper than `--crease-angle` tagged.
+    pub fn apply(&self, mesh: Mesh) -> Mesh {
+        let Some(deg) = self.crease_angle else { return mesh };
+        let Mesh { ct, positions } = mesh;
+        Mesh { ct: ct.with_angle_creases(&positions, deg), positions }
+    }
+}
+
+/// A dihedral angle in degrees, 0..=180 (NaN and infinities refused).
+pub fn parse_angle(s: &str) -> std::result::Result<f32, String> {
+    let bad = || format!("'{s}' is not an angle from 0 to 180 degrees");
+    let deg: f32 = s.trim().parse().map_err(|_| bad())?;
+    if (0.0..=180.0).contains(&deg) { Ok(deg) } else { Err(bad()) }
 }
 
 /// How a drawing command colours the surface.
@@ -135,6 +156,19 @@ pub struct ColorArgs {
     /// or material (Kd and map_Kd of the MTL per group, through the refined UVs).
     #[arg(long, default_value = "auto")]
     pub color: String,
+}
+
+impl ColorArgs {
+    /// The colouring asked for: `None` for `auto` (decided by the model, see
+    /// `Coloring::initial`), every other name its colouring (`none` the
+    /// plain front colour, even on a model with materials).
+    #[cfg(feature = "viewer")]
+    pub fn asked(&self) -> Result<Option<subdiv::app::display::Coloring>> {
+        match self.color.as_str() {
+            "auto" => Ok(None),
+            c => c.parse().map(Some).map_err(subdiv::Error::Usage),
+        }
+    }
 }
 
 impl Default for ColorArgs {
@@ -169,4 +203,36 @@ pub fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
         return Err(format!("'{s}' is not a size"));
     }
     Ok((x * mult as f64) as u64)
+}
+
+#[cfg(all(test, feature = "viewer"))]
+mod tests {
+    use super::ColorArgs;
+    use subdiv::app::display::Coloring;
+
+    #[test]
+    fn color_none_is_asked_for_and_auto_is_not() {
+        let asked = |c: &str| ColorArgs { color: c.into() }.asked();
+        assert_eq!(asked("none").unwrap(), Some(Coloring::None));
+        assert_eq!(asked("auto").unwrap(), None);
+        assert_eq!(asked("material").unwrap(), Some(Coloring::Material));
+        assert!(asked("plaid").unwrap_err().to_string().contains("unknown colouring 'plaid'"));
+        // what view and render open with, on a model with MTL materials
+        assert_eq!(Coloring::initial(asked("none").unwrap(), true), Coloring::None);
+        assert_eq!(Coloring::initial(asked("auto").unwrap(), true), Coloring::Material);
+    }
+}
+
+#[cfg(test)]
+mod angle_tests {
+    #[test]
+    fn crease_angles_outside_0_to_180_and_nan_are_refused() {
+        for ok in ["0", "40", "180", " 90.5 "] {
+            assert!(super::parse_angle(ok).is_ok(), "{ok}");
+        }
+        for bad in ["-1", "180.5", "400", "nan", "NaN", "inf", "-inf", "forty", ""] {
+            let e = super::parse_angle(bad).unwrap_err();
+            assert!(e.contains("not an angle from 0 to 180"), "{bad}: {e}");
+        }
+    }
 }

@@ -136,7 +136,7 @@ fn animation_of(a: &AnimateArgs) -> Result<(Mesh, Attributes, Paths, Animation)>
     let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
     let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
     let (mesh, attrs, default_paths) = model(a)?;
-    let mesh = s.features.apply(mesh)?;
+    let mesh = s.features.apply(mesh);
     let paths = match (&a.paths, default_paths) {
         (Some(p), _) => {
             let paths = Paths::load(p)?;
@@ -264,12 +264,8 @@ mod gpu {
         let s = &a.sub.scheme;
         let levels = a.sub.levels_or(0);
         let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
-        let coloring: Coloring = match a.color.color.as_str() {
-            "auto" if attrs.materials.is_some() => Coloring::Material,
-            "auto" => Coloring::None,
-            c => c.parse().map_err(Error::Usage)?,
-        };
-        let mesh = s.features.apply(mesh)?;
+        let coloring = Coloring::initial(a.color.asked()?, attrs.materials.is_some());
+        let mesh = s.features.apply(mesh);
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
         let paint = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
         let (width, height) = a.size;

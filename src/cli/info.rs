@@ -1,6 +1,6 @@
 //! `subdiv info` (meshes and `.bzc` curves) and `subdiv models`.
 
-use super::args::{FeatureArgs, InputArgs};
+use super::args::{InputArgs, SharpArgs};
 use super::print_json;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -19,8 +19,9 @@ pub struct InfoArgs {
     /// `--repair`: always analyse and describe the repaired mesh, even when the input is valid.
     #[command(flatten)]
     from: InputArgs,
+    /// The sharp features counted (no `--creasing`: info refines nothing).
     #[command(flatten)]
-    features: FeatureArgs,
+    features: SharpArgs,
 }
 
 /// `subdiv info --json` of a mesh.
@@ -132,7 +133,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             (m, r.unreferenced_vertices.count, r.vertices_in, Some(r))
         }
     };
-    let mesh = a.features.apply(mesh)?;
+    let mesh = a.features.apply(mesh);
     let sharp = subdiv::subdiv::features::summary(&mesh.ct, a.features.boundary);
     let (nm_edges, nm_vertices) =
         report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));

@@ -53,7 +53,7 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
     let t0 = Instant::now();
     let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
-    let mesh = s.features.apply(mesh)?;
+    let mesh = s.features.apply(mesh);
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
     let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
@@ -129,6 +129,16 @@ pub struct InOut {
     from: InputArgs,
 }
 
+/// `subdiv repair` arguments: no `--repair` (it always repairs) and no
+/// subdivision.
+#[derive(clap::Args)]
+pub struct RepairArgs {
+    /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Output mesh (format by extension; written atomically).
+    output: PathBuf,
+}
+
 /// `subdiv smooth` arguments.
 #[derive(clap::Args)]
 pub struct SmoothArgs {
@@ -174,8 +184,8 @@ pub fn limit(a: &InOut) -> Result<()> {
     Ok(())
 }
 
-/// `subdiv repair` (always repairs; `--repair` changes nothing).
-pub fn repair(a: &InOut) -> Result<()> {
+/// `subdiv repair` (always repairs).
+pub fn repair(a: &RepairArgs) -> Result<()> {
     let (mesh, report) = bundled::load_repaired(&a.input)?;
     io::save(&a.output, &mesh)?;
     print!("{report}");

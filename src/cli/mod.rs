@@ -53,7 +53,7 @@ enum Cmd {
     /// Drops degenerate and duplicate faces, cuts non-manifold edges, makes the
     /// orientation consistent, gives every fan of a non-manifold vertex its own
     /// copy and drops unreferenced vertices; prints what changed.
-    Repair(mesh_ops::InOut),
+    Repair(mesh_ops::RepairArgs),
     /// Print counts, boundary, components, genus, valences and problems.
     ///
     /// A mesh that does not build (non-manifold, inconsistent orientation,

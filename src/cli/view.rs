@@ -58,12 +58,9 @@ pub fn view(a: ViewArgs) -> Result<()> {
         play: a.play,
         turntable: a.turntable,
         repair: a.from.repair,
-        // auto: none, and the viewer shows a model's materials when it has them
-        coloring: match a.color.color.as_str() {
-            "auto" => subdiv::app::display::Coloring::None,
-            c => c.parse().map_err(Error::Usage)?,
-        },
-        crease_angle: s.features.crease_angle,
+        // auto: the viewer shows a model's materials when it has them; none stays none
+        coloring: a.color.asked()?,
+        crease_angle: s.features.sharp.crease_angle,
         control: a.control,
     })
 }

@@ -20,6 +20,16 @@ struct Source {
     stride: usize,
 }
 
+/// An `<input>` of a primitive.
+struct Input {
+    /// `VERTEX`, `TEXCOORD`, ...
+    semantic: String,
+    /// Its index within each corner's indices.
+    offset: usize,
+    /// The id of its `<source>` (or `<vertices>`), without the `#`.
+    source: String,
+}
+
 /// Reads a COLLADA file.
 ///
 /// # Errors
@@ -91,30 +101,23 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
     {
         let here = format!("{at} {} {k}", prim.tag_name().name());
         let err = |msg: String| format_err(file, &here, msg);
-        let inputs: Vec<(String, usize, String)> = prim
-            .children()
-            .filter(|i| i.has_tag_name("input"))
-            .map(|i| {
-                let off = i.attribute("offset").and_then(|o| o.parse().ok()).unwrap_or(0usize);
-                (i.attribute("semantic").unwrap_or("").to_string(), off, target(i))
-            })
-            .collect();
-        let stride = inputs.iter().map(|i| i.1 + 1).max().unwrap_or(1);
-        let (_, voff, vsrc) = inputs.iter().find(|i| i.0 == "VERTEX").ok_or_else(|| err("no VERTEX input".into()))?;
+        let (inputs, stride) = read_inputs(prim, file, &here)?;
+        let Input { offset: voff, source: vsrc, .. } =
+            inputs.iter().find(|i| i.semantic == "VERTEX").ok_or_else(|| err("no VERTEX input".into()))?;
         let psrc = vertices.get(vsrc).cloned().unwrap_or_else(|| vsrc.clone());
         if pos_source.get_or_insert_with(|| psrc.clone()) != &psrc {
             return Err(err("primitives of one mesh use different position sources".into()));
         }
-        let tex = inputs.iter().find(|i| i.0 == "TEXCOORD");
+        let tex = inputs.iter().find(|i| i.semantic == "TEXCOORD");
         has_uv |= tex.is_some();
-        let polys = polygons(prim, file, &here)?;
+        let polys = polygons(prim, stride, file, &here)?;
         let ix_err = |t: String| err(format!("'{t}' is not an index"));
         let mut corners: Vec<[u32; 2]> = Vec::new();
         for p in polys {
             let p: Vec<u32> = numbers(&p).map_err(ix_err)?;
             corners.clear();
             for c in p.chunks_exact(stride) {
-                corners.push([c[*voff], tex.map_or(0, |t| c[t.1])]);
+                corners.push([c[*voff], tex.map_or(0, |t| c[t.offset])]);
             }
             if corners.len() < 3 {
                 continue;
@@ -124,12 +127,11 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
                     raw.triangles.push(c[0]);
                     if let (Some(out), None) = (&mut uv, tex) {
                         out.push(Vec2::ZERO);
-                    } else if let (Some(out), Some((.., src))) = (&mut uv, tex) {
+                    } else if let (Some(out), Some(Input { source: src, .. })) = (&mut uv, tex) {
                         let s = sources.get(src).ok_or_else(|| err(format!("no source '{src}'")))?;
-                        let at = c[1] as usize * s.stride;
-                        let t = s
-                            .floats
-                            .get(at..at + 2)
+                        let t = (c[1] as usize)
+                            .checked_mul(s.stride)
+                            .and_then(|at| s.floats.get(at..at.checked_add(2)?))
                             .ok_or_else(|| err(format!("texture coordinate {} out of range", c[1])))?;
                         out.push(Vec2::new(t[0], t[1]));
                     }
@@ -154,27 +156,50 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
     Ok(raw)
 }
 
+/// A primitive's `<input>`s, and the number of indices per corner (the
+/// largest offset + 1).
+///
+/// # Errors
+/// An offset that is not a number, or one so large that the corner size
+/// does not fit in a `usize`, naming the input; a primitive without inputs.
+fn read_inputs(prim: Node, file: &str, at: &str) -> Result<(Vec<Input>, usize)> {
+    let mut inputs = Vec::new();
+    for (k, i) in prim.children().filter(|i| i.has_tag_name("input")).enumerate() {
+        let semantic = i.attribute("semantic").unwrap_or("").to_string();
+        let off = match i.attribute("offset") {
+            None => 0,
+            Some(o) => o.trim().parse::<usize>().map_err(|_| {
+                format_err(file, format!("{at} input {k} ({semantic})"), format!("offset '{o}' is not an index"))
+            })?,
+        };
+        inputs.push(Input { semantic, offset: off, source: target(i) });
+    }
+    let Some(max) = inputs.iter().map(|i| i.offset).max() else {
+        return Err(format_err(file, at, "no <input> (every primitive needs a VERTEX input)"));
+    };
+    let stride = max.checked_add(1).ok_or_else(|| {
+        format_err(file, at, format!("input offset {max} is too large (the indices per corner overflow)"))
+    })?;
+    Ok((inputs, stride))
+}
+
 /// The index text of each polygon of a primitive: `<triangles>` three
-/// corners at a time, `<polylist>` by its `<vcount>`, `<polygons>` one `<p>` each.
-fn polygons(prim: Node, file: &str, at: &str) -> Result<Vec<String>> {
+/// corners at a time, `<polylist>` by its `<vcount>`, `<polygons>` one `<p>`
+/// each; `stride` indices per corner (at least 1).
+fn polygons(prim: Node, stride: usize, file: &str, at: &str) -> Result<Vec<String>> {
     let name = prim.tag_name().name();
     let ps: Vec<&str> = prim.children().filter(|c| c.has_tag_name("p")).map(|p| p.text().unwrap_or("")).collect();
     if name == "polygons" {
         return Ok(ps.into_iter().map(str::to_string).collect());
     }
-    let stride = prim
-        .children()
-        .filter(|i| i.has_tag_name("input"))
-        .filter_map(|i| i.attribute("offset")?.parse::<usize>().ok())
-        .max()
-        .unwrap_or(0)
-        + 1;
+    let stride = stride.max(1);
     let words: Vec<&str> = ps.iter().flat_map(|p| p.split_ascii_whitespace()).collect();
     let counts: Vec<usize> = if name == "polylist" {
         let vc = child(prim, "vcount").and_then(|v| v.text()).unwrap_or("");
         numbers(vc).map_err(|t| format_err(file, at, format!("vcount '{t}' is not a count")))?
     } else {
-        vec![3; words.len() / (3 * stride)]
+        // words / stride / 3 is words / (3 stride) without the product
+        vec![3; words.len() / stride / 3]
     };
     let mut out = Vec::with_capacity(counts.len());
     let mut i = 0usize;

@@ -12,6 +12,11 @@ use crate::{Error, Result};
 use glam::Vec3;
 use std::path::Path;
 
+/// The fewest bytes of a vertex line (`0 0 0` and a newline).
+const MIN_VERTEX_BYTES: u64 = 6;
+/// The fewest bytes of a face line (`3 0 1 2` and a newline).
+const MIN_FACE_BYTES: u64 = 8;
+
 /// Reads an OFF file.
 ///
 /// # Errors
@@ -41,8 +46,19 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
         return Err(err(lc, "expected 'vertices faces edges' counts".into()));
     };
     let rest = text.len();
-    let nv = check_count(file, "vertices", nv, 6, rest)?;
-    let nf = check_count(file, "faces", nf, 8, rest)?;
+    let nv = check_count(file, "vertices", nv, MIN_VERTEX_BYTES, rest)?;
+    let nf = check_count(file, "faces", nf, MIN_FACE_BYTES, rest)?;
+    // the vertices and the faces share the file: together they must fit
+    let need = (nv as u64).checked_mul(MIN_VERTEX_BYTES).zip((nf as u64).checked_mul(MIN_FACE_BYTES));
+    if need.and_then(|(v, f)| v.checked_add(f)).is_none_or(|n| n > rest as u64) {
+        return Err(err(
+            lc,
+            format!(
+                "the header claims {nv} vertices and {nf} faces, but the file has only {rest} bytes \
+                 (at least {MIN_VERTEX_BYTES} a vertex and {MIN_FACE_BYTES} a face needed)"
+            ),
+        ));
+    }
     let mut raw = RawMesh { positions: Vec::with_capacity(nv), ..Default::default() };
     let mut colors = color.then(|| Vec::with_capacity(nv));
     for v in 0..nv {

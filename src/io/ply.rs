@@ -79,13 +79,27 @@ struct Element {
 }
 
 impl Element {
-    /// The fewest bytes one record can take in `enc`.
+    /// The fewest bytes one record can take in `enc`: a list's count, and
+    /// for the face list (which needs 3 or more) three indices after it.
     fn min_bytes(&self, enc: Encoding) -> u64 {
-        match enc {
-            // a value and a separator each
-            Encoding::Ascii => 2 * self.props.len().max(1) as u64,
-            _ => self.props.iter().map(|p| p.list.unwrap_or(p.ty).size() as u64).sum::<u64>().max(1),
+        let face_list = self.face_list();
+        let bytes = self.props.iter().enumerate().map(|(k, p)| {
+            let items = if Some(k) == face_list { 3 } else { 0 };
+            match (enc, p.list) {
+                // a value and a separator each
+                (Encoding::Ascii, _) => 2 * (1 + items),
+                (_, None) => p.ty.size() as u64,
+                (_, Some(ct)) => ct.size() as u64 + items * p.ty.size() as u64,
+            }
+        });
+        bytes.sum::<u64>().max(1)
+    }
+    /// The `face` element's index list (`vertex_indices` or `vertex_index`).
+    fn face_list(&self) -> Option<usize> {
+        if self.name != "face" {
+            return None;
         }
+        self.props.iter().position(|p| p.list.is_some() && p.name.starts_with("vertex_ind"))
     }
     fn index(&self, names: &[&str]) -> Option<usize> {
         self.props.iter().position(|p| p.list.is_none() && names.contains(&p.name.as_str()))
@@ -130,6 +144,10 @@ fn parse_header(bytes: &[u8], file: &str) -> Result<Header> {
             }
             ["element", name, count] => {
                 let count = count.parse().map_err(|_| format_err(file, at(), format!("bad count '{count}'")))?;
+                // a second vertex or face element would be read over the first
+                if matches!(*name, "vertex" | "face") && elements.iter().any(|e| e.name == *name) {
+                    return Err(format_err(file, at(), format!("a second 'element {name}' (only one is allowed)")));
+                }
                 elements.push(Element { name: name.to_string(), count, props: Vec::new() });
             }
             ["property", "list", ct, ty, name] => {
@@ -214,8 +232,10 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
     let mut body = Body { bytes, pos: h.body, enc: h.enc };
     let mut raw = RawMesh::default();
     let mut vertex_uv: Option<Vec<Vec2>> = None;
+    // the last ASCII record needs no separator after it
+    let slack = usize::from(h.enc == Encoding::Ascii);
     for el in &h.elements {
-        let count = check_count(file, &el.name, el.count, el.min_bytes(h.enc), body.remaining())?;
+        let count = check_count(file, &el.name, el.count, el.min_bytes(h.enc), body.remaining() + slack)?;
         match el.name.as_str() {
             "vertex" => read_vertices(&mut body, el, count, file, &mut raw, &mut vertex_uv)?,
             "face" => read_faces(&mut body, el, count, file, &mut raw)?,
@@ -314,7 +334,7 @@ fn read_vertices(
 }
 
 fn read_faces(body: &mut Body, el: &Element, count: usize, file: &str, raw: &mut RawMesh) -> Result<()> {
-    let Some(k) = el.props.iter().position(|p| p.list.is_some() && p.name.starts_with("vertex_ind")) else {
+    let Some(k) = el.face_list() else {
         return Err(format_err(file, "face", "needs a list property vertex_indices"));
     };
     raw.triangles.reserve(count.saturating_mul(3));

@@ -32,12 +32,31 @@ impl Offscreen {
     /// [`Error::Gpu`] without an adapter, [`Error::Usage`] for a size the
     /// device cannot hold.
     pub fn new(width: u32, height: u32) -> Result<Offscreen> {
+        Self::build(width, height, None)
+    }
+
+    /// [`Offscreen::new`] with `samples` MSAA samples: 1 for none (the FXAA
+    /// pass smooths the edges instead), more for the most the adapter
+    /// supports up to 4 ([`Gpu::msaa_samples`], 1 where it supports none);
+    /// [`Renderer::samples`] says what it got.
+    ///
+    /// # Errors
+    /// As [`Offscreen::new`].
+    pub fn with_samples(width: u32, height: u32, samples: u32) -> Result<Offscreen> {
+        Self::build(width, height, Some(samples))
+    }
+
+    fn build(width: u32, height: u32, samples: Option<u32>) -> Result<Offscreen> {
         let gpu = Gpu::headless()?;
         let max = gpu.device.limits().max_texture_dimension_2d;
         if width == 0 || height == 0 || width > max || height > max {
             return Err(Error::Usage(format!("image size {width}x{height} is outside 1..={max} pixels per side")));
         }
-        let samples = gpu.default_samples(OFFSCREEN_FORMAT);
+        let samples = match samples {
+            None => gpu.default_samples(OFFSCREEN_FORMAT),
+            Some(n) if n <= 1 => 1,
+            Some(_) => gpu.msaa_samples(OFFSCREEN_FORMAT),
+        };
         let renderer = Renderer::new(&gpu.device, OFFSCREEN_FORMAT, samples);
         let targets = Targets::new(&gpu.device, &renderer, width, height);
         let (texture, view) = capture_texture(&gpu.device, "offscreen", OFFSCREEN_FORMAT, width, height);

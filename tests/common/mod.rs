@@ -19,7 +19,18 @@ pub fn scratch_dir(name: &str) -> PathBuf {
 /// a missing adapter fails the test.
 #[cfg(feature = "viewer")]
 pub fn offscreen(w: u32, h: u32) -> Option<subdiv::render::Offscreen> {
-    match subdiv::render::Offscreen::new(w, h) {
+    or_skip(subdiv::render::Offscreen::new(w, h))
+}
+
+/// [`offscreen`] with `samples` MSAA samples (see `Offscreen::with_samples`).
+#[cfg(feature = "viewer")]
+pub fn offscreen_with_samples(w: u32, h: u32, samples: u32) -> Option<subdiv::render::Offscreen> {
+    or_skip(subdiv::render::Offscreen::with_samples(w, h, samples))
+}
+
+#[cfg(feature = "viewer")]
+fn or_skip(made: subdiv::Result<subdiv::render::Offscreen>) -> Option<subdiv::render::Offscreen> {
+    match made {
         Ok(o) => Some(o),
         Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => {
             eprintln!("SKIPPED: no GPU adapter ({e}); set SUBDIV_REQUIRE_GPU=1 to make this a failure");
