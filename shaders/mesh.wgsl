@@ -266,14 +266,29 @@ fn fs_dot_hidden(i: DotOut) -> @location(0) vec4<f32> {
 @group(2) @binding(3) var<storage, read> mesh_generations: array<u32>;
 @group(2) @binding(4) var<storage, read> mesh_colors: array<f32>;
 
+// Without per-vertex colours (the usual case) the wire carries no colour
+// varying: the fragment takes the front colour from the uniforms. On a
+// software rasteriser, where every attribute costs set-up per triangle and a
+// dense mesh has more triangles than pixels, that is a tenth of the frame.
 struct WireOut {
     @builtin(position) clip: vec4<f32>,
     @location(0) world: vec3<f32>,
     @location(1) normal: vec3<f32>,
-    @location(2) color: vec3<f32>,
-    @location(3) bary: vec3<f32>,
+    // barycentrics b0 and b1 (b2 = 1 - b0 - b1: one attribute less to set
+    // up per triangle)
+    @location(3) bary: vec2<f32>,
     // the triangle's generations word (see mesh_generations), the same at
     // its three corners; the fragment shader turns it into line spacings
+    @location(4) @interpolate(flat) generations: u32,
+};
+
+// The same with per-vertex colours (or texture coordinates) from mesh_colors.
+struct WireColoredOut {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) world: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) color: vec3<f32>,
+    @location(3) bary: vec2<f32>,
     @location(4) @interpolate(flat) generations: u32,
 };
 
@@ -303,22 +318,34 @@ fn fetch3(which: u32, i: u32) -> vec3<f32> {
     return vec3<f32>(mesh_colors[3u * i], mesh_colors[3u * i + 1u], mesh_colors[3u * i + 2u]);
 }
 
-@vertex
-fn vs_wire(@builtin(vertex_index) c: u32) -> WireOut {
-    let v = mesh_corners[c];
-    var color = u.front_color.rgb;
-    if u.line.w > 0.5 {
-        color = fetch3(2u, v);
-    }
-    let m = mesh_vertex(fetch3(0u, v), fetch3(1u, v), color);
+fn wire_vertex(c: u32, v: u32) -> WireOut {
+    let m = mesh_vertex(fetch3(0u, v), fetch3(1u, v), vec3<f32>(0.0));
     var o: WireOut;
     o.clip = m.clip;
     o.world = m.world;
     o.normal = m.normal;
-    o.color = m.color;
     let k = c % 3u;
-    o.bary = vec3<f32>(f32(k == 0u), f32(k == 1u), f32(k == 2u));
+    o.bary = vec2<f32>(f32(k == 0u), f32(k == 1u));
     o.generations = mesh_generations[c / 3u];
+    return o;
+}
+
+@vertex
+fn vs_wire(@builtin(vertex_index) c: u32) -> WireOut {
+    return wire_vertex(c, mesh_corners[c]);
+}
+
+@vertex
+fn vs_wire_colored(@builtin(vertex_index) c: u32) -> WireColoredOut {
+    let v = mesh_corners[c];
+    let w = wire_vertex(c, v);
+    var o: WireColoredOut;
+    o.clip = w.clip;
+    o.world = w.world;
+    o.normal = w.normal;
+    o.color = fetch3(2u, v);
+    o.bary = w.bary;
+    o.generations = w.generations;
     return o;
 }
 
@@ -364,19 +391,30 @@ fn wire_coverage(bary: vec3<f32>, spacing: vec3<f32>, vertex_spacing: vec3<f32>)
     return max(max(a.x, max(a.y, a.z)), max(v.x, max(v.y, v.z)));
 }
 
-@fragment
-fn fs_wire(i: WireOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    let s = spacings(i.generations);
-    let a = wire_coverage(i.bary, s[0], s[1]);
+// The faces with their wire: `color` is the base colour (or texture
+// coordinates) of the face at this fragment.
+fn wire_fragment(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, b: vec2<f32>, generations: u32, front: bool) -> vec4<f32> {
+    let s = spacings(generations);
+    let a = wire_coverage(vec3<f32>(b, 1.0 - b.x - b.y), s[0], s[1]);
     if u.wire.z > 0.5 {
         // wire only: light lines over the background (blended), the face
         // still writes depth and so hides the lines behind it
         let ink = select(vec3<f32>(0.55, 0.5, 0.45), vec3<f32>(0.80, 0.84, 0.92), front);
         return vec4<f32>(finish(ink).rgb, a);
     }
-    let c = clamp(shade(i.world, i.normal, i.color, front), vec3<f32>(0.0), vec3<f32>(1.0));
+    let c = clamp(shade(world, normal, color, front), vec3<f32>(0.0), vec3<f32>(1.0));
     let lum = dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
     // darken lit faces, lighten faces in shadow
     let ink = select(c * 0.2, mix(c, vec3<f32>(0.75, 0.8, 0.9), 0.55), lum < 0.06);
     return finish(mix(c, ink, a * u.wire.w));
+}
+
+@fragment
+fn fs_wire(i: WireOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return wire_fragment(i.world, i.normal, u.front_color.rgb, i.bary, i.generations, front);
+}
+
+@fragment
+fn fs_wire_colored(i: WireColoredOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return wire_fragment(i.world, i.normal, i.color, i.bary, i.generations, front);
 }

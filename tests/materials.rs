@@ -190,64 +190,62 @@ mod drawn {
             .count()
     }
 
-    #[test]
-    fn render_shows_each_group_red_where_the_texture_is_red() {
-        let path = model("mtl-render");
-        let out = path.with_file_name("two.png.out.png");
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_subdiv"))
-            .args([
-                "render",
-                path.to_str().unwrap(),
-                out.to_str().unwrap(),
-                "-n",
-                "3",
-                "-s",
-                "midpoint",
-                "--size",
-                "160x120",
-            ])
-            .output()
-            .unwrap();
+    /// `subdiv render PATH OUT -n 3 --size 160x120 EXTRA..` read back, or
+    /// `None` where no adapter exists (and `SUBDIV_REQUIRE_GPU` is unset).
+    fn render(path: &std::path::Path, extra: &[&str]) -> Option<image::RgbaImage> {
+        let out = path.with_file_name(format!("two{}.out.png", extra.join("")));
+        let mut args = vec!["render", path.to_str().unwrap(), out.to_str().unwrap(), "-n", "3", "--size", "160x120"];
+        args.extend_from_slice(extra);
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_subdiv")).args(&args).output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         if !o.status.success() && err.contains("no graphics adapter") {
             assert!(std::env::var_os("SUBDIV_REQUIRE_GPU").is_none(), "SUBDIV_REQUIRE_GPU is set: {err}");
             eprintln!("SKIPPED: no GPU adapter");
-            return;
+            return None;
         }
         assert!(o.status.success(), "{err}");
-        let img = image::open(&out).unwrap().to_rgba8();
-        let (r, g, b) = (count(&img, 0), count(&img, 1), count(&img, 2));
+        Some(image::open(&out).unwrap().to_rgba8())
+    }
+
+    /// The mean column of the pixels that are mostly `channel`.
+    fn mean_x(img: &image::RgbaImage, ch: usize) -> f32 {
+        let xs: Vec<u32> = img
+            .enumerate_pixels()
+            .filter(|(_, _, p)| (0..3).all(|k| k == ch || u32::from(p[ch]) > 3 * u32::from(p[k]) + 20))
+            .map(|(x, ..)| x)
+            .collect();
+        xs.iter().sum::<u32>() as f32 / xs.len() as f32
+    }
+
+    /// Each material group is drawn in its colour, red where the texture is.
+    fn assert_groups_drawn(img: &image::RgbaImage, what: &str) {
+        let (r, g, b) = (count(img, 0), count(img, 1), count(img, 2));
         let area = (img.width() * img.height()) as usize;
-        assert!(r > area / 100 && g > area / 100 && b > area / 100, "red {r}, green {g}, blue {b} of {area}");
+        assert!(r > area / 100 && g > area / 100 && b > area / 100, "{what}: red {r}, green {g}, blue {b} of {area}");
         // the red half of the texture is on the left square, away from the green one:
         // the red pixels' mean column is farther from the green ones' than the blue ones'
-        let mean_x = |ch: usize| {
-            let xs: Vec<u32> = img
-                .enumerate_pixels()
-                .filter(|(_, _, p)| (0..3).all(|k| k == ch || u32::from(p[ch]) > 3 * u32::from(p[k]) + 20))
-                .map(|(x, ..)| x)
-                .collect();
-            xs.iter().sum::<u32>() as f32 / xs.len() as f32
-        };
-        let (xr, xg, xb) = (mean_x(0), mean_x(1), mean_x(2));
-        assert!((xr - xg).abs() > (xb - xg).abs(), "red at {xr}, blue at {xb}, green at {xg}");
+        let (xr, xg, xb) = (mean_x(img, 0), mean_x(img, 1), mean_x(img, 2));
+        assert!((xr - xg).abs() > (xb - xg).abs(), "{what}: red at {xr}, blue at {xb}, green at {xg}");
+    }
+
+    #[test]
+    fn render_shows_each_group_red_where_the_texture_is_red() {
+        let path = model("mtl-render");
+        let Some(img) = render(&path, &["-s", "midpoint"]) else { return };
+        assert_groups_drawn(&img, "phong");
+        // the wireframe's own pipeline takes the same colours, and draws its
+        // lines over them (the control edges only: at level 3 in 160 x 120
+        // pixels all the edges would hatch the blue group pale)
+        let wired = render(&path, &["-s", "midpoint", "--shading", "phong+wire", "--wire-level", "control"]).unwrap();
+        assert_groups_drawn(&wired, "phong+wire");
+        let darker = img
+            .pixels()
+            .zip(wired.pixels())
+            .filter(|(a, b)| a[0].max(a[1]).max(a[2]) > b[0].max(b[1]).max(b[2]) + 40)
+            .count();
+        assert!(darker > 100, "the wire darkens {darker} pixels");
         // --color none draws no group colours
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_subdiv"))
-            .args([
-                "render",
-                path.to_str().unwrap(),
-                out.to_str().unwrap(),
-                "-n",
-                "3",
-                "--size",
-                "160x120",
-                "--color",
-                "none",
-            ])
-            .output()
-            .unwrap();
-        assert!(o.status.success());
-        let img = image::open(&out).unwrap().to_rgba8();
-        assert_eq!((count(&img, 0), count(&img, 1)), (0, 0));
+        let plain = render(&path, &["--color", "none"]).unwrap();
+        assert_eq!((count(&plain, 0), count(&plain, 1)), (0, 0));
     }
 }

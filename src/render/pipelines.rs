@@ -6,6 +6,7 @@
 //! | `mesh`        | `vs_mesh`           | position, normal      | yes    | write, <   | yes           |
 //! | `mesh_colored`| `vs_mesh_colored`   | position, normal, rgb | yes    | write, <   | yes           |
 //! | `wire`        | `vs_wire`, `fs_wire`| none: storage, group 2| blend  | write, <   | yes           |
+//! | `wire_colored`| `vs_wire_colored`, `fs_wire_colored` | none: storage, group 2 | blend | write, < | yes |
 //! | `lines`       | `vs_line`           | position              | yes    | write, <=  | no            |
 //! | `background`  | `vs_background`     | none                  | yes    | always     | no            |
 //! | `lines_hidden`| `vs_line`, `fs_line_hidden` | position      | blend  | always     | no            |
@@ -62,6 +63,8 @@ pub struct Pipelines {
     /// Faces with their wireframe, one pass (also wire only: faces that
     /// only hide the lines behind them), blended over the target.
     pub wire: [wgpu::RenderPipeline; 3],
+    /// `wire` with per-vertex colours (or texture coordinates) from group 2.
+    pub wire_colored: [wgpu::RenderPipeline; 3],
     /// Line lists (wireframe, control mesh, normals, highlights).
     pub lines: wgpu::RenderPipeline,
     /// The viewport's background gradient (one full-viewport triangle).
@@ -269,12 +272,14 @@ impl Pipelines {
         };
         let mesh = factory.per_cull(faces("mesh", "vs_mesh", &shaded, "fs_mesh"));
         let mesh_colored = factory.per_cull(faces("mesh colored", "vs_mesh_colored", &colored, "fs_mesh"));
-        let wire = factory.per_cull(Spec {
+        let wire_spec = |label, vertex_shader, fragment_shader| Spec {
             layout: &wire_layout,
             buffers: &[],
             blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-            ..faces("wire", "vs_wire", &[], "fs_wire")
-        });
+            ..faces(label, vertex_shader, &[], fragment_shader)
+        };
+        let wire = factory.per_cull(wire_spec("wire", "vs_wire", "fs_wire"));
+        let wire_colored = factory.per_cull(wire_spec("wire colored", "vs_wire_colored", "fs_wire_colored"));
         let [lines, lines_hidden, dots, dots_hidden] = lines_and_dots(&factory, &line_layout);
         let background = factory.build(&Spec {
             label: "background",
@@ -288,6 +293,7 @@ impl Pipelines {
             mesh,
             mesh_colored,
             wire,
+            wire_colored,
             lines,
             background,
             lines_hidden,

@@ -355,7 +355,9 @@ impl Renderer {
         if let Some(m) = d.mesh {
             let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
             if let Some(group) = wire_group {
-                pass.set_pipeline(&self.pipelines.wire[m.cull as usize]);
+                let colored = d.look.colors && m.colors.is_some();
+                let wire = if colored { &self.pipelines.wire_colored } else { &self.pipelines.wire };
+                pass.set_pipeline(&wire[m.cull as usize]);
                 pass.set_bind_group(2, group, &[]);
                 pass.draw(0..m.triangle_indices, 0..1);
             } else {
