@@ -34,6 +34,7 @@
 
 pub mod anim;
 pub mod bundled;
+pub mod cpu;
 pub mod error;
 pub mod io;
 pub mod mem;

@@ -188,18 +188,24 @@ impl VertexRings {
     /// rings were built from (a caller bug, not input data).
     pub fn normals_into(&self, pos: &[Vec3], out: &mut [Vec3]) {
         assert!(pos.len() == self.len.len() && out.len() == self.len.len(), "one position and normal per vertex");
-        out.par_chunks_mut(RING_CHUNK).zip(self.len.par_chunks(RING_CHUNK)).zip(&self.chunk_start).for_each(
-            |((out, len), &start)| {
-                let mut o = start as usize;
-                for (nrm, &m) in out.iter_mut().zip(len) {
-                    let m = m as usize;
-                    let poly = &self.ring[o..o + m];
-                    prefetch(pos, self.ring.get(o + PREFETCH..o + PREFETCH + m).unwrap_or(&[]));
-                    o += m;
-                    *nrm = polygon_area2(pos, poly).try_normalize().map_or(Vec3::Z, Vec3::from);
-                }
-            },
-        );
+        out.par_chunks_mut(RING_CHUNK)
+            .zip(self.len.par_chunks(RING_CHUNK))
+            .zip(&self.chunk_start)
+            .for_each(|((out, len), &start)| ring_normals(&self.ring, start as usize, len, pos, out));
+    }
+}
+
+crate::multiversion! {
+    /// The normals of one chunk of vertices: polygon lengths `len`, their
+    /// polygons from `ring[start..]`.
+    fn ring_normals(ring: &[u32], start: usize, len: &[u8], pos: &[Vec3], out: &mut [Vec3]) {
+        let mut o = start;
+        for (nrm, &m) in out.iter_mut().zip(len) {
+            let m = m as usize;
+            let poly = &ring[o..o + m];
+            o += m;
+            *nrm = polygon_area2(pos, poly).try_normalize().map_or(Vec3::Z, Vec3::from);
+        }
     }
 }
 
@@ -229,29 +235,6 @@ fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3A {
         s += (at(poly[m - 2]) - p0).cross(at(poly[m - 1]) - p0);
     }
     s
-}
-
-/// Polygon entries ahead of the current vertex whose positions are prefetched.
-const PREFETCH: usize = 192;
-
-/// Asks the cache for the positions of vertices `ids` (the polygons a few
-/// vertices ahead): the gathers are scattered over the whole position
-/// array, and loading them early hides the latency of the outer caches.
-#[inline(always)]
-fn prefetch(pos: &[Vec3], ids: &[u32]) {
-    #[cfg(target_arch = "x86_64")]
-    for &j in ids {
-        if let Some(p) = pos.get(j as usize) {
-            // SAFETY: SSE is part of every x86_64 target; a prefetch is a
-            // hint that reads nothing architecturally and cannot fault, and
-            // the pointer is to an element of `pos` anyway.
-            unsafe {
-                std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>((p as *const Vec3).cast());
-            }
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = (pos, ids);
 }
 
 #[cfg(test)]

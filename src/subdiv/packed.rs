@@ -106,18 +106,33 @@ impl PackedLevel {
             out
         };
         assert_eq!(rows.len(), self.class.len(), "one output per row");
-        rows.par_chunks_mut(CHUNK).zip(self.class.par_chunks(CHUNK)).zip(&self.chunk_start).for_each(
-            |((out, class), &start)| {
-                let mut o = start as usize;
-                for (q, &c) in out.iter_mut().zip(class) {
-                    let c = c as usize;
-                    let w = &self.class_weights[self.class_start[c] as usize..self.class_start[c + 1] as usize];
-                    let sum = gather(input, &self.indices[o..o + w.len()], w);
-                    *q = O::store(sum);
-                    o += w.len();
-                }
-            },
-        );
+        let classes = Classes { start: &self.class_start, weights: &self.class_weights };
+        rows.par_chunks_mut(CHUNK)
+            .zip(self.class.par_chunks(CHUNK))
+            .zip(&self.chunk_start)
+            .for_each(|((out, class), &start)| rows_chunk(classes, &self.indices[start as usize..], class, input, out));
+    }
+}
+
+/// The weight vectors of a level: class `c`'s are
+/// `weights[start[c]..start[c + 1]]`.
+#[derive(Clone, Copy)]
+struct Classes<'a> {
+    start: &'a [u32],
+    weights: &'a [f32],
+}
+
+crate::multiversion! {
+    /// One chunk of rows: row `k` has class `class[k]` and takes its
+    /// indices from `indices` after those of the rows before it.
+    fn rows_chunk<I: Point, O: Point>(classes: Classes, indices: &[u32], class: &[u16], input: &[I], out: &mut [O]) {
+        let mut o = 0;
+        for (q, &c) in out.iter_mut().zip(class) {
+            let c = c as usize;
+            let w = &classes.weights[classes.start[c] as usize..classes.start[c + 1] as usize];
+            *q = O::store(gather(input, &indices[o..o + w.len()], w));
+            o += w.len();
+        }
     }
 }
 
