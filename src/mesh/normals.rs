@@ -215,9 +215,18 @@ crate::multiversion! {
 fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3A {
     // SAFETY: every polygon entry is a vertex id of the table the rings were
     // built from (`new` keeps only ids checked against its vertex count, and
-    // the fields are private), and `pos.len()` is that count, asserted by the
-    // only caller.
-    let at = |j: u32| Vec3A::from(unsafe { *pos.get_unchecked(j as usize) });
+    // the fields are private), and `pos.len()` is that count, asserted by
+    // `normals_into`, the only caller of `ring_normals`.
+    let at = |j: u32| load(pos, j as usize);
+    if let Some(&[a, b, c, d, e, f]) = poly.first_chunk::<6>().filter(|_| poly.len() == 6) {
+        // the closed valence-6 ring, almost every vertex of a refined mesh:
+        // the loop below, unrolled (the same sums in the same order)
+        let (p0, p3) = (at(a), at(d));
+        let mut s = Vec3A::ZERO;
+        s += (at(c) - p0).cross(p3 - at(b));
+        s += (at(e) - p0).cross(at(f) - p3);
+        return s;
+    }
     let m = poly.len();
     if m < 3 {
         return Vec3A::ZERO;
@@ -235,6 +244,23 @@ fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3A {
         s += (at(poly[m - 2]) - p0).cross(at(poly[m - 1]) - p0);
     }
     s
+}
+
+/// `pos[j]` in a register, for `j < pos.len()` (see `polygon_area2`'s
+/// SAFETY): one 16-byte load where the next point follows (its x lands in
+/// the lane Vec3A ignores), else the three coordinates one by one.
+#[inline(always)]
+fn load(pos: &[Vec3], j: usize) -> Vec3A {
+    #[cfg(target_arch = "x86_64")]
+    if j + 1 < pos.len() {
+        // SAFETY: points j and j + 1 are in the slice, so the 16 bytes from
+        // point j (12 of its own, 4 of the next: `Vec3` is three f32 with no
+        // padding) are initialised memory of the slice; `_mm_loadu_ps` needs
+        // no alignment, and SSE is part of every x86_64 target.
+        return Vec3A::from(unsafe { std::arch::x86_64::_mm_loadu_ps(pos.as_ptr().add(j).cast::<f32>()) });
+    }
+    // SAFETY: as above, j < pos.len()
+    Vec3A::from(unsafe { *pos.get_unchecked(j) })
 }
 
 #[cfg(test)]

@@ -130,9 +130,23 @@ crate::multiversion! {
         for (q, &c) in out.iter_mut().zip(class) {
             let c = c as usize;
             let w = &classes.weights[classes.start[c] as usize..classes.start[c + 1] as usize];
-            *q = O::store(gather(input, &indices[o..o + w.len()], w));
+            let idx = &indices[o..o + w.len()];
+            *q = O::store(match w.len() {
+                4 => fixed::<I, 4>(input, idx, w),
+                7 => fixed::<I, 7>(input, idx, w),
+                _ => gather(input, idx, w),
+            });
             o += w.len();
         }
+    }
+}
+
+/// [`gather`] of a row of `N` entries, unrolled.
+#[inline(always)]
+fn fixed<I: Point, const N: usize>(input: &[I], idx: &[u32], w: &[f32]) -> Vec3A {
+    match (idx.first_chunk::<N>(), w.first_chunk::<N>()) {
+        (Some(idx), Some(w)) => gather(input, idx, w),
+        _ => gather(input, idx, w),
     }
 }
 
