@@ -43,6 +43,9 @@ pub struct Animation {
     /// Whether the window's adapter can (set by the window; `None` before
     /// its first frame).
     pub gpu_compute: Option<bool>,
+    /// Whether the frame shown was evaluated on the GPU (set by the window
+    /// each frame it evaluates one).
+    pub on_gpu: bool,
     builds: u64,
 }
 
@@ -58,6 +61,7 @@ impl Animation {
             playback: None,
             gpu_eval: true,
             gpu_compute: None,
+            on_gpu: false,
             builds: 0,
         }
     }

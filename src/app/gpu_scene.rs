@@ -204,15 +204,25 @@ impl GpuScene {
         // normal segments are kept current by CPU updates only
         let on_gpu = compute && doc.anim.gpu_eval && !doc.display.normals && !fresh && self.anim.is_some();
         if on_gpu && self.animator.as_ref().is_none_or(|(id, _)| *id != p.id) {
-            let built = self.anim.as_ref().and_then(|m| GpuAnimator::new(device, p.player.plan(), m).ok());
+            let built = self.anim.as_ref().map(|m| GpuAnimator::new(device, p.player.plan(), m));
+            // a plan the GPU cannot take is said, and the CPU evaluates it
+            let built = match built {
+                Some(Err(e)) => {
+                    log::warn!("GPU evaluation unavailable, evaluating on the CPU: {e}");
+                    doc.status.notice = Some(format!("GPU evaluation unavailable ({e}); evaluating on the CPU"));
+                    doc.anim.gpu_eval = false;
+                    None
+                }
+                b => b.and_then(Result::ok),
+            };
             self.animator = Some((p.id, built));
         }
-        match (&self.animator, on_gpu) {
-            (Some((_, Some(a))), true) => {
-                if let Err(e) = a.update(device, queue, p.player.control(f)) {
-                    doc.status.error = Some(e.into());
-                }
-            }
+        doc.anim.on_gpu = false;
+        match (&self.animator, on_gpu && doc.anim.gpu_eval) {
+            (Some((_, Some(a))), true) => match a.update(device, queue, p.player.control(f)) {
+                Ok(()) => doc.anim.on_gpu = true,
+                Err(e) => doc.status.error = Some(e.into()),
+            },
             _ => {
                 let (topo, pos, nrm) = p.player.evaluate_with_topology(f);
                 match &mut self.anim {

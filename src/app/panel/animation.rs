@@ -72,6 +72,9 @@ fn clock_rows(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
         if ui.add_enabled(compute, egui::Checkbox::new(&mut gpu, "Evaluate on the GPU")).on_hover_text(tip).changed() {
             out.push(Command::SetGpuEval(gpu));
         }
+        if doc.anim.on_gpu {
+            ui.label(RichText::new("frames evaluated on the GPU; the figures below are the CPU's last").small().weak());
+        }
         let (plan, normals) = p.player.last_timing;
         ui.label(format!(
             "plan_ms {:.1}  frame_ms {:.2} (CPU median, {} triangles)",
