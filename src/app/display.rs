@@ -112,6 +112,8 @@ pub struct Display {
     pub turntable: bool,
     /// Multisampling on.
     pub msaa: bool,
+    /// The FXAA pass over a single-sampled frame (edges smoothed cheaply).
+    pub fxaa: bool,
     /// Clicks in the 3D area pick control-mesh edges.
     pub pick: bool,
     /// Shading normals of the result.
@@ -139,6 +141,7 @@ impl Display {
             side_by_side: false,
             turntable: false,
             msaa: false,
+            fxaa: true,
             pick: false,
             normal_mode: NormalMode::default(),
             snap_limit: false,

@@ -338,7 +338,7 @@ impl App {
         };
         let target = frame.texture.create_view(&Default::default());
         let viewer = &mut self.viewer;
-        win.ensure_samples(viewer.doc.display.msaa);
+        win.ensure_samples(viewer.doc.display.msaa, viewer.doc.display.fxaa);
         if viewer.doc.display.turntable {
             viewer.view.camera.yaw += (dt * 0.8) as f32;
         }

@@ -273,12 +273,18 @@ impl Win {
         }
     }
 
-    /// Rebuilds the pipelines when the MSAA option changed.
-    pub fn ensure_samples(&mut self, msaa: bool) {
+    /// Rebuilds the pipelines when the MSAA option changed; turns the FXAA
+    /// pass on or off.
+    pub fn ensure_samples(&mut self, msaa: bool, fxaa: bool) {
+        if self.renderer.fxaa != fxaa {
+            self.renderer.fxaa = fxaa;
+            self.scene_key = None;
+        }
         let format = self.surface.format();
         let want = if msaa { self.gpu.msaa_samples(format) } else { 1 };
         if want != self.samples {
             self.renderer = Renderer::new(&self.gpu.device, format, want);
+            self.renderer.fxaa = fxaa;
             let (w, h) = self.surface.size();
             self.targets = Targets::new(&self.gpu.device, &self.renderer, w, h);
             self.samples = want;

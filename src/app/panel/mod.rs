@@ -190,6 +190,10 @@ fn display_section(ui: &mut egui::Ui, doc: &Doc, view: &View, display: &mut Disp
             ui.checkbox(&mut display.msaa, "Anti-aliasing (MSAA)")
                 .on_hover_text("4x multisampling; costly on a software rasteriser with big meshes");
         }
+        if !display.msaa {
+            ui.checkbox(&mut display.fxaa, "Smooth edges (FXAA)")
+                .on_hover_text("a post-process pass over the frame: cheap anti-aliasing where MSAA is off");
+        }
     });
     if display.wireframe {
         wire_edges_row(ui, doc, display);
