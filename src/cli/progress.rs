@@ -12,6 +12,7 @@ fn shown() -> bool {
 }
 
 /// A bar over `total` steps named `what` (hidden where bars are not shown).
+#[cfg(feature = "viewer")]
 pub fn bar(total: u64, what: &str) -> ProgressBar {
     if !shown() {
         return ProgressBar::hidden();
