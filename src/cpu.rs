@@ -37,8 +37,6 @@ pub fn avx2_fma() -> bool {
 /// Defines `$name`, which runs `$body` (a closure-free function body over
 /// the given arguments) compiled with AVX2 and FMA where the CPU has them,
 /// else compiled for the baseline.
-#[macro_export]
-#[doc(hidden)]
 macro_rules! multiversion {
     ($(#[$m:meta])* $vis:vis fn $name:ident $(<$($g:ident: $b:path),*>)? ($($a:ident: $t:ty),* $(,)?) $body:block) => {
         $(#[$m])* $vis fn $name $(<$($g: $b),*>)? ($($a: $t),*) {
@@ -57,3 +55,4 @@ macro_rules! multiversion {
         }
     };
 }
+pub(crate) use multiversion;

@@ -45,8 +45,9 @@ const RECENT: usize = 64;
 enum NormalsBy {
     /// Straight from the positions through packed one-rings (the usual case).
     Rings(VertexRings),
-    /// Face normals gathered per vertex (a vertex with more than 127 ring
-    /// entries): a face-normal buffer and the faces around every vertex.
+    /// Face normals gathered per vertex (a vertex whose polygon has more
+    /// than 255 entries): a face-normal buffer and the faces around every
+    /// vertex.
     Faces(Vec<Vec3>, VertexFaces),
 }
 
@@ -91,7 +92,7 @@ impl Animation {
             None => NormalsBy::Faces(Vec::new(), VertexFaces::new(&plan.ct)),
         };
         let plan_time = t0.elapsed();
-        // every buffer a frame writes, allocated (and backed by huge pages) now
+        // every buffer a frame writes, allocated now
         let fine = plan.ct.num_vertices();
         let scratch = PlanScratch::for_plan(&plan);
         Ok(Animation {

@@ -195,7 +195,7 @@ impl VertexRings {
     }
 }
 
-crate::multiversion! {
+crate::cpu::multiversion! {
     /// The normals of one chunk of vertices: polygon lengths `len`, their
     /// polygons from `ring[start..]`.
     fn ring_normals(ring: &[u32], start: usize, len: &[u8], pos: &[Vec3], out: &mut [Vec3]) {

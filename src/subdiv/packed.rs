@@ -122,7 +122,7 @@ struct Classes<'a> {
     weights: &'a [f32],
 }
 
-crate::multiversion! {
+crate::cpu::multiversion! {
     /// One chunk of rows: row `k` has class `class[k]` and takes its
     /// indices from `indices` after those of the rows before it.
     fn rows_chunk<I: Point, O: Point>(classes: Classes, indices: &[u32], class: &[u16], input: &[I], out: &mut [O]) {
