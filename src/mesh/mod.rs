@@ -119,18 +119,69 @@ pub struct CornerTable {
     generations: Option<Box<Generations>>,
 }
 
-/// The level at which every edge was created, kept per corner: `corner[c]`
-/// is the generation of the edge opposite `c` (from `v(n(c))` to `v(p(c))`),
-/// so both corners of an interior edge hold the same value. Generation 0 is
-/// a piece of a control-mesh edge; generation `j >= 1` an edge made inside a
-/// triangle by the `j`-th split. Written by the split from its parent's
-/// (see [`split`]), never recomputed. Saturates at 255.
-#[derive(Clone, Debug, PartialEq, Default)]
+/// The level at which every edge was created: `corner(c)` is the
+/// generation of the edge opposite `c` (from `v(n(c))` to `v(p(c))`), so
+/// both corners of an interior edge hold the same value. Generation 0 is a
+/// piece of a control-mesh edge; generation `j >= 1` an edge made inside a
+/// triangle by the `j`-th split. Saturates at 255.
+///
+/// Derived, not stored: a table made by splits of a control table (whose
+/// edges are all of generation 0) has its generations fixed by the corner
+/// layout of the split (see [`split`]), so only the triangle count before
+/// each split is kept. [`Generations::corner`] walks one corner back through
+/// the splits; [`Generations::corners`] writes all of them, level by level,
+/// for the renderer. The split thus writes no byte per corner for them.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct Generations {
+    /// Triangles of the table before each split, oldest first.
+    splits: Vec<usize>,
+}
+
+impl Generations {
     /// How many splits made this table (the newest generation).
-    pub level: u8,
-    /// Generation of the edge opposite each corner.
-    pub corner: Vec<u8>,
+    pub fn level(&self) -> u8 {
+        self.splits.len().min(255) as u8
+    }
+    /// The generation of the edge opposite corner `c` (split.rs, "Edge
+    /// generations"): in the split of a table with `nt` triangles, a
+    /// central corner (`c < 3nt`) and the first corner `A` of a corner
+    /// triangle face edges of the new generation; `n(A)` and `p(A)` of the
+    /// corner triangle `k` of old triangle `t` face halves of old edges,
+    /// those opposite the old corners `3t + (k+1)%3` and `3t + (k+2)%3`.
+    pub fn corner(&self, c: u32) -> u8 {
+        let mut c = c as usize;
+        for (j, &nt) in self.splits.iter().enumerate().rev() {
+            let (nc, generation) = (3 * nt, (j + 1).min(255) as u8);
+            if c < nc {
+                return generation;
+            }
+            let (k, rest) = ((c - nc) / nc, (c - nc) % nc);
+            let (t, i) = (rest / 3, rest % 3);
+            if i == 0 {
+                return generation;
+            }
+            c = 3 * t + (k + i) % 3;
+        }
+        0
+    }
+    /// [`Self::corner`] of every corner, written split by split from the
+    /// control table's zeros (four streams per old triangle, in parallel).
+    pub fn corners(&self) -> Vec<u8> {
+        let first = self.splits.first().map_or(0, |&nt| 3 * nt);
+        let mut corner = vec![0u8; first];
+        for (j, &nt) in self.splits.iter().enumerate() {
+            debug_assert_eq!(corner.len(), 3 * nt);
+            corner = split::split_generations(&corner, (j + 1).min(255) as u8);
+        }
+        corner
+    }
+    /// The generations of the split of a table with these generations and
+    /// `nt` triangles.
+    pub(crate) fn after_split(&self, nt: usize) -> Generations {
+        let mut splits = self.splits.clone();
+        splits.push(nt);
+        Generations { splits }
+    }
 }
 
 impl CornerTable {
@@ -208,12 +259,12 @@ impl CornerTable {
     /// The level this table was made at: 0 for a control table.
     #[inline]
     pub fn level(&self) -> u8 {
-        self.generations.as_ref().map_or(0, |g| g.level)
+        self.generations.as_ref().map_or(0, |g| g.level())
     }
     /// Generation of the edge opposite corner `c` (0 on a control table).
     #[inline]
     pub fn edge_generation(&self, c: u32) -> u8 {
-        self.generations.as_ref().map_or(0, |g| g.corner[c as usize])
+        self.generations.as_ref().map_or(0, |g| g.corner(c))
     }
     /// This table with `generations`, which must have been made for it by
     /// the split of its parent.

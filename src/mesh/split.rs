@@ -19,17 +19,19 @@
 //! prefix sum gives each chunk its first edge id. New vertex ids: old vertices
 //! keep theirs, edge `e` becomes vertex `V + e`.
 //!
-//! Edge generations (see [`super::Generations`], one byte per corner: the
-//! generation of the edge opposite it) propagate beside O, for the new level
-//! `j`: the six corners facing the three interior edges of a split triangle
-//! (`c` and `A(c)`) get `j`, and a corner facing half of an old edge inherits
+//! Edge generations (see [`super::Generations`]: the generation of the edge
+//! opposite each corner) follow from this layout, for the new level `j`:
+//! the six corners facing the three interior edges of a split triangle (`c`
+//! and `A(c)`) get `j`, and a corner facing half of an old edge inherits
 //! that edge's generation: `g'[n(A(c))] = g[n(c)]`, `g'[p(A(c))] = g[p(c)]`.
+//! So the split stores none: it records its triangle count, and the
+//! generations are read back through these formulas when asked for.
 //!
 //! `C'` and valences propagate too: an old vertex keeps its valence and
 //! `C'[v] = A(C[v])`; an edge vertex has valence 6 (interior) or 4 (border)
 //! and `C' = c` (interior) or `p(A(p(c)))` (border, the first corner of its fan).
 
-use super::{BORDER, CornerTable, Creasing, Generations, Mesh, n, owns_edge, p};
+use super::{BORDER, CornerTable, Creasing, Mesh, n, owns_edge, p};
 use rayon::prelude::*;
 
 /// Corners per parallel work item: big enough to amortise scheduling, small
@@ -228,7 +230,7 @@ pub(crate) fn split_with_boundary(
     let times = (ms(t1 - t0), ms(t1.elapsed()));
     // sharp features are sparse: carried from the old table's, beside O
     let sharpness = old.sharpness().and_then(|s| s.split(old, creasing));
-    let generations = split_generations(old);
+    let generations = old.generations().cloned().unwrap_or_default().after_split(old.num_triangles());
     let ct = CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness).with_generations(Some(generations));
     ((ct, edges, boundary), times)
 }
@@ -363,24 +365,17 @@ fn write_v_and_o(old: &CornerTable, ew: &[u32]) -> (Vec<u32>, Vec<u32>) {
     (v2, o2)
 }
 
-/// The edge generations of the split of `old` (module docs): four streams,
-/// the central triangles' and the three corner triangles', one old triangle
-/// at a time, like [`write_v_and_o`].
-fn split_generations(old: &CornerTable) -> Generations {
-    let nc = old.num_corners();
-    let level = old.level().saturating_add(1);
+/// The edge generations after a split at generation `level`, from those of
+/// the old corners `og` (module docs): four streams, the central triangles'
+/// and the three corner triangles', one old triangle at a time, like
+/// [`write_v_and_o`]. For [`Generations::corners`]; the split itself only
+/// records its triangle count.
+pub(crate) fn split_generations(og: &[u8], level: u8) -> Vec<u8> {
+    let nc = og.len();
     let mut corner: Vec<u8> = vec![level; 4 * nc];
     // the central corners (the first nc) face interior edges: already `level`
     let (g1, rest) = corner[nc..].split_at_mut(nc);
     let (g2, g3) = rest.split_at_mut(nc);
-    let zeros;
-    let og: &[u8] = match old.generations() {
-        Some(g) => &g.corner,
-        None => {
-            zeros = vec![0u8; nc];
-            &zeros
-        }
-    };
     // whole triangles per chunk
     let g = 3 * (CHUNK / 3);
     og.par_chunks(g).zip(g1.par_chunks_mut(g)).zip(g2.par_chunks_mut(g)).zip(g3.par_chunks_mut(g)).for_each(
@@ -399,7 +394,7 @@ fn split_generations(old: &CornerTable) -> Generations {
             }
         },
     );
-    Generations { level, corner }
+    corner
 }
 
 /// One split with every new vertex at the midpoint of its edge: linear

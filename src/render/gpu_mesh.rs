@@ -111,15 +111,16 @@ pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
     let nc = ct.num_corners();
     let mut words = vec![0u32; nc / 3];
     let Some(g) = ct.generations() else { return words };
+    let corner = g.corners();
     // the edge opposite c ends at v(n(c)) and v(p(c))
     let mut at_vertex = vec![u8::MAX; ct.num_vertices()];
-    for (c, &e) in g.corner.iter().enumerate() {
+    for (c, &e) in corner.iter().enumerate() {
         for end in [n(c as u32), p(c as u32)] {
             let v = &mut at_vertex[ct.vtx(end) as usize];
             *v = (*v).min(e);
         }
     }
-    for (c, &e) in g.corner.iter().enumerate() {
+    for (c, &e) in corner.iter().enumerate() {
         let k = 5 * (c % 3) as u32;
         let at_v = at_vertex[ct.vtx(c as u32) as usize];
         words[c / 3] |= u32::from(e.min(31)) << k | u32::from(at_v.min(31)) << (15 + k);

@@ -225,11 +225,13 @@ pub(crate) trait RulesFn<T> {
 }
 
 /// One level: split plus the scheme's points. `boundary` holds the input
-/// level's vertex boundary flags when the previous level produced them.
+/// level's vertex boundary flags when the previous level produced them;
+/// the new level's are made only when another level follows (`last` false).
 struct OneLevel<'a> {
     ct: Cow<'a, CornerTable>,
     positions: Cow<'a, [Vec3]>,
     boundary: Option<Vec<bool>>,
+    last: bool,
     creasing: Creasing,
     stats: &'a mut Stats,
 }
@@ -240,7 +242,7 @@ impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
         let boundary = self.boundary.unwrap_or_else(|| rules::boundary_flags(old));
         let t0 = Instant::now();
         let ((ct, edges, next_boundary), (number_ms, _)) =
-            split::split_with_boundary(old, Some(&boundary), self.creasing);
+            split::split_with_boundary(old, (!self.last).then_some(&boundary[..]), self.creasing);
         self.stats.split_ms += ms(t0.elapsed());
         self.stats.numbering_ms += number_ms;
         let features = features::Features::of(old, self.creasing);
@@ -297,7 +299,9 @@ pub fn subdivide_with_progress(
             Some(m) => (Cow::Owned(m.ct), Cow::Owned(m.positions)),
             None => (base.take().unwrap_or(Cow::Borrowed(&mesh.ct)), Cow::Borrowed(&mesh.positions[..])),
         };
-        let one = OneLevel { ct, positions, boundary: boundary.take(), creasing: opts.creasing, stats: &mut stats };
+        let last = level == levels;
+        let one =
+            OneLevel { ct, positions, boundary: boundary.take(), last, creasing: opts.creasing, stats: &mut stats };
         let (next, next_boundary) = with_rules(scheme, opts, one);
         boundary = next_boundary;
         stats.faces_per_level.push(next.ct.num_triangles());
