@@ -5,23 +5,38 @@
 //! zeroing it) costs more than the arithmetic. Arrays are therefore taken
 //! from `calloc` (fresh zero pages, no user-space memset).
 //!
-//! No page advice by default. The policy was chosen by measuring cold runs
+//! By default every large array is pre-faulted at allocation
+//! (`MADV_POPULATE_WRITE`), in 1 MiB pieces spread over rayon's threads:
+//! the kernel fills the page tables in one call per piece instead of taking
+//! one fault per page inside the passes that write the array (which fault
+//! in scattered order where they write through `O`). Measured in cold runs
 //! (one process each, as a user runs a command; docs/performance.md, "Page
-//! policy"): `MADV_HUGEPAGE` has the fastest single runs, but with the
-//! kernel's `defrag = madvise` a fault in an advised region may wait for
-//! memory compaction, so runs vary 2x to 4x (bunny Loop L3 83-166 ms,
-//! nefertiti L4 405-1664 ms on a quiet machine), while plain 4 KiB pages
-//! stay within 7-17% run to run (113-127 ms and 663-775 ms) and have the
-//! better median at nefertiti L4. Pre-faulting (`MADV_POPULATE_WRITE`) was
-//! steady but slower, and with huge pages worst by far (the kernel compacts
-//! memory for every 2 MiB page in one synchronous call). The first run is
-//! the one a user sees, so steadiness wins.
+//! policy"), interleaved, on 2 threads: bunny Loop L3 median 117 against
+//! 119 ms without advice (21 runs each), nefertiti L4 575-636 against
+//! 665-669 ms, with fewer slow outliers. Pre-faulting in one call on one
+//! thread, as an earlier version did, was slower than no advice.
+//! `MADV_HUGEPAGE` gives the fastest single runs and the slowest ones (runs
+//! vary 2x to 4x: bunny Loop L3 83-166 ms, nefertiti L4 405-1664 ms); the
+//! first run is the one a user sees, so steadiness wins.
 //! `SUBDIV_MEM=plain|huge|populate|huge-populate` selects a policy for such
-//! measurements; anything else means `plain`.
+//! measurements (`plain`: no advice); anything else means `populate`.
+//!
+//! Why huge pages are unsteady here: the machines we measure on are virtual
+//! machines whose balloon device reports free memory to the host in 2 MiB
+//! blocks (virtio-balloon free page reporting, `page_reporting_order` 9);
+//! the host discards them, so the first touch of a reported block faults on
+//! the host as well. A huge page is always such a block: 256 MiB of huge
+//! pages took 25 ms to touch right after a previous run and 540-670 ms after
+//! six idle seconds, while 4 KiB pages took 100-110 ms either way.
+//!
+//! Within one process the cheapest page is one already faulted in:
+//! [`keep_freed_memory`] lets glibc hand the arrays a level frees (the level
+//! before, the split's scratch) to the ones allocated next, instead of
+//! unmapping them and faulting fresh pages in.
 
 use bytemuck::Zeroable;
 
-/// Arrays smaller than this are left to the allocator's defaults.
+/// Arrays smaller than this are left to the allocator's defaults (no advice).
 const HUGE_MIN: usize = 4 << 20;
 
 /// A vector of `n` zeroed elements, backed as the page policy says.
@@ -42,8 +57,28 @@ pub fn zeroed<T: Zeroable + Clone>(n: usize) -> Vec<T> {
         if ptr.is_null() {
             std::alloc::handle_alloc_error(layout);
         }
-        advise_huge(ptr as *mut u8, layout.size());
+        advise(ptr as *mut u8, layout.size());
         Vec::from_raw_parts(ptr, n, n)
+    }
+}
+
+/// Makes the allocator keep freed memory for later allocations of this
+/// process instead of giving it back to the kernel: glibc's mmap threshold
+/// (large blocks from `mmap`, unmapped on `free`) and trim threshold
+/// (the top of the heap returned to the kernel) raised to 1 GiB. For short
+/// batch commands, where it saves the unmapping of every freed level and the
+/// page faults of reusing that memory (docs/performance.md, "Page policy",
+/// has the figures); the peak resident memory grows by the freed blocks
+/// that could not be reused (bunny L3: 212 to 245 MB). A long-running
+/// process (the viewer) should not call it. Other platforms and C
+/// libraries: does nothing.
+pub fn keep_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only sets two of glibc's tuning parameters (it takes
+    // the allocator's lock itself); every value is valid for both.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 30);
+        libc::mallopt(libc::M_TRIM_THRESHOLD, 1 << 30);
     }
 }
 
@@ -64,14 +99,14 @@ fn policy() -> Policy {
     static P: std::sync::OnceLock<Policy> = std::sync::OnceLock::new();
     *P.get_or_init(|| match std::env::var("SUBDIV_MEM").as_deref() {
         Ok("huge") => Policy::Huge,
-        Ok("populate") => Policy::Populate,
+        Ok("plain") => Policy::Plain,
         Ok("huge-populate") => Policy::HugePopulate,
-        _ => Policy::Plain,
+        _ => Policy::Populate,
     })
 }
 
 #[cfg(target_os = "linux")]
-fn advise_huge(ptr: *mut u8, len: usize) {
+fn advise(ptr: *mut u8, len: usize) {
     if len < HUGE_MIN {
         return;
     }
@@ -92,18 +127,23 @@ fn advise_huge(ptr: *mut u8, len: usize) {
         let start = (ptr as usize).div_ceil(PAGE) * PAGE;
         let end = (ptr as usize + len) / PAGE * PAGE;
         if end > start {
-            // SAFETY: [start, end) lies inside the allocation just made and
-            // owned by the caller; MADV_POPULATE_WRITE only faults its pages
-            // in (writable, still zero), changing no contents.
-            unsafe {
-                libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_POPULATE_WRITE);
-            }
+            use rayon::prelude::*;
+            const STEP: usize = 1 << 20;
+            (start..end).into_par_iter().step_by(STEP).for_each(|a| {
+                let b = (a + STEP).min(end);
+                // SAFETY: [a, b) lies inside the allocation just made and
+                // owned by the caller; MADV_POPULATE_WRITE only faults its pages
+                // in (writable, still zero), changing no contents.
+                unsafe {
+                    libc::madvise(a as *mut libc::c_void, b - a, libc::MADV_POPULATE_WRITE);
+                }
+            });
         }
     }
 }
 
 #[cfg(not(target_os = "linux"))]
-fn advise_huge(_ptr: *mut u8, _len: usize) {}
+fn advise(_ptr: *mut u8, _len: usize) {}
 
 #[cfg(test)]
 mod tests {

@@ -82,6 +82,10 @@ pub fn main() -> ExitCode {
     }
     let cli = Cli::parse();
     logging::init(cli.quiet, cli.verbose);
+    if !matches!(cli.cmd, None | Some(Cmd::View(_))) {
+        // a batch command: freed levels are reused, not unmapped (mem.rs)
+        subdiv::mem::keep_freed_memory();
+    }
     if let Some(n) = cli.threads
         && let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n.max(1)).build_global()
     {
