@@ -5,7 +5,8 @@
 //! opposite it. Half-edges are bucketed by their start vertex with a counting
 //! sort (O(n), no hashing); the opposite of `c` is the unique corner whose
 //! half-edge runs the other way, found by scanning the (valence-sized) bucket
-//! of `v(p(c))`. A second half-edge in the same direction means inconsistent
+//! of `v(p(c))` (in parallel; an error is the first in corner order, as a
+//! serial scan would find it). A second half-edge in the same direction means inconsistent
 //! orientation; three or more faces on an edge mean a non-manifold edge. A
 //! final pass walks every fan once to find non-manifold vertices and to fill
 //! `C[v]` and the valences.
@@ -178,10 +179,10 @@ fn check_o(v: &[u32], o: &[u32]) -> Result<(), MeshError> {
     if o.len() != nc || !nc.is_multiple_of(3) {
         return Err(MeshError::BadOppositeTable { corner: 0, msg: "V and O have different lengths".into() });
     }
-    for c in 0..nc as u32 {
+    first_error(nc, |c| {
         let x = o[c as usize];
         if x == BORDER {
-            continue;
+            return Ok(());
         }
         let bad = |msg: &str| Err(MeshError::BadOppositeTable { corner: c as usize, msg: msg.into() });
         if x as usize >= nc || x == c {
@@ -193,8 +194,8 @@ fn check_o(v: &[u32], o: &[u32]) -> Result<(), MeshError> {
         if v[n(x) as usize] != v[p(c) as usize] || v[p(x) as usize] != v[n(c) as usize] {
             return bad("the opposite corner does not face the same edge in the opposite direction");
         }
-    }
-    Ok(())
+        Ok(())
+    })
 }
 
 /// Walks the fan of corner `c0` (in a table whose O is checked), marking
@@ -255,10 +256,26 @@ fn count_fans(ct: &CornerTable, vert: u32) -> usize {
     fans
 }
 
+/// Corners per parallel work item of the checks and of [`build_o`].
+const CHUNK: usize = 1 << 14;
+
+/// The first error of `check(c)` over all corners `c < nc`, in corner order
+/// (the same one a serial loop would stop at), checked in parallel.
+fn first_error(nc: usize, check: impl Fn(u32) -> Result<(), MeshError> + Sync) -> Result<(), MeshError> {
+    use rayon::prelude::*;
+    let first = (0..nc.div_ceil(CHUNK))
+        .into_par_iter()
+        .filter_map(|k| (k * CHUNK..((k + 1) * CHUNK).min(nc)).find_map(|c| check(c as u32).err()))
+        .find_first(|_| true);
+    first.map_or(Ok(()), Err)
+}
+
 /// Builds O from V with a counting sort of half-edges by start vertex.
 fn build_o(v: &[u32], nv: usize) -> Result<Vec<u32>, MeshError> {
+    use rayon::prelude::*;
     let nc = v.len();
-    // bucket corners by the start vertex of the half-edge opposite them
+    // bucket corners by the start vertex of the half-edge opposite them,
+    // each with the half-edge's end, so that a scan reads one bucket only
     let mut start = vec![0u32; nv + 1];
     for c in 0..nc as u32 {
         start[v[n(c) as usize] as usize + 1] += 1;
@@ -267,44 +284,63 @@ fn build_o(v: &[u32], nv: usize) -> Result<Vec<u32>, MeshError> {
         start[i + 1] += start[i];
     }
     let mut fill = start.clone();
-    let mut by_start = vec![0u32; nc];
+    let mut by_start = vec![(0u32, 0u32); nc];
     for c in 0..nc as u32 {
         let a = v[n(c) as usize] as usize;
-        by_start[fill[a] as usize] = c;
+        by_start[fill[a] as usize] = (c, v[p(c) as usize]);
         fill[a] += 1;
     }
+    drop(fill);
     let bucket = |a: u32| &by_start[start[a as usize] as usize..start[a as usize + 1] as usize];
-    let mut o = vec![BORDER; nc];
-    for c in 0..nc as u32 {
-        let a = v[n(c) as usize];
-        let b = v[p(c) as usize];
+    // the twin of c, or why there is none (the checks of the module docs)
+    let twin_of = |c: u32| -> Result<u32, MeshError> {
+        let (a, b) = (v[n(c) as usize], v[p(c) as usize]);
         let mut twin = BORDER;
         let mut opp = 0usize;
-        for &x in bucket(b) {
-            if v[p(x) as usize] == a {
+        for &(x, end) in bucket(b) {
+            if end == a {
                 opp += 1;
                 twin = x;
             }
         }
-        let same = bucket(a).iter().filter(|&&x| x != c && v[p(x) as usize] == b).count();
+        let same = bucket(a).iter().filter(|&&(x, end)| x != c && end == b).count();
         if same + opp + 1 > 2 {
             let mut faces: Vec<usize> = bucket(a)
                 .iter()
-                .filter(|&&x| v[p(x) as usize] == b)
-                .chain(bucket(b).iter().filter(|&&x| v[p(x) as usize] == a))
-                .map(|&x| x as usize / 3)
+                .filter(|&&(_, end)| end == b)
+                .chain(bucket(b).iter().filter(|&&(_, end)| end == a))
+                .map(|&(x, _)| x as usize / 3)
                 .collect();
             faces.sort_unstable();
             return Err(MeshError::NonManifoldEdge { v0: a.min(b), v1: a.max(b), faces: faces.len(), examples: faces });
         }
         if same == 1 {
-            let other = bucket(a).iter().find(|&&x| x != c && v[p(x) as usize] == b).copied().unwrap_or(c);
+            let other = bucket(a).iter().find(|&&(x, end)| x != c && end == b).map_or(c, |&(x, _)| x);
             let (f0, f1) = ((c / 3).min(other / 3) as usize, (c / 3).max(other / 3) as usize);
             return Err(MeshError::InconsistentOrientation { v0: a, v1: b, f0, f1 });
         }
-        o[c as usize] = twin;
+        Ok(twin)
+    };
+    let mut o = vec![BORDER; nc];
+    // in parallel; the error reported is the first in corner order, as a
+    // serial loop would find it
+    let first = o
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .filter_map(|(k, och)| {
+            for (i, slot) in och.iter_mut().enumerate() {
+                match twin_of((k * CHUNK + i) as u32) {
+                    Ok(t) => *slot = t,
+                    Err(e) => return Some(e),
+                }
+            }
+            None
+        })
+        .find_first(|_| true);
+    match first {
+        Some(e) => Err(e),
+        None => Ok(o),
     }
-    Ok(o)
 }
 
 #[cfg(test)]
