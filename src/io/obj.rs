@@ -628,20 +628,50 @@ fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
     out
 }
 
-/// `f a b c` lines (1-based) of V-table triples.
+/// `f a b c` lines (1-based) of V-table triples. Each line is put together
+/// in a small array and appended with one copy (appending the numbers one
+/// by one costs a `memmove` call each, more than the digits).
 fn face_text(ch: &[u32]) -> Vec<u8> {
     let mut out = Vec::with_capacity(ch.len() * 9);
-    let mut ib = itoa::Buffer::new();
+    // "f " + three ids of at most 10 digits with their separators + "\n"
+    let mut line = [0u8; 36];
+    line[..2].copy_from_slice(b"f ");
     for tri in ch.chunks_exact(3) {
-        out.extend_from_slice(b"f ");
-        out.extend_from_slice(ib.format(tri[0] + 1).as_bytes());
-        out.push(b' ');
-        out.extend_from_slice(ib.format(tri[1] + 1).as_bytes());
-        out.push(b' ');
-        out.extend_from_slice(ib.format(tri[2] + 1).as_bytes());
-        out.push(b'\n');
+        let mut at = put_u32(&mut line, 2, tri[0].wrapping_add(1));
+        line[at] = b' ';
+        at = put_u32(&mut line, at + 1, tri[1].wrapping_add(1));
+        line[at] = b' ';
+        at = put_u32(&mut line, at + 1, tri[2].wrapping_add(1));
+        line[at] = b'\n';
+        out.extend_from_slice(&line[..at + 1]);
     }
     out
+}
+
+/// Two decimal digits of every number below 100.
+const DIGIT_PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546474849\
+5051525354555657585960616263646566676869707172737475767778798081828384858687888990919293949596979899";
+
+/// Writes the decimal digits of `x` into `line` from `at`; returns the index
+/// after the last digit. `line` must have room for 10 digits from `at`.
+#[inline]
+fn put_u32(line: &mut [u8; 36], at: usize, mut x: u32) -> usize {
+    let end = at + x.checked_ilog10().map_or(1, |d| d as usize + 1);
+    let mut k = end;
+    while x >= 100 {
+        let r = (x % 100) as usize * 2;
+        x /= 100;
+        k -= 2;
+        line[k..k + 2].copy_from_slice(&DIGIT_PAIRS[r..r + 2]);
+    }
+    if x >= 10 {
+        let r = x as usize * 2;
+        line[k - 2..k].copy_from_slice(&DIGIT_PAIRS[r..r + 2]);
+    } else {
+        line[k - 1] = b'0' + x as u8;
+    }
+    end
 }
 
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b
