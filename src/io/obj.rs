@@ -790,3 +790,19 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
     atomic_write(path, |w| write_obj(mesh, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e))))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn face_lines_match_the_standard_formatting() {
+        // every digit count, both sides of each power of ten, and the largest id
+        let mut ids: Vec<u32> = (0..=9).flat_map(|k| [10u32.pow(k) - 1, 10u32.pow(k)]).collect();
+        ids.extend([0, 7, 42, 65_535, u32::MAX - 1]);
+        let v: Vec<u32> = ids.iter().flat_map(|&a| [a, a / 3, a / 7]).collect();
+        let expected: String =
+            v.chunks_exact(3).map(|t| format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1)).collect();
+        assert_eq!(String::from_utf8(face_text(&v)).unwrap(), expected);
+    }
+}
