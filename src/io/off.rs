@@ -116,7 +116,7 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
         let io = |e| Error::io(path, e);
         let magic = if colors.is_some() { "COFF" } else { "OFF" };
         let mut out = format!("{magic}\n{} {} 0\n", mesh.positions.len(), mesh.ct.num_triangles()).into_bytes();
-        let mut rb = ryu::Buffer::new();
+        let mut rb = zmij::Buffer::new();
         for (i, p) in mesh.positions.iter().enumerate() {
             for (k, x) in p.to_array().into_iter().enumerate() {
                 if k > 0 {
