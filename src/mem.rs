@@ -25,7 +25,7 @@
 //! machines whose balloon device reports free memory to the host in 2 MiB
 //! blocks (virtio-balloon free page reporting, `page_reporting_order` 9);
 //! the host discards them, so the first touch of a reported block faults on
-//! the host as well. A huge page is always such a block: 256 MiB of huge
+//! the host as well. A huge page is always such a block (`scripts/page-cost.c`): 256 MiB of huge
 //! pages took 25 ms to touch right after a previous run and 540-670 ms after
 //! six idle seconds, while 4 KiB pages took 100-110 ms either way.
 //!
