@@ -222,7 +222,7 @@ impl Renderer {
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
         let aspect = d.rect[2] / d.rect[3].max(1.0);
         let cam = &d.camera;
-        let colors = d.look.colors && d.mesh.is_some_and(|m| m.colors.is_some());
+        let colors = d.mesh.is_some_and(|m| shown_colors(m, d.look).is_some());
         ViewUniform {
             proj: cam.proj(aspect).to_cols_array_2d(),
             view: cam.view().to_cols_array_2d(),
@@ -355,8 +355,7 @@ impl Renderer {
         if let Some(m) = d.mesh {
             let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
             if let Some(group) = wire_group {
-                let colored = d.look.colors && m.colors.is_some();
-                let wire = if colored { &self.pipelines.wire_colored } else { &self.pipelines.wire };
+                let wire = if shown_colors(m, d.look).is_some() { &self.pipelines.wire_colored } else { &self.pipelines.wire };
                 pass.set_pipeline(&wire[m.cull as usize]);
                 pass.set_bind_group(2, group, &[]);
                 pass.draw(0..m.triangle_indices, 0..1);
@@ -401,7 +400,7 @@ impl Renderer {
         pass.set_vertex_buffer(0, m.positions.slice(..));
         pass.set_vertex_buffer(1, m.normals.slice(..));
         pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
-        if let (Some(colors), true) = (&m.colors, look.colors) {
+        if let Some(colors) = shown_colors(m, look) {
             pass.set_pipeline(&self.pipelines.mesh_colored[cull]);
             pass.set_vertex_buffer(2, colors.slice(..));
         } else {
@@ -464,4 +463,11 @@ impl Renderer {
         pass.set_vertex_buffer(0, buf.slice(..));
         pass.draw(0..count, 0..1);
     }
+}
+
+/// The per-vertex colours a mesh is drawn with under `look`: its colour
+/// buffer when it has one and the look shows colours. The one place that
+/// decides it, for the uniforms, the wire pipeline and the face pipeline.
+fn shown_colors(m: &GpuMesh, look: Look) -> Option<&wgpu::Buffer> {
+    m.colors.as_ref().filter(|_| look.colors)
 }
