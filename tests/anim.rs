@@ -23,9 +23,11 @@ fn tetrahedron_paths_fit_the_model_and_give_k_times_2_pow_n_frames() {
     for k in 0..4 {
         assert_eq!(a.control(32 * k), (0..4).map(|v| p.polygon(v)[k]).collect::<Vec<_>>().as_slice());
     }
-    // every frame equals a full subdivision of that frame's control mesh
+    // every frame equals a full subdivision of that frame's control mesh,
+    // numbered in the plan's locality order
+    let order = a.plan().order().expect("animations are evaluated in a locality order").clone();
     for f in [0, 1, 17, 64, 127] {
-        let control = Mesh { ct: tet.ct.clone(), positions: a.control(f).to_vec() };
+        let control = Mesh { ct: tet.ct.clone(), positions: a.control(f).to_vec() }.relabelled(&order);
         let (full, _) = subdivide(&control, Scheme::Loop, 5, &Options::default()).unwrap();
         let (pos, nrm) = a.evaluate(f);
         assert_eq!(pos.len(), full.positions.len());

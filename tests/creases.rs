@@ -324,6 +324,74 @@ fn the_stencil_plan_records_the_crease_rules() {
     }
 }
 
+/// For a plan built in a locality order (`StencilPlan::build_local`): the
+/// id in the plain subdivision of `ct` of each vertex of the plan's finest
+/// level, found from the topology alone: control vertex `v` is plan vertex
+/// `order.new_vertex(v)`, and level by level the vertex made on an edge is
+/// matched to the vertex made on the edge between the matched end points.
+fn plain_ids(ct: &subdiv::CornerTable, order: &subdiv::mesh::order::Relabel, levels: u32) -> Vec<u32> {
+    use std::collections::HashMap;
+    use subdiv::mesh::split::split;
+    use subdiv::mesh::{n, p};
+    let mut map = order.old_vertices();
+    let (mut local, mut plain) = (ct.relabelled(order), ct.clone());
+    for _ in 0..levels {
+        let ((l2, le), (p2, pe)) = (split(&local), split(&plain));
+        let ends = |t: &subdiv::CornerTable, c: u32| (t.vtx(n(c)), t.vtx(p(c)));
+        let mut plain_edge = HashMap::new();
+        for (e, &c) in pe.owners.iter().enumerate() {
+            let (a, b) = ends(&plain, c);
+            plain_edge.insert((a.min(b), a.max(b)), e as u32);
+        }
+        let (nl, np) = (local.num_vertices() as u32, plain.num_vertices() as u32);
+        for &c in &le.owners {
+            let (a, b) = ends(&local, c);
+            let (a, b) = (map[a as usize], map[b as usize]);
+            map.push(np + plain_edge[&(a.min(b), a.max(b))]);
+        }
+        assert_eq!(map.len() as u32, nl + le.owners.len() as u32);
+        (local, plain) = (l2, p2);
+    }
+    map
+}
+
+#[test]
+fn a_plan_in_locality_order_gives_the_same_surface_as_the_subdivision() {
+    let cases = [load("ico_crease.obj"), load("grid_open.obj"), load("tet_semi.obj"), load("torus_semi.obj")];
+    for m in &cases {
+        for s in Scheme::ALL {
+            for o in [Options::default(), opts(Creasing::Chaikin, BoundaryInterpolation::EdgeAndCorner)] {
+                let full = sub(m, s, 3, &o);
+                let plan = StencilPlan::build_local(&m.ct, s, 3, &o).unwrap();
+                let order = plan.order().expect("a locality order");
+                let mut out = Vec::new();
+                plan.apply(&m.positions, &mut PlanScratch::default(), &mut out);
+                let ids = plain_ids(&m.ct, order, 3);
+                assert_eq!(out.len(), full.positions.len());
+                for (i, (p, &j)) in out.iter().zip(&ids).enumerate() {
+                    let q = full.positions[j as usize];
+                    assert!(p.distance(q) < 1e-5, "{s}: plan vertex {i} = vertex {j}: {p} vs {q}");
+                }
+                // the same triangles, corner for corner under the map
+                let mut a: Vec<[u32; 3]> =
+                    plan.ct.v_table().chunks_exact(3).map(|t| canon(t.iter().map(|&v| ids[v as usize]))).collect();
+                let mut b: Vec<[u32; 3]> =
+                    full.ct.v_table().chunks_exact(3).map(|t| canon(t.iter().copied())).collect();
+                a.sort_unstable();
+                b.sort_unstable();
+                assert!(a == b, "{s}: the plan's triangles are the subdivision's");
+            }
+        }
+    }
+}
+
+/// A triangle rotated to start at its smallest vertex id.
+fn canon(t: impl Iterator<Item = u32>) -> [u32; 3] {
+    let t: Vec<u32> = t.collect();
+    let k = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
+    [t[k], t[(k + 1) % 3], t[(k + 2) % 3]]
+}
+
 #[test]
 fn the_packed_plan_equals_its_csr_rows_bit_for_bit() {
     // StencilPlan::apply evaluates weight classes (subdiv::packed); the CSR
@@ -332,18 +400,21 @@ fn the_packed_plan_equals_its_csr_rows_bit_for_bit() {
     for m in &cases {
         for s in Scheme::ALL {
             for o in [Options::default(), opts(Creasing::Chaikin, BoundaryInterpolation::EdgeAndCorner)] {
-                let plan = StencilPlan::build(&m.ct, s, 3, &o).unwrap();
-                let moved: Vec<Vec3> =
-                    m.positions.iter().enumerate().map(|(i, p)| *p + Vec3::splat((i % 7) as f32 * 0.01)).collect();
-                let mut out = Vec::new();
-                plan.apply(&moved, &mut PlanScratch::default(), &mut out);
-                let mut csr = moved.clone();
-                for lv in &plan.levels {
-                    let mut next = vec![Vec3::ZERO; lv.n_out()];
-                    lv.apply(&csr, &mut next);
-                    csr = next;
+                for plan in
+                    [StencilPlan::build(&m.ct, s, 3, &o).unwrap(), StencilPlan::build_local(&m.ct, s, 3, &o).unwrap()]
+                {
+                    let moved: Vec<Vec3> =
+                        m.positions.iter().enumerate().map(|(i, p)| *p + Vec3::splat((i % 7) as f32 * 0.01)).collect();
+                    let mut out = Vec::new();
+                    plan.apply(&moved, &mut PlanScratch::default(), &mut out);
+                    let mut csr = moved.clone();
+                    for lv in &plan.levels {
+                        let mut next = vec![Vec3::ZERO; lv.n_out()];
+                        lv.apply(&csr, &mut next);
+                        csr = next;
+                    }
+                    assert!(out == csr, "{s}: packed and CSR rows differ");
                 }
-                assert!(out == csr, "{s}: packed and CSR rows differ");
             }
         }
     }

@@ -4,7 +4,10 @@
 //! Per frame only two things happen: the stencil plan is applied to the
 //! frame's control positions (topology, O and weights are reused), and the
 //! vertex normals are recomputed into reused buffers. Nothing is allocated
-//! after the first frame.
+//! after the first frame. The plan is recorded in a locality order of the
+//! control mesh ([`StencilPlan::build_local`]): the subdivided mesh is
+//! numbered in that order, so that the neighbours each point gathers lie
+//! near it in memory.
 
 use super::paths::Paths;
 use super::tweak::{Tweak, refine_closed};
@@ -86,7 +89,7 @@ impl Animation {
             }
         });
         let t0 = Instant::now();
-        let plan = StencilPlan::build(&control.ct, scheme, level, opts)?;
+        let plan = StencilPlan::build_local(&control.ct, scheme, level, opts)?;
         let normals_by = match VertexRings::new(&plan.ct) {
             Some(r) => NormalsBy::Rings(r),
             None => NormalsBy::Faces(Vec::new(), VertexFaces::new(&plan.ct)),
@@ -120,7 +123,10 @@ impl Animation {
         let f = f % self.frames;
         &self.curves[f * self.nv..(f + 1) * self.nv]
     }
-    /// Topology of the evaluated (finest) mesh.
+    /// Topology of the evaluated (finest) mesh. Its faces and vertices are
+    /// numbered in the plan's locality order ([`StencilPlan::build_local`],
+    /// [`StencilPlan::order`]), not as [`crate::subdivide`] numbers them: the
+    /// same surface, evaluated faster.
     pub fn topology(&self) -> &CornerTable {
         &self.plan.ct
     }

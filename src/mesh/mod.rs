@@ -18,6 +18,7 @@ pub mod cut;
 pub mod edit;
 pub mod inspect;
 pub mod normals;
+pub mod order;
 pub mod pick;
 pub mod repair;
 pub mod shapes;

@@ -275,6 +275,16 @@ impl Sharpness {
         Self::from_lists(c, v)
     }
 
+    /// This sharpness under new corner and vertex ids (bijections, as
+    /// [`CornerTable::relabelled`] makes them), sorted again.
+    pub(crate) fn relabelled(&self, corner: impl Fn(u32) -> u32, vertex: impl Fn(u32) -> u32) -> Sharpness {
+        let mut corners: Vec<(u32, f32)> = self.corners.iter().map(|&(c, s)| (corner(c), s)).collect();
+        let mut vertices: Vec<(u32, f32)> = self.vertices.iter().map(|&(v, s)| (vertex(v), s)).collect();
+        corners.sort_unstable_by_key(|&(c, _)| c);
+        vertices.sort_unstable_by_key(|&(v, _)| v);
+        Sharpness { corners, vertices }
+    }
+
     /// The sharpness after the 1-to-4 split of `old` (whose sharpness this
     /// is), decaying by `creasing`, or `None` when every value decayed to
     /// smooth. Linear in the number of sharp features (plus a sort of them).

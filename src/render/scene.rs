@@ -355,7 +355,8 @@ impl Renderer {
         if let Some(m) = d.mesh {
             let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
             if let Some(group) = wire_group {
-                let wire = if shown_colors(m, d.look).is_some() { &self.pipelines.wire_colored } else { &self.pipelines.wire };
+                let wire =
+                    if shown_colors(m, d.look).is_some() { &self.pipelines.wire_colored } else { &self.pipelines.wire };
                 pass.set_pipeline(&wire[m.cull as usize]);
                 pass.set_bind_group(2, group, &[]);
                 pass.draw(0..m.triangle_indices, 0..1);
