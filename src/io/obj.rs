@@ -17,7 +17,6 @@ use crate::mesh::repair::{RepairReport, repair};
 use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
-use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// What the parser read besides the mesh.
@@ -578,78 +577,134 @@ fn push_f32(out: &mut Vec<u8>, buf: &mut zmij::Buffer, x: f32) {
 }
 
 /// Formats OBJ text for `mesh` in parallel chunks and passes them, in order,
-/// to `sink`. Memory stays bounded by two batches of chunks: one batch is
-/// formatted (on a helper thread, in parallel) while the previous one is
-/// written.
+/// to `sink`, formatting and writing at once ([`crate::io::write_formatted`]).
 ///
 /// # Errors
 /// The first error of `sink`.
 pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
     const ROWS: usize = 1 << 15;
-    const BATCH: usize = 16;
     let pos = &mesh.positions;
-    sink(format!("# subdiv: {} vertices, {} triangles\n", pos.len(), mesh.ct.num_triangles()).as_bytes())?;
+    let header = format!("# subdiv: {} vertices, {} triangles\n", pos.len(), mesh.ct.num_triangles());
     let vchunks: Vec<&[Vec3]> = pos.chunks(ROWS).collect();
     let tchunks: Vec<&[u32]> = mesh.ct.v_table().chunks(3 * ROWS).collect();
-    std::thread::scope(|scope| {
-        // one batch in flight: the formatter waits while the writer is behind
-        let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<Vec<u8>>>(1);
-        scope.spawn(move || {
-            for batch in vchunks.chunks(BATCH) {
-                if tx.send(batch.par_iter().map(|ch| vertex_text(ch)).collect()).is_err() {
-                    return; // the writer failed
-                }
-            }
-            for batch in tchunks.chunks(BATCH) {
-                if tx.send(batch.par_iter().map(|ch| face_text(ch)).collect()).is_err() {
-                    return;
-                }
-            }
-        });
-        for texts in rx {
-            for t in texts {
-                sink(&t)?;
-            }
-        }
-        Ok::<(), crate::Error>(())
-    })?;
+    let nv = vchunks.len();
+    let text = |k: usize| if k < nv { vertex_text(vchunks[k]) } else { face_text(tchunks[k - nv]) };
+    crate::io::write_formatted(&[header.as_bytes()], nv + tchunks.len(), text, sink)?;
     sink(&tag_records(mesh))
 }
 
-/// `v x y z` lines.
+/// `v x y z` lines. Each line is put together in a small array and
+/// appended whole (see [`Line`]).
 fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(ch.len() * 32);
+    let mut out = Vec::with_capacity(ch.len() * 36);
     let mut rb = zmij::Buffer::new();
+    let mut line = Line::new(b"v ");
     for q in ch {
-        out.extend_from_slice(b"v ");
-        push_f32(&mut out, &mut rb, q.x);
-        out.push(b' ');
-        push_f32(&mut out, &mut rb, q.y);
-        out.push(b' ');
-        push_f32(&mut out, &mut rb, q.z);
-        out.push(b'\n');
+        line.at = 2;
+        for (k, x) in q.to_array().into_iter().enumerate() {
+            if k > 0 {
+                line.push(b' ');
+            }
+            line.put_f32(&mut rb, x);
+        }
+        line.push(b'\n');
+        line.append_to(&mut out);
     }
     out
 }
 
-/// `f a b c` lines (1-based) of V-table triples. Each line is put together
-/// in a small array and appended with one copy (appending the numbers one
-/// by one costs a `memmove` call each, more than the digits).
+/// `f a b c` lines (1-based) of V-table triples (see [`Line`]).
 fn face_text(ch: &[u32]) -> Vec<u8> {
     let mut out = Vec::with_capacity(ch.len() * 9);
-    // "f " + three ids of at most 10 digits with their separators + "\n"
-    let mut line = [0u8; 36];
-    line[..2].copy_from_slice(b"f ");
+    let mut line = Line::new(b"f ");
     for tri in ch.chunks_exact(3) {
-        let mut at = put_u32(&mut line, 2, tri[0].wrapping_add(1));
-        line[at] = b' ';
-        at = put_u32(&mut line, at + 1, tri[1].wrapping_add(1));
-        line[at] = b' ';
-        at = put_u32(&mut line, at + 1, tri[2].wrapping_add(1));
-        line[at] = b'\n';
-        out.extend_from_slice(&line[..at + 1]);
+        line.at = 2;
+        line.put_u32(tri[0].wrapping_add(1));
+        line.push(b' ');
+        line.put_u32(tri[1].wrapping_add(1));
+        line.push(b' ');
+        line.put_u32(tri[2].wrapping_add(1));
+        line.push(b'\n');
+        line.append_to(&mut out);
     }
     out
+}
+
+/// One line of text being put together. Every copy into it and out of it
+/// has a size fixed at compile time, which the compiler turns into a few
+/// moves; appending each number to the output as it comes costs a
+/// `memmove` call per number, more than formatting the digits.
+struct Line {
+    bytes: [u8; Line::CAP],
+    /// Bytes of the line so far.
+    at: usize,
+}
+
+impl Line {
+    /// Room for `v` and three floats of at most 16 characters, or `f` and
+    /// three ids of at most 10 digits, with separators.
+    const CAP: usize = 64;
+
+    fn new(prefix: &[u8; 2]) -> Line {
+        let mut bytes = [0u8; Line::CAP];
+        bytes[..2].copy_from_slice(prefix);
+        Line { bytes, at: 2 }
+    }
+
+    #[inline(always)]
+    fn push(&mut self, b: u8) {
+        self.bytes[self.at] = b;
+        self.at += 1;
+    }
+
+    /// Appends `s` (a formatted number): two overlapping copies of 8 (or 4)
+    /// bytes cover every length from 8 to 16 (4 to 7), as `memcpy` does
+    /// inside, without the call.
+    #[inline(always)]
+    fn put(&mut self, s: &[u8]) {
+        let (at, n) = (self.at, s.len());
+        match n {
+            8..=16 => {
+                self.bytes[at..at + 8].copy_from_slice(&s[..8]);
+                self.bytes[at + n - 8..at + n].copy_from_slice(&s[n - 8..]);
+            }
+            4..=7 => {
+                self.bytes[at..at + 4].copy_from_slice(&s[..4]);
+                self.bytes[at + n - 4..at + n].copy_from_slice(&s[n - 4..]);
+            }
+            _ => self.bytes[at..at + n].copy_from_slice(s),
+        }
+        self.at += n;
+    }
+
+    /// The shortest text that reads back as `x` (zmij: Schubfach's shortest
+    /// round-trip digits, the same text as ryu's and faster); whole numbers
+    /// without ".0" (see [`push_f32`]).
+    #[inline(always)]
+    fn put_f32(&mut self, rb: &mut zmij::Buffer, x: f32) {
+        if x == x.trunc() && x.abs() < 1e7 && !(x == 0.0 && x.is_sign_negative()) {
+            if x < 0.0 {
+                self.push(b'-');
+            }
+            self.put_u32(x.abs() as u32);
+        } else {
+            self.put(rb.format_finite(x).as_bytes());
+        }
+    }
+
+    /// Appends the decimal digits of `x`.
+    #[inline(always)]
+    fn put_u32(&mut self, x: u32) {
+        self.at = put_u32(&mut self.bytes, self.at, x);
+    }
+
+    /// Appends the whole array to `out` (a fixed-size copy) and drops what
+    /// lies past the line.
+    #[inline(always)]
+    fn append_to(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.bytes);
+        out.truncate(out.len() - (Line::CAP - self.at));
+    }
 }
 
 /// Two decimal digits of every number below 100.
@@ -660,7 +715,7 @@ const DIGIT_PAIRS: &[u8; 200] = b"\
 /// Writes the decimal digits of `x` into `line` from `at`; returns the index
 /// after the last digit. `line` must have room for 10 digits from `at`.
 #[inline]
-fn put_u32(line: &mut [u8; 36], at: usize, mut x: u32) -> usize {
+fn put_u32(line: &mut [u8; Line::CAP], at: usize, mut x: u32) -> usize {
     let end = at + x.checked_ilog10().map_or(1, |d| d as usize + 1);
     let mut k = end;
     while x >= 100 {
@@ -816,13 +871,18 @@ mod tests {
             vec![0.0f32, -0.0, 1.0, -3.0, 0.1, 1.0 / 3.0, 1e-7, 3.4e38, f32::MIN_POSITIVE, 1e-45, 16_777_216.0];
         // a spread of magnitudes and mantissas
         xs.extend((0..2000u32).map(|i| f32::from_bits(i.wrapping_mul(2_654_435_761) & 0x7f7f_ffff)));
+        xs.extend(xs.clone().iter().map(|x| -x));
+        xs.extend([-1e6, -9_999_999.0, 9_999_999.0, 1e7, -1.5e7]);
         let mut b = zmij::Buffer::new();
-        for x in xs {
+        for &x in &xs {
             let mut out = Vec::new();
             push_f32(&mut out, &mut b, x);
             let text = std::str::from_utf8(&out).unwrap();
             let back: f32 = text.parse().unwrap();
             assert_eq!(back.to_bits(), x.to_bits(), "{x:e} written as {text}");
+            // the vertex lines put the same text together in a Line
+            let line = vertex_text(&[Vec3::new(x, 1.0, x)]);
+            assert_eq!(String::from_utf8(line).unwrap(), format!("v {text} 1 {text}\n"));
         }
     }
 }

@@ -20,7 +20,6 @@ use super::raw::{RawMesh, check_count, format_err};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
 use glam::{Vec2, Vec3};
-use std::io::Write;
 use std::path::Path;
 
 /// A scalar type of the header.
@@ -373,19 +372,26 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
             mesh.positions.len(),
             mesh.ct.num_triangles()
         );
-        w.write_all(header.as_bytes()).map_err(io)?;
+        let faces = mesh.ct.v_table().chunks(3 * FACE_ROWS).collect::<Vec<_>>();
+        let records = |k: usize| face_records(faces[k]);
+        let mut sink = |b: &[u8]| w.write_all(b).map_err(io);
         match colors {
             // little-endian f32 triples are the PLY records as they lie in memory
-            None if cfg!(target_endian = "little") => w.write_all(bytemuck::cast_slice(&mesh.positions)).map_err(io)?,
-            _ => write_vertices(w, &mesh.positions, colors).map_err(io)?,
+            None if cfg!(target_endian = "little") => {
+                let head = [header.as_bytes(), bytemuck::cast_slice(&mesh.positions)];
+                crate::io::write_formatted(&head, faces.len(), records, &mut sink)
+            }
+            _ => {
+                let vertices = vertex_records(&mesh.positions, colors);
+                crate::io::write_formatted(&[header.as_bytes(), &vertices], faces.len(), records, &mut sink)
+            }
         }
-        write_faces(w, mesh.ct.v_table()).map_err(io)
     })
 }
 
 /// Vertex records one by one (colours, or a big-endian machine).
-fn write_vertices(w: &mut dyn Write, positions: &[Vec3], colors: Option<&[Vec3]>) -> std::io::Result<()> {
-    let mut buf = Vec::with_capacity(1 << 20);
+fn vertex_records(positions: &[Vec3], colors: Option<&[Vec3]>) -> Vec<u8> {
+    let mut buf = Vec::with_capacity(positions.len() * if colors.is_some() { 15 } else { 12 });
     for (i, q) in positions.iter().enumerate() {
         for x in q.to_array() {
             buf.extend_from_slice(&x.to_le_bytes());
@@ -393,40 +399,24 @@ fn write_vertices(w: &mut dyn Write, positions: &[Vec3], colors: Option<&[Vec3]>
         if let Some(c) = colors {
             buf.extend(c[i].to_array().map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8));
         }
-        if buf.len() > (1 << 20) - 64 {
-            w.write_all(&buf)?;
-            buf.clear();
-        }
     }
-    w.write_all(&buf)
+    buf
 }
 
-/// Face records (`3 a b c`, 13 bytes), formatted in parallel chunks and
-/// written in order; memory stays bounded by one batch of chunks.
-fn write_faces(w: &mut dyn Write, v: &[u32]) -> std::io::Result<()> {
-    use rayon::prelude::*;
-    const TRIS: usize = 1 << 16;
-    const BATCH: usize = 16;
-    let chunks: Vec<&[u32]> = v.chunks(3 * TRIS).collect();
-    for batch in chunks.chunks(BATCH) {
-        let parts: Vec<Vec<u8>> = batch
-            .par_iter()
-            .map(|ch| {
-                let mut out = Vec::with_capacity(ch.len() / 3 * 13);
-                for tri in ch.chunks_exact(3) {
-                    out.push(3);
-                    for &i in tri {
-                        out.extend_from_slice(&i.to_le_bytes());
-                    }
-                }
-                out
-            })
-            .collect();
-        for p in parts {
-            w.write_all(&p)?;
+/// Triangles per chunk of face records.
+const FACE_ROWS: usize = 1 << 16;
+
+/// Face records (`3 a b c`, 13 bytes) of V-table triples.
+fn face_records(v: &[u32]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(v.len() / 3 * 13);
+    for tri in v.chunks_exact(3) {
+        let mut rec = [3u8; 13];
+        for (k, &i) in tri.iter().enumerate() {
+            rec[1 + 4 * k..5 + 4 * k].copy_from_slice(&i.to_le_bytes());
         }
+        out.extend_from_slice(&rec);
     }
-    Ok(())
+    out
 }
 
 /// Saves `mesh` as binary PLY (no colours).
