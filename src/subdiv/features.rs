@@ -33,6 +33,7 @@
 
 use super::rules::{Accumulate, Level, Rules, Sink};
 use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
+use crate::mesh::split::EdgeIds;
 use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -436,7 +437,7 @@ pub fn apply<R: Rules>(
     pos: Cow<'_, [Vec3]>,
     mut boundary: Vec<bool>,
     owners: &[u32],
-    w: &[u32],
+    ids: &EdgeIds,
     vout: &mut [Vec3],
     eout: &mut [Vec3],
 ) -> (f64, f64) {
@@ -459,18 +460,26 @@ pub fn apply<R: Rules>(
         let mut vcut = vec![Vec3::ZERO; ct.num_vertices()];
         let times = r.apply(&lv, owners, &pos, &mut vcut, eout);
         vout.copy_from_slice(&vcut[..vout.len()]);
-        correct(r, &lv, &f, w, &pos, vout, eout);
+        correct(r, &lv, &f, ids, &pos, vout, eout);
         times
     } else {
         let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
         let times = r.apply(&lv, owners, &pos, vout, eout);
-        correct(r, &lv, &f, w, &pos, vout, eout);
+        correct(r, &lv, &f, ids, &pos, vout, eout);
         times
     }
 }
 
 /// The feature vertices' and edges' points through their stencils.
-fn correct<R: Rules>(r: &R, lv: &Level, f: &Features, w: &[u32], pos: &[Vec3], vout: &mut [Vec3], eout: &mut [Vec3]) {
+fn correct<R: Rules>(
+    r: &R,
+    lv: &Level,
+    f: &Features,
+    ids: &EdgeIds,
+    pos: &[Vec3],
+    vout: &mut [Vec3],
+    eout: &mut [Vec3],
+) {
     if R::MOVES_VERTICES {
         let points: Vec<(usize, Vec3)> = f
             .vertices()
@@ -494,7 +503,8 @@ fn correct<R: Rules>(r: &R, lv: &Level, f: &Features, w: &[u32], pos: &[Vec3], v
         .map(|ef| {
             let mut acc = Accumulate::new(pos);
             edge_stencil(r, lv, ef.owner, &mut acc);
-            (w[ef.owner as usize] as usize, acc.sum)
+            // every feature edge is listed by its owner corner (Features::of)
+            (ids.rank(ef.owner) as usize, acc.sum)
         })
         .collect();
     for (e, q) in points {

@@ -246,17 +246,12 @@ impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
         self.stats.split_ms += ms(t0.elapsed());
         self.stats.numbering_ms += number_ms;
         let features = features::Features::of(old, self.creasing);
-        let split::EdgeNumbering { owners, w } = edges;
+        let split::EdgeNumbering { owners, ids } = edges;
         let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
         let (vpart, epart) = positions.split_at_mut(old.num_vertices());
         let (vms, ems) = match features {
-            None => {
-                // the per-corner edge ids are the split's alone: free them
-                // before the points are written (lower peak memory)
-                drop(w);
-                r.apply(&Level::with_boundary(old, boundary), &owners, &self.positions, vpart, epart)
-            }
-            Some(f) => features::apply(r, f, self.ct, self.positions, boundary, &owners, &w, vpart, epart),
+            None => r.apply(&Level::with_boundary(old, boundary), &owners, &self.positions, vpart, epart),
+            Some(f) => features::apply(r, f, self.ct, self.positions, boundary, &owners, &ids, vpart, epart),
         };
         self.stats.vertex_ms += vms;
         self.stats.edge_ms += ems;
