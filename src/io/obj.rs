@@ -93,16 +93,34 @@ fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
 /// # Errors
 /// [`Error::Parse`] with the line number for anything that is not valid OBJ.
 pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
+    // one check of the whole text (fast); where a byte is bad, the lines
+    // before it are read first, so that an earlier error is the one reported
+    match std::str::from_utf8(bytes) {
+        Ok(text) => parse_text(text, file),
+        Err(e) => {
+            let good = &bytes[..e.valid_up_to()];
+            let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |k| k + 1);
+            let ln = good.iter().filter(|&&b| b == b'\n').count() + 1;
+            // the bytes before the bad line's start are valid UTF-8
+            let before = std::str::from_utf8(&bytes[..start]).unwrap_or_default();
+            parse_text(before, file)?;
+            Err(parse_err(file, ln, "not text (invalid UTF-8): is this an OBJ file?"))
+        }
+    }
+}
+
+/// [`parse`] of text.
+fn parse_text(text: &str, file: &str) -> Result<RawObj> {
     let mut raw = RawObj::default();
     let mut poly = Polygon::default();
     let mut material = NO_MATERIAL;
-    for (lineno, line) in bytes.split(|&b| b == b'\n').enumerate() {
+    for (lineno, line) in text.split('\n').enumerate() {
         let ln = lineno + 1;
-        let line = line.strip_suffix(b"\r").unwrap_or(line);
-        let Ok(line) = std::str::from_utf8(line) else {
-            return Err(parse_err(file, ln, "not text (invalid UTF-8): is this an OBJ file?"));
+        // `#` and `\r` are ASCII: cutting at them keeps the text valid
+        let line = match line.bytes().position(|b| b == b'#') {
+            Some(k) => &line[..k],
+            None => line.strip_suffix('\r').unwrap_or(line),
         };
-        let line = line.split('#').next().unwrap_or("");
         let mut toks = line.split_ascii_whitespace();
         let Some(key) = toks.next() else { continue };
         let at = Loc { file, ln };
@@ -863,6 +881,24 @@ mod tests {
         let expected: String =
             v.chunks_exact(3).map(|t| format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1)).collect();
         assert_eq!(String::from_utf8(face_text(&v)).unwrap(), expected);
+    }
+
+    #[test]
+    fn the_first_error_in_the_file_is_reported_invalid_utf8_included() {
+        let line_of = |bytes: &[u8]| match parse(bytes, "m.obj") {
+            Err(Error::Parse { line, msg, .. }) => (line, msg),
+            other => panic!("expected a parse error, got {other:?}"),
+        };
+        let (line, msg) = line_of(b"v 0 0 0\nv 1 0 0\n# \xff\xfe\nf 1 2 3\n");
+        assert_eq!(line, 3);
+        assert!(msg.contains("UTF-8"), "{msg}");
+        // a bad record before the bad byte is the error reported
+        let (line, msg) = line_of(b"v 0 0 0\nv 1 zero 0\nv 0 1 0\n\xff\n");
+        assert_eq!(line, 2);
+        assert!(msg.contains("not a number"), "{msg}");
+        // comments and carriage returns are cut before the tokens
+        let raw = parse(b"v 0 0 0 # a comment\r\nv 1 0 0\r\nv 0 1 0#x\nf 1 2 3\r\n", "m.obj").expect("valid");
+        assert_eq!((raw.positions.len(), raw.triangles.len()), (3, 3));
     }
 
     #[test]

@@ -104,7 +104,10 @@ impl CornerTable {
             }
             other => other,
         })?;
-        let ct = CornerTable::from_vo(v, o_table, nvk).map_err(|e| match e {
+        // build_o pairs every corner with the one corner of the reversed
+        // half-edge or refuses the mesh, and V was checked above: the checks
+        // of from_vo would find nothing
+        let ct = CornerTable::with_fans(v, o_table, nvk).map_err(|e| match e {
             MeshError::NonManifoldVertex { vertex, fans } => {
                 MeshError::NonManifoldVertex { vertex: orig(vertex), fans }
             }
@@ -130,6 +133,15 @@ impl CornerTable {
     pub fn from_vo(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
         check_v(&v, nv)?;
         check_o(&v, &o)?;
+        Self::with_fans(v, o, nv)
+    }
+
+    /// [`CornerTable::from_vo`] for a V and O that have passed its checks,
+    /// or were made to pass them ([`CornerTable::build`] checks V itself and
+    /// makes O by pairing each half-edge with its one reversed twin): walks
+    /// every fan to fill C and the valences, and checks that every vertex
+    /// has exactly one fan.
+    fn with_fans(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
         let mut ct =
             CornerTable { v, o, vc: vec![BORDER; nv], valence: vec![0u32; nv], sharpness: None, generations: None };
         let mut visited = vec![false; ct.v.len()];
