@@ -584,7 +584,7 @@ pub fn load_tobj(path: &Path) -> Result<(Vec<Vec3>, Vec<u32>)> {
 /// round-trip digits, the same text as ryu's and faster); whole numbers
 /// without ".0".
 fn push_f32(out: &mut Vec<u8>, buf: &mut zmij::Buffer, x: f32) {
-    if x == x.trunc() && x.abs() < 1e7 && !(x == 0.0 && x.is_sign_negative()) {
+    if is_small_whole(x) {
         // "1" instead of "1.0": shorter and still exact (not for -0, which
         // would lose its sign)
         let mut ib = itoa::Buffer::new();
@@ -592,6 +592,15 @@ fn push_f32(out: &mut Vec<u8>, buf: &mut zmij::Buffer, x: f32) {
     } else {
         out.extend_from_slice(buf.format_finite(x).as_bytes());
     }
+}
+
+/// Whether `x` is a whole number below 10^7 in magnitude, and not -0:
+/// written without ".0" (shorter and still exact; -0 would lose its sign).
+/// The conversion to an integer and back is two instructions, where
+/// `x.trunc()` is a call into libm on the baseline x86_64.
+#[inline(always)]
+fn is_small_whole(x: f32) -> bool {
+    x.abs() < 1e7 && (x as i32) as f32 == x && !(x == 0.0 && x.is_sign_negative())
 }
 
 /// Formats OBJ text for `mesh` in parallel chunks and passes them, in order,
@@ -614,7 +623,9 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
 /// `v x y z` lines. Each line is put together in a small array and
 /// appended whole (see [`Line`]).
 fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(ch.len() * 36);
+    // room for the longest lines (and the whole Line copied past the last),
+    // so that the buffer is never moved while it grows
+    let mut out = Vec::with_capacity(ch.len() * Line::LONGEST + Line::CAP);
     let mut rb = zmij::Buffer::new();
     let mut line = Line::new(b"v ");
     for q in ch {
@@ -633,7 +644,7 @@ fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
 
 /// `f a b c` lines (1-based) of V-table triples (see [`Line`]).
 fn face_text(ch: &[u32]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(ch.len() * 9);
+    let mut out = Vec::with_capacity(ch.len() / 3 * Line::LONGEST + Line::CAP);
     let mut line = Line::new(b"f ");
     for tri in ch.chunks_exact(3) {
         line.at = 2;
@@ -662,6 +673,9 @@ impl Line {
     /// Room for `v` and three floats of at most 16 characters, or `f` and
     /// three ids of at most 10 digits, with separators.
     const CAP: usize = 64;
+    /// The longest line: `v` and three floats of 16 characters with their
+    /// separators (longer than any face line).
+    const LONGEST: usize = 2 + 3 * 16 + 3;
 
     fn new(prefix: &[u8; 2]) -> Line {
         let mut bytes = [0u8; Line::CAP];
@@ -700,7 +714,7 @@ impl Line {
     /// without ".0" (see [`push_f32`]).
     #[inline(always)]
     fn put_f32(&mut self, rb: &mut zmij::Buffer, x: f32) {
-        if x == x.trunc() && x.abs() < 1e7 && !(x == 0.0 && x.is_sign_negative()) {
+        if is_small_whole(x) {
             if x < 0.0 {
                 self.push(b'-');
             }
