@@ -604,7 +604,7 @@ fn is_small_whole(x: f32) -> bool {
 }
 
 /// Formats OBJ text for `mesh` in parallel chunks and passes them, in order,
-/// to `sink`, formatting and writing at once ([`crate::io::write_formatted`]).
+/// to `sink`: a helper thread formats the next chunks while this one writes.
 ///
 /// # Errors
 /// The first error of `sink`.
