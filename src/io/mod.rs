@@ -344,36 +344,24 @@ pub(crate) fn write_formatted(
 /// A file that asks the kernel to start writing back every 16 MiB as soon
 /// as it is written (`sync_file_range`, Linux), so that the disk works while
 /// the rest is formatted and the final `fsync` waits for the tail only.
-struct WriteAhead {
-    file: std::fs::File,
+struct WriteAhead<'a> {
+    file: &'a std::fs::File,
     /// Bytes written so far.
     written: u64,
     /// Bytes whose write-back has been started.
     started: u64,
 }
 
-impl WriteAhead {
+impl WriteAhead<'_> {
     const STEP: u64 = 16 << 20;
 }
 
-impl Write for WriteAhead {
+impl Write for WriteAhead<'_> {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
         let k = self.file.write(buf)?;
         self.written += k as u64;
         if self.written - self.started >= Self::STEP {
-            #[cfg(target_os = "linux")]
-            {
-                use std::os::fd::AsRawFd;
-                let (off, len) = (self.started as libc::off64_t, (self.written - self.started) as libc::off64_t);
-                // SAFETY: the descriptor belongs to `self.file`, open for as
-                // long as `self`; sync_file_range only starts the write-back
-                // of that range and reads or changes no memory of ours. An
-                // error (an old kernel, a file system without it) only means
-                // that the final fsync does all the work, so it is ignored.
-                unsafe {
-                    libc::sync_file_range(self.file.as_raw_fd(), off, len, libc::SYNC_FILE_RANGE_WRITE);
-                }
-            }
+            start_write_back(self.file, self.started, self.written - self.started);
             self.started = self.written;
         }
         Ok(k)
@@ -381,6 +369,31 @@ impl Write for WriteAhead {
     fn flush(&mut self) -> std::io::Result<()> {
         self.file.flush()
     }
+}
+
+/// Asks the kernel to start writing `len` bytes of `file` from `offset`
+/// back to the disk, without waiting (`sync_file_range`, Linux; elsewhere
+/// nothing): the final `fsync` then waits for what is left only.
+fn start_write_back(file: &std::fs::File, offset: u64, len: u64) {
+    #[cfg(target_os = "linux")]
+    {
+        use std::os::fd::AsRawFd;
+        // SAFETY: the descriptor belongs to `file`, open while it is
+        // borrowed; sync_file_range only starts the write-back of that range
+        // and reads or changes no memory of ours. An error (an old kernel, a
+        // file system without it) only means that the final fsync does all
+        // the work, so it is ignored.
+        unsafe {
+            libc::sync_file_range(
+                file.as_raw_fd(),
+                offset as libc::off64_t,
+                len as libc::off64_t,
+                libc::SYNC_FILE_RANGE_WRITE,
+            );
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    let _ = (file, offset, len);
 }
 
 /// Buffer of the writers' files: small records are gathered, while a
@@ -397,22 +410,73 @@ const WRITE_BUFFER: usize = 64 << 10;
 /// # Errors
 /// The error of `f`, or an I/O error naming `path`.
 pub fn atomic_write(path: &Path, f: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
-    if std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
-        // a device or pipe (/dev/null, /dev/stdout): write into it, never
-        // rename a temporary file over it
-        let file = std::fs::OpenOptions::new().write(true).open(path).map_err(|e| Error::io(path, e))?;
+    if let Some(file) = open_device(path)? {
         let mut w = std::io::BufWriter::with_capacity(WRITE_BUFFER, file);
         f(&mut w)?;
         return w.into_inner().map(drop).map_err(|e| Error::io(path, e.into_error()));
     }
+    replace(path, |file| {
+        let mut w = std::io::BufWriter::with_capacity(WRITE_BUFFER, WriteAhead { file, written: 0, started: 0 });
+        f(&mut w)?;
+        w.into_inner().map(drop).map_err(|e| Error::io(path, e.into_error()))
+    })
+}
+
+/// [`atomic_write`] for a file whose pieces have offsets known before any
+/// is made (a header and records of fixed size): `piece(k)` gives piece
+/// `k`'s offset and bytes, and the pieces are made and written in parallel,
+/// each at its offset (`pwrite`), its write-back started at once, so that
+/// the copying into the page cache runs on every thread. Into a device or
+/// a pipe they are written in order, so piece `k + 1` must start where
+/// piece `k` ends.
+///
+/// # Errors
+/// An I/O error naming `path`.
+pub(crate) fn atomic_write_pieces<'a>(
+    path: &Path,
+    pieces: usize,
+    piece: impl Fn(usize) -> (u64, std::borrow::Cow<'a, [u8]>) + Sync,
+) -> Result<()> {
+    let io = |e| Error::io(path, e);
+    if let Some(mut file) = open_device(path)? {
+        return (0..pieces).try_for_each(|k| file.write_all(&piece(k).1).map_err(io));
+    }
+    #[cfg(unix)]
+    return replace(path, |file| {
+        use rayon::prelude::*;
+        use std::os::unix::fs::FileExt;
+        (0..pieces).into_par_iter().try_for_each(|k| {
+            let (offset, bytes) = piece(k);
+            file.write_all_at(&bytes, offset).map_err(io)?;
+            start_write_back(file, offset, bytes.len() as u64);
+            Ok(())
+        })
+    });
+    #[cfg(not(unix))]
+    atomic_write(path, |w| (0..pieces).try_for_each(|k| w.write_all(&piece(k).1).map_err(io)))
+}
+
+/// `path` opened for writing when it is a device or a pipe (`/dev/null`,
+/// `/dev/stdout`): written into, never replaced by a renamed file.
+fn open_device(path: &Path) -> Result<Option<std::fs::File>> {
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir()) {
+        let file = std::fs::OpenOptions::new().write(true).open(path).map_err(|e| Error::io(path, e))?;
+        return Ok(Some(file));
+    }
+    Ok(None)
+}
+
+/// Writes a temporary file beside `path` with `write`, makes it durable
+/// (`fsync`, so that a crash cannot leave a renamed but empty file) and
+/// renames it over `path`; on an error the temporary file is removed and
+/// `path` left as it was.
+fn replace(path: &Path, write: impl FnOnce(&std::fs::File) -> Result<()>) -> Result<()> {
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
     let tmp: PathBuf = dir.join(format!(".{name}.{}.tmp", std::process::id()));
     let result = (|| {
         let file = std::fs::File::create(&tmp).map_err(|e| Error::io(path, e))?;
-        let mut w = std::io::BufWriter::with_capacity(WRITE_BUFFER, WriteAhead { file, written: 0, started: 0 });
-        f(&mut w)?;
-        let file = w.into_inner().map_err(|e| Error::io(path, e.into_error()))?.file;
+        write(&file)?;
         file.sync_all().ok();
         std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e))
     })();

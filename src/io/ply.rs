@@ -15,11 +15,11 @@
 //! since 2020, allocates what the header claims and panics on some
 //! malformed input; this reader is 300 lines with none of those.
 
-use super::atomic_write;
 use super::raw::{RawMesh, check_count, format_err};
+use crate::Result;
 use crate::mesh::Mesh;
-use crate::{Error, Result};
 use glam::{Vec2, Vec3};
+use std::borrow::Cow;
 use std::path::Path;
 
 /// A scalar type of the header.
@@ -223,7 +223,7 @@ impl Body<'_> {
 /// Reads a PLY file's triangles with colours and texture coordinates.
 ///
 /// # Errors
-/// [`Error::Format`] naming the file and the element: a bad header, a count
+/// [`crate::Error::Format`] naming the file and the element: a bad header, a count
 /// the file cannot hold, a truncated or unreadable record, a face with fewer
 /// than 3 vertices or an index out of range.
 pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
@@ -364,29 +364,39 @@ fn read_faces(body: &mut Body, el: &Element, count: usize, file: &str, raw: &mut
 /// I/O errors naming `path`.
 pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
     let colors = colors.filter(|c| c.len() == mesh.positions.len());
-    atomic_write(path, |w| {
-        let io = |e| Error::io(path, e);
-        let rgb = if colors.is_some() { "property uchar red\nproperty uchar green\nproperty uchar blue\n" } else { "" };
-        let header = format!(
-            "ply\nformat binary_little_endian 1.0\ncomment written by subdiv\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n{rgb}element face {}\nproperty list uchar int vertex_indices\nend_header\n",
-            mesh.positions.len(),
-            mesh.ct.num_triangles()
-        );
-        let faces = mesh.ct.v_table().chunks(3 * FACE_ROWS).collect::<Vec<_>>();
-        let records = |k: usize| face_records(faces[k]);
-        let mut sink = |b: &[u8]| w.write_all(b).map_err(io);
-        match colors {
-            // little-endian f32 triples are the PLY records as they lie in memory
-            None if cfg!(target_endian = "little") => {
-                let head = [header.as_bytes(), bytemuck::cast_slice(&mesh.positions)];
-                crate::io::write_formatted(&head, faces.len(), records, &mut sink)
-            }
-            _ => {
-                let vertices = vertex_records(&mesh.positions, colors);
-                crate::io::write_formatted(&[header.as_bytes(), &vertices], faces.len(), records, &mut sink)
-            }
+    let rgb = if colors.is_some() { "property uchar red\nproperty uchar green\nproperty uchar blue\n" } else { "" };
+    let header = format!(
+        "ply\nformat binary_little_endian 1.0\ncomment written by subdiv\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n{rgb}element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        mesh.positions.len(),
+        mesh.ct.num_triangles()
+    );
+    // every record has a fixed size, so every piece's offset is known: the
+    // pieces are made and written in parallel (io::atomic_write_pieces)
+    let vertex_size = if colors.is_some() { 15 } else { 12 };
+    let (nv, nt) = (mesh.positions.len(), mesh.ct.num_triangles());
+    let (vertex_pieces, face_pieces) = (nv.div_ceil(VERTEX_ROWS), nt.div_ceil(FACE_ROWS));
+    let faces_at = (header.len() + nv * vertex_size) as u64;
+    let piece = |k: usize| -> (u64, Cow<'_, [u8]>) {
+        if k == 0 {
+            return (0, Cow::Borrowed(header.as_bytes()));
         }
-    })
+        if k <= vertex_pieces {
+            let first = (k - 1) * VERTEX_ROWS;
+            let rows = first..(first + VERTEX_ROWS).min(nv);
+            let at = (header.len() + first * vertex_size) as u64;
+            return match colors {
+                // little-endian f32 triples are the PLY records as they lie in memory
+                None if cfg!(target_endian = "little") => {
+                    (at, Cow::Borrowed(bytemuck::cast_slice(&mesh.positions[rows])))
+                }
+                _ => (at, Cow::Owned(vertex_records(&mesh.positions[rows.clone()], colors.map(|c| &c[rows])))),
+            };
+        }
+        let first = (k - 1 - vertex_pieces) * FACE_ROWS;
+        let tris = &mesh.ct.v_table()[3 * first..3 * (first + FACE_ROWS).min(nt)];
+        (faces_at + 13 * first as u64, Cow::Owned(face_records(tris)))
+    };
+    crate::io::atomic_write_pieces(path, 1 + vertex_pieces + face_pieces, piece)
 }
 
 /// Vertex records one by one (colours, or a big-endian machine).
@@ -402,6 +412,9 @@ fn vertex_records(positions: &[Vec3], colors: Option<&[Vec3]>) -> Vec<u8> {
     }
     buf
 }
+
+/// Vertices per piece of vertex records (about 1 MB).
+const VERTEX_ROWS: usize = 1 << 16;
 
 /// Triangles per chunk of face records.
 const FACE_ROWS: usize = 1 << 16;
@@ -425,4 +438,34 @@ fn face_records(v: &[u32]) -> Vec<u8> {
 /// I/O errors naming `path`.
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
     save_with(path, mesh, None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pieces_written_in_parallel_read_back_as_the_mesh_with_and_without_colours() {
+        // more vertices and faces than one piece holds, and a partial last piece
+        let m = crate::mesh::shapes::icosphere(7);
+        assert!(m.positions.len() > 2 * VERTEX_ROWS && m.ct.num_triangles() > 2 * FACE_ROWS);
+        let colors: Vec<Vec3> = m.positions.iter().map(|p| (*p * 0.5 + 0.5).clamp(Vec3::ZERO, Vec3::ONE)).collect();
+        let dir = std::env::temp_dir().join(format!("subdiv-ply-pieces-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temporary directory");
+        for c in [None, Some(&colors[..])] {
+            let path = dir.join("m.ply");
+            save_with(&path, &m, c).expect("saved");
+            let bytes = std::fs::read(&path).expect("read back");
+            let raw = parse(&bytes, "m.ply").expect("parsed");
+            assert!(raw.positions == m.positions, "positions, colours {}", c.is_some());
+            assert!(raw.triangles == m.ct.v_table(), "triangles, colours {}", c.is_some());
+            if let (Some(got), Some(want)) = (&raw.colors, c) {
+                let byte = |x: f32| (x.clamp(0.0, 1.0) * 255.0).round();
+                assert!(got.iter().zip(want).all(|(g, w)| (*g * 255.0).round() == w.to_array().map(byte).into()));
+            } else {
+                assert_eq!(raw.colors.is_some(), c.is_some());
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
