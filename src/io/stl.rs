@@ -9,7 +9,6 @@
 //! Hand-written (the format is a page long): `stl_io` allocates the count a
 //! binary header claims before reading it.
 
-use super::atomic_write;
 use super::raw::{RawMesh, check_count, format_err};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
@@ -110,27 +109,65 @@ fn parse_ascii(bytes: &[u8], file: &str) -> Result<RawMesh> {
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
     let nt = u32::try_from(mesh.ct.num_triangles())
         .map_err(|_| Error::Usage(format!("{}: too many triangles for STL", path.display())))?;
-    atomic_write(path, |w| {
-        let io = |e| Error::io(path, e);
-        let mut header = [b' '; 80];
-        header[..20].copy_from_slice(b"binary STL by subdiv");
-        w.write_all(&header).map_err(io)?;
-        w.write_all(&nt.to_le_bytes()).map_err(io)?;
-        let mut buf = Vec::with_capacity(1 << 20);
-        for tri in mesh.ct.v_table().chunks_exact(3) {
-            let [a, b, c] = [0, 1, 2].map(|k| mesh.positions[tri[k] as usize]);
-            let n = (b - a).cross(c - a).normalize_or_zero();
-            for p in [n, a, b, c] {
-                for x in p.to_array() {
-                    buf.extend_from_slice(&x.to_le_bytes());
-                }
-            }
-            buf.extend_from_slice(&[0, 0]);
-            if buf.len() > (1 << 20) - 64 {
-                w.write_all(&buf).map_err(io)?;
-                buf.clear();
+    let mut header = [b' '; 84];
+    header[..20].copy_from_slice(b"binary STL by subdiv");
+    header[80..].copy_from_slice(&nt.to_le_bytes());
+    // 50 bytes a triangle: every piece's offset is known, so the pieces are
+    // made and written in parallel (io::atomic_write_pieces)
+    const ROWS: usize = 1 << 14;
+    let v = mesh.ct.v_table();
+    let pieces = (nt as usize).div_ceil(ROWS);
+    crate::io::atomic_write_pieces(path, 1 + pieces, |k| {
+        if k == 0 {
+            return (0, std::borrow::Cow::Borrowed(&header[..]));
+        }
+        let first = (k - 1) * ROWS;
+        let tris = &v[3 * first..3 * (first + ROWS).min(nt as usize)];
+        (84 + 50 * first as u64, std::borrow::Cow::Owned(facets(&mesh.positions, tris)))
+    })
+}
+
+/// Facet records (normal, three corners, a zero attribute count) of
+/// V-table triples.
+fn facets(positions: &[Vec3], tris: &[u32]) -> Vec<u8> {
+    let mut buf = Vec::with_capacity(tris.len() / 3 * 50);
+    for tri in tris.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| positions[tri[k] as usize]);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        for p in [n, a, b, c] {
+            for x in p.to_array() {
+                buf.extend_from_slice(&x.to_le_bytes());
             }
         }
-        w.write_all(&buf).map_err(io)
-    })
+        buf.extend_from_slice(&[0, 0]);
+    }
+    buf
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn facets_written_in_parallel_pieces_read_back_in_order() {
+        let m = crate::mesh::shapes::icosphere(6);
+        assert!(m.ct.num_triangles() > 2 * (1 << 14), "several pieces and a partial last one");
+        let dir = std::env::temp_dir().join(format!("subdiv-stl-pieces-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temporary directory");
+        let path = dir.join("m.stl");
+        save(&path, &m).expect("saved");
+        let bytes = std::fs::read(&path).expect("read back");
+        assert_eq!(bytes.len(), 84 + 50 * m.ct.num_triangles());
+        // every facet's corners, in triangle order
+        for (t, tri) in m.ct.v_table().chunks_exact(3).enumerate() {
+            let rec = &bytes[84 + 50 * t..84 + 50 * (t + 1)];
+            for (k, &v) in tri.iter().enumerate() {
+                let at = 12 + 12 * k;
+                let p: Vec<f32> =
+                    rec[at..at + 12].chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
+                assert_eq!(p, m.positions[v as usize].to_array(), "triangle {t} corner {k}");
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
