@@ -301,8 +301,9 @@ fn ext(path: &Path) -> String {
 /// job order, to `sink`: a helper thread formats batches of jobs over
 /// rayon's threads while this thread writes the batch before (and `head`
 /// while the first batch is formatted), so formatting and writing overlap.
-/// Memory stays bounded by two batches. The OBJ text and the PLY face
-/// records are written through it.
+/// Memory stays bounded by two batches. For text, whose pieces' offsets are
+/// known only once formatted (OBJ); records of fixed size go through
+/// [`atomic_write_pieces`] instead.
 ///
 /// # Errors
 /// The first error of `sink`; formatting stops after it.
