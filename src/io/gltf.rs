@@ -19,7 +19,6 @@
 //! and `COLOR_0` when the mesh has them (corners become vertices when there
 //! are texture coordinates, since glTF's are per vertex), `u32` indices.
 
-use super::atomic_write;
 use super::raw::{RawMesh, format_err};
 use crate::mesh::Mesh;
 use crate::mesh::attributes::Attributes;
@@ -27,6 +26,8 @@ use crate::{Error, Result};
 use glam::{Mat4, Vec2, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
+use rayon::prelude::*;
+use std::borrow::Cow;
 use std::path::Path;
 
 /// Longest chain of nodes followed, and most node visits (a malformed file
@@ -328,92 +329,160 @@ fn base64(s: &str) -> Option<Vec<u8>> {
     Some(out)
 }
 
-/// The arrays of the one primitive written, and the JSON naming them.
-struct Packed {
-    bin: Vec<u8>,
-    views: Vec<String>,
-    accessors: Vec<String>,
-    attributes: Vec<String>,
+/// One array of the primitive written: its attribute name (`None`: the
+/// indices), its bytes, its element count, glTF type and component type,
+/// and extra accessor JSON (bounds).
+struct View<'a> {
+    name: Option<&'static str>,
+    bytes: Cow<'a, [u8]>,
+    count: usize,
+    ty: &'static str,
+    ctype: u32,
+    extra: String,
 }
 
-impl Packed {
-    fn push(&mut self, name: Option<&str>, data: &[u8], count: usize, ty: &str, ctype: u32, minmax: &str) {
-        let (offset, len) = (self.bin.len(), data.len());
-        self.bin.extend_from_slice(data);
-        let target = if name.is_some() { 34962 } else { 34963 };
-        self.views.push(format!("{{\"buffer\":0,\"byteOffset\":{offset},\"byteLength\":{len},\"target\":{target}}}"));
-        let i = self.accessors.len();
-        self.accessors.push(format!(
-            "{{\"bufferView\":{i},\"componentType\":{ctype},\"count\":{count},\"type\":\"{ty}\"{minmax}}}"
-        ));
-        if let Some(n) = name {
-            self.attributes.push(format!("\"{n}\":{i}"));
-        }
+/// Little-endian bytes of plain values: their memory as it lies on a
+/// little-endian machine, converted in parallel elsewhere.
+fn le_bytes<T: bytemuck::Pod + Sync>(a: &[T], to_le: impl Fn(&T) -> Vec<u8> + Sync + Send) -> Cow<'_, [u8]> {
+    if cfg!(target_endian = "little") {
+        Cow::Borrowed(bytemuck::cast_slice(a))
+    } else {
+        Cow::Owned(a.par_iter().flat_map_iter(to_le).collect())
     }
 }
 
-fn f32_bytes(v: impl IntoIterator<Item = f32>) -> Vec<u8> {
-    v.into_iter().flat_map(f32::to_le_bytes).collect()
+/// Points as little-endian bytes: per vertex, or picked per corner
+/// (`per_corner`, the V table) in parallel.
+fn points<'a>(a: &'a [Vec3], per_corner: Option<&[u32]>) -> Cow<'a, [u8]> {
+    match per_corner {
+        Some(v) => Cow::Owned(
+            v.par_iter().flat_map_iter(|&i| a[i as usize].to_array().map(f32::to_le_bytes)).flatten().collect(),
+        ),
+        None => le_bytes(a, |p: &Vec3| p.to_array().iter().flat_map(|x| x.to_le_bytes()).collect()),
+    }
 }
 
 /// Saves `mesh` as binary glTF (`.glb`) with vertex normals, and texture
 /// coordinates and colours when `attrs` has them.
 ///
+/// Every array's offset is known before any is written, so the file is
+/// written in pieces of about 1 MB, in parallel ([`super::atomic_write_pieces`]);
+/// positions, normals and indices go from memory as they lie when there are
+/// no texture coordinates.
+///
 /// # Errors
-/// I/O errors naming `path`.
+/// I/O errors naming `path`; a mesh too large for a `.glb` (4 GiB).
 pub fn save(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     let normals = mesh.vertex_normals();
     let v = mesh.ct.v_table();
     let uv = attrs.uv.as_ref().filter(|u| u.len() == v.len());
     let colors = attrs.colors.as_ref().filter(|c| c.len() == mesh.positions.len());
     // with per-corner UVs every corner is its own vertex
-    let vertex_of: Vec<u32> = if uv.is_some() { v.to_vec() } else { (0..mesh.positions.len() as u32).collect() };
-    let pick = |a: &[Vec3]| f32_bytes(vertex_of.iter().flat_map(|&i| a[i as usize].to_array()));
+    let per_corner = uv.map(|_| v);
     let (lo, hi) = mesh.bounds();
     let minmax = format!(",\"min\":[{},{},{}],\"max\":[{},{},{}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
-    let n = vertex_of.len();
-    let mut p = Packed { bin: Vec::new(), views: Vec::new(), accessors: Vec::new(), attributes: Vec::new() };
-    p.push(Some("POSITION"), &pick(&mesh.positions), n, "VEC3", 5126, &minmax);
-    p.push(Some("NORMAL"), &pick(&normals), n, "VEC3", 5126, "");
+    let n = if uv.is_some() { v.len() } else { mesh.positions.len() };
+    let view = |name, bytes, count, ty, ctype, extra| View { name, bytes, count, ty, ctype, extra };
+    let mut views = vec![
+        view(Some("POSITION"), points(&mesh.positions, per_corner), n, "VEC3", 5126, minmax),
+        view(Some("NORMAL"), points(&normals, per_corner), n, "VEC3", 5126, String::new()),
+    ];
     if let Some(uv) = uv {
-        let flipped = f32_bytes(uv.iter().flat_map(|t| [t.x, 1.0 - t.y]));
-        p.push(Some("TEXCOORD_0"), &flipped, n, "VEC2", 5126, "");
+        let flipped = uv.par_iter().flat_map_iter(|t| [t.x, 1.0 - t.y].map(f32::to_le_bytes)).flatten().collect();
+        views.push(view(Some("TEXCOORD_0"), Cow::Owned(flipped), n, "VEC2", 5126, String::new()));
     }
     if let Some(c) = colors {
-        p.push(Some("COLOR_0"), &pick(c), n, "VEC3", 5126, "");
+        views.push(view(Some("COLOR_0"), points(c, per_corner), n, "VEC3", 5126, String::new()));
     }
-    let indices: Vec<u8> = if uv.is_some() {
-        (0..v.len() as u32).flat_map(u32::to_le_bytes).collect()
-    } else {
-        v.iter().flat_map(|i| i.to_le_bytes()).collect()
+    let indices = match uv {
+        Some(_) => Cow::Owned((0..v.len() as u32).into_par_iter().flat_map_iter(u32::to_le_bytes).collect()),
+        None => le_bytes(v, |i: &u32| i.to_le_bytes().to_vec()),
     };
-    p.push(None, &indices, v.len(), "SCALAR", 5125, "");
+    views.push(view(None, indices, v.len(), "SCALAR", 5125, String::new()));
+    let (head, offsets) = glb_head(&views, path)?;
+    // pieces: the head, then every array in slices of about 1 MB
+    const SLICE: usize = 1 << 20;
+    let mut pieces: Vec<(u64, &[u8])> = vec![(0, &head[..])];
+    for (w, &at) in views.iter().zip(&offsets) {
+        pieces.extend(w.bytes.chunks(SLICE).enumerate().map(|(k, b)| ((head.len() + at + k * SLICE) as u64, b)));
+    }
+    super::atomic_write_pieces(path, pieces.len(), |k| (pieces[k].0, Cow::Borrowed(pieces[k].1)))
+}
+
+/// The `.glb` header, JSON chunk and binary chunk header for `views` laid
+/// out one after the other (each a multiple of 4 bytes), and each view's
+/// offset in the binary chunk.
+fn glb_head(views: &[View], path: &Path) -> Result<(Vec<u8>, Vec<usize>)> {
+    let (mut json_views, mut accessors, mut attributes, mut offsets) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut offset = 0usize;
+    for (i, w) in views.iter().enumerate() {
+        let (len, target) = (w.bytes.len(), if w.name.is_some() { 34962 } else { 34963 });
+        json_views.push(format!("{{\"buffer\":0,\"byteOffset\":{offset},\"byteLength\":{len},\"target\":{target}}}"));
+        accessors.push(format!(
+            "{{\"bufferView\":{i},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}",
+            w.ctype, w.count, w.ty, w.extra
+        ));
+        if let Some(name) = w.name {
+            attributes.push(format!("\"{name}\":{i}"));
+        }
+        offsets.push(offset);
+        offset += len;
+    }
     let json = format!(
-        "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"subdiv\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"mesh\":0}}],\"meshes\":[{{\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"mode\":4}}]}}],\"buffers\":[{{\"byteLength\":{}}}],\"bufferViews\":[{}],\"accessors\":[{}]}}",
-        p.attributes.join(","),
-        p.accessors.len() - 1,
-        p.bin.len(),
-        p.views.join(","),
-        p.accessors.join(",")
+        "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"subdiv\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"mesh\":0}}],\"meshes\":[{{\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"mode\":4}}]}}],\"buffers\":[{{\"byteLength\":{offset}}}],\"bufferViews\":[{}],\"accessors\":[{}]}}",
+        attributes.join(","),
+        accessors.len() - 1,
+        json_views.join(","),
+        accessors.join(",")
     );
     let mut json = json.into_bytes();
     json.resize(json.len().next_multiple_of(4), b' ');
-    p.bin.resize(p.bin.len().next_multiple_of(4), 0);
-    let total = 12 + 8 + json.len() + 8 + p.bin.len();
-    let total =
-        u32::try_from(total).map_err(|_| Error::Usage(format!("{}: too large for a .glb (4 GiB)", path.display())))?;
-    atomic_write(path, |w| {
-        let io = |e| Error::io(path, e);
-        let mut head = Vec::with_capacity(28);
-        head.extend_from_slice(b"glTF");
-        head.extend_from_slice(&2u32.to_le_bytes());
-        head.extend_from_slice(&total.to_le_bytes());
-        head.extend_from_slice(&(json.len() as u32).to_le_bytes());
-        head.extend_from_slice(b"JSON");
-        w.write_all(&head).map_err(io)?;
-        w.write_all(&json).map_err(io)?;
-        w.write_all(&(p.bin.len() as u32).to_le_bytes()).map_err(io)?;
-        w.write_all(b"BIN\0").map_err(io)?;
-        w.write_all(&p.bin).map_err(io)
-    })
+    // every view holds 4-byte values, so the binary chunk needs no padding
+    let total = 12 + 8 + json.len() + 8 + offset;
+    let too_large = || Error::Usage(format!("{}: too large for a .glb (4 GiB)", path.display()));
+    let total = u32::try_from(total).map_err(|_| too_large())?;
+    let bin_len = u32::try_from(offset).map_err(|_| too_large())?;
+    let mut head = Vec::with_capacity(28 + json.len());
+    head.extend_from_slice(b"glTF");
+    head.extend_from_slice(&2u32.to_le_bytes());
+    head.extend_from_slice(&total.to_le_bytes());
+    head.extend_from_slice(&(json.len() as u32).to_le_bytes());
+    head.extend_from_slice(b"JSON");
+    head.extend_from_slice(&json);
+    head.extend_from_slice(&bin_len.to_le_bytes());
+    head.extend_from_slice(b"BIN\0");
+    Ok((head, offsets))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_glb_written_in_parallel_pieces_reads_back_as_the_mesh() {
+        // every array in several 1 MB slices, and a last partial one
+        let m = crate::mesh::shapes::icosphere(7);
+        assert!(m.ct.v_table().len() * 4 > 3 << 20 && m.positions.len() * 12 > 1 << 20);
+        let dir = std::env::temp_dir().join(format!("subdiv-glb-pieces-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temporary directory");
+        let path = dir.join("m.glb");
+        save(&path, &m, &Attributes::default()).expect("saved");
+        let bytes = std::fs::read(&path).expect("read back");
+        let raw = parse(&bytes, "m.glb").expect("a valid glb");
+        // the icosphere has no coincident vertices, so nothing is welded
+        assert!(raw.positions == m.positions, "positions");
+        assert!(raw.triangles == m.ct.v_table(), "triangles");
+        // the normals: the binary chunk's second array, after the positions
+        let json_len = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
+        let at = 20 + json_len + 8 + 12 * m.positions.len();
+        let normals: Vec<f32> = bytes[at..at + 12 * m.positions.len()]
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+            .collect();
+        for (n, p) in normals.chunks_exact(3).zip(&m.positions) {
+            // a sphere's vertex normal points along the vertex
+            assert!(Vec3::from_slice(n).dot(p.normalize()) > 0.999);
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 }
