@@ -22,6 +22,7 @@
 //! is allocated.
 
 use super::atomic_write;
+use super::text::Line;
 use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
 use crate::mesh::{BORDER, CornerTable, Mesh};
 use crate::{Error, MeshError, Result};
@@ -261,41 +262,113 @@ pub fn load_raw(path: &Path) -> Result<RawCt> {
 /// # Errors
 /// I/O errors.
 pub fn write(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
-    writeln!(w, "{}", mesh.positions.len())?;
-    for q in &mesh.positions {
-        // Display prints the shortest string that reads back to the same f32
-        writeln!(w, "{} {} {}", q.x, q.y, q.z)?;
+    let text = Text::of(mesh);
+    for k in 0..text.chunks() {
+        w.write_all(&text.chunk(k))?;
     }
-    writeln!(w, "{}", mesh.ct.num_triangles())?;
-    for tri in mesh.ct.v_table().chunks_exact(3) {
-        writeln!(w, "{} {} {}", tri[0], tri[1], tri[2])?;
-    }
-    for row in mesh.ct.o_table().chunks_exact(3) {
-        let f = |x: u32| if x == BORDER { -1 } else { i64::from(x) };
-        writeln!(w, "{} {} {}", f(row[0]), f(row[1]), f(row[2]))?;
-    }
-    if let Some(s) = mesh.ct.sharpness() {
-        let tags = s.to_tags(&mesh.ct);
-        if !tags.creases.is_empty() {
-            writeln!(w, "creases {}", tags.creases.len())?;
-            for t in &tags.creases {
-                writeln!(w, "{} {} {}", t.v0, t.v1, t.sharpness)?;
-            }
-        }
-        if !tags.corners.is_empty() {
-            writeln!(w, "corners {}", tags.corners.len())?;
-            for t in &tags.corners {
-                writeln!(w, "{} {}", t.vertex, t.sharpness)?;
-            }
-        }
-    }
-    Ok(())
+    w.write_all(&text.tags())
 }
 
-/// Saves `mesh` as `.ct` (atomically).
+/// Saves `mesh` as `.ct` (atomically), its chunks of lines formatted in
+/// parallel and written in order (`io::write_formatted`).
 ///
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
-    atomic_write(path, |w| write(w, mesh).map_err(|e| Error::io(path, e)))
+    let text = Text::of(mesh);
+    atomic_write(path, |w| {
+        let mut sink = |b: &[u8]| w.write_all(b).map_err(|e| Error::io(path, e));
+        super::write_formatted(&[], text.chunks(), |k| text.chunk(k), &mut sink)?;
+        sink(&text.tags())
+    })
+}
+
+/// The text of a `.ct` file in chunks of lines: the vertex count and the
+/// positions (shortest strings that read back to the same f32, as `Display`
+/// prints them), the triangle count and the V table, the O table (`-1` on
+/// the border), then the sharpness tags.
+struct Text<'a> {
+    mesh: &'a Mesh,
+    vertex_chunks: usize,
+    triangle_chunks: usize,
+}
+
+impl<'a> Text<'a> {
+    /// Lines per chunk.
+    const ROWS: usize = 1 << 15;
+
+    fn of(mesh: &'a Mesh) -> Self {
+        let (nv, nt) = (mesh.positions.len(), mesh.ct.num_triangles());
+        Text { mesh, vertex_chunks: nv.div_ceil(Self::ROWS).max(1), triangle_chunks: nt.div_ceil(Self::ROWS).max(1) }
+    }
+
+    fn chunks(&self) -> usize {
+        self.vertex_chunks + 2 * self.triangle_chunks
+    }
+
+    /// Chunk `k`: vertex lines, then V lines, then O lines.
+    fn chunk(&self, k: usize) -> Vec<u8> {
+        use std::io::Write;
+        let mut out = Vec::new();
+        let rows = |j: usize, n: usize| j * Self::ROWS..((j + 1) * Self::ROWS).min(n);
+        if k < self.vertex_chunks {
+            if k == 0 {
+                out.extend_from_slice(format!("{}\n", self.mesh.positions.len()).as_bytes());
+            }
+            for q in &self.mesh.positions[rows(k, self.mesh.positions.len())] {
+                // Display prints the shortest string that reads back to the same f32
+                let _ = writeln!(out, "{} {} {}", q.x, q.y, q.z);
+            }
+            return out;
+        }
+        let nt = self.mesh.ct.num_triangles();
+        let (j, table) = match k - self.vertex_chunks {
+            j if j < self.triangle_chunks => (j, self.mesh.ct.v_table()),
+            j => (j - self.triangle_chunks, self.mesh.ct.o_table()),
+        };
+        if k == self.vertex_chunks {
+            out.extend_from_slice(format!("{nt}\n").as_bytes());
+        }
+        let r = rows(j, nt);
+        let mut line: Line = Line::new(b"");
+        for row in table[3 * r.start..3 * r.end].chunks_exact(3) {
+            line.reset();
+            for (i, &x) in row.iter().enumerate() {
+                if i > 0 {
+                    line.push(b' ');
+                }
+                if x == BORDER {
+                    line.push(b'-');
+                    line.push(b'1');
+                } else {
+                    line.put_u32(x);
+                }
+            }
+            line.push(b'\n');
+            line.append_to(&mut out);
+        }
+        out
+    }
+
+    /// The `creases` and `corners` sections, when there are sharp features.
+    fn tags(&self) -> Vec<u8> {
+        use std::io::Write;
+        let mut w = Vec::new();
+        if let Some(s) = self.mesh.ct.sharpness() {
+            let tags = s.to_tags(&self.mesh.ct);
+            if !tags.creases.is_empty() {
+                let _ = writeln!(w, "creases {}", tags.creases.len());
+                for t in &tags.creases {
+                    let _ = writeln!(w, "{} {} {}", t.v0, t.v1, t.sharpness);
+                }
+            }
+            if !tags.corners.is_empty() {
+                let _ = writeln!(w, "corners {}", tags.corners.len());
+                for t in &tags.corners {
+                    let _ = writeln!(w, "{} {}", t.vertex, t.sharpness);
+                }
+            }
+        }
+        w
+    }
 }

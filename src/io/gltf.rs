@@ -366,7 +366,7 @@ fn points<'a>(a: &'a [Vec3], per_corner: Option<&[u32]>) -> Cow<'a, [u8]> {
 /// coordinates and colours when `attrs` has them.
 ///
 /// Every array's offset is known before any is written, so the file is
-/// written in pieces of about 1 MB, in parallel ([`super::atomic_write_pieces`]);
+/// written in pieces of about 1 MB, in parallel, each at its offset;
 /// positions, normals and indices go from memory as they lie when there are
 /// no texture coordinates.
 ///

@@ -16,6 +16,7 @@ pub mod off;
 pub mod ply;
 pub mod raw;
 pub mod stl;
+mod text;
 
 /// The mesh formats, as [`Format::of`] tells them apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

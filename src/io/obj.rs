@@ -11,6 +11,7 @@
 //! Writing formats chunks of lines in parallel (shortest round-trip floats).
 
 use super::atomic_write;
+use super::text::{self, Line};
 use crate::mesh::Mesh;
 use crate::mesh::attributes::{Attributes, Material, MaterialGroups};
 use crate::mesh::repair::{RepairReport, repair};
@@ -625,16 +626,16 @@ pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Resu
 fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
     // room for the longest lines (and the whole Line copied past the last),
     // so that the buffer is never moved while it grows
-    let mut out = Vec::with_capacity(ch.len() * Line::LONGEST + Line::CAP);
+    let mut out = Vec::with_capacity(ch.len() * text::LONGEST + 64);
     let mut rb = zmij::Buffer::new();
-    let mut line = Line::new(b"v ");
+    let mut line: Line = Line::new(b"v ");
     for q in ch {
-        line.at = 2;
+        line.reset();
         for (k, x) in q.to_array().into_iter().enumerate() {
             if k > 0 {
                 line.push(b' ');
             }
-            line.put_f32(&mut rb, x);
+            put_f32(&mut line, &mut rb, x);
         }
         line.push(b'\n');
         line.append_to(&mut out);
@@ -642,12 +643,27 @@ fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
     out
 }
 
+/// The shortest text that reads back as `x` (zmij: Schubfach's shortest
+/// round-trip digits, the same text as ryu's and faster); whole numbers
+/// without ".0" (see [`push_f32`]).
+#[inline(always)]
+fn put_f32(line: &mut Line, rb: &mut zmij::Buffer, x: f32) {
+    if is_small_whole(x) {
+        if x < 0.0 {
+            line.push(b'-');
+        }
+        line.put_u32(x.abs() as u32);
+    } else {
+        line.put(rb.format_finite(x).as_bytes());
+    }
+}
+
 /// `f a b c` lines (1-based) of V-table triples (see [`Line`]).
 fn face_text(ch: &[u32]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(ch.len() / 3 * Line::LONGEST + Line::CAP);
-    let mut line = Line::new(b"f ");
+    let mut out = Vec::with_capacity(ch.len() / 3 * text::LONGEST + 64);
+    let mut line: Line = Line::new(b"f ");
     for tri in ch.chunks_exact(3) {
-        line.at = 2;
+        line.reset();
         line.put_u32(tri[0].wrapping_add(1));
         line.push(b' ');
         line.put_u32(tri[1].wrapping_add(1));
@@ -657,112 +673,6 @@ fn face_text(ch: &[u32]) -> Vec<u8> {
         line.append_to(&mut out);
     }
     out
-}
-
-/// One line of text being put together. Every copy into it and out of it
-/// has a size fixed at compile time, which the compiler turns into a few
-/// moves; appending each number to the output as it comes costs a
-/// `memmove` call per number, more than formatting the digits.
-struct Line {
-    bytes: [u8; Line::CAP],
-    /// Bytes of the line so far.
-    at: usize,
-}
-
-impl Line {
-    /// Room for `v` and three floats of at most 16 characters, or `f` and
-    /// three ids of at most 10 digits, with separators.
-    const CAP: usize = 64;
-    /// The longest line: `v` and three floats of 16 characters with their
-    /// separators (longer than any face line).
-    const LONGEST: usize = 2 + 3 * 16 + 3;
-
-    fn new(prefix: &[u8; 2]) -> Line {
-        let mut bytes = [0u8; Line::CAP];
-        bytes[..2].copy_from_slice(prefix);
-        Line { bytes, at: 2 }
-    }
-
-    #[inline(always)]
-    fn push(&mut self, b: u8) {
-        self.bytes[self.at] = b;
-        self.at += 1;
-    }
-
-    /// Appends `s` (a formatted number): two overlapping copies of 8 (or 4)
-    /// bytes cover every length from 8 to 16 (4 to 7), as `memcpy` does
-    /// inside, without the call.
-    #[inline(always)]
-    fn put(&mut self, s: &[u8]) {
-        let (at, n) = (self.at, s.len());
-        match n {
-            8..=16 => {
-                self.bytes[at..at + 8].copy_from_slice(&s[..8]);
-                self.bytes[at + n - 8..at + n].copy_from_slice(&s[n - 8..]);
-            }
-            4..=7 => {
-                self.bytes[at..at + 4].copy_from_slice(&s[..4]);
-                self.bytes[at + n - 4..at + n].copy_from_slice(&s[n - 4..]);
-            }
-            _ => self.bytes[at..at + n].copy_from_slice(s),
-        }
-        self.at += n;
-    }
-
-    /// The shortest text that reads back as `x` (zmij: Schubfach's shortest
-    /// round-trip digits, the same text as ryu's and faster); whole numbers
-    /// without ".0" (see [`push_f32`]).
-    #[inline(always)]
-    fn put_f32(&mut self, rb: &mut zmij::Buffer, x: f32) {
-        if is_small_whole(x) {
-            if x < 0.0 {
-                self.push(b'-');
-            }
-            self.put_u32(x.abs() as u32);
-        } else {
-            self.put(rb.format_finite(x).as_bytes());
-        }
-    }
-
-    /// Appends the decimal digits of `x`.
-    #[inline(always)]
-    fn put_u32(&mut self, x: u32) {
-        self.at = put_u32(&mut self.bytes, self.at, x);
-    }
-
-    /// Appends the whole array to `out` (a fixed-size copy) and drops what
-    /// lies past the line.
-    #[inline(always)]
-    fn append_to(&self, out: &mut Vec<u8>) {
-        out.extend_from_slice(&self.bytes);
-        out.truncate(out.len() - (Line::CAP - self.at));
-    }
-}
-
-/// Two decimal digits of every number below 100.
-const DIGIT_PAIRS: &[u8; 200] = b"\
-0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546474849\
-5051525354555657585960616263646566676869707172737475767778798081828384858687888990919293949596979899";
-
-/// Writes the decimal digits of `x` into `line` from `at`; returns the index
-/// after the last digit. `line` must have room for 10 digits from `at`.
-#[inline]
-fn put_u32(line: &mut [u8; Line::CAP], at: usize, mut x: u32) -> usize {
-    let end = at + x.checked_ilog10().map_or(1, |d| d as usize + 1);
-    let mut k = end;
-    while x >= 100 {
-        let r = (x % 100) as usize * 2;
-        x /= 100;
-        k -= 2;
-        line[k..k + 2].copy_from_slice(&DIGIT_PAIRS[r..r + 2]);
-    }
-    if x >= 10 {
-        let r = x as usize * 2;
-        line[k - 2..k].copy_from_slice(&DIGIT_PAIRS[r..r + 2]);
-    } else {
-        line[k - 1] = b'0' + x as u8;
-    }
-    end
 }
 
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b

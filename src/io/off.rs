@@ -7,6 +7,7 @@
 
 use super::atomic_write;
 use super::raw::{RawMesh, check_count};
+use super::text::{LONGEST, Line};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
 use glam::Vec3;
@@ -112,45 +113,68 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
 /// I/O errors naming `path`.
 pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
     let colors = colors.filter(|c| c.len() == mesh.positions.len());
+    let magic = if colors.is_some() { "COFF" } else { "OFF" };
+    let (nv, nt) = (mesh.positions.len(), mesh.ct.num_triangles());
+    let head = format!("{magic}\n{nv} {nt} 0\n");
+    // chunks of lines formatted in parallel and written in order
+    const ROWS: usize = 1 << 15;
+    let vertex_chunks = nv.div_ceil(ROWS);
+    let text = |k: usize| {
+        if k < vertex_chunks {
+            let rows = k * ROWS..((k + 1) * ROWS).min(nv);
+            vertex_lines(&mesh.positions[rows.clone()], colors.map(|c| &c[rows]))
+        } else {
+            let first = (k - vertex_chunks) * ROWS;
+            face_lines(&mesh.ct.v_table()[3 * first..3 * (first + ROWS).min(nt)])
+        }
+    };
     atomic_write(path, |w| {
-        let io = |e| Error::io(path, e);
-        let magic = if colors.is_some() { "COFF" } else { "OFF" };
-        let mut out = format!("{magic}\n{} {} 0\n", mesh.positions.len(), mesh.ct.num_triangles()).into_bytes();
-        let mut rb = zmij::Buffer::new();
-        for (i, p) in mesh.positions.iter().enumerate() {
-            for (k, x) in p.to_array().into_iter().enumerate() {
-                if k > 0 {
-                    out.push(b' ');
-                }
-                out.extend_from_slice(rb.format(x).as_bytes());
-            }
-            if let Some(c) = colors {
-                for x in c[i].to_array() {
-                    out.push(b' ');
-                    out.extend_from_slice(rb.format(x.clamp(0.0, 1.0)).as_bytes());
-                }
-            }
-            out.push(b'\n');
-            if out.len() > 1 << 20 {
-                w.write_all(&out).map_err(io)?;
-                out.clear();
-            }
-        }
-        let mut ib = itoa::Buffer::new();
-        for t in mesh.ct.v_table().chunks_exact(3) {
-            out.extend_from_slice(b"3");
-            for &i in t {
-                out.push(b' ');
-                out.extend_from_slice(ib.format(i).as_bytes());
-            }
-            out.push(b'\n');
-            if out.len() > 1 << 20 {
-                w.write_all(&out).map_err(io)?;
-                out.clear();
-            }
-        }
-        w.write_all(&out).map_err(io)
+        let mut sink = |b: &[u8]| w.write_all(b).map_err(|e| Error::io(path, e));
+        super::write_formatted(&[head.as_bytes()], vertex_chunks + nt.div_ceil(ROWS), text, &mut sink)
     })
+}
+
+/// `x y z [r g b]` lines (colours clamped to [0, 1]), shortest round-trip
+/// floats.
+fn vertex_lines(positions: &[Vec3], colors: Option<&[Vec3]>) -> Vec<u8> {
+    // six numbers of at most 16 characters with their separators
+    const CAP: usize = 6 * 17;
+    let mut out = Vec::with_capacity(positions.len() * if colors.is_some() { CAP } else { LONGEST } + CAP);
+    let mut rb = zmij::Buffer::new();
+    let mut line: Line<CAP> = Line::new(b"");
+    for (i, p) in positions.iter().enumerate() {
+        line.reset();
+        for (k, x) in p.to_array().into_iter().enumerate() {
+            if k > 0 {
+                line.push(b' ');
+            }
+            line.put(rb.format(x).as_bytes());
+        }
+        for x in colors.map(|c| c[i].to_array()).into_iter().flatten() {
+            line.push(b' ');
+            line.put(rb.format(x.clamp(0.0, 1.0)).as_bytes());
+        }
+        line.push(b'\n');
+        line.append_to(&mut out);
+    }
+    out
+}
+
+/// `3 a b c` lines (0-based) of V-table triples.
+fn face_lines(v: &[u32]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(v.len() / 3 * LONGEST + 64);
+    let mut line: Line = Line::new(b"3 ");
+    for t in v.chunks_exact(3) {
+        line.reset();
+        line.put_u32(t[0]);
+        line.push(b' ');
+        line.put_u32(t[1]);
+        line.push(b' ');
+        line.put_u32(t[2]);
+        line.push(b'\n');
+        line.append_to(&mut out);
+    }
+    out
 }
 
 /// Saves `mesh` as OFF text.

@@ -1,0 +1,105 @@
+//! Text put together line by line for the writers of large text files
+//! (OBJ, OFF, `.ct`): numbers are formatted into a small array with copies
+//! of sizes fixed at compile time, and the array is appended whole.
+
+/// One line of text being put together. Every copy into it and out of it
+/// has a size fixed at compile time, which the compiler turns into a few
+/// moves; appending each number to the output as it comes costs a
+/// `memmove` call per number, more than formatting the digits.
+///
+/// `CAP` is the room: the longest line and its prefix (at most 2 bytes).
+pub(crate) struct Line<const CAP: usize = 64> {
+    bytes: [u8; CAP],
+    /// Length of the prefix every line starts with.
+    start: usize,
+    /// Bytes of the line so far.
+    at: usize,
+}
+
+/// The longest line of three floats: a 2-byte prefix and three numbers of
+/// at most 16 characters (a shortest round-trip f32) with their separators,
+/// longer than any line of three ids (10 digits at most). The default room
+/// of a [`Line`] holds it.
+pub(crate) const LONGEST: usize = 2 + 3 * 16 + 3;
+
+impl<const CAP: usize> Line<CAP> {
+    /// A line that starts with `prefix` (at most 2 bytes) every time.
+    pub(crate) fn new(prefix: &[u8]) -> Self {
+        let mut bytes = [0u8; CAP];
+        bytes[..prefix.len()].copy_from_slice(prefix);
+        Line { bytes, start: prefix.len(), at: prefix.len() }
+    }
+
+    /// Starts the next line (after the prefix).
+    #[inline(always)]
+    pub(crate) fn reset(&mut self) {
+        self.at = self.start;
+    }
+
+    /// Appends one byte.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, b: u8) {
+        self.bytes[self.at] = b;
+        self.at += 1;
+    }
+
+    /// Appends `s` (a formatted number): two overlapping copies of 8 (or 4)
+    /// bytes cover every length from 8 to 16 (4 to 7), as `memcpy` does
+    /// inside, without the call.
+    #[inline(always)]
+    pub(crate) fn put(&mut self, s: &[u8]) {
+        let (at, n) = (self.at, s.len());
+        match n {
+            8..=16 => {
+                self.bytes[at..at + 8].copy_from_slice(&s[..8]);
+                self.bytes[at + n - 8..at + n].copy_from_slice(&s[n - 8..]);
+            }
+            4..=7 => {
+                self.bytes[at..at + 4].copy_from_slice(&s[..4]);
+                self.bytes[at + n - 4..at + n].copy_from_slice(&s[n - 4..]);
+            }
+            _ => self.bytes[at..at + n].copy_from_slice(s),
+        }
+        self.at += n;
+    }
+
+    /// Appends the decimal digits of `x`.
+    #[inline(always)]
+    pub(crate) fn put_u32(&mut self, x: u32) {
+        self.at = put_u32(&mut self.bytes, self.at, x);
+    }
+
+    /// Appends the whole array to `out` (a fixed-size copy) and drops what
+    /// lies past the line.
+    #[inline(always)]
+    pub(crate) fn append_to(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.bytes);
+        out.truncate(out.len() - (CAP - self.at));
+    }
+}
+
+/// Two decimal digits of every number below 100.
+const DIGIT_PAIRS: &[u8; 200] = b"\
+0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546474849\
+5051525354555657585960616263646566676869707172737475767778798081828384858687888990919293949596979899";
+
+/// Writes the decimal digits of `x` into `line` from `at`; returns the index
+/// after the last digit. `line` must have room for 10 digits from `at`.
+#[inline]
+fn put_u32<const CAP: usize>(line: &mut [u8; CAP], at: usize, mut x: u32) -> usize {
+    let end = at + x.checked_ilog10().map_or(1, |d| d as usize + 1);
+    let mut k = end;
+    while x >= 100 {
+        let r = (x % 100) as usize * 2;
+        x /= 100;
+        k -= 2;
+        line[k..k + 2].copy_from_slice(&DIGIT_PAIRS[r..r + 2]);
+    }
+    if x >= 10 {
+        let r = x as usize * 2;
+        line[k - 2..k].copy_from_slice(&DIGIT_PAIRS[r..r + 2]);
+    } else {
+        line[k - 1] = b'0' + x as u8;
+    }
+    end
+}
