@@ -372,3 +372,22 @@ impl<'a> Text<'a> {
         w
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chunks_of_lines_read_back_as_the_table() {
+        // several chunks of each section, and an open mesh for the -1 entries
+        for m in [crate::mesh::shapes::icosphere(6), crate::mesh::shapes::grid(200)] {
+            assert!(m.ct.num_triangles() > 1 << 15);
+            let mut text = Vec::new();
+            write(&mut text, &m).expect("written");
+            let raw = parse_raw(std::str::from_utf8(&text).expect("text"), "m.ct").expect("parsed");
+            assert!(raw.positions == m.positions, "positions read back to the same bits");
+            assert!(raw.triangles == m.ct.v_table(), "V");
+            assert!(raw.stored_o == m.ct.o_table(), "O, border entries included");
+        }
+    }
+}

@@ -184,3 +184,27 @@ fn face_lines(v: &[u32]) -> Vec<u8> {
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
     save_with(path, mesh, None)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chunks_of_lines_read_back_as_the_mesh_with_and_without_colours() {
+        // more vertices and faces than one chunk of lines holds
+        let m = crate::mesh::shapes::icosphere(6);
+        assert!(m.positions.len() > 1 << 15 && m.ct.num_triangles() > 2 << 15);
+        let colors: Vec<Vec3> = m.positions.iter().map(|p| (*p * 0.5 + 0.5).clamp(Vec3::ZERO, Vec3::ONE)).collect();
+        let dir = std::env::temp_dir().join(format!("subdiv-off-chunks-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temporary directory");
+        for c in [None, Some(&colors[..])] {
+            let path = dir.join("m.off");
+            save_with(&path, &m, c).expect("saved");
+            let raw = parse(&std::fs::read(&path).expect("read back"), "m.off").expect("parsed");
+            assert!(raw.positions == m.positions, "positions read back to the same bits");
+            assert!(raw.triangles == m.ct.v_table(), "triangles in order");
+            assert_eq!(raw.colors.as_deref(), c, "colours");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
