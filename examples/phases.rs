@@ -1,7 +1,10 @@
 //! Per-phase timing of the subdivision call, input loaded once:
 //! `cargo run --release --no-default-features --example phases -- MODEL LEVELS REPEATS [SCHEME...]`
 //! prints, per scheme, the minimum over the repeats of every phase (ms), which
-//! is what counts on a shared, noisy machine.
+//! is what counts on a shared, noisy machine. Repeats after the first reuse
+//! the memory the one before freed, as the command line's levels do, so the
+//! minimum is the subdivision without fresh pages (`minflt=0`); a cold
+//! process is `subdiv subdivide --stats`.
 
 use std::path::Path;
 use subdiv::{Options, Scheme, subdivide};
@@ -13,6 +16,9 @@ fn main() {
     let reps: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(7);
     let schemes: Vec<Scheme> =
         if args.len() > 4 { args[4..].iter().map(|s| s.parse().unwrap()).collect() } else { Scheme::ALL.to_vec() };
+    // as the command line does: freed levels serve the next allocations, so
+    // that repeats after the first measure the work without fresh pages
+    subdiv::mem::keep_freed_memory();
     let mesh = subdiv::io::load(Path::new(model)).unwrap();
     for s in schemes {
         let mut best = [f64::MAX; 8];
