@@ -463,9 +463,8 @@ mod tests {
         // every array in several 1 MB slices, and a last partial one
         let m = crate::mesh::shapes::icosphere(7);
         assert!(m.ct.v_table().len() * 4 > 3 << 20 && m.positions.len() * 12 > 1 << 20);
-        let dir = std::env::temp_dir().join(format!("subdiv-glb-pieces-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("temporary directory");
-        let path = dir.join("m.glb");
+        let dir = crate::io::TestDir::new("glb-pieces");
+        let path = dir.0.join("m.glb");
         save(&path, &m, &Attributes::default()).expect("saved");
         let bytes = std::fs::read(&path).expect("read back");
         let raw = parse(&bytes, "m.glb").expect("a valid glb");
@@ -483,6 +482,5 @@ mod tests {
             // a sphere's vertex normal points along the vertex
             assert!(Vec3::from_slice(n).dot(p.normalize()) > 0.999);
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -195,16 +195,14 @@ mod tests {
         let m = crate::mesh::shapes::icosphere(6);
         assert!(m.positions.len() > 1 << 15 && m.ct.num_triangles() > 2 << 15);
         let colors: Vec<Vec3> = m.positions.iter().map(|p| (*p * 0.5 + 0.5).clamp(Vec3::ZERO, Vec3::ONE)).collect();
-        let dir = std::env::temp_dir().join(format!("subdiv-off-chunks-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("temporary directory");
+        let dir = crate::io::TestDir::new("off-chunks");
         for c in [None, Some(&colors[..])] {
-            let path = dir.join("m.off");
+            let path = dir.0.join("m.off");
             save_with(&path, &m, c).expect("saved");
             let raw = parse(&std::fs::read(&path).expect("read back"), "m.off").expect("parsed");
             assert!(raw.positions == m.positions, "positions read back to the same bits");
             assert!(raw.triangles == m.ct.v_table(), "triangles in order");
             assert_eq!(raw.colors.as_deref(), c, "colours");
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -450,10 +450,9 @@ mod tests {
         let m = crate::mesh::shapes::icosphere(7);
         assert!(m.positions.len() > 2 * VERTEX_ROWS && m.ct.num_triangles() > 2 * FACE_ROWS);
         let colors: Vec<Vec3> = m.positions.iter().map(|p| (*p * 0.5 + 0.5).clamp(Vec3::ZERO, Vec3::ONE)).collect();
-        let dir = std::env::temp_dir().join(format!("subdiv-ply-pieces-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("temporary directory");
+        let dir = crate::io::TestDir::new("ply-pieces");
         for c in [None, Some(&colors[..])] {
-            let path = dir.join("m.ply");
+            let path = dir.0.join("m.ply");
             save_with(&path, &m, c).expect("saved");
             let bytes = std::fs::read(&path).expect("read back");
             let raw = parse(&bytes, "m.ply").expect("parsed");
@@ -466,6 +465,5 @@ mod tests {
                 assert_eq!(raw.colors.is_some(), c.is_some());
             }
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -152,9 +152,8 @@ mod tests {
     fn facets_written_in_parallel_pieces_read_back_in_order() {
         let m = crate::mesh::shapes::icosphere(6);
         assert!(m.ct.num_triangles() > 2 * (1 << 14), "several pieces and a partial last one");
-        let dir = std::env::temp_dir().join(format!("subdiv-stl-pieces-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("temporary directory");
-        let path = dir.join("m.stl");
+        let dir = crate::io::TestDir::new("stl-pieces");
+        let path = dir.0.join("m.stl");
         save(&path, &m).expect("saved");
         let bytes = std::fs::read(&path).expect("read back");
         assert_eq!(bytes.len(), 84 + 50 * m.ct.num_triangles());
@@ -168,6 +167,5 @@ mod tests {
                 assert_eq!(p, m.positions[v as usize].to_array(), "triangle {t} corner {k}");
             }
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }
