@@ -22,7 +22,7 @@
 //! is allocated.
 
 use super::atomic_write;
-use super::text::Line;
+use super::text::triple_lines;
 use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
 use crate::mesh::{BORDER, CornerTable, Mesh};
 use crate::{Error, MeshError, Result};
@@ -308,7 +308,6 @@ impl<'a> Text<'a> {
 
     /// Chunk `k`: vertex lines, then V lines, then O lines.
     fn chunk(&self, k: usize) -> Vec<u8> {
-        use std::io::Write;
         let mut out = Vec::new();
         let rows = |j: usize, n: usize| j * Self::ROWS..((j + 1) * Self::ROWS).min(n);
         if k < self.vertex_chunks {
@@ -326,33 +325,26 @@ impl<'a> Text<'a> {
             j if j < self.triangle_chunks => (j, self.mesh.ct.v_table()),
             j => (j - self.triangle_chunks, self.mesh.ct.o_table()),
         };
-        if k == self.vertex_chunks {
-            out.extend_from_slice(format!("{nt}\n").as_bytes());
-        }
         let r = rows(j, nt);
-        let mut line: Line = Line::new(b"");
-        for row in table[3 * r.start..3 * r.end].chunks_exact(3) {
-            line.reset();
-            for (i, &x) in row.iter().enumerate() {
-                if i > 0 {
-                    line.push(b' ');
-                }
-                if x == BORDER {
-                    line.push(b'-');
-                    line.push(b'1');
-                } else {
-                    line.put_u32(x);
-                }
+        let lines = triple_lines(b"", &table[3 * r.start..3 * r.end], |line, x| {
+            if x == BORDER {
+                line.push(b'-');
+                line.push(b'1');
+            } else {
+                line.put_u32(x);
             }
-            line.push(b'\n');
-            line.append_to(&mut out);
+        });
+        if k != self.vertex_chunks {
+            return lines;
         }
+        // the triangle count heads the first chunk of the V table
+        out.extend_from_slice(format!("{nt}\n").as_bytes());
+        out.extend_from_slice(&lines);
         out
     }
 
     /// The `creases` and `corners` sections, when there are sharp features.
     fn tags(&self) -> Vec<u8> {
-        use std::io::Write;
         let mut w = Vec::new();
         if let Some(s) = self.mesh.ct.sharpness() {
             let tags = s.to_tags(&self.mesh.ct);

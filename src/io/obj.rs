@@ -658,21 +658,9 @@ fn put_f32(line: &mut Line, rb: &mut zmij::Buffer, x: f32) {
     }
 }
 
-/// `f a b c` lines (1-based) of V-table triples (see [`Line`]).
+/// `f a b c` lines (1-based) of V-table triples.
 fn face_text(ch: &[u32]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(ch.len() / 3 * text::LONGEST + 64);
-    let mut line: Line = Line::new(b"f ");
-    for tri in ch.chunks_exact(3) {
-        line.reset();
-        line.put_u32(tri[0].wrapping_add(1));
-        line.push(b' ');
-        line.put_u32(tri[1].wrapping_add(1));
-        line.push(b' ');
-        line.put_u32(tri[2].wrapping_add(1));
-        line.push(b'\n');
-        line.append_to(&mut out);
-    }
-    out
+    text::triple_lines(b"f ", ch, |line, v| line.put_u32(v.wrapping_add(1)))
 }
 
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b

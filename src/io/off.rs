@@ -7,7 +7,7 @@
 
 use super::atomic_write;
 use super::raw::{RawMesh, check_count};
-use super::text::{LONGEST, Line};
+use super::text::{LONGEST, Line, triple_lines};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
 use glam::Vec3;
@@ -125,7 +125,7 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
             vertex_lines(&mesh.positions[rows.clone()], colors.map(|c| &c[rows]))
         } else {
             let first = (k - vertex_chunks) * ROWS;
-            face_lines(&mesh.ct.v_table()[3 * first..3 * (first + ROWS).min(nt)])
+            triple_lines(b"3 ", &mesh.ct.v_table()[3 * first..3 * (first + ROWS).min(nt)], Line::put_u32)
         }
     };
     atomic_write(path, |w| {
@@ -154,23 +154,6 @@ fn vertex_lines(positions: &[Vec3], colors: Option<&[Vec3]>) -> Vec<u8> {
             line.push(b' ');
             line.put(rb.format(x.clamp(0.0, 1.0)).as_bytes());
         }
-        line.push(b'\n');
-        line.append_to(&mut out);
-    }
-    out
-}
-
-/// `3 a b c` lines (0-based) of V-table triples.
-fn face_lines(v: &[u32]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(v.len() / 3 * LONGEST + 64);
-    let mut line: Line = Line::new(b"3 ");
-    for t in v.chunks_exact(3) {
-        line.reset();
-        line.put_u32(t[0]);
-        line.push(b' ');
-        line.put_u32(t[1]);
-        line.push(b' ');
-        line.put_u32(t[2]);
         line.push(b'\n');
         line.append_to(&mut out);
     }

@@ -78,6 +78,25 @@ impl<const CAP: usize> Line<CAP> {
     }
 }
 
+/// One line per triple of ids (V-table rows): `prefix`, then each id as
+/// `put` writes it, separated by spaces. The face lines of OBJ (1-based),
+/// OFF (`3 a b c`) and the V and O tables of `.ct`.
+pub(crate) fn triple_lines(prefix: &[u8], ids: &[u32], put: impl Fn(&mut Line, u32)) -> Vec<u8> {
+    let mut out = Vec::with_capacity(ids.len() / 3 * LONGEST + 64);
+    let mut line: Line = Line::new(prefix);
+    for t in ids.chunks_exact(3) {
+        line.reset();
+        put(&mut line, t[0]);
+        line.push(b' ');
+        put(&mut line, t[1]);
+        line.push(b' ');
+        put(&mut line, t[2]);
+        line.push(b'\n');
+        line.append_to(&mut out);
+    }
+    out
+}
+
 /// Two decimal digits of every number below 100.
 const DIGIT_PAIRS: &[u8; 200] = b"\
 0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546474849\
