@@ -342,7 +342,7 @@ struct View<'a> {
 }
 
 /// Little-endian bytes of plain values: their memory as it lies on a
-/// little-endian machine, converted in parallel elsewhere.
+/// little-endian machine; on a big-endian one, `to_le` of each, in parallel.
 fn le_bytes<T: bytemuck::Pod + Sync>(a: &[T], to_le: impl Fn(&T) -> Vec<u8> + Sync + Send) -> Cow<'_, [u8]> {
     if cfg!(target_endian = "little") {
         Cow::Borrowed(bytemuck::cast_slice(a))

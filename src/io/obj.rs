@@ -581,18 +581,11 @@ pub fn load_tobj(path: &Path) -> Result<(Vec<Vec3>, Vec<u32>)> {
     Ok((pos, tris))
 }
 
-/// The shortest text that reads back as `x` (zmij: Schubfach's shortest
-/// round-trip digits, the same text as ryu's and faster); whole numbers
-/// without ".0".
+/// [`put_f32`] appended to `out` (the records written one by one).
 fn push_f32(out: &mut Vec<u8>, buf: &mut zmij::Buffer, x: f32) {
-    if is_small_whole(x) {
-        // "1" instead of "1.0": shorter and still exact (not for -0, which
-        // would lose its sign)
-        let mut ib = itoa::Buffer::new();
-        out.extend_from_slice(ib.format(x as i64).as_bytes());
-    } else {
-        out.extend_from_slice(buf.format_finite(x).as_bytes());
-    }
+    let mut line: Line = Line::new(b"");
+    put_f32(&mut line, buf, x);
+    line.append_to(out);
 }
 
 /// Whether `x` is a whole number below 10^7 in magnitude, and not -0:
@@ -645,7 +638,7 @@ fn vertex_text(ch: &[Vec3]) -> Vec<u8> {
 
 /// The shortest text that reads back as `x` (zmij: Schubfach's shortest
 /// round-trip digits, the same text as ryu's and faster); whole numbers
-/// without ".0" (see [`push_f32`]).
+/// below 10^7 without ".0" (see [`is_small_whole`]).
 #[inline(always)]
 fn put_f32(line: &mut Line, rb: &mut zmij::Buffer, x: f32) {
     if is_small_whole(x) {
@@ -828,7 +821,7 @@ mod tests {
             let text = std::str::from_utf8(&out).unwrap();
             let back: f32 = text.parse().unwrap();
             assert_eq!(back.to_bits(), x.to_bits(), "{x:e} written as {text}");
-            // the vertex lines put the same text together in a Line
+            // with its prefix and separators in a vertex line
             let line = vertex_text(&[Vec3::new(x, 1.0, x)]);
             assert_eq!(String::from_utf8(line).unwrap(), format!("v {text} 1 {text}\n"));
         }

@@ -149,10 +149,7 @@ impl Mesh {
     /// This mesh relabelled by `r` (see [`CornerTable::relabelled`]): the
     /// same surface, positions moved with their vertices.
     pub fn relabelled(&self, r: &Relabel) -> Mesh {
-        let mut positions = self.positions.clone();
-        for (old, &new) in r.vertex.iter().enumerate() {
-            positions[new as usize] = self.positions[old];
-        }
+        let positions = r.old_vertices().iter().map(|&v| self.positions[v as usize]).collect();
         Mesh { ct: self.ct.relabelled(r), positions }
     }
 }
