@@ -25,7 +25,8 @@ for _ in $(seq "$reps"); do
   t[ours_anim]+="$("$bin" animate --model "$bunny" --level 2 --refine 4 --stats | field frame_ms) "
   t[osd_anim]+="$("$peers/osd_bench" "$bunny" 2 loop --frames 64 | grep stencils= | field frame_ms) "
   # the whole command over the file of the round before (the replaced
-  # file's pages are freed inside the command's rename), then into a new file
+  # file, its blocks and cached pages, is freed inside the command's rename),
+  # then into a new file
   for ext in obj ply; do
     s=$(date +%s.%N); "$bin" subdivide "$bunny" "$tmp/out.$ext" --levels 3 >/dev/null
     t[cmd_$ext]+="$(echo "($(date +%s.%N) - $s) * 1000" | bc) "
