@@ -1,4 +1,4 @@
-//! The `.paths` text format (DESIGN.md 4):
+//! The `.paths` text format (docs/design.md §7):
 //!
 //! ```text
 //! # comment

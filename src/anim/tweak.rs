@@ -1,5 +1,5 @@
 //! Split-and-tweak refinement of closed polygons (Rossignac's "Split & Tweak"
-//! notes; Rossignac & Schaefer, "J-splines", CAD 2008; schemes.md 8).
+//! notes; Rossignac & Schaefer, "J-splines", CAD 2008; docs/schemes.md §8).
 //!
 //! For a closed polygon `P_0 .. P_{n-1}` (indices mod n), computed from the
 //! OLD polygon before anything moves:

@@ -1,5 +1,5 @@
 //! Bezier curves and bicubic tensor-product patches by de Casteljau's
-//! algorithm, and the CS184 `.bzc` / `.bez` files (schemes.md 10).
+//! algorithm, and the CS184 `.bzc` / `.bez` files (docs/schemes.md §10).
 //!
 //! ```text
 //! de Casteljau, degree n, control points P_0 .. P_n, parameter t:
@@ -12,7 +12,7 @@
 //!     (either order gives the same point); S(0,0) = P[0][0], S(1,0) = P[0][3],
 //!     S(0,1) = P[3][0], S(1,1) = P[3][3]
 //! ```
-//! Files (schemes.md 10.3; jirehcwe/p2-mesh-editor `bez/teapot.bez`):
+//! Files (docs/schemes.md §10.3; jirehcwe/p2-mesh-editor `bez/teapot.bez`):
 //! * `.bzc`: a count `n`, then `n` points `x y`.
 //! * `.bez`: a count `N` of patches, then per patch 16 points `x y z`, row by
 //!   row (4 lines of 4 points in the files we know; read as a token stream).

@@ -1,5 +1,5 @@
 //! The corner-table text format `.ct` (from the original corner-table
-//! assignment, DESIGN.md 2):
+//! assignment; docs/formats.md):
 //!
 //! ```text
 //! k                 vertex count

@@ -12,7 +12,7 @@
 //!   different UVs in the triangles around it) stays sharp. Inside each
 //!   triangle they are refined **linearly**: the new corner on the edge
 //!   opposite corner `c` gets the midpoint `(uv[n(c)] + uv[p(c)]) / 2` of
-//!   that triangle's own corners, in the split layout of schemes.md 7.4
+//!   that triangle's own corners, in the split layout of docs/schemes.md §7.4
 //!   (central triangle `t` keeps corner ids; the corner triangle of `v(c)`
 //!   starts at `A(c) = 3nt(c%3 + 1) + 3(c/3)`). Charts are therefore
 //!   parameterised piecewise linearly over the control mesh, whatever the
@@ -72,7 +72,7 @@ pub struct MaterialGroups {
 }
 
 /// Per-triangle ids after `levels` 1-to-4 splits: every child triangle
-/// inherits its parent's id. In the split layout (schemes.md 7.4) triangle
+/// inherits its parent's id. In the split layout (docs/schemes.md §7.4) triangle
 /// `t` of `nt` keeps its id for the central child and its corner children
 /// are `nt * (k + 1) + t` for k = 0, 1, 2, so each level repeats the list four times.
 pub fn refine_face_ids(ids: &[u32], levels: u32) -> Vec<u32> {

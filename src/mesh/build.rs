@@ -1,5 +1,5 @@
 //! Building the O table from a triangle list in expected O(n), and validating
-//! the input (schemes.md 7.3).
+//! the input (docs/schemes.md §7.3).
 //!
 //! Method: every corner `c` owns the directed half-edge `v(n(c)) -> v(p(c))`
 //! opposite it. Half-edges are bucketed by their start vertex with a counting

@@ -1,6 +1,6 @@
 //! Cutting a corner table open along chosen edges: the table a scheme sees
 //! when sharp edges act as boundaries for every stencil that reaches them
-//! (creases.md 4). The cut edges become border edges on both sides, and a
+//! (docs/sharp-features.md §6.2). The cut edges become border edges on both sides, and a
 //! vertex whose fan the cut separates into sectors gets one vertex per
 //! sector, so every existing boundary rule applies unchanged.
 //!

@@ -7,7 +7,7 @@
 //! (`V` = the old vertex count). So after levels `1..=L` the ids are layered:
 //! `0 .. V_0` are the control vertices, `V_0 .. V_1` were created by level 1,
 //! and so on, where `V_{l+1} = V_l + E_l`, `E_{l+1} = 2 E_l + 3 F_l`,
-//! `F_{l+1} = 4 F_l` (schemes.md 1; `E` counts border edges once). Every
+//! `F_{l+1} = 4 F_l` (docs/schemes.md §1; `E` counts border edges once). Every
 //! scheme uses the same split, so this holds for all of them.
 
 use super::{CornerTable, Mesh};

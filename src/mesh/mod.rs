@@ -4,7 +4,7 @@
 //! opposite `c`, or [`BORDER`] when that edge is on the boundary.
 //!
 //! Operators (`n`, `p`, `o`, `l`, `r`, `s`, `u`) are tiny inline functions on
-//! corner ids. Never treat `O[c] == c` as a border (schemes.md 7.2): the
+//! corner ids. Never treat `O[c] == c` as a border (docs/schemes.md §7.2): the
 //! sentinel is `u32::MAX`, and [`CornerTable::o`] returns `Option`.
 //!
 //! Besides V and O the table keeps, per vertex, one corner `C[v]` (for a
@@ -84,7 +84,7 @@ pub fn owns_edge(c: u32, o_entry: u32) -> bool {
 /// Where they are established: `from_vo` checks V and O entry by entry and
 /// walks every fan to fill C and the valences (`build` makes O from V and
 /// then goes through `from_vo`; `Default` is the empty table). The split
-/// writes V', O', C' and the valences by the formulas of schemes.md 7.4-7.5
+/// writes V', O', C' and the valences by the formulas of docs/schemes.md §7.4-7.5
 /// from a table that has the invariants (`tests/topology.rs` checks them
 /// against a rebuild for every scheme and level). Each edit changes O in
 /// pairs, both ends of every entry it writes, and recomputes C and the

@@ -1,5 +1,5 @@
 //! Vertex normals: the area-weighted average of the incident face normals
-//! (schemes.md 4.4), computed per triangle and gathered per vertex in parallel.
+//! (docs/schemes.md §6.6), computed per triangle and gathered per vertex in parallel.
 
 use super::CornerTable;
 use glam::{Vec3, Vec3A};

@@ -1,5 +1,5 @@
 //! Repairing a triangle soup into a mesh that [`CornerTable::build`](super::CornerTable::build) accepts:
-//! the documented alternative to refusing non-manifold input (DESIGN.md 2).
+//! the documented alternative to refusing non-manifold input (docs/design.md §3).
 //!
 //! [`repair`] takes the raw positions and triangles (indices already checked by
 //! the caller or reported as [`MeshError::IndexOutOfRange`]) and runs, in order:

@@ -1,5 +1,5 @@
 //! Sharp features of a corner table: per-edge and per-vertex sharpness
-//! (docs: creases.md 1; OpenSubdiv `sdc/crease.h`, `vtr/refinement.cpp`).
+//! (docs/sharp-features.md §1 and §4; OpenSubdiv `sdc/crease.h`, `vtr/refinement.cpp`).
 //!
 //! * An edge's sharpness `s` is 0 (smooth), `0 < s < 10` (semi-sharp: sharp
 //!   rules for about `s` levels, then smooth) or `>= 10` ([`INFINITE`]).
@@ -27,7 +27,7 @@
 //! vertex    s' = s - 1 (0 when s <= 1; infinite stays infinite)
 //! ```
 //!
-//! Split layout (schemes.md 7.4): the half of the edge opposite corner `c`
+//! Split layout (docs/schemes.md §7.4): the half of the edge opposite corner `c`
 //! that ends at `v(n(c))` is opposite corner `p(A(n(c)))` of the split, the
 //! half that ends at `v(p(c))` is opposite `n(A(p(c)))`, with
 //! `A(x) = 3 nt (x % 3 + 1) + 3 (x / 3)`.

@@ -1,5 +1,5 @@
 //! Taubin lambda/mu smoothing (G. Taubin, "A Signal Processing Approach to
-//! Fair Surface Design", SIGGRAPH 1995; schemes.md 9) and, for comparison,
+//! Fair Surface Design", SIGGRAPH 1995; docs/schemes.md §9) and, for comparison,
 //! plain Laplacian smoothing.
 //!
 //! ```text
@@ -23,7 +23,7 @@ use super::Mesh;
 use glam::Vec3;
 use rayon::prelude::*;
 
-/// Taubin's lambda for a pass band of about 0.1 (schemes.md 9).
+/// Taubin's lambda for a pass band of about 0.1 (docs/schemes.md §9).
 pub const TAUBIN_LAMBDA: f32 = 0.6307;
 /// Taubin's mu matching [`TAUBIN_LAMBDA`].
 pub const TAUBIN_MU: f32 = -0.6732;

@@ -1,6 +1,6 @@
 //! The 1-to-4 split of a corner table, shared by every scheme. It knows no
 //! weights: it only builds the new V, O, C and valence tables and numbers the
-//! edges (schemes.md 7.4 and 7.5).
+//! edges (docs/schemes.md §7.4-7.7).
 //!
 //! Layout (`nt` old triangles; corner `c` of triangle `t = c/3`, `k = c%3`):
 //! * the central triangle `t` keeps corner ids: `V'[c] = W[c]`, where `W[c]`
@@ -210,7 +210,7 @@ pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f6
 pub(crate) type SplitLevel = (CornerTable, EdgeNumbering, Option<Vec<bool>>);
 
 /// `A(c)`: the first corner of the corner triangle of `v(c)` in a split of a
-/// table with `nt` triangles (schemes.md 7.4).
+/// table with `nt` triangles (docs/schemes.md §7.4).
 #[inline(always)]
 fn corner_triangle(nt: usize, c: u32) -> u32 {
     (3 * nt * (c as usize % 3 + 1) + 3 * (c as usize / 3)) as u32

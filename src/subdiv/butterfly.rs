@@ -1,6 +1,6 @@
 //! Classic 8-point butterfly (Dyn, Levin, Gregory, "A Butterfly Subdivision
 //! Scheme for Surface Interpolation with Tension Control", ACM TOG 1990), the
-//! rule of VTK, MeshLab and Rossignac's `bulge()` (schemes.md 3.2).
+//! rule of VTK, MeshLab and Rossignac's `bulge()` (docs/schemes.md §4.2).
 //!
 //! ```text
 //!         c1 ------ b1 ------ c2
@@ -14,7 +14,7 @@
 //! is missing (its wing's outer edge is a border edge) uses OpenMesh's
 //! parallelogram ghost `c = x + y - z` (the wing apex translated by the edge
 //! vector), which keeps the stencil linear and linear-precise, unlike VTK's
-//! substitution by the opposite wing (schemes.md 3.5).
+//! substitution by the opposite wing (docs/schemes.md §4.5).
 
 use super::rules::{Accumulate, Level, Rules, Sink, four_point};
 use crate::mesh::{BORDER, CornerTable, n, p};
@@ -98,7 +98,7 @@ impl Rules for Butterfly {
 
     const MOVES_VERTICES: bool = false;
     const CUT_AT_CREASES: bool = true;
-    /// The 4-point curve along the crease (creases.md 4).
+    /// The 4-point curve along the crease (docs/sharp-features.md §6.2).
     #[inline]
     fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         match ct.features {

@@ -1,5 +1,5 @@
 //! Sharp features in the rules: which rule each vertex and edge of a level
-//! gets, and how a scheme's masks are blended (creases.md 2-4; OpenSubdiv
+//! gets, and how a scheme's masks are blended (docs/sharp-features.md §5-6; OpenSubdiv
 //! `sdc/crease.cpp`, `sdc/scheme.h` `ComputeEdgeVertexMask` and
 //! `ComputeVertexVertexMask`).
 //!

@@ -1,4 +1,4 @@
-//! Rossignac's "Jarek" scheme (schemes.md 6): the surface analogue of the
+//! Rossignac's "Jarek" scheme (docs/schemes.md §5): the surface analogue of the
 //! Jarek split-and-tweak curve rule (vertex `V += D/2`, midpoint
 //! `M -= (D_i + D_j)/4`, `D = 1/4 (avg - V)`).
 //!
@@ -9,7 +9,7 @@
 //! regular stencils: vertex 7/8 centre, 1/48 each neighbour;
 //!   edge a, b 53/96; wings -1/48; the other 3 neighbours of a and of b -1/96
 //! ```
-//! Boundary variant (schemes.md 6, our suggestion there): a boundary vertex's
+//! Boundary variant (docs/schemes.md §5.2, our choice): a boundary vertex's
 //! `d_v` uses its two BOUNDARY neighbours only, `d_v = 1/8 ((q1 + q2)/2 - v)`.
 //! The boundary then follows the Jarek curve rule exactly: vertex
 //! `[1, 14, 1]/16`, border edge `[-1, 17, 17, -1]/32`, independent of the

@@ -1,13 +1,13 @@
 //! Loop limit positions and exact Loop limit normals ("snap to limit"),
-//! schemes.md 5.3 and 5.4, plus tangent-mask normals for the interpolating
-//! butterfly schemes (schemes.md 4).
+//! docs/schemes.md §6.1-6.3, plus tangent-mask normals for the interpolating
+//! butterfly schemes (docs/schemes.md §6.5).
 //!
 //! Every mask here is a left eigenvector of the local subdivision matrix, so
 //! applying it to the control points of ANY level gives the value at the same
 //! point of the limit surface (positions: eigenvalue 1) or a vector along the
 //! limit tangent (tangents: the subdominant eigenvalues).
 //!
-//! ## Limit positions (schemes.md 5.3)
+//! ## Limit positions (docs/schemes.md §6.1)
 //! ```text
 //! interior vertex v, valence n, neighbours p_i, Loop's beta(n):
 //!     chi   = 1 / (n + 3 / (8 beta))
@@ -26,7 +26,7 @@
 //! edges; valence-2 vertices are smooth, OpenSubdiv's `EDGE_ONLY`), so every
 //! boundary vertex uses the crease mask.
 //!
-//! ## Limit tangents (schemes.md 5.4)
+//! ## Limit tangents (docs/schemes.md §6.2-6.3)
 //! ```text
 //! interior vertex, neighbours p_0 .. p_{n-1} counter-clockwise, centre weight 0:
 //!     t1 = sum cos(2 pi i / n) p_i,   t2 = sum sin(2 pi i / n) p_i
@@ -52,7 +52,7 @@
 //! interior rows give the eigenvalue `3/8 + c/4`, and the rows of `v` and
 //! `e_0` fix `l_v` and `l_0` (unit test `boundary_masks_are_left_eigenvectors`).
 //! It agrees with the published masks for m = 2, 3. The m >= 4 mask quoted in
-//! schemes.md 5.4 (centre weight 0, ends `sin(theta)`, interior
+//! docs/schemes.md §6.3 (centre weight 0, ends `sin(theta)`, interior
 //! `(2 cos(theta) - 2) sin(i theta)`) is NOT an eigenvector of these rules:
 //! its normal changes from one level to the next (by about 2 degrees at m = 4
 //! on our hemisphere test), so we do not use it.
@@ -66,7 +66,7 @@
 //! Every tangent mask sums to 0, so it is translation invariant.
 //! Where the cross product vanishes (degenerate geometry) or the vertex is a
 //! boundary vertex with m >= 7, the vertex falls back to the area-weighted
-//! face normal ([`crate::mesh::normals`], schemes.md 4.4).
+//! face normal ([`crate::mesh::normals`], docs/schemes.md §6.6).
 //!
 //! Ring order: [`CornerTable::ring`] lists the neighbours in swing order,
 //! which is counter-clockwise seen from outside for counter-clockwise faces;
@@ -91,7 +91,7 @@ pub fn loop_limit_positions(mesh: &Mesh) -> Vec<Vec3> {
 
 /// Loop limit positions for the vertex weights `beta` (Loop's or Warren's):
 /// the masks of the module docs. The limit of a boundary vertex does not
-/// depend on `beta`. On sharp features (creases.md 5; OpenSubdiv
+/// depend on `beta`. On sharp features (docs/sharp-features.md §8; OpenSubdiv
 /// `assignCreaseLimitMask`, `assignCornerLimitMask`) a crease vertex takes
 /// its crease curve's B-spline limit `2/3 v + 1/6 (a + b)` and a corner
 /// stays; the rule is the vertex's at this level, so an edge still
@@ -219,12 +219,12 @@ fn tangent_normals(mesh: &Mesh, tangents: impl Fn(&CornerTable, &[Vec3], u32) ->
     out
 }
 
-/// Tangent-mask normals for the interpolating butterfly schemes (schemes.md 4;
+/// Tangent-mask normals for the interpolating butterfly schemes (docs/schemes.md §6.5;
 /// the masks there were derived as left eigenvectors of the butterfly
 /// subdivision matrix, eigenvalue 1/2, and are our own result):
 /// ```text
 /// regular interior vertex (valence 6, its six neighbours interior of valence
-/// 6 too: a lattice 2-ring), 19-point mask of 4.1 (8-point butterfly, which is
+/// 6 too: a lattice 2-ring), 19-point mask of §6.5 (a) (8-point butterfly, which is
 /// also the modified butterfly's regular rule at tension 0; approximate for
 /// other tensions), centre weight 0,
 /// neighbour e_i at angle theta_i = 60 i degrees:
@@ -232,14 +232,14 @@ fn tangent_normals(mesh: &Mesh, tangents: impl Fn(&CornerTable, &[Vec3], u32) ->
 ///     straight 2-ring s_i beyond e_i (distance 2):      (1/30) cos(theta_i)
 ///     diagonal d_i across edge (e_i, e_{i+1}) (sqrt 3): -(4 / (15 sqrt 3)) cos(theta_i + 30 deg)
 ///     t2: the same with sin
-/// other interior vertex, valence k (4.2; for a regular vertex next to an
-/// extraordinary one, the 1-ring part of 4.1, an approximation), centre 0:
+/// other interior vertex, valence k (§6.5 (b); for a regular vertex next to an
+/// extraordinary one, the 1-ring part of §6.5 (a), an approximation), centre 0:
 ///     t1 = sum cos(2 pi j / k) e_j,   t2 = sum sin(2 pi j / k) e_j
-/// boundary vertex (4.3): along the boundary, the 4-point curve's exact mask
+/// boundary vertex (§6.5 (c)): along the boundary, the 4-point curve's exact mask
 ///     t_along = (1/12) (p_{-2} - 8 p_{-1} + 8 p_{+1} - p_{+2})
 /// with p_{+1} = e_0, p_{-1} = e_m the boundary neighbours and p_{+2}, p_{-2}
-/// the next boundary vertices; across: no verified mask, so (4.3's first
-/// option) the normal is the area-weighted face normal of the fan with its
+/// the next boundary vertices; across: no verified mask, so (§6.5 (c)) the
+/// normal is the area-weighted face normal of the fan with its
 /// component along t_along removed: exact along the boundary, approximate
 /// across it.
 /// ```
@@ -414,7 +414,7 @@ mod tests {
 
     #[test]
     fn published_m4_mask_is_not_an_eigenvector() {
-        // schemes.md 5.4's m >= 4 formula, for the record
+        // the published m >= 4 formula (docs/schemes.md §6.3), for the record
         let m = 4;
         let th = PI / m as f64;
         let mut l = vec![0.0, -th.sin()];

@@ -1,7 +1,7 @@
 //! Loop subdivision (C. Loop, "Smooth Subdivision Surfaces Based on
 //! Triangles", MS thesis, Utah 1987) with the boundary rules of Hoppe et al.,
 //! "Piecewise Smooth Surface Reconstruction", SIGGRAPH 1994 (as in OpenSubdiv
-//! `sdc/loopScheme.h`). schemes.md 5.
+//! `sdc/loopScheme.h`). docs/schemes.md §3.
 //!
 //! ```text
 //!            c                     interior edge (a, b), wings c, d:

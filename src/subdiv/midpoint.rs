@@ -5,7 +5,7 @@
 //! even (vertex):      v' = v
 //! ```
 //! The surface does not change; it is the "split" half of split-and-tweak and
-//! a cheap level-of-detail baseline (schemes.md 2). Note that OpenMesh's
+//! a cheap level-of-detail baseline (docs/schemes.md §2). Note that OpenMesh's
 //! `MidpointT` is a different operation (vertex truncation).
 
 use super::rules::{Level, Rules, Sink};

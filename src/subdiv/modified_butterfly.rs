@@ -1,5 +1,5 @@
 //! Modified butterfly (Zorin, Schroeder, Sweldens, "Interpolating Subdivision
-//! for Meshes with Arbitrary Topology", SIGGRAPH 1996; schemes.md 3.3-3.5).
+//! for Meshes with Arbitrary Topology", SIGGRAPH 1996; docs/schemes.md §4.3-4.5).
 //! Old vertices never move. Valence counts EDGES.
 //!
 //! Regular interior edge (both ends interior, valence 6), tension `w`
@@ -22,7 +22,7 @@
 //! ```
 //! Both endpoints extraordinary: the average of the two EV stencils.
 //!
-//! Boundary (our choice, schemes.md 3.5 "Recommendation"):
+//! Boundary (our choice, docs/schemes.md §4.5):
 //! * border edge: 4-point curve rule `9/16 (p1 + p2) - 1/16 (p0 + p3)`;
 //! * interior edge with an extraordinary interior endpoint: its EV rule (as
 //!   OpenMesh), averaged if both are;
@@ -61,7 +61,7 @@ pub struct ModifiedButterfly {
 /// of 1/4 (at k <= 2 the `cos(4 pi j/k)` term no longer sums to zero), so
 /// the edge point would not be affine invariant (weights summing to 3/2).
 /// We use the unique circulant with the eigenvalues Zorin's rule is built
-/// on (schemes.md 3.4): mode 0 = `s_0 + s_1` = 1/4 and mode 1 = `s_0 - s_1`
+/// on (docs/schemes.md §4.4): mode 0 = `s_0 + s_1` = 1/4 and mode 1 = `s_0 - s_1`
 /// = 1/2, i.e. `s = (3/8, -1/8)`, the same values as the k = 4 table's
 /// `s_0` and `s_2`; with the 3/4 on the vertex the stencil sums to one.
 /// Valences 0 and 1 cannot occur at an interior vertex of a valid table
@@ -250,7 +250,7 @@ impl ModifiedButterfly {
 impl Rules for ModifiedButterfly {
     const MOVES_VERTICES: bool = false;
     const CUT_AT_CREASES: bool = true;
-    /// The 4-point curve along the crease (creases.md 4).
+    /// The 4-point curve along the crease (docs/sharp-features.md §6.2).
     #[inline]
     fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         match ct.features {
@@ -367,7 +367,7 @@ mod tests {
             let s: f64 = ev_weights(k).iter().sum();
             assert!((s - 0.25).abs() < 1e-12, "k={k} sum={s}");
         }
-        // the eigen-structure of schemes.md 3.4: mode 1 of the circulant
+        // the eigen-structure of docs/schemes.md §4.4: mode 1 of the circulant
         // (sum_j s_j cos(2 pi j / k)) is 1/2 for every valence, the k = 2
         // rule included
         for k in 2..40 {

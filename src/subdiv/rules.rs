@@ -114,7 +114,7 @@ pub trait Rules: Sync {
     const MOVES_VERTICES: bool;
     /// Whether the smooth stencils reach across edges, so that on a level
     /// with creases they must see the level cut open along them (the
-    /// butterfly family; creases.md 4).
+    /// butterfly family; docs/sharp-features.md §6.2).
     const CUT_AT_CREASES: bool = false;
     /// Smooth stencil of the new vertex on the edge opposite owner corner
     /// `c` (the scheme's boundary rule where `c` is a border corner).
@@ -233,7 +233,7 @@ pub fn ring_sums_map(lv: &Level, pos: &[Vec3], out: &mut [Vec3], f: impl Fn(usiz
 }
 
 /// The 4-point curve rule along the boundary for the border edge opposite
-/// owner corner `c` (Dyn, Levin, Gregory 1987; schemes.md 3.5a):
+/// owner corner `c` (Dyn, Levin, Gregory 1987; docs/schemes.md §4.5 (a)):
 /// `e = 9/16 (p1 + p2) - 1/16 (p0 + p3)` with `p0, p1, p2, p3` consecutive
 /// boundary vertices. Uses boundary vertices only, so the boundary curve is
 /// the interpolating 4-point curve of the boundary polygon.

@@ -1,4 +1,4 @@
-//! Stencil plans for fixed topology (schemes.md 7.7; OpenSubdiv's
+//! Stencil plans for fixed topology (docs/schemes.md §7.8; OpenSubdiv's
 //! `far::StencilTable`, libigl's subdivision matrix `S`).
 //!
 //! When only the control positions change (animation), the topology, the O
