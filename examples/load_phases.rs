@@ -10,9 +10,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let t0 = Instant::now();
         let bytes = std::fs::read(&path)?;
         let t1 = Instant::now();
-        let raw = subdiv::io::obj::parse(&bytes, &path)?;
+        let opts = subdiv::io::ReadOptions::default();
+        let src = subdiv::io::Source::Bytes { bytes: &bytes, name: &path, folder: None };
+        let raw = subdiv::io::read_raw(src, &opts)?.raw;
         let t2 = Instant::now();
-        let (m, _) = subdiv::Mesh::from_triangles_report(raw.positions, &raw.triangles)?;
+        let (m, _, _) = raw.build(&path, opts.topology, false)?;
         let t3 = Instant::now();
         std::hint::black_box(m.ct.num_triangles());
         let ms = |a: Instant, b: Instant| (b - a).as_secs_f64() * 1e3;

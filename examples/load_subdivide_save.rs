@@ -14,8 +14,10 @@ fn main() -> subdiv::Result<()> {
     let levels: u32 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2);
     let scheme: Scheme = args.get(3).map_or(Ok(Scheme::Loop), |s| s.parse()).map_err(subdiv::Error::Usage)?;
 
-    // a file, or a model compiled into the library (bundled:NAME)
-    let (mesh, attrs) = bundled::load_with_attributes(&input)?;
+    // a file, or a model compiled into the library (bundled:NAME), through
+    // the one reading pipeline (its budget, its warnings in the result)
+    let loaded = bundled::read(&input, &io::ReadOptions::default())?;
+    let (mesh, attrs) = (loaded.mesh, loaded.attributes);
     let opts = Options::default();
     let (fine, stats) = subdivide(&mesh, scheme, levels, &opts)?;
     // attributes follow the same levels: colours with the scheme's weights, UVs linearly

@@ -7,6 +7,7 @@
 //! (`subdiv info bundled:torus.obj`); `subdiv models` lists them.
 
 use crate::anim::paths::Paths;
+use crate::io::{Loaded, ReadOptions};
 use crate::{Mesh, Result, io};
 use std::path::{Path, PathBuf};
 
@@ -30,21 +31,14 @@ impl Model {
     pub fn cli_name(&self) -> String {
         format!("{PREFIX}{}", self.file_name)
     }
-    /// Parses it as a mesh (`.obj`, `.ct`, `.bez`), naming it in errors as
+    /// Reads it as a mesh (see [`io::read`]), naming it in errors as
     /// [`Model::cli_name`] does.
     ///
     /// # Errors
-    /// Parse or validation errors (`teapot.bez` needs repair; see
-    /// [`Model::load_repaired`]).
-    pub fn load(&self) -> Result<Mesh> {
-        io::from_bytes(self.bytes, &self.cli_name())
-    }
-    /// Parses and repairs it (see [`io::from_bytes_repaired`]).
-    ///
-    /// # Errors
-    /// Parse errors.
-    pub fn load_repaired(&self) -> Result<(Mesh, crate::mesh::RepairReport)> {
-        io::from_bytes_repaired(self.bytes, &self.cli_name())
+    /// As [`io::read`] (`teapot.bez` needs [`io::Topology::Repair`]).
+    pub fn read(&self, opts: &ReadOptions) -> Result<Loaded> {
+        let name = self.cli_name();
+        io::read(io::Source::Bytes { bytes: self.bytes, name: &name, folder: None }, opts)
     }
     /// Its animation paths, when some are bundled for it.
     pub fn paths(&self) -> Option<&'static str> {
@@ -90,61 +84,58 @@ pub fn from_arg(arg: &Path) -> Option<&'static Model> {
 }
 
 /// The bytes a model argument names: a bundled model (`bundled:NAME`, from
-/// memory) or a file.
+/// memory) or a file (read within the default budget).
 ///
 /// # Errors
-/// I/O errors naming the file; an unknown `bundled:` name.
-pub fn read(arg: &Path) -> Result<std::borrow::Cow<'static, [u8]>> {
+/// I/O errors naming the file; an unknown `bundled:` name; over the budget.
+pub fn bytes(arg: &Path) -> Result<std::borrow::Cow<'static, [u8]>> {
     if let Some(m) = from_arg(arg) {
         return Ok(std::borrow::Cow::Borrowed(m.bytes));
     }
-    if let Some(name) = arg.to_str().and_then(|s| s.strip_prefix(PREFIX)) {
-        let known: Vec<&str> = MODELS.iter().map(|m| m.file_name).collect();
-        return Err(crate::Error::NoSuchBundled { name: name.to_string(), known: known.join(", ") });
+    check_prefix(arg)?;
+    let budget = io::Budget::new(io::Limits::default());
+    io::resolve::read_model(arg, &budget, &arg.display().to_string()).map(std::borrow::Cow::Owned)
+}
+
+/// An unknown `bundled:` name is an error listing the known ones.
+fn check_prefix(arg: &Path) -> Result<()> {
+    match arg.to_str().and_then(|s| s.strip_prefix(PREFIX)) {
+        Some(name) => {
+            let known: Vec<&str> = MODELS.iter().map(|m| m.file_name).collect();
+            Err(crate::Error::NoSuchBundled { name: name.to_string(), known: known.join(", ") })
+        }
+        None => Ok(()),
     }
-    std::fs::read(arg).map(std::borrow::Cow::Owned).map_err(|e| crate::Error::io(arg, e))
 }
 
-/// Loads the mesh a model argument names (see [`read`], [`io::from_bytes`]).
+/// Reads the mesh a model argument names (a bundled model or a file; see
+/// [`io::read`]).
 ///
 /// # Errors
-/// As [`read`] and [`io::from_bytes`].
+/// As [`io::read`]; an unknown `bundled:` name.
+pub fn read(arg: &Path, opts: &ReadOptions) -> Result<Loaded> {
+    if let Some(m) = from_arg(arg) {
+        return m.read(opts);
+    }
+    check_prefix(arg)?;
+    io::read(io::Source::File(arg), opts)
+}
+
+/// The mesh a model argument names, with the default [`ReadOptions`].
+///
+/// # Errors
+/// As [`read`].
 pub fn load(arg: &Path) -> Result<Mesh> {
-    io::from_bytes(&read(arg)?, &arg.display().to_string())
-}
-
-/// Loads and repairs the mesh a model argument names (see [`io::from_bytes_repaired`]).
-///
-/// # Errors
-/// As [`read`] and [`io::from_bytes_repaired`].
-pub fn load_repaired(arg: &Path) -> Result<(Mesh, crate::mesh::RepairReport)> {
-    io::from_bytes_repaired(&read(arg)?, &arg.display().to_string())
-}
-
-/// Loads a model argument with its attributes (see
-/// [`io::from_bytes_with_attributes`]).
-///
-/// # Errors
-/// As [`read`] and the OBJ reader.
-pub fn load_with_attributes(arg: &Path) -> Result<(Mesh, crate::mesh::attributes::Attributes)> {
-    io::from_bytes_with_attributes(&read(arg)?, &arg.display().to_string())
-}
-
-/// Analyzes the mesh a model argument names (see [`io::analyze_bytes`]).
-///
-/// # Errors
-/// As [`read`] and [`io::analyze_bytes`].
-pub fn analyze(arg: &Path) -> Result<(Mesh, crate::mesh::RepairReport)> {
-    io::analyze_bytes(&read(arg)?, &arg.display().to_string())
+    read(arg, &ReadOptions::default()).map(|l| l.mesh)
 }
 
 /// Loads the `.bzc` curve a model argument names.
 ///
 /// # Errors
-/// As [`read`] and [`io::bezier::parse_bzc`].
+/// As [`bytes`] and [`io::bezier::parse_bzc`].
 pub fn load_curve(arg: &Path) -> Result<Vec<glam::Vec2>> {
     let file = arg.display().to_string();
-    io::bezier::parse_bzc(io::text(&read(arg)?, &file)?, &file)
+    io::bezier::parse_bzc(io::text(&bytes(arg)?, &file)?, &file)
 }
 
 /// The text of the bundled `.paths` for models called `stem`.
@@ -210,7 +201,7 @@ pub fn paths_for(model: &Path) -> Option<PathsSource> {
 /// would name `bundled:tetrahedron.obj`.
 pub fn tetrahedron() -> Result<(Mesh, Paths)> {
     let model = model("tetrahedron.obj").ok_or_else(|| crate::Error::Internal("no bundled tetrahedron".into()))?;
-    let mesh = model.load()?;
+    let mesh = model.read(&ReadOptions::default())?.mesh;
     let paths = PathsSource::Bundled("tetrahedron").load()?;
     paths.check_model(&mesh, "bundled:tetrahedron.paths")?;
     Ok((mesh, paths))
@@ -227,10 +218,11 @@ mod tests {
                 let text = io::text(m.bytes, m.file_name).unwrap();
                 assert!(io::bezier::parse_bzc(text, m.file_name).unwrap().len() >= 2, "{}", m.file_name);
             } else {
-                let mesh = m.load_repaired().unwrap_or_else(|e| panic!("{}: {e}", m.file_name)).0;
+                let repair = ReadOptions { topology: io::Topology::Repair, ..Default::default() };
+                let mesh = m.read(&repair).unwrap_or_else(|e| panic!("{}: {e}", m.file_name)).mesh;
                 assert!(mesh.ct.num_triangles() > 0, "{}", m.file_name);
                 if m.file_name != "teapot.bez" {
-                    m.load().unwrap_or_else(|e| panic!("{}: {e}", m.file_name));
+                    m.read(&ReadOptions::default()).unwrap_or_else(|e| panic!("{}: {e}", m.file_name));
                 }
             }
         }

@@ -1,8 +1,64 @@
 //! Error types. Every failure that comes from a file, the user or the machine's
 //! limits is a typed error with the element ids that caused it; nothing from
 //! outside the crate may panic.
+//!
+//! Every message is one printable line of about 300 characters at most,
+//! whatever a file puts in it: the parts that come from outside (file
+//! names, elements, what was read) are shown through [`clean`], which
+//! escapes control characters and shortens long text, and lists of ids are
+//! cut to [`MAX_EXAMPLES`].
 
+use std::borrow::Cow;
 use std::path::Path;
+
+/// Characters of a file name in a message (longer ones keep their end,
+/// which names the file).
+const FILE_CHARS: usize = 80;
+/// Characters of an element (`mesh 3 primitive 0`) in a message.
+const ELEMENT_CHARS: usize = 48;
+/// Characters of the description of a problem in a message.
+const MSG_CHARS: usize = 160;
+/// Ids an error lists (a non-manifold edge's faces): the rest are counted.
+pub const MAX_EXAMPLES: usize = 8;
+
+/// `s` as one printable line of at most `max` characters: control
+/// characters escaped (`\n`, `\0`, `\u{1b}`), and a longer text cut in
+/// the middle with `...` (both ends usually say the most).
+pub fn clean(s: &str, max: usize) -> Cow<'_, str> {
+    let plain = s.chars().all(|c| !c.is_control()) && s.chars().nth(max).is_none();
+    if plain {
+        return Cow::Borrowed(s);
+    }
+    let escaped: Vec<char> = s.chars().flat_map(char::escape_debug_plain).collect();
+    if escaped.len() <= max {
+        return Cow::Owned(escaped.into_iter().collect());
+    }
+    let keep = max.saturating_sub(3);
+    let (head, tail) = (keep - keep / 2, keep / 2);
+    let mut out: String = escaped[..head].iter().collect();
+    out.push_str("...");
+    out.extend(&escaped[escaped.len() - tail..]);
+    Cow::Owned(out)
+}
+
+/// Escapes a character as `escape_debug` does, but leaves quotes and
+/// non-ASCII letters as they are.
+trait EscapePlain {
+    fn escape_debug_plain(self) -> Vec<char>;
+}
+
+impl EscapePlain for char {
+    fn escape_debug_plain(self) -> Vec<char> {
+        if self.is_control() { self.escape_debug().collect() } else { vec![self] }
+    }
+}
+
+/// The first [`MAX_EXAMPLES`] of `ids` of `total`, and how many more.
+fn list(ids: &[usize], total: usize) -> String {
+    let shown: Vec<String> = ids.iter().take(MAX_EXAMPLES).map(usize::to_string).collect();
+    let more = total.saturating_sub(shown.len());
+    if more > 0 { format!("{} and {more} more", shown.join(", ")) } else { shown.join(", ") }
+}
 
 /// A problem found while building a corner table from a triangle list.
 ///
@@ -38,7 +94,7 @@ pub enum MeshError {
         vertex: usize,
     },
     /// More than two faces share an edge.
-    #[error("non-manifold edge ({v0}, {v1}): shared by {faces} faces (faces {examples:?})")]
+    #[error("non-manifold edge ({v0}, {v1}): shared by {faces} faces (faces {})", list(examples, *faces))]
     NonManifoldEdge {
         /// First vertex of the edge.
         v0: u32,
@@ -46,7 +102,7 @@ pub enum MeshError {
         v1: u32,
         /// How many faces share it.
         faces: usize,
-        /// Some of those faces.
+        /// Some of those faces (at most [`MAX_EXAMPLES`]).
         examples: Vec<usize>,
     },
     /// Two faces traverse an edge in the same direction.
@@ -78,7 +134,7 @@ pub enum MeshError {
         vertex: u32,
     },
     /// An index or count does not fit the 32-bit corner table.
-    #[error("mesh too large for 32-bit corner ids: {what}")]
+    #[error("mesh too large for 32-bit corner ids: {}", clean(what, MSG_CHARS))]
     TooManyElements {
         /// What does not fit.
         what: String,
@@ -86,7 +142,7 @@ pub enum MeshError {
     /// A crease or corner tag names something that does not exist, or an
     /// invalid sharpness. `index` counts the crease tags first, then the
     /// corner tags, in file order.
-    #[error("sharpness tag {index}: {msg}")]
+    #[error("sharpness tag {index}: {}", clean(msg, MSG_CHARS))]
     BadTag {
         /// The index as written.
         index: usize,
@@ -94,7 +150,7 @@ pub enum MeshError {
         msg: String,
     },
     /// The opposite table stored in a file contradicts the triangles.
-    #[error("stored opposite table is inconsistent at corner {corner}: {msg}")]
+    #[error("stored opposite table is inconsistent at corner {corner}: {}", clean(msg, MSG_CHARS))]
     BadOppositeTable {
         /// The corner id.
         corner: usize,
@@ -147,7 +203,7 @@ impl MeshError {
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// Reading or writing a file failed.
-    #[error("{path}: {source}")]
+    #[error("{}: {}", clean(path, FILE_CHARS), clean(&source.to_string(), MSG_CHARS))]
     Io {
         /// The file.
         path: String,
@@ -156,7 +212,7 @@ pub enum Error {
         source: std::io::Error,
     },
     /// A file could not be parsed.
-    #[error("{file}:{line}: {msg}")]
+    #[error("{}:{line}: {}", clean(file, FILE_CHARS), clean(msg, MSG_CHARS))]
     Parse {
         /// The file.
         file: String,
@@ -167,7 +223,7 @@ pub enum Error {
     },
     /// A binary or structured file (PLY, STL, glTF, COLLADA) is malformed:
     /// `element` names where ("vertex 12", "header", "accessor 3").
-    #[error("{file}: {element}: {msg}")]
+    #[error("{}: {}: {}", clean(file, FILE_CHARS), clean(element, ELEMENT_CHARS), clean(msg, MSG_CHARS))]
     Format {
         /// The file.
         file: String,
@@ -177,7 +233,7 @@ pub enum Error {
         msg: String,
     },
     /// The mesh in a file is not a valid manifold triangle mesh.
-    #[error("{file}{}: {source}", line.map(|l| format!(":{l}")).unwrap_or_default())]
+    #[error("{}{}: {source}", clean(file, FILE_CHARS), line.map(|l| format!(":{l}")).unwrap_or_default())]
     Mesh {
         /// The file.
         file: String,
@@ -190,6 +246,25 @@ pub enum Error {
     /// A mesh given in memory is invalid.
     #[error(transparent)]
     Invalid(#[from] MeshError),
+    /// A file would make us read or hold more than the read's budget allows
+    /// (see [`crate::io::Limits`]).
+    #[error(
+        "{}: {}: {value} is over the {limit} limit of {max} (raise it with --limit {limit}=N)",
+        clean(file, FILE_CHARS),
+        clean(element, ELEMENT_CHARS)
+    )]
+    OverBudget {
+        /// The file.
+        file: String,
+        /// What in it asked for too much.
+        element: String,
+        /// The limit's name ([`crate::io::LIMIT_NAMES`]).
+        limit: &'static str,
+        /// What was asked for.
+        value: u64,
+        /// The limit.
+        max: u64,
+    },
     /// The next subdivision level would need more memory than allowed.
     #[error("level {level} would need about {} but the limit is {} ({faces} faces); use fewer levels or raise --max-memory", human_bytes(*bytes), human_bytes(*limit))]
     TooLarge {
@@ -203,17 +278,17 @@ pub enum Error {
         limit: u64,
     },
     /// An argument is out of its range, or options that do not go together.
-    #[error("{0}")]
+    #[error("{}", clean(.0, MSG_CHARS))]
     Usage(String),
     /// The work was cancelled before it finished (by the user, or by a newer
     /// request that superseded it).
-    #[error("{what} cancelled")]
+    #[error("{} cancelled", clean(what, MSG_CHARS))]
     Cancelled {
         /// What was cancelled ("export", "subdivision").
         what: String,
     },
     /// Encoding an image or an animation failed.
-    #[error("{path}: {format} encoding failed: {msg}")]
+    #[error("{}: {format} encoding failed: {}", clean(path, FILE_CHARS), clean(msg, MSG_CHARS))]
     Encode {
         /// The file being written.
         path: String,
@@ -223,7 +298,7 @@ pub enum Error {
         msg: String,
     },
     /// Waiting for a result ran past its limit.
-    #[error("{what}: did not finish within {seconds} s")]
+    #[error("{}: did not finish within {seconds} s", clean(what, MSG_CHARS))]
     Timeout {
         /// What was waited for.
         what: String,
@@ -231,7 +306,7 @@ pub enum Error {
         seconds: f64,
     },
     /// Two things that must have the same count do not.
-    #[error("{what}: {found} {unit}, but {expected} expected")]
+    #[error("{}: {found} {unit}, but {expected} expected", clean(what, MSG_CHARS))]
     CountMismatch {
         /// Where the counts come from (a file, a pair of meshes).
         what: String,
@@ -243,7 +318,7 @@ pub enum Error {
         found: usize,
     },
     /// A file's extension names no format this build reads or writes.
-    #[error("{path}: unknown {direction} format '.{ext}' (use {known})")]
+    #[error("{}: unknown {direction} format '.{}' (use {known})", clean(path, FILE_CHARS), clean(ext, 16))]
     UnknownFormat {
         /// The file.
         path: String,
@@ -256,7 +331,7 @@ pub enum Error {
     },
     /// A file that holds something other than a triangle mesh (a `.bzc`
     /// Bezier curve) was given where a mesh is needed.
-    #[error("{file}: this is {what}, not a mesh (it has no faces to subdivide)")]
+    #[error("{}: this is {what}, not a mesh (it has no faces to subdivide)", clean(file, FILE_CHARS))]
     NotAMesh {
         /// The file.
         file: String,
@@ -264,7 +339,7 @@ pub enum Error {
         what: &'static str,
     },
     /// A `bundled:NAME` argument that names no bundled model.
-    #[error("no bundled model '{name}' (bundled: {known}; `subdiv models` lists them)")]
+    #[error("no bundled model '{}' (bundled: {known}; `subdiv models` lists them)", clean(name, 40))]
     NoSuchBundled {
         /// The name after `bundled:`.
         name: String,
@@ -272,10 +347,10 @@ pub enum Error {
         known: String,
     },
     /// Something our own code should have made impossible: a bug in subdiv.
-    #[error("internal error: {0} (this is a bug in subdiv, please report it)")]
+    #[error("internal error: {} (this is a bug in subdiv, please report it)", clean(.0, MSG_CHARS))]
     Internal(String),
     /// No GPU adapter or device (the renderer and the window need one).
-    #[error("graphics: {0}")]
+    #[error("graphics: {}", clean(.0, MSG_CHARS))]
     Gpu(String),
 }
 

@@ -76,7 +76,7 @@ fn colours_use_the_scheme_weights_and_reproduce_affine_fields() {
 fn obj_round_trip_with_texture_coordinates_and_colours() {
     let text = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nv 1 1 0 0.5 0.5 0.5\nv 9 9 9 1 1 1\n\
                 vt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nf 1/1 2/2 3/3\nf 2/2 4/4 3/3\n";
-    let (mesh, attrs) = obj::from_bytes_with_attributes(text.as_bytes(), "t.obj").unwrap();
+    let (mesh, attrs) = with_attributes(text.as_bytes(), "t.obj").unwrap();
     assert_eq!(mesh.positions.len(), 4, "the unused vertex 5 is dropped");
     let colors = attrs.colors.clone().unwrap();
     assert_eq!(colors, vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::splat(0.5)], "colours follow the renumbering");
@@ -87,7 +87,7 @@ fn obj_round_trip_with_texture_coordinates_and_colours() {
         Ok(())
     })
     .unwrap();
-    let (again, attrs2) = obj::from_bytes_with_attributes(&bytes, "again.obj").unwrap();
+    let (again, attrs2) = with_attributes(&bytes, "again.obj").unwrap();
     assert_eq!(
         (again.ct.v_table().to_vec(), again.positions.clone()),
         (mesh.ct.v_table().to_vec(), mesh.positions.clone())
@@ -103,7 +103,7 @@ fn bad_texture_and_colour_records_name_the_line() {
         ("vt 0 nan\n", 1, "not finite"),
         ("vt 0\n", 1, "texture coordinate has 1"),
     ] {
-        let e = obj::from_bytes_with_attributes(text.as_bytes(), "bad.obj").unwrap_err().to_string();
+        let e = with_attributes(text.as_bytes(), "bad.obj").unwrap_err().to_string();
         assert!(e.contains(&format!("bad.obj:{line}")) && e.contains(what), "{e}");
     }
 }
@@ -120,7 +120,7 @@ fn subdivide_command_carries_attributes_into_obj() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let (mesh, attrs) = obj::load_with_attributes(&output).unwrap();
+    let (mesh, attrs) = load_with_attributes(&output);
     assert_eq!(mesh.ct.num_triangles(), 2 * 16);
     assert_eq!(attrs.uv.unwrap().len(), 3 * 32);
     assert_eq!(attrs.colors.unwrap().len(), mesh.positions.len());

@@ -49,7 +49,7 @@ fn every_format_round_trips_and_subdivides_like_obj() {
 #[test]
 fn attributes_survive_the_formats_that_keep_them() {
     let dir = scratch_dir("formats-attr");
-    let (mesh, attrs) = io::obj::load_with_attributes(&model_path("cube_uv.obj")).unwrap();
+    let (mesh, attrs) = load_with_attributes(&model_path("cube_uv.obj"));
     let uv = attrs.uv.clone().expect("cube_uv.obj has texture coordinates");
     let colors: Vec<Vec3> = mesh.positions.iter().map(|p| (*p * 0.5 + 0.25).clamp(Vec3::ZERO, Vec3::ONE)).collect();
     let attrs = Attributes { uv: Some(uv.clone()), colors: Some(colors.clone()), materials: None };
@@ -58,8 +58,7 @@ fn attributes_survive_the_formats_that_keep_them() {
     {
         let path = dir.join(format!("cube_uv.{ext}"));
         io::save_with(&path, &mesh, &attrs).unwrap();
-        let (back, got) =
-            io::from_bytes_with_attributes(&std::fs::read(&path).unwrap(), path.to_str().unwrap()).unwrap();
+        let (back, got) = with_attributes(&std::fs::read(&path).unwrap(), path.to_str().unwrap()).unwrap();
         assert_eq!(back.ct.num_triangles(), mesh.ct.num_triangles(), "{ext}");
         assert_eq!(back.positions.len(), mesh.positions.len(), "{ext}: welded back to the OBJ's vertices");
         // colour of each vertex, found by position
@@ -119,7 +118,7 @@ fn ply_tetra(enc: &str, big: bool) -> Vec<u8> {
 fn glb_texture_coordinates_use_the_gltf_convention() {
     // OBJ's v runs up the image, glTF's down: the .glb stores 1 - v
     let dir = scratch_dir("formats-glb-uv");
-    let (mesh, attrs) = io::obj::load_with_attributes(&model_path("cube_uv.obj")).unwrap();
+    let (mesh, attrs) = load_with_attributes(&model_path("cube_uv.obj"));
     let uv = attrs.uv.clone().unwrap();
     let path = dir.join("cube_uv.glb");
     io::save_with(&path, &mesh, &attrs).unwrap();
@@ -142,13 +141,13 @@ fn ply_reads_ascii_and_both_binary_encodings_with_colours() {
     let tetra = bundled("tetrahedron.obj");
     for (enc, big) in [("ascii", false), ("binary_little_endian", false), ("binary_big_endian", true)] {
         let bytes = ply_tetra(enc, big);
-        let (m, a) = io::from_bytes_with_attributes(&bytes, "t.ply").unwrap_or_else(|e| panic!("{enc}: {e}"));
+        let (m, a) = with_attributes(&bytes, "t.ply").unwrap_or_else(|e| panic!("{enc}: {e}"));
         assert_eq!(m.positions, tetra.positions, "{enc}");
         assert_eq!(m.ct.v_table(), tetra.ct.v_table(), "{enc}");
         let c = a.colors.unwrap();
         assert_eq!(c[1], Vec3::new(60.0 / 255.0, 1.0, 0.0), "{enc}");
         // truncated: the element and the file are named
-        let e = io::from_bytes(&bytes[..bytes.len() - 12], "cut.ply").unwrap_err().to_string();
+        let e = mesh_of(&bytes[..bytes.len() - 12], "cut.ply").unwrap_err().to_string();
         assert!(e.contains("cut.ply") && (e.contains("face") || e.contains("extra")), "{enc}: {e}");
     }
 }
@@ -181,29 +180,28 @@ fn stl_is_welded_and_told_apart_by_content() {
         ("binary saying solid", solid_bin, "c.stl"),
         ("binary without extension", bytes.clone(), "c"),
     ] {
-        let m = io::from_bytes(&data, name).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let m = mesh_of(&data, name).unwrap_or_else(|e| panic!("{what}: {e}"));
         assert_eq!(
             (m.positions.len(), m.ct.num_triangles(), m.ct.num_border_edges()),
             (8, 12, 0),
             "{what}: welded, closed"
         );
     }
-    let e = io::from_bytes(&bytes[..84 + 50 * 5], "short.stl").unwrap_err().to_string();
+    let e = mesh_of(&bytes[..84 + 50 * 5], "short.stl").unwrap_err().to_string();
     assert!(e.contains("short.stl") && e.contains("facets") && e.contains("12"), "{e}");
-    let e =
-        io::from_bytes(b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n", "a.stl").unwrap_err();
+    let e = mesh_of(b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n", "a.stl").unwrap_err();
     assert!(e.to_string().contains("a.stl:5"), "{e}");
 }
 
 #[test]
 fn off_reads_polygons_and_colours() {
     let text = "OFF\n# a unit square pyramid\n5 5 8\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 1\n4 3 2 1 0\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n";
-    let m = io::from_bytes(text.as_bytes(), "p.off").unwrap();
+    let m = mesh_of(text.as_bytes(), "p.off").unwrap();
     assert_eq!((m.positions.len(), m.ct.num_triangles(), m.ct.num_border_edges()), (5, 6, 0));
     let c = "COFF\n3 1 0\n0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n";
-    let (_, a) = io::from_bytes_with_attributes(c.as_bytes(), "c.off").unwrap();
+    let (_, a) = with_attributes(c.as_bytes(), "c.off").unwrap();
     assert_eq!(a.colors.unwrap(), vec![Vec3::X, Vec3::Y, Vec3::Z]);
-    let e = io::from_bytes(b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "r.off").unwrap_err().to_string();
+    let e = mesh_of(b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "r.off").unwrap_err().to_string();
     assert!(e.contains("r.off:6") && e.contains("index 7"), "{e}");
 }
 
@@ -251,7 +249,7 @@ fn gltf_text(count: usize) -> String {
 #[test]
 fn gltf_takes_every_mesh_node_with_its_transform() {
     let tetra = bundled("tetrahedron.obj");
-    let m = io::from_bytes(gltf_text(4).as_bytes(), "two.gltf").unwrap();
+    let m = mesh_of(gltf_text(4).as_bytes(), "two.gltf").unwrap();
     assert_eq!((m.positions.len(), m.ct.num_triangles()), (8, 8), "two copies");
     let mut want: Vec<Vec3> = tetra.positions.iter().map(|p| *p + Vec3::new(10.0, 0.0, 0.0)).collect();
     want.extend(tetra.positions.iter().map(|p| *p * Vec3::new(-2.0, 2.0, 2.0)));
@@ -277,21 +275,21 @@ fn gltf_takes_every_mesh_node_with_its_transform() {
         "\"buffers\"",
         "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0,0,1]}}],\"buffers\"",
     );
-    let (_, a) = io::from_bytes_with_attributes(red.as_bytes(), "red.gltf").unwrap();
+    let (_, a) = with_attributes(red.as_bytes(), "red.gltf").unwrap();
     let g = a.materials.expect("material groups from the glTF materials");
     assert_eq!((g.face, g.list.len(), g.list[0].diffuse), (vec![0; 8], 1, Vec3::X));
     // what the fuzzer found panicking inside the gltf crate is refused, naming the element
     let missing = gltf_text(4).replace("\"POSITION\":0", "\"POSITION\":7");
-    let e = io::from_bytes(missing.as_bytes(), "m.gltf").unwrap_err().to_string();
+    let e = mesh_of(missing.as_bytes(), "m.gltf").unwrap_err().to_string();
     assert!(e.contains("m.gltf") && e.contains("mesh 0 primitive 0") && e.contains("accessor 7"), "{e}");
     let bytes_not_floats = gltf_text(4).replacen("\"componentType\":5126", "\"componentType\":5121", 1);
-    let e = io::from_bytes(bytes_not_floats.as_bytes(), "u8.gltf").unwrap_err().to_string();
+    let e = mesh_of(bytes_not_floats.as_bytes(), "u8.gltf").unwrap_err().to_string();
     assert!(e.contains("u8.gltf") && e.contains("accessor 0") && e.contains("not allowed"), "{e}");
     let float_indices = gltf_text(4).replace("\"componentType\":5123", "\"componentType\":5126");
-    let e = io::from_bytes(float_indices.as_bytes(), "fi.gltf").unwrap_err().to_string();
+    let e = mesh_of(float_indices.as_bytes(), "fi.gltf").unwrap_err().to_string();
     assert!(e.contains("fi.gltf") && e.contains("accessor 1"), "{e}");
     // an accessor claiming more than its view holds is refused, naming it
-    let e = io::from_bytes(gltf_text(1_000_000_000_000).as_bytes(), "big.gltf").unwrap_err().to_string();
+    let e = mesh_of(gltf_text(1_000_000_000_000).as_bytes(), "big.gltf").unwrap_err().to_string();
     assert!(e.contains("big.gltf") && e.contains("accessor 0"), "{e}");
 }
 
@@ -320,22 +318,22 @@ const DAE: &str = r##"<?xml version="1.0" encoding="utf-8"?>
 
 #[test]
 fn collada_reads_triangles_and_polylists_of_every_geometry() {
-    let m = io::from_bytes(DAE.as_bytes(), "pyr.dae").unwrap();
+    let m = mesh_of(DAE.as_bytes(), "pyr.dae").unwrap();
     assert_eq!((m.positions.len(), m.ct.num_triangles()), (8, 7), "pyramid (quad base fanned) + a triangle");
     assert_eq!(subdiv::mesh::topology::topology(&m.ct).components, 2);
     // the second geometry has no texture coordinates: its corners get (0, 0)
-    let (_, a) = io::from_bytes_with_attributes(DAE.as_bytes(), "pyr.dae").unwrap();
+    let (_, a) = with_attributes(DAE.as_bytes(), "pyr.dae").unwrap();
     assert_eq!(a.uv.as_ref().map(|u| (u.len(), u[18..] == [Vec2::ZERO; 3])), Some((21, true)));
     let one = DAE.split("<geometry id=\"tri\">").next().unwrap().to_string() + "</library_geometries></COLLADA>";
-    let (p, a) = io::from_bytes_with_attributes(one.as_bytes(), "one.dae").unwrap();
+    let (p, a) = with_attributes(one.as_bytes(), "one.dae").unwrap();
     assert_eq!((p.ct.num_triangles(), p.ct.num_border_edges()), (6, 0));
     let uv = a.uv.unwrap();
     assert_eq!(uv.len(), 18);
     assert_eq!(&uv[..3], &[Vec2::ZERO, Vec2::ONE, Vec2::ONE], "the polylist's first fan triangle");
     let bad = DAE.replace("0 1 2</p>", "0 1 9</p>");
-    let e = io::from_bytes(bad.as_bytes(), "bad.dae").unwrap_err().to_string();
+    let e = mesh_of(bad.as_bytes(), "bad.dae").unwrap_err().to_string();
     assert!(e.contains("bad.dae") && e.contains("9"), "{e}");
-    let e = io::from_bytes(b"<COLLADA><library_geometries>", "x.dae").unwrap_err().to_string();
+    let e = mesh_of(b"<COLLADA><library_geometries>", "x.dae").unwrap_err().to_string();
     assert!(e.contains("x.dae") && e.contains("XML"), "{e}");
 }
 
@@ -351,7 +349,7 @@ fn huge_header_counts_are_refused_before_allocating() {
         ("h.stl", { let mut b = vec![0u8; 84]; b[80..84].copy_from_slice(&u32::MAX.to_le_bytes()); b }, "facets"),
     ];
     for (name, bytes, element) in cases {
-        let e = io::from_bytes(&bytes, name).unwrap_err();
+        let e = mesh_of(&bytes, name).unwrap_err();
         assert!(matches!(e, Error::Format { .. }), "{name}: {e:?}");
         let e = e.to_string();
         assert!(e.contains(name) && e.contains(element), "{name}: {e}");
@@ -361,7 +359,7 @@ fn huge_header_counts_are_refused_before_allocating() {
 #[test]
 fn unknown_output_extensions_list_every_writer() {
     let e = io::save(std::path::Path::new("x.gltf"), &bundled("cube.obj")).unwrap_err().to_string();
-    for ext in io::WRITE_EXTENSIONS {
+    for ext in io::write_extensions() {
         assert!(e.contains(&format!(".{ext}")), "{e}");
     }
     assert!(

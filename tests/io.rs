@@ -2,16 +2,18 @@
 //! input makes them panic.
 
 mod common;
+#[cfg(unix)]
+mod hostile_inputs;
 use common::*;
-use subdiv::io::obj;
+use subdiv::io::Topology;
 use subdiv::{Error, MeshError, Scheme};
 
 #[test]
 fn our_obj_parser_agrees_with_tobj() {
     for name in BUNDLED {
         let path = model_path(name);
-        let (m, _) = obj::load(&path).unwrap();
-        let (tp, tt) = obj::load_tobj(&path).unwrap();
+        let m = subdiv::io::load(&path).unwrap();
+        let (tp, tt) = load_tobj(&path);
         let key = |p: glam::Vec3| p.to_array().map(f32::to_bits);
         let mut ours: Vec<_> =
             m.ct.v_table()
@@ -26,8 +28,22 @@ fn our_obj_parser_agrees_with_tobj() {
     }
 }
 
+/// Every group's positions and triangles read by tobj (renumbered per
+/// group), concatenated: an independent reading of an OBJ.
+fn load_tobj(path: &std::path::Path) -> (Vec<glam::Vec3>, Vec<u32>) {
+    let opts = tobj::LoadOptions { triangulate: true, single_index: false, ..Default::default() };
+    let (models, _) = tobj::load_obj(path, &opts).unwrap();
+    let (mut pos, mut tris) = (Vec::new(), Vec::new());
+    for m in models {
+        let base = pos.len() as u32;
+        pos.extend(m.mesh.positions.chunks_exact(3).map(|c| glam::Vec3::new(c[0], c[1], c[2])));
+        tris.extend(m.mesh.indices.iter().map(|&i| i + base));
+    }
+    (pos, tris)
+}
+
 fn err_of(text: &str) -> Error {
-    obj::from_bytes(text.as_bytes(), "test.obj").map(|_| ()).unwrap_err()
+    mesh_of(text.as_bytes(), "test.obj").map(|_| ()).unwrap_err()
 }
 
 #[test]
@@ -43,7 +59,7 @@ fn obj_errors_name_the_line() {
     assert!(matches!(e, Error::Mesh { source: MeshError::Empty, .. }), "{e}");
     let e = err_of("\u{1}\u{2}garbage\u{7f}\n");
     assert!(matches!(e, Error::Parse { line: 1, .. }), "{e}");
-    let e = obj::from_bytes(&[0xff, 0xfe, 0x00, 0x41], "bin.obj").map(|_| ()).unwrap_err();
+    let e = mesh_of(&[0xff, 0xfe, 0x00, 0x41], "bin.obj").map(|_| ()).unwrap_err();
     assert!(matches!(e, Error::Parse { line: 1, .. }), "{e}");
     // fin: 3 faces on edge (1,2)
     let fin = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
@@ -57,13 +73,13 @@ fn obj_errors_name_the_line() {
         "{e}"
     );
     // negative (relative) indices and polygons are accepted
-    let (m, info) = obj::from_bytes(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4 -3 -2 -1\n", "q.obj").unwrap();
-    assert_eq!((m.ct.num_triangles(), info.polygons_triangulated), (2, 1));
+    let l = read_bytes(b"v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4 -3 -2 -1\n", "q.obj").unwrap();
+    assert_eq!((l.mesh.ct.num_triangles(), l.notes.fanned, l.notes.face_sizes[4]), (2, 1, 1));
 }
 
 #[test]
 fn ct_errors_and_header_guard() {
-    use subdiv::io::ct::parse;
+    let parse = |text: &str, name: &str| mesh_of(text.as_bytes(), name);
     let e = parse("1000000000000\n0 0 0\n", "big.ct").unwrap_err();
     assert!(matches!(e, Error::Parse { line: 1, .. }), "{e}");
     let e = parse("3\n0 0 0\n1 0 0\n0 1 0\n1\n0 1 7\n", "bad.ct").unwrap_err();
@@ -76,7 +92,7 @@ fn ct_errors_and_header_guard() {
 
 #[test]
 fn ct_stored_o_must_be_the_one_the_faces_define() {
-    use subdiv::io::ct::parse;
+    let parse = |text: &str, name: &str| mesh_of(text.as_bytes(), name);
     // the bundled tetrahedron: lines 11-14 are its O rows; edge (1, 2) is
     // faced by corners 0 and 10
     let head = "4\n1 1 1\n1 -1 -1\n-1 1 -1\n-1 -1 1\n4\n0 1 2\n0 3 1\n0 2 3\n1 3 2\n";
@@ -133,6 +149,10 @@ fn parsers_never_panic_on_mutated_input() {
     seeds.push(paths_seed);
     seeds.extend(format_seeds());
     seeds.extend(hostile_seeds());
+    // the hostile files of tests/hostile.rs: their mutations probe the
+    // guards around each class (the budget below keeps amplification small)
+    #[cfg(unix)]
+    seeds.extend(hostile_inputs::hostile_seeds().into_iter().map(|(_, b)| b));
     let mut rng = Rng(12345);
     let mut rnd = |n: usize| ((rng.next_f32() + 1.0) * 0.5 * n as f32) as usize % n.max(1);
     let tokens: [&[u8]; 10] = [b"-1", b"0", b"nan", b"1e39", b"\n", b" ", b"f", b"v", b"99999999999", b"/"];
@@ -159,28 +179,36 @@ fn parsers_never_panic_on_mutated_input() {
                 }
             }
         }
-        if let Ok((m, _)) = obj::from_bytes(&data, "fuzz.obj") {
+        if let Ok(m) = fuzz_read(&data, "fuzz.obj", Topology::Refuse).map(|l| l.mesh) {
             let _ = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default());
         }
-        if let Ok((m, _)) = obj::from_bytes_repaired(&data, "fuzz.obj") {
+        if let Ok(m) = fuzz_read(&data, "fuzz.obj", Topology::Repair).map(|l| l.mesh) {
             let (fine, _) = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default()).unwrap();
             assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok());
         }
         if let Ok(s) = std::str::from_utf8(&data) {
-            let _ = subdiv::io::ct::parse(s, "fuzz.ct");
+            let _ = fuzz_read(s.as_bytes(), "fuzz.ct", Topology::Refuse);
             let _ = subdiv::anim::paths::Paths::parse(s, "fuzz.paths");
         }
         // every other reader, by extension and by content sniffing
         for name in ["fuzz.ply", "fuzz.stl", "fuzz.off", "fuzz.glb", "fuzz.gltf", "fuzz.dae", "fuzz"] {
-            if let Ok((m, _)) = subdiv::io::from_bytes_with_attributes(&data, name) {
+            if let Ok(m) = fuzz_read(&data, name, Topology::Refuse).map(|l| l.mesh) {
                 assert!(subdiv::mesh::topology::check_invariants(&m.ct).is_ok(), "{name}");
             }
-            if let Ok((m, _)) = subdiv::io::from_bytes_repaired(&data, name) {
+            if let Ok(m) = fuzz_read(&data, name, Topology::Repair).map(|l| l.mesh) {
                 let (fine, _) = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default()).unwrap();
                 assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok(), "{name}");
             }
         }
     }
+}
+
+/// A fuzz round's read: the pipeline with a budget of a 256 MiB machine
+/// (so that an amplifying mutant is refused quickly) and textures decoded.
+fn fuzz_read(bytes: &[u8], name: &str, topology: Topology) -> subdiv::Result<subdiv::io::Loaded> {
+    let limits = subdiv::io::Limits::for_memory(256 << 20);
+    let opts = subdiv::io::ReadOptions { limits, topology, attributes: true, textures: true };
+    subdiv::io::read(subdiv::io::Source::Bytes { bytes, name, folder: None }, &opts)
 }
 
 /// Seeds in every mesh format: the bundled models written by each writer,
@@ -190,7 +218,7 @@ fn format_seeds() -> Vec<Vec<u8>> {
     let dir = scratch_dir("io-fuzz-seeds");
     let mut seeds = Vec::new();
     for name in ["tetrahedron.obj", "cube_uv.obj"] {
-        let (mesh, mut attrs) = obj::load_with_attributes(&model_path(name)).unwrap();
+        let (mesh, mut attrs) = load_with_attributes(&model_path(name));
         attrs.colors = Some(mesh.positions.iter().map(|p| p.abs().min(glam::Vec3::ONE)).collect());
         for ext in ["ply", "stl", "off", "glb"] {
             let path = dir.join(format!("{name}.{ext}"));
@@ -211,7 +239,7 @@ fn format_seeds() -> Vec<Vec<u8>> {
     let hand = &seeds[seeds.len() - 4..];
     for (s, (name, triangles)) in hand.iter().zip([("seed.ply", 4), ("seed.stl", 2), ("seed.gltf", 1), ("seed.dae", 3)])
     {
-        let m = subdiv::io::from_bytes(s, name).unwrap_or_else(|e| panic!("the {name} seed does not parse: {e}"));
+        let m = mesh_of(s, name).unwrap_or_else(|e| panic!("the {name} seed does not parse: {e}"));
         assert_eq!(m.ct.num_triangles(), triangles, "{name}");
     }
     seeds
@@ -230,22 +258,22 @@ fn repairing_loaders_repair_topology_but_keep_data_errors() {
             subdiv::io::load(path).unwrap_err(),
             Error::Mesh { source: MeshError::NonManifoldEdge { faces: 3, .. }, .. }
         ));
-        let (m, rep) = subdiv::io::load_repaired(path).unwrap();
+        let (m, rep) = load_repaired(path).unwrap();
         assert_eq!((m.ct.num_triangles(), m.positions.len()), (3, 9));
         assert_eq!(rep.id_base, base);
         assert!(rep.to_string().contains(edge), "{rep}");
-        let (_, all) = subdiv::io::analyze(path).unwrap();
+        let (_, all) = analyze(path).unwrap();
         assert_eq!(all.non_manifold_edges.examples, vec![[0, 1]]);
     }
     // data errors are not repaired: they keep the file and line
     let bad = dir.join("bad.obj");
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n").unwrap();
     assert!(matches!(
-        subdiv::io::load_repaired(&bad).unwrap_err(),
+        load_repaired(&bad).unwrap_err(),
         Error::Mesh { line: Some(4), source: MeshError::IndexOutOfRange { .. }, .. }
     ));
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 1 2\n").unwrap();
-    let e = subdiv::io::load_repaired(&bad).unwrap_err();
+    let e = load_repaired(&bad).unwrap_err();
     assert!(matches!(e, Error::Mesh { source: MeshError::Empty, .. }), "only degenerate faces: {e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -291,14 +319,14 @@ fn hostile_seeds() -> Vec<Vec<u8>> {
 #[test]
 fn hostile_collada_offsets_and_strides_are_refused_naming_the_element() {
     let refused = |bytes: Vec<u8>, want: &str| {
-        let e = subdiv::io::from_bytes(&bytes, "h.dae").map(|_| ()).unwrap_err();
+        let e = mesh_of(&bytes, "h.dae").map(|_| ()).unwrap_err();
         let s = e.to_string();
         assert!(matches!(e, Error::Format { .. }), "{s}");
         assert!(s.starts_with("h.dae: geometry 'g' triangles 0") && s.contains(want), "want '{want}': {s}");
     };
     let vertex = r##"<input semantic="VERTEX" source="#v" offset="0"/>"##;
     // the triangle itself reads
-    assert_eq!(subdiv::io::from_bytes(&dae_with(vertex, "0 1 2"), "ok.dae").unwrap().ct.num_triangles(), 1);
+    assert_eq!(mesh_of(&dae_with(vertex, "0 1 2"), "ok.dae").unwrap().ct.num_triangles(), 1);
     // an offset of u64::MAX: the corner size (offset + 1) overflows
     let max = r##"<input semantic="VERTEX" source="#v" offset="18446744073709551615"/>"##;
     refused(dae_with(max, "0 1 2"), "offset 18446744073709551615 is too large");
@@ -331,7 +359,7 @@ fn ply_claiming_faces(faces: u64) -> Vec<u8> {
 
 #[test]
 fn hostile_ply_headers_are_refused_before_reading() {
-    let err = |bytes: &[u8]| subdiv::io::from_bytes(bytes, "h.ply").map(|_| ()).unwrap_err().to_string();
+    let err = |bytes: &[u8]| mesh_of(bytes, "h.ply").map(|_| ()).unwrap_err().to_string();
     // a second vertex (or face) element: refused at its header line
     let e = err(PLY_TWO_VERTEX_ELEMENTS);
     assert!(e.starts_with("h.ply: header line 7:") && e.contains("second 'element vertex'"), "{e}");
@@ -342,7 +370,7 @@ fn hostile_ply_headers_are_refused_before_reading() {
     let e = err(two_faces.as_bytes());
     assert!(e.starts_with("h.ply: header line 9:") && e.contains("second 'element face'"), "{e}");
     // the file itself, with one face, reads
-    assert_eq!(subdiv::io::from_bytes(&ply_claiming_faces(1), "ok.ply").unwrap().ct.num_triangles(), 1);
+    assert_eq!(mesh_of(&ply_claiming_faces(1), "ok.ply").unwrap().ct.num_triangles(), 1);
     // a face takes at least 1 count byte and 3 indices of 4 bytes: 13 bytes
     // left hold one face, not two (nor 2^31), refused before any is read
     for claim in [2, 1 << 31] {
@@ -356,7 +384,7 @@ fn hostile_ply_headers_are_refused_before_reading() {
             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face {faces}\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n{body}"
         )
     };
-    let ok = subdiv::io::from_bytes(ascii("1", "3 0 1 2").as_bytes(), "a.ply").unwrap();
+    let ok = mesh_of(ascii("1", "3 0 1 2").as_bytes(), "a.ply").unwrap();
     assert_eq!(ok.ct.num_triangles(), 1);
     let e = err(ascii("2", "3 0 1 2\n").as_bytes());
     assert!(e.contains("claims 2 elements"), "{e}");
@@ -368,11 +396,11 @@ fn hostile_off_counts_are_refused_together() {
     // 36 bytes, but not both
     let text = "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
     assert_eq!(text.len(), 36);
-    let e = subdiv::io::from_bytes(text.as_bytes(), "h.off").map(|_| ()).unwrap_err();
+    let e = mesh_of(text.as_bytes(), "h.off").map(|_| ()).unwrap_err();
     assert!(matches!(e, Error::Parse { line: 2, .. }), "{e}");
     let e = e.to_string();
     assert!(e.starts_with("h.off:2: the header claims 5 vertices and 3 faces, but the file has only 36 bytes"), "{e}");
     // the right counts read
     let ok = text.replace("5 3 0", "3 1 0");
-    assert_eq!(subdiv::io::from_bytes(ok.as_bytes(), "ok.off").unwrap().ct.num_triangles(), 1);
+    assert_eq!(mesh_of(ok.as_bytes(), "ok.off").unwrap().ct.num_triangles(), 1);
 }

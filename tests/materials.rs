@@ -1,11 +1,10 @@
-//! MTL materials: `usemtl` groups read with their `Kd` and `map_Kd` through
-//! tobj, carried through the 1-to-4 split (each child triangle keeps its
+//! MTL materials: `usemtl` groups read with their `Kd` and `map_Kd`, carried through the 1-to-4 split (each child triangle keeps its
 //! parent's material), written back as `mtllib`/`usemtl`, and drawn: the
 //! texture sampled through the refined texture coordinates, red where the
 //! texture is red. The model, its MTL and its PNG are written here.
 
 mod common;
-use common::scratch_dir;
+use common::{load_with_attributes, scratch_dir, with_attributes};
 use glam::Vec3;
 use std::path::PathBuf;
 use subdiv::Scheme;
@@ -27,22 +26,16 @@ fn model(name: &str) -> PathBuf {
     let dir = scratch_dir(name);
     std::fs::write(dir.join("two.obj"), OBJ).unwrap();
     std::fs::write(dir.join("two.mtl"), MTL).unwrap();
-    #[cfg(feature = "viewer")]
-    {
-        let img = image::RgbImage::from_fn(
-            4,
-            2,
-            |x, _| if x < 2 { image::Rgb([255, 0, 0]) } else { image::Rgb([0, 0, 255]) },
-        );
-        img.save(dir.join("two.png")).unwrap();
-    }
+    let img =
+        image::RgbImage::from_fn(4, 2, |x, _| if x < 2 { image::Rgb([255, 0, 0]) } else { image::Rgb([0, 0, 255]) });
+    img.save(dir.join("two.png")).unwrap();
     dir.join("two.obj")
 }
 
 #[test]
-fn usemtl_groups_read_their_mtl_through_tobj() {
+fn usemtl_groups_read_their_mtl() {
     let path = model("mtl-read");
-    let (mesh, attrs) = subdiv::io::obj::load_with_attributes(&path).unwrap();
+    let (mesh, attrs) = load_with_attributes(&path);
     assert_eq!(mesh.ct.num_triangles(), 4);
     let g = attrs.materials.expect("material groups");
     assert_eq!(g.face, vec![0, 0, 1, 1]);
@@ -54,9 +47,7 @@ fn usemtl_groups_read_their_mtl_through_tobj() {
         ("green", Vec3::Y, true)
     );
     // a missing library is not an error: the groups stay, drawn grey
-    let (_, a) =
-        subdiv::io::obj::from_bytes_with_attributes(OBJ.replace("two.mtl", "none.mtl").as_bytes(), "/nowhere/x.obj")
-            .unwrap();
+    let (_, a) = with_attributes(OBJ.replace("two.mtl", "none.mtl").as_bytes(), "/nowhere/x.obj").unwrap();
     let g = a.materials.unwrap();
     assert_eq!((g.face.clone(), g.list[0].diffuse), (vec![0, 0, 1, 1], Vec3::splat(0.8)));
 }
@@ -74,7 +65,7 @@ fn each_child_triangle_keeps_its_parents_material() {
     // midpoint subdivision keeps every point on its parent triangle, so the
     // parent of each child is the control triangle holding its centroid
     let path = model("mtl-split");
-    let (mesh, attrs) = subdiv::io::obj::load_with_attributes(&path).unwrap();
+    let (mesh, attrs) = load_with_attributes(&path);
     let levels = 3;
     let (fine, _) = subdiv::subdivide(&mesh, Scheme::Midpoint, levels, &Default::default()).unwrap();
     let refined =
@@ -103,7 +94,7 @@ fn subdivide_writes_mtllib_and_usemtl_back() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(text.lines().any(|l| l == "mtllib two.mtl"), "mtllib kept");
-    let (mesh, attrs) = subdiv::io::obj::load_with_attributes(&out).unwrap();
+    let (mesh, attrs) = load_with_attributes(&out);
     let g = attrs.materials.unwrap();
     assert_eq!(g.face, refine_face_ids(&[0, 0, 1, 1], 2), "one usemtl per run, same groups");
     assert_eq!(mesh.ct.num_triangles(), 64);
@@ -113,7 +104,15 @@ fn subdivide_writes_mtllib_and_usemtl_back() {
 #[cfg(feature = "viewer")]
 mod drawn {
     use super::*;
-    use subdiv::render::materials::{Textures, corner_colors};
+    use subdiv::render::materials::corner_colors;
+
+    /// The model with its textures decoded, as the viewer and `render` read it.
+    fn load_textured(path: &std::path::Path) -> (subdiv::Mesh, subdiv::mesh::attributes::Attributes) {
+        let opts = subdiv::io::ReadOptions { textures: true, ..Default::default() };
+        let l = subdiv::io::read(subdiv::io::Source::File(path), &opts).unwrap();
+        assert!(l.warnings.is_empty(), "{:?}", l.warnings);
+        (l.mesh, l.attributes)
+    }
 
     fn red(c: Vec3) -> bool {
         c.x > 0.9 && c.y < 0.1 && c.z < 0.1
@@ -122,10 +121,10 @@ mod drawn {
     #[test]
     fn the_texture_is_sampled_through_the_refined_uvs() {
         let path = model("mtl-sample");
-        let (mesh, attrs) = subdiv::io::obj::load_with_attributes(&path).unwrap();
+        let (mesh, attrs) = load_textured(&path);
         let r = subdiv::subdiv::attributes::refine(&mesh.ct, &attrs, Scheme::Loop, 3, &Default::default()).unwrap();
         let (uv, groups) = (r.uv.unwrap(), r.materials.unwrap());
-        let colors = corner_colors(&groups, Some(&uv), &mut Textures::default());
+        let colors = corner_colors(&groups, Some(&uv));
         assert_eq!(colors.len(), uv.len());
         let (mut reds, mut blues, mut greens) = (0, 0, 0);
         for (c, (col, t)) in colors.iter().zip(&uv).enumerate() {
@@ -162,10 +161,10 @@ mod drawn {
             );
         img.save(dir.join("two.jpg")).unwrap();
         std::fs::write(dir.join("two.mtl"), MTL.replace("two.png", "two.jpg")).unwrap();
-        let (mesh, attrs) = subdiv::io::obj::load_with_attributes(&path).unwrap();
+        let (mesh, attrs) = load_textured(&path);
         let r = subdiv::subdiv::attributes::refine(&mesh.ct, &attrs, Scheme::Loop, 2, &Default::default()).unwrap();
         let (uv, groups) = (r.uv.unwrap(), r.materials.unwrap());
-        let colors = corner_colors(&groups, Some(&uv), &mut Textures::default());
+        let colors = corner_colors(&groups, Some(&uv));
         let (mut reds, mut blues) = (0, 0);
         for (c, (col, t)) in colors.iter().zip(&uv).enumerate() {
             if groups.face[c / 3] != 0 {

@@ -187,7 +187,7 @@ fn per_vertex_colours_replace_the_material_only_when_asked() {
 #[test]
 fn the_checker_texture_follows_per_corner_uvs() {
     let Some(mut off) = offscreen(160, 160) else { return };
-    let (control, attrs) = subdiv::io::obj::load_with_attributes(&common::model_path("cube_uv.obj")).unwrap();
+    let (control, attrs) = common::load_with_attributes(&common::model_path("cube_uv.obj"));
     let uv = attrs.uv.expect("cube_uv.obj has vt");
     let (fine, _) = subdivide(&control, Scheme::Loop, 2, &Options::default()).unwrap();
     let fuv = subdiv::subdiv::attributes::refine_corner_uvs(&uv, 2);

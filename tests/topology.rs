@@ -68,7 +68,8 @@ fn ct_files_round_trip_with_their_o_table() {
         assert_eq!(obj.positions, ct.positions);
         let mut buf = Vec::new();
         subdiv::io::ct::write(&mut buf, &obj).unwrap();
-        let back = subdiv::io::ct::parse(std::str::from_utf8(&buf).unwrap(), "mem").unwrap();
+        let src = subdiv::io::Source::Bytes { bytes: &buf, name: "mem.ct", folder: None };
+        let back = subdiv::io::read(src, &Default::default()).unwrap().mesh;
         assert_eq!(back.ct, obj.ct);
         assert_eq!(back.positions, obj.positions);
     }

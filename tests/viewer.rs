@@ -488,9 +488,9 @@ fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
 fn every_mesh_format_opens_in_the_viewer_with_its_colours() {
     // what a dropped file or the browser hands to Command::Open
     let dir = common::scratch_dir("viewer-formats");
-    let (mesh, mut attrs) = subdiv::io::obj::load_with_attributes(&common::model_path("cube_uv.obj")).unwrap();
+    let (mesh, mut attrs) = common::load_with_attributes(&common::model_path("cube_uv.obj"));
     attrs.colors = Some(mesh.positions.iter().map(|p| p.clamp(glam::Vec3::ZERO, glam::Vec3::ONE)).collect());
-    for ext in subdiv::io::WRITE_EXTENSIONS {
+    for ext in subdiv::io::write_extensions() {
         let path = dir.join(format!("cube.{ext}"));
         subdiv::io::save_with(&path, &mesh, &attrs).unwrap();
         let mut v = Viewer::new();
@@ -498,7 +498,7 @@ fn every_mesh_format_opens_in_the_viewer_with_its_colours() {
         settle(&mut v);
         assert!(v.doc.status.error.is_none(), "{ext}: {:?}", error_text(&v));
         assert_eq!(v.doc.model.control.topo.faces, 12, "{ext}");
-        let keeps = matches!(*ext, "obj" | "glb" | "ply" | "off");
+        let keeps = matches!(ext, "obj" | "glb" | "ply" | "off");
         assert_eq!(v.doc.model.attrs.file.colors.is_some(), keeps, "{ext}: colours");
     }
     let _ = std::fs::remove_dir_all(&dir);

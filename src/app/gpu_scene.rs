@@ -47,8 +47,6 @@ pub struct GpuScene {
     /// A Bezier curve: its polyline and its control polygon (with the construction highlighted).
     pub curve: Option<(GpuMesh, GpuMesh)>,
     seen: Seen,
-    /// Decoded material textures, by file.
-    textures: crate::render::materials::Textures,
     /// Changes whenever anything drawn changed.
     pub version: u64,
 }
@@ -171,7 +169,7 @@ impl GpuScene {
         if doc.display.coloring != super::display::Coloring::Material || groups.face.len() != nt {
             return None;
         }
-        Some(crate::render::materials::corner_colors(groups, uv, &mut self.textures))
+        Some(crate::render::materials::corner_colors(groups, uv))
     }
 
     fn sync_curve(&mut self, device: &wgpu::Device, doc: &Doc) {

@@ -383,16 +383,21 @@ fn load_curve(path: &std::path::Path) -> Result<Curve> {
     })
 }
 
-/// A model file (repaired when asked) with its attributes and matching paths.
-fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened> {
-    let (mesh, report, attrs) = if repair {
-        let (m, r) = bundled::load_repaired(path)?;
-        (m, (!r.is_empty()).then(|| format!("repaired: {r}")), Attributes::default())
-    } else {
-        // any format; texture coordinates and colours where it has them
-        let (m, a) = bundled::load_with_attributes(path)?;
-        (m, None, a)
-    };
+/// A model file (repaired when asked) with its attributes, textures
+/// decoded, and matching paths; the repair report and the read's warnings
+/// become the status notice.
+pub(crate) fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened> {
+    let topology = if repair { crate::io::Topology::Repair } else { crate::io::Topology::Refuse };
+    let opts = crate::io::ReadOptions { topology, textures: true, ..Default::default() };
+    let loaded = bundled::read(path, &opts)?;
+    let mut notes: Vec<String> = loaded.warnings;
+    if loaded.notes.fanned > 0 {
+        notes.insert(0, format!("{} polygons fanned into triangles", loaded.notes.fanned));
+    }
+    if let Some(r) = loaded.notes.repair.filter(|r| !r.is_empty()) {
+        notes.insert(0, format!("repaired: {r}"));
+    }
+    let mesh = loaded.mesh;
     let paths = match bundled::paths_for(path) {
         Some(p) => {
             let paths = p.load()?;
@@ -401,7 +406,8 @@ fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened> {
         }
         None => None,
     };
-    Ok(Opened { path: path.to_path_buf(), mesh, paths, report, attrs })
+    let report = (!notes.is_empty()).then(|| notes.join("; "));
+    Ok(Opened { path: path.to_path_buf(), mesh, paths, report, attrs: loaded.attributes })
 }
 
 /// The highest level below `level` with at most [`PROXY_FACES`] triangles,

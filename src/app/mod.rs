@@ -130,31 +130,14 @@ fn open_initial(doc: &mut doc::Doc, opts: &ViewOptions) -> Result<()> {
         crate::bundled::load_curve(model)?;
         doc.open(model.clone());
     } else if let Some(model) = &opts.model {
-        let mesh = if opts.repair {
-            let (mesh, report) = crate::bundled::load_repaired(model)?;
-            if !report.is_empty() {
-                eprint!("{report}");
-                doc.status.notice = Some(format!("repaired: {report}"));
-            }
-            doc.repair_on_open = true;
-            mesh
-        } else {
-            let (mesh, attrs) = crate::bundled::load_with_attributes(model)?;
-            doc.model.attrs.file = attrs;
-            mesh
-        };
-        let paths = match &opts.paths {
-            Some(p) => {
-                let paths = crate::anim::paths::Paths::load(p)?;
-                paths.check_model(&mesh, &p.display().to_string())?;
-                Some(paths)
-            }
-            None => crate::bundled::paths_for(model).and_then(|p| {
-                let paths = p.load().ok()?;
-                paths.check_model(&mesh, "").ok().map(|_| paths)
-            }),
-        };
-        doc.adopt(model.clone(), mesh, paths);
+        let mut opened = jobs::load_model(model, opts.repair)?;
+        if let Some(p) = &opts.paths {
+            let paths = crate::anim::paths::Paths::load(p)?;
+            paths.check_model(&opened.mesh, &p.display().to_string())?;
+            opened.paths = Some(paths);
+        }
+        doc.repair_on_open = opts.repair;
+        doc.adopt_finished(jobs::Finished::Loaded { path: model.clone(), result: Ok(opened) });
     } else if let Some(p) = &opts.paths {
         let paths = crate::anim::paths::Paths::load(p)?;
         paths.check_model(&doc.model.control.mesh, &p.display().to_string())?;

@@ -5,6 +5,7 @@
 //! subdivides, [`ColorArgs`] on every command that draws.
 
 use std::path::Path;
+use subdiv::io::{Limits, Loaded, ReadOptions, Topology};
 use subdiv::mesh::attributes::Attributes;
 use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
 
@@ -16,37 +17,85 @@ pub struct InputArgs {
     /// instead of refusing it; the repair report goes to stderr.
     #[arg(long)]
     pub repair: bool,
+    #[command(flatten)]
+    pub limits: LimitArgs,
+}
+
+/// The reading budget.
+#[derive(clap::Args, Clone, Default)]
+pub struct LimitArgs {
+    /// Set a reading limit, NAME=VALUE (repeatable; sizes take K, M, G):
+    /// file-bytes, total-bytes, vertices, faces, face-size, materials,
+    /// libraries, texture-pixels, node-visits, message-chars. The defaults
+    /// scale with the free memory.
+    #[arg(long = "limit", value_name = "NAME=VALUE", value_parser = parse_limit)]
+    pub limit: Vec<(String, u64)>,
+}
+
+impl LimitArgs {
+    /// The default limits with these set.
+    pub fn limits(&self) -> Result<Limits> {
+        let mut limits = Limits::default();
+        for (name, value) in &self.limit {
+            limits.set(name, *value)?;
+        }
+        Ok(limits)
+    }
 }
 
 impl InputArgs {
-    /// The mesh `input` names (a file or `bundled:NAME`), repaired when asked
-    /// (the report on stderr unless `-q`).
-    pub fn load(&self, input: &Path) -> Result<Mesh> {
-        Ok(self.load_with_attributes(input)?.0)
+    /// The read options for these arguments (attributes kept; textures
+    /// decoded when `textures`, for drawing).
+    pub fn options(&self, textures: bool) -> Result<ReadOptions> {
+        let topology = if self.repair { Topology::Repair } else { Topology::Refuse };
+        Ok(ReadOptions { limits: self.limits.limits()?, topology, attributes: true, textures })
     }
 
-    /// [`InputArgs::load`] with the file's texture coordinates and colours
-    /// (none after a repair, which renumbers the vertices).
-    pub fn load_with_attributes(&self, input: &Path) -> Result<(Mesh, Attributes)> {
-        let (m, a) = if self.repair {
-            let (m, report) = bundled::load_repaired(input)?;
-            if super::logging::warnings_shown() {
-                eprint!("{report}");
-            }
-            (m, Attributes::default())
-        } else {
-            bundled::load_with_attributes(input)?
-        };
+    /// Reads the mesh `input` names (a file or `bundled:NAME`), repaired
+    /// when asked (the report on stderr unless `-q`; warnings through the log).
+    pub fn read(&self, input: &Path, textures: bool) -> Result<Loaded> {
+        let loaded = bundled::read(input, &self.options(textures)?)?;
+        if let Some(report) = &loaded.notes.repair
+            && super::logging::warnings_shown()
+        {
+            eprint!("{report}");
+        }
+        let (m, a) = (&loaded.mesh, &loaded.attributes);
         log::info!(
-            "read {}: {} vertices, {} triangles{}{}",
+            "read {} ({}): {} vertices, {} triangles{}{}{}",
             input.display(),
+            loaded.format.name,
             m.positions.len(),
             m.ct.num_triangles(),
+            if loaded.notes.fanned > 0 { format!(" ({} polygons fanned)", loaded.notes.fanned) } else { String::new() },
             if a.uv.is_some() { ", texture coordinates" } else { "" },
             if a.colors.is_some() { ", colours" } else { "" }
         );
-        Ok((m, a))
+        Ok(loaded)
     }
+
+    /// The mesh `input` names (see [`InputArgs::read`]).
+    pub fn load(&self, input: &Path) -> Result<Mesh> {
+        Ok(self.read(input, false)?.mesh)
+    }
+
+    /// [`InputArgs::load`] with the file's texture coordinates, colours and
+    /// materials (none after a repair, which renumbers the vertices).
+    pub fn load_with_attributes(&self, input: &Path) -> Result<(Mesh, Attributes)> {
+        let l = self.read(input, false)?;
+        Ok((l.mesh, l.attributes))
+    }
+}
+
+/// `NAME=VALUE` of `--limit`: a known limit and a count or size.
+pub fn parse_limit(s: &str) -> std::result::Result<(String, u64), String> {
+    let (name, value) = s.split_once('=').ok_or_else(|| format!("'{s}' is not NAME=VALUE"))?;
+    let name = name.trim();
+    if Limits::default().get(name).is_none() {
+        let known: Vec<&str> = subdiv::io::LIMIT_NAMES.iter().map(|(n, _)| *n).collect();
+        return Err(format!("unknown limit '{name}' (known: {})", known.join(", ")));
+    }
+    Ok((name.to_string(), parse_bytes(value)?))
 }
 
 /// The subdivision: scheme, its options, sharp features and the number of levels.

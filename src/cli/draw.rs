@@ -118,7 +118,8 @@ fn model(a: &AnimateArgs) -> Result<(Mesh, Attributes, Option<Paths>)> {
         let (mesh, paths) = bundled::tetrahedron()?;
         return Ok((mesh, Attributes::default(), Some(paths)));
     };
-    let (mesh, attrs) = a.from.load_with_attributes(m)?;
+    let loaded = a.from.read(m, true)?;
+    let (mesh, attrs) = (loaded.mesh, loaded.attributes);
     let beside = match bundled::paths_for(m) {
         Some(src) => {
             let paths = src.load()?;
@@ -252,8 +253,7 @@ mod gpu {
                 let Some(m) = attrs.materials.clone() else { return Err(missing("materials (usemtl)")) };
                 let a = refined(Attributes { uv: attrs.uv.clone(), materials: Some(m), ..Default::default() })?;
                 let groups = a.materials.ok_or_else(|| missing("materials (usemtl)"))?;
-                let mut textures = subdiv::render::materials::Textures::default();
-                Paint::Corners(subdiv::render::materials::corner_colors(&groups, a.uv.as_deref(), &mut textures))
+                Paint::Corners(subdiv::render::materials::corner_colors(&groups, a.uv.as_deref()))
             }
         })
     }
@@ -263,7 +263,9 @@ mod gpu {
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
         let s = &a.sub.scheme;
         let levels = a.sub.levels_or(0);
-        let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+        // textures decoded: the materials are drawn
+        let loaded = a.from.read(&a.input, true)?;
+        let (mesh, attrs) = (loaded.mesh, loaded.attributes);
         let coloring = Coloring::initial(a.color.asked()?, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;

@@ -5,8 +5,9 @@ use super::print_json;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use subdiv::io::{ReadOptions, Topology};
 use subdiv::mesh::topology::topology;
-use subdiv::{Error, Mesh, MeshError, Result, bundled, io};
+use subdiv::{Error, MeshError, Result, bundled};
 
 /// `subdiv info` arguments.
 #[derive(clap::Args)]
@@ -41,6 +42,14 @@ struct MeshInfo {
     non_manifold_edges: usize,
     non_manifold_vertices: usize,
     repaired: bool,
+    /// The format read.
+    format: &'static str,
+    /// Faces in the file, before polygons are fanned.
+    file_faces: usize,
+    /// Faces of the file by corner count (8 stands for 8 or more).
+    face_sizes: BTreeMap<usize, usize>,
+    /// Polygons fanned into triangles for the triangle schemes.
+    polygons_fanned: usize,
     #[serde(flatten)]
     sharp: SharpInfo,
     valence: BTreeMap<usize, usize>,
@@ -123,16 +132,21 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     if is_curve(input) {
         return curve_info(input, a.json);
     }
-    let loaded = if a.from.repair { None } else { Some(load_for_info(input)) };
-    let (mesh, dropped, records, report) = match loaded {
-        Some(Ok((m, dropped, records))) => (m, dropped, records, None),
+    let read = |topology| {
+        let opts = ReadOptions { topology, attributes: false, ..a.from.options(false)? };
+        bundled::read(input, &opts)
+    };
+    let loaded = match if a.from.repair { None } else { Some(read(Topology::Refuse)) } {
+        Some(Ok(l)) => l,
         Some(Err(e)) if !is_topology_error(&e) => return Err(e),
         // invalid topology (or --repair): analyse and describe the repaired mesh
-        _ => {
-            let (m, r) = bundled::analyze(input)?;
-            (m, r.unreferenced_vertices.count, r.vertices_in, Some(r))
-        }
+        _ => read(Topology::Analyze)?,
     };
+    let notes = loaded.notes;
+    let (mesh, records, report) = (loaded.mesh, notes.vertex_records, notes.repair.clone());
+    let dropped = report.as_ref().map_or(notes.unreferenced, |r| r.unreferenced_vertices.count);
+    let face_sizes: BTreeMap<usize, usize> =
+        notes.face_sizes.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
     let mesh = a.features.apply(mesh);
     let sharp = subdiv::subdiv::features::summary(&mesh.ct, a.features.boundary);
     let (nm_edges, nm_vertices) =
@@ -156,6 +170,10 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             non_manifold_edges: nm_edges,
             non_manifold_vertices: nm_vertices,
             repaired: report.is_some(),
+            format: loaded.format.name,
+            file_faces: notes.faces,
+            face_sizes,
+            polygons_fanned: notes.fanned,
             sharp: SharpInfo {
                 sharp_edges: sharp.sharp_edges,
                 infinitely_sharp_edges: sharp.infinite_edges,
@@ -168,9 +186,20 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         });
     }
     println!("file:            {}", input.display());
+    println!("format:          {}", loaded.format.name);
     println!("vertices:        {} ({records} records, {dropped} unreferenced dropped)", t.vertices);
     println!("edges:           {}", t.edges);
     println!("faces:           {}", t.faces);
+    if notes.fanned > 0 {
+        let sizes: Vec<String> =
+            face_sizes.iter().map(|(k, c)| format!("{k}{}:{c}", if *k == 8 { "+" } else { "" })).collect();
+        println!(
+            "file faces:      {} ({}); {} polygons fanned into triangles for the triangle schemes",
+            notes.faces,
+            sizes.join(" "),
+            notes.fanned
+        );
+    }
     println!("closed:          {}", if t.is_closed() { "yes" } else { "no" });
     println!("boundary loops:  {} ({} border edges)", t.boundary_loops, t.border_edges);
     println!("components:      {}", t.components);
@@ -208,27 +237,24 @@ fn print_manifold(report: Option<&subdiv::mesh::RepairReport>, nm_edges: usize, 
         if nm_edges + nm_vertices == 0 { "yes" } else { "no" }
     );
     if nm_edges > 0 {
-        let ids: Vec<String> =
-            r.non_manifold_edges.examples.iter().map(|e| format!("{}-{}", e[0] + b, e[1] + b)).collect();
-        println!("non-manifold edges:    {}", ids.join(" "));
+        let ids = r.non_manifold_edges.examples.iter().map(|e| format!("{}-{}", e[0] + b, e[1] + b));
+        println!("non-manifold edges:    {}", some_of(ids, nm_edges));
     }
     if nm_vertices > 0 {
-        let ids: Vec<String> = r.non_manifold_vertices.examples.iter().map(|v| (v + b).to_string()).collect();
-        println!("non-manifold vertices: {}", ids.join(" "));
+        let ids = r.non_manifold_vertices.examples.iter().map(|v| (v + b).to_string());
+        println!("non-manifold vertices: {}", some_of(ids, nm_vertices));
     }
 }
 
-/// Loads for `info`: the mesh, unreferenced vertices dropped, vertex records.
-fn load_for_info(input: &Path) -> Result<(Mesh, usize, usize)> {
-    let is_obj = input.extension().is_none_or(|e| e.eq_ignore_ascii_case("obj"));
-    if !is_obj {
-        let m = bundled::load(input)?;
-        let n = m.positions.len();
-        Ok((m, 0, n))
-    } else {
-        // a file or a bundled model: bundled::read gives the bytes of either
-        let bytes = bundled::read(input)?;
-        let (m, inf) = io::obj::from_bytes(&bytes, &input.display().to_string())?;
-        Ok((m, inf.unreferenced, inf.vertex_records))
+/// The first [`LISTED`] of `ids` of `total`, and how many more: one line
+/// of bounded length however broken the mesh.
+fn some_of(ids: impl Iterator<Item = String>, total: usize) -> String {
+    let shown: Vec<String> = ids.take(LISTED).collect();
+    match total.saturating_sub(shown.len()) {
+        0 => shown.join(" "),
+        more => format!("{} ... and {more} more", shown.join(" ")),
     }
 }
+
+/// Ids listed on one line of `info`.
+const LISTED: usize = 20;

@@ -1,6 +1,6 @@
 //! The commands that read a mesh and write one: subdivide, smooth, limit, repair.
 
-use super::args::{InputArgs, SubdivArgs};
+use super::args::{InputArgs, LimitArgs, SubdivArgs};
 use super::{logging, print_json, progress};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -137,6 +137,8 @@ pub struct RepairArgs {
     input: PathBuf,
     /// Output mesh (format by extension; written atomically).
     output: PathBuf,
+    #[command(flatten)]
+    limits: LimitArgs,
 }
 
 /// `subdiv smooth` arguments.
@@ -186,9 +188,13 @@ pub fn limit(a: &InOut) -> Result<()> {
 
 /// `subdiv repair` (always repairs).
 pub fn repair(a: &RepairArgs) -> Result<()> {
-    let (mesh, report) = bundled::load_repaired(&a.input)?;
+    let from = InputArgs { repair: true, limits: a.limits.clone() };
+    let loaded = bundled::read(&a.input, &from.options(false)?)?;
+    let mesh = loaded.mesh;
     io::save(&a.output, &mesh)?;
-    print!("{report}");
+    if let Some(report) = &loaded.notes.repair {
+        print!("{report}");
+    }
     println!(
         "{} -> {}: {} vertices, {} faces",
         a.input.display(),

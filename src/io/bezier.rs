@@ -31,13 +31,12 @@
 //! always do). Triangles that become degenerate by welding (the teapot's lid
 //! and bottom patches have a row of coincident control points) are dropped.
 
-use crate::mesh::Mesh;
-use crate::mesh::repair::{RepairReport, repair};
+use super::raw::RawMesh;
+use super::{Format, Input, Keeps};
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::ops::{Add, Mul};
-use std::path::Path;
 
 /// One level of de Casteljau: the `len - 1` points `(1 - t) P_i + t P_{i+1}`
 /// (what CS184's `evaluateStep` shows as the intermediate polygon).
@@ -214,35 +213,48 @@ pub fn parse_bez(text: &str, file: &str) -> Result<Vec<Patch>> {
     Ok(patches)
 }
 
-fn read(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    super::text(&bytes, &path.display().to_string()).map(str::to_owned)
-}
+/// The `.bez` row of [`super::FORMATS`]: patches tessellated
+/// [`BEZ_RESOLUTION`] times a side.
+pub const BEZ_FORMAT: Format = Format {
+    name: "Bezier patches",
+    extensions: &["bez"],
+    sniff: |_| false,
+    reader: Some(read_bez),
+    writer: None,
+    written_as: &[],
+    keeps: Keeps { uv: false, colors: false, materials: false },
+};
 
-/// Reads a `.bzc` file (see [`parse_bzc`]).
+/// The `.bzc` row of [`super::FORMATS`]: a curve, not a mesh (the viewer
+/// and `info` read it with [`parse_bzc`]).
+pub const BZC_FORMAT: Format = Format {
+    name: "a Bezier curve (.bzc)",
+    extensions: &["bzc"],
+    sniff: |_| false,
+    reader: None,
+    writer: None,
+    written_as: &[],
+    keeps: Keeps { uv: false, colors: false, materials: false },
+};
+
+/// Samples per patch side when a `.bez` file is opened as a mesh.
+pub const BEZ_RESOLUTION: u32 = 8;
+
+/// Reads a `.bez` file as its tessellation.
 ///
 /// # Errors
-/// I/O and parse errors naming the file.
-pub fn load_bzc(path: &Path) -> Result<Vec<Vec2>> {
-    parse_bzc(&read(path)?, &path.display().to_string())
-}
-
-/// Reads a `.bez` file (see [`parse_bez`]).
-///
-/// # Errors
-/// I/O and parse errors naming the file.
-pub fn load_bez(path: &Path) -> Result<Vec<Patch>> {
-    parse_bez(&read(path)?, &path.display().to_string())
-}
-
-/// Positions and a flat triangle list, not validated as a corner table (for
-/// [`crate::mesh::repair()`] or [`Mesh::from_triangles`]).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct RawMesh {
-    /// Welded vertex positions.
-    pub positions: Vec<Vec3>,
-    /// Three vertex ids per triangle.
-    pub triangles: Vec<u32>,
+/// Parse errors with the line; over the budget.
+fn read_bez(input: &Input) -> Result<RawMesh> {
+    let patches = parse_bez(input.text()?, input.file)?;
+    let n = u64::from(BEZ_RESOLUTION);
+    let count = patches.len() as u64;
+    input.budget.take_vertices(count * (n + 1) * (n + 1), input.file, "patches")?;
+    input.budget.take_faces(count * 2 * n * n, input.file, "patches")?;
+    tessellate_raw(&patches, BEZ_RESOLUTION).map_err(|source| Error::Mesh {
+        file: input.file.to_string(),
+        line: None,
+        source,
+    })
 }
 
 /// Tessellates `patches` at `n` segments per patch side (at least 1) and
@@ -283,7 +295,7 @@ pub fn tessellate_raw(patches: &[Patch], n: u32) -> Result<RawMesh, MeshError> {
             }
         }
     }
-    Ok(RawMesh { positions, triangles })
+    Ok(RawMesh::from_triangles(positions, triangles))
 }
 
 /// Merges points within `1e-6 x` the bounding-box diagonal (exactly equal
@@ -321,27 +333,6 @@ fn weld(pts: &[Vec3]) -> (Vec<Vec3>, Vec<u32>) {
         remap.push(id);
     }
     (kept, remap)
-}
-
-/// Tessellates and builds a validated mesh (see [`tessellate_raw`]).
-///
-/// # Errors
-/// Any [`MeshError`] of [`Mesh::from_triangles`]. The teapot, for one, is
-/// refused: its handle touches the body at the single point (-2, 0, 0.9), a
-/// non-manifold vertex. Use [`tessellate_repaired`] or
-/// [`crate::mesh::repair()`] on [`tessellate_raw`]'s output.
-pub fn tessellate(patches: &[Patch], n: u32) -> Result<Mesh, MeshError> {
-    let raw = tessellate_raw(patches, n)?;
-    Mesh::from_triangles(raw.positions, &raw.triangles)
-}
-
-/// Tessellates and repairs into a valid mesh (see [`crate::mesh::repair()`]).
-///
-/// # Errors
-/// As [`tessellate_raw`], or a mesh with no face left after repair.
-pub fn tessellate_repaired(patches: &[Patch], n: u32) -> Result<(Mesh, RepairReport), MeshError> {
-    let raw = tessellate_raw(patches, n)?;
-    repair(raw.positions, &raw.triangles)
 }
 
 #[cfg(test)]

@@ -22,9 +22,11 @@
 //! is allocated.
 
 use super::atomic_write;
+use super::raw::{RawMesh, Sources};
 use super::text::triple_lines;
+use super::{Format, Input, Keeps};
 use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
-use crate::mesh::{BORDER, CornerTable, Mesh};
+use crate::mesh::{BORDER, Mesh};
 use crate::{Error, MeshError, Result};
 use glam::Vec3;
 use std::io::Write;
@@ -60,90 +62,34 @@ impl<'a> Tokens<'a> {
     }
 }
 
-/// Raw `.ct` content before any topology is checked.
-#[derive(Clone, Debug, Default)]
-pub struct RawCt {
-    /// Positions.
-    pub positions: Vec<Vec3>,
-    /// Triangles (0-based).
-    pub triangles: Vec<u32>,
-    /// Line (1-based) of the last vertex id of every triangle.
-    pub triangle_lines: Vec<usize>,
-    /// The stored opposite table, raw ([`BORDER`] for -1), empty when absent.
-    pub stored_o: Vec<u32>,
-    /// Line (1-based) of the last entry of every stored O row (one per
-    /// triangle), empty when O is absent.
-    pub o_lines: Vec<usize>,
-    /// Sharpness tags of the `creases` and `corners` sections.
-    pub tags: Tags,
-    /// Line of every crease, then every corner record.
-    pub tag_lines: Vec<usize>,
-}
+/// The `.ct` row of [`super::FORMATS`].
+pub const FORMAT: Format = Format {
+    name: "corner table",
+    extensions: &["ct"],
+    sniff: |_| false,
+    reader: Some(read),
+    writer: Some(|path, mesh, _| save(path, mesh)),
+    written_as: &["ct"],
+    keeps: Keeps { uv: false, colors: false, materials: false },
+};
 
-/// Parses `.ct` text; `file` names the source in errors.
-///
-/// # Errors
-/// [`Error::Parse`] with the line, or [`Error::Mesh`] for invalid topology,
-/// including [`MeshError::BadOppositeTable`] at the line of the first stored
-/// O row that is not the table the faces define.
-pub fn parse(text: &str, file: &str) -> Result<Mesh> {
-    let RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, stored_o, o_lines, tags, tag_lines } =
-        parse_raw(text, file)?;
-    let located = |e: MeshError| {
-        let line = e.face().and_then(|f| tri_lines.get(f).copied());
-        Error::Mesh { file: file.to_string(), line, source: e }
-    };
-    let nrec = pos.len();
-    let with_tags = |mesh: Mesh| -> Result<Mesh> {
-        if tags.is_empty() {
-            return Ok(mesh);
-        }
-        let err = |i: usize, msg: String| Error::Parse { file: file.to_string(), line: tag_lines[i], msg };
-        if mesh.positions.len() != nrec {
-            return Err(err(0, "sharpness tags need every vertex used by a triangle".into()));
-        }
-        let Mesh { ct, positions } = mesh;
-        let ct = ct.with_tags(&tags).map_err(|e| match e {
-            MeshError::BadTag { index, msg } => err(index, msg),
-            other => located(other),
-        })?;
-        Ok(Mesh { ct, positions })
-    };
-    if stored_o.is_empty() {
-        return with_tags(Mesh::from_triangles(pos, &tris).map_err(located)?);
-    }
-    // with O: all vertices must be used (the table is stored compact)
-    let (ct, _, kept) = CornerTable::build(pos.len(), &tris, Some(&pos)).map_err(located)?;
-    if kept.is_some() {
-        return Err(located(MeshError::BadOppositeTable { corner: 0, msg: "unused vertices in a .ct with O".into() }));
-    }
-    // the stored O must be the one the faces define; a mismatch means a corrupt file
-    if let Some(c) = ct.o_table().iter().zip(&stored_o).position(|(built, stored)| built != stored) {
-        let show = |x: u32| if x == BORDER { "-1 (border)".to_string() } else { x.to_string() };
-        let msg = format!("stored {}, but the faces give {}", show(stored_o[c]), show(ct.o_entry(c as u32)));
-        return Err(Error::Mesh {
-            file: file.to_string(),
-            line: o_lines.get(c / 3).copied(),
-            source: MeshError::BadOppositeTable { corner: c, msg },
-        });
-    }
-    with_tags(Mesh { ct, positions: pos })
-}
-
-/// Reads `.ct` text into its arrays, checking syntax, counts, index ranges
-/// and finite coordinates, but not the topology.
+/// Reads `.ct` text into a [`RawMesh`] with its stored opposite table and
+/// tags, checking syntax, counts, index ranges and finite coordinates; the
+/// build checks the topology and that the stored O is the faces' own.
 ///
 /// # Errors
 /// [`Error::Parse`] with the line, or [`Error::Mesh`] for an index out of
-/// range or a non-finite coordinate.
-pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
+/// range or a non-finite coordinate; over the budget.
+fn read(input: &Input) -> Result<RawMesh> {
+    let (text, file) = (input.text()?, input.file);
     let mut tk = Tokens::new(text, file);
     let k: u64 = tk.num("vertex count")?;
     // every vertex needs at least "0 0 0\n" (6 bytes): refuse absurd headers before allocating
     if k > text.len() as u64 / 6 + 1 {
         return Err(tk.err(format!("header claims {k} vertices but the file has only {} bytes", text.len())));
     }
-    let mut pos = Vec::with_capacity(k as usize);
+    input.budget.take_vertices(k, file, "vertex count")?;
+    let mut raw = RawMesh { positions: Vec::with_capacity(k as usize), ..Default::default() };
     for i in 0..k {
         let x: f32 = tk.num("coordinate")?;
         let y: f32 = tk.num("coordinate")?;
@@ -155,14 +101,15 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
                 source: MeshError::NonFinite { vertex: i as usize },
             });
         }
-        pos.push(Vec3::new(x, y, z));
+        raw.positions.push(Vec3::new(x, y, z));
+        raw.sources.vertex_lines.push(tk.line as u32);
     }
     let t: u64 = tk.num("triangle count")?;
     if t > text.len() as u64 / 6 + 1 {
         return Err(tk.err(format!("header claims {t} triangles but the file has only {} bytes", text.len())));
     }
+    input.budget.take_faces(t, file, "triangle count")?;
     let mut tris = Vec::with_capacity(3 * t as usize);
-    let mut tri_lines = Vec::with_capacity(t as usize);
     for _ in 0..3 * t {
         let i: i64 = tk.num("vertex id")?;
         if i < 0 || i as u64 >= k {
@@ -174,33 +121,42 @@ pub fn parse_raw(text: &str, file: &str) -> Result<RawCt> {
         }
         tris.push(i as u32);
         if tris.len() % 3 == 0 {
-            tri_lines.push(tk.line);
+            raw.sources.face_lines.push(tk.line as u32);
         }
     }
-    // optional O table
-    let mut stored_o = Vec::new();
-    let mut o_lines = Vec::new();
     let mut next = tk.next_tok();
     if let Some(first) = next.filter(|s| !is_section(s)) {
-        let mut tok = Some(first);
-        for _ in 0..3 * t {
-            let s = match tok.take() {
-                Some(s) => s,
-                None => tk.next_tok().ok_or_else(|| tk.err("the opposite table ends early"))?,
-            };
-            let x: i64 = s.parse().map_err(|_| tk.err(format!("'{s}' is not a corner id")))?;
-            if x < -1 || x >= 3 * t as i64 {
-                return Err(tk.err(format!("opposite corner {x} out of range")));
-            }
-            stored_o.push(if x < 0 { BORDER } else { x as u32 });
-            if stored_o.len() % 3 == 0 {
-                o_lines.push(tk.line);
-            }
-        }
+        raw.opposite = Some(opposite_table(&mut tk, first, t, &mut raw.sources.opposite_lines)?);
         next = tk.next_tok();
     }
     let (tags, tag_lines) = parse_sections(&mut tk, next, text.len())?;
-    Ok(RawCt { positions: pos, triangles: tris, triangle_lines: tri_lines, stored_o, o_lines, tags, tag_lines })
+    let mut out = RawMesh::from_triangles(std::mem::take(&mut raw.positions), tris);
+    out.opposite = raw.opposite;
+    out.tags = tags;
+    out.sources = Sources { tag_lines, ..raw.sources };
+    Ok(out)
+}
+
+/// The optional opposite table (`3 t` corner ids, -1 for a border) whose
+/// first token is `first`; the line of each row goes to `lines`.
+fn opposite_table<'a>(tk: &mut Tokens<'a>, first: &'a str, t: u64, lines: &mut Vec<u32>) -> Result<Vec<u32>> {
+    let mut stored = Vec::with_capacity(3 * t as usize);
+    let mut tok = Some(first);
+    for _ in 0..3 * t {
+        let s = match tok.take() {
+            Some(s) => s,
+            None => tk.next_tok().ok_or_else(|| tk.err("the opposite table ends early"))?,
+        };
+        let x: i64 = s.parse().map_err(|_| tk.err(format!("'{s}' is not a corner id")))?;
+        if x < -1 || x >= 3 * t as i64 {
+            return Err(tk.err(format!("opposite corner {x} out of range")));
+        }
+        stored.push(if x < 0 { BORDER } else { x as u32 });
+        if stored.len() % 3 == 0 {
+            lines.push(tk.line as u32);
+        }
+    }
+    Ok(stored)
 }
 
 fn is_section(tok: &str) -> bool {
@@ -208,7 +164,7 @@ fn is_section(tok: &str) -> bool {
 }
 
 /// The optional `creases` and `corners` sections after the tables.
-fn parse_sections<'a>(tk: &mut Tokens<'a>, mut next: Option<&'a str>, bytes: usize) -> Result<(Tags, Vec<usize>)> {
+fn parse_sections<'a>(tk: &mut Tokens<'a>, mut next: Option<&'a str>, bytes: usize) -> Result<(Tags, Vec<u32>)> {
     let (mut tags, mut creases, mut corners) = (Tags::default(), Vec::new(), Vec::new());
     while let Some(key) = next {
         if !is_section(key) {
@@ -222,39 +178,17 @@ fn parse_sections<'a>(tk: &mut Tokens<'a>, mut next: Option<&'a str>, bytes: usi
             if key == "creases" {
                 let (v0, v1): (u32, u32) = (tk.num("vertex id")?, tk.num("vertex id")?);
                 tags.creases.push(CreaseTag { v0, v1, sharpness: tk.num("sharpness")? });
-                creases.push(tk.line);
+                creases.push(tk.line as u32);
             } else {
                 let vertex: u32 = tk.num("vertex id")?;
                 tags.corners.push(CornerTag { vertex, sharpness: tk.num("sharpness")? });
-                corners.push(tk.line);
+                corners.push(tk.line as u32);
             }
         }
         next = tk.next_tok();
     }
     creases.extend(corners);
     Ok((tags, creases))
-}
-
-/// Loads a `.ct` file.
-///
-/// # Errors
-/// See [`parse`]; I/O errors name the file.
-pub fn load(path: &Path) -> Result<Mesh> {
-    parse(&read_text(path)?, &path.display().to_string())
-}
-
-/// The file as text; invalid UTF-8 is a parse error at its line.
-fn read_text(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    super::text(&bytes, &path.display().to_string()).map(str::to_owned)
-}
-
-/// Reads a `.ct` file into its arrays (see [`parse_raw`]).
-///
-/// # Errors
-/// See [`parse_raw`]; I/O errors name the file.
-pub fn load_raw(path: &Path) -> Result<RawCt> {
-    parse_raw(&read_text(path)?, &path.display().to_string())
 }
 
 /// Writes `.ct` text including the O table.
@@ -376,10 +310,10 @@ mod tests {
             assert!(m.ct.num_triangles() > 1 << 15);
             let mut text = Vec::new();
             write(&mut text, &m).expect("written");
-            let raw = parse_raw(std::str::from_utf8(&text).expect("text"), "m.ct").expect("parsed");
+            let raw = crate::io::raw_of(&text, "m.ct").expect("parsed");
             assert!(raw.positions == m.positions, "positions read back to the same bits");
-            assert!(raw.triangles == m.ct.v_table(), "V");
-            assert!(raw.stored_o == m.ct.o_table(), "O, border entries included");
+            assert!(raw.corners == m.ct.v_table(), "V");
+            assert!(raw.opposite.as_deref() == Some(m.ct.o_table()), "O, border entries included");
         }
     }
 }

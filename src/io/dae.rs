@@ -6,9 +6,13 @@
 //! (read-only, no dependencies, kept up to date); the COLLADA structure by
 //! hand, since the `collada` crate has had no release since 2019 and
 //! `dae-parser` pulls in a DOM and many more crates. Errors name the file and
-//! the element (`geometry 'Cube-mesh' triangles 0`).
+//! the element (`geometry 'Cube-mesh' triangles 0`). Polygons are kept as
+//! polygons; a polygon with holes (`<ph>`) is refused, since a face cannot
+//! hold one. The text of an element is all of its text (a comment inside
+//! `<p>` splits it, and every part counts).
 
 use super::raw::{RawMesh, format_err};
+use super::{Format, Input as Read, Keeps};
 use crate::Result;
 use glam::{Vec2, Vec3};
 use roxmltree::{Document, Node};
@@ -30,26 +34,50 @@ struct Input {
     source: String,
 }
 
+/// The COLLADA row of [`super::FORMATS`].
+pub const FORMAT: Format = Format {
+    name: "COLLADA",
+    extensions: &["dae"],
+    sniff: |b| b.trim_ascii_start().starts_with(b"<"),
+    reader: Some(read),
+    writer: None,
+    written_as: &[],
+    keeps: Keeps { uv: false, colors: false, materials: false },
+};
+
 /// Reads a COLLADA file.
 ///
 /// # Errors
 /// [`crate::Error::Format`] naming the file and element; XML errors with
-/// their position.
-pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
-    let text = super::text(bytes, file)?;
+/// their position; over the budget.
+fn read(input: &Read) -> Result<RawMesh> {
+    let file = input.file;
+    let text = input.text()?;
     let doc = Document::parse(text).map_err(|e| format_err(file, "XML", e.to_string()))?;
     let mut raw: Option<RawMesh> = None;
     for (g, geom) in doc.descendants().filter(|n| n.has_tag_name("geometry")).enumerate() {
         let name = geom.attribute("id").map_or_else(|| format!("geometry {g}"), |id| format!("geometry '{id}'"));
         let Some(mesh) = child(geom, "mesh") else { continue };
         let part = read_mesh(mesh, file, &name)?;
+        input.budget.take_vertices(part.positions.len() as u64, file, &name)?;
+        input.budget.take_faces(part.num_faces() as u64, file, &name)?;
         match &mut raw {
             Some(r) => r.append(part),
             None => raw = Some(part),
         }
     }
-    raw.filter(|r| !r.triangles.is_empty())
-        .ok_or_else(|| format_err(file, "library_geometries", "no triangles in any geometry"))
+    raw.filter(|r| r.num_faces() > 0).ok_or_else(|| format_err(file, "library_geometries", "no faces in any geometry"))
+}
+
+/// All the text inside `n` (text split by comments or CDATA is joined with
+/// spaces).
+fn all_text(n: Node) -> String {
+    let mut out = String::new();
+    for t in n.descendants().filter(|d| d.is_text()) {
+        out.push_str(t.text().unwrap_or(""));
+        out.push(' ');
+    }
+    out
 }
 
 fn child<'a>(n: Node<'a, 'a>, tag: &str) -> Option<Node<'a, 'a>> {
@@ -61,7 +89,7 @@ fn read_sources(mesh: Node, file: &str, at: &str) -> Result<HashMap<String, Sour
     for s in mesh.children().filter(|c| c.has_tag_name("source")) {
         let id = s.attribute("id").unwrap_or("").to_string();
         let Some(arr) = child(s, "float_array") else { continue };
-        let floats = numbers::<f32>(arr.text().unwrap_or(""))
+        let floats = numbers::<f32>(&all_text(arr))
             .map_err(|t| format_err(file, format!("{at} source '{id}'"), format!("'{t}' is not a number")))?;
         let stride = child(s, "technique_common")
             .and_then(|t| child(t, "accessor"))
@@ -112,31 +140,30 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
         has_uv |= tex.is_some();
         let polys = polygons(prim, stride, file, &here)?;
         let ix_err = |t: String| err(format!("'{t}' is not an index"));
-        let mut corners: Vec<[u32; 2]> = Vec::new();
+        let mut corners: Vec<u32> = Vec::new();
         for p in polys {
             let p: Vec<u32> = numbers(&p).map_err(ix_err)?;
+            if p.len() % stride != 0 {
+                return Err(err(format!("a polygon of {} indices, not a multiple of {stride} per corner", p.len())));
+            }
             corners.clear();
             for c in p.chunks_exact(stride) {
-                corners.push([c[*voff], tex.map_or(0, |t| c[t.offset])]);
-            }
-            if corners.len() < 3 {
-                continue;
-            }
-            for i in 1..corners.len() - 1 {
-                for c in [corners[0], corners[i], corners[i + 1]] {
-                    raw.triangles.push(c[0]);
-                    if let (Some(out), None) = (&mut uv, tex) {
-                        out.push(Vec2::ZERO);
-                    } else if let (Some(out), Some(Input { source: src, .. })) = (&mut uv, tex) {
-                        let s = sources.get(src).ok_or_else(|| err(format!("no source '{src}'")))?;
-                        let t = (c[1] as usize)
-                            .checked_mul(s.stride)
-                            .and_then(|at| s.floats.get(at..at.checked_add(2)?))
-                            .ok_or_else(|| err(format!("texture coordinate {} out of range", c[1])))?;
-                        out.push(Vec2::new(t[0], t[1]));
-                    }
+                corners.push(c[*voff]);
+                if let (Some(out), None) = (&mut uv, tex) {
+                    out.push(Vec2::ZERO);
+                } else if let (Some(out), Some(Input { source: src, offset, .. })) = (&mut uv, tex) {
+                    let s = sources.get(src).ok_or_else(|| err(format!("no source '{src}'")))?;
+                    let t = (c[*offset] as usize)
+                        .checked_mul(s.stride)
+                        .and_then(|at| s.floats.get(at..at.checked_add(2)?))
+                        .ok_or_else(|| err(format!("texture coordinate {} out of range", c[*offset])))?;
+                    out.push(Vec2::new(t[0], t[1]));
                 }
             }
+            if corners.len() < 3 {
+                return Err(err(format!("a polygon of {} corners (3 or more needed)", corners.len())));
+            }
+            raw.push_face(&corners);
         }
     }
     let psrc = pos_source.unwrap_or_default();
@@ -149,10 +176,10 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
         return Err(format_err(file, format!("{at} vertex {v}"), "non-finite position"));
     }
     let nv = raw.positions.len();
-    if let Some(&i) = raw.triangles.iter().find(|&&i| i as usize >= nv) {
+    if let Some(&i) = raw.corners.iter().find(|&&i| i as usize >= nv) {
         return Err(format_err(file, at, format!("vertex index {i}, but there are only {nv} positions")));
     }
-    raw.uv = uv.filter(|u| u.len() == raw.triangles.len() && has_uv);
+    raw.uv = uv.filter(|u| u.len() == raw.corners.len() && has_uv);
     Ok(raw)
 }
 
@@ -185,22 +212,39 @@ fn read_inputs(prim: Node, file: &str, at: &str) -> Result<(Vec<Input>, usize)> 
 
 /// The index text of each polygon of a primitive: `<triangles>` three
 /// corners at a time, `<polylist>` by its `<vcount>`, `<polygons>` one `<p>`
-/// each; `stride` indices per corner (at least 1).
+/// each; `stride` indices per corner (at least 1). The indices must be
+/// exactly what the counts say: none left over, none missing.
 fn polygons(prim: Node, stride: usize, file: &str, at: &str) -> Result<Vec<String>> {
     let name = prim.tag_name().name();
-    let ps: Vec<&str> = prim.children().filter(|c| c.has_tag_name("p")).map(|p| p.text().unwrap_or("")).collect();
+    if child(prim, "ph").is_some() {
+        return Err(format_err(file, at, "polygons with holes (<ph>) are not supported"));
+    }
+    let ps: Vec<String> = prim.children().filter(|c| c.has_tag_name("p")).map(all_text).collect();
+    let declared = prim.attribute("count").map(|c| c.trim().parse::<usize>());
+    let check_declared = |n: usize| match declared {
+        Some(Ok(d)) if d != n => {
+            Err(format_err(file, at, format!("count=\"{d}\", but the primitive holds {n} polygons")))
+        }
+        Some(Err(_)) => Err(format_err(file, at, "its count attribute is not a number")),
+        _ => Ok(()),
+    };
     if name == "polygons" {
-        return Ok(ps.into_iter().map(str::to_string).collect());
+        check_declared(ps.len())?;
+        return Ok(ps);
     }
     let stride = stride.max(1);
     let words: Vec<&str> = ps.iter().flat_map(|p| p.split_ascii_whitespace()).collect();
     let counts: Vec<usize> = if name == "polylist" {
-        let vc = child(prim, "vcount").and_then(|v| v.text()).unwrap_or("");
-        numbers(vc).map_err(|t| format_err(file, at, format!("vcount '{t}' is not a count")))?
+        let vc = child(prim, "vcount").map(all_text).unwrap_or_default();
+        numbers(&vc).map_err(|t| format_err(file, at, format!("vcount '{t}' is not a count")))?
     } else {
-        // words / stride / 3 is words / (3 stride) without the product
+        if words.len() % (3 * stride) != 0 {
+            let msg = format!("{} indices, not a whole number of triangles of {stride} indices a corner", words.len());
+            return Err(format_err(file, at, msg));
+        }
         vec![3; words.len() / stride / 3]
     };
+    check_declared(counts.len())?;
     let mut out = Vec::with_capacity(counts.len());
     let mut i = 0usize;
     for (k, &n) in counts.iter().enumerate() {
@@ -208,6 +252,10 @@ fn polygons(prim: Node, stride: usize, file: &str, at: &str) -> Result<Vec<Strin
         let end = end.ok_or_else(|| format_err(file, format!("{at} polygon {k}"), "more indices than <p> holds"))?;
         out.push(words[i..end].join(" "));
         i = end;
+    }
+    if i != words.len() {
+        let msg = format!("<p> holds {} indices, but <vcount> accounts for {i}", words.len());
+        return Err(format_err(file, at, msg));
     }
     Ok(out)
 }

@@ -20,8 +20,10 @@
 //! are texture coordinates, since glTF's are per vertex), `u32` indices.
 
 use super::raw::{RawMesh, format_err};
+use super::resolve::Scope;
+use super::{Format, Input, Keeps};
 use crate::mesh::Mesh;
-use crate::mesh::attributes::Attributes;
+use crate::mesh::attributes::{Attributes, Material, Wrap};
 use crate::{Error, Result};
 use glam::{Mat4, Vec2, Vec3};
 use gltf::accessor::{DataType, Dimensions};
@@ -30,22 +32,29 @@ use rayon::prelude::*;
 use std::borrow::Cow;
 use std::path::Path;
 
-/// Longest chain of nodes followed, and most node visits (a malformed file
-/// may make its hierarchy a cycle or a huge DAG).
-const MAX_DEPTH: usize = 64;
-const MAX_VISITS: usize = 1 << 16;
+/// The glTF row of [`super::FORMATS`].
+pub const FORMAT: Format = Format {
+    name: "glTF 2.0",
+    extensions: &["gltf", "glb"],
+    sniff: |b| b.starts_with(b"glTF") || b.trim_ascii_start().starts_with(b"{"),
+    reader: Some(read),
+    writer: Some(save),
+    written_as: &["glb"],
+    keeps: Keeps { uv: true, colors: true, materials: false },
+};
 
-/// Reads a `.gltf` or `.glb` file; `file` names it in errors and locates
-/// buffers stored beside it.
+/// Reads a `.gltf` or `.glb` file; buffers and images it names are found
+/// beside it, inside its folder only.
 ///
 /// # Errors
 /// [`Error::Format`] naming the file and the element (buffer, accessor,
-/// mesh, node).
-pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
-    let g = document(bytes, file)?;
-    let buffers = load_buffers(&g, file)?;
-    let roots: Vec<gltf::Node> = match g.default_scene().or_else(|| g.scenes().next()) {
-        Some(s) => s.nodes().collect(),
+/// mesh, node); over the budget (node visits, vertices, faces, bytes).
+fn read(input: &Input) -> Result<RawMesh> {
+    let file = input.file;
+    let g = document(input.bytes, file)?;
+    let buffers = load_buffers(&g, input)?;
+    let roots: Vec<usize> = match g.default_scene().or_else(|| g.scenes().next()) {
+        Some(s) => s.nodes().map(|n| n.index()).collect(),
         None => {
             let mut child = vec![false; g.nodes().len()];
             for n in g.nodes() {
@@ -53,38 +62,68 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
                     child[c.index()] = true;
                 }
             }
-            g.nodes().filter(|n| !child[n.index()]).collect()
+            (0..child.len()).filter(|&n| !child[n]).collect()
         }
     };
-    let mut out = Walk { raw: None, buffers: &buffers, file, visits: 0 };
-    for n in roots {
-        out.node(&n, Mat4::IDENTITY, 0)?;
-    }
-    let mut raw = out.raw.ok_or_else(|| format_err(file, "scene", "no mesh node with triangles"))?;
+    let nodes: Vec<gltf::Node> = g.nodes().collect();
+    let mut walk = Walk { raw: None, buffers: &buffers, input };
+    walk.nodes(&nodes, &roots)?;
+    let mut raw = walk.raw.ok_or_else(|| format_err(file, "scene", "no mesh node with triangles"))?;
     raw.weld();
     if raw.materials.is_some() {
-        raw.material_list = g.materials().map(|m| material(&m, file)).collect();
+        input.budget.check("materials", g.materials().len() as u64, file, "materials")?;
+        raw.material_list = g.materials().map(|m| material(&m, &buffers, input)).collect();
     }
     Ok(raw)
 }
 
 /// What is drawn of a glTF material: its base colour factor (linear RGB) as
-/// the diffuse colour and its base colour texture when that is a file beside
-/// the model (an image stored in a buffer is not decoded: logged, untextured).
-fn material(m: &gltf::Material, file: &str) -> crate::mesh::attributes::Material {
+/// the diffuse colour and its base colour texture (a file inside the
+/// model's folder, or an image in a buffer view), with its sampler's wrap.
+fn material(m: &gltf::Material, buffers: &[Vec<u8>], input: &Input) -> Material {
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, _] = pbr.base_color_factor();
-    let texture = pbr.base_color_texture().and_then(|t| match t.texture().source().source() {
-        gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-            Some(Path::new(file).parent().unwrap_or(Path::new(".")).join(percent_decode(uri)))
-        }
-        _ => {
-            log::info!("{file}: material {}: embedded base colour texture not decoded", m.index().unwrap_or(0));
-            None
-        }
-    });
     let name = format!("material {}", m.index().unwrap_or(0));
-    crate::mesh::attributes::Material { name, diffuse: Vec3::new(r, g, b), diffuse_texture: texture }
+    let mut out = Material { diffuse: Vec3::new(r, g, b), ..Material::named(&name) };
+    let Some(info) = pbr.base_color_texture() else { return out };
+    let tex = info.texture();
+    out.wrap = match tex.sampler().wrap_s() {
+        gltf::texture::WrappingMode::ClampToEdge => Wrap::Clamp,
+        gltf::texture::WrappingMode::MirroredRepeat => Wrap::Mirror,
+        gltf::texture::WrappingMode::Repeat => Wrap::Repeat,
+    };
+    let at = format!("image {}", tex.source().index());
+    let warn = |e: &dyn std::fmt::Display| input.warnings.warn("textures that cannot be read", e.to_string());
+    match tex.source().source() {
+        gltf::image::Source::Uri { uri, .. } if uri.starts_with("data:") => {
+            warn(&format!("{}: {at}: data URIs are not decoded", input.file));
+        }
+        gltf::image::Source::Uri { uri, .. } => match input.refs.resolve(uri, Scope::Folder, &at) {
+            Ok(path) => {
+                if input.textures {
+                    out.texture = super::texture::load(input, &path, &at);
+                }
+                out.diffuse_texture = Some(path);
+            }
+            Err(e) => warn(&e),
+        },
+        gltf::image::Source::View { view, .. } if input.textures => {
+            let bytes = buffers.get(view.buffer().index()).and_then(|b| {
+                let end = view.offset().checked_add(view.length())?;
+                b.get(view.offset()..end)
+            });
+            let decoded = match bytes {
+                Some(b) => super::texture::decode(b, input.budget, input.file, &at),
+                None => Err(format_err(input.file, &at, "its buffer view lies outside its buffer")),
+            };
+            match decoded {
+                Ok(t) => out.texture = Some(std::sync::Arc::new(t)),
+                Err(e) => warn(&format!("{e}; drawn without it")),
+            }
+        }
+        gltf::image::Source::View { .. } => {}
+    }
+    out
 }
 
 /// Parses and validates the JSON. The POSITION accessor of every primitive
@@ -109,53 +148,75 @@ fn document(bytes: &[u8], file: &str) -> Result<gltf::Gltf> {
 struct Walk<'a> {
     raw: Option<RawMesh>,
     buffers: &'a [Vec<u8>],
-    file: &'a str,
-    visits: usize,
+    input: &'a Input<'a>,
 }
 
 impl Walk<'_> {
-    fn node(&mut self, node: &gltf::Node, parent: Mat4, depth: usize) -> Result<()> {
-        self.visits += 1;
-        if depth > MAX_DEPTH || self.visits > MAX_VISITS {
-            return Err(format_err(self.file, format!("node {}", node.index()), "node hierarchy too deep or cyclic"));
-        }
-        let m = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
-        if let Some(mesh) = node.mesh() {
-            for prim in mesh.primitives() {
-                let at = format!("mesh {} primitive {}", mesh.index(), prim.index());
-                if let Some(p) = self.primitive(&prim, m, &at)? {
-                    match &mut self.raw {
-                        Some(r) => r.append(p),
-                        None => self.raw = Some(p),
+    /// Takes every mesh node under `roots` with its world transform, depth
+    /// first without recursion (a legal hierarchy may be thousands of nodes
+    /// deep); every visit counts against `node-visits`, so a node graph
+    /// that shares children, repeats roots or has a cycle ends there.
+    fn nodes(&mut self, nodes: &[gltf::Node], roots: &[usize]) -> Result<()> {
+        let max = self.input.budget.limits().node_visits;
+        let mut stack: Vec<(usize, Mat4)> = roots.iter().rev().map(|&n| (n, Mat4::IDENTITY)).collect();
+        let mut visits = 0u64;
+        while let Some((index, parent)) = stack.pop() {
+            let Some(node) = nodes.get(index) else { continue };
+            visits += 1;
+            if visits > max {
+                let (file, element) = (self.input.file.to_string(), format!("node {index}"));
+                return Err(Error::OverBudget { file, element, limit: "node-visits", value: visits, max });
+            }
+            let m = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            if let Some(mesh) = node.mesh() {
+                for prim in mesh.primitives() {
+                    let at = format!("mesh {} primitive {}", mesh.index(), prim.index());
+                    if let Some(p) = self.primitive(&prim, m, &at)? {
+                        match &mut self.raw {
+                            Some(r) => r.append(p),
+                            None => self.raw = Some(p),
+                        }
                     }
                 }
             }
-        }
-        for c in node.children() {
-            self.node(&c, m, depth + 1)?;
+            let first = stack.len();
+            stack.extend(node.children().map(|c| (c.index(), m)));
+            stack[first..].reverse();
         }
         Ok(())
     }
 
-    fn primitive(&self, prim: &gltf::Primitive, m: Mat4, at: &str) -> Result<Option<RawMesh>> {
-        let file = self.file;
-        if !matches!(prim.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
-            log::info!("{file}: {at}: skipped ({:?}, not triangles)", prim.mode());
-            return Ok(None);
-        }
+    /// The counts a primitive adds, after checking its accessors: vertices
+    /// and indices.
+    fn counts(&self, prim: &gltf::Primitive) -> Result<(usize, usize)> {
+        let file = self.input.file;
         for (semantic, acc) in prim.attributes() {
             check_accessor(&acc, self.buffers, file)?;
             check_kind(&semantic, &acc, file)?;
         }
-        if let Some(acc) = prim.indices() {
-            check_accessor(&acc, self.buffers, file)?;
-            let ok = matches!(acc.data_type(), DataType::U8 | DataType::U16 | DataType::U32)
-                && acc.dimensions() == Dimensions::Scalar;
-            if !ok {
-                let what = format!("{:?} {:?} indices (unsigned scalars needed)", acc.data_type(), acc.dimensions());
-                return Err(format_err(file, format!("accessor {}", acc.index()), what));
-            }
+        let nv = prim.get(&gltf::Semantic::Positions).map_or(0, |a| a.count());
+        let Some(acc) = prim.indices() else { return Ok((nv, nv)) };
+        check_accessor(&acc, self.buffers, file)?;
+        let ok = matches!(acc.data_type(), DataType::U8 | DataType::U16 | DataType::U32)
+            && acc.dimensions() == Dimensions::Scalar;
+        if !ok {
+            let what = format!("{:?} {:?} indices (unsigned scalars needed)", acc.data_type(), acc.dimensions());
+            return Err(format_err(file, format!("accessor {}", acc.index()), what));
         }
+        Ok((nv, acc.count()))
+    }
+
+    fn primitive(&self, prim: &gltf::Primitive, m: Mat4, at: &str) -> Result<Option<RawMesh>> {
+        let file = self.input.file;
+        if !matches!(prim.mode(), Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan) {
+            log::info!("{file}: {at}: skipped ({:?}, not triangles)", prim.mode());
+            return Ok(None);
+        }
+        // what this instance adds, counted before any of it is read
+        let (nv, ni) = self.counts(prim)?;
+        self.input.budget.take_vertices(nv as u64, file, at)?;
+        let nt = if prim.mode() == Mode::Triangles { ni / 3 } else { ni.saturating_sub(2) };
+        self.input.budget.take_faces(nt as u64, file, at)?;
         let reader = prim.reader(|b| self.buffers.get(b.index()).map(|v| v.as_slice()));
         let missing = || format_err(file, at, "no readable POSITION attribute");
         let positions: Vec<Vec3> =
@@ -182,7 +243,9 @@ impl Walk<'_> {
         let colors: Option<Vec<Vec3>> = reader.read_colors(0).map(|c| c.into_rgb_f32().map(Vec3::from).collect());
         let colors = colors.filter(|c| c.len() == positions.len());
         let materials = prim.material().index().map(|i| vec![i as u32; triangles.len() / 3]);
-        Ok(Some(RawMesh { positions, triangles, uv, colors, materials, material_list: Vec::new() }))
+        let mut raw = RawMesh::from_triangles(positions, triangles);
+        (raw.uv, raw.colors, raw.materials) = (uv, colors, materials);
+        Ok(Some(raw))
     }
 }
 
@@ -227,7 +290,14 @@ fn check_accessor(acc: &gltf::Accessor, buffers: &[Vec<u8>], file: &str) -> Resu
     let view = acc.view().ok_or_else(|| format_err(file, &at, "no buffer view"))?;
     let buf = buffers.get(view.buffer().index()).ok_or_else(|| format_err(file, &at, "no buffer"))?;
     let size = acc.size();
-    let stride = view.stride().unwrap_or(size).max(size);
+    let stride = view.stride().unwrap_or(size);
+    if stride < size {
+        return Err(format_err(
+            file,
+            at,
+            format!("buffer view {} has a byte stride of {stride}, less than its {size}-byte elements", view.index()),
+        ));
+    }
     let bytes = match acc.count() {
         0 => Some(0),
         n => (n - 1).checked_mul(stride).and_then(|b| b.checked_add(size)),
@@ -251,8 +321,9 @@ fn check_accessor(acc: &gltf::Accessor, buffers: &[Vec<u8>], file: &str) -> Resu
 }
 
 /// The bytes of every buffer: the GLB's binary chunk, `data:` URIs, or files
-/// beside `file`.
-fn load_buffers(g: &gltf::Gltf, file: &str) -> Result<Vec<Vec<u8>>> {
+/// inside the model's folder (at most `byteLength` bytes of each).
+fn load_buffers(g: &gltf::Gltf, input: &Input) -> Result<Vec<Vec<u8>>> {
+    let file = input.file;
     g.buffers()
         .map(|b| {
             let at = format!("buffer {}", b.index());
@@ -265,8 +336,8 @@ fn load_buffers(g: &gltf::Gltf, file: &str) -> Result<Vec<Vec<u8>>> {
                         base64(b64).ok_or_else(|| format_err(file, &at, "bad base64 in data URI"))?
                     }
                     None => {
-                        let path = Path::new(file).parent().unwrap_or(Path::new(".")).join(percent_decode(uri));
-                        std::fs::read(&path).map_err(|e| format_err(file, &at, format!("{}: {e}", path.display())))?
+                        let path = input.refs.resolve(uri, Scope::Folder, &at)?;
+                        input.refs.read(&path, Some(b.length() as u64), &at)?
                     }
                 },
             };
@@ -276,27 +347,6 @@ fn load_buffers(g: &gltf::Gltf, file: &str) -> Result<Vec<Vec<u8>>> {
             Ok(data)
         })
         .collect()
-}
-
-/// `%20` and friends in a relative URI.
-fn percent_decode(s: &str) -> String {
-    let b = s.as_bytes();
-    let mut out = Vec::with_capacity(b.len());
-    let mut i = 0;
-    while i < b.len() {
-        let hex = |c: u8| (c as char).to_digit(16);
-        match (b[i], b.get(i + 1).copied().and_then(hex), b.get(i + 2).copied().and_then(hex)) {
-            (b'%', Some(h), Some(l)) => {
-                out.push((h * 16 + l) as u8);
-                i += 3;
-            }
-            (c, ..) => {
-                out.push(c);
-                i += 1;
-            }
-        }
-    }
-    String::from_utf8_lossy(&out).into_owned()
 }
 
 /// Standard base64 (padding optional); `None` on a bad character.
@@ -467,10 +517,11 @@ mod tests {
         let path = dir.0.join("m.glb");
         save(&path, &m, &Attributes::default()).expect("saved");
         let bytes = std::fs::read(&path).expect("read back");
-        let raw = parse(&bytes, "m.glb").expect("a valid glb");
+        let src = crate::io::Source::Bytes { bytes: &bytes, name: "m.glb", folder: None };
+        let back = crate::io::read(src, &Default::default()).expect("a valid glb").mesh;
         // the icosphere has no coincident vertices, so nothing is welded
-        assert!(raw.positions == m.positions, "positions");
-        assert!(raw.triangles == m.ct.v_table(), "triangles");
+        assert!(back.positions == m.positions, "positions");
+        assert!(back.ct.v_table() == m.ct.v_table(), "triangles");
         // the normals: the binary chunk's second array, after the positions
         let json_len = u32::from_le_bytes(bytes[12..16].try_into().expect("4 bytes")) as usize;
         let at = 20 + json_len + 8 + 12 * m.positions.len();

@@ -1,74 +1,70 @@
 //! Wavefront OBJ.
 //!
-//! Reading uses our own streaming parser rather than `tobj`: it keeps vertex
-//! ids global across `o`/`g` groups (tobj renumbers per group, which would cut
-//! a mesh apart at group borders and silently drop unused vertices), supports
-//! negative indices, triangulates polygons as fans, and remembers the line of
-//! every `v` and `f` record so that every error names the line. [`load_tobj`]
-//! reads the same file through tobj; the tests use it as an independent
-//! reference for our parser.
+//! Reading: our own streaming parser (`v`, `vt`, `f`, `usemtl`, `mtllib`
+//! and OpenSubdiv's `t` tags), with vertex ids global across `o`/`g` groups,
+//! negative (relative) indices, polygons kept as polygons, and the line of
+//! every record remembered so that every error names it. The `mtllib`
+//! libraries are read through the [`Resolver`](super::resolve::Resolver)
+//! (OBJ practice lets them lie anywhere; only regular files, each read
+//! once, within the budget) and parsed by [`super::mtl`]; their textures
+//! are decoded when the read asks for them. A library that cannot be read
+//! or a material it lacks is a warning: those faces are drawn grey.
 //!
 //! Writing formats chunks of lines in parallel (shortest round-trip floats).
 
-use super::atomic_write;
+use super::raw::RawMesh;
+use super::resolve::Scope;
 use super::text::{self, Line};
+use super::{Format, Input, Keeps, atomic_write};
 use crate::mesh::Mesh;
-use crate::mesh::attributes::{Attributes, Material, MaterialGroups};
-use crate::mesh::repair::{RepairReport, repair};
-use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
+use crate::mesh::attributes::{Attributes, Material};
+use crate::mesh::sharpness::{CornerTag, CreaseTag};
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-/// What the parser read besides the mesh.
-#[derive(Clone, Debug, Default)]
-pub struct ObjInfo {
-    /// `v` records in the file.
-    pub vertex_records: usize,
-    /// Vertices dropped because no face uses them.
-    pub unreferenced: usize,
-    /// Polygons with more than 3 corners that were split into triangles.
-    pub polygons_triangulated: usize,
-}
+/// The OBJ row of [`super::FORMATS`] (any text is taken for OBJ last).
+pub const FORMAT: Format = Format {
+    name: "Wavefront OBJ",
+    extensions: &["obj"],
+    sniff: |_| true,
+    reader: Some(read),
+    writer: Some(save_with),
+    written_as: &["obj"],
+    keeps: Keeps { uv: true, colors: true, materials: true },
+};
 
-/// Raw OBJ content: positions, triangles, and the source line of each.
-#[derive(Clone, Debug, Default)]
-pub struct RawObj {
-    /// Positions of every `v` record.
-    pub positions: Vec<Vec3>,
-    /// Triangles (0-based, global).
-    pub triangles: Vec<u32>,
-    /// Line (1-based) of every `v` record.
-    pub vertex_lines: Vec<u32>,
-    /// Line of the face record of every triangle.
-    pub triangle_lines: Vec<u32>,
-    /// Polygons triangulated.
-    pub polygons: usize,
+/// A corner without a texture coordinate.
+const NO_UV: u32 = u32::MAX;
+
+/// A face before any `usemtl`.
+const NO_MATERIAL: u32 = u32::MAX;
+
+/// What the parser gathers besides the [`RawMesh`].
+#[derive(Default)]
+struct Parsed {
+    raw: RawMesh,
     /// Texture coordinates of the `vt` records.
-    pub uvs: Vec<Vec2>,
-    /// Per triangle corner, the `vt` index used there ([`NO_UV`] when none).
-    pub corner_uv: Vec<u32>,
-    /// `v x y z r g b` colours, in record order (only the records that had one).
-    pub colors: Vec<Vec3>,
-    /// Sharpness tags (`t crease`, `t corner`; vertex ids 0-based records).
-    pub tags: Tags,
-    /// Line of every crease tag.
-    pub crease_lines: Vec<u32>,
-    /// Line of every corner tag.
-    pub corner_lines: Vec<u32>,
+    uvs: Vec<Vec2>,
+    /// Per face corner, the `vt` record used there ([`NO_UV`] when none).
+    corner_uv: Vec<u32>,
+    /// `v x y z r g b` colours, in record order (only while every record has one).
+    colors: Vec<Vec3>,
     /// The material names of `usemtl` records, in order of first use.
-    pub material_names: Vec<String>,
-    /// Index into `material_names` of every triangle ([`NO_MATERIAL`] before any `usemtl`).
-    pub face_material: Vec<u32>,
-    /// The files of `mtllib` records, as written.
-    pub mtllibs: Vec<String>,
+    names: Vec<String>,
+    /// Where each name is in `names`.
+    name_ids: HashMap<String, u32>,
+    /// Index into `names` of every face ([`NO_MATERIAL`] before any `usemtl`).
+    face_material: Vec<u32>,
+    /// The files of `mtllib` records, as written, each once.
+    mtllibs: Vec<String>,
+    /// The corners of the face record being read (reused between records):
+    /// vertex ids and `vt` ids.
+    poly: (Vec<u32>, Vec<u32>),
+    /// How many vertices and faces may be read, and corners per face.
+    max: (usize, usize, usize),
 }
-
-/// A triangle before any `usemtl` in [`RawObj::face_material`].
-pub const NO_MATERIAL: u32 = u32::MAX;
-
-/// A corner without a texture coordinate in [`RawObj::corner_uv`].
-pub const NO_UV: u32 = u32::MAX;
 
 /// The next `N` tokens as numbers; `what` names the record in errors.
 fn floats<'a, const N: usize>(
@@ -89,31 +85,64 @@ fn parse_err(file: &str, line: usize, msg: impl Into<String>) -> Error {
     Error::Parse { file: file.to_string(), line, msg: msg.into() }
 }
 
-/// Parses OBJ text. `file` is only used in error messages.
+/// Reads an OBJ file with its materials.
+///
+/// # Errors
+/// [`Error::Parse`] or [`Error::Mesh`] with the line of the record; over
+/// the budget.
+fn read(input: &Input) -> Result<RawMesh> {
+    let mut p = parse(input)?;
+    let file = input.file;
+    input.budget.take_vertices(p.raw.positions.len() as u64, file, "v records")?;
+    input.budget.take_faces(p.raw.num_faces() as u64, file, "f records")?;
+    let corners = p.raw.corners.len();
+    if corners > 0 && p.corner_uv.iter().all(|&j| j != NO_UV) {
+        p.raw.uv = Some(p.corner_uv.iter().map(|&j| p.uvs[j as usize]).collect());
+    } else if p.corner_uv.iter().any(|&j| j != NO_UV) {
+        let without = p.corner_uv.iter().filter(|&&j| j == NO_UV).count();
+        input.warnings.warn(
+            "texture coordinate notes",
+            format!("{file}: texture coordinates dropped: {without} of {corners} face corners have none"),
+        );
+    }
+    if !p.colors.is_empty() && p.colors.len() == p.raw.positions.len() {
+        p.raw.colors = Some(std::mem::take(&mut p.colors));
+    }
+    if !p.names.is_empty() {
+        materials(&mut p, input)?;
+    }
+    p.raw.libraries = p.mtllibs;
+    Ok(p.raw)
+}
+
+/// Parses OBJ text into [`Parsed`].
 ///
 /// # Errors
 /// [`Error::Parse`] with the line number for anything that is not valid OBJ.
-pub fn parse(bytes: &[u8], file: &str) -> Result<RawObj> {
+fn parse(input: &Input) -> Result<Parsed> {
+    let (bytes, file) = (input.bytes, input.file);
+    let l = input.budget.limits();
+    let max = (l.vertices.min(u32::MAX as u64) as usize, l.faces as usize, l.face_size as usize);
     // one check of the whole text (fast); where a byte is bad, the lines
     // before it are read first, so that an earlier error is the one reported
     match std::str::from_utf8(bytes) {
-        Ok(text) => parse_text(text, file),
+        Ok(text) => parse_text(text, file, max, l.materials),
         Err(e) => {
             let good = &bytes[..e.valid_up_to()];
             let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |k| k + 1);
             let ln = good.iter().filter(|&&b| b == b'\n').count() + 1;
             // the bytes before the bad line's start are valid UTF-8
             let before = std::str::from_utf8(&bytes[..start]).unwrap_or_default();
-            parse_text(before, file)?;
+            parse_text(before, file, max, l.materials)?;
             Err(parse_err(file, ln, "not text (invalid UTF-8): is this an OBJ file?"))
         }
     }
 }
 
 /// [`parse`] of text.
-fn parse_text(text: &str, file: &str) -> Result<RawObj> {
-    let mut raw = RawObj::default();
-    let mut poly = Polygon::default();
+fn parse_text(text: &str, file: &str, max: (usize, usize, usize), max_materials: u64) -> Result<Parsed> {
+    let mut p = Parsed { max, ..Default::default() };
+    p.raw.sources.id_base = 1;
     let mut material = NO_MATERIAL;
     for (lineno, line) in text.split('\n').enumerate() {
         let ln = lineno + 1;
@@ -126,24 +155,34 @@ fn parse_text(text: &str, file: &str) -> Result<RawObj> {
         let Some(key) = toks.next() else { continue };
         let at = Loc { file, ln };
         match key {
-            "v" => vertex_record(&mut raw, toks, at)?,
-            "vt" => texture_record(&mut raw, toks, at)?,
+            "v" => vertex_record(&mut p, toks, at)?,
+            "vt" => texture_record(&mut p, toks, at)?,
             "f" => {
-                face_record(&mut raw, &mut poly, toks, at)?;
-                raw.face_material.resize(raw.triangle_lines.len(), material);
+                face_record(&mut p, toks, at)?;
+                p.face_material.push(material);
             }
             "usemtl" => {
                 let name = line.trim_start().strip_prefix("usemtl").unwrap_or("").trim();
-                material = match raw.material_names.iter().position(|n| n == name) {
-                    Some(i) => i as u32,
+                material = match p.name_ids.get(name) {
+                    Some(&i) => i,
                     None => {
-                        raw.material_names.push(name.to_string());
-                        raw.material_names.len() as u32 - 1
+                        if p.names.len() as u64 >= max_materials {
+                            return Err(over(file, ln, "materials", p.names.len() as u64 + 1, max_materials));
+                        }
+                        p.names.push(name.to_string());
+                        p.name_ids.insert(name.to_string(), p.names.len() as u32 - 1);
+                        p.names.len() as u32 - 1
                     }
                 };
             }
-            "mtllib" => raw.mtllibs.extend(toks.map(str::to_string)),
-            "t" => parse_tag(&mut toks, file, ln, &mut raw)?,
+            "mtllib" => {
+                for lib in toks {
+                    if !p.mtllibs.iter().any(|l| l == lib) {
+                        p.mtllibs.push(lib.to_string());
+                    }
+                }
+            }
+            "t" => parse_tag(&mut toks, file, ln, &mut p.raw)?,
             other if is_ignored_keyword(other) => {}
             other => {
                 let shown: String = other.chars().take(20).collect();
@@ -151,7 +190,12 @@ fn parse_text(text: &str, file: &str) -> Result<RawObj> {
             }
         }
     }
-    Ok(raw)
+    Ok(p)
+}
+
+/// [`Error::OverBudget`] at line `ln`.
+fn over(file: &str, ln: usize, limit: &'static str, value: u64, max: u64) -> Error {
+    Error::OverBudget { file: file.to_string(), element: format!("line {ln}"), limit, value, max }
 }
 
 /// Parses a tag record (OpenSubdiv's `t name nint/nfloat/nstring ints
@@ -159,7 +203,7 @@ fn parse_text(text: &str, file: &str) -> Result<RawObj> {
 /// k/1/0 v0 .. vk-1 s`, or one sharpness per edge), `t corner 1/1/0 v s`
 /// (also several vertices); vertex ids are 0-based. Other tags (such as
 /// `interpolateboundary`) are read and ignored.
-fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize, raw: &mut RawObj) -> Result<()> {
+fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize, raw: &mut RawMesh) -> Result<()> {
     let name = toks.next().unwrap_or("");
     let counts = toks.next().unwrap_or("");
     if name != "crease" && name != "corner" {
@@ -169,13 +213,18 @@ fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize
     let (Some(Ok(ni)), Some(Ok(nf))) = (cs.next(), cs.next()) else {
         return Err(parse_err(file, ln, format!("{name} tag: '{counts}' is not a count like 2/1/0")));
     };
-    let ints: Vec<u32> = (0..ni)
-        .map(|_| toks.next().and_then(|t| t.parse().ok()))
+    let ints: Vec<u32> = toks
+        .by_ref()
+        .take(ni)
+        .map(|t| t.parse().ok())
         .collect::<Option<_>>()
+        .filter(|v: &Vec<u32>| v.len() == ni)
         .ok_or_else(|| parse_err(file, ln, format!("{name} tag: needs {ni} vertex ids (0-based)")))?;
-    let floats: Vec<f32> = (0..nf)
-        .map(|_| toks.next().and_then(|t| t.parse().ok()))
+    let floats: Vec<f32> = toks
+        .take(nf)
+        .map(|t| t.parse().ok())
         .collect::<Option<_>>()
+        .filter(|v: &Vec<f32>| v.len() == nf)
         .ok_or_else(|| parse_err(file, ln, format!("{name} tag: needs {nf} sharpness values")))?;
     let per = |k: usize, n: usize| -> Result<f32> {
         match floats.len() {
@@ -184,6 +233,7 @@ fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize
             m => Err(parse_err(file, ln, format!("{name} tag: {m} sharpness values for {n} elements"))),
         }
     };
+    let lines = &mut raw.sources.tag_lines;
     if name == "crease" {
         if ints.len() < 2 {
             return Err(parse_err(file, ln, "crease tag: needs two vertex ids (0-based) and a sharpness"));
@@ -191,7 +241,8 @@ fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize
         for k in 0..ints.len() - 1 {
             let s = per(k, ints.len() - 1)?;
             raw.tags.creases.push(CreaseTag { v0: ints[k], v1: ints[k + 1], sharpness: s });
-            raw.crease_lines.push(ln as u32);
+            // crease lines come before corner lines: insert before the corners'
+            lines.insert(raw.tags.creases.len() - 1, ln as u32);
         }
     } else {
         if ints.is_empty() {
@@ -199,55 +250,10 @@ fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize
         }
         for (k, &v) in ints.iter().enumerate() {
             raw.tags.corners.push(CornerTag { vertex: v, sharpness: per(k, ints.len())? });
-            raw.corner_lines.push(ln as u32);
+            lines.push(ln as u32);
         }
     }
     Ok(())
-}
-
-/// The tags of `raw` applied to `mesh` (built from `raw` with `used`
-/// records kept in order), errors at the tag's line.
-fn apply_tags(mesh: Mesh, raw_tags: &Tags, lines: (&[u32], &[u32]), used: &[bool], file: &str) -> Result<Mesh> {
-    if raw_tags.is_empty() {
-        return Ok(mesh);
-    }
-    let (crease_lines, corner_lines) = lines;
-    let line_of = |i: usize| {
-        (if i < crease_lines.len() { crease_lines[i] } else { corner_lines[i - crease_lines.len()] }) as usize
-    };
-    // record id -> vertex id (the build keeps the used records in order)
-    let mut new_id = vec![u32::MAX; used.len()];
-    let mut next = 0;
-    for (i, &u) in used.iter().enumerate() {
-        if u {
-            new_id[i] = next;
-            next += 1;
-        }
-    }
-    let map = |i: usize, v: u32| -> Result<u32> {
-        match new_id.get(v as usize) {
-            Some(&x) if x != u32::MAX => Ok(x),
-            Some(_) => Err(parse_err(file, line_of(i), format!("tag: vertex {v} is used by no face"))),
-            None => Err(parse_err(
-                file,
-                line_of(i),
-                format!("tag: vertex {v} does not exist ({} vertices, ids are 0-based)", used.len()),
-            )),
-        }
-    };
-    let mut tags = Tags::default();
-    for (i, t) in raw_tags.creases.iter().enumerate() {
-        tags.creases.push(CreaseTag { v0: map(i, t.v0)?, v1: map(i, t.v1)?, ..*t });
-    }
-    for (j, t) in raw_tags.corners.iter().enumerate() {
-        tags.corners.push(CornerTag { vertex: map(crease_lines.len() + j, t.vertex)?, ..*t });
-    }
-    let Mesh { ct, positions } = mesh;
-    let ct = ct.with_tags(&tags).map_err(|e| match e {
-        MeshError::BadTag { index, msg } => parse_err(file, line_of(index), msg),
-        other => Error::Mesh { file: file.to_string(), line: None, source: other },
-    })?;
-    Ok(Mesh { ct, positions })
 }
 
 /// Where a record is: the file (for messages) and its 1-based line.
@@ -294,14 +300,17 @@ fn is_ignored_keyword(key: &str) -> bool {
 }
 
 /// A `v x y z [r g b]` record.
-fn vertex_record<'a>(raw: &mut RawObj, mut toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
+fn vertex_record<'a>(p: &mut Parsed, mut toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
     let Loc { file, ln } = at;
+    if p.raw.positions.len() >= p.max.0 {
+        return Err(over(file, ln, "vertices", p.raw.positions.len() as u64 + 1, p.max.0 as u64));
+    }
     let xyz: [f32; 3] = floats(&mut toks, file, ln, "vertex")?;
     if xyz.iter().any(|x| !x.is_finite()) {
         return Err(Error::Mesh {
             file: file.into(),
             line: Some(ln),
-            source: MeshError::NonFinite { vertex: raw.positions.len() + 1 },
+            source: MeshError::NonFinite { vertex: p.raw.positions.len() + 1 },
         });
     }
     // Optional per-vertex colour `v x y z r g b` (a common extension); a
@@ -312,60 +321,56 @@ fn vertex_record<'a>(raw: &mut RawObj, mut toks: impl Iterator<Item = &'a str>, 
             return Err(parse_err(file, ln, "vertex colour is not finite"));
         }
         // kept only while every vertex so far has one
-        if raw.colors.len() == raw.positions.len() {
-            raw.colors.push(Vec3::from_array(rgb).clamp(Vec3::ZERO, Vec3::ONE));
+        if p.colors.len() == p.raw.positions.len() {
+            p.colors.push(Vec3::from_array(rgb).clamp(Vec3::ZERO, Vec3::ONE));
         }
     }
-    raw.positions.push(Vec3::from_array(xyz));
-    raw.vertex_lines.push(ln as u32);
+    p.raw.positions.push(Vec3::from_array(xyz));
+    p.raw.sources.vertex_lines.push(ln as u32);
     Ok(())
 }
 
 /// A `vt u v [w]` record.
-fn texture_record<'a>(raw: &mut RawObj, mut toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
+fn texture_record<'a>(p: &mut Parsed, mut toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
     let uv: [f32; 2] = floats(&mut toks, at.file, at.ln, "texture coordinate")?;
     if uv.iter().any(|x| !x.is_finite()) {
         return Err(parse_err(at.file, at.ln, "texture coordinate is not finite"));
     }
-    raw.uvs.push(Vec2::from_array(uv));
+    if p.uvs.len() >= p.max.0 {
+        return Err(over(at.file, at.ln, "vertices", p.uvs.len() as u64 + 1, p.max.0 as u64));
+    }
+    p.uvs.push(Vec2::from_array(uv));
     Ok(())
 }
 
-/// The corners of the face record being read (reused between records).
-#[derive(Default)]
-struct Polygon {
-    /// Vertex ids, 0-based.
-    v: Vec<u32>,
-    /// `vt` ids, [`NO_UV`] where a corner has none.
-    uv: Vec<u32>,
-}
-
-/// An `f v[/vt[/vn]] ...` record, triangulated as a fan.
-fn face_record<'a>(raw: &mut RawObj, poly: &mut Polygon, toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
+/// An `f v[/vt[/vn]] ...` record, kept as a polygon.
+fn face_record<'a>(p: &mut Parsed, toks: impl Iterator<Item = &'a str>, at: Loc) -> Result<()> {
     let Loc { file, ln } = at;
-    poly.v.clear();
-    poly.uv.clear();
+    if p.raw.num_faces() >= p.max.1 {
+        return Err(over(file, ln, "faces", p.raw.num_faces() as u64 + 1, p.max.1 as u64));
+    }
+    let (mut pv, mut puv) = std::mem::take(&mut p.poly);
+    pv.clear();
+    puv.clear();
     for t in toks {
+        if pv.len() >= p.max.2 {
+            return Err(over(file, ln, "face-size", pv.len() as u64 + 1, p.max.2 as u64));
+        }
         let mut parts = t.split('/');
         let idx = parts.next().unwrap_or("");
-        poly.uv.push(match parts.next().filter(|x| !x.is_empty()) {
+        puv.push(match parts.next().filter(|x| !x.is_empty()) {
             None => NO_UV,
-            Some(vt) => texture_index(vt, t, raw.uvs.len(), at)?,
+            Some(vt) => texture_index(vt, t, p.uvs.len(), at)?,
         });
-        poly.v.push(vertex_index(idx, t, raw, at)?);
+        pv.push(vertex_index(idx, t, p, at)?);
     }
-    if poly.v.len() < 3 {
-        return Err(parse_err(file, ln, format!("face has {} vertices, needs at least 3", poly.v.len())));
+    if pv.len() < 3 {
+        return Err(parse_err(file, ln, format!("face has {} vertices, needs at least 3", pv.len())));
     }
-    if poly.v.len() > 3 {
-        raw.polygons += 1;
-    }
-    let (pv, puv) = (&poly.v, &poly.uv);
-    for k in 1..pv.len() - 1 {
-        raw.triangles.extend_from_slice(&[pv[0], pv[k], pv[k + 1]]);
-        raw.corner_uv.extend_from_slice(&[puv[0], puv[k], puv[k + 1]]);
-        raw.triangle_lines.push(ln as u32);
-    }
+    p.raw.push_face(&pv);
+    p.corner_uv.extend_from_slice(&puv);
+    p.raw.sources.face_lines.push(ln as u32);
+    p.poly = (pv, puv);
     Ok(())
 }
 
@@ -384,201 +389,111 @@ fn texture_index(vt: &str, t: &str, m: usize, at: Loc) -> Result<u32> {
 /// The 0-based id of the vertex index `idx` of face corner `t` (1-based, or
 /// negative = relative to the last vertex so far). An index past the
 /// vertices read so far is accepted here and checked when the mesh is built.
-fn vertex_index(idx: &str, t: &str, raw: &RawObj, at: Loc) -> Result<u32> {
+fn vertex_index(idx: &str, t: &str, p: &Parsed, at: Loc) -> Result<u32> {
     let i: i64 = idx.parse().map_err(|_| parse_err(at.file, at.ln, format!("'{t}' is not a vertex index")))?;
-    let n = raw.positions.len() as i64;
+    let n = p.raw.positions.len() as i64;
     let abs = if i < 0 { n + i } else { i - 1 };
     if i == 0 || abs < 0 || abs >= u32::MAX as i64 {
         return Err(Error::Mesh {
             file: at.file.into(),
             line: Some(at.ln),
-            source: MeshError::IndexOutOfRange { face: raw.triangle_lines.len(), index: i, len: n as usize },
+            source: MeshError::IndexOutOfRange { face: p.raw.num_faces(), index: i, len: n as usize },
         });
     }
     Ok(abs as u32)
 }
 
-/// Loads and validates an OBJ file.
+/// The material groups of an OBJ with `usemtl` records: `Kd` and `map_Kd`
+/// of each material from its `mtllib` libraries (the first library that
+/// has a name wins), with the textures decoded when the read asks for
+/// them. Faces before the first `usemtl` get a material `default`.
 ///
 /// # Errors
-/// I/O errors, [`Error::Parse`], and [`Error::Mesh`] with the line of the
-/// offending face or vertex record.
-pub fn load(path: &Path) -> Result<(Mesh, ObjInfo)> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    from_bytes(&bytes, &path.display().to_string())
-}
-
-/// Parses and validates OBJ bytes (see [`load`]); `file` names the source in errors.
-///
-/// # Errors
-/// See [`load`].
-pub fn from_bytes(bytes: &[u8], file: &str) -> Result<(Mesh, ObjInfo)> {
-    let raw = parse(bytes, file)?;
-    build(raw, file)
-}
-
-/// Loads an OBJ file and repairs it instead of refusing bad topology (see
-/// [`crate::mesh::repair`](mod@crate::mesh::repair)). The report shows vertex ids 1-based, as the file
-/// numbers them (`id_base` 1), and triangles 0-based, as error messages do.
-///
-/// # Errors
-/// I/O errors and [`Error::Parse`] as [`load`]; [`Error::Mesh`] for an index
-/// out of range, a non-finite coordinate, or no face left after repair.
-pub fn load_repaired(path: &Path) -> Result<(Mesh, RepairReport)> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    from_bytes_repaired(&bytes, &path.display().to_string())
-}
-
-/// Parses and repairs OBJ bytes (see [`load_repaired`]).
-///
-/// # Errors
-/// See [`load_repaired`].
-pub fn from_bytes_repaired(bytes: &[u8], file: &str) -> Result<(Mesh, RepairReport)> {
-    let raw = parse(bytes, file)?;
-    let lines = raw.triangle_lines;
-    let (mesh, mut report) = repair(raw.positions, &raw.triangles).map_err(|e| Error::Mesh {
-        file: file.to_string(),
-        line: e.face().and_then(|f| lines.get(f)).map(|&l| l as usize),
-        source: e.shift_vertices(1),
-    })?;
-    report.id_base = 1;
-    Ok((mesh, report))
-}
-
-/// Loads an OBJ with its attributes: per-corner texture coordinates (when
-/// every face corner has a `vt`) and per-vertex colours (when every `v`
-/// record has one), following the vertex renumbering of the build.
-///
-/// # Errors
-/// See [`load`].
-pub fn load_with_attributes(path: &Path) -> Result<(Mesh, Attributes)> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    from_bytes_with_attributes(&bytes, &path.display().to_string())
-}
-
-/// [`load_with_attributes`] on bytes; `file` names the source in errors.
-///
-/// # Errors
-/// See [`load`].
-pub fn from_bytes_with_attributes(bytes: &[u8], file: &str) -> Result<(Mesh, Attributes)> {
-    let mut raw = parse(bytes, file)?;
-    let uv = (!raw.corner_uv.is_empty() && raw.corner_uv.iter().all(|&j| j != NO_UV))
-        .then(|| raw.corner_uv.iter().map(|&j| raw.uvs[j as usize]).collect::<Vec<_>>());
-    let colors =
-        (raw.colors.len() == raw.positions.len() && !raw.colors.is_empty()).then(|| std::mem::take(&mut raw.colors));
-    let used = used_records(raw.positions.len(), &raw.triangles);
-    let materials = material_groups(&mut raw, file);
-    let (mesh, _) = build(raw, file)?;
-    // the build keeps used vertices in record order
-    let colors = colors.map(|c| c.into_iter().zip(&used).filter(|(_, u)| **u).map(|(c, _)| c).collect());
-    Ok((mesh, Attributes { uv, colors, materials }))
-}
-
-/// The material groups of an OBJ that has `usemtl` records: `Kd` and
-/// `map_Kd` of each material read from its `mtllib` files through tobj
-/// (relative to the OBJ's directory). A library that cannot be read, or a
-/// material it lacks, is a warning in the log, not an error: that material
-/// is drawn grey. Faces before the first `usemtl` get a material `default`.
-fn material_groups(raw: &mut RawObj, file: &str) -> Option<MaterialGroups> {
-    if raw.material_names.is_empty() {
-        return None;
-    }
-    let mut face = std::mem::take(&mut raw.face_material);
-    let mut names = std::mem::take(&mut raw.material_names);
+/// Over the budget (libraries, bytes); a library that cannot be read is a
+/// warning.
+fn materials(p: &mut Parsed, input: &Input) -> Result<()> {
+    let file = input.file;
+    let mut face = std::mem::take(&mut p.face_material);
+    let mut names = std::mem::take(&mut p.names);
     if face.contains(&NO_MATERIAL) {
         names.push("default".into());
         let d = names.len() as u32 - 1;
         face.iter_mut().filter(|m| **m == NO_MATERIAL).for_each(|m| *m = d);
     }
-    let dir = Path::new(file).parent().unwrap_or(Path::new("."));
-    let mut found: Vec<(tobj::Material, PathBuf)> = Vec::new();
-    for lib in &raw.mtllibs {
-        let path = dir.join(lib);
-        match tobj::load_mtl(&path) {
-            Ok((mats, _)) => found.extend(mats.into_iter().map(|m| (m, path.clone()))),
-            Err(e) => log::warn!("{file}: mtllib {}: {e}", path.display()),
-        }
-    }
-    let list = names
-        .iter()
-        .map(|n| match found.iter().find(|(m, _)| &m.name == n) {
-            Some((m, lib)) => Material {
-                name: n.clone(),
-                diffuse: m.diffuse.map_or(Vec3::splat(0.8), Vec3::from),
-                diffuse_texture: m
-                    .diffuse_texture
-                    .as_ref()
-                    .map(|t| lib.parent().unwrap_or(Path::new(".")).join(t.trim())),
-            },
-            None => {
-                if n != "default" {
-                    log::warn!("{file}: material '{n}' is in no mtllib that could be read; drawn grey");
-                }
-                Material::named(n)
+    let entries = read_libraries(&p.mtllibs, input)?;
+    let mut list = Vec::with_capacity(names.len());
+    for n in &names {
+        let Some((e, folder)) = entries.get(n.as_str()) else {
+            if n != "default" {
+                input.warnings.warn(
+                    "materials missing from the libraries",
+                    format!("{file}: material '{n}' is in no mtllib that could be read; drawn grey"),
+                );
             }
-        })
-        .collect();
-    Some(MaterialGroups { face, list, libraries: std::mem::take(&mut raw.mtllibs) })
-}
-
-/// Which of `n` vertex records some triangle uses.
-fn used_records(n: usize, triangles: &[u32]) -> Vec<bool> {
-    let mut u = vec![false; n];
-    for &i in triangles {
-        if let Some(slot) = u.get_mut(i as usize) {
-            *slot = true;
+            list.push(Material::named(n));
+            continue;
+        };
+        let mut m = Material { diffuse: e.diffuse.unwrap_or(Vec3::splat(0.8)), wrap: e.wrap, ..Material::named(n) };
+        if let Some(t) = &e.texture {
+            let at = format!("material '{n}' map_Kd");
+            match input.refs.resolve_in(folder, t, Scope::Anywhere, &at) {
+                Ok(path) => {
+                    if input.textures {
+                        m.texture = super::texture::load(input, &path, &at);
+                    }
+                    m.diffuse_texture = Some(path);
+                }
+                Err(e) => input.warnings.warn("textures that cannot be read", e),
+            }
         }
+        list.push(m);
     }
-    u
+    p.raw.materials = Some(face);
+    p.raw.material_list = list;
+    Ok(())
 }
 
-/// Validates parsed OBJ content into a mesh, mapping errors to source lines.
+/// The entries of the libraries `libs` by material name (the first library
+/// naming one wins), each with the folder its textures are found in. Each
+/// library is read once, through the resolver; one that cannot be read is
+/// a warning.
 ///
 /// # Errors
-/// [`Error::Mesh`] naming the file and line.
-pub fn build(raw: RawObj, file: &str) -> Result<(Mesh, ObjInfo)> {
-    let nrec = raw.positions.len();
-    let polygons = raw.polygons;
-    let used = if raw.tags.is_empty() { Vec::new() } else { used_records(nrec, &raw.triangles) };
-    match Mesh::from_triangles_report(raw.positions, &raw.triangles) {
-        Ok((mesh, rep)) => Ok((
-            apply_tags(mesh, &raw.tags, (&raw.crease_lines, &raw.corner_lines), &used, file)?,
-            ObjInfo { vertex_records: nrec, unreferenced: rep.unreferenced, polygons_triangulated: polygons },
-        )),
-        Err(e) => {
-            let line = e
-                .face()
-                .and_then(|f| raw.triangle_lines.get(f))
-                .or_else(|| e.vertex().and_then(|v| raw.vertex_lines.get(v)))
-                .map(|&l| l as usize);
-            Err(Error::Mesh {
-                file: file.to_string(),
-                line,
-                // messages use the file's own 1-based vertex numbering
-                source: e.shift_vertices(1),
-            })
+/// Over the `libraries` or byte budget.
+fn read_libraries(libs: &[String], input: &Input) -> Result<HashMap<String, (super::mtl::Entry, PathBuf)>> {
+    let mut out = HashMap::new();
+    let mut seen: Vec<PathBuf> = Vec::new();
+    for lib in libs {
+        let at = format!("mtllib {lib}");
+        let path = match input.refs.resolve(lib, Scope::Anywhere, &at) {
+            Ok(p) => p,
+            Err(e) => {
+                input.warnings.warn("libraries that cannot be read", e);
+                continue;
+            }
+        };
+        let real = path.canonicalize().unwrap_or_else(|_| path.clone());
+        if seen.contains(&real) {
+            continue;
+        }
+        seen.push(real);
+        input.budget.take_library(input.file, &at)?;
+        let bytes = match input.refs.read(&path, None, &at) {
+            Ok(b) => b,
+            Err(e @ Error::OverBudget { .. }) => return Err(e),
+            Err(e) => {
+                input.warnings.warn("libraries that cannot be read", e);
+                continue;
+            }
+        };
+        let shown = format!("{} ({})", input.file, crate::error::clean(lib, 60));
+        let text = String::from_utf8_lossy(&bytes);
+        let folder = path.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+        for e in super::mtl::parse(&text, &shown, input.warnings) {
+            out.entry(e.name.clone()).or_insert_with(|| (e, folder.clone()));
         }
     }
-}
-
-/// Reads an OBJ through `tobj` (one model per group, renumbered per group),
-/// returning every model's positions and triangles concatenated. Used as an
-/// independent reference for [`parse`] in tests.
-///
-/// # Errors
-/// tobj's load error as [`Error::Parse`] (without a line: tobj has none).
-pub fn load_tobj(path: &Path) -> Result<(Vec<Vec3>, Vec<u32>)> {
-    let opts = tobj::LoadOptions { triangulate: true, single_index: false, ..Default::default() };
-    let (models, _) =
-        tobj::load_obj(path, &opts).map_err(|e| parse_err(&path.display().to_string(), 0, e.to_string()))?;
-    let mut pos = Vec::new();
-    let mut tris = Vec::new();
-    for m in models {
-        let base = pos.len() as u32;
-        pos.extend(m.mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
-        tris.extend(m.mesh.indices.iter().map(|&i| i + base));
-    }
-    Ok((pos, tris))
+    Ok(out)
 }
 
 /// [`put_f32`] appended to `out` (the records written one by one).
@@ -790,7 +705,11 @@ mod tests {
 
     #[test]
     fn the_first_error_in_the_file_is_reported_invalid_utf8_included() {
-        let line_of = |bytes: &[u8]| match parse(bytes, "m.obj") {
+        let read = |bytes: &[u8]| {
+            let src = crate::io::Source::Bytes { bytes, name: "m.obj", folder: None };
+            crate::io::read(src, &Default::default())
+        };
+        let line_of = |bytes: &[u8]| match read(bytes) {
             Err(Error::Parse { line, msg, .. }) => (line, msg),
             other => panic!("expected a parse error, got {other:?}"),
         };
@@ -802,8 +721,8 @@ mod tests {
         assert_eq!(line, 2);
         assert!(msg.contains("not a number"), "{msg}");
         // comments and carriage returns are cut before the tokens
-        let raw = parse(b"v 0 0 0 # a comment\r\nv 1 0 0\r\nv 0 1 0#x\nf 1 2 3\r\n", "m.obj").expect("valid");
-        assert_eq!((raw.positions.len(), raw.triangles.len()), (3, 3));
+        let m = read(b"v 0 0 0 # a comment\r\nv 1 0 0\r\nv 0 1 0#x\nf 1 2 3\r\n").expect("valid").mesh;
+        assert_eq!((m.positions.len(), m.ct.num_triangles()), (3, 1));
     }
 
     #[test]

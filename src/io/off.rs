@@ -1,13 +1,18 @@
 //! OFF (Object File Format, Geomview) in and out: `OFF`, then vertex, face
 //! and edge counts, the vertices, then each face as a count and indices
-//! (polygons fanned into triangles). `COFF` (vertex colours after the
-//! coordinates, integers 0..255 or floats 0..1) is read too; comments start
-//! with `#`. Counts are checked against the text that follows before
-//! anything is allocated; errors name the file and line.
+//! (polygons kept). The keyword's prefixes say what else each vertex line
+//! holds (Geomview's `[ST][C][N]OFF`: a normal, a colour of 3 or 4 values,
+//! integers 0..255 or floats 0..1, texture coordinates); colours are kept,
+//! normals and texture coordinates read past; a 4-D or n-D file is refused.
+//! Comments start with `#`. Lines after the counted faces are an error (a
+//! header that undercounts would otherwise drop faces silently). Counts
+//! are checked against the text that follows before anything is
+//! allocated; errors name the file and line.
 
 use super::atomic_write;
 use super::raw::{RawMesh, check_count};
 use super::text::{LONGEST, Line, triple_lines};
+use super::{Format, Input, Keeps};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
 use glam::Vec3;
@@ -18,12 +23,58 @@ const MIN_VERTEX_BYTES: u64 = 6;
 /// The fewest bytes of a face line (`3 0 1 2` and a newline).
 const MIN_FACE_BYTES: u64 = 8;
 
+/// The OFF row of [`super::FORMATS`].
+pub const FORMAT: Format = Format {
+    name: "OFF",
+    extensions: &["off"],
+    sniff: |b| {
+        let head = b.trim_ascii_start();
+        let magic = head.split(|c| c.is_ascii_whitespace()).next().unwrap_or(&[]);
+        magic.ends_with(b"OFF") && magic.len() <= 8
+    },
+    reader: Some(read),
+    writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
+    written_as: &["off"],
+    keeps: Keeps { uv: false, colors: true, materials: false },
+};
+
+/// What the header's keyword says each vertex line holds besides `x y z`
+/// (Geomview's `[ST][C][N][4][n]OFF`, in the order the values come:
+/// normal, colour, texture coordinates).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Layout {
+    normal: bool,
+    color: bool,
+    texture: bool,
+}
+
+/// The layout of the keyword `magic`; a 4-D or n-D file is refused.
+fn layout(magic: &str) -> std::result::Result<Layout, String> {
+    let mut rest = magic.strip_suffix("OFF").ok_or_else(|| format!("not an OFF file (starts with '{magic}')"))?;
+    let mut l = Layout::default();
+    for (prefix, flag) in [("ST", 0), ("C", 1), ("N", 2)] {
+        if let Some(r) = rest.strip_prefix(prefix) {
+            rest = r;
+            match flag {
+                0 => l.texture = true,
+                1 => l.color = true,
+                _ => l.normal = true,
+            }
+        }
+    }
+    match rest {
+        "" => Ok(l),
+        "4" | "n" | "4n" => Err(format!("'{magic}': vertices of more than 3 dimensions are not read")),
+        _ => Err(format!("'{magic}' is not an OFF keyword ([ST][C][N]OFF)")),
+    }
+}
+
 /// Reads an OFF file.
 ///
 /// # Errors
-/// [`Error::Parse`] naming the file and line.
-pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
-    let text = super::text(bytes, file)?;
+/// [`Error::Parse`] naming the file and line; over the budget.
+fn read(input: &Input) -> Result<RawMesh> {
+    let (file, text) = (input.file, input.text()?);
     // non-empty lines without comments, with their line numbers
     let mut lines = text
         .lines()
@@ -34,10 +85,7 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
     let (l0, first) = lines.next().ok_or_else(|| err(1, "empty file (no OFF header)".into()))?;
     let mut words: Vec<&str> = first.split_whitespace().collect();
     let magic = words.first().copied().unwrap_or("");
-    let color = magic.contains('C');
-    if !magic.ends_with("OFF") {
-        return Err(err(l0, format!("not an OFF file (starts with '{magic}')")));
-    }
+    let layout = layout(magic).map_err(|m| err(l0, m))?;
     words.remove(0);
     let (lc, counts) =
         if words.is_empty() { lines.next().ok_or_else(|| err(l0, "no counts".into()))? } else { (l0, "") };
@@ -60,8 +108,10 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
             ),
         ));
     }
+    input.budget.take_vertices(nv as u64, file, "header")?;
+    input.budget.take_faces(nf as u64, file, "header")?;
     let mut raw = RawMesh { positions: Vec::with_capacity(nv), ..Default::default() };
-    let mut colors = color.then(|| Vec::with_capacity(nv));
+    let mut colors = layout.color.then(|| Vec::with_capacity(nv));
     for v in 0..nv {
         let (l, line) = lines.next().ok_or_else(|| err(lc, format!("file ends at vertex {v} of {nv}")))?;
         let x: Vec<f32> = line
@@ -74,17 +124,20 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
         }
         raw.positions.push(Vec3::new(x[0], x[1], x[2]));
         if let Some(c) = &mut colors {
-            let rgb = Vec3::new(
-                x.get(3).copied().unwrap_or(1.0),
-                x.get(4).copied().unwrap_or(1.0),
-                x.get(5).copied().unwrap_or(1.0),
-            );
-            let ints = x[3..].iter().any(|&c| c > 1.0);
+            // after the coordinates and the normal, before the texture coordinates
+            let from = if layout.normal { 6 } else { 3 };
+            let to = x.len().saturating_sub(if layout.texture { 2 } else { 0 });
+            let rgb = x.get(from..to).filter(|c| c.len() == 3 || c.len() == 4).ok_or_else(|| {
+                err(l, format!("vertex {v}: {} values where '{magic}' needs a colour of 3 or 4", x.len()))
+            })?;
+            let ints = rgb.iter().any(|&c| c > 1.0);
+            let rgb = Vec3::new(rgb[0], rgb[1], rgb[2]);
             c.push(if ints { rgb / 255.0 } else { rgb }.clamp(Vec3::ZERO, Vec3::ONE));
         }
     }
     raw.colors = colors;
-    raw.triangles.reserve(nf.saturating_mul(3));
+    let max_size = input.budget.limits().face_size;
+    let mut idx: Vec<u32> = Vec::new();
     for f in 0..nf {
         let (l, line) = lines.next().ok_or_else(|| err(lc, format!("file ends at face {f} of {nf}")))?;
         let mut w = line.split_whitespace().map(|t| t.parse::<u32>());
@@ -93,16 +146,22 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
         if n < 3 {
             return Err(err(l, format!("face {f}: {n} vertices (3 or more needed)")));
         }
-        let idx: Vec<u32> = w.take(n).collect::<std::result::Result<_, _>>().map_err(|_| bad())?;
+        input.budget.check("face-size", n as u64, file, &format!("line {l}"))?;
+        idx.clear();
+        for r in w.take(n.min(max_size as usize)) {
+            idx.push(r.map_err(|_| bad())?);
+        }
         if idx.len() != n {
             return Err(bad());
         }
         if let Some(&i) = idx.iter().find(|&&i| i as usize >= nv) {
             return Err(err(l, format!("face {f}: vertex index {i}, but there are only {nv} vertices")));
         }
-        for k in 1..n - 1 {
-            raw.triangles.extend([idx[0], idx[k], idx[k + 1]]);
-        }
+        raw.push_face(&idx);
+        raw.sources.face_lines.push(l as u32);
+    }
+    if let Some((l, _)) = lines.next() {
+        return Err(err(l, format!("more lines after the {nf} faces the header counts")));
     }
     Ok(raw)
 }
@@ -182,9 +241,9 @@ mod tests {
         for c in [None, Some(&colors[..])] {
             let path = dir.0.join("m.off");
             save_with(&path, &m, c).expect("saved");
-            let raw = parse(&std::fs::read(&path).expect("read back"), "m.off").expect("parsed");
+            let raw = crate::io::raw_of(&std::fs::read(&path).expect("read back"), "m.off").expect("parsed");
             assert!(raw.positions == m.positions, "positions read back to the same bits");
-            assert!(raw.triangles == m.ct.v_table(), "triangles in order");
+            assert!(raw.corners == m.ct.v_table(), "triangles in order");
             assert_eq!(raw.colors.as_deref(), c, "colours");
         }
     }

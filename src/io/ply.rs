@@ -6,7 +6,9 @@
 //! integers scaled by 1/255, floats as they are), per-vertex texture
 //! coordinates (`u v`, `s t` or `texture_u texture_v`, carried per corner);
 //! the `face` element's `vertex_indices` (or `vertex_index`) lists, polygons
-//! fanned into triangles. Other elements and properties are skipped. Every
+//! kept, and its `texcoord` lists (MeshLab's per-corner texture coordinates,
+//! two values a corner). Other elements and properties, lists of floats
+//! included, are skipped. A list count must be a whole number. Every
 //! count in the header is checked against the bytes that follow before
 //! anything is allocated; errors name the file and the element
 //! (`vertex 12`, `face 3`, `header line 4`).
@@ -16,6 +18,7 @@
 //! malformed input; this reader is 300 lines with none of those.
 
 use super::raw::{RawMesh, check_count, format_err};
+use super::{Format, Input, Keeps};
 use crate::Result;
 use crate::mesh::Mesh;
 use glam::{Vec2, Vec3};
@@ -119,11 +122,35 @@ struct Header {
     body: usize,
 }
 
+/// The PLY row of [`super::FORMATS`].
+pub const FORMAT: Format = Format {
+    name: "Stanford PLY",
+    extensions: &["ply"],
+    sniff: |b| b.starts_with(b"ply"),
+    reader: Some(read),
+    writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
+    written_as: &["ply"],
+    keeps: Keeps { uv: false, colors: true, materials: false },
+};
+
+/// The header: lines up to the first line that is `end_header` (a comment
+/// that mentions it does not end it).
 fn parse_header(bytes: &[u8], file: &str) -> Result<Header> {
-    let end = find(bytes, b"end_header").ok_or_else(|| format_err(file, "header", "no end_header line"))?;
-    let nl = bytes[end..].iter().position(|&b| b == b'\n').map_or(bytes.len(), |i| end + i + 1);
-    let text = std::str::from_utf8(&bytes[..end]).map_err(|_| format_err(file, "header", "not text"))?;
-    let mut lines = text.lines().enumerate();
+    let mut lines = Vec::new();
+    let mut at = 0usize;
+    let body = loop {
+        let Some(rest) = bytes.get(at..).filter(|r| !r.is_empty()) else {
+            return Err(format_err(file, "header", "no end_header line"));
+        };
+        let len = rest.iter().position(|&b| b == b'\n').map_or(rest.len(), |i| i + 1);
+        let line = std::str::from_utf8(&rest[..len]).map_err(|_| format_err(file, "header", "not text"))?;
+        at += len;
+        if line.trim() == "end_header" {
+            break at;
+        }
+        lines.push(line);
+    };
+    let mut lines = lines.into_iter().enumerate();
     if lines.next().map(|(_, l)| l.trim()) != Some("ply") {
         return Err(format_err(file, "header line 1", "not a PLY file (no 'ply' magic)"));
     }
@@ -153,10 +180,13 @@ fn parse_header(bytes: &[u8], file: &str) -> Result<Header> {
                 let (Some(ct), Some(ty)) = (Ty::parse(ct), Ty::parse(ty)) else {
                     return Err(format_err(file, at(), format!("unknown list types '{ct} {ty}'")));
                 };
-                if !ct.is_int() || !ty.is_int() {
-                    return Err(format_err(file, at(), "list counts and indices must be integers"));
+                if !ct.is_int() {
+                    return Err(format_err(file, at(), "a list's count must be an integer type"));
                 }
                 let el = elements.last_mut().ok_or_else(|| format_err(file, at(), "property before any element"))?;
+                if el.name == "face" && name.starts_with("vertex_ind") && !ty.is_int() {
+                    return Err(format_err(file, at(), "vertex indices must be integers"));
+                }
                 el.props.push(Property { name: name.to_string(), ty, list: Some(ct) });
             }
             ["property", ty, name] => {
@@ -168,11 +198,7 @@ fn parse_header(bytes: &[u8], file: &str) -> Result<Header> {
         }
     }
     let enc = enc.ok_or_else(|| format_err(file, "header", "no format line"))?;
-    Ok(Header { enc, elements, body: nl })
-}
-
-fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
-    hay.windows(needle.len()).position(|w| w == needle)
+    Ok(Header { enc, elements, body })
 }
 
 /// Reads values of the body one at a time.
@@ -220,13 +246,14 @@ impl Body<'_> {
     }
 }
 
-/// Reads a PLY file's triangles with colours and texture coordinates.
+/// Reads a PLY file's faces with colours and texture coordinates.
 ///
 /// # Errors
 /// [`crate::Error::Format`] naming the file and the element: a bad header, a count
 /// the file cannot hold, a truncated or unreadable record, a face with fewer
-/// than 3 vertices or an index out of range.
-pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
+/// than 3 vertices or an index out of range; over the budget.
+fn read(input: &Input) -> Result<RawMesh> {
+    let (bytes, file) = (input.bytes, input.file);
     let h = parse_header(bytes, file)?;
     let mut body = Body { bytes, pos: h.body, enc: h.enc };
     let mut raw = RawMesh::default();
@@ -236,8 +263,14 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
     for el in &h.elements {
         let count = check_count(file, &el.name, el.count, el.min_bytes(h.enc), body.remaining() + slack)?;
         match el.name.as_str() {
-            "vertex" => read_vertices(&mut body, el, count, file, &mut raw, &mut vertex_uv)?,
-            "face" => read_faces(&mut body, el, count, file, &mut raw)?,
+            "vertex" => {
+                input.budget.take_vertices(count as u64, file, "element vertex")?;
+                read_vertices(&mut body, el, count, file, &mut raw, &mut vertex_uv)?;
+            }
+            "face" => {
+                input.budget.take_faces(count as u64, file, "element face")?;
+                read_faces(&mut body, el, count, input, &mut raw)?;
+            }
             _ => {
                 for r in 0..count {
                     record(&mut body, el, file, r, |_, _| Ok(()))?;
@@ -246,11 +279,11 @@ pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
         }
     }
     let nv = raw.positions.len();
-    if let Some(&bad) = raw.triangles.iter().find(|&&i| i as usize >= nv) {
+    if let Some(&bad) = raw.corners.iter().find(|&&i| i as usize >= nv) {
         return Err(format_err(file, "face", format!("vertex index {bad}, but there are only {nv} vertices")));
     }
-    if let Some(uv) = vertex_uv {
-        raw.uv = Some(raw.triangles.iter().map(|&i| uv[i as usize]).collect());
+    if let (Some(uv), None) = (vertex_uv, &raw.uv) {
+        raw.uv = Some(raw.corners.iter().map(|&i| uv[i as usize]).collect());
     }
     Ok(raw)
 }
@@ -272,7 +305,11 @@ fn record(
             None => f(k, &[body.value(p.ty).ok_or_else(bad)?])?,
             Some(ct) => {
                 let n = body.value(ct).ok_or_else(bad)?;
-                let n = check_count(file, &at(), n.max(0.0) as u64, p.ty.size().min(2) as u64, body.remaining())?;
+                if n < 0.0 || n.fract() != 0.0 {
+                    let msg = format!("property '{}': list count {n} is not a whole number", p.name);
+                    return Err(format_err(file, at(), msg));
+                }
+                let n = check_count(file, &at(), n as u64, p.ty.size().min(2) as u64, body.remaining())?;
                 list.clear();
                 for _ in 0..n {
                     list.push(body.value(p.ty).ok_or_else(bad)?);
@@ -332,28 +369,46 @@ fn read_vertices(
     Ok(())
 }
 
-fn read_faces(body: &mut Body, el: &Element, count: usize, file: &str, raw: &mut RawMesh) -> Result<()> {
+fn read_faces(body: &mut Body, el: &Element, count: usize, input: &Input, raw: &mut RawMesh) -> Result<()> {
+    let file = input.file;
     let Some(k) = el.face_list() else {
         return Err(format_err(file, "face", "needs a list property vertex_indices"));
     };
-    raw.triangles.reserve(count.saturating_mul(3));
+    let texcoord = el.props.iter().position(|p| p.list.is_some() && p.name == "texcoord");
+    let mut uv: Option<Vec<Vec2>> = texcoord.map(|_| Vec::new());
+    raw.corners.reserve(count.saturating_mul(3));
+    let (mut idx, mut uv_values) = (Vec::new(), Vec::new());
     for r in 0..count {
         record(body, el, file, r, |j, v| {
+            if Some(j) == texcoord {
+                uv_values.clear();
+                uv_values.extend_from_slice(v);
+                return Ok(());
+            }
             if j != k {
                 return Ok(());
             }
             if v.len() < 3 {
                 return Err(format_err(file, format!("face {r}"), format!("{} vertices (3 or more needed)", v.len())));
             }
+            input.budget.check("face-size", v.len() as u64, file, &format!("face {r}"))?;
             if let Some(bad) = v.iter().find(|&&i| !(0.0..u32::MAX as f64).contains(&i) || i.fract() != 0.0) {
                 return Err(format_err(file, format!("face {r}"), format!("bad vertex index {bad}")));
             }
-            for i in 1..v.len() - 1 {
-                raw.triangles.extend([v[0] as u32, v[i] as u32, v[i + 1] as u32]);
-            }
+            idx.clear();
+            idx.extend(v.iter().map(|&i| i as u32));
             Ok(())
         })?;
+        raw.push_face(&idx);
+        if let Some(out) = &mut uv {
+            if uv_values.len() != 2 * idx.len() {
+                let msg = format!("texcoord has {} values for {} corners (2 each needed)", uv_values.len(), idx.len());
+                return Err(format_err(file, format!("face {r}"), msg));
+            }
+            out.extend(uv_values.chunks_exact(2).map(|c| Vec2::new(c[0] as f32, c[1] as f32)));
+        }
     }
+    raw.uv = uv;
     Ok(())
 }
 
@@ -455,9 +510,9 @@ mod tests {
             let path = dir.0.join("m.ply");
             save_with(&path, &m, c).expect("saved");
             let bytes = std::fs::read(&path).expect("read back");
-            let raw = parse(&bytes, "m.ply").expect("parsed");
+            let raw = crate::io::raw_of(&bytes, "m.ply").expect("parsed");
             assert!(raw.positions == m.positions, "positions, colours {}", c.is_some());
-            assert!(raw.triangles == m.ct.v_table(), "triangles, colours {}", c.is_some());
+            assert!(raw.corners == m.ct.v_table(), "triangles, colours {}", c.is_some());
             if let (Some(got), Some(want)) = (&raw.colors, c) {
                 let byte = |x: f32| (x.clamp(0.0, 1.0) * 255.0).round();
                 assert!(got.iter().zip(want).all(|(g, w)| (*g * 255.0).round() == w.to_array().map(byte).into()));

@@ -1,75 +1,248 @@
-//! What every reader of an indexed format produces before validation: a
-//! triangle list with optional per-corner texture coordinates and per-vertex
-//! colours, built into a [`Mesh`] (or repaired into one) in one place, with
-//! errors naming the file. Also the guards shared by the binary readers:
-//! counts checked against the bytes that remain before anything is
-//! allocated.
+//! What every reader produces: [`RawMesh`], a polygon list as read (faces
+//! of any size, kept as they are) with optional per-corner texture
+//! coordinates, per-vertex colours, per-face materials, sharpness tags, a
+//! stored opposite table (`.ct`) and where each record came from. One place
+//! turns it into a [`Mesh`] ([`RawMesh::build`]): polygons fanned into
+//! triangles for the triangle schemes, then validated, repaired or analysed
+//! as the load options ask, with errors naming the file and the record.
 
-use crate::mesh::Mesh;
-use crate::mesh::attributes::Attributes;
-use crate::mesh::repair::{RepairReport, repair};
-use crate::{Error, Result};
+use crate::mesh::attributes::{Attributes, Material, MaterialGroups};
+use crate::mesh::repair::{RepairReport, repair_with_cap};
+use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
+use crate::mesh::{BORDER, CornerTable, Mesh};
+use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
 
-/// A triangle list as read, before validation.
+/// A polygon mesh as read, before validation.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RawMesh {
-    /// Vertex positions.
+    /// Vertex positions, in file order.
     pub positions: Vec<Vec3>,
-    /// Three vertex indices per triangle, counter-clockwise seen from outside.
-    pub triangles: Vec<u32>,
-    /// Texture coordinates, one per corner (three per triangle).
+    /// Where each face's corners start in `corners`, and after the last
+    /// face where its corners end (`faces + 1` entries from 0; empty for no
+    /// face).
+    pub face_starts: Vec<u32>,
+    /// The vertex of every face corner, counter-clockwise seen from outside.
+    pub corners: Vec<u32>,
+    /// Texture coordinates, one per corner.
     pub uv: Option<Vec<Vec2>>,
     /// Linear RGB colours in [0, 1], one per vertex.
     pub colors: Option<Vec<Vec3>>,
-    /// Material id of each triangle (into `material_list`), if any.
+    /// Material id of each face (into `material_list`).
     pub materials: Option<Vec<u32>>,
     /// The file's materials (ids past its end are drawn as a grey default).
-    pub material_list: Vec<crate::mesh::attributes::Material>,
+    pub material_list: Vec<Material>,
+    /// `mtllib` names as written (OBJ writes them back).
+    pub libraries: Vec<String>,
+    /// Sharpness tags (vertex ids of this list).
+    pub tags: Tags,
+    /// An opposite table stored in the file (`.ct`), one entry per corner of
+    /// an all-triangle mesh, [`BORDER`] for none: it must be the table the
+    /// faces define.
+    pub opposite: Option<Vec<u32>>,
+    /// Where the records are in the file, for messages.
+    pub sources: Sources,
+}
+
+/// Where the records of a [`RawMesh`] are in their file, for messages: the
+/// 1-based line of each face, vertex, tag (creases then corners) and stored
+/// opposite row, where the format has lines (each list may be empty), and
+/// the number of the file's first vertex (1 for OBJ).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Sources {
+    /// Line of every face.
+    pub face_lines: Vec<u32>,
+    /// Line of every vertex.
+    pub vertex_lines: Vec<u32>,
+    /// Line of every crease tag, then every corner tag.
+    pub tag_lines: Vec<u32>,
+    /// Line of every row of the stored opposite table.
+    pub opposite_lines: Vec<u32>,
+    /// What the file calls its first vertex (0, or 1 for OBJ).
+    pub id_base: u32,
+}
+
+/// What [`RawMesh::build`] does with a mesh whose topology is not a valid
+/// manifold.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Topology {
+    /// Refuse it with the first problem, naming the record.
+    #[default]
+    Refuse,
+    /// Repair it (see [`crate::mesh::repair()`]); attributes and tags are
+    /// dropped, since the repair renumbers and cuts.
+    Repair,
+    /// Repair it and list every problem found (no cap on the ids): what
+    /// `subdiv info` describes.
+    Analyze,
+}
+
+/// What [`RawMesh::build`] found on the way.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BuildNotes {
+    /// Faces in the file.
+    pub faces: usize,
+    /// How many faces of each size (index = corners; sizes past 8 counted at 8).
+    pub face_sizes: [usize; 9],
+    /// Polygons (faces of more than 3 corners) fanned into triangles.
+    pub fanned: usize,
+    /// Vertex records in the file.
+    pub vertex_records: usize,
+    /// Vertices dropped because no face uses them.
+    pub unreferenced: usize,
+    /// The repair's report, when asked for one.
+    pub repair: Option<RepairReport>,
 }
 
 impl RawMesh {
-    /// Validates into a mesh with its attributes; unreferenced vertices are
-    /// dropped (their colours with them).
-    ///
-    /// # Errors
-    /// [`Error::Mesh`] naming `file` (vertex ids 0-based, as stored).
-    pub fn build(self, file: &str) -> Result<(Mesh, Attributes)> {
-        let RawMesh { positions, triangles, uv, colors, materials, mut material_list } = self;
-        let materials = materials.filter(|m| m.len() == triangles.len() / 3).map(|face| {
-            let n = face.iter().max().map_or(0, |&m| m as usize + 1);
-            while material_list.len() < n {
-                material_list
-                    .push(crate::mesh::attributes::Material::named(&format!("material {}", material_list.len())));
+    /// Faces read.
+    pub fn num_faces(&self) -> usize {
+        self.face_starts.len().saturating_sub(1)
+    }
+
+    /// The corners of face `f`.
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.corners[self.face_starts[f] as usize..self.face_starts[f + 1] as usize]
+    }
+
+    /// Appends a face with corners `vertices`.
+    pub fn push_face(&mut self, vertices: &[u32]) {
+        if self.face_starts.is_empty() {
+            self.face_starts.push(0);
+        }
+        self.corners.extend_from_slice(vertices);
+        self.face_starts.push(self.corners.len() as u32);
+    }
+
+    /// A mesh of triangles `triangles` (three vertex ids each) on `positions`.
+    pub fn from_triangles(positions: Vec<Vec3>, triangles: Vec<u32>) -> RawMesh {
+        let n = triangles.len() / 3;
+        let face_starts = if n == 0 { Vec::new() } else { (0..=n as u32).map(|f| 3 * f).collect() };
+        let mut corners = triangles;
+        corners.truncate(3 * n);
+        RawMesh { positions, face_starts, corners, ..Default::default() }
+    }
+
+    /// Whether every face is a triangle.
+    pub fn is_triangles(&self) -> bool {
+        self.corners.len() == 3 * self.num_faces()
+    }
+
+    /// The faces fanned into triangles (face `f` of `k` corners gives
+    /// `(c0, ck, ck+1)` for `k` in 1..n-1), with the face of every
+    /// triangle; `None` for that map when every face already is one.
+    pub fn fanned(&self) -> (std::borrow::Cow<'_, [u32]>, Option<Vec<u32>>) {
+        if self.is_triangles() {
+            return (std::borrow::Cow::Borrowed(&self.corners), None);
+        }
+        let nt = self.corners.len() - 2 * self.num_faces();
+        let (mut tris, mut of) = (Vec::with_capacity(3 * nt), Vec::with_capacity(nt));
+        for f in 0..self.num_faces() {
+            let p = self.face(f);
+            for k in 1..p.len().saturating_sub(1) {
+                tris.extend_from_slice(&[p[0], p[k], p[k + 1]]);
+                of.push(f as u32);
             }
-            crate::mesh::attributes::MaterialGroups { face, list: material_list, libraries: Vec::new() }
-        });
-        let used = colors.as_ref().map(|_| used_vertices(positions.len(), &triangles));
-        let mesh = Mesh::from_triangles(positions, &triangles).map_err(|source| Error::Mesh {
-            file: file.to_string(),
-            line: None,
-            source,
-        })?;
-        let colors =
-            colors.zip(used).map(|(c, used)| c.into_iter().zip(used).filter(|(_, u)| *u).map(|(c, _)| c).collect());
-        Ok((mesh, Attributes { uv, colors, materials }))
+        }
+        (std::borrow::Cow::Owned(tris), Some(of))
     }
 
-    /// Repairs into a mesh (see [`crate::mesh::repair()`]); attributes are not kept.
+    /// The per-corner values `v` of the faces, in the corner order of
+    /// [`RawMesh::fanned`].
+    fn fan_corners<T: Copy>(&self, v: &[T]) -> Vec<T> {
+        if self.is_triangles() {
+            return v.to_vec();
+        }
+        let mut out = Vec::with_capacity(3 * (self.corners.len() - 2 * self.num_faces()));
+        for f in 0..self.num_faces() {
+            let s = self.face_starts[f] as usize;
+            let n = self.face_starts[f + 1] as usize - s;
+            for k in 1..n.saturating_sub(1) {
+                out.extend_from_slice(&[v[s], v[s + k], v[s + k + 1]]);
+            }
+        }
+        out
+    }
+
+    /// Validates (or repairs, or analyses, as `topology` says) into a
+    /// triangle mesh, fanning polygons; with `attributes` the texture
+    /// coordinates, colours and material groups come along (not after a
+    /// repair, which renumbers and cuts). Errors name `file` and the line of
+    /// the record where the format has lines; vertex ids in them are the
+    /// file's own (from [`Sources::id_base`]).
     ///
     /// # Errors
-    /// Non-finite coordinates, indices out of range and a mesh with no face
-    /// left, naming `file`.
-    pub fn repaired(self, file: &str) -> Result<(Mesh, RepairReport)> {
-        repair(self.positions, &self.triangles).map_err(|source| Error::Mesh {
-            file: file.to_string(),
-            line: None,
-            source,
-        })
+    /// [`Error::Mesh`] or [`Error::Parse`] naming `file`.
+    pub fn build(self, file: &str, topology: Topology, attributes: bool) -> Result<(Mesh, Attributes, BuildNotes)> {
+        let mut notes = self.notes();
+        let (triangles, tri_face) = self.fanned();
+        let triangles = triangles.into_owned();
+        let locate = Locate { file, sources: &self.sources, tri_face: tri_face.as_deref() };
+        if topology != Topology::Refuse {
+            let cap = if topology == Topology::Analyze { usize::MAX } else { crate::mesh::repair::EXAMPLES };
+            let (mesh, mut report) =
+                repair_with_cap(self.positions, &triangles, cap).map_err(|e| locate.mesh_error(e))?;
+            report.id_base = self.sources.id_base;
+            notes.vertex_records = report.vertices_in;
+            notes.repair = Some(report);
+            return Ok((mesh, Attributes::default(), notes));
+        }
+        let nrec = self.positions.len();
+        let used = used_vertices(nrec, &triangles);
+        let uv = match &self.uv {
+            Some(u) if attributes && u.len() == self.corners.len() => Some(self.fan_corners(u)),
+            _ => None,
+        };
+        let (mut mesh, report) =
+            Mesh::from_triangles_report(self.positions, &triangles).map_err(|e| locate.mesh_error(e))?;
+        notes.unreferenced = report.unreferenced;
+        if let Some(stored) = &self.opposite {
+            check_opposite(&mesh.ct, stored, notes.unreferenced, &locate)?;
+        }
+        if !self.tags.is_empty() {
+            let Mesh { ct, positions } = mesh;
+            mesh = Mesh { ct: apply_tags(ct, &self.tags, &used, &locate)?, positions };
+        }
+        if !attributes {
+            return Ok((mesh, Attributes::default(), notes));
+        }
+        let colors = self
+            .colors
+            .filter(|c| c.len() == nrec)
+            .map(|c| c.into_iter().zip(&used).filter(|(_, u)| **u).map(|(c, _)| c).collect());
+        let materials = self.materials.filter(|m| m.len() == notes.faces).map(|per_face| {
+            let face = match &tri_face {
+                Some(of) => of.iter().map(|&f| per_face[f as usize]).collect(),
+                None => per_face,
+            };
+            let mut list = self.material_list;
+            let n = face.iter().max().map_or(0, |&m| m as usize + 1);
+            while list.len() < n {
+                list.push(Material::named(&format!("material {}", list.len())));
+            }
+            MaterialGroups { face, list, libraries: self.libraries }
+        });
+        Ok((mesh, Attributes { uv, colors, materials }, notes))
     }
 
-    /// Merges vertices at exactly the same position (bit for bit, `-0` and `0`
-    /// alike) into one, so a triangle soup (STL) or a mesh split at its
+    /// The counts [`RawMesh::build`] reports before it builds anything.
+    fn notes(&self) -> BuildNotes {
+        let mut face_sizes = [0usize; 9];
+        for w in self.face_starts.windows(2) {
+            face_sizes[((w[1] - w[0]) as usize).min(8)] += 1;
+        }
+        let fanned = face_sizes[4..].iter().sum();
+        BuildNotes {
+            faces: self.num_faces(),
+            face_sizes,
+            fanned,
+            vertex_records: self.positions.len(),
+            ..Default::default()
+        }
+    }
+
+    /// Merges vertices at exactly the same position (bit for bit, `-0` and
+    /// `0` alike) into one, so a triangle soup (STL) or a mesh split at its
     /// texture seams (glTF) becomes connected. Texture coordinates are per
     /// corner and stay as they are; a merged vertex keeps its first colour.
     pub fn weld(&mut self) {
@@ -88,7 +261,7 @@ impl RawMesh {
             }
             remap.push(id);
         }
-        for t in &mut self.triangles {
+        for t in &mut self.corners {
             // out-of-range indices stay out of range, to be reported by the build
             *t = remap.get(*t as usize).copied().unwrap_or(u32::MAX);
         }
@@ -101,13 +274,130 @@ impl RawMesh {
     /// coordinates (0, 0), white, material 0).
     pub fn append(&mut self, other: RawMesh) {
         let base = self.positions.len() as u32;
-        let (nc0, nv0) = (self.triangles.len(), self.positions.len());
-        self.triangles.extend(other.triangles.iter().map(|&i| i.saturating_add(base)));
-        merge(&mut self.uv, other.uv, nc0, other.triangles.len(), Vec2::ZERO);
+        let (nc0, nv0, nf0) = (self.corners.len(), self.positions.len(), self.num_faces());
+        let start = self.corners.len() as u32;
+        if self.face_starts.is_empty() && !other.face_starts.is_empty() {
+            self.face_starts.push(0);
+        }
+        self.face_starts.extend(other.face_starts.iter().skip(1).map(|&s| s + start));
+        self.corners.extend(other.corners.iter().map(|&i| i.saturating_add(base)));
+        merge(&mut self.uv, other.uv, nc0, other.corners.len(), Vec2::ZERO);
         merge(&mut self.colors, other.colors, nv0, other.positions.len(), Vec3::ONE);
-        merge(&mut self.materials, other.materials, nc0 / 3, other.triangles.len() / 3, 0);
+        merge(&mut self.materials, other.materials, nf0, other.face_starts.len().saturating_sub(1), 0);
         self.positions.extend(other.positions);
     }
+}
+
+/// Turns the build's errors into errors naming the file and the record.
+struct Locate<'a> {
+    file: &'a str,
+    sources: &'a Sources,
+    /// The face of every triangle, when polygons were fanned.
+    tri_face: Option<&'a [u32]>,
+}
+
+impl Locate<'_> {
+    /// The face of triangle `t`.
+    fn face(&self, t: usize) -> usize {
+        self.tri_face.map_or(t, |of| of.get(t).map_or(t, |&f| f as usize))
+    }
+
+    /// [`Error::Mesh`] for `e` (triangle ids become face ids, vertex ids the
+    /// file's own), at the line of its face or vertex record.
+    fn mesh_error(&self, e: MeshError) -> Error {
+        let s = self.sources;
+        let line = e
+            .face()
+            .and_then(|t| s.face_lines.get(self.face(t)))
+            .or_else(|| e.vertex().and_then(|v| s.vertex_lines.get(v)))
+            .map(|&l| l as usize);
+        let e = match e {
+            MeshError::IndexOutOfRange { face, index, len } => {
+                MeshError::IndexOutOfRange { face: self.face(face), index, len }
+            }
+            MeshError::DegenerateFace { face, vertex } => MeshError::DegenerateFace { face: self.face(face), vertex },
+            MeshError::NonManifoldEdge { v0, v1, faces, examples } => MeshError::NonManifoldEdge {
+                v0,
+                v1,
+                faces,
+                examples: examples.into_iter().map(|t| self.face(t)).collect(),
+            },
+            MeshError::InconsistentOrientation { v0, v1, f0, f1 } => {
+                MeshError::InconsistentOrientation { v0, v1, f0: self.face(f0), f1: self.face(f1) }
+            }
+            other => other,
+        };
+        Error::Mesh { file: self.file.to_string(), line, source: e.shift_vertices(s.id_base) }
+    }
+
+    /// [`Error::Parse`] at the line of tag `i`, or [`Error::Mesh`] without a
+    /// line where the format has none.
+    fn tag_error(&self, i: usize, msg: String) -> Error {
+        match self.sources.tag_lines.get(i) {
+            Some(&l) => Error::Parse { file: self.file.to_string(), line: l as usize, msg },
+            None => {
+                Error::Mesh { file: self.file.to_string(), line: None, source: MeshError::BadTag { index: i, msg } }
+            }
+        }
+    }
+}
+
+/// Refuses a stored opposite table that is not the one the faces define
+/// (a valid involution can still be wrong: an interior edge marked as a
+/// border on both sides is a slit the faces do not have).
+fn check_opposite(ct: &CornerTable, stored: &[u32], unreferenced: usize, at: &Locate) -> Result<()> {
+    let file = at.file.to_string();
+    if unreferenced > 0 {
+        let msg = "unused vertices in a file with an opposite table".to_string();
+        return Err(Error::Mesh { file, line: None, source: MeshError::BadOppositeTable { corner: 0, msg } });
+    }
+    let built = ct.o_table();
+    let Some(c) = (0..built.len().max(stored.len())).find(|&c| built.get(c) != stored.get(c)) else {
+        return Ok(());
+    };
+    let show = |x: Option<&u32>| match x {
+        Some(&BORDER) => "-1 (border)".to_string(),
+        Some(x) => x.to_string(),
+        None => "nothing".to_string(),
+    };
+    let msg = format!("stored {}, but the faces give {}", show(stored.get(c)), show(built.get(c)));
+    let line = at.sources.opposite_lines.get(c / 3).map(|&l| l as usize);
+    Err(Error::Mesh { file, line, source: MeshError::BadOppositeTable { corner: c, msg } })
+}
+
+/// `ct` with the sharpness of `tags`, whose vertex ids are records of the
+/// file (`used` says which the build kept, in order).
+fn apply_tags(ct: CornerTable, tags: &Tags, used: &[bool], at: &Locate) -> Result<CornerTable> {
+    // record id -> vertex id (the build keeps the used records in order)
+    let mut new_id = vec![u32::MAX; used.len()];
+    let mut next = 0;
+    for (i, &u) in used.iter().enumerate() {
+        if u {
+            new_id[i] = next;
+            next += 1;
+        }
+    }
+    let map = |i: usize, v: u32| -> Result<u32> {
+        match new_id.get(v as usize) {
+            Some(&x) if x != u32::MAX => Ok(x),
+            Some(_) => Err(at.tag_error(i, format!("tag: vertex {v} is used by no face"))),
+            None => Err(at.tag_error(
+                i,
+                format!("tag: vertex {v} does not exist ({} vertices, tag ids are 0-based)", used.len()),
+            )),
+        }
+    };
+    let mut mapped = Tags::default();
+    for (i, t) in tags.creases.iter().enumerate() {
+        mapped.creases.push(CreaseTag { v0: map(i, t.v0)?, v1: map(i, t.v1)?, ..*t });
+    }
+    for (j, t) in tags.corners.iter().enumerate() {
+        mapped.corners.push(CornerTag { vertex: map(tags.creases.len() + j, t.vertex)?, ..*t });
+    }
+    ct.with_tags(&mapped).map_err(|e| match e {
+        MeshError::BadTag { index, msg } => at.tag_error(index, msg),
+        other => at.mesh_error(other),
+    })
 }
 
 /// Concatenates optional per-element arrays: `a` (of `na` elements) then `b`
@@ -159,4 +449,34 @@ pub fn check_count(file: &str, what: &str, count: u64, min_bytes: u64, available
         ));
     }
     Ok(count as usize)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn polygons_are_kept_and_fanned_once() {
+        let mut raw = RawMesh { positions: vec![Vec3::ZERO; 5], ..Default::default() };
+        raw.push_face(&[0, 1, 2, 3]);
+        raw.push_face(&[0, 3, 4]);
+        assert_eq!((raw.num_faces(), raw.face(0), raw.face(1)), (2, &[0, 1, 2, 3][..], &[0, 3, 4][..]));
+        let (tris, of) = raw.fanned();
+        assert_eq!(&tris[..], &[0, 1, 2, 0, 2, 3, 0, 3, 4]);
+        assert_eq!(of, Some(vec![0, 0, 1]));
+        let tri = RawMesh::from_triangles(vec![Vec3::ZERO; 3], vec![0, 1, 2]);
+        assert!(tri.is_triangles() && tri.fanned().1.is_none());
+    }
+
+    #[test]
+    fn append_renumbers_vertices_and_faces() {
+        let mut a = RawMesh::from_triangles(vec![Vec3::ZERO; 3], vec![0, 1, 2]);
+        let mut b = RawMesh { positions: vec![Vec3::ONE; 4], ..Default::default() };
+        b.push_face(&[0, 1, 2, 3]);
+        b.materials = Some(vec![7]);
+        a.append(b);
+        assert_eq!(a.num_faces(), 2);
+        assert_eq!(a.face(1), &[3, 4, 5, 6]);
+        assert_eq!(a.materials, Some(vec![0, 7]));
+    }
 }

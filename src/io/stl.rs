@@ -10,10 +10,22 @@
 //! binary header claims before reading it.
 
 use super::raw::{RawMesh, check_count, format_err};
+use super::{Format, Input, Keeps};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
 use glam::Vec3;
 use std::path::Path;
+
+/// The STL row of [`super::FORMATS`].
+pub const FORMAT: Format = Format {
+    name: "STL",
+    extensions: &["stl"],
+    sniff: |b| is_binary(b) || b.trim_ascii_start().starts_with(b"solid"),
+    reader: Some(read),
+    writer: Some(|path, mesh, _| save(path, mesh)),
+    written_as: &["stl"],
+    keeps: Keeps { uv: false, colors: false, materials: false },
+};
 
 /// Whether `bytes` are a binary STL file (its size matches its triangle count).
 pub fn is_binary(bytes: &[u8]) -> bool {
@@ -23,29 +35,52 @@ pub fn is_binary(bytes: &[u8]) -> bool {
     }
 }
 
+/// Whether `bytes` read as ASCII STL: they start with `solid`, are text,
+/// and have a facet (or none at all: `solid x` then `endsolid`), where
+/// many binary files start with `solid` too.
+fn is_ascii(bytes: &[u8]) -> bool {
+    let head = &bytes[..bytes.len().min(1024)];
+    let text = match std::str::from_utf8(head) {
+        Ok(t) => t,
+        // a multi-byte character cut at 1024 bytes
+        Err(e) if e.valid_up_to() + 4 > head.len() => std::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or(""),
+        Err(_) => return false,
+    };
+    text.trim_start().starts_with("solid") && (text.contains("facet") || text.contains("endsolid"))
+}
+
 /// Reads an STL file (either encoding), welded.
 ///
 /// # Errors
-/// [`Error::Format`] naming the file and the facet or line.
-pub fn parse(bytes: &[u8], file: &str) -> Result<RawMesh> {
-    let trimmed = bytes.iter().position(|b| !b.is_ascii_whitespace()).map_or(&[][..], |i| &bytes[i..]);
-    let mut raw = if !is_binary(bytes) && trimmed.starts_with(b"solid") {
-        parse_ascii(bytes, file)?
-    } else {
-        parse_binary(bytes, file)?
-    };
+/// [`Error::Format`] naming the file and the facet or line; over the
+/// budget.
+fn read(input: &Input) -> Result<RawMesh> {
+    let (bytes, file) = (input.bytes, input.file);
+    let mut raw = if !is_binary(bytes) && is_ascii(bytes) { parse_ascii(bytes, file)? } else { parse_binary(input)? };
+    input.budget.take_vertices(raw.positions.len() as u64, file, "facets")?;
     raw.weld();
     Ok(raw)
 }
 
-fn parse_binary(bytes: &[u8], file: &str) -> Result<RawMesh> {
+/// A binary STL: its size must be the one its facet count gives (a count
+/// smaller than the data would drop facets silently).
+fn parse_binary(input: &Input) -> Result<RawMesh> {
+    let (bytes, file) = (input.bytes, input.file);
     let Some(n) = bytes.get(80..84) else {
         return Err(format_err(file, "header", format!("{} bytes: a binary STL has at least 84", bytes.len())));
     };
     let n = u64::from(u32::from_le_bytes([n[0], n[1], n[2], n[3]]));
     let n = check_count(file, "facets", n, 50, bytes.len() - 84)?;
-    let mut raw =
-        RawMesh { positions: Vec::with_capacity(3 * n), triangles: Vec::with_capacity(3 * n), ..Default::default() };
+    if bytes.len() != 84 + 50 * n {
+        let msg = format!(
+            "the header counts {n} facets ({} bytes), but the file has {} (not ASCII STL either)",
+            84 + 50 * n,
+            bytes.len()
+        );
+        return Err(format_err(file, "header", msg));
+    }
+    input.budget.take_faces(n as u64, file, "header")?;
+    let mut positions = Vec::with_capacity(3 * n);
     for (f, rec) in bytes[84..].chunks_exact(50).take(n).enumerate() {
         for k in 0..3 {
             let at = 12 + 12 * k;
@@ -54,16 +89,16 @@ fn parse_binary(bytes: &[u8], file: &str) -> Result<RawMesh> {
             if !p.is_finite() {
                 return Err(format_err(file, format!("facet {f}"), "non-finite coordinate"));
             }
-            raw.triangles.push(raw.positions.len() as u32);
-            raw.positions.push(p);
+            positions.push(p);
         }
     }
-    Ok(raw)
+    let triangles = (0..positions.len() as u32).collect();
+    Ok(RawMesh::from_triangles(positions, triangles))
 }
 
 fn parse_ascii(bytes: &[u8], file: &str) -> Result<RawMesh> {
     let text = super::text(bytes, file)?;
-    let mut raw = RawMesh::default();
+    let mut positions = Vec::new();
     let mut in_loop = 0usize;
     for (i, line) in text.lines().enumerate() {
         let err = |msg: String| Error::Parse { file: file.to_string(), line: i + 1, msg };
@@ -83,8 +118,7 @@ fn parse_ascii(bytes: &[u8], file: &str) -> Result<RawMesh> {
                 if in_loop > 3 {
                     return Err(err("more than 3 vertices in a facet".into()));
                 }
-                raw.triangles.push(raw.positions.len() as u32);
-                raw.positions.push(p);
+                positions.push(p);
             }
             Some("endloop") => {
                 if in_loop != 3 {
@@ -99,7 +133,8 @@ fn parse_ascii(bytes: &[u8], file: &str) -> Result<RawMesh> {
     if in_loop != 0 {
         return Err(format_err(file, "last facet", "file ends inside a facet"));
     }
-    Ok(raw)
+    let triangles = (0..positions.len() as u32).collect();
+    Ok(RawMesh::from_triangles(positions, triangles))
 }
 
 /// Saves `mesh` as binary STL (face normals from the positions).

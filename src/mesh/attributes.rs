@@ -41,22 +41,58 @@ impl Attributes {
     }
 }
 
-/// One material of an OBJ's MTL library (what is drawn of it).
+/// One material (an OBJ's MTL entry, a glTF material): what is drawn of it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Its name (`newmtl`, `usemtl`).
     pub name: String,
     /// Diffuse colour `Kd` (linear RGB; 0.8 grey when the library has none).
     pub diffuse: Vec3,
-    /// Diffuse texture `map_Kd`, resolved against the library's directory.
+    /// Diffuse texture `map_Kd` (glTF: base colour texture), resolved
+    /// against the folder of the file that names it.
     pub diffuse_texture: Option<std::path::PathBuf>,
+    /// How the texture repeats outside [0, 1].
+    pub wrap: Wrap,
+    /// The texture's pixels, when the load asked for textures and it could
+    /// be decoded within the budget.
+    pub texture: Option<std::sync::Arc<Texture>>,
 }
 
 impl Material {
     /// A material with only a name (its library was not found or lacks it).
     pub fn named(name: &str) -> Material {
-        Material { name: name.to_string(), diffuse: Vec3::splat(0.8), diffuse_texture: None }
+        Material {
+            name: name.to_string(),
+            diffuse: Vec3::splat(0.8),
+            diffuse_texture: None,
+            wrap: Wrap::Repeat,
+            texture: None,
+        }
     }
+}
+
+/// How texture coordinates outside [0, 1] are mapped into the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image repeats (OBJ's default, glTF `REPEAT`).
+    #[default]
+    Repeat,
+    /// The edge pixels extend (OBJ `-clamp on`, glTF `CLAMP_TO_EDGE`).
+    Clamp,
+    /// The image repeats mirrored (glTF `MIRRORED_REPEAT`).
+    Mirror,
+}
+
+/// A decoded texture: `width * height` pixels, row 0 at the top, four
+/// sRGB-encoded bytes each (red, green, blue, alpha).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    /// Pixels per row.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// `4 * width * height` bytes.
+    pub rgba: Vec<u8>,
 }
 
 /// Material groups of a mesh: a material id per triangle, the materials,

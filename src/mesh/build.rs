@@ -324,7 +324,9 @@ fn build_o(v: &[u32], nv: usize) -> Result<Vec<u32>, MeshError> {
                 .map(|&(x, _)| x as usize / 3)
                 .collect();
             faces.sort_unstable();
-            return Err(MeshError::NonManifoldEdge { v0: a.min(b), v1: a.max(b), faces: faces.len(), examples: faces });
+            let n = faces.len();
+            faces.truncate(crate::error::MAX_EXAMPLES);
+            return Err(MeshError::NonManifoldEdge { v0: a.min(b), v1: a.max(b), faces: n, examples: faces });
         }
         if same == 1 {
             let other = bucket(a).iter().find(|&&(x, end)| x != c && end == b).map_or(c, |&(x, _)| x);

@@ -177,12 +177,12 @@ impl Sharpness {
             let Some(c) = ct.corner_opposite(t.v0, t.v1) else {
                 return Err(tag_error(i, format!("there is no edge ({}, {})", t.v0, t.v1)));
             };
-            if t.sharpness > 0.0 {
-                let s = t.sharpness.min(INFINITE);
-                corners.push((c, s));
-                if let Some(x) = ct.o(c) {
-                    corners.push((x, s));
-                }
+            // a zero is kept until the last tag of each edge has won, so
+            // that it clears an earlier tag
+            let s = t.sharpness.min(INFINITE);
+            corners.push((c, s));
+            if let Some(x) = ct.o(c) {
+                corners.push((x, s));
             }
         }
         let mut vertices = Vec::new();
@@ -192,9 +192,7 @@ impl Sharpness {
             if t.vertex >= nv {
                 return Err(tag_error(i, format!("vertex {} does not exist (there are {nv})", t.vertex)));
             }
-            if t.sharpness > 0.0 {
-                vertices.push((t.vertex, t.sharpness.min(INFINITE)));
-            }
+            vertices.push((t.vertex, t.sharpness.min(INFINITE)));
         }
         Ok(Self::from_lists(corners, vertices))
     }
@@ -449,6 +447,21 @@ mod tests {
         }
         assert_eq!(s.vertex(3), INFINITE);
         assert_eq!(s.to_tags(&ct).creases.len(), 1);
+    }
+
+    #[test]
+    fn the_last_tag_of_an_element_wins_zero_included() {
+        let ct = tet();
+        let crease = |v0, v1, sharpness| CreaseTag { v0, v1, sharpness };
+        let corner = |vertex, sharpness| CornerTag { vertex, sharpness };
+        // a zero after a sharp tag clears it, whichever way the edge is named
+        let tags =
+            Tags { creases: vec![crease(0, 1, 3.0), crease(1, 0, 0.0)], corners: vec![corner(2, 5.0), corner(2, 0.0)] };
+        assert_eq!(Sharpness::from_tags(&ct, &tags).unwrap(), None);
+        // and a sharp tag after a zero sets it
+        let tags = Tags { creases: vec![crease(0, 1, 0.0), crease(0, 1, 2.0)], corners: vec![] };
+        let s = Sharpness::from_tags(&ct, &tags).unwrap().unwrap();
+        assert!(s.sharp_corners().iter().all(|&(_, v)| v == 2.0) && s.sharp_corners().len() == 2);
     }
 
     #[test]

@@ -158,12 +158,34 @@ pub fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
     new + scratch + old
 }
 
-/// Bytes this machine can still give (80% of `MemAvailable`), if known.
+/// Bytes this process can still be given: 80% of the machine's
+/// `MemAvailable`, and no more than half the process's address-space limit
+/// (`ulimit -v`) where one is set; `None` when neither is known.
 pub fn default_memory_limit() -> Option<u64> {
-    let s = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024 / 5 * 4)
+    let available = || -> Option<u64> {
+        let s = std::fs::read_to_string("/proc/meminfo").ok()?;
+        let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
+        let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        Some(kb * 1024 / 5 * 4)
+    };
+    match (available(), address_space_limit().map(|l| l / 2)) {
+        (Some(a), Some(l)) => Some(a.min(l)),
+        (a, l) => a.or(l),
+    }
+}
+
+/// The process's address-space limit (`RLIMIT_AS`), when one is set.
+fn address_space_limit() -> Option<u64> {
+    #[cfg(unix)]
+    {
+        let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+        // SAFETY: getrlimit writes the limit into the struct we own and
+        // reads nothing else of ours.
+        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
+        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
+    }
+    #[cfg(not(unix))]
+    None
 }
 
 /// Checks that refining `ct` once more (to level `level`) fits in `limit`

@@ -371,3 +371,55 @@ pub fn soup_klein(n: u32, m: u32) -> Soup {
     }
     s
 }
+
+/// Reads `bytes` called `name` (its extension picks the format) through
+/// the one reading pipeline, with `topology` and the default budget.
+pub fn read_bytes_as(bytes: &[u8], name: &str, topology: subdiv::io::Topology) -> subdiv::Result<subdiv::io::Loaded> {
+    let opts = subdiv::io::ReadOptions { topology, ..Default::default() };
+    subdiv::io::read(subdiv::io::Source::Bytes { bytes, name, folder: None }, &opts)
+}
+
+/// [`read_bytes_as`], refusing invalid topology.
+pub fn read_bytes(bytes: &[u8], name: &str) -> subdiv::Result<subdiv::io::Loaded> {
+    read_bytes_as(bytes, name, subdiv::io::Topology::Refuse)
+}
+
+/// The mesh in `bytes` called `name`.
+pub fn mesh_of(bytes: &[u8], name: &str) -> subdiv::Result<Mesh> {
+    read_bytes(bytes, name).map(|l| l.mesh)
+}
+
+/// The mesh in `bytes` called `name` with its attributes.
+pub fn with_attributes(bytes: &[u8], name: &str) -> subdiv::Result<(Mesh, subdiv::mesh::attributes::Attributes)> {
+    read_bytes(bytes, name).map(|l| (l.mesh, l.attributes))
+}
+
+/// The mesh in `bytes` called `name`, repaired, with the repair's report.
+pub fn repaired_of(bytes: &[u8], name: &str) -> subdiv::Result<(Mesh, subdiv::mesh::RepairReport)> {
+    let l = read_bytes_as(bytes, name, subdiv::io::Topology::Repair)?;
+    Ok((l.mesh, l.notes.repair.unwrap_or_default()))
+}
+
+/// Reads the file `path` through the pipeline with `topology`.
+pub fn read_file_as(path: &std::path::Path, topology: subdiv::io::Topology) -> subdiv::Result<subdiv::io::Loaded> {
+    let opts = subdiv::io::ReadOptions { topology, ..Default::default() };
+    subdiv::io::read(subdiv::io::Source::File(path), &opts)
+}
+
+/// The mesh in the file `path` with its attributes (materials found beside it).
+pub fn load_with_attributes(path: &std::path::Path) -> (Mesh, subdiv::mesh::attributes::Attributes) {
+    let l = read_file_as(path, subdiv::io::Topology::Refuse).unwrap_or_else(|e| panic!("{e}"));
+    (l.mesh, l.attributes)
+}
+
+/// The file `path` repaired, with the repair's report.
+pub fn load_repaired(path: &std::path::Path) -> subdiv::Result<(Mesh, subdiv::mesh::RepairReport)> {
+    let l = read_file_as(path, subdiv::io::Topology::Repair)?;
+    Ok((l.mesh, l.notes.repair.unwrap_or_default()))
+}
+
+/// The file `path` analysed: every problem listed.
+pub fn analyze(path: &std::path::Path) -> subdiv::Result<(Mesh, subdiv::mesh::RepairReport)> {
+    let l = read_file_as(path, subdiv::io::Topology::Analyze)?;
+    Ok((l.mesh, l.notes.repair.unwrap_or_default()))
+}

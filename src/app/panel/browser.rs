@@ -6,11 +6,9 @@ use egui::{Color32, RichText};
 use std::path::{Path, PathBuf};
 
 /// Whether the viewer opens `p` (a model or curve file of any format the
-/// readers know, [`crate::io::READ_EXTENSIONS`]).
+/// readers know, [`crate::io::FORMATS`]).
 pub fn opens(p: &Path) -> bool {
-    p.extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| crate::io::READ_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+    crate::io::Format::by_extension(p).is_some()
 }
 
 /// The browser window while it is open: folders to walk into, model files to open.
