@@ -59,7 +59,7 @@ fn animation(c: &mut Criterion) {
         });
         // positions only, as OpenSubdiv's StencilTable::UpdateValues (osd_bench --frames)
         let plan = anim.plan().clone();
-        let mut scratch = subdiv::subdiv::stencil::PlanScratch::for_plan(&plan);
+        let mut scratch = subdiv::subdiv::tables::PlanScratch::for_plan(&plan);
         let mut out = Vec::new();
         g.bench_function(BenchmarkId::new("plan_positions", name), |b| {
             b.iter(|| {

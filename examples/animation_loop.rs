@@ -8,7 +8,7 @@
 use glam::Vec3;
 use std::path::PathBuf;
 use std::time::Instant;
-use subdiv::subdiv::stencil::{PlanScratch, StencilPlan};
+use subdiv::subdiv::tables::{PlanScratch, StencilPlan};
 use subdiv::{Options, Scheme, bundled, subdivide};
 
 fn main() -> subdiv::Result<()> {

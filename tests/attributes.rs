@@ -6,7 +6,7 @@ mod common;
 use common::*;
 use glam::{Vec2, Vec3};
 use subdiv::io::obj;
-use subdiv::subdiv::attributes::{Attributes, refine, refine_corner_uvs};
+use subdiv::subdiv::tables::attributes::{Attributes, refine, refine_corner_uvs};
 use subdiv::{Options, Scheme, subdivide};
 
 #[test]

@@ -7,7 +7,7 @@ use glam::{Mat3, Vec3};
 use std::path::{Path, PathBuf};
 use subdiv::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
-use subdiv::subdiv::stencil::{PlanScratch, StencilPlan};
+use subdiv::subdiv::tables::{PlanScratch, StencilPlan};
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn fixture(name: &str) -> PathBuf {
@@ -450,20 +450,20 @@ fn the_crease_angle_finds_the_cube_edges_and_info_counts_them() {
     let tagged = sharp_cube();
     assert_eq!(auto.sharpness(), tagged.ct.sharpness(), "the 12 edges at 90 degrees, not the diagonals at 0");
     assert!(plain.ct.clone().with_angle_creases(&plain.positions, 95.0).sharpness().is_none());
-    let s = subdiv::subdiv::features::summary(&auto, BoundaryInterpolation::EdgeOnly);
+    let s = subdiv::subdiv::rules::features::summary(&auto, BoundaryInterpolation::EdgeOnly);
     assert_eq!((s.sharp_edges, s.infinite_edges, s.corners, s.darts, s.crease_vertices), (12, 12, 8, 0, 0));
     // the icosphere fixture: a dart at the end of its infinitely sharp edge,
     // two semi-sharp crease paths
     let ico = load("ico_crease.obj");
-    let s = subdiv::subdiv::features::summary(&ico.ct, BoundaryInterpolation::EdgeOnly);
+    let s = subdiv::subdiv::rules::features::summary(&ico.ct, BoundaryInterpolation::EdgeOnly);
     assert_eq!(s.sharp_edges, 6);
     assert_eq!(s.infinite_edges, 1);
     assert!(s.darts >= 2 && s.crease_vertices >= 2, "{s:?}");
     // edge-and-corner makes the open grid's four corners sharp
     let grid = load("grid_open.obj");
     let (a, b) = (
-        subdiv::subdiv::features::summary(&grid.ct, BoundaryInterpolation::EdgeOnly),
-        subdiv::subdiv::features::summary(&grid.ct, BoundaryInterpolation::EdgeAndCorner),
+        subdiv::subdiv::rules::features::summary(&grid.ct, BoundaryInterpolation::EdgeOnly),
+        subdiv::subdiv::rules::features::summary(&grid.ct, BoundaryInterpolation::EdgeAndCorner),
     );
     assert_eq!(b.sharp_vertices, a.sharp_vertices + 2, "{a:?} {b:?}");
 }
@@ -475,8 +475,8 @@ fn loop_limit_positions_follow_the_crease_curve() {
     let (m, ring) = torus_with_loop(INFINITE);
     let l2 = sub(&m, Scheme::Loop, 2, &Options::default());
     let l6 = sub(&m, Scheme::Loop, 6, &Options::default());
-    let lim = subdiv::subdiv::limit::loop_limit_positions(&l2);
-    let smooth = subdiv::subdiv::limit::loop_limit_positions(&Mesh {
+    let lim = subdiv::subdiv::rules::limit::loop_limit_positions(&l2);
+    let smooth = subdiv::subdiv::rules::limit::loop_limit_positions(&Mesh {
         ct: l2.ct.clone().with_tags(&Tags::default()).unwrap(),
         positions: l2.positions.clone(),
     });

@@ -190,7 +190,7 @@ fn the_checker_texture_follows_per_corner_uvs() {
     let (control, attrs) = common::load_with_attributes(&common::model_path("cube_uv.obj"));
     let uv = attrs.uv.expect("cube_uv.obj has vt");
     let (fine, _) = subdivide(&control, Scheme::Loop, 2, &Options::default()).unwrap();
-    let fuv = subdiv::subdiv::attributes::refine_corner_uvs(&uv, 2);
+    let fuv = subdiv::subdiv::tables::attributes::refine_corner_uvs(&uv, 2);
     let attr: Vec<Vec3> = fuv.iter().map(|t| t.extend(0.0)).collect();
     let g =
         subdiv::render::GpuMesh::unwelded(&off.gpu.device, &fine.ct, &fine.positions, &fine.vertex_normals(), &attr)

@@ -14,7 +14,7 @@ use common::*;
 use std::collections::BTreeMap;
 use subdiv::mesh::split::{number_edges, split_linear};
 use subdiv::mesh::{n, p};
-use subdiv::subdiv::stencil::{LevelPlan, StencilPlan};
+use subdiv::subdiv::tables::{LevelPlan, StencilPlan};
 use subdiv::{CornerTable, LoopBeta, Mesh, Options, Scheme};
 
 /// A row as vertex -> total weight (repeated ids added), zero weights dropped.

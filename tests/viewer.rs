@@ -420,7 +420,7 @@ fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
     // the angle tags the cube's 12 edges (not the diagonals)
     v.apply(Command::AutoCrease(40.0));
     let ct = &v.doc.model.control.mesh.ct;
-    let s = subdiv::subdiv::features::summary(ct, Default::default());
+    let s = subdiv::subdiv::rules::features::summary(ct, Default::default());
     assert_eq!((s.sharp_edges, s.corners), (12, 8));
     // every change re-subdivides on the worker: the cube stays a cube
     subdivide(&mut v, Scheme::Loop, 2);

@@ -2,7 +2,7 @@
 //! follows a closed polygon of key positions, refined `n` times by split and
 //! tweak ([`tweak`]); frame `f` puts each vertex at point `f` of its refined
 //! polygon, and the mesh is re-evaluated through a recorded
-//! [`crate::subdiv::stencil::StencilPlan`] ([`player`]).
+//! [`crate::subdiv::tables::StencilPlan`] ([`player`]).
 
 pub mod paths;
 pub mod player;

@@ -12,7 +12,7 @@
 use super::paths::Paths;
 use super::tweak::{Tweak, refine_closed};
 use crate::mesh::normals::{VertexFaces, VertexRings, face_normals_into};
-use crate::subdiv::stencil::{PlanScratch, StencilPlan};
+use crate::subdiv::tables::{PlanScratch, StencilPlan};
 use crate::{CornerTable, Error, Mesh, Options, Result, Scheme};
 use glam::Vec3;
 use rayon::prelude::*;

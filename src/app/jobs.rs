@@ -446,7 +446,7 @@ fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> 
     let (fine, stats) = run(&from, first, level - first)?;
     let shown = if level == 0 { control.clone() } else { Shown::new(Arc::new(fine)) };
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    let attrs =
-        crate::subdiv::attributes::refine(&control.mesh.ct, &job.attrs, scheme, level, &opts).unwrap_or_default();
+    let attrs = crate::subdiv::tables::attributes::refine(&control.mesh.ct, &job.attrs, scheme, level, &opts)
+        .unwrap_or_default();
     Ok(Subdivided { shown, proxy, stats: first_stats.then(stats), ms, attrs, level, scheme, opts })
 }

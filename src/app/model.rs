@@ -235,7 +235,7 @@ impl Model {
 /// `raw` with its points moved to the Loop limit (with the weights `beta`
 /// it was made with) when asked, and the normals of the normal mode.
 fn snapped_and_normals(raw: &Shown, display: &Display, beta: LoopBeta) -> Shown {
-    use crate::subdiv::limit::{butterfly_normals, loop_limit_normals};
+    use crate::subdiv::rules::limit::{butterfly_normals, loop_limit_normals};
     let mesh = snapped(raw, display, beta);
     let normals = match display.normal_mode {
         // the worker's fan normals, unless the points moved to the limit
@@ -250,7 +250,7 @@ fn snapped_and_normals(raw: &Shown, display: &Display, beta: LoopBeta) -> Shown 
 
 /// `raw`'s mesh, with its points moved to the Loop limit when asked.
 fn snapped(raw: &Shown, display: &Display, beta: LoopBeta) -> Arc<Mesh> {
-    use crate::subdiv::limit::loop_limit_positions_with;
+    use crate::subdiv::rules::limit::loop_limit_positions_with;
     if display.snap_limit {
         Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions: loop_limit_positions_with(&raw.mesh, beta) })
     } else {
@@ -264,7 +264,7 @@ fn snapped(raw: &Shown, display: &Display, beta: LoopBeta) -> Arc<Mesh> {
 /// normal mode's, computed on the cut mesh, where a crease vertex is a
 /// boundary vertex of each side).
 fn creased_view(shown: &Shown, cr: &Creased, display: &Display) -> Shown {
-    use crate::subdiv::limit::{butterfly_normals, loop_limit_normals};
+    use crate::subdiv::rules::limit::{butterfly_normals, loop_limit_normals};
     let mesh = Arc::new(Mesh { ct: cr.ct.clone(), positions: cr.extend(&shown.mesh.positions) });
     let normals = match display.normal_mode {
         NormalMode::FanAverage if !display.snap_limit => cr.normals.clone(),

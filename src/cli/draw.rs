@@ -229,7 +229,7 @@ mod gpu {
         attrs: &Attributes,
         (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
     ) -> Result<Paint> {
-        let refined = |a: Attributes| subdiv::subdiv::attributes::refine(&control.ct, &a, scheme, levels, opts);
+        let refined = |a: Attributes| subdiv::subdiv::tables::attributes::refine(&control.ct, &a, scheme, levels, opts);
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         Ok(match coloring {
             Coloring::None => Paint::Material,
@@ -317,7 +317,7 @@ mod gpu {
             Coloring::Shells => Some(shells(&mesh, level, nv)),
             Coloring::File => {
                 let only = Attributes { colors: attrs.colors, ..Default::default() };
-                let r = subdiv::subdiv::attributes::refine(&mesh.ct, &only, s.scheme, level, &s.options())?;
+                let r = subdiv::subdiv::tables::attributes::refine(&mesh.ct, &only, s.scheme, level, &s.options())?;
                 Some(r.colors.ok_or_else(|| Error::Usage("--color file: the model has no colors".into()))?)
             }
             other => return Err(Error::Usage(format!("animate --color {}: use none, shells or file", other.name()))),

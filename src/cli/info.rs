@@ -148,7 +148,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     let face_sizes: BTreeMap<usize, usize> =
         notes.face_sizes.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
     let mesh = a.features.apply(mesh);
-    let sharp = subdiv::subdiv::features::summary(&mesh.ct, a.features.boundary);
+    let sharp = subdiv::subdiv::rules::features::summary(&mesh.ct, a.features.boundary);
     let (nm_edges, nm_vertices) =
         report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));
     let t = topology(&mesh.ct);

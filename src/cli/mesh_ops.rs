@@ -62,7 +62,7 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let fine_attrs = if attrs.is_empty() {
         attrs
     } else if io::keeps_attributes(&a.output) {
-        subdiv::subdiv::attributes::refine(&mesh.ct, &attrs, s.scheme, levels, &s.options())?
+        subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, s.scheme, levels, &s.options())?
     } else {
         if logging::warnings_shown() {
             eprintln!("subdiv: note: {} keeps no texture coordinates or colours", a.output.display());
@@ -180,7 +180,7 @@ pub fn smooth(a: &SmoothArgs) -> Result<()> {
 /// `subdiv limit`.
 pub fn limit(a: &InOut) -> Result<()> {
     let mesh = a.from.load(&a.input)?;
-    let positions = subdiv::subdiv::limit::loop_limit_positions(&mesh);
+    let positions = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh);
     io::save(&a.output, &Mesh { ct: mesh.ct, positions })?;
     println!("{} -> {}: Loop limit positions", a.input.display(), a.output.display());
     Ok(())

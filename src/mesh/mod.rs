@@ -15,6 +15,7 @@
 pub mod attributes;
 mod build;
 pub mod cut;
+pub mod draw;
 pub mod edit;
 pub mod inspect;
 pub mod normals;
@@ -371,6 +372,10 @@ impl CornerTable {
             c = x;
         }
         Some((self.vtx(n(first)), self.vtx(p(c))))
+    }
+    /// Whether the table has no border (a closed surface).
+    pub fn is_closed(&self) -> bool {
+        !self.o.contains(&BORDER)
     }
     /// Number of border edges (corners whose opposite is the border).
     pub fn num_border_edges(&self) -> usize {

@@ -11,7 +11,7 @@
 
 use super::gpu_mesh::GpuMesh;
 use crate::mesh::normals::ring_lists;
-use crate::subdiv::stencil::StencilPlan;
+use crate::subdiv::tables::StencilPlan;
 use crate::{Error, Result};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;

@@ -10,7 +10,7 @@
 //! copied. The edge list (a line list, each edge once) remains for meshes
 //! drawn as lines: the control cage and curves.
 
-use crate::mesh::{BORDER, n, p};
+use crate::mesh::draw::{edge_corner_pairs, edge_indices, packed_generations, sharp_corner_pairs, sharp_edge_indices};
 use crate::{CornerTable, Error, Result};
 use glam::Vec3;
 use wgpu::util::DeviceExt;
@@ -55,7 +55,7 @@ pub enum Cull {
 /// "away" follows the sign of the enclosed volume (the corner table makes the
 /// orientation consistent, not necessarily outward).
 pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
-    if ct.o_table().contains(&BORDER) {
+    if !ct.is_closed() {
         return Cull::None;
     }
     let volume: f64 = ct
@@ -72,60 +72,6 @@ pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
 /// Segments from each point along its normal, `length` long.
 fn normal_segments(positions: &[Vec3], normals: &[Vec3], length: f32) -> Vec<Vec3> {
     positions.iter().zip(normals).flat_map(|(q, n)| [*q, *q + *n * length]).collect()
-}
-
-/// The sharp edges (sharpness > 0, borders excluded unless tagged) as pairs
-/// of vertex ids.
-pub fn sharp_edge_indices(ct: &CornerTable) -> Vec<u32> {
-    let Some(s) = ct.sharpness() else { return Vec::new() };
-    s.sharp_corners()
-        .iter()
-        .filter(|&&(c, _)| crate::mesh::owns_edge(c, ct.o_entry(c)))
-        .flat_map(|&(c, _)| [ct.vtx(n(c)), ct.vtx(p(c))])
-        .collect()
-}
-
-/// [`sharp_edge_indices`] for a mesh with one GPU vertex per corner: the
-/// pairs of corners that end each sharp edge.
-fn sharp_corner_pairs(ct: &CornerTable) -> Vec<u32> {
-    let Some(s) = ct.sharpness() else { return Vec::new() };
-    s.sharp_corners()
-        .iter()
-        .filter(|&&(c, _)| crate::mesh::owns_edge(c, ct.o_entry(c)))
-        .flat_map(|&(c, _)| [n(c), p(c)])
-        .collect()
-}
-
-/// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]).
-pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
-    ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
-}
-
-/// Per triangle `t`, one word as the wire shader reads it (one load per
-/// vertex instead of three): five bits for each corner `k` of the triangle,
-/// the generation of the edge opposite it (see [`crate::mesh::Generations`])
-/// at bit `5k`, and the lowest generation of the edges at its vertex at bit
-/// `15 + 5k`. Generations above 31 (never reached: level 31 is far past any
-/// memory) are stored as 31.
-pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
-    let nc = ct.num_corners();
-    let mut words = vec![0u32; nc / 3];
-    let Some(g) = ct.generations() else { return words };
-    let corner = g.corners();
-    // the edge opposite c ends at v(n(c)) and v(p(c))
-    let mut at_vertex = vec![u8::MAX; ct.num_vertices()];
-    for (c, &e) in corner.iter().enumerate() {
-        for end in [n(c as u32), p(c as u32)] {
-            let v = &mut at_vertex[ct.vtx(end) as usize];
-            *v = (*v).min(e);
-        }
-    }
-    for (c, &e) in corner.iter().enumerate() {
-        let k = 5 * (c % 3) as u32;
-        let at_v = at_vertex[ct.vtx(c as u32) as usize];
-        words[c / 3] |= u32::from(e.min(31)) << k | u32::from(at_v.min(31)) << (15 + k);
-    }
-    words
 }
 
 /// An index buffer of `indices`, `None` when there are none.
@@ -211,7 +157,7 @@ impl GpuMesh {
         let nrm: Vec<Vec3> = ct.v_table().iter().map(|&v| normals[v as usize]).collect();
         let identity: Vec<u32> = (0..ct.v_table().len() as u32).collect();
         // the same edges, between the corners' own GPU vertices
-        let edges: Vec<u32> = ct.edge_owners().flat_map(|c| [n(c), p(c)]).collect();
+        let edges = edge_corner_pairs(ct);
         let limit = device.limits().max_buffer_size;
         if (pos.len() * 12) as u64 > limit {
             return Err(Error::Gpu(format!(

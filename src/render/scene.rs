@@ -16,7 +16,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 use wgpu::util::DeviceExt;
 
-pub use super::gpu_mesh::{Cull, GpuMesh, cull_for, edge_indices};
+pub use super::gpu_mesh::{Cull, GpuMesh, cull_for};
 
 /// Background colour (linear RGB) of the window outside the viewports.
 pub const BACKGROUND: [f64; 3] = [0.045, 0.05, 0.065];

@@ -1,4 +1,14 @@
-//! Subdivision: the shared 1-to-4 [`split`] plus one file of rules per scheme.
+//! Subdivision: the shared 1-to-4 split plus one file of rules per scheme,
+//! in three layers as OpenSubdiv's `sdc`, `vtr` and `far`:
+//!
+//! - [`rules`]: the schemes' masks (what weights make a new point), sharp
+//!   features' rules, limit masks; no tables, no timing;
+//! - [`refine`]: one level after another, the split
+//!   ([`crate::mesh::split`], which knows no scheme) and the rules applied
+//!   to the new points, with the time of each phase;
+//! - [`tables`]: the stencil plans that record the rules once for a
+//!   topology and re-apply them to new control points (animation,
+//!   attributes), and their packed form.
 //!
 //! A level = `split` (new V, O, C, valences; edge numbering) + edge points for
 //! every edge + vertex points (Loop, Jarek) or a copy (interpolating schemes).
@@ -6,23 +16,16 @@
 //! level with their exact sizes (`V' = V + E`, `F' = 4F`); the work is spread
 //! over rayon's threads in chunks.
 
-pub mod attributes;
-pub mod butterfly;
-pub mod features;
-pub mod jarek;
-pub mod limit;
-pub mod loop_;
-pub mod midpoint;
-pub mod modified_butterfly;
-pub mod packed;
+pub mod refine;
 pub mod rules;
-pub mod stencil;
+pub mod tables;
 
+use crate::Result;
+use crate::mesh::Mesh;
 pub use crate::mesh::{BoundaryInterpolation, Creasing};
-use crate::mesh::{CornerTable, Mesh, split};
-use crate::{Error, Result};
-use glam::Vec3;
-use rules::{Level, Rules};
+use refine::OneLevel;
+pub use refine::{check_level_fits, check_levels_fit, default_memory_limit, predict_faces, predict_level_bytes};
+use rules::{Rules, butterfly, features, jarek, loop_, midpoint, modified_butterfly};
 use std::borrow::Cow;
 use std::time::Instant;
 
@@ -146,85 +149,6 @@ impl Stats {
     }
 }
 
-/// Predicted peak bytes of refining a mesh with `nt` triangles, `nv`
-/// vertices and `ne` edges once (new tables, positions and scratch, plus the
-/// old level still alive).
-pub fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
-    let new_corners = 12 * nt;
-    let new_verts = nv + ne;
-    let new = new_corners * 8 + new_verts * (8 + 12);
-    let scratch = 3 * nt * 4 + ne * 4;
-    let old = 3 * nt * 8 + nv * 20;
-    new + scratch + old
-}
-
-/// Bytes this process can still be given: 80% of the machine's
-/// `MemAvailable`, and no more than half the process's address-space limit
-/// (`ulimit -v`) where one is set; `None` when neither is known.
-pub fn default_memory_limit() -> Option<u64> {
-    let available = || -> Option<u64> {
-        let s = std::fs::read_to_string("/proc/meminfo").ok()?;
-        let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
-        let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-        Some(kb * 1024 / 5 * 4)
-    };
-    match (available(), address_space_limit().map(|l| l / 2)) {
-        (Some(a), Some(l)) => Some(a.min(l)),
-        (a, l) => a.or(l),
-    }
-}
-
-/// The process's address-space limit (`RLIMIT_AS`), when one is set.
-fn address_space_limit() -> Option<u64> {
-    #[cfg(unix)]
-    {
-        let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
-        // SAFETY: getrlimit writes the limit into the struct we own and
-        // reads nothing else of ours.
-        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
-        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
-    }
-    #[cfg(not(unix))]
-    None
-}
-
-/// Checks that refining `ct` once more (to level `level`) fits in `limit`
-/// bytes and in 32-bit corner ids.
-///
-/// # Errors
-/// [`Error::TooLarge`] with the predicted size.
-pub fn check_level_fits(ct: &CornerTable, level: u32, limit: Option<u64>) -> Result<()> {
-    check_levels_fit(ct, level.saturating_sub(1), 1, limit)
-}
-
-/// Checks, before any work, that refining `ct` (already at level `done`)
-/// `more` more times fits in `limit` bytes and in 32-bit ids at every level.
-/// Counts are predicted exactly: `F' = 4F`, `E' = 2E + 3F`, `V' = V + E`.
-///
-/// # Errors
-/// [`Error::TooLarge`] naming the first level that does not fit.
-pub fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
-    let mut nt = ct.num_triangles() as u64;
-    let mut nv = ct.num_vertices() as u64;
-    let mut ne = (3 * nt + ct.num_border_edges() as u64) / 2;
-    let limit_bytes = limit.unwrap_or(u64::MAX);
-    for level in done + 1..=done + more {
-        let bytes = predict_level_bytes(nt, nv, ne);
-        let faces = 4 * nt;
-        if 12 * nt >= u64::from(u32::MAX) || nv + ne >= u64::from(u32::MAX) || bytes > limit_bytes {
-            let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
-            return Err(Error::TooLarge { level, faces, bytes, limit });
-        }
-        (nt, nv, ne) = (4 * nt, nv + ne, 2 * ne + 3 * nt);
-    }
-    Ok(())
-}
-
-/// Predicted triangle count after `levels` more levels.
-pub fn predict_faces(ct: &CornerTable, levels: u32) -> u64 {
-    (ct.num_triangles() as u64).saturating_mul(4u64.saturating_pow(levels))
-}
-
 pub(crate) fn ms(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1000.0
 }
@@ -244,41 +168,6 @@ pub(crate) fn with_rules<T>(scheme: Scheme, opts: &Options, f: impl RulesFn<T>) 
 /// A generic callback over a [`Rules`] type (closures cannot be generic).
 pub(crate) trait RulesFn<T> {
     fn call<R: Rules>(self, r: &R) -> T;
-}
-
-/// One level: split plus the scheme's points. `boundary` holds the input
-/// level's vertex boundary flags when the previous level produced them;
-/// the new level's are made only when another level follows (`last` false).
-struct OneLevel<'a> {
-    ct: Cow<'a, CornerTable>,
-    positions: Cow<'a, [Vec3]>,
-    boundary: Option<Vec<bool>>,
-    last: bool,
-    creasing: Creasing,
-    stats: &'a mut Stats,
-}
-
-impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
-    fn call<R: Rules>(self, r: &R) -> (Mesh, Option<Vec<bool>>) {
-        let old: &CornerTable = &self.ct;
-        let boundary = self.boundary.unwrap_or_else(|| rules::boundary_flags(old));
-        let t0 = Instant::now();
-        let ((ct, edges, next_boundary), (number_ms, _)) =
-            split::split_with_boundary(old, (!self.last).then_some(&boundary[..]), self.creasing);
-        self.stats.split_ms += ms(t0.elapsed());
-        self.stats.numbering_ms += number_ms;
-        let features = features::Features::of(old, self.creasing);
-        let split::EdgeNumbering { owners, ids } = edges;
-        let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
-        let (vpart, epart) = positions.split_at_mut(old.num_vertices());
-        let (vms, ems) = match features {
-            None => r.apply(&Level::with_boundary(old, boundary), &owners, &self.positions, vpart, epart),
-            Some(f) => features::apply(r, f, self.ct, self.positions, boundary, &owners, &ids, vpart, epart),
-        };
-        self.stats.vertex_ms += vms;
-        self.stats.edge_ms += ems;
-        (Mesh { ct, positions }, next_boundary)
-    }
 }
 
 /// Refines `mesh` `levels` times with `scheme`.
@@ -310,7 +199,7 @@ pub fn subdivide_with_progress(
     let mut boundary: Option<Vec<bool>> = None;
     let mut base = Some(features::with_boundary_corners(&mesh.ct, opts.boundary));
     for level in 1..=levels {
-        // each level after the first owns (and may cut, see features::apply)
+        // each level after the first owns (and may cut, see refine::with_features)
         // the one before it
         let (ct, positions) = match cur.take() {
             Some(m) => (Cow::Owned(m.ct), Cow::Owned(m.positions)),

@@ -14,7 +14,7 @@ use egui::RichText;
 pub fn creases_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &mut Display) -> Vec<Command> {
     let mut out = Vec::new();
     let ct = &doc.model.control.mesh.ct;
-    let s = crate::subdiv::features::summary(ct, doc.request.opts.boundary);
+    let s = crate::subdiv::rules::features::summary(ct, doc.request.opts.boundary);
     ui.label(
         RichText::new(format!(
             "{} sharp edges ({} infinite), {} sharp vertices; {} corners, {} darts, {} crease vertices",

@@ -1,6 +1,6 @@
 //! A level's stencils packed for per-frame evaluation.
 //!
-//! The CSR form of [`super::stencil::LevelPlan`] stores, per row, an offset,
+//! The CSR form of [`super::rows::LevelPlan`] stores, per row, an offset,
 //! and per entry an index and a weight: at Loop level 2 of the bunny that is
 //! 23 MB read every frame for 6.7 MB of output. But the weights repeat: every
 //! regular Loop edge point is `3/8, 3/8, 1/8, 1/8`, every vertex of valence
@@ -12,7 +12,7 @@
 //! per frame. The sums are taken in the same order with the same weights as
 //! the CSR rows, so the results are bit-identical to them.
 
-use super::stencil::{LevelPlan, Point, copy_points};
+use super::rows::{LevelPlan, Point, copy_points};
 use glam::Vec3A;
 use rayon::prelude::*;
 use std::collections::HashMap;

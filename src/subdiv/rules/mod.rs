@@ -5,12 +5,28 @@
 //! one-shot subdivision (an [`Accumulate`] sink sums weighted positions, fully
 //! inlined) and the stencil plan for animation (a recording sink stores the
 //! weights once). All rules read the OLD level only.
+//!
+//! This is the rules layer of subdivision (OpenSubdiv's `sdc`): masks only,
+//! no tables and no timing. One file per scheme, [`features`] for which
+//! rule a sharp vertex or edge gets, [`crease`] for the stencils that
+//! follow from it, [`limit`] for limit positions and normals. The
+//! refinement that applies them level by level is
+//! [`crate::subdiv::refine`]; the tables that record them,
+//! [`crate::subdiv::tables`].
 
-use super::features::Features;
+pub mod butterfly;
+pub mod crease;
+pub mod features;
+pub mod jarek;
+pub mod limit;
+pub mod loop_;
+pub mod midpoint;
+pub mod modified_butterfly;
+
 use crate::mesh::{BORDER, CornerTable, n, p};
+use features::Features;
 use glam::Vec3;
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// One level's topology plus per-vertex facts that rules ask for often. It
 /// dereferences to the [`CornerTable`], so rules call the table's operators
@@ -140,13 +156,12 @@ pub trait Rules: Sync {
     fn crease_vertex<S: Sink>(&self, v: u32, _a: u32, _b: u32, s: &mut S) {
         s.add(v, 1.0);
     }
-    /// Evaluates a whole level with the smooth rules (and the boundary
-    /// rules): `vpart` gets the old vertices' new positions, `epart` one
-    /// point per edge in `owners` order; returns (vertex ms, edge ms). The
-    /// default sums each emitted stencil; a scheme may override it with a
-    /// faster equivalent (the stencil-plan test checks the two agree).
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
-        let t0 = Instant::now();
+    /// The old vertices' new positions over a whole level with the smooth
+    /// (and boundary) rules, into `vpart`. The default sums each emitted
+    /// stencil (or copies, when vertices do not move); a scheme may
+    /// override it with a faster equivalent (the stencil-plan tests check
+    /// the two agree).
+    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3]) {
         if Self::MOVES_VERTICES {
             vpart.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
                 let mut acc = Accumulate::new(pos);
@@ -156,14 +171,21 @@ pub trait Rules: Sync {
         } else {
             vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
         }
-        let t1 = Instant::now();
-        edge_points(self, lv, owners, pos, epart);
-        (super::ms(t1 - t0), super::ms(t1.elapsed()))
+    }
+    /// One point per edge, in `owners` order, with the smooth (and
+    /// boundary) rules, into `epart`. It runs after
+    /// [`Rules::vertex_points`] of the same level, with `vpart` as that
+    /// left it: a scheme whose edge rule needs an intermediate of the
+    /// vertex pass (Jarek's displacements) may leave it there and finish
+    /// the vertex points here. The default sums each emitted stencil.
+    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
+        let _ = vpart;
+        stencil_edge_points(self, lv, owners, pos, epart);
     }
 }
 
 /// Every edge point through the emitted stencils.
-pub fn edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) {
+pub fn stencil_edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) {
     out.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
         let mut acc = Accumulate::new(pos);
         r.edge(lv, c, &mut acc);

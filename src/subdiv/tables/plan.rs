@@ -9,108 +9,18 @@
 //! weighted sums level by level. Applying level by level keeps the tables
 //! small: a composed control-to-final matrix would have L-ring support.
 
-use super::features::{Features, Unsplit, edge_stencil, vertex_stencil, with_boundary_corners};
 use super::packed::PackedLevel;
-use super::rules::{Level, Record, Rules};
-use super::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
+use super::rows::{LevelPlan, Point};
 use crate::Result;
 use crate::mesh::order::Relabel;
 use crate::mesh::split;
 use crate::mesh::{CornerTable, Creasing};
+use crate::subdiv::rules::crease::{Unsplit, edge_stencil, vertex_stencil};
+use crate::subdiv::rules::features::{Features, with_boundary_corners};
+use crate::subdiv::rules::{Level, Record, Rules};
+use crate::subdiv::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
-
-/// A point the level kernels read and write: [`Vec3`] (12 bytes, what
-/// callers hand in and get back) or [`Vec3A`] (16 bytes, one SSE register:
-/// the intermediate levels, where a weighted sum is one multiply and one add
-/// per entry instead of three each). The lanes compute the same IEEE
-/// products and sums either way, so the results are bit-identical.
-pub trait Point: Copy + Send + Sync {
-    /// The point in a register.
-    fn load(self) -> Vec3A;
-    /// Back from a register.
-    fn store(v: Vec3A) -> Self;
-}
-
-impl Point for Vec3 {
-    #[inline(always)]
-    fn load(self) -> Vec3A {
-        Vec3A::from(self)
-    }
-    #[inline(always)]
-    fn store(v: Vec3A) -> Self {
-        Vec3::from(v)
-    }
-}
-
-impl Point for Vec3A {
-    #[inline(always)]
-    fn load(self) -> Vec3A {
-        self
-    }
-    #[inline(always)]
-    fn store(v: Vec3A) -> Self {
-        v
-    }
-}
-
-/// One level's stencils.
-#[derive(Clone, Debug, Default)]
-pub struct LevelPlan {
-    /// Vertices of the coarser level.
-    pub n_in: usize,
-    /// Old vertices are copied unchanged (interpolating schemes): their rows
-    /// are omitted and `offsets` covers only the edge points.
-    pub copy_vertices: bool,
-    /// Row `i` spans `indices[offsets[i]..offsets[i+1]]`.
-    pub offsets: Vec<u32>,
-    /// Source vertex ids.
-    pub indices: Vec<u32>,
-    /// Weights.
-    pub weights: Vec<f32>,
-}
-
-impl LevelPlan {
-    /// This level reading its input through `old`: input `j` of the rows
-    /// becomes input `old[j]`. The copied old vertices of an interpolating
-    /// level become rows of one entry (weight 1), since the copy is now a
-    /// gather. For a level recorded on a relabelled table and fed the
-    /// table's vertices in their old order.
-    fn reading_through(self, old: &[u32]) -> LevelPlan {
-        let map = |j: &u32| old[*j as usize];
-        if !self.copy_vertices {
-            return LevelPlan { indices: self.indices.iter().map(map).collect(), ..self };
-        }
-        let n = self.n_in as u32;
-        let offsets = (0..n).chain(self.offsets.iter().map(|&x| x + n)).collect();
-        let indices = old[..self.n_in].iter().copied().chain(self.indices.iter().map(map)).collect();
-        let weights = std::iter::repeat_n(1.0, self.n_in).chain(self.weights.iter().copied()).collect();
-        LevelPlan { n_in: self.n_in, copy_vertices: false, offsets, indices, weights }
-    }
-
-    /// Vertices of the finer level.
-    pub fn n_out(&self) -> usize {
-        self.offsets.len() - 1 + if self.copy_vertices { self.n_in } else { 0 }
-    }
-
-    /// Applies this level: `out` gets `n_out()` positions.
-    pub fn apply<I: Point, O: Point>(&self, input: &[I], out: &mut [O]) {
-        let rows = if self.copy_vertices {
-            copy_points(&input[..self.n_in], &mut out[..self.n_in]);
-            &mut out[self.n_in..]
-        } else {
-            out
-        };
-        rows.par_iter_mut().enumerate().with_min_len(4096).for_each(|(i, q)| {
-            let (a, b) = (self.offsets[i] as usize, self.offsets[i + 1] as usize);
-            let mut sum = Vec3A::ZERO;
-            for (&j, &w) in self.indices[a..b].iter().zip(&self.weights[a..b]) {
-                sum += input[j as usize].load() * w;
-            }
-            *q = O::store(sum);
-        });
-    }
-}
 
 /// A recorded multi-level subdivision of one topology.
 #[derive(Clone, Debug)]
@@ -127,12 +37,6 @@ pub struct StencilPlan {
     /// The renumbering of the control mesh the levels were recorded in
     /// ([`StencilPlan::build_local`]); `None`: the control mesh's own order.
     order: Option<Relabel>,
-}
-
-/// Copies points from one layout to the other (the old vertices of an
-/// interpolating level).
-pub(crate) fn copy_points<I: Point, O: Point>(input: &[I], out: &mut [O]) {
-    out.par_iter_mut().zip(input).with_min_len(1 << 14).for_each(|(o, &i)| *o = O::store(i.load()));
 }
 
 /// Reusable buffers for [`StencilPlan::apply`]: the intermediate levels,
@@ -231,7 +135,7 @@ impl StencilPlan {
 
     /// The levels recorded on `ct`, and the finest topology.
     fn record(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Vec<LevelPlan>, CornerTable)> {
-        let limit = opts.max_memory.or_else(super::default_memory_limit);
+        let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
         check_levels_fit(ct, 0, levels, limit)?;
         let mut cur = with_boundary_corners(ct, opts.boundary).into_owned();
         let mut plans = Vec::with_capacity(levels as usize);

@@ -26,16 +26,13 @@
 //! Everything is sparse: only the vertices on sharp edges (and tagged ones)
 //! and the sharp edges are classified; the rest of the level runs the
 //! scheme's ordinary rules. Schemes whose smooth stencils reach across
-//! edges ([`Rules::CUT_AT_CREASES`]: the butterfly family) evaluate them on
+//! edges ([`super::Rules::CUT_AT_CREASES`]: the butterfly family) evaluate them on
 //! the level cut open along the edges that are creases at this level
 //! ([`crate::mesh::cut`]), so a crease acts as a boundary for every stencil
 //! that reaches it.
 
-use super::rules::{Accumulate, Level, Rules, Sink};
 use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
-use crate::mesh::split::EdgeIds;
 use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
-use glam::Vec3;
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -200,7 +197,7 @@ impl Features {
     }
 
     /// The corners of the edges that are creases at this level (weight 1,
-    /// not border): where the level is cut for [`Rules::CUT_AT_CREASES`].
+    /// not border): where the level is cut for [`super::Rules::CUT_AT_CREASES`].
     pub fn cut_corners(&self, ct: &CornerTable) -> Vec<u32> {
         self.edges.iter().filter(|e| e.weight >= 1.0 && ct.o_entry(e.owner) != BORDER).map(|e| e.owner).collect()
     }
@@ -296,115 +293,6 @@ fn edge_weight(ct: &CornerTable, decay: &EdgeDecay, c: u32) -> f32 {
     s
 }
 
-/// A sink that scales every weight.
-pub struct Scaled<'s, S: Sink> {
-    /// The sink weights go to.
-    pub sink: &'s mut S,
-    /// The factor.
-    pub scale: f32,
-}
-
-impl<S: Sink> Sink for Scaled<'_, S> {
-    #[inline(always)]
-    fn add(&mut self, v: u32, w: f32) {
-        self.sink.add(v, w * self.scale);
-    }
-}
-
-/// Emits `scale` times the mask `m` of vertex `v`.
-fn emit_mask<R: Rules, S: Sink>(r: &R, lv: &Level, v: u32, m: Mask, scale: f32, s: &mut S) {
-    let mut sc = Scaled { sink: s, scale };
-    match m {
-        Mask::Smooth => r.vertex(lv, v, &mut sc),
-        Mask::Crease(a, b) => r.crease_vertex(v, a, b, &mut sc),
-        Mask::Corner => sc.add(v, 1.0),
-    }
-}
-
-/// The stencil of vertex `v`'s new position with its feature, if any
-/// (else the scheme's smooth rule).
-#[inline]
-pub fn vertex_stencil<R: Rules, S: Sink>(r: &R, lv: &Level, v: u32, s: &mut S) {
-    match lv.features.and_then(|f| f.vertex(v)) {
-        Some(f) if f.parent != Mask::Smooth => {
-            if f.parent == f.child || f.weight >= 1.0 {
-                emit_mask(r, lv, v, f.parent, 1.0, s);
-            } else {
-                emit_mask(r, lv, v, f.parent, f.weight, s);
-                emit_mask(r, lv, v, f.child, 1.0 - f.weight, s);
-            }
-        }
-        _ => r.vertex(lv, v, s),
-    }
-}
-
-/// The stencil of the new vertex on the edge owned by `c`, with its
-/// feature, if any (else the scheme's smooth rule).
-#[inline]
-pub fn edge_stencil<R: Rules, S: Sink>(r: &R, lv: &Level, c: u32, s: &mut S) {
-    match lv.features.and_then(|f| f.edge(c)) {
-        Some(w) if w >= 1.0 => r.crease_edge(lv, c, s),
-        Some(w) => {
-            r.crease_edge(lv, c, &mut Scaled { sink: s, scale: w });
-            r.edge(lv, c, &mut Scaled { sink: s, scale: 1.0 - w });
-        }
-        None => r.edge(lv, c, s),
-    }
-}
-
-/// The interpolating 4-point curve rule (Dyn, Levin, Gregory 1987) along the
-/// crease through the edge owned by `c` (of the level `ct`, cut or not):
-/// `-1/16 p0 + 9/16 p1 + 9/16 p2 - 1/16 p3`. Where the crease curve ends
-/// (a dart or a corner) the missing point is replaced by the quadratic
-/// through the other three (`3/8 p1 + 3/4 p2 - 1/8 p3`, the 4-point rule
-/// with `p0 = 3 p1 - 3 p2 + p3`), and an edge ending at both ends is
-/// split at its midpoint. Points along a crease therefore depend on the
-/// crease polygon alone.
-pub fn four_point_crease<S: Sink>(f: &Features, ct: &CornerTable, c: u32, s: &mut S) {
-    let (p1, p2) = (f.original(ct.vtx(n(c))), f.original(ct.vtx(p(c))));
-    match (f.crease_continues(ct, p1, p2), f.crease_continues(ct, p2, p1)) {
-        (Some(p0), Some(p3)) => {
-            s.add(p0, -1.0 / 16.0);
-            s.add(p1, 9.0 / 16.0);
-            s.add(p2, 9.0 / 16.0);
-            s.add(p3, -1.0 / 16.0);
-        }
-        (None, Some(p3)) => {
-            s.add(p1, 3.0 / 8.0);
-            s.add(p2, 3.0 / 4.0);
-            s.add(p3, -1.0 / 8.0);
-        }
-        (Some(p0), None) => {
-            s.add(p0, -1.0 / 8.0);
-            s.add(p1, 3.0 / 4.0);
-            s.add(p2, 3.0 / 8.0);
-        }
-        (None, None) => {
-            s.add(p1, 0.5);
-            s.add(p2, 0.5);
-        }
-    }
-}
-
-/// A sink that maps the extra vertices of a cut table back to the vertices
-/// they are copies of (for stencils recorded on a cut level).
-pub struct Unsplit<'s, S: Sink> {
-    /// The sink weights go to.
-    pub sink: &'s mut S,
-    /// The uncut table's vertex count.
-    pub nv: u32,
-    /// The cut's copies ([`crate::mesh::cut::Cut::copies`]).
-    pub copies: &'s [u32],
-}
-
-impl<S: Sink> Sink for Unsplit<'_, S> {
-    #[inline(always)]
-    fn add(&mut self, v: u32, w: f32) {
-        let v = if v < self.nv { v } else { self.copies[(v - self.nv) as usize] };
-        self.sink.add(v, w);
-    }
-}
-
 /// The table the schemes see for level 0 with `boundary`: for
 /// [`BoundaryInterpolation::EdgeAndCorner`] every boundary vertex with a
 /// single face becomes an infinitely sharp corner (OpenSubdiv's
@@ -420,96 +308,6 @@ pub fn with_boundary_corners(ct: &CornerTable, boundary: BoundaryInterpolation) 
     }
     let sharp = Sharpness::with_corners(ct.sharpness().cloned(), &corners);
     Cow::Owned(ct.clone().with_sharpness(sharp))
-}
-
-/// One level of `r` on the table `ct` with sharp features `f` (one-shot
-/// subdivision): the scheme's own evaluation with the smooth and boundary
-/// rules, then the points of the feature vertices and edges again through
-/// their stencils. For [`Rules::CUT_AT_CREASES`] the level is first cut
-/// open along its creases, in place (`ct`, `pos` and `boundary` are this
-/// level's, discarded after). `w` holds each corner's edge id. Returns
-/// (vertex ms, edge ms).
-#[allow(clippy::too_many_arguments)]
-pub fn apply<R: Rules>(
-    r: &R,
-    mut f: Features,
-    ct: Cow<'_, CornerTable>,
-    pos: Cow<'_, [Vec3]>,
-    mut boundary: Vec<bool>,
-    owners: &[u32],
-    ids: &EdgeIds,
-    vout: &mut [Vec3],
-    eout: &mut [Vec3],
-) -> (f64, f64) {
-    if R::CUT_AT_CREASES {
-        let (mut ct, mut pos) = (ct.into_owned(), pos.into_owned());
-        let corners = f.cut_corners(&ct);
-        // the cut's ends are on its border (ids taken before the cut renames
-        // their later sectors, which are new vertices, on the border too)
-        for &c in &corners {
-            boundary[ct.vtx(n(c)) as usize] = true;
-            boundary[ct.vtx(p(c)) as usize] = true;
-        }
-        let copies = ct.cut_in_place(&corners);
-        boundary.resize(ct.num_vertices(), true);
-        for &v in &copies {
-            pos.push(pos[v as usize]);
-        }
-        f.set_cut(copies);
-        let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
-        let mut vcut = vec![Vec3::ZERO; ct.num_vertices()];
-        let times = r.apply(&lv, owners, &pos, &mut vcut, eout);
-        vout.copy_from_slice(&vcut[..vout.len()]);
-        correct(r, &lv, &f, ids, &pos, vout, eout);
-        times
-    } else {
-        let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
-        let times = r.apply(&lv, owners, &pos, vout, eout);
-        correct(r, &lv, &f, ids, &pos, vout, eout);
-        times
-    }
-}
-
-/// The feature vertices' and edges' points through their stencils.
-fn correct<R: Rules>(
-    r: &R,
-    lv: &Level,
-    f: &Features,
-    ids: &EdgeIds,
-    pos: &[Vec3],
-    vout: &mut [Vec3],
-    eout: &mut [Vec3],
-) {
-    if R::MOVES_VERTICES {
-        let points: Vec<(usize, Vec3)> = f
-            .vertices()
-            .par_iter()
-            .with_min_len(256)
-            .filter(|vf| vf.parent != Mask::Smooth)
-            .map(|vf| {
-                let mut acc = Accumulate::new(pos);
-                vertex_stencil(r, lv, vf.vertex, &mut acc);
-                (vf.vertex as usize, acc.sum)
-            })
-            .collect();
-        for (v, q) in points {
-            vout[v] = q;
-        }
-    }
-    let points: Vec<(usize, Vec3)> = f
-        .edges()
-        .par_iter()
-        .with_min_len(256)
-        .map(|ef| {
-            let mut acc = Accumulate::new(pos);
-            edge_stencil(r, lv, ef.owner, &mut acc);
-            // every feature edge is listed by its owner corner (Features::of)
-            (ids.rank(ef.owner) as usize, acc.sum)
-        })
-        .collect();
-    for (e, q) in points {
-        eout[e] = q;
-    }
 }
 
 /// What `subdiv info` reports of a table's sharp features.

@@ -24,10 +24,9 @@
 //! validation; valence-2 boundary corners use the smooth boundary rule
 //! (OpenSubdiv's `EDGE_ONLY` mode).
 
-use super::rules::{Level, Rules, Sink, edge_points, ring_sums_map};
+use super::{Level, Rules, Sink, ring_sums_map};
 use crate::mesh::{n, p};
 use glam::Vec3;
-use std::time::Instant;
 
 /// Which beta the vertex rule uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -121,8 +120,7 @@ impl Rules for Loop {
     /// Direct evaluation: vertex points from the lane-interleaved ring sums
     /// (`(1 - k beta) v + beta S`, boundary `3/4 v + 1/8 S`), edge points from
     /// the emitted stencils.
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
-        let t0 = Instant::now();
+    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3]) {
         ring_sums_map(lv, pos, vpart, |v, sum| {
             if lv.boundary[v] {
                 pos[v] * 0.75 + sum * 0.125
@@ -132,9 +130,6 @@ impl Rules for Loop {
                 pos[v] * (1.0 - k as f32 * beta) + sum * beta
             }
         });
-        let t1 = Instant::now();
-        edge_points(self, lv, owners, pos, epart);
-        (super::ms(t1 - t0), super::ms(t1.elapsed()))
     }
 }
 

@@ -75,10 +75,10 @@
 //! `e_0`. So `t1 x t2` (interior) and `t_along x t_across` (boundary) point to
 //! the same side as the face normals.
 
-use super::LoopBeta;
+use super::features::Mask;
+use super::loop_::LoopBeta;
 use crate::mesh::normals::vertex_normals;
 use crate::mesh::{CornerTable, Mesh};
-use crate::subdiv::features::Mask;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 use std::f64::consts::PI;
@@ -99,7 +99,7 @@ pub fn loop_limit_positions(mesh: &Mesh) -> Vec<Vec3> {
 /// later is neither, OpenSubdiv leaves that choice to the caller too).
 pub fn loop_limit_positions_with(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
     let mut out = smooth_limit_positions(mesh, beta);
-    if let Some(f) = crate::subdiv::features::Features::of(&mesh.ct, crate::mesh::Creasing::Uniform) {
+    if let Some(f) = super::features::Features::of(&mesh.ct, crate::mesh::Creasing::Uniform) {
         let pos = &mesh.positions;
         for vf in f.vertices() {
             let v = vf.vertex as usize;

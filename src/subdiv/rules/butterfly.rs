@@ -16,11 +16,10 @@
 //! vector), which keeps the stencil linear and linear-precise, unlike VTK's
 //! substitution by the opposite wing (docs/schemes.md §4.5).
 
-use super::rules::{Accumulate, Level, Rules, Sink, four_point};
+use super::{Accumulate, Level, Rules, Sink, four_point};
 use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// Classic butterfly rules.
 pub struct Butterfly;
@@ -78,10 +77,7 @@ impl Rules for Butterfly {
     /// Direct evaluation: interior edges with four interior outer edges (all
     /// but a thin band along the boundary) through `eight_point_interior`,
     /// the rest through the emitted stencils.
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
-        let t0 = Instant::now();
-        vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
-        let t1 = Instant::now();
+    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
             let o_raw = lv.o_table()[c as usize];
             *q = match (o_raw != BORDER).then(|| eight_point_interior(lv, pos, c, o_raw)).flatten() {
@@ -93,7 +89,6 @@ impl Rules for Butterfly {
                 }
             };
         });
-        (super::ms(t1 - t0), super::ms(t1.elapsed()))
     }
 
     const MOVES_VERTICES: bool = false;
@@ -102,7 +97,7 @@ impl Rules for Butterfly {
     #[inline]
     fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         match ct.features {
-            Some(f) => super::features::four_point_crease(f, ct, c, s),
+            Some(f) => super::crease::four_point_crease(f, ct, c, s),
             None => self.edge(ct, c, s),
         }
     }

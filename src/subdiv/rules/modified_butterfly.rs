@@ -39,11 +39,10 @@
 //!   parallelogram ghosts for missing outer vertices (linear precision).
 
 use super::butterfly::{eight_point, eight_point_interior, outer};
-use super::rules::{Accumulate, Level, Rules, Sink, four_point};
+use super::{Accumulate, Level, Rules, Sink, four_point};
 use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// Modified butterfly rules with tension `w` and precomputed EV weights.
 pub struct ModifiedButterfly {
@@ -254,7 +253,7 @@ impl Rules for ModifiedButterfly {
     #[inline]
     fn crease_edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {
         match ct.features {
-            Some(f) => super::features::four_point_crease(f, ct, c, s),
+            Some(f) => super::crease::four_point_crease(f, ct, c, s),
             None => self.edge(ct, c, s),
         }
     }
@@ -264,10 +263,7 @@ impl Rules for ModifiedButterfly {
     /// load per endpoint; edges at extraordinary vertices read the rings
     /// walked once per level; everything else (boundary, tension) goes
     /// through [`Rules::edge`].
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
-        let t0 = Instant::now();
-        vpart.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &x)| *q = x);
-        let t1 = Instant::now();
+    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
         let rings = EvRings::new(lv, self.ev.len());
         let fast_regular = self.w == 0.0;
         epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
@@ -297,7 +293,6 @@ impl Rules for ModifiedButterfly {
             }
             *q = acc.sum;
         });
-        (crate::subdiv::ms(t1 - t0), crate::subdiv::ms(t1.elapsed()))
     }
 
     fn edge<S: Sink>(&self, ct: &Level, c: u32, s: &mut S) {

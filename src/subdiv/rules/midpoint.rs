@@ -8,7 +8,7 @@
 //! a cheap level-of-detail baseline (docs/schemes.md §2). Note that OpenMesh's
 //! `MidpointT` is a different operation (vertex truncation).
 
-use super::rules::{Level, Rules, Sink};
+use super::{Level, Rules, Sink};
 use crate::mesh::{n, p};
 
 /// Midpoint rules.

@@ -15,12 +15,11 @@
 //! `[1, 14, 1]/16`, border edge `[-1, 17, 17, -1]/32`, independent of the
 //! interior.
 
-use super::features;
-use super::rules::{Accumulate, Level, Rules, Sink, ring_sums_map};
+use super::crease;
+use super::{Accumulate, Level, Rules, Sink, ring_sums_map};
 use crate::mesh::{n, p};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// Jarek rules.
 pub struct Jarek;
@@ -37,7 +36,7 @@ impl Jarek {
             && f.vertex(v).is_some()
         {
             s.add(v, -scale);
-            features::vertex_stencil(&Jarek, ct, v, &mut features::Scaled { sink: s, scale });
+            crease::vertex_stencil(&Jarek, ct, v, &mut crease::Scaled { sink: s, scale });
             return;
         }
         Self::smooth_displacement(ct, v, scale, s);
@@ -90,23 +89,26 @@ impl Rules for Jarek {
     /// Direct evaluation: every `d_v` once per level (from the ring sums),
     /// then `v' = v + d_v` and `e = (a + b)/2 - (d_a + d_b)/2`, instead of
     /// walking both endpoint rings again for every edge.
-    fn apply(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) -> (f64, f64) {
-        let t0 = Instant::now();
-        // vpart holds d_v for now
+    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3]) {
+        // vpart holds d_v until edge_points has used it
         ring_sums_map(lv, pos, vpart, |v, sum| {
             let k = if lv.boundary[v] { 2.0 } else { lv.valences()[v] as f32 };
             (sum / k - pos[v]) * 0.125
         });
-        let t1 = Instant::now();
         if let Some(f) = lv.features {
             // a vertex on a sharp feature moves by its feature's rule
             for vf in f.vertices() {
                 let v = vf.vertex as usize;
                 let mut acc = Accumulate::new(pos);
-                features::vertex_stencil(self, lv, vf.vertex, &mut acc);
+                crease::vertex_stencil(self, lv, vf.vertex, &mut acc);
                 vpart[v] = acc.sum - pos[v];
             }
         }
+    }
+
+    /// The edge points from the displacements `d_v` that
+    /// [`Rules::vertex_points`] left in `vpart`, then `v' = v + d_v`.
+    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
         let d: &[Vec3] = vpart;
         // chunks with a plain inner loop: the loop body is this function's
         // own code, so its inlining does not depend on where rustc places
@@ -118,12 +120,10 @@ impl Rules for Jarek {
                 *q = (pos[a] + pos[b]) * 0.5 - (d[a] + d[b]) * 0.5;
             }
         });
-        let t2 = Instant::now();
         vpart.par_chunks_mut(8192).zip(pos.par_chunks(8192)).for_each(|(qs, xs)| {
             for (q, &x) in qs.iter_mut().zip(xs) {
                 *q += x;
             }
         });
-        (super::ms(t1 - t0) + super::ms(t2.elapsed()), super::ms(t2 - t1))
     }
 }

@@ -9,7 +9,7 @@
 //! * **Texture coordinates** are refined linearly inside each triangle,
 //!   whatever the scheme ([`refine_corner_uvs`]).
 
-use super::stencil::{PlanScratch, StencilPlan};
+use super::plan::{PlanScratch, StencilPlan};
 use crate::mesh::CornerTable;
 pub use crate::mesh::attributes::{Attributes, refine_corner_uvs, split_corner_uvs};
 use crate::{Options, Result, Scheme};

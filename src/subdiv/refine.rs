@@ -1,0 +1,240 @@
+//! Refinement, level after level (OpenSubdiv's `vtr` layer): the split of
+//! the table ([`crate::mesh::split`], which knows no scheme), then the
+//! scheme's rules ([`super::rules`]) for the new points: the smooth and
+//! boundary rules over the whole level, and the points of sharp features
+//! again through their stencils. The time of each phase is added to the
+//! caller's [`Stats`]; what a level would cost is predicted before it is
+//! allocated.
+
+use super::rules::crease::{edge_stencil, vertex_stencil};
+use super::rules::features::{Features, Mask};
+use super::rules::{Accumulate, Level, Rules, boundary_flags};
+use super::{RulesFn, Stats, ms};
+use crate::mesh::split::{self, EdgeIds};
+use crate::mesh::{CornerTable, Creasing, Mesh, n, p};
+use crate::{Error, Result};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::borrow::Cow;
+use std::time::Instant;
+
+/// Predicted peak bytes of refining a mesh with `nt` triangles, `nv`
+/// vertices and `ne` edges once (new tables, positions and scratch, plus the
+/// old level still alive).
+pub fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
+    let new_corners = 12 * nt;
+    let new_verts = nv + ne;
+    let new = new_corners * 8 + new_verts * (8 + 12);
+    let scratch = 3 * nt * 4 + ne * 4;
+    let old = 3 * nt * 8 + nv * 20;
+    new + scratch + old
+}
+
+/// Bytes this process can still be given: 80% of the machine's
+/// `MemAvailable`, and no more than half the process's address-space limit
+/// (`ulimit -v`) where one is set; `None` when neither is known.
+pub fn default_memory_limit() -> Option<u64> {
+    let available = || -> Option<u64> {
+        let s = std::fs::read_to_string("/proc/meminfo").ok()?;
+        let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
+        let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        Some(kb * 1024 / 5 * 4)
+    };
+    match (available(), address_space_limit().map(|l| l / 2)) {
+        (Some(a), Some(l)) => Some(a.min(l)),
+        (a, l) => a.or(l),
+    }
+}
+
+/// The process's address-space limit (`RLIMIT_AS`), when one is set.
+fn address_space_limit() -> Option<u64> {
+    #[cfg(unix)]
+    {
+        let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+        // SAFETY: getrlimit writes the limit into the struct we own and
+        // reads nothing else of ours.
+        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
+        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
+    }
+    #[cfg(not(unix))]
+    None
+}
+
+/// Checks that refining `ct` once more (to level `level`) fits in `limit`
+/// bytes and in 32-bit corner ids.
+///
+/// # Errors
+/// [`Error::TooLarge`] with the predicted size.
+pub fn check_level_fits(ct: &CornerTable, level: u32, limit: Option<u64>) -> Result<()> {
+    check_levels_fit(ct, level.saturating_sub(1), 1, limit)
+}
+
+/// Checks, before any work, that refining `ct` (already at level `done`)
+/// `more` more times fits in `limit` bytes and in 32-bit ids at every level.
+/// Counts are predicted exactly: `F' = 4F`, `E' = 2E + 3F`, `V' = V + E`.
+///
+/// # Errors
+/// [`Error::TooLarge`] naming the first level that does not fit.
+pub fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
+    let mut nt = ct.num_triangles() as u64;
+    let mut nv = ct.num_vertices() as u64;
+    let mut ne = (3 * nt + ct.num_border_edges() as u64) / 2;
+    let limit_bytes = limit.unwrap_or(u64::MAX);
+    for level in done + 1..=done + more {
+        let bytes = predict_level_bytes(nt, nv, ne);
+        let faces = 4 * nt;
+        if 12 * nt >= u64::from(u32::MAX) || nv + ne >= u64::from(u32::MAX) || bytes > limit_bytes {
+            let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
+            return Err(Error::TooLarge { level, faces, bytes, limit });
+        }
+        (nt, nv, ne) = (4 * nt, nv + ne, 2 * ne + 3 * nt);
+    }
+    Ok(())
+}
+
+/// Predicted triangle count after `levels` more levels.
+pub fn predict_faces(ct: &CornerTable, levels: u32) -> u64 {
+    (ct.num_triangles() as u64).saturating_mul(4u64.saturating_pow(levels))
+}
+
+/// One level: split plus the scheme's points. `boundary` holds the input
+/// level's vertex boundary flags when the previous level produced them;
+/// the new level's are made only when another level follows (`last` false).
+pub(crate) struct OneLevel<'a> {
+    pub(crate) ct: Cow<'a, CornerTable>,
+    pub(crate) positions: Cow<'a, [Vec3]>,
+    pub(crate) boundary: Option<Vec<bool>>,
+    pub(crate) last: bool,
+    pub(crate) creasing: Creasing,
+    pub(crate) stats: &'a mut Stats,
+}
+
+impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
+    fn call<R: Rules>(self, r: &R) -> (Mesh, Option<Vec<bool>>) {
+        let old: &CornerTable = &self.ct;
+        let boundary = self.boundary.unwrap_or_else(|| boundary_flags(old));
+        let t0 = Instant::now();
+        let ((ct, edges, next_boundary), (number_ms, _)) =
+            split::split_with_boundary(old, (!self.last).then_some(&boundary[..]), self.creasing);
+        self.stats.split_ms += ms(t0.elapsed());
+        self.stats.numbering_ms += number_ms;
+        let features = Features::of(old, self.creasing);
+        let split::EdgeNumbering { owners, ids } = edges;
+        let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
+        let (vpart, epart) = positions.split_at_mut(old.num_vertices());
+        match features {
+            None => {
+                let lv = Level::with_boundary(old, boundary);
+                points(r, &lv, &owners, &self.positions, vpart, epart, self.stats);
+            }
+            Some(f) => {
+                let level = (self.ct, self.positions, boundary);
+                with_features(r, f, level, (&owners, &ids), (vpart, epart), self.stats);
+            }
+        }
+        (Mesh { ct, positions }, next_boundary)
+    }
+}
+
+/// The smooth and boundary points of a level through `r`, timed into `stats`.
+fn points<R: Rules>(
+    r: &R,
+    lv: &Level,
+    owners: &[u32],
+    pos: &[Vec3],
+    vpart: &mut [Vec3],
+    epart: &mut [Vec3],
+    stats: &mut Stats,
+) {
+    let t0 = Instant::now();
+    r.vertex_points(lv, pos, vpart);
+    let t1 = Instant::now();
+    r.edge_points(lv, owners, pos, vpart, epart);
+    stats.vertex_ms += ms(t1 - t0);
+    stats.edge_ms += ms(t1.elapsed());
+}
+
+/// One level of `r` on the table `ct` with sharp features `f` (one-shot
+/// subdivision): the scheme's own evaluation with the smooth and boundary
+/// rules, then the points of the feature vertices and edges again through
+/// their stencils. For [`Rules::CUT_AT_CREASES`] the level is first cut
+/// open along its creases, in place (`ct`, `pos` and `boundary` are this
+/// level's, discarded after). `ids` gives each corner's edge id; the
+/// phases are timed into `stats`.
+fn with_features<R: Rules>(
+    r: &R,
+    mut f: Features,
+    level: (Cow<'_, CornerTable>, Cow<'_, [Vec3]>, Vec<bool>),
+    edges: (&[u32], &EdgeIds),
+    out: (&mut [Vec3], &mut [Vec3]),
+    stats: &mut Stats,
+) {
+    let ((ct, pos, mut boundary), (owners, ids), (vout, eout)) = (level, edges, out);
+    if R::CUT_AT_CREASES {
+        let (mut ct, mut pos) = (ct.into_owned(), pos.into_owned());
+        let corners = f.cut_corners(&ct);
+        // the cut's ends are on its border (ids taken before the cut renames
+        // their later sectors, which are new vertices, on the border too)
+        for &c in &corners {
+            boundary[ct.vtx(n(c)) as usize] = true;
+            boundary[ct.vtx(p(c)) as usize] = true;
+        }
+        let copies = ct.cut_in_place(&corners);
+        boundary.resize(ct.num_vertices(), true);
+        for &v in &copies {
+            pos.push(pos[v as usize]);
+        }
+        f.set_cut(copies);
+        let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
+        let mut vcut = vec![Vec3::ZERO; ct.num_vertices()];
+        points(r, &lv, owners, &pos, &mut vcut, eout, stats);
+        vout.copy_from_slice(&vcut[..vout.len()]);
+        correct(r, &lv, &f, ids, &pos, vout, eout);
+    } else {
+        let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
+        points(r, &lv, owners, &pos, vout, eout, stats);
+        correct(r, &lv, &f, ids, &pos, vout, eout);
+    }
+}
+
+/// The feature vertices' and edges' points through their stencils.
+fn correct<R: Rules>(
+    r: &R,
+    lv: &Level,
+    f: &Features,
+    ids: &EdgeIds,
+    pos: &[Vec3],
+    vout: &mut [Vec3],
+    eout: &mut [Vec3],
+) {
+    if R::MOVES_VERTICES {
+        let points: Vec<(usize, Vec3)> = f
+            .vertices()
+            .par_iter()
+            .with_min_len(256)
+            .filter(|vf| vf.parent != Mask::Smooth)
+            .map(|vf| {
+                let mut acc = Accumulate::new(pos);
+                vertex_stencil(r, lv, vf.vertex, &mut acc);
+                (vf.vertex as usize, acc.sum)
+            })
+            .collect();
+        for (v, q) in points {
+            vout[v] = q;
+        }
+    }
+    let points: Vec<(usize, Vec3)> = f
+        .edges()
+        .par_iter()
+        .with_min_len(256)
+        .map(|ef| {
+            let mut acc = Accumulate::new(pos);
+            edge_stencil(r, lv, ef.owner, &mut acc);
+            // every feature edge is listed by its owner corner (Features::of)
+            (ids.rank(ef.owner) as usize, acc.sum)
+        })
+        .collect();
+    for (e, q) in points {
+        eout[e] = q;
+    }
+}

@@ -1,0 +1,13 @@
+//! Tables of subdivision (OpenSubdiv's `far` layer): the stencils of every
+//! new vertex recorded once for a topology ([`StencilPlan`], CSR rows per
+//! level in [`rows`], packed by distinct weights in [`packed`]) and
+//! re-applied to new control values: positions each animation frame,
+//! colours and texture coordinates ([`attributes`]).
+
+pub mod attributes;
+pub mod packed;
+pub mod plan;
+pub mod rows;
+
+pub use plan::{PlanScratch, StencilPlan};
+pub use rows::{LevelPlan, Point};
