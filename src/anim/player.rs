@@ -157,6 +157,12 @@ impl Animation {
         (&self.positions, &self.normals)
     }
 
+    /// Positions and unit normals of the last [`Animation::evaluate`]
+    /// (empty before the first).
+    pub fn evaluated(&self) -> (&[Vec3], &[Vec3]) {
+        (&self.positions, &self.normals)
+    }
+
     /// Milliseconds [`Animation::new`] took to record the plan.
     pub fn plan_ms(&self) -> f64 {
         self.plan_time.as_secs_f64() * 1e3

@@ -16,7 +16,7 @@ use std::path::PathBuf;
 
 /// One change to the viewer.
 #[must_use = "a command does nothing until `Viewer::apply` carries it out"]
-pub enum Command {
+pub(crate) enum Command {
     /// Back to the built-in tetrahedron.
     OpenBuiltin,
     /// Open a model or curve file (repaired when repair-on-open is set).
@@ -128,12 +128,34 @@ pub enum Command {
     SetShot(crate::render::Shot),
     /// A worker finished.
     Finished(Box<Finished>),
+    /// What the GPU mirror found uploading the last frame.
+    Gpu(Box<GpuReport>),
+}
+
+/// What the GPU mirror's sync found that the document should know: the
+/// mirror never writes the document; the window applies this as a command.
+#[derive(Debug, Default)]
+pub(crate) struct GpuReport {
+    /// Whether a mesh was uploaded.
+    pub(crate) uploaded: bool,
+    /// Whether the adapter has compute passes.
+    pub(crate) compute: bool,
+    /// The plan whose compute passes are built, if any.
+    pub(crate) gpu_ready: Option<u64>,
+    /// Whether a new animation frame was shown.
+    pub(crate) frame: bool,
+    /// Whether that frame was evaluated on the GPU.
+    pub(crate) on_gpu: bool,
+    /// The GPU cannot evaluate the current plan (why): the CPU will.
+    pub(crate) gpu_unavailable: Option<String>,
+    /// Upload or evaluation errors.
+    pub(crate) errors: Vec<crate::Error>,
 }
 
 impl Viewer {
     /// Carries out one command. A new control mesh that is not an edit (a
     /// new model, or reverting the edits) is framed.
-    pub fn apply(&mut self, command: Command) {
+    pub(crate) fn apply(&mut self, command: Command) {
         let control = self.doc.model.control.version();
         let (doc, view) = (&mut self.doc, &mut self.view);
         match command {
@@ -190,6 +212,7 @@ impl Viewer {
             }
             Command::SetLooping(on) => self.with_clock(|c| c.looping = on),
             Command::SetGpuEval(on) => doc.anim.gpu_eval = on,
+            Command::Gpu(report) => doc.take_gpu_report(*report),
             Command::SetFps(fps) => self.with_clock(|c| c.fps = fps),
             Command::SetFrame(f) => self.with_clock(|c| c.set_frame(f)),
             Command::Export(target, style) => doc.export(target, style),

@@ -9,7 +9,7 @@ use crate::render::{Look, Surface, WireEdges};
 
 /// Which normals shade the result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum NormalMode {
+pub(crate) enum NormalMode {
     /// Area-weighted average of the face normals around each vertex.
     #[default]
     FanAverage,
@@ -21,9 +21,9 @@ pub enum NormalMode {
 
 impl NormalMode {
     /// All modes, in menu order.
-    pub const ALL: [NormalMode; 3] = [NormalMode::FanAverage, NormalMode::LoopLimit, NormalMode::Butterfly];
+    pub(crate) const ALL: [NormalMode; 3] = [NormalMode::FanAverage, NormalMode::LoopLimit, NormalMode::Butterfly];
     /// Menu label.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             NormalMode::FanAverage => "fan-averaged",
             NormalMode::LoopLimit => "Loop limit",
@@ -97,42 +97,42 @@ impl std::str::FromStr for Coloring {
 
 /// Everything the panel's display and surface controls (and their keys) set.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Display {
+pub(crate) struct Display {
     /// Face fill.
-    pub surface: Surface,
+    pub(crate) surface: Surface,
     /// Wireframe on.
-    pub wireframe: bool,
+    pub(crate) wireframe: bool,
     /// Control mesh overlay.
-    pub control: bool,
+    pub(crate) control: bool,
     /// Vertex normals as segments.
-    pub normals: bool,
+    pub(crate) normals: bool,
     /// Control mesh and result in two viewports.
-    pub side_by_side: bool,
+    pub(crate) side_by_side: bool,
     /// The camera turns around the model.
-    pub turntable: bool,
+    pub(crate) turntable: bool,
     /// Multisampling on.
-    pub msaa: bool,
+    pub(crate) msaa: bool,
     /// The FXAA pass over a single-sampled frame (edges smoothed cheaply).
-    pub fxaa: bool,
+    pub(crate) fxaa: bool,
     /// Clicks in the 3D area pick control-mesh edges.
-    pub pick: bool,
+    pub(crate) pick: bool,
     /// Shading normals of the result.
-    pub normal_mode: NormalMode,
+    pub(crate) normal_mode: NormalMode,
     /// Show the Loop limit positions instead of the level's points.
-    pub snap_limit: bool,
+    pub(crate) snap_limit: bool,
     /// Per-vertex colouring of the result.
-    pub coloring: Coloring,
+    pub(crate) coloring: Coloring,
     /// Sharp edges (creases) drawn in their own colour.
-    pub sharp_edges: bool,
+    pub(crate) sharp_edges: bool,
     /// With `pick`, a click also toggles the picked edge's crease.
-    pub click_creases: bool,
+    pub(crate) click_creases: bool,
     /// Which edges the wireframe draws (all, control only, up to a level).
-    pub wire_edges: WireEdges,
+    pub(crate) wire_edges: WireEdges,
 }
 
 impl Display {
     /// Defaults, with the wireframe on or off.
-    pub fn new(wireframe: bool) -> Display {
+    pub(crate) fn new(wireframe: bool) -> Display {
         Display {
             surface: Surface::Smooth,
             wireframe,
@@ -153,7 +153,7 @@ impl Display {
     }
 
     /// The look of the result viewport, without colours (what an export draws).
-    pub fn plain_look(&self) -> Look {
+    pub(crate) fn plain_look(&self) -> Look {
         Look {
             surface: self.surface,
             wireframe: self.wireframe,
@@ -167,7 +167,7 @@ impl Display {
     }
 
     /// The look of the result viewport in the window, with the colouring.
-    pub fn look(&self) -> Look {
+    pub(crate) fn look(&self) -> Look {
         Look {
             colors: self.coloring != Coloring::None,
             uv_checker: self.coloring == Coloring::Checker,
@@ -177,12 +177,12 @@ impl Display {
 
     /// Whether going from `self` to `next` changes the shown result (its
     /// points, normals or colours), not only how it is drawn.
-    pub fn reshades_result(&self, next: &Display) -> bool {
+    pub(crate) fn reshades_result(&self, next: &Display) -> bool {
         (self.normal_mode, self.snap_limit, self.coloring) != (next.normal_mode, next.snap_limit, next.coloring)
     }
 
     /// The next face fill of the S key; hiding the faces turns the wireframe on.
-    pub fn cycle_surface(&mut self) {
+    pub(crate) fn cycle_surface(&mut self) {
         self.surface = match self.surface {
             Surface::Smooth => Surface::Flat,
             Surface::Flat => Surface::Studio,

@@ -20,29 +20,29 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 /// Highest level offered in the panel (further limited by memory).
-pub const MAX_LEVEL: u32 = 10;
+pub(crate) const MAX_LEVEL: u32 = 10;
 
 /// Name of the model built into the binary.
-pub const BUILTIN_NAME: &str = "tetrahedron (built in)";
+pub(crate) const BUILTIN_NAME: &str = "tetrahedron (built in)";
 /// Where the built-in model's paths come from.
-pub const BUILTIN_PATHS: &str = "bundled:tetrahedron.paths";
+pub(crate) const BUILTIN_PATHS: &str = "bundled:tetrahedron.paths";
 
 /// The subdivision asked for (the shown one may still be on its way).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Request {
+pub(crate) struct Request {
     /// Scheme.
-    pub scheme: Scheme,
+    pub(crate) scheme: Scheme,
     /// Level.
-    pub level: u32,
+    pub(crate) level: u32,
     /// Scheme options (Loop beta, tension).
-    pub opts: Options,
+    pub(crate) opts: Options,
     /// Memory limit for levels.
-    pub limit: Option<u64>,
+    pub(crate) limit: Option<u64>,
 }
 
 /// An error shown in the panel, by what the viewer was doing.
 #[derive(Debug, thiserror::Error)]
-pub enum Problem {
+pub(crate) enum Problem {
     /// Opening a file failed.
     #[error("could not open: {0}")]
     Open(Error),
@@ -65,7 +65,7 @@ pub enum Problem {
 
 impl Problem {
     /// The error behind it (a refused flip is a usage error).
-    pub fn into_error(self) -> Error {
+    pub(crate) fn into_error(self) -> Error {
         match self {
             Problem::Open(e) | Problem::Animation(e) | Problem::Export(e) | Problem::Displacement(e) => e,
             Problem::Other(e) => e,
@@ -76,31 +76,31 @@ impl Problem {
 
 /// What the panel reports besides the model.
 #[derive(Debug, Default)]
-pub struct Status {
+pub(crate) struct Status {
     /// Last error, shown until dismissed.
-    pub error: Option<Problem>,
+    pub(crate) error: Option<Problem>,
     /// Last notice (export finished...).
-    pub notice: Option<String>,
+    pub(crate) notice: Option<String>,
     /// The file whose opening failed last (offered for "Repair and open").
-    pub failed: Option<PathBuf>,
+    pub(crate) failed: Option<PathBuf>,
 }
 
 /// Everything the panel and the renderer read.
-pub struct Doc {
+pub(crate) struct Doc {
     /// The control mesh, its subdivision and what is shown of them.
-    pub model: Model,
+    pub(crate) model: Model,
     /// Display options.
-    pub display: Display,
+    pub(crate) display: Display,
     /// The animation mode.
-    pub anim: Animation,
+    pub(crate) anim: Animation,
     /// Worker threads.
-    pub jobs: Jobs,
+    pub(crate) jobs: Jobs,
     /// The subdivision asked for.
-    pub request: Request,
+    pub(crate) request: Request,
     /// Errors and notices.
-    pub status: Status,
+    pub(crate) status: Status,
     /// Repair meshes when opening them (split non-manifold elements, orient, drop degenerate faces).
-    pub repair_on_open: bool,
+    pub(crate) repair_on_open: bool,
 }
 
 fn builtin_tetrahedron() -> (Mesh, Paths) {
@@ -117,7 +117,7 @@ impl Default for Doc {
 
 impl Doc {
     /// A document on the built-in tetrahedron.
-    pub fn new() -> Doc {
+    pub(crate) fn new() -> Doc {
         let (mesh, paths) = builtin_tetrahedron();
         Doc {
             model: Model::new(BUILTIN_NAME.into(), mesh),
@@ -136,38 +136,57 @@ impl Doc {
     }
 
     /// Whether any task is running.
-    pub fn busy(&self) -> bool {
+    pub(crate) fn busy(&self) -> bool {
         self.jobs.busy()
     }
 
     /// Shows an error in the panel.
-    pub fn fail(&mut self, problem: Problem) {
+    pub(crate) fn fail(&mut self, problem: Problem) {
         self.status.error = Some(problem);
     }
 
+    /// What the GPU mirror found: whether the adapter computes, for which
+    /// plan its compute passes are built, whether the frame was evaluated
+    /// there, and its errors (a plan it cannot take turns GPU evaluation
+    /// off, with a notice).
+    pub(crate) fn take_gpu_report(&mut self, r: super::command::GpuReport) {
+        self.anim.gpu_compute = Some(r.compute);
+        self.anim.gpu_ready = r.gpu_ready;
+        if r.frame {
+            self.anim.on_gpu = r.on_gpu;
+        }
+        if let Some(why) = r.gpu_unavailable {
+            self.status.notice = Some(format!("GPU evaluation unavailable ({why}); evaluating on the CPU"));
+            self.anim.gpu_eval = false;
+        }
+        if let Some(e) = r.errors.into_iter().last() {
+            self.fail(Problem::Other(e));
+        }
+    }
+
     /// Triangles of level `level` of the current control mesh.
-    pub fn predicted_faces(&self, level: u32) -> u64 {
+    pub(crate) fn predicted_faces(&self, level: u32) -> u64 {
         predict_faces(&self.model.control.mesh.ct, level)
     }
 
     /// Why `level` cannot be shown ([`Error::TooLarge`]), if it cannot.
-    pub fn level_refusal(&self, level: u32) -> Option<Error> {
+    pub(crate) fn level_refusal(&self, level: u32) -> Option<Error> {
         check_levels_fit(&self.model.control.mesh.ct, 0, level, self.request.limit).err()
     }
 
     /// Highest level that fits in memory (at most [`MAX_LEVEL`]).
-    pub fn max_level(&self) -> u32 {
+    pub(crate) fn max_level(&self) -> u32 {
         (0..=MAX_LEVEL).take_while(|&l| self.level_refusal(l).is_none()).last().unwrap_or(0)
     }
 
     /// Opens a model file on a worker thread (repairing it when
     /// [`Doc::repair_on_open`] is set).
-    pub fn open(&mut self, path: PathBuf) {
+    pub(crate) fn open(&mut self, path: PathBuf) {
         self.jobs.load(path, self.repair_on_open);
     }
 
     /// Opens a file with repair, forgetting the failure that offered it.
-    pub fn repair_and_open(&mut self, path: PathBuf) {
+    pub(crate) fn repair_and_open(&mut self, path: PathBuf) {
         self.status.error = None;
         self.status.failed = None;
         self.jobs.load(path, true);
@@ -175,7 +194,7 @@ impl Doc {
 
     /// Makes `mesh` (read from `path`) the control mesh, at level 0 until
     /// the level asked for arrives.
-    pub fn adopt(&mut self, path: PathBuf, mesh: Mesh, paths: Option<Paths>) {
+    pub(crate) fn adopt(&mut self, path: PathBuf, mesh: Mesh, paths: Option<Paths>) {
         let mesh = Arc::new(mesh);
         let m = &mut self.model;
         m.name =
@@ -205,7 +224,7 @@ impl Doc {
     }
 
     /// Goes back to the built-in tetrahedron.
-    pub fn open_builtin(&mut self) {
+    pub(crate) fn open_builtin(&mut self) {
         let (mesh, paths) = builtin_tetrahedron();
         self.model.attrs.file = Default::default();
         self.jobs.cancel_load();
@@ -216,7 +235,7 @@ impl Doc {
     }
 
     /// Requests the subdivision of [`Doc::request`] (superseding any running one).
-    pub fn request_subdivision(&mut self) {
+    pub(crate) fn request_subdivision(&mut self) {
         if self.anim.active {
             self.request_animation();
         }
@@ -232,7 +251,7 @@ impl Doc {
     }
 
     /// What an animation of the current model and request is made of.
-    pub fn animation_job(&self) -> AnimationJob {
+    pub(crate) fn animation_job(&self) -> AnimationJob {
         AnimationJob {
             mesh: self.model.control.mesh.clone(),
             paths: self.anim.paths.clone(),
@@ -245,7 +264,7 @@ impl Doc {
     }
 
     /// Starts the animation mode (building the plan on a worker thread).
-    pub fn request_animation(&mut self) {
+    pub(crate) fn request_animation(&mut self) {
         self.anim.active = true;
         if let Some(e) = self.level_refusal(self.request.level) {
             self.jobs.cancel_animation();
@@ -256,19 +275,19 @@ impl Doc {
     }
 
     /// Leaves the animation mode (the static result is shown again).
-    pub fn stop_animation(&mut self) {
+    pub(crate) fn stop_animation(&mut self) {
         self.anim.stop();
         self.jobs.cancel_animation();
     }
 
     /// Exports the animation on a worker thread with its own GPU device.
-    pub fn export(&mut self, target: ExportTarget, style: ExportStyle) {
+    pub(crate) fn export(&mut self, target: ExportTarget, style: ExportStyle) {
         self.jobs.export(self.animation_job(), target, style);
     }
 
     /// Rebuilds the shown result from the subdivision output and the display
     /// options (limit snapping, normals, colours).
-    pub fn reshade(&mut self) {
+    pub(crate) fn reshade(&mut self) {
         if let Some(e) = self.model.reshade(&self.display) {
             self.fail(Problem::Displacement(e));
         }
@@ -280,7 +299,7 @@ impl Doc {
     /// Replaces the control mesh by an edited version (smoothing, edge
     /// operations), keeping the original for [`Doc::revert`], and
     /// re-subdivides.
-    pub fn replace_control(&mut self, mesh: Mesh) {
+    pub(crate) fn replace_control(&mut self, mesh: Mesh) {
         let m = &mut self.model;
         if m.original.is_none() {
             m.original = Some(m.control.mesh.clone());
@@ -311,7 +330,7 @@ impl Doc {
     }
 
     /// Taubin lambda/mu smoothing of the control mesh.
-    pub fn smooth(&mut self, steps: u32) {
+    pub(crate) fn smooth(&mut self, steps: u32) {
         use crate::mesh::smooth::{TAUBIN_LAMBDA, TAUBIN_MU, taubin};
         let control = &self.model.control.mesh;
         let positions = taubin(control, steps, TAUBIN_LAMBDA, TAUBIN_MU);
@@ -320,7 +339,7 @@ impl Doc {
     }
 
     /// Back to the control mesh as loaded.
-    pub fn revert(&mut self) {
+    pub(crate) fn revert(&mut self) {
         if let Some(m) = self.model.original.take() {
             self.replace_control(Arc::unwrap_or_clone(m));
             self.model.original = None;
@@ -329,7 +348,7 @@ impl Doc {
 
     /// The control mesh with the sharpness `tags` give it (tags whose edge
     /// or vertex is gone are dropped), re-subdivided; the pick stays.
-    pub fn set_control_tags(&mut self, tags: &crate::mesh::Tags) {
+    pub(crate) fn set_control_tags(&mut self, tags: &crate::mesh::Tags) {
         let control = &self.model.control.mesh;
         let mut tags = tags.clone();
         tags.creases.retain(|t| control.ct.corner_opposite(t.v0, t.v1).is_some());
@@ -344,7 +363,7 @@ impl Doc {
     }
 
     /// The control mesh's tags with the edge opposite `c` at `sharpness`.
-    pub fn set_sharpness(&mut self, c: u32, sharpness: f32) {
+    pub(crate) fn set_sharpness(&mut self, c: u32, sharpness: f32) {
         let ct = &self.model.control.mesh.ct;
         if c as usize >= ct.num_corners() || ct.o(c).is_none() {
             return;
@@ -358,7 +377,7 @@ impl Doc {
     }
 
     /// Makes the edge opposite `c` infinitely sharp, or smooth if it was sharp.
-    pub fn toggle_crease(&mut self, c: u32) {
+    pub(crate) fn toggle_crease(&mut self, c: u32) {
         let ct = &self.model.control.mesh.ct;
         let sharp = ct.o(c).is_some() && ct.edge_sharpness(c) > 0.0;
         self.set_sharpness(c, if sharp { 0.0 } else { INFINITE });
@@ -366,7 +385,7 @@ impl Doc {
 
     /// The tags of the control mesh as loaded (before any edit) plus every
     /// edge sharper than `degrees` made infinitely sharp.
-    pub fn auto_crease(&mut self, degrees: f32) {
+    pub(crate) fn auto_crease(&mut self, degrees: f32) {
         let m = &self.model;
         let loaded = m.original.as_deref().unwrap_or(&m.control.mesh);
         let file_tags = loaded.ct.sharpness().map(|s| s.to_tags(&loaded.ct)).unwrap_or_default();
@@ -380,7 +399,7 @@ impl Doc {
     }
 
     /// Writes the control mesh (its tags kept: OBJ `t crease`, .ct sections).
-    pub fn save_control(&mut self, path: &std::path::Path) {
+    pub(crate) fn save_control(&mut self, path: &std::path::Path) {
         match crate::io::save(path, &self.model.control.mesh) {
             Ok(()) => self.status.notice = Some(format!("saved {}", path.display())),
             Err(e) => self.fail(Problem::Other(e)),
@@ -388,7 +407,7 @@ impl Doc {
     }
 
     /// Flips the picked edge of the control mesh.
-    pub fn flip_picked(&mut self) {
+    pub(crate) fn flip_picked(&mut self) {
         let Some(c) = *self.model.picked else { return };
         let mut m = (*self.model.control.mesh).clone();
         match crate::mesh::edit::flip_edge(&mut m.ct, c) {
@@ -398,7 +417,7 @@ impl Doc {
     }
 
     /// Splits the picked edge of the control mesh at its midpoint.
-    pub fn split_picked(&mut self) {
+    pub(crate) fn split_picked(&mut self) {
         let Some(c) = *self.model.picked else { return };
         if c as usize >= self.model.control.mesh.ct.num_corners() {
             return;
@@ -412,7 +431,7 @@ impl Doc {
 /// Adopting what the workers send back.
 impl Doc {
     /// Takes a finished task's result into the document.
-    pub fn adopt_finished(&mut self, finished: Finished) {
+    pub(crate) fn adopt_finished(&mut self, finished: Finished) {
         match finished {
             Finished::Loaded { path, result } => self.adopt_loaded(path, result),
             Finished::Curve(result) => self.adopt_curve(result),

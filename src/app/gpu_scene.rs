@@ -2,14 +2,17 @@
 //! versions of the document's artefacts with those uploaded last.
 //!
 //! Per frame, [`GpuScene::sync`] re-uploads only an artefact whose version
-//! changed (control mesh, picked edge, result and proxy, curve), advances the
-//! animation (per frame only the stencil plan and the normals are evaluated
-//! and copied into the existing vertex buffers), and keeps the normal
-//! segments built or dropped as the display asks. [`GpuScene::version`]
+//! changed (control mesh, picked edge, result and proxy, curve), uploads the
+//! document's current animation frame (evaluated by the document on the CPU
+//! and copied into the existing vertex buffers, or evaluated here by the
+//! compute passes), and keeps the normal segments built or dropped as the
+//! display asks. It only reads the document: what the document should know
+//! (errors, whether the GPU evaluates) comes back as a [`GpuReport`]. [`GpuScene::version`]
 //! changes whenever anything drawn changed, so the window can cache the 3D
 //! image.
 
-use super::doc::{Doc, Problem};
+use super::command::GpuReport;
+use super::doc::Doc;
 use super::model::{Curve, Shown};
 use crate::Result;
 use crate::io::bezier::{curve_polyline, de_casteljau_construction};
@@ -32,23 +35,23 @@ struct Seen {
 
 /// The meshes as drawn.
 #[derive(Default)]
-pub struct GpuScene {
+pub(crate) struct GpuScene {
     /// The control mesh (positions animated while the animation plays).
-    pub control: Option<GpuMesh>,
+    pub(crate) control: Option<GpuMesh>,
     /// The shown result.
-    pub result: Option<GpuMesh>,
+    pub(crate) result: Option<GpuMesh>,
     /// The result's proxy.
-    pub proxy: Option<GpuMesh>,
+    pub(crate) proxy: Option<GpuMesh>,
     /// The animated result.
-    pub anim: Option<GpuMesh>,
+    pub(crate) anim: Option<GpuMesh>,
     /// The compute passes writing `anim` (GPU evaluation), with its plan id
     /// (`None` inside: the plan does not fit the device; not retried).
     animator: Option<(u64, Option<GpuAnimator>)>,
     /// A Bezier curve: its polyline and its control polygon (with the construction highlighted).
-    pub curve: Option<(GpuMesh, GpuMesh)>,
+    pub(crate) curve: Option<(GpuMesh, GpuMesh)>,
     seen: Seen,
     /// Changes whenever anything drawn changed.
-    pub version: u64,
+    pub(crate) version: u64,
 }
 
 fn upload(device: &wgpu::Device, shown: &Shown) -> Result<GpuMesh> {
@@ -83,34 +86,38 @@ fn curve_meshes(device: &wgpu::Device, c: &Curve) -> (GpuMesh, GpuMesh) {
 }
 
 impl GpuScene {
-    /// Uploads what changed and advances the animation by `dt` seconds;
-    /// whether a mesh was uploaded. Upload errors are shown in the panel.
-    pub fn sync(
+    /// Uploads what changed in `doc` (which it only reads), the animation's
+    /// current frame included, and says what the document should know.
+    pub(crate) fn sync(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
-        doc: &mut Doc,
-        dt: f64,
+        doc: &Doc,
         normal_length: f32,
-    ) -> bool {
-        let uploaded = self.sync_control(device, doc) | self.sync_result(device, doc);
+    ) -> GpuReport {
+        let mut report = GpuReport { compute: supports_compute(device), ..Default::default() };
+        report.uploaded = self.sync_control(device, doc, &mut report) | self.sync_result(device, doc, &mut report);
         self.sync_highlight(device, doc);
         self.sync_curve(device, doc);
-        self.sync_animation(device, queue, doc, dt);
+        self.sync_animation(device, queue, doc, &mut report);
         self.sync_normal_lines(device, doc, normal_length);
-        if uploaded {
+        if report.uploaded {
             self.version += 1;
         }
-        uploaded
+        report.gpu_ready = match &self.animator {
+            Some((id, Some(_))) => Some(*id),
+            _ => None,
+        };
+        report
     }
 
-    fn sync_control(&mut self, device: &wgpu::Device, doc: &mut Doc) -> bool {
+    fn sync_control(&mut self, device: &wgpu::Device, doc: &Doc, report: &mut GpuReport) -> bool {
         let control = &doc.model.control;
         let unanimated = self.seen.control_animated && doc.anim.playback.is_none();
         if control.version() == self.seen.control && !unanimated {
             return false;
         }
-        self.control = upload(device, control).map_err(|e| doc.status.error = Some(e.into())).ok();
+        self.control = upload(device, control).map_err(|e| report.errors.push(e)).ok();
         self.seen.control = control.version();
         self.seen.control_animated = false;
         self.seen.picked = 0; // the new buffers have no highlight
@@ -131,7 +138,7 @@ impl GpuScene {
         self.seen.picked = picked.version();
     }
 
-    fn sync_result(&mut self, device: &wgpu::Device, doc: &mut Doc) -> bool {
+    fn sync_result(&mut self, device: &wgpu::Device, doc: &Doc, report: &mut GpuReport) -> bool {
         let result = &doc.model.result;
         if result.version() == self.seen.result {
             return false;
@@ -148,16 +155,12 @@ impl GpuScene {
             }
             _ => upload(device, r),
         };
-        let mut errors = Vec::new();
-        self.result = mesh.map_err(|e| errors.push(e)).ok();
+        self.result = mesh.map_err(|e| report.errors.push(e)).ok();
         if let (Some(m), Some(colors), false) = (&mut self.result, &result.colors, checker) {
             m.set_colors(device, colors);
         }
-        self.proxy = doc.model.proxy.as_ref().and_then(|p| upload(device, p).map_err(|e| errors.push(e)).ok());
+        self.proxy = doc.model.proxy.as_ref().and_then(|p| upload(device, p).map_err(|e| report.errors.push(e)).ok());
         self.seen.result = result.version();
-        if let Some(e) = errors.pop() {
-            doc.fail(Problem::Other(e));
-        }
         true
     }
 
@@ -182,55 +185,53 @@ impl GpuScene {
         self.version += 1;
     }
 
-    /// Advances the clock; a new frame is evaluated into the animated mesh
+    /// The document's current animation frame into the animated mesh
     /// (rebuilt for a new plan, updated in place otherwise) and the control
-    /// mesh's buffers.
-    fn sync_animation(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, doc: &mut Doc, dt: f64) {
-        let Some(p) = &mut doc.anim.playback else {
+    /// mesh's buffers: the CPU's evaluation uploaded, or the GPU's compute
+    /// passes run on the frame's control points.
+    fn sync_animation(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, doc: &Doc, report: &mut GpuReport) {
+        let (Some(p), Some(shown)) = (&doc.anim.playback, doc.anim.shown) else {
             self.seen.frame = None;
             if self.anim.take().is_some() {
                 self.version += 1;
             }
             return;
         };
-        let f = p.clock.tick(dt);
-        if self.seen.frame == Some((p.id, f)) {
+        let (id, f) = (shown.id, shown.frame);
+        if self.seen.frame == Some((id, f)) || id != p.id {
             return;
         }
-        let fresh = self.seen.frame.is_none_or(|(id, _)| id != p.id);
-        let compute = *doc.anim.gpu_compute.get_or_insert_with(|| supports_compute(device));
-        // normal segments are kept current by CPU updates only
-        let on_gpu = compute && doc.anim.gpu_eval && !doc.display.normals && !fresh && self.anim.is_some();
-        if on_gpu && self.animator.as_ref().is_none_or(|(id, _)| *id != p.id) {
+        let fresh = self.seen.frame.is_none_or(|(seen, _)| seen != id);
+        report.frame = true;
+        if shown.on_cpu {
+            let (pos, nrm) = p.player.evaluated();
+            match &mut self.anim {
+                Some(m) if !fresh => m.update(queue, pos, nrm),
+                _ => {
+                    self.anim = GpuMesh::new(device, p.player.topology(), pos, nrm).ok();
+                    self.animator = None;
+                }
+            }
+        } else if let Some((_, Some(a))) = &self.animator {
+            match a.update(device, queue, p.player.control(f)) {
+                Ok(()) => report.on_gpu = true,
+                Err(e) => report.errors.push(e),
+            }
+        }
+        // the compute passes for this plan, once its mesh is up (a plan the
+        // GPU cannot take is said once, and the CPU evaluates it)
+        let wanted = report.compute && doc.anim.gpu_eval && self.anim.is_some();
+        if wanted && self.animator.as_ref().is_none_or(|(a, _)| *a != id) {
             let built = self.anim.as_ref().map(|m| GpuAnimator::new(device, p.player.plan(), m));
-            // a plan the GPU cannot take is said, and the CPU evaluates it
             let built = match built {
                 Some(Err(e)) => {
                     log::warn!("GPU evaluation unavailable, evaluating on the CPU: {e}");
-                    doc.status.notice = Some(format!("GPU evaluation unavailable ({e}); evaluating on the CPU"));
-                    doc.anim.gpu_eval = false;
+                    report.gpu_unavailable = Some(e.to_string());
                     None
                 }
                 b => b.and_then(Result::ok),
             };
-            self.animator = Some((p.id, built));
-        }
-        doc.anim.on_gpu = false;
-        match (&self.animator, on_gpu && doc.anim.gpu_eval) {
-            (Some((_, Some(a))), true) => match a.update(device, queue, p.player.control(f)) {
-                Ok(()) => doc.anim.on_gpu = true,
-                Err(e) => doc.status.error = Some(e.into()),
-            },
-            _ => {
-                let (topo, pos, nrm) = p.player.evaluate_with_topology(f);
-                match &mut self.anim {
-                    Some(m) if !fresh => m.update(queue, pos, nrm),
-                    _ => {
-                        self.anim = GpuMesh::new(device, topo, pos, nrm).ok();
-                        self.animator = None;
-                    }
-                }
-            }
+            self.animator = Some((id, built));
         }
         let cpos = p.player.control(f);
         if let Some(c) = &mut self.control {
@@ -238,13 +239,13 @@ impl GpuScene {
             c.update(queue, cpos, &cn);
             self.seen.control_animated = true;
         }
-        self.seen.frame = Some((p.id, f));
+        self.seen.frame = Some((id, f));
         self.version += 1;
     }
 
     /// Normal segments: built once per upload (a new mesh has none), kept
     /// current by [`GpuMesh::update`] while the animation plays.
-    fn sync_normal_lines(&mut self, device: &wgpu::Device, doc: &mut Doc, length: f32) {
+    fn sync_normal_lines(&mut self, device: &wgpu::Device, doc: &Doc, length: f32) {
         if !doc.display.normals {
             for m in [&mut self.result, &mut self.anim].into_iter().flatten() {
                 if m.has_normal_lines() {
@@ -259,10 +260,12 @@ impl GpuScene {
             m.set_normal_lines(device, &r.mesh.positions, &r.normals, length);
             self.version += 1;
         }
-        if let (Some(m), Some(p)) = (self.anim.as_mut(), doc.anim.playback.as_mut())
+        // with normals shown every frame is evaluated on the CPU
+        if let (Some(m), Some(p)) = (self.anim.as_mut(), doc.anim.playback.as_ref())
             && !m.has_normal_lines()
+            && doc.anim.shown.is_some_and(|s| s.on_cpu)
         {
-            let (pos, nrm) = p.player.evaluate(self.seen.frame.map_or(0, |(_, f)| f));
+            let (pos, nrm) = p.player.evaluated();
             m.set_normal_lines(device, pos, nrm, length);
             self.version += 1;
         }

@@ -23,19 +23,19 @@ use std::sync::{Arc, Condvar, Mutex};
 use std::time::{Duration, Instant};
 
 /// Largest proxy mesh (see [`super::model::Model::proxy`]).
-pub const PROXY_FACES: u64 = 150_000;
+pub(crate) const PROXY_FACES: u64 = 150_000;
 
 /// A running task shown in the panel.
 #[derive(Clone)]
-pub struct Busy {
+pub(crate) struct Busy {
     /// What is running.
-    pub what: String,
+    pub(crate) what: String,
     /// Units done (levels, frames).
-    pub done: Arc<AtomicUsize>,
+    pub(crate) done: Arc<AtomicUsize>,
     /// Units in all.
-    pub total: usize,
+    pub(crate) total: usize,
     /// Started at.
-    pub since: Instant,
+    pub(crate) since: Instant,
 }
 
 impl Busy {
@@ -46,53 +46,53 @@ impl Busy {
 
 /// The busy slots, one per kind of task.
 #[derive(Default)]
-pub struct Slots {
+pub(crate) struct Slots {
     /// Running load.
-    pub loading: Option<Busy>,
+    pub(crate) loading: Option<Busy>,
     /// Running subdivision.
-    pub subdividing: Option<Busy>,
+    pub(crate) subdividing: Option<Busy>,
     /// Running animation build.
-    pub building: Option<Busy>,
+    pub(crate) building: Option<Busy>,
     /// Running export.
-    pub exporting: Option<Busy>,
+    pub(crate) exporting: Option<Busy>,
 }
 
 /// A loaded model.
-pub struct Opened {
+pub(crate) struct Opened {
     /// The file.
-    pub path: PathBuf,
+    pub(crate) path: PathBuf,
     /// Its mesh.
-    pub mesh: Mesh,
+    pub(crate) mesh: Mesh,
     /// The animation paths found for it (None: none, or for another vertex count).
-    pub paths: Option<Paths>,
+    pub(crate) paths: Option<Paths>,
     /// What the repair did, when it did something.
-    pub report: Option<String>,
+    pub(crate) report: Option<String>,
     /// Its colours and texture coordinates.
-    pub attrs: Attributes,
+    pub(crate) attrs: Attributes,
 }
 
 /// A finished subdivision.
-pub struct Subdivided {
+pub(crate) struct Subdivided {
     /// The output, with fan normals and topology.
-    pub shown: Shown,
+    pub(crate) shown: Shown,
     /// A lower level of at most [`PROXY_FACES`] triangles, for big outputs.
-    pub proxy: Option<Shown>,
+    pub(crate) proxy: Option<Shown>,
     /// Phase times of both legs (proxy, then the rest).
-    pub stats: Stats,
+    pub(crate) stats: Stats,
     /// Wall time of the job, ms.
-    pub ms: f64,
+    pub(crate) ms: f64,
     /// The control mesh's attributes refined to the output.
-    pub attrs: Attributes,
+    pub(crate) attrs: Attributes,
     /// What was asked for.
-    pub level: u32,
+    pub(crate) level: u32,
     /// The scheme used.
-    pub scheme: Scheme,
+    pub(crate) scheme: Scheme,
     /// The options used.
-    pub opts: Options,
+    pub(crate) opts: Options,
 }
 
 /// What a worker sends back.
-pub enum Finished {
+pub(crate) enum Finished {
     /// A model file was read (or failed to).
     Loaded {
         /// The file asked for (offered for repair when it is invalid).
@@ -111,36 +111,36 @@ pub enum Finished {
 }
 
 /// The inputs of a subdivision.
-pub struct SubdivisionJob {
+pub(crate) struct SubdivisionJob {
     /// The control mesh.
-    pub control: Shown,
+    pub(crate) control: Shown,
     /// Its attributes from the file.
-    pub attrs: Attributes,
+    pub(crate) attrs: Attributes,
     /// Scheme.
-    pub scheme: Scheme,
+    pub(crate) scheme: Scheme,
     /// Level.
-    pub level: u32,
+    pub(crate) level: u32,
     /// Scheme options.
-    pub opts: Options,
+    pub(crate) opts: Options,
 }
 
 /// The inputs of an animation plan (also what an export renders).
 #[derive(Clone)]
-pub struct AnimationJob {
+pub(crate) struct AnimationJob {
     /// The control mesh.
-    pub mesh: Arc<Mesh>,
+    pub(crate) mesh: Arc<Mesh>,
     /// Its animation paths.
-    pub paths: Paths,
+    pub(crate) paths: Paths,
     /// Path tweak.
-    pub tweak: Tweak,
+    pub(crate) tweak: Tweak,
     /// Path refinement count.
-    pub refine: u32,
+    pub(crate) refine: u32,
     /// Scheme.
-    pub scheme: Scheme,
+    pub(crate) scheme: Scheme,
     /// Level.
-    pub level: u32,
+    pub(crate) level: u32,
     /// Scheme options.
-    pub opts: Options,
+    pub(crate) opts: Options,
 }
 
 impl AnimationJob {
@@ -183,7 +183,7 @@ impl Drop for WorkerGuard {
 }
 
 /// The worker channel, the tickets and the busy slots.
-pub struct Jobs {
+pub(crate) struct Jobs {
     tx: Sender<Message>,
     rx: Receiver<Message>,
     load_ticket: Arc<AtomicU64>,
@@ -191,7 +191,7 @@ pub struct Jobs {
     animate_ticket: Arc<AtomicU64>,
     export_cancel: Arc<AtomicU64>,
     /// What is running.
-    pub busy: Slots,
+    pub(crate) busy: Slots,
     workers: Arc<Workers>,
 }
 
@@ -203,7 +203,7 @@ impl Default for Jobs {
 
 impl Jobs {
     /// No task running.
-    pub fn new() -> Jobs {
+    pub(crate) fn new() -> Jobs {
         let (tx, rx) = channel();
         Jobs {
             tx,
@@ -218,7 +218,7 @@ impl Jobs {
     }
 
     /// Whether any task is running.
-    pub fn busy(&self) -> bool {
+    pub(crate) fn busy(&self) -> bool {
         let b = &self.busy;
         b.loading.is_some() || b.subdividing.is_some() || b.building.is_some() || b.exporting.is_some()
     }
@@ -263,7 +263,7 @@ impl Jobs {
 
     /// The messages of current tasks (superseded ones are dropped), each
     /// clearing its busy slot.
-    pub fn poll(&mut self) -> Vec<Finished> {
+    pub(crate) fn poll(&mut self) -> Vec<Finished> {
         let mut out = Vec::new();
         while let Ok(m) = self.rx.try_recv() {
             if self.ticket(m.kind).is_some_and(|t| t.load(Ordering::SeqCst) != m.ticket) {
@@ -278,7 +278,7 @@ impl Jobs {
     /// Waits until no worker thread is alive (superseded ones included), at
     /// most `timeout`; whether they all ended. Their messages are then all
     /// in the channel, for [`Jobs::poll`].
-    pub fn wait_for_workers(&self, timeout: Duration) -> bool {
+    pub(crate) fn wait_for_workers(&self, timeout: Duration) -> bool {
         let alive = self.workers.alive.lock().unwrap_or_else(|e| e.into_inner());
         let (alive, _) =
             self.workers.ended.wait_timeout_while(alive, timeout, |n| *n > 0).unwrap_or_else(|e| e.into_inner());
@@ -286,7 +286,7 @@ impl Jobs {
     }
 
     /// Opens a model file (a `.bzc` curve, or a mesh, repaired or not).
-    pub fn load(&mut self, path: PathBuf, repair: bool) {
+    pub(crate) fn load(&mut self, path: PathBuf, repair: bool) {
         let ticket = self.next_ticket(Kind::Load);
         self.busy.loading = Some(Busy::new(format!("loading {}", path.display()), 1));
         if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc")) {
@@ -300,13 +300,13 @@ impl Jobs {
     }
 
     /// Drops any running load (its model will not be adopted).
-    pub fn cancel_load(&mut self) {
+    pub(crate) fn cancel_load(&mut self) {
         self.next_ticket(Kind::Load);
         self.busy.loading = None;
     }
 
     /// Subdivides on a worker (superseding any running subdivision).
-    pub fn subdivide(&mut self, job: SubdivisionJob) {
+    pub(crate) fn subdivide(&mut self, job: SubdivisionJob) {
         let ticket = self.next_ticket(Kind::Subdivide);
         let busy = Busy::new(format!("{} level {}", job.scheme.name(), job.level), job.level as usize);
         let done = busy.done.clone();
@@ -321,27 +321,27 @@ impl Jobs {
     }
 
     /// Drops any running subdivision.
-    pub fn cancel_subdivision(&mut self) {
+    pub(crate) fn cancel_subdivision(&mut self) {
         self.next_ticket(Kind::Subdivide);
         self.busy.subdividing = None;
     }
 
     /// Builds an animation plan on a worker (superseding any running build).
-    pub fn animate(&mut self, job: AnimationJob) {
+    pub(crate) fn animate(&mut self, job: AnimationJob) {
         let ticket = self.next_ticket(Kind::Animate);
         self.busy.building = Some(Busy::new(format!("animation plan, {} level {}", job.scheme.name(), job.level), 1));
         self.spawn(Kind::Animate, ticket, move || Some(Finished::Animated(job.build())));
     }
 
     /// Drops any running animation build.
-    pub fn cancel_animation(&mut self) {
+    pub(crate) fn cancel_animation(&mut self) {
         self.next_ticket(Kind::Animate);
         self.busy.building = None;
     }
 
     /// Renders every frame of the animation to `target` on a worker with its
     /// own GPU device; does nothing while an export runs.
-    pub fn export(&mut self, job: AnimationJob, target: ExportTarget, style: ExportStyle) {
+    pub(crate) fn export(&mut self, job: AnimationJob, target: ExportTarget, style: ExportStyle) {
         if self.busy.exporting.is_some() {
             return;
         }
@@ -367,7 +367,7 @@ impl Jobs {
     }
 
     /// Cancels a running export (it stops after its current frame).
-    pub fn cancel_export(&mut self) {
+    pub(crate) fn cancel_export(&mut self) {
         self.export_cancel.fetch_add(1, Ordering::SeqCst);
     }
 }

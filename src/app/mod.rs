@@ -25,21 +25,24 @@
 //! changed, blit it and draw egui over it, present, save a screenshot
 //! (window.rs). Nothing slow runs on this thread.
 
-pub mod animation;
-pub mod command;
+pub(crate) mod animation;
+pub(crate) mod command;
 pub mod display;
-pub mod doc;
+pub(crate) mod doc;
 mod gpu_scene;
-pub mod jobs;
-pub mod model;
-pub mod panel;
-pub mod surface;
-pub mod view;
-pub mod viewer;
+pub(crate) mod jobs;
+pub(crate) mod model;
+pub(crate) mod panel;
+pub(crate) mod surface;
+pub(crate) mod view;
+pub(crate) mod viewer;
 mod window;
 
-pub use command::Command;
-pub use viewer::Viewer;
+#[cfg(test)]
+mod tests;
+
+pub(crate) use command::Command;
+pub(crate) use viewer::Viewer;
 
 use crate::render::Camera;
 use crate::{Error, Result, Scheme};
@@ -122,23 +125,27 @@ pub fn run(opts: ViewOptions) -> Result<()> {
     }
 }
 
-/// Opens the model of the command line synchronously, so that a bad file is
-/// a clear error before any window opens (a curve is checked, then shown
-/// through the loader).
-fn open_initial(doc: &mut doc::Doc, opts: &ViewOptions) -> Result<()> {
-    if let Some(model) = opts.model.as_ref().filter(|m| m.extension().is_some_and(|e| e == "bzc")) {
-        crate::bundled::load_curve(model)?;
-        doc.open(model.clone());
-    } else if let Some(model) = &opts.model {
-        let mut opened = jobs::load_model(model, opts.repair)?;
-        if let Some(p) = &opts.paths {
-            let paths = crate::anim::paths::Paths::load(p)?;
-            paths.check_model(&opened.mesh, &p.display().to_string())?;
-            opened.paths = Some(paths);
+/// Opens the model of the command line through the same command as any
+/// other ([`Command::Open`]), waiting for its worker, so that a bad file is
+/// a clear error before any window opens; then the `--paths` given.
+fn open_initial(viewer: &mut Viewer, opts: &ViewOptions) -> Result<()> {
+    if let Some(model) = &opts.model {
+        viewer.apply(Command::SetRepairOnOpen(opts.repair));
+        viewer.apply(Command::Open(model.clone()));
+        // a read is bounded by its budget: it ends
+        while viewer.doc.jobs.busy.loading.is_some() {
+            viewer.doc.jobs.wait_for_workers(Duration::from_secs(1));
+            viewer.poll();
         }
-        doc.repair_on_open = opts.repair;
-        doc.adopt_finished(jobs::Finished::Loaded { path: model.clone(), result: Ok(opened) });
-    } else if let Some(p) = &opts.paths {
+        if let Some(doc::Problem::Open(e)) = viewer.doc.status.error.take() {
+            return Err(e);
+        }
+        if let Some(notice) = &viewer.doc.status.notice {
+            log::warn!("{notice}");
+        }
+    }
+    if let Some(p) = &opts.paths {
+        let doc = &mut viewer.doc;
         let paths = crate::anim::paths::Paths::load(p)?;
         paths.check_model(&doc.model.control.mesh, &p.display().to_string())?;
         doc.anim.paths = paths;
@@ -264,7 +271,8 @@ impl App {
             doc.request.limit = Some(limit);
         }
         doc.request.level = opts.level;
-        open_initial(doc, &opts)?;
+        open_initial(&mut viewer, &opts)?;
+        let doc = &mut viewer.doc;
         if let Some(deg) = opts.crease_angle {
             doc.auto_crease(deg);
             viewer.panel.crease_angle = deg;
@@ -309,8 +317,9 @@ impl App {
     fn redraw(&mut self, event_loop: &ActiveEventLoop) {
         let (raw_dt, dt) = self.tick();
         self.viewer.poll();
+        self.viewer.advance(dt);
         let Some(win) = &mut self.win else { return };
-        win.sync(&mut self.viewer, dt);
+        win.sync(&mut self.viewer);
         if win.is_minimised() {
             return;
         }

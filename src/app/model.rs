@@ -20,29 +20,24 @@ use std::sync::Arc;
 /// A value with a counter bumped on every change, so that a consumer (the
 /// window's GPU copies) can tell whether what it holds is current.
 #[derive(Clone, Debug)]
-pub struct Versioned<T> {
+pub(crate) struct Versioned<T> {
     value: T,
     version: u64,
 }
 
 impl<T> Versioned<T> {
     /// A first version (1; a consumer that has seen nothing holds 0).
-    pub fn new(value: T) -> Versioned<T> {
+    pub(crate) fn new(value: T) -> Versioned<T> {
         Versioned { value, version: 1 }
     }
     /// The current version.
-    pub fn version(&self) -> u64 {
+    pub(crate) fn version(&self) -> u64 {
         self.version
     }
     /// Replaces the value (a new version).
-    pub fn set(&mut self, value: T) {
+    pub(crate) fn set(&mut self, value: T) {
         self.value = value;
         self.version += 1;
-    }
-    /// The value for changing it in place (a new version).
-    pub fn edit(&mut self) -> &mut T {
-        self.version += 1;
-        &mut self.value
     }
 }
 
@@ -56,32 +51,32 @@ impl<T> std::ops::Deref for Versioned<T> {
 /// A mesh with its normals and counts, ready to upload. Cloning shares the
 /// arrays.
 #[derive(Clone)]
-pub struct Shown {
+pub(crate) struct Shown {
     /// The mesh.
-    pub mesh: Arc<Mesh>,
+    pub(crate) mesh: Arc<Mesh>,
     /// Unit vertex normals (fan-averaged unless a display option chose others).
-    pub normals: Arc<Vec<Vec3>>,
+    pub(crate) normals: Arc<Vec<Vec3>>,
     /// V/E/F, genus, boundary loops...
-    pub topo: Topology,
+    pub(crate) topo: Topology,
     /// Where the mesh has sharp edges: how it is drawn (see [`Creased`]).
-    pub creased: Option<Arc<Creased>>,
+    pub(crate) creased: Option<Arc<Creased>>,
 }
 
 /// A mesh with sharp edges as it is drawn: cut open along them
 /// ([`crate::mesh::cut`]), so that each side of a crease gets its own
 /// normal and a crease shows as a crease, not as a smeared highlight.
-pub struct Creased {
+pub(crate) struct Creased {
     /// The cut table (same corners; the extra vertices are copies).
-    pub ct: crate::CornerTable,
+    pub(crate) ct: crate::CornerTable,
     /// For cut vertex `nv + i`, the vertex it is a copy of.
-    pub copies: Vec<u32>,
+    pub(crate) copies: Vec<u32>,
     /// Fan-averaged normals of the cut mesh: per side along the creases.
-    pub normals: Vec<Vec3>,
+    pub(crate) normals: Vec<Vec3>,
 }
 
 impl Creased {
     /// `values` (one per vertex of the uncut mesh) extended to the copies.
-    pub fn extend<T: Copy>(&self, values: &[T]) -> Vec<T> {
+    pub(crate) fn extend<T: Copy>(&self, values: &[T]) -> Vec<T> {
         let mut out = Vec::with_capacity(values.len() + self.copies.len());
         out.extend_from_slice(values);
         out.extend(self.copies.iter().map(|&v| values[v as usize]));
@@ -92,7 +87,7 @@ impl Creased {
 impl Shown {
     /// Computes the fan-averaged normals and the topology, and the cut
     /// mesh of a mesh with sharp edges (worker threads do this).
-    pub fn new(mesh: Arc<Mesh>) -> Shown {
+    pub(crate) fn new(mesh: Arc<Mesh>) -> Shown {
         let normals = Arc::new(mesh.vertex_normals());
         let topo = topology(&mesh.ct);
         let creased = mesh.ct.cut_at_sharp_edges().map(|cut| {
@@ -105,86 +100,86 @@ impl Shown {
 
 /// A planar Bezier curve opened from a `.bzc` file, shown instead of the mesh.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Curve {
+pub(crate) struct Curve {
     /// File name.
-    pub name: String,
+    pub(crate) name: String,
     /// Control points.
-    pub control: Vec<Vec2>,
+    pub(crate) control: Vec<Vec2>,
     /// Polyline segments drawn.
-    pub segments: usize,
+    pub(crate) segments: usize,
     /// Parameter of the de Casteljau construction shown.
-    pub t: f32,
+    pub(crate) t: f32,
     /// Show the construction at `t`.
-    pub construction: bool,
+    pub(crate) construction: bool,
 }
 
 /// How the subdivision output came about: what the panel reports about it.
 #[derive(Clone, Debug, Default)]
-pub struct Made {
+pub(crate) struct Made {
     /// Level of the output.
-    pub level: u32,
+    pub(crate) level: u32,
     /// Scheme of the output.
-    pub scheme: Scheme,
+    pub(crate) scheme: Scheme,
     /// Loop's vertex weights of the output (what limit snapping must use).
-    pub loop_beta: LoopBeta,
+    pub(crate) loop_beta: LoopBeta,
     /// Phase times of the subdivision.
-    pub stats: Option<Stats>,
+    pub(crate) stats: Option<Stats>,
     /// Wall time of the subdivision job, ms.
-    pub job_ms: f64,
+    pub(crate) job_ms: f64,
 }
 
 /// What the 3D view shows of the subdivision output.
 #[derive(Clone)]
-pub struct Shaded {
+pub(crate) struct Shaded {
     /// Mesh, normals and topology after the display options.
-    pub shown: Shown,
+    pub(crate) shown: Shown,
     /// Per-vertex colours (with the colouring), linear RGB.
-    pub colors: Option<Vec<Vec3>>,
+    pub(crate) colors: Option<Vec<Vec3>>,
     /// Largest value behind the colours (levels, or a distance), for the legend.
-    pub color_max: f32,
+    pub(crate) color_max: f32,
 }
 
 /// Vertex colours and corner texture coordinates: of the control mesh (from
 /// its file) and refined to the subdivision output.
 #[derive(Clone, Debug, Default)]
-pub struct Attrs {
+pub(crate) struct Attrs {
     /// The control mesh's, from its file.
-    pub file: Attributes,
+    pub(crate) file: Attributes,
     /// `file` refined to the subdivision output.
-    pub refined: Attributes,
+    pub(crate) refined: Attributes,
 }
 
 /// The control mesh, its subdivision and what is shown of them.
-pub struct Model {
+pub(crate) struct Model {
     /// Display name of the model.
-    pub name: String,
+    pub(crate) name: String,
     /// File it came from (None: built in).
-    pub path: Option<PathBuf>,
+    pub(crate) path: Option<PathBuf>,
     /// The control mesh.
-    pub control: Versioned<Shown>,
+    pub(crate) control: Versioned<Shown>,
     /// The control mesh as loaded, before smoothing or edge edits.
-    pub original: Option<Arc<Mesh>>,
+    pub(crate) original: Option<Arc<Mesh>>,
     /// The subdivision output (the control mesh at level 0).
-    pub raw: Shown,
+    pub(crate) raw: Shown,
     /// How `raw` was made.
-    pub made: Made,
+    pub(crate) made: Made,
     /// A lower level of the same subdivision (at most
     /// [`super::jobs::PROXY_FACES`] triangles), drawn instead of a big result
     /// while the camera moves; it changes with `result`.
-    pub proxy: Option<Shown>,
+    pub(crate) proxy: Option<Shown>,
     /// What is shown of `raw`.
-    pub result: Versioned<Shaded>,
+    pub(crate) result: Versioned<Shaded>,
     /// Colours and texture coordinates.
-    pub attrs: Attrs,
+    pub(crate) attrs: Attrs,
     /// A picked control-mesh corner: the edge opposite it is selected.
-    pub picked: Versioned<Option<u32>>,
+    pub(crate) picked: Versioned<Option<u32>>,
     /// A Bezier curve shown instead of the mesh.
-    pub curve: Versioned<Option<Curve>>,
+    pub(crate) curve: Versioned<Option<Curve>>,
 }
 
 impl Model {
     /// A model of `mesh` at level 0, shown plainly.
-    pub fn new(name: String, mesh: Mesh) -> Model {
+    pub(crate) fn new(name: String, mesh: Mesh) -> Model {
         let shown = Shown::new(Arc::new(mesh));
         Model {
             name,
@@ -204,7 +199,7 @@ impl Model {
     /// Rebuilds the shown result from the subdivision output and `display`
     /// (limit snapping, normals, colours); an error of the colouring is
     /// returned (the result is then shown uncoloured).
-    pub fn reshade(&mut self, display: &Display) -> Option<Error> {
+    pub(crate) fn reshade(&mut self, display: &Display) -> Option<Error> {
         let creased = self.raw.creased.clone();
         let shown = match creased {
             // the normals are the cut mesh's (creased_view)
@@ -224,7 +219,7 @@ impl Model {
     }
 
     /// The vertex ids of the picked edge.
-    pub fn picked_edge(&self) -> Option<(u32, u32)> {
+    pub(crate) fn picked_edge(&self) -> Option<(u32, u32)> {
         let c = (*self.picked)?;
         let ct = &self.control.mesh.ct;
         ((c as usize) < ct.num_corners())

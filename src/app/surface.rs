@@ -8,13 +8,13 @@ use crate::render::Gpu;
 use crate::{Error, Result};
 
 /// A configured surface.
-pub struct SurfaceWrapper {
+pub(crate) struct SurfaceWrapper {
     surface: wgpu::Surface<'static>,
     config: wgpu::SurfaceConfiguration,
 }
 
 /// What [`SurfaceWrapper::acquire`] got.
-pub enum Acquired {
+pub(crate) enum Acquired {
     /// A frame to draw into and present.
     Frame(wgpu::SurfaceTexture),
     /// The surface was lost or outdated and is reconfigured: draw again.
@@ -29,7 +29,7 @@ impl SurfaceWrapper {
     ///
     /// # Errors
     /// [`Error::Gpu`] when the adapter offers no usable format or configuration.
-    pub fn new(surface: wgpu::Surface<'static>, gpu: &Gpu, width: u32, height: u32) -> Result<SurfaceWrapper> {
+    pub(crate) fn new(surface: wgpu::Surface<'static>, gpu: &Gpu, width: u32, height: u32) -> Result<SurfaceWrapper> {
         let caps = surface.get_capabilities(&gpu.adapter);
         let format = egui_wgpu::preferred_framebuffer_format(&caps.formats)
             .map_err(|e| Error::Gpu(format!("no usable surface format: {e}")))?;
@@ -44,18 +44,18 @@ impl SurfaceWrapper {
     }
 
     /// The colour format of its frames.
-    pub fn format(&self) -> wgpu::TextureFormat {
+    pub(crate) fn format(&self) -> wgpu::TextureFormat {
         self.config.format
     }
 
     /// Its size in pixels.
-    pub fn size(&self) -> (u32, u32) {
+    pub(crate) fn size(&self) -> (u32, u32) {
         (self.config.width, self.config.height)
     }
 
     /// Reconfigures for a new window size; a zero size (minimised) is
     /// ignored. Whether the size changed.
-    pub fn resize(&mut self, device: &wgpu::Device, width: u32, height: u32) -> bool {
+    pub(crate) fn resize(&mut self, device: &wgpu::Device, width: u32, height: u32) -> bool {
         if width == 0 || height == 0 {
             return false;
         }
@@ -66,7 +66,7 @@ impl SurfaceWrapper {
     }
 
     /// The next frame, reconfiguring a lost or outdated surface.
-    pub fn acquire(&mut self, device: &wgpu::Device) -> Acquired {
+    pub(crate) fn acquire(&mut self, device: &wgpu::Device) -> Acquired {
         match self.surface.get_current_texture() {
             wgpu::CurrentSurfaceTexture::Success(f) | wgpu::CurrentSurfaceTexture::Suboptimal(f) => Acquired::Frame(f),
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {

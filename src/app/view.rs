@@ -8,41 +8,41 @@ use glam::Vec2;
 
 /// What the window measures, shown in the statistics.
 #[derive(Clone, Debug, Default)]
-pub struct FrameStats {
+pub(crate) struct FrameStats {
     /// Smoothed frame time, ms.
-    pub frame_ms: f64,
+    pub(crate) frame_ms: f64,
     /// Time of the last GPU upload, ms.
-    pub upload_ms: f64,
+    pub(crate) upload_ms: f64,
     /// CPU time to record the last 3D render, ms.
-    pub encode_ms: f64,
+    pub(crate) encode_ms: f64,
     /// How many times the 3D viewports were rendered (they are cached between changes).
-    pub scene_renders: u64,
+    pub(crate) scene_renders: u64,
     /// Adapter description.
-    pub adapter: String,
+    pub(crate) adapter: String,
     /// The adapter offers multisampling.
-    pub msaa_available: bool,
+    pub(crate) msaa_available: bool,
 }
 
 /// Camera and window state of the 3D area.
-pub struct View {
+pub(crate) struct View {
     /// Shared camera of the viewports.
-    pub camera: Camera,
+    pub(crate) camera: Camera,
     /// Frame what is shown on the next frame.
-    pub fit: bool,
+    pub(crate) fit: bool,
     /// Look at a newly opened curve from the front and frame it.
-    pub fit_curve: bool,
+    pub(crate) fit_curve: bool,
     /// Reset the camera direction (then fit).
-    pub reset: bool,
+    pub(crate) reset: bool,
     /// The 3D area (points), set each frame by the panel.
-    pub scene_rect: egui::Rect,
+    pub(crate) scene_rect: egui::Rect,
     /// A screenshot was asked for (P).
-    pub screenshot: bool,
+    pub(crate) screenshot: bool,
     /// How P and the panel's button take it (scale, transparency).
-    pub shot: crate::render::Shot,
+    pub(crate) shot: crate::render::Shot,
     /// A file is hovering over the window.
-    pub hovering_file: bool,
+    pub(crate) hovering_file: bool,
     /// Frame times and counters.
-    pub stats: FrameStats,
+    pub(crate) stats: FrameStats,
 }
 
 impl Default for View {
@@ -62,14 +62,14 @@ impl Default for View {
 }
 
 /// Aspect of one viewport of the 3D area.
-pub fn viewport_aspect(rect: egui::Rect, side_by_side: bool) -> f32 {
+pub(crate) fn viewport_aspect(rect: egui::Rect, side_by_side: bool) -> f32 {
     let w = if side_by_side { rect.width() / 2.0 } else { rect.width() };
     w / rect.height().max(1.0)
 }
 
 /// The cursor in the normalised device coordinates of the viewport under it
 /// (the left or right half in side-by-side mode).
-pub fn cursor_ndc(rect: egui::Rect, side_by_side: bool, pos: egui::Pos2) -> Vec2 {
+pub(crate) fn cursor_ndc(rect: egui::Rect, side_by_side: bool, pos: egui::Pos2) -> Vec2 {
     let mut vp = rect;
     if side_by_side {
         vp.set_width(rect.width() / 2.0);
@@ -85,7 +85,7 @@ impl View {
     /// a mesh is framed by its shown result (a Loop surface can be much
     /// smaller than its control mesh), a curve by its control points, seen
     /// from the front, orthographically, in its single viewport.
-    pub fn settle_camera(&mut self, doc: &Doc) {
+    pub(crate) fn settle_camera(&mut self, doc: &Doc) {
         let rect = self.scene_rect;
         if self.reset {
             let orthographic = self.camera.orthographic;

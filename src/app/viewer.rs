@@ -10,13 +10,13 @@ use super::panel::{self, PanelState};
 use super::view::View;
 
 /// The document, the view and the panel's widget state.
-pub struct Viewer {
+pub(crate) struct Viewer {
     /// What is shown.
-    pub doc: Doc,
+    pub(crate) doc: Doc,
     /// Camera and frame statistics.
-    pub view: View,
+    pub(crate) view: View,
     /// Text fields, the file browser, export settings.
-    pub panel: PanelState,
+    pub(crate) panel: PanelState,
 }
 
 impl Default for Viewer {
@@ -27,12 +27,12 @@ impl Default for Viewer {
 
 impl Viewer {
     /// The built-in tetrahedron, nothing running.
-    pub fn new() -> Viewer {
+    pub(crate) fn new() -> Viewer {
         Viewer { doc: Doc::new(), view: View::default(), panel: PanelState::new() }
     }
 
     /// Adopts what the workers finished; whether anything arrived.
-    pub fn poll(&mut self) -> bool {
+    pub(crate) fn poll(&mut self) -> bool {
         let finished = self.doc.jobs.poll();
         let any = !finished.is_empty();
         for f in finished {
@@ -41,9 +41,16 @@ impl Viewer {
         any
     }
 
+    /// Advances the animation clock by `dt` seconds and makes its frame
+    /// current (evaluated on the CPU unless the GPU evaluates it): the
+    /// document owns time, with or without a window.
+    pub(crate) fn advance(&mut self, dt: f64) -> bool {
+        self.doc.anim.advance(dt, self.doc.display.normals)
+    }
+
     /// One frame of the panel and the 3D area's input: draws, applies the
     /// commands, settles the camera. Returns the 3D area (points).
-    pub fn ui(&mut self, ui: &mut egui::Ui) -> egui::Rect {
+    pub(crate) fn ui(&mut self, ui: &mut egui::Ui) -> egui::Rect {
         let (rect, commands) = panel::show(ui, &self.doc, &self.view, &mut self.panel);
         self.view.scene_rect = rect;
         for c in commands {

@@ -3,9 +3,10 @@
 //! 3D image. The steps of a frame are methods here; [`super::App`] runs them
 //! in order.
 
+use super::Viewer;
+use super::command::Command;
 use super::gpu_scene::GpuScene;
 use super::surface::SurfaceWrapper;
-use super::{Viewer, doc::Problem};
 use crate::render::blit::Blit;
 use crate::render::readback::{Readback, capture_texture};
 use crate::render::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
@@ -19,7 +20,7 @@ use winit::window::Window;
 /// Meshes above this many triangles are drawn through their proxy (a
 /// lower level) while the camera moves, so orbiting stays fluid on a
 /// software rasteriser; the full mesh returns as soon as the motion stops.
-pub const PROXY_ABOVE: usize = 300_000;
+pub(crate) const PROXY_ABOVE: usize = 300_000;
 
 /// The 3D viewports rendered at the window's size, blitted every frame.
 struct SceneTexture {
@@ -47,7 +48,7 @@ impl SceneTexture {
 
 /// Everything the 3D image depends on; equal keys mean the cached scene is current.
 #[derive(Clone, Copy, PartialEq)]
-pub struct SceneKey {
+pub(crate) struct SceneKey {
     camera: Camera,
     look: Look,
     side_by_side: bool,
@@ -55,7 +56,7 @@ pub struct SceneKey {
     size: (u32, u32),
     version: u64,
     /// The proxy is drawn instead of the result.
-    pub proxy: bool,
+    pub(crate) proxy: bool,
 }
 
 /// egui's context, its winit input state and its wgpu renderer.
@@ -66,7 +67,7 @@ struct EguiLayer {
 }
 
 /// One frame of egui, tessellated, with the textures to free after it.
-pub struct EguiFrame {
+pub(crate) struct EguiFrame {
     jobs: Vec<egui::ClippedPrimitive>,
     screen: egui_wgpu::ScreenDescriptor,
     free: Vec<egui::TextureId>,
@@ -74,39 +75,39 @@ pub struct EguiFrame {
 
 impl EguiFrame {
     /// Physical pixels per egui point.
-    pub fn pixels_per_point(&self) -> f32 {
+    pub(crate) fn pixels_per_point(&self) -> f32 {
         self.screen.pixels_per_point
     }
 }
 
 /// A texture the frame is also drawn into, to be read back (a screenshot).
-pub struct Capture {
+pub(crate) struct Capture {
     texture: wgpu::Texture,
     view: wgpu::TextureView,
     readback: Readback,
 }
 
 /// The window and its GPU state.
-pub struct Win {
+pub(crate) struct Win {
     /// The winit window.
-    pub window: Arc<Window>,
+    pub(crate) window: Arc<Window>,
     gpu: Gpu,
     surface: SurfaceWrapper,
     renderer: Renderer,
     targets: Targets,
     egui: EguiLayer,
     /// The GPU copies of the document's meshes.
-    pub scene: GpuScene,
+    pub(crate) scene: GpuScene,
     blit: Blit,
     scene_texture: SceneTexture,
     /// What `scene_texture` holds (None: must render).
-    pub scene_key: Option<SceneKey>,
+    pub(crate) scene_key: Option<SceneKey>,
     /// MSAA samples of the renderer's pipelines.
     samples: u32,
     /// The last GPU error (validation, out of memory): shown in the panel instead of a panic.
     gpu_error: Arc<Mutex<Option<String>>>,
     /// When egui wants the next frame.
-    pub repaint_after: Option<Duration>,
+    pub(crate) repaint_after: Option<Duration>,
 }
 
 fn open_window(event_loop: &ActiveEventLoop) -> Result<Arc<Window>> {
@@ -163,7 +164,7 @@ impl EguiLayer {
 impl Win {
     /// Opens the window and sets up the GPU; reports the adapter and chooses
     /// the initial MSAA in `viewer`.
-    pub fn create(event_loop: &ActiveEventLoop, viewer: &mut Viewer) -> Result<Win> {
+    pub(crate) fn create(event_loop: &ActiveEventLoop, viewer: &mut Viewer) -> Result<Win> {
         let window = open_window(event_loop)?;
         let (gpu, surface) = connect(event_loop, &window)?;
         let format = surface.format();
@@ -199,12 +200,12 @@ impl Win {
     }
 
     /// Passes a window event to egui; whether egui wants a repaint.
-    pub fn egui_event(&mut self, event: &winit::event::WindowEvent) -> bool {
+    pub(crate) fn egui_event(&mut self, event: &winit::event::WindowEvent) -> bool {
         self.egui.state.on_window_event(&self.window, event).repaint
     }
 
     /// Follows a new window size (the surface and every size-bound target).
-    pub fn resize(&mut self, width: u32, height: u32) {
+    pub(crate) fn resize(&mut self, width: u32, height: u32) {
         if self.surface.resize(&self.gpu.device, width, height) {
             let device = &self.gpu.device;
             self.targets = Targets::new(device, &self.renderer, width, height);
@@ -214,26 +215,28 @@ impl Win {
     }
 
     /// Uploads what changed, advances the animation, reports GPU errors.
-    pub fn sync(&mut self, viewer: &mut Viewer, dt: f64) {
+    pub(crate) fn sync(&mut self, viewer: &mut Viewer) {
         let t0 = Instant::now();
         let normal_length = 0.03 * viewer.view.camera.radius;
-        if self.scene.sync(&self.gpu.device, &self.gpu.queue, &mut viewer.doc, dt, normal_length) {
+        let mut report = self.scene.sync(&self.gpu.device, &self.gpu.queue, &viewer.doc, normal_length);
+        if report.uploaded {
             viewer.view.stats.upload_ms = t0.elapsed().as_secs_f64() * 1e3;
         }
         if let Some(e) = self.gpu_error.lock().ok().and_then(|mut slot| slot.take()) {
-            viewer.doc.fail(Problem::Other(Error::Gpu(e)));
+            report.errors.push(Error::Gpu(e));
         }
+        viewer.apply(Command::Gpu(Box::new(report)));
     }
 
     /// Whether the window has an area to draw into.
-    pub fn is_minimised(&self) -> bool {
+    pub(crate) fn is_minimised(&self) -> bool {
         let size = self.window.inner_size();
         size.width == 0 || size.height == 0
     }
 
     /// Runs the panel (its commands are applied) and tessellates it; egui's
     /// new textures are uploaded.
-    pub fn run_egui(&mut self, viewer: &mut Viewer) -> EguiFrame {
+    pub(crate) fn run_egui(&mut self, viewer: &mut Viewer) -> EguiFrame {
         let raw = self.egui.state.take_egui_input(&self.window);
         let out = self.egui.ctx.run_ui(raw, |ui| {
             viewer.ui(ui);
@@ -254,7 +257,7 @@ impl Win {
     }
 
     /// Frees the textures egui no longer uses (after the frame, drawn or not).
-    pub fn end_egui(&mut self, frame: EguiFrame) {
+    pub(crate) fn end_egui(&mut self, frame: EguiFrame) {
         for id in &frame.free {
             self.egui.renderer.free_texture(id);
         }
@@ -262,7 +265,7 @@ impl Win {
 
     /// The next surface frame; `None` when there is none now (a lost
     /// surface is reconfigured and a redraw requested).
-    pub fn acquire(&mut self) -> Option<wgpu::SurfaceTexture> {
+    pub(crate) fn acquire(&mut self) -> Option<wgpu::SurfaceTexture> {
         match self.surface.acquire(&self.gpu.device) {
             super::surface::Acquired::Frame(f) => Some(f),
             super::surface::Acquired::Retry => {
@@ -275,7 +278,7 @@ impl Win {
 
     /// Rebuilds the pipelines when the MSAA option changed; turns the FXAA
     /// pass on or off.
-    pub fn ensure_samples(&mut self, msaa: bool, fxaa: bool) {
+    pub(crate) fn ensure_samples(&mut self, msaa: bool, fxaa: bool) {
         if self.renderer.fxaa != fxaa {
             self.renderer.fxaa = fxaa;
             self.scene_key = None;
@@ -294,7 +297,7 @@ impl Win {
 
     /// A command encoder with egui's buffers updated; the extra command
     /// buffers egui asked for come along.
-    pub fn begin_frame(&mut self, egui: &EguiFrame) -> (wgpu::CommandEncoder, Vec<wgpu::CommandBuffer>) {
+    pub(crate) fn begin_frame(&mut self, egui: &EguiFrame) -> (wgpu::CommandEncoder, Vec<wgpu::CommandBuffer>) {
         let (device, queue) = (&self.gpu.device, &self.gpu.queue);
         let mut encoder = device.create_command_encoder(&Default::default());
         let user = self.egui.renderer.update_buffers(device, queue, &mut encoder, &egui.jobs, &egui.screen);
@@ -303,7 +306,7 @@ impl Win {
 
     /// Re-renders the 3D viewports into the cached texture when something
     /// they show changed; whether it did.
-    pub fn draw_scene(
+    pub(crate) fn draw_scene(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         viewer: &Viewer,
@@ -354,7 +357,7 @@ impl Win {
     ///
     /// # Errors
     /// [`Error::Usage`] for a size the device cannot hold; readback errors.
-    pub fn scene_shot(&self, viewer: &Viewer, ppp: f32, shot: crate::render::Shot) -> Result<image::RgbaImage> {
+    pub(crate) fn scene_shot(&self, viewer: &Viewer, ppp: f32, shot: crate::render::Shot) -> Result<image::RgbaImage> {
         let rect = viewer.view.scene_rect;
         let px = |v: f32| (v * ppp).round().max(1.0) as u32;
         let (w, h) = shot.size(px(rect.width()), px(rect.height()));
@@ -368,12 +371,12 @@ impl Win {
     }
 
     /// Whether the result is big enough to be drawn through its proxy while the camera moves.
-    pub fn has_big_result(&self) -> bool {
+    pub(crate) fn has_big_result(&self) -> bool {
         self.scene.proxy.is_some() && self.scene.result.as_ref().is_some_and(|m| m.triangle_count() > PROXY_ABOVE)
     }
 
     /// A texture of the frame's size and format to read the frame back from.
-    pub fn capture(&self) -> Capture {
+    pub(crate) fn capture(&self) -> Capture {
         let (w, h) = self.surface.size();
         let (texture, view) = capture_texture(&self.gpu.device, "screenshot", self.surface.format(), w, h);
         Capture { texture, view, readback: Readback::new(&self.gpu.device, w, h) }
@@ -381,7 +384,7 @@ impl Win {
 
     /// The cached 3D image, then egui over it, into `target` and into the
     /// capture when there is one (whose copy to its buffer is recorded too).
-    pub fn composite(
+    pub(crate) fn composite(
         &mut self,
         encoder: &mut wgpu::CommandEncoder,
         target: &wgpu::TextureView,
@@ -411,7 +414,12 @@ impl Win {
     }
 
     /// Submits the frame's commands and presents it.
-    pub fn present(&self, encoder: wgpu::CommandEncoder, user: Vec<wgpu::CommandBuffer>, frame: wgpu::SurfaceTexture) {
+    pub(crate) fn present(
+        &self,
+        encoder: wgpu::CommandEncoder,
+        user: Vec<wgpu::CommandBuffer>,
+        frame: wgpu::SurfaceTexture,
+    ) {
         self.gpu.queue.submit(user.into_iter().chain([encoder.finish()]));
         self.window.pre_present_notify();
         self.gpu.queue.present(frame);
@@ -421,7 +429,7 @@ impl Win {
     ///
     /// # Errors
     /// [`Error::Gpu`] when the readback fails.
-    pub fn read_capture(&self, capture: &Capture) -> Result<image::RgbaImage> {
+    pub(crate) fn read_capture(&self, capture: &Capture) -> Result<image::RgbaImage> {
         capture.readback.read_rgba(&self.gpu.device, self.surface.format())
     }
 }

@@ -143,7 +143,7 @@ fn read_mesh(mesh: Node, file: &str, at: &str) -> Result<RawMesh> {
         let mut corners: Vec<u32> = Vec::new();
         for p in polys {
             let p: Vec<u32> = numbers(&p).map_err(ix_err)?;
-            if p.len() % stride != 0 {
+            if !p.len().is_multiple_of(stride) {
                 return Err(err(format!("a polygon of {} indices, not a multiple of {stride} per corner", p.len())));
             }
             corners.clear();
@@ -238,7 +238,7 @@ fn polygons(prim: Node, stride: usize, file: &str, at: &str) -> Result<Vec<Strin
         let vc = child(prim, "vcount").map(all_text).unwrap_or_default();
         numbers(&vc).map_err(|t| format_err(file, at, format!("vcount '{t}' is not a count")))?
     } else {
-        if words.len() % (3 * stride) != 0 {
+        if !words.len().is_multiple_of(3 * stride) {
             let msg = format!("{} indices, not a whole number of triangles of {stride} indices a corner", words.len());
             return Err(format_err(file, at, msg));
         }

@@ -59,12 +59,15 @@ pub struct Format {
     /// Its reader; `None` for a file that is not a mesh (a `.bzc` curve).
     reader: Option<fn(&Input) -> Result<RawMesh>>,
     /// Its writer, when the format is written.
-    writer: Option<fn(&Path, &Mesh, &Attributes) -> Result<()>>,
+    writer: Option<Writer>,
     /// The extensions the writer writes (glTF: `.glb` only).
     written_as: &'static [&'static str],
     /// What its writer keeps of a mesh's attributes.
     pub keeps: Keeps,
 }
+
+/// A format's writer: the mesh with its attributes into a file.
+type Writer = fn(&Path, &Mesh, &Attributes) -> Result<()>;
 
 /// What a format's writer keeps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -230,7 +233,7 @@ fn group_digits(n: usize) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i) % 3 == 0 {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
             out.push(',');
         }
         out.push(c);

@@ -54,6 +54,8 @@ fn address_space_limit() -> Option<u64> {
         // SAFETY: getrlimit writes the limit into the struct we own and
         // reads nothing else of ours.
         let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
+        // rlim_t is u64 on Linux but not everywhere
+        #[allow(clippy::unnecessary_cast)]
         (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
     }
     #[cfg(not(unix))]

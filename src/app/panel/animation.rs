@@ -11,7 +11,12 @@ use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 
 /// Play/step/stop, refinement and tweak, the clock of a built plan, export.
-pub fn animation_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &Display) -> Vec<Command> {
+pub(crate) fn animation_section(
+    ui: &mut egui::Ui,
+    doc: &Doc,
+    panel: &mut PanelState,
+    display: &Display,
+) -> Vec<Command> {
     let anim = &doc.anim;
     ui.label(RichText::new(format!("paths: {}", anim.paths_source)).small().weak());
     let mut out = Vec::new();

@@ -7,12 +7,12 @@ use std::path::{Path, PathBuf};
 
 /// Whether the viewer opens `p` (a model or curve file of any format the
 /// readers know, [`crate::io::FORMATS`]).
-pub fn opens(p: &Path) -> bool {
+pub(crate) fn opens(p: &Path) -> bool {
     crate::io::Format::by_extension(p).is_some()
 }
 
 /// The browser window while it is open: folders to walk into, model files to open.
-pub fn file_browser(ctx: &egui::Context, panel: &mut PanelState) -> Option<Command> {
+pub(crate) fn file_browser(ctx: &egui::Context, panel: &mut PanelState) -> Option<Command> {
     let dir = panel.browser.clone()?;
     let mut open = true;
     let mut next: Option<PathBuf> = None;

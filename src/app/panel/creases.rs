@@ -11,7 +11,12 @@ use crate::mesh::{BoundaryInterpolation, Creasing};
 use egui::RichText;
 
 /// The section; display toggles edit the draft `display`.
-pub fn creases_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &mut Display) -> Vec<Command> {
+pub(crate) fn creases_section(
+    ui: &mut egui::Ui,
+    doc: &Doc,
+    panel: &mut PanelState,
+    display: &mut Display,
+) -> Vec<Command> {
     let mut out = Vec::new();
     let ct = &doc.model.control.mesh.ct;
     let s = crate::subdiv::rules::features::summary(ct, doc.request.opts.boundary);

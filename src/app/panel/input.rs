@@ -9,7 +9,7 @@ use glam::Vec2;
 
 /// Drags orbit or pan, the wheel zooms to the cursor, a double click fits, a
 /// click picks (when picking is on); then the keys.
-pub fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, view: &View, display: &mut Display) -> Vec<Command> {
+pub(crate) fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, view: &View, display: &mut Display) -> Vec<Command> {
     let mut out = Vec::new();
     let resp = ui.allocate_rect(rect, Sense::click_and_drag());
     let shift = ui.input(|i| i.modifiers.shift);

@@ -27,33 +27,33 @@ use egui::RichText;
 use std::path::PathBuf;
 
 /// Keyboard help shown at the bottom of the panel.
-pub const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor. \
+pub(crate) const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor. \
 Keys: W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
 B side by side, T turntable, Space play/pause, Left/Right step frame, P screenshot.";
 
 /// The panel's own widget state.
-pub struct PanelState {
+pub(crate) struct PanelState {
     /// Path typed in the Open field.
-    pub open_path: String,
+    pub(crate) open_path: String,
     /// File browser open, and its directory.
-    pub browser: Option<PathBuf>,
+    pub(crate) browser: Option<PathBuf>,
     /// Bundled model files (`bundled:NAME`).
-    pub bundled: Vec<PathBuf>,
+    pub(crate) bundled: Vec<PathBuf>,
     /// Export file or directory.
-    pub export_path: String,
+    pub(crate) export_path: String,
     /// Export image side.
-    pub export_size: u32,
+    pub(crate) export_size: u32,
     /// Taubin steps per click.
-    pub smooth_steps: u32,
+    pub(crate) smooth_steps: u32,
     /// Dihedral angle above which "Tag" makes edges sharp, degrees.
-    pub crease_angle: f32,
+    pub(crate) crease_angle: f32,
     /// Where "Save control" writes.
-    pub save_path: String,
+    pub(crate) save_path: String,
 }
 
 impl PanelState {
     /// Defaults; `bundled` lists the models compiled into the binary.
-    pub fn new() -> PanelState {
+    pub(crate) fn new() -> PanelState {
         PanelState {
             open_path: String::new(),
             browser: None,
@@ -88,7 +88,7 @@ fn sep(n: u64) -> String {
 
 /// Draws the panel and handles the 3D area's input; returns the 3D area in
 /// points and the commands asked for.
-pub fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelState) -> (egui::Rect, Vec<Command>) {
+pub(crate) fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelState) -> (egui::Rect, Vec<Command>) {
     let mut out = Vec::new();
     let mut display = doc.display;
     egui::Panel::left("controls").default_size(300.0).resizable(true).show(ui, |ui| {

@@ -28,7 +28,7 @@ fn curve_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Command> {
 }
 
 /// Bundled models, the Open field and browser, repair.
-pub fn model_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState) -> Vec<Command> {
+pub(crate) fn model_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState) -> Vec<Command> {
     let mut out: Vec<Command> = curve_section(ui, doc).into_iter().collect();
     let model = &doc.model;
     ui.label(RichText::new(format!("Model: {}", model.name)).strong());

@@ -6,7 +6,7 @@ use crate::app::view::View;
 use egui::Color32;
 
 /// What each viewport shows (with this frame's `display`), how long a running task has taken, "Drop to open".
-pub fn overlay(ui: &mut egui::Ui, rect: egui::Rect, doc: &Doc, view: &View, display: &Display) {
+pub(crate) fn overlay(ui: &mut egui::Ui, rect: egui::Rect, doc: &Doc, view: &View, display: &Display) {
     let painter = ui.painter_at(rect);
     let font = egui::FontId::proportional(14.0);
     let weak = Color32::from_gray(170);

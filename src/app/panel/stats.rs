@@ -8,7 +8,7 @@ use egui::{Color32, RichText};
 
 /// Counts of the control mesh and the result, phase times, frame times;
 /// the error and the notice with their dismiss buttons.
-pub fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Command> {
+pub(crate) fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Command> {
     let m = &doc.model;
     let (c, t) = (&m.control.topo, &m.result.shown.topo);
     egui::Grid::new("stats").num_columns(3).striped(true).show(ui, |ui| {

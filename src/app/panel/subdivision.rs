@@ -11,7 +11,7 @@ use std::sync::atomic::Ordering;
 /// Scheme, Warren's beta or the tension, and the level: one
 /// [`Command::Subdivide`] when any of them changed (the tension only when
 /// its slider is let go; while it is dragged, [`Command::SetTension`]).
-pub fn subdivision_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Command> {
+pub(crate) fn subdivision_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Command> {
     let mut req = doc.request;
     let mut changed = false;
     let mut tension_moved = false;

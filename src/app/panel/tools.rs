@@ -8,7 +8,12 @@ use crate::app::doc::Doc;
 use egui::RichText;
 
 /// Normals, snapping and colouring edit the draft `display`; the tools return commands.
-pub fn tools_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &mut Display) -> Vec<Command> {
+pub(crate) fn tools_section(
+    ui: &mut egui::Ui,
+    doc: &Doc,
+    panel: &mut PanelState,
+    display: &mut Display,
+) -> Vec<Command> {
     egui::ComboBox::from_label("Normals").selected_text(display.normal_mode.name()).show_ui(ui, |ui| {
         for m in NormalMode::ALL {
             ui.selectable_value(&mut display.normal_mode, m, m.name());

@@ -1,17 +1,38 @@
 //! The viewer's logic without a window: the egui panel runs headless on a
 //! viewer, driven by key events; every change goes through the same
 //! `Viewer::apply` as in the window, and the worker threads are awaited.
-#![cfg(feature = "viewer")]
+//! (Unit tests of the app, since its internals are not public.)
 
-mod common;
+/// The files the tests use.
+mod common {
+    use std::path::PathBuf;
 
+    /// A fresh directory for one test's files.
+    pub fn scratch_dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("subdiv-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&d).expect("temporary directory");
+        d
+    }
+
+    /// A bundled model's file in the repository.
+    pub fn model_path(name: &str) -> PathBuf {
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models").join(name)
+    }
+
+    /// The file's mesh and attributes.
+    pub fn load_with_attributes(path: &std::path::Path) -> (crate::Mesh, crate::mesh::attributes::Attributes) {
+        let l = crate::io::read(crate::io::Source::File(path), &Default::default()).expect("readable");
+        (l.mesh, l.attributes)
+    }
+}
+
+use crate::app::doc::{Problem, Request};
+use crate::app::{Command, Viewer};
+use crate::render::Surface;
+use crate::{Error, Scheme};
 use glam::Vec3;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
-use subdiv::app::doc::{Problem, Request};
-use subdiv::app::{Command, Viewer};
-use subdiv::render::Surface;
-use subdiv::{Error, Scheme};
 
 fn key(k: egui::Key) -> egui::Event {
     egui::Event::Key { key: k, physical_key: None, pressed: true, repeat: false, modifiers: Default::default() }
@@ -50,7 +71,7 @@ fn subdivide(v: &mut Viewer, scheme: Scheme, level: u32) {
     v.apply(Command::Subdivide(Request { scheme, level, ..v.doc.request }));
 }
 
-fn set_display(v: &mut Viewer, change: impl FnOnce(&mut subdiv::app::display::Display)) {
+fn set_display(v: &mut Viewer, change: impl FnOnce(&mut crate::app::display::Display)) {
     let mut d = v.doc.display;
     change(&mut d);
     v.apply(Command::SetDisplay(d));
@@ -204,7 +225,7 @@ fn a_non_manifold_file_can_be_repaired_from_the_panel() {
 
 #[test]
 fn picking_flip_split_smooth_and_revert_edit_the_control_mesh() {
-    use subdiv::mesh::pick::pick_edge;
+    use crate::mesh::pick::pick_edge;
     let mut v = Viewer::new();
     let tet = v.doc.model.control.mesh.clone();
     // A ray from outside through the centroid of face 0 hits face 0 first.
@@ -221,7 +242,7 @@ fn picking_flip_split_smooth_and_revert_edit_the_control_mesh() {
     v.apply(Command::SplitPicked);
     let control = &v.doc.model.control;
     assert_eq!((control.topo.vertices, control.topo.faces), (5, 6));
-    assert!(subdiv::mesh::topology::check_invariants(&control.mesh.ct).is_ok());
+    assert!(crate::mesh::topology::check_invariants(&control.mesh.ct).is_ok());
     assert!(v.doc.model.original.is_some());
     v.apply(Command::Smooth(5));
     assert_ne!(v.doc.model.control.mesh.positions, v.doc.model.original.as_ref().unwrap().positions);
@@ -238,8 +259,8 @@ fn picking_flip_split_smooth_and_revert_edit_the_control_mesh() {
 
 #[test]
 fn display_options_recolour_and_renormal_the_result() {
-    use subdiv::app::display::{Coloring, NormalMode};
-    use subdiv::mesh::inspect::colormap;
+    use crate::app::display::{Coloring, NormalMode};
+    use crate::mesh::inspect::colormap;
     let mut v = Viewer::new();
     subdivide(&mut v, Scheme::Midpoint, 2);
     settle(&mut v);
@@ -263,7 +284,7 @@ fn display_options_recolour_and_renormal_the_result() {
 
 #[test]
 fn a_bzc_file_opens_as_a_curve_with_its_construction() {
-    use subdiv::io::bezier::{curve_polyline, de_casteljau, de_casteljau_construction};
+    use crate::io::bezier::{curve_polyline, de_casteljau, de_casteljau_construction};
     let mut v = Viewer::new();
     v.apply(Command::Open(common::model_path("curve.bzc")));
     settle(&mut v);
@@ -312,7 +333,7 @@ fn file_colours_are_refined_with_the_mesh() {
     // An affine colour field c(p) = A p + b: every scheme's weights sum to 1,
     // so the refined colours must be c at the refined points, whatever the
     // weights are.
-    use subdiv::app::display::Coloring;
+    use crate::app::display::Coloring;
     let field =
         |p: Vec3| Vec3::new(0.5 + 0.2 * p.x + 0.1 * p.y, 0.5 + 0.2 * p.y + 0.1 * p.z, 0.5 + 0.2 * p.z + 0.1 * p.x);
     let corners =
@@ -344,7 +365,7 @@ fn file_colours_are_refined_with_the_mesh() {
 
 #[test]
 fn texture_coordinates_of_the_file_follow_the_levels() {
-    use subdiv::app::display::Coloring;
+    use crate::app::display::Coloring;
     let mut v = Viewer::new();
     v.doc.request.level = 2;
     v.apply(Command::Open(common::model_path("cube_uv.obj")));
@@ -361,7 +382,7 @@ fn texture_coordinates_of_the_file_follow_the_levels() {
 #[test]
 fn the_cursor_maps_into_the_viewport_under_it() {
     let rect = egui::Rect::from_min_size(egui::pos2(100.0, 0.0), egui::vec2(400.0, 200.0));
-    let at = |side, x, y| subdiv::app::view::cursor_ndc(rect, side, egui::pos2(x, y));
+    let at = |side, x, y| crate::app::view::cursor_ndc(rect, side, egui::pos2(x, y));
     assert_eq!(at(false, 100.0, 0.0), glam::Vec2::new(-1.0, 1.0));
     assert_eq!(at(false, 500.0, 200.0), glam::Vec2::new(1.0, -1.0));
     // side by side: each half has its own NDC square
@@ -375,9 +396,9 @@ fn snapping_to_the_limit_follows_warrens_beta() {
     // The snapped points must be where repeated subdivision with the same
     // (Warren's) weights converges: computed here by subdividing, not by the
     // limit masks the viewer uses. Valence 5 tells Loop's beta from Warren's.
-    let ico = subdiv::mesh::shapes::icosahedron();
-    let warren = subdiv::Options { loop_beta: subdiv::LoopBeta::Warren, ..Default::default() };
-    let converged = subdiv::subdivide(&ico, Scheme::Loop, 6, &warren).unwrap().0;
+    let ico = crate::mesh::shapes::icosahedron();
+    let warren = crate::Options { loop_beta: crate::LoopBeta::Warren, ..Default::default() };
+    let converged = crate::subdivide(&ico, Scheme::Loop, 6, &warren).unwrap().0;
     let mut v = Viewer::new();
     v.doc.adopt("icosahedron.obj".into(), ico.clone(), None);
     v.apply(Command::Subdivide(Request { scheme: Scheme::Loop, level: 0, opts: warren, ..v.doc.request }));
@@ -407,7 +428,7 @@ fn a_new_model_is_framed_and_an_edit_keeps_the_view() {
     let (lo, hi) = v.doc.model.result.shown.mesh.bounds();
     assert_eq!(v.view.camera.target, 0.5 * (lo + hi), "a new model is framed");
     let mut framed = zoomed;
-    framed.fit(lo, hi, subdiv::app::view::viewport_aspect(v.view.scene_rect, false));
+    framed.fit(lo, hi, crate::app::view::viewport_aspect(v.view.scene_rect, false));
     assert_eq!(v.view.camera.distance, framed.distance);
     assert_ne!(v.view.camera.distance, zoomed.distance);
 }
@@ -420,7 +441,7 @@ fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
     // the angle tags the cube's 12 edges (not the diagonals)
     v.apply(Command::AutoCrease(40.0));
     let ct = &v.doc.model.control.mesh.ct;
-    let s = subdiv::subdiv::rules::features::summary(ct, Default::default());
+    let s = crate::subdiv::rules::features::summary(ct, Default::default());
     assert_eq!((s.sharp_edges, s.corners), (12, 8));
     // every change re-subdivides on the worker: the cube stays a cube
     subdivide(&mut v, Scheme::Loop, 2);
@@ -471,7 +492,7 @@ fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
     let dir = (Vec3::new(0.5, 0.0, 0.0) - origin).normalize();
     v.apply(Command::Pick { origin, dir });
     let picked = (*v.doc.model.picked).expect("the ray picks an edge");
-    assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(picked), subdiv::mesh::sharpness::INFINITE);
+    assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(picked), crate::mesh::sharpness::INFINITE);
     assert_eq!(cube.ct.edge_sharpness(picked), 0.0);
     v.apply(Command::Pick { origin, dir });
     assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(picked), 0.0, "a second click smooths it again");
@@ -481,7 +502,7 @@ fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
     v.apply(Command::SaveControl(path.clone()));
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1/0 ")).count(), 1, "{text}");
-    assert!(subdiv::io::load(&path).unwrap().ct.sharpness().is_some());
+    assert!(crate::io::load(&path).unwrap().ct.sharpness().is_some());
 }
 
 #[test]
@@ -490,9 +511,9 @@ fn every_mesh_format_opens_in_the_viewer_with_its_colours() {
     let dir = common::scratch_dir("viewer-formats");
     let (mesh, mut attrs) = common::load_with_attributes(&common::model_path("cube_uv.obj"));
     attrs.colors = Some(mesh.positions.iter().map(|p| p.clamp(glam::Vec3::ZERO, glam::Vec3::ONE)).collect());
-    for ext in subdiv::io::write_extensions() {
+    for ext in crate::io::write_extensions() {
         let path = dir.join(format!("cube.{ext}"));
-        subdiv::io::save_with(&path, &mesh, &attrs).unwrap();
+        crate::io::save_with(&path, &mesh, &attrs).unwrap();
         let mut v = Viewer::new();
         v.apply(Command::Open(path));
         settle(&mut v);
@@ -506,7 +527,7 @@ fn every_mesh_format_opens_in_the_viewer_with_its_colours() {
 
 #[test]
 fn wire_edges_and_screenshot_settings_reach_the_look_and_the_view() {
-    use subdiv::render::{Shot, WireEdges};
+    use crate::render::{Shot, WireEdges};
     let ctx = egui::Context::default();
     let mut v = Viewer::new();
     frame(&ctx, &mut v, vec![key(egui::Key::W)]);
@@ -520,4 +541,35 @@ fn wire_edges_and_screenshot_settings_reach_the_look_and_the_view() {
     assert_eq!(v.view.shot, Shot { scale: 3, transparent: true });
     frame(&ctx, &mut v, vec![key(egui::Key::P)]);
     assert!(v.view.screenshot, "P asks for a screenshot");
+}
+
+#[test]
+fn the_headless_viewer_plays_the_animation_on_its_own_clock() {
+    // the document owns time: no window, no GPU mirror
+    let mut v = Viewer::new();
+    v.apply(Command::TogglePlay);
+    settle(&mut v);
+    assert!(v.doc.anim.playing(), "the first plan starts playing");
+    let mut last: Option<(usize, Vec<glam::Vec3>)> = None;
+    for _ in 0..4 {
+        assert!(v.advance(0.1), "a tenth of a second moves the frame");
+        let shown = v.doc.anim.shown.expect("a current frame");
+        assert!(shown.on_cpu, "without a GPU the document evaluates the frame");
+        let p = v.doc.anim.playback.as_ref().unwrap();
+        let pos = p.player.evaluated().0.to_vec();
+        assert_eq!(pos.len(), p.player.topology().num_vertices());
+        if let Some((frame, before)) = &last {
+            assert_ne!(shown.frame, *frame);
+            assert_ne!(&pos, before, "the surface moves from frame to frame");
+        }
+        last = Some((shown.frame, pos));
+    }
+    // paused, time changes nothing; a step does
+    v.apply(Command::TogglePlay);
+    assert!(!v.advance(0.5));
+    let before = v.doc.anim.shown.unwrap().frame;
+    v.apply(Command::Step(1));
+    assert!(v.advance(0.0));
+    let frames = v.doc.anim.playback.as_ref().unwrap().clock.frames();
+    assert_eq!(v.doc.anim.shown.unwrap().frame, (before + 1) % frames);
 }
