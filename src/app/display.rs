@@ -1,8 +1,8 @@
 //! Display options: how the document is drawn, never what it contains.
 //!
-//! Most options only change the look of the 3D viewports ([`Display::look`]);
+//! Most options only change the look of the 3D viewports (`Display::look`);
 //! three of them change the shown result itself (its positions, normals or
-//! colours, [`Display::reshades_result`]), and applying those recomputes it
+//! colours, `Display::reshades_result`), and applying those recomputes it
 //! from the subdivision output.
 
 use crate::render::{Look, Surface, WireEdges};

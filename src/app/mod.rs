@@ -13,8 +13,8 @@
 //! ├── view: View (view.rs)      camera, pending fits, frame statistics
 //! └── panel: PanelState         the panel's text fields and file browser
 //! ```
-//! The panel (`panel/`) reads all of it and returns [`Command`]s; workers'
-//! results arrive as [`Command::Finished`]; [`Viewer::apply`] (command.rs)
+//! The panel (`panel/`) reads all of it and returns `Command`s; workers'
+//! results arrive as `Command::Finished`; `Viewer::apply` (command.rs)
 //! is the one place that changes the document.
 //!
 //! One frame (`App::redraw`): adopt finished worker tasks, upload what

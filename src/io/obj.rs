@@ -6,7 +6,7 @@
 //! every record remembered so that every error names it. The `mtllib`
 //! libraries are read through the [`Resolver`](super::resolve::Resolver)
 //! (OBJ practice lets them lie anywhere; only regular files, each read
-//! once, within the budget) and parsed by [`super::mtl`]; their textures
+//! once, within the budget) and parsed by `io/mtl.rs`; their textures
 //! are decoded when the read asks for them. A library that cannot be read
 //! or a material it lacks is a warning: those faces are drawn grey.
 //!

@@ -1,7 +1,7 @@
 //! Attributes of a mesh: per-corner texture coordinates and per-vertex
 //! colours, and the linear refinement of UVs through the 1-to-4 split. The
 //! colours' refinement by a scheme's weights is in
-//! [`crate::subdiv::attributes`].
+//! [`crate::subdiv::tables::attributes`].
 //!
 //! * **Colours** (one per vertex) use the scheme's own weights: they are
 //!   refined by the same stencil plan as the positions (so a colour that is

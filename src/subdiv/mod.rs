@@ -173,7 +173,7 @@ pub(crate) trait RulesFn<T> {
 /// Refines `mesh` `levels` times with `scheme`.
 ///
 /// # Errors
-/// [`Error::TooLarge`] when a level would exceed the memory limit (checked
+/// [`crate::Error::TooLarge`] when a level would exceed the memory limit (checked
 /// before it is allocated) or 32-bit corner ids.
 pub fn subdivide(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Mesh, Stats)> {
     subdivide_with_progress(mesh, scheme, levels, opts, |_, _| true)
