@@ -197,8 +197,10 @@ impl Doc {
     pub(crate) fn adopt(&mut self, path: PathBuf, mesh: Mesh, paths: Option<Paths>) {
         let mesh = Arc::new(mesh);
         let m = &mut self.model;
-        m.name =
-            path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| path.display().to_string());
+        m.name = match crate::bundled::from_arg(&path) {
+            Some(bundled) => bundled.file_name.to_string(),
+            None => path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned()),
+        };
         m.control.set(Shown::new(mesh.clone()));
         m.raw = (*m.control).clone();
         m.attrs.refined = m.attrs.file.clone();

@@ -14,14 +14,14 @@ mod common {
         d
     }
 
-    /// A bundled model's file in the repository.
+    /// A bundled model, as the command line names it (`bundled:NAME`).
     pub fn model_path(name: &str) -> PathBuf {
-        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models").join(name)
+        PathBuf::from(format!("{}{name}", crate::bundled::PREFIX))
     }
 
-    /// The file's mesh and attributes.
+    /// The model's mesh and attributes.
     pub fn load_with_attributes(path: &std::path::Path) -> (crate::Mesh, crate::mesh::attributes::Attributes) {
-        let l = crate::io::read(crate::io::Source::File(path), &Default::default()).expect("readable");
+        let l = crate::bundled::read(path, &Default::default()).expect("readable");
         (l.mesh, l.attributes)
     }
 }
