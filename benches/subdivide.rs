@@ -16,7 +16,7 @@ fn per_level(c: &mut Criterion, group: &str, mesh: &Mesh, levels: &[u32]) {
     let mut g = c.benchmark_group(group);
     g.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(2));
     let opts = Options::default();
-    for scheme in Scheme::ALL {
+    for scheme in Scheme::TRIANGLE {
         for &l in levels {
             let faces = mesh.ct.num_triangles() as u64 * 4u64.pow(l);
             g.throughput(Throughput::Elements(faces));

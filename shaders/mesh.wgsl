@@ -300,10 +300,13 @@ struct WireColoredOut {
 fn spacings(w: u32) -> array<vec3<f32>, 2> {
     let e = vec3<u32>(w & 31u, (w >> 5u) & 31u, (w >> 10u) & 31u);
     let v = vec3<u32>((w >> 15u) & 31u, (w >> 20u) & 31u, (w >> 25u) & 31u);
+    // generation 31: a diagonal inside a polygon (a triangulated quad), never drawn
+    let hidden = e == vec3<u32>(31u);
+    let real = select(e, vec3<u32>(0u), hidden);
     // every triangle of a split level has an edge of that level (its inner one)
-    let level = vec3<f32>(f32(max(e.x, max(e.y, e.z))));
+    let level = vec3<f32>(f32(max(real.x, max(real.y, real.z))));
     let most = vec3<u32>(u32(u.wire.y));
-    let se = select(vec3<f32>(0.0), exp2(level - vec3<f32>(e)), e <= most);
+    let se = select(vec3<f32>(0.0), exp2(level - vec3<f32>(e)), (e <= most) & !hidden);
     let sv = select(vec3<f32>(0.0), exp2(level - vec3<f32>(v)), v <= most);
     return array<vec3<f32>, 2>(se, sv);
 }

@@ -180,10 +180,11 @@ fn parsers_never_panic_on_mutated_input() {
             }
         }
         if let Ok(m) = fuzz_read(&data, "fuzz.obj", Topology::Refuse).map(|l| l.mesh) {
-            let _ = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default());
+            let _ = subdiv::subdivide(&m, Scheme::ALL[round % Scheme::ALL.len()], 1, &Default::default());
         }
         if let Ok(m) = fuzz_read(&data, "fuzz.obj", Topology::Repair).map(|l| l.mesh) {
-            let (fine, _) = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default()).unwrap();
+            let (fine, _) =
+                subdiv::subdivide(&m, Scheme::ALL[round % Scheme::ALL.len()], 1, &Default::default()).unwrap();
             assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok());
         }
         if let Ok(s) = std::str::from_utf8(&data) {
@@ -196,7 +197,8 @@ fn parsers_never_panic_on_mutated_input() {
                 assert!(subdiv::mesh::topology::check_invariants(&m.ct).is_ok(), "{name}");
             }
             if let Ok(m) = fuzz_read(&data, name, Topology::Repair).map(|l| l.mesh) {
-                let (fine, _) = subdiv::subdivide(&m, Scheme::ALL[round % 5], 1, &Default::default()).unwrap();
+                let (fine, _) =
+                    subdiv::subdivide(&m, Scheme::ALL[round % Scheme::ALL.len()], 1, &Default::default()).unwrap();
                 assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok(), "{name}");
             }
         }

@@ -9,7 +9,7 @@
 use crate::mesh::attributes::{Attributes, Material, MaterialGroups};
 use crate::mesh::repair::{RepairReport, repair_with_cap};
 use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags};
-use crate::mesh::{BORDER, CornerTable, Mesh};
+use crate::mesh::{BORDER, CornerTable, Generations, Mesh};
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
 
@@ -196,6 +196,12 @@ impl RawMesh {
         let (mut mesh, report) =
             Mesh::from_triangles_report(self.positions, &triangles).map_err(|e| locate.mesh_error(e))?;
         notes.unreferenced = report.unreferenced;
+        if let Some(of) = &tri_face {
+            // the fans' diagonals are no edges of the file's faces: marked,
+            // they are not drawn, and the polygon schemes join them back
+            let Mesh { ct, positions } = mesh;
+            mesh = Mesh { ct: ct.with_generations(Some(fan_generations(of))), positions };
+        }
         if let Some(stored) = &self.opposite {
             check_opposite(&mesh.ct, stored, notes.unreferenced, &locate)?;
         }
@@ -286,6 +292,26 @@ impl RawMesh {
         merge(&mut self.materials, other.materials, nf0, other.face_starts.len().saturating_sub(1), 0);
         self.positions.extend(other.positions);
     }
+}
+
+/// The edge generations of fanned faces (the face of every triangle in
+/// `of`, each face's triangles consecutive, fanned from its first corner):
+/// every edge 0 but the diagonals between a face's triangles,
+/// [`Generations::HIDDEN`] (triangle `j` of a fan shares its corner `+1`'s
+/// edge with the next triangle and its corner `+2`'s with the previous one).
+fn fan_generations(of: &[u32]) -> Generations {
+    let mut g = vec![0u8; 3 * of.len()];
+    for (t, w) in of.iter().enumerate() {
+        let first = t == 0 || of[t - 1] != *w;
+        let last = t + 1 == of.len() || of[t + 1] != *w;
+        if !last {
+            g[3 * t + 1] = Generations::HIDDEN;
+        }
+        if !first {
+            g[3 * t + 2] = Generations::HIDDEN;
+        }
+    }
+    Generations::explicit(g, 0)
 }
 
 /// Turns the build's errors into errors naming the file and the record.

@@ -141,7 +141,7 @@ impl CornerTable {
     /// makes O by pairing each half-edge with its one reversed twin): walks
     /// every fan to fill C and the valences, and checks that every vertex
     /// has exactly one fan.
-    fn with_fans(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
+    pub(crate) fn with_fans(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
         let mut ct =
             CornerTable { v, o, vc: vec![BORDER; nv], valence: vec![0u32; nv], sharpness: None, generations: None };
         let mut visited = vec![false; ct.v.len()];

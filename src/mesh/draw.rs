@@ -4,7 +4,7 @@
 //! for the wire shader. The walks over corners live here, so that the
 //! renderer only uploads arrays.
 
-use super::{CornerTable, n, p};
+use super::{CornerTable, Generations, n, p};
 
 /// The sharp edges (sharpness > 0, borders excluded unless tagged) as pairs
 /// of vertex ids.
@@ -28,17 +28,26 @@ pub fn sharp_corner_pairs(ct: &CornerTable) -> Vec<u32> {
         .collect()
 }
 
-/// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]).
+/// The edges drawn: each once, by its owner corner, without the
+/// diagonals inside polygons ([`Generations::HIDDEN`]).
+fn drawn_edges(ct: &CornerTable) -> impl Iterator<Item = u32> + '_ {
+    let hidden = ct.generations().is_some();
+    ct.edge_owners().filter(move |&c| !hidden || ct.edge_generation(c) != Generations::HIDDEN)
+}
+
+/// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]),
+/// diagonals inside polygons left out.
 pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
-    ct.edge_owners().flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
+    drawn_edges(ct).flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
 }
 
 /// Per triangle `t`, one word as the wire shader reads it (one load per
 /// vertex instead of three): five bits for each corner `k` of the triangle,
 /// the generation of the edge opposite it (see [`crate::mesh::Generations`])
 /// at bit `5k`, and the lowest generation of the edges at its vertex at bit
-/// `15 + 5k`. Generations above 31 (never reached: level 31 is far past any
-/// memory) are stored as 31.
+/// `15 + 5k`. Generations are below 31 (level 30 is far past any memory);
+/// 31 marks a hidden diagonal ([`Generations::HIDDEN`]), which the shader
+/// never draws.
 pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
     let nc = ct.num_corners();
     let mut words = vec![0u32; nc / 3];
@@ -63,5 +72,5 @@ pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
 /// [`edge_indices`] for a mesh with one GPU vertex per corner: each edge
 /// once as the pair of corners that end it on its owner's side.
 pub fn edge_corner_pairs(ct: &CornerTable) -> Vec<u32> {
-    ct.edge_owners().flat_map(|c| [n(c), p(c)]).collect()
+    drawn_edges(ct).flat_map(|c| [n(c), p(c)]).collect()
 }

@@ -16,11 +16,13 @@ pub mod attributes;
 mod build;
 pub mod cut;
 pub mod draw;
+pub mod edges;
 pub mod edit;
 pub mod inspect;
 pub mod normals;
 pub mod order;
 pub mod pick;
+pub mod poly;
 pub mod repair;
 pub mod shapes;
 pub mod sharpness;
@@ -125,24 +127,42 @@ pub struct CornerTable {
 /// generation of the edge opposite `c` (from `v(n(c))` to `v(p(c))`), so
 /// both corners of an interior edge hold the same value. Generation 0 is a
 /// piece of a control-mesh edge; generation `j >= 1` an edge made inside a
-/// triangle by the `j`-th split. Saturates at 255.
+/// face by the `j`-th split; [`Generations::HIDDEN`] a diagonal drawn
+/// inside a polygon (a fanned face's, a triangulated quad's), which is no
+/// edge of the polygon mesh and never drawn as one (once a triangle scheme
+/// splits the table it is an edge like the others, of generation 0).
+/// Saturates below `HIDDEN`.
 ///
-/// Derived, not stored: a table made by splits of a control table (whose
-/// edges are all of generation 0) has its generations fixed by the corner
-/// layout of the split (see [`split`]), so only the triangle count before
-/// each split is kept. [`Generations::corner`] walks one corner back through
-/// the splits; [`Generations::corners`] writes all of them, level by level,
-/// for the renderer. The split thus writes no byte per corner for them.
+/// Derived, not stored, for a table made by triangle splits: its
+/// generations are fixed by the corner layout of the split (see [`split`])
+/// from those of the table the splits started from (all 0 for a control
+/// table, or given per corner, `base`, for a triangulated polygon mesh), so
+/// only the triangle count before each split is kept.
+/// [`Generations::corner`] walks one corner back through the splits;
+/// [`Generations::corners`] writes all of them, level by level, for the
+/// renderer.
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct Generations {
+    /// Per corner, the generations of the table the splits started from
+    /// (`None`: all 0), and the level it was made at.
+    base: Option<(Vec<u8>, u8)>,
     /// Triangles of the table before each split, oldest first.
     splits: Vec<usize>,
 }
 
 impl Generations {
-    /// How many splits made this table (the newest generation).
+    /// The generation of a polygon's inner diagonal: never drawn.
+    pub const HIDDEN: u8 = 31;
+
+    /// The generations of a table (a triangulated polygon mesh made at
+    /// `level`) given per corner.
+    pub fn explicit(corners: Vec<u8>, level: u8) -> Generations {
+        Generations { base: Some((corners, level)), splits: Vec::new() }
+    }
+    /// The newest generation of the table.
     pub fn level(&self) -> u8 {
-        self.splits.len().min(255) as u8
+        let base = self.base.as_ref().map_or(0, |b| b.1);
+        (base as usize + self.splits.len()).min(Self::HIDDEN as usize - 1) as u8
     }
     /// The generation of the edge opposite corner `c` (split.rs, "Edge
     /// generations"): in the split of a table with `nt` triangles, a
@@ -151,9 +171,10 @@ impl Generations {
     /// corner triangle `k` of old triangle `t` face halves of old edges,
     /// those opposite the old corners `3t + (k+1)%3` and `3t + (k+2)%3`.
     pub fn corner(&self, c: u32) -> u8 {
+        let base_level = self.base.as_ref().map_or(0, |b| b.1) as usize;
         let mut c = c as usize;
         for (j, &nt) in self.splits.iter().enumerate().rev() {
-            let (nc, generation) = (3 * nt, (j + 1).min(255) as u8);
+            let (nc, generation) = (3 * nt, (base_level + j + 1).min(Self::HIDDEN as usize - 1) as u8);
             if c < nc {
                 return generation;
             }
@@ -164,16 +185,25 @@ impl Generations {
             }
             c = 3 * t + (k + i) % 3;
         }
-        0
+        let g = self.base.as_ref().map_or(0, |b| b.0.get(c).copied().unwrap_or(0));
+        // a triangle split makes a hidden diagonal a real edge
+        if g == Self::HIDDEN && !self.splits.is_empty() { 0 } else { g }
     }
     /// [`Self::corner`] of every corner, written split by split from the
-    /// control table's zeros (four streams per old triangle, in parallel).
+    /// base table's (four streams per old triangle, in parallel).
     pub fn corners(&self) -> Vec<u8> {
-        let first = self.splits.first().map_or(0, |&nt| 3 * nt);
-        let mut corner = vec![0u8; first];
+        let base_level = self.base.as_ref().map_or(0, |b| b.1) as usize;
+        let mut corner = match &self.base {
+            // a triangle split makes a hidden diagonal a real edge
+            Some((b, _)) if !self.splits.is_empty() => {
+                b.iter().map(|&g| if g == Self::HIDDEN { 0 } else { g }).collect()
+            }
+            Some((b, _)) => b.clone(),
+            None => vec![0u8; self.splits.first().map_or(0, |&nt| 3 * nt)],
+        };
         for (j, &nt) in self.splits.iter().enumerate() {
             debug_assert_eq!(corner.len(), 3 * nt);
-            corner = split::split_generations(&corner, (j + 1).min(255) as u8);
+            corner = split::split_generations(&corner, (base_level + j + 1).min(Self::HIDDEN as usize - 1) as u8);
         }
         corner
     }
@@ -182,7 +212,7 @@ impl Generations {
     pub(crate) fn after_split(&self, nt: usize) -> Generations {
         let mut splits = self.splits.clone();
         splits.push(nt);
-        Generations { splits }
+        Generations { base: self.base.clone(), splits }
     }
 }
 

@@ -32,6 +32,7 @@
 //! half that ends at `v(p(c))` is opposite `n(A(p(c)))`, with
 //! `A(x) = 3 nt (x % 3 + 1) + 3 (x / 3)`.
 
+use super::edges::EdgeTable;
 use super::{BORDER, CornerTable, n, p};
 use crate::MeshError;
 
@@ -166,7 +167,7 @@ impl Sharpness {
     /// # Errors
     /// [`MeshError::BadTag`] for a vertex out of range, an edge that does
     /// not exist, or a sharpness that is negative or NaN.
-    pub fn from_tags(ct: &CornerTable, tags: &Tags) -> Result<Option<Sharpness>, MeshError> {
+    pub fn from_tags<T: EdgeTable + ?Sized>(ct: &T, tags: &Tags) -> Result<Option<Sharpness>, MeshError> {
         let nv = ct.num_vertices() as u32;
         let mut corners = Vec::new();
         for (i, t) in tags.creases.iter().enumerate() {
@@ -174,14 +175,15 @@ impl Sharpness {
             if t.v0 >= nv || t.v1 >= nv {
                 return Err(tag_error(i, format!("edge ({}, {}) names a vertex >= {nv}", t.v0, t.v1)));
             }
-            let Some(c) = ct.corner_opposite(t.v0, t.v1) else {
+            let Some(c) = ct.edge_between(t.v0, t.v1) else {
                 return Err(tag_error(i, format!("there is no edge ({}, {})", t.v0, t.v1)));
             };
             // a zero is kept until the last tag of each edge has won, so
             // that it clears an earlier tag
             let s = t.sharpness.min(INFINITE);
             corners.push((c, s));
-            if let Some(x) = ct.o(c) {
+            let x = ct.twin_entry(c);
+            if x != BORDER {
                 corners.push((x, s));
             }
         }
@@ -198,7 +200,7 @@ impl Sharpness {
     }
 
     /// Sorts, removes duplicates (the last tag wins) and zeros.
-    fn from_lists(mut corners: Vec<(u32, f32)>, mut vertices: Vec<(u32, f32)>) -> Option<Self> {
+    pub(crate) fn from_lists(mut corners: Vec<(u32, f32)>, mut vertices: Vec<(u32, f32)>) -> Option<Self> {
         for list in [&mut corners, &mut vertices] {
             // stable sort keeps tag order among equal ids: keep the last
             list.sort_by_key(|&(id, _)| id);
@@ -217,12 +219,15 @@ impl Sharpness {
 
     /// The tags that give this sharpness back (each sharp edge once, by its
     /// owner corner's vertices).
-    pub fn to_tags(&self, ct: &CornerTable) -> Tags {
+    pub fn to_tags<T: EdgeTable + ?Sized>(&self, ct: &T) -> Tags {
         let creases = self
             .corners
             .iter()
-            .filter(|&&(c, _)| super::owns_edge(c, ct.o_entry(c)))
-            .map(|&(c, s)| CreaseTag { v0: ct.vtx(n(c)), v1: ct.vtx(p(c)), sharpness: s })
+            .filter(|&&(c, _)| super::owns_edge(c, ct.twin_entry(c)))
+            .map(|&(c, s)| {
+                let (v0, v1) = ct.edge_ends(c);
+                CreaseTag { v0, v1, sharpness: s }
+            })
             .collect();
         let corners = self.vertices.iter().map(|&(v, s)| CornerTag { vertex: v, sharpness: s }).collect();
         Tags { creases, corners }
@@ -261,12 +266,17 @@ impl Sharpness {
 
     /// Adds sharp edges `(corner, sharpness)` (either corner of an edge; a
     /// later value replaces an earlier one for the same edge).
-    pub fn with_edges(this: Option<Sharpness>, ct: &CornerTable, edges: &[(u32, f32)]) -> Option<Sharpness> {
+    pub fn with_edges<T: EdgeTable + ?Sized>(
+        this: Option<Sharpness>,
+        ct: &T,
+        edges: &[(u32, f32)],
+    ) -> Option<Sharpness> {
         let (mut c, v) = this.map_or((Vec::new(), Vec::new()), |s| (s.corners, s.vertices));
         for &(x, s) in edges {
             let s = s.min(INFINITE);
             c.push((x, s));
-            if let Some(y) = ct.o(x) {
+            let y = ct.twin_entry(x);
+            if y != BORDER {
                 c.push((y, s));
             }
         }
@@ -305,7 +315,7 @@ impl Sharpness {
 
     /// How the edges of `ct` (whose sharpness this is) decay at each end
     /// vertex through the next split.
-    pub fn edge_decay<'a>(&self, ct: &'a CornerTable, creasing: Creasing) -> EdgeDecay<'a> {
+    pub fn edge_decay<'a, T: EdgeTable>(&self, ct: &'a T, creasing: Creasing) -> EdgeDecay<'a> {
         let chaikin = creasing == Creasing::Chaikin;
         let sums = if chaikin { self.semi_sharp_sums(ct) } else { Vec::new() };
         EdgeDecay { ct, chaikin, sums }
@@ -313,12 +323,13 @@ impl Sharpness {
 
     /// Per vertex with a semi-sharp edge: (sum, count) of its semi-sharp
     /// edges' sharpness, sorted by vertex.
-    fn semi_sharp_sums(&self, ct: &CornerTable) -> Vec<(u32, f32, u32)> {
+    fn semi_sharp_sums<T: EdgeTable + ?Sized>(&self, ct: &T) -> Vec<(u32, f32, u32)> {
         let mut ends: Vec<(u32, f32)> = Vec::new();
         for &(c, s) in &self.corners {
-            if s < INFINITE && super::owns_edge(c, ct.o_entry(c)) {
-                ends.push((ct.vtx(n(c)), s));
-                ends.push((ct.vtx(p(c)), s));
+            if s < INFINITE && super::owns_edge(c, ct.twin_entry(c)) {
+                let (a, b) = ct.edge_ends(c);
+                ends.push((a, s));
+                ends.push((b, s));
             }
         }
         ends.sort_by_key(|&(v, _)| v);
@@ -339,7 +350,7 @@ impl Sharpness {
 /// The subdivided sharpness of a level's edges at their end vertices (see
 /// [`Sharpness::edge_decay`]).
 pub struct EdgeDecay<'a> {
-    ct: &'a CornerTable,
+    ct: &'a dyn EdgeTable,
     chaikin: bool,
     sums: Vec<(u32, f32, u32)>,
 }
@@ -406,20 +417,7 @@ impl CornerTable {
     /// The corner opposite the edge `(a, b)` (in either direction), by
     /// walking `a`'s fan; `None` when there is no such edge.
     pub fn corner_opposite(&self, a: u32, b: u32) -> Option<u32> {
-        if a as usize >= self.num_vertices() {
-            return None;
-        }
-        let mut last = None;
-        for c in self.fan(a) {
-            // edge (a, v(n(c))) is opposite p(c); (v(p(c)), a) opposite n(c)
-            if self.vtx(n(c)) == b {
-                return Some(p(c));
-            }
-            last = Some(c);
-        }
-        // a boundary fan's last edge is only opposite n(last)
-        let c = last?;
-        (self.vtx(p(c)) == b && self.o_entry(n(c)) == BORDER).then_some(n(c))
+        self.edge_between(a, b)
     }
 }
 

@@ -140,16 +140,16 @@ impl SharedMut {
 /// their counts first ([`EdgeIds`]), then every chunk lists its owners from
 /// its first id on.
 pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
-    number_edges_with(ct, EdgeIds::new(ct.o_table()), |_, _, _| {})
+    number_edges_with(ct.o_table(), EdgeIds::new(ct.o_table()), |_, _, _| {})
 }
 
-/// [`number_edges`] from the owner bits `ids`, calling `each(id, owner,
+/// [`number_edges`] of the table whose O (or polygon twin) table is
+/// `o_table`, from its owner bits `ids`, calling `each(id, owner,
 /// opposite)` for every edge, in parallel, while the numbering pass has the
 /// three at hand (the split fills the new vertices' `C` and valence this
 /// way, without another pass). `opposite` is the raw O entry of the owner:
 /// a corner, or [`BORDER`].
-fn number_edges_with(ct: &CornerTable, ids: EdgeIds, each: impl Fn(u32, u32, u32) + Sync) -> EdgeNumbering {
-    let o_table = ct.o_table();
+pub(crate) fn number_edges_with(o_table: &[u32], ids: EdgeIds, each: impl Fn(u32, u32, u32) + Sync) -> EdgeNumbering {
     let mut owners: Vec<u32> = crate::mem::zeroed(ids.count() as usize);
     // carve `owners` into one slice per chunk
     let mut slices = Vec::with_capacity(o_table.len().div_ceil(CHUNK));
@@ -281,7 +281,7 @@ fn number_edges_and_vertices(old: &CornerTable, old_boundary: Option<&[bool]>) -
         let vcp = SharedMut(vc[nvu..].as_mut_ptr());
         let valp = SharedMut(valence[nvu..].as_mut_ptr());
         let bp = boundary.as_mut().map(|b| SharedBool(b[nvu..].as_mut_ptr()));
-        number_edges_with(old, ids, |id, c, x| {
+        number_edges_with(old.o_table(), ids, |id, c, x| {
             if let Some(bp) = bp {
                 // SAFETY: as for C and valence below.
                 unsafe { *bp.get().add(id as usize) = x == BORDER };

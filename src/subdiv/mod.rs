@@ -22,10 +22,11 @@ pub mod tables;
 
 use crate::Result;
 use crate::mesh::Mesh;
+use crate::mesh::poly::PolyMesh;
 pub use crate::mesh::{BoundaryInterpolation, Creasing};
 use refine::OneLevel;
 pub use refine::{check_level_fits, check_levels_fit, default_memory_limit, predict_faces, predict_level_bytes};
-use rules::{Rules, butterfly, features, jarek, loop_, midpoint, modified_butterfly};
+use rules::{Rules, butterfly, catmull_clark, features, jarek, loop_, midpoint, modified_butterfly};
 use std::borrow::Cow;
 use std::time::Instant;
 
@@ -45,12 +46,33 @@ pub enum Scheme {
     ModifiedButterfly,
     /// Rossignac's Jarek scheme (approximating).
     Jarek,
+    /// Catmull-Clark on polygons (approximating; quads from level 1 on).
+    CatmullClark,
+    /// Bilinear on polygons: every face split into quads at its edge
+    /// midpoints and centroid, nothing moves.
+    Bilinear,
 }
 
 impl Scheme {
     /// All schemes, in menu order.
-    pub const ALL: [Scheme; 5] =
+    pub const ALL: [Scheme; 7] = [
+        Scheme::Midpoint,
+        Scheme::Loop,
+        Scheme::Butterfly,
+        Scheme::ModifiedButterfly,
+        Scheme::Jarek,
+        Scheme::CatmullClark,
+        Scheme::Bilinear,
+    ];
+    /// The schemes of triangles (polygons are fanned for them).
+    pub const TRIANGLE: [Scheme; 5] =
         [Scheme::Midpoint, Scheme::Loop, Scheme::Butterfly, Scheme::ModifiedButterfly, Scheme::Jarek];
+    /// The schemes of polygons (they take faces of any size and make quads).
+    pub const POLYGON: [Scheme; 2] = [Scheme::CatmullClark, Scheme::Bilinear];
+    /// Whether the scheme works on polygons (Catmull-Clark, bilinear).
+    pub fn is_polygonal(self) -> bool {
+        matches!(self, Scheme::CatmullClark | Scheme::Bilinear)
+    }
     /// The command-line name.
     pub fn name(self) -> &'static str {
         match self {
@@ -59,11 +81,13 @@ impl Scheme {
             Scheme::Butterfly => "butterfly",
             Scheme::ModifiedButterfly => "modified-butterfly",
             Scheme::Jarek => "jarek",
+            Scheme::CatmullClark => "catmull-clark",
+            Scheme::Bilinear => "bilinear",
         }
     }
     /// Whether old vertices keep their positions.
     pub fn is_interpolating(self) -> bool {
-        !matches!(self, Scheme::Loop | Scheme::Jarek)
+        !matches!(self, Scheme::Loop | Scheme::Jarek | Scheme::CatmullClark)
     }
 }
 
@@ -82,8 +106,10 @@ impl std::str::FromStr for Scheme {
             "butterfly" => Ok(Scheme::Butterfly),
             "modified-butterfly" | "modified_butterfly" | "mbutterfly" | "zorin" => Ok(Scheme::ModifiedButterfly),
             "jarek" => Ok(Scheme::Jarek),
+            "catmull-clark" | "catmull_clark" | "catmark" | "cc" => Ok(Scheme::CatmullClark),
+            "bilinear" => Ok(Scheme::Bilinear),
             _ => Err(format!(
-                "unknown scheme '{s}' (expected one of: midpoint, loop, butterfly, modified-butterfly, jarek)"
+                "unknown scheme '{s}' (expected one of: midpoint, loop, butterfly, modified-butterfly, jarek, catmull-clark, bilinear)"
             )),
         }
     }
@@ -162,6 +188,9 @@ pub(crate) fn with_rules<T>(scheme: Scheme, opts: &Options, f: impl RulesFn<T>) 
         Scheme::Butterfly => f.call(&butterfly::Butterfly),
         Scheme::ModifiedButterfly => f.call(&modified_butterfly::ModifiedButterfly::new(opts.tension)),
         Scheme::Jarek => f.call(&jarek::Jarek),
+        // the polygon schemes have no triangle rules: their callers go
+        // through subdivide_poly; this arm is never reached by them
+        Scheme::CatmullClark | Scheme::Bilinear => f.call(&midpoint::Midpoint),
     }
 }
 
@@ -191,6 +220,12 @@ pub fn subdivide_with_progress(
     opts: &Options,
     mut progress: impl FnMut(u32, u32) -> bool,
 ) -> Result<(Mesh, Stats)> {
+    if scheme.is_polygonal() {
+        // the polygons the mesh stands for (its hidden diagonals joined)
+        let poly = PolyMesh::from_mesh(mesh);
+        let (fine, stats) = subdivide_poly_with_progress(&poly, scheme, levels, opts, progress)?;
+        return Ok((fine.triangulated(), stats));
+    }
     let t0 = Instant::now();
     let limit = opts.max_memory.or_else(default_memory_limit);
     let mut stats = Stats::default();
@@ -218,4 +253,54 @@ pub fn subdivide_with_progress(
     }
     stats.total_ms = ms(t0.elapsed());
     Ok((cur.unwrap_or_else(|| mesh.clone()), stats))
+}
+
+/// Refines the polygon mesh `mesh` `levels` times with a polygon scheme
+/// (Catmull-Clark or bilinear; a triangle scheme is an error: fan the
+/// mesh and use [`subdivide`]).
+///
+/// # Errors
+/// [`crate::Error::TooLarge`] when a level would exceed the memory limit or
+/// 32-bit ids; [`crate::Error::Usage`] for a triangle scheme.
+pub fn subdivide_poly(mesh: &PolyMesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(PolyMesh, Stats)> {
+    subdivide_poly_with_progress(mesh, scheme, levels, opts, |_, _| true)
+}
+
+/// [`subdivide_poly`] calling `progress(level_done, levels)` after each
+/// level; if it returns `false` the work stops and `Ok` holds the last
+/// finished level.
+///
+/// # Errors
+/// See [`subdivide_poly`].
+pub fn subdivide_poly_with_progress(
+    mesh: &PolyMesh,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+    mut progress: impl FnMut(u32, u32) -> bool,
+) -> Result<(PolyMesh, Stats)> {
+    if !scheme.is_polygonal() {
+        return Err(crate::Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
+    }
+    let t0 = Instant::now();
+    let limit = opts.max_memory.or_else(default_memory_limit);
+    refine::poly::check_levels_fit(&mesh.pt, 0, levels, limit)?;
+    let mut stats = Stats::default();
+    let base = refine::poly::with_boundary_corners(&mesh.pt, opts.boundary)
+        .map(|pt| PolyMesh { pt, positions: mesh.positions.clone() });
+    let mut cur: Option<PolyMesh> = None;
+    for level in 1..=levels {
+        let from = cur.as_ref().or(base.as_ref()).unwrap_or(mesh);
+        let next = match scheme {
+            Scheme::Bilinear => refine::poly::level(&catmull_clark::Bilinear, from, opts.creasing, &mut stats),
+            _ => refine::poly::level(&catmull_clark::CatmullClark, from, opts.creasing, &mut stats),
+        };
+        stats.faces_per_level.push(next.pt.num_faces());
+        cur = Some(next);
+        if !progress(level, levels) {
+            break;
+        }
+    }
+    stats.total_ms = ms(t0.elapsed());
+    Ok((cur.or(base).unwrap_or_else(|| mesh.clone()), stats))
 }

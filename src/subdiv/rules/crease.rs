@@ -22,12 +22,60 @@ impl<S: Sink> Sink for Scaled<'_, S> {
     }
 }
 
+/// What blending sharp and smooth masks needs of a scheme on its level:
+/// the level's classified features and the scheme's four masks. The
+/// triangle schemes give it through [`OnLevel`], Catmull-Clark and bilinear
+/// through their polygon level.
+pub trait Blend {
+    /// The level's sharp features (`None`: none).
+    fn features(&self) -> Option<&Features>;
+    /// The smooth (or boundary) mask of vertex `v`.
+    fn smooth_vertex<S: Sink>(&self, v: u32, s: &mut S);
+    /// The curve mask of vertex `v` on a crease through `a` and `b`.
+    fn crease_vertex<S: Sink>(&self, v: u32, a: u32, b: u32, s: &mut S);
+    /// The smooth (or boundary) mask of the edge `c` names.
+    fn smooth_edge<S: Sink>(&self, c: u32, s: &mut S);
+    /// The crease mask of the edge `c` names.
+    fn crease_edge<S: Sink>(&self, c: u32, s: &mut S);
+}
+
+/// A triangle scheme's rules on a level, as [`Blend`] asks for them.
+pub struct OnLevel<'a, R> {
+    /// The rules.
+    pub r: &'a R,
+    /// The level.
+    pub lv: &'a Level<'a>,
+}
+
+impl<R: Rules> Blend for OnLevel<'_, R> {
+    #[inline]
+    fn features(&self) -> Option<&Features> {
+        self.lv.features
+    }
+    #[inline]
+    fn smooth_vertex<S: Sink>(&self, v: u32, s: &mut S) {
+        self.r.vertex(self.lv, v, s);
+    }
+    #[inline]
+    fn crease_vertex<S: Sink>(&self, v: u32, a: u32, b: u32, s: &mut S) {
+        self.r.crease_vertex(v, a, b, s);
+    }
+    #[inline]
+    fn smooth_edge<S: Sink>(&self, c: u32, s: &mut S) {
+        self.r.edge(self.lv, c, s);
+    }
+    #[inline]
+    fn crease_edge<S: Sink>(&self, c: u32, s: &mut S) {
+        self.r.crease_edge(self.lv, c, s);
+    }
+}
+
 /// Emits `scale` times the mask `m` of vertex `v`.
-fn emit_mask<R: Rules, S: Sink>(r: &R, lv: &Level, v: u32, m: Mask, scale: f32, s: &mut S) {
+fn emit_mask<B: Blend, S: Sink>(b: &B, v: u32, m: Mask, scale: f32, s: &mut S) {
     let mut sc = Scaled { sink: s, scale };
     match m {
-        Mask::Smooth => r.vertex(lv, v, &mut sc),
-        Mask::Crease(a, b) => r.crease_vertex(v, a, b, &mut sc),
+        Mask::Smooth => b.smooth_vertex(v, &mut sc),
+        Mask::Crease(x, y) => b.crease_vertex(v, x, y, &mut sc),
         Mask::Corner => sc.add(v, 1.0),
     }
 }
@@ -35,31 +83,31 @@ fn emit_mask<R: Rules, S: Sink>(r: &R, lv: &Level, v: u32, m: Mask, scale: f32, 
 /// The stencil of vertex `v`'s new position with its feature, if any
 /// (else the scheme's smooth rule).
 #[inline]
-pub fn vertex_stencil<R: Rules, S: Sink>(r: &R, lv: &Level, v: u32, s: &mut S) {
-    match lv.features.and_then(|f| f.vertex(v)) {
+pub fn vertex_stencil<B: Blend, S: Sink>(b: &B, v: u32, s: &mut S) {
+    match b.features().and_then(|f| f.vertex(v)) {
         Some(f) if f.parent != Mask::Smooth => {
             if f.parent == f.child || f.weight >= 1.0 {
-                emit_mask(r, lv, v, f.parent, 1.0, s);
+                emit_mask(b, v, f.parent, 1.0, s);
             } else {
-                emit_mask(r, lv, v, f.parent, f.weight, s);
-                emit_mask(r, lv, v, f.child, 1.0 - f.weight, s);
+                emit_mask(b, v, f.parent, f.weight, s);
+                emit_mask(b, v, f.child, 1.0 - f.weight, s);
             }
         }
-        _ => r.vertex(lv, v, s),
+        _ => b.smooth_vertex(v, s),
     }
 }
 
 /// The stencil of the new vertex on the edge owned by `c`, with its
 /// feature, if any (else the scheme's smooth rule).
 #[inline]
-pub fn edge_stencil<R: Rules, S: Sink>(r: &R, lv: &Level, c: u32, s: &mut S) {
-    match lv.features.and_then(|f| f.edge(c)) {
-        Some(w) if w >= 1.0 => r.crease_edge(lv, c, s),
+pub fn edge_stencil<B: Blend, S: Sink>(b: &B, c: u32, s: &mut S) {
+    match b.features().and_then(|f| f.edge(c)) {
+        Some(w) if w >= 1.0 => b.crease_edge(c, s),
         Some(w) => {
-            r.crease_edge(lv, c, &mut Scaled { sink: s, scale: w });
-            r.edge(lv, c, &mut Scaled { sink: s, scale: 1.0 - w });
+            b.crease_edge(c, &mut Scaled { sink: s, scale: w });
+            b.smooth_edge(c, &mut Scaled { sink: s, scale: 1.0 - w });
         }
-        None => r.edge(lv, c, s),
+        None => b.smooth_edge(c, s),
     }
 }
 

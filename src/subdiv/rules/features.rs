@@ -31,8 +31,9 @@
 //! ([`crate::mesh::cut`]), so a crease acts as a boundary for every stencil
 //! that reaches it.
 
+use crate::mesh::edges::EdgeTable;
 use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
-use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
+use crate::mesh::{BORDER, CornerTable, Creasing, owns_edge};
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -111,13 +112,14 @@ impl Features {
     /// Classifies the sharp features of `ct`, or `None` when it has no
     /// sharpness (its borders are handled by every scheme's boundary rules).
     /// Parallel over the feature vertices and edges.
-    pub fn of(ct: &CornerTable, creasing: Creasing) -> Option<Features> {
+    pub fn of<T: EdgeTable>(ct: &T, creasing: Creasing) -> Option<Features> {
         let sharp = ct.sharpness()?;
         let decay = sharp.edge_decay(ct, creasing);
         let mut candidates: Vec<u32> = sharp.sharp_vertices().iter().map(|&(v, _)| v).collect();
         for &(c, _) in sharp.sharp_corners() {
-            candidates.push(ct.vtx(n(c)));
-            candidates.push(ct.vtx(p(c)));
+            let (a, b) = ct.edge_ends(c);
+            candidates.push(a);
+            candidates.push(b);
         }
         candidates.sort_unstable();
         candidates.dedup();
@@ -130,7 +132,7 @@ impl Features {
             .sharp_corners()
             .par_iter()
             .with_min_len(256)
-            .filter(|&&(c, _)| owns_edge(c, ct.o_entry(c)))
+            .filter(|&&(c, _)| owns_edge(c, ct.twin_entry(c)))
             .map(|&(c, _)| EdgeFeature { owner: c, weight: edge_weight(ct, &decay, c) })
             .collect();
         // border edges at a feature vertex: their crease curve may end there
@@ -138,13 +140,11 @@ impl Features {
             if !ct.is_boundary_vertex(v) {
                 continue;
             }
-            for c in ct.fan(v) {
-                for e in [p(c), n(c)] {
-                    if ct.o_entry(e) == BORDER {
-                        edges.push(EdgeFeature { owner: e, weight: 1.0 });
-                    }
+            ct.each_edge_at(v, &mut |c, _| {
+                if ct.twin_entry(c) == BORDER {
+                    edges.push(EdgeFeature { owner: c, weight: 1.0 });
                 }
-            }
+            });
         }
         edges.par_sort_unstable_by_key(|e| e.owner);
         edges.dedup_by_key(|e| e.owner);
@@ -223,20 +223,12 @@ impl Features {
 }
 
 /// The incident edges of `v` with their sharpness now and after the split.
-fn incident(ct: &CornerTable, decay: &EdgeDecay, v: u32, out: &mut Vec<Incident>) {
+fn incident<T: EdgeTable>(ct: &T, decay: &EdgeDecay, v: u32, out: &mut Vec<Incident>) {
     out.clear();
-    let mut last = None;
-    for c in ct.fan(v) {
-        // edge (v, v(n(c))) is opposite p(c)
-        let s = ct.edge_sharpness(p(c));
-        out.push(Incident { other: ct.vtx(n(c)), now: s, next: decay.at(s, v) });
-        last = Some(c);
-    }
-    if let Some(c) = last
-        && ct.o_entry(n(c)) == BORDER
-    {
-        out.push(Incident { other: ct.vtx(p(c)), now: INFINITE, next: INFINITE });
-    }
+    ct.each_edge_at(v, &mut |c, other| {
+        let s = ct.edge_sharpness(c);
+        out.push(Incident { other, now: s, next: decay.at(s, v) });
+    });
 }
 
 /// A rule and its mask from a vertex's sharpness and its edges' (`now` or
@@ -255,7 +247,7 @@ fn rule_of(vertex_sharpness: f32, edges: &[Incident], next: bool) -> (Rule, Mask
     }
 }
 
-fn classify_vertex(ct: &CornerTable, decay: &EdgeDecay, v: u32, sv: f32, inc: &mut Vec<Incident>) -> VertexFeature {
+fn classify_vertex<T: EdgeTable>(ct: &T, decay: &EdgeDecay, v: u32, sv: f32, inc: &mut Vec<Incident>) -> VertexFeature {
     incident(ct, decay, v, inc);
     let (rule, parent) = rule_of(sv, inc, false);
     let sv_next = decrement(sv);
@@ -282,12 +274,13 @@ fn classify_vertex(ct: &CornerTable, decay: &EdgeDecay, v: u32, sv: f32, inc: &m
 
 /// Weight of the crease mask for the sharp edge owned by `c`
 /// (`ComputeEdgeVertexMask`).
-fn edge_weight(ct: &CornerTable, decay: &EdgeDecay, c: u32) -> f32 {
+fn edge_weight<T: EdgeTable>(ct: &T, decay: &EdgeDecay, c: u32) -> f32 {
     let s = ct.edge_sharpness(c);
     if s >= 1.0 {
         return 1.0;
     }
-    if !decay.is_uniform() && decay.at(s, ct.vtx(n(c))) > 0.0 && decay.at(s, ct.vtx(p(c))) > 0.0 {
+    let (a, b) = ct.edge_ends(c);
+    if !decay.is_uniform() && decay.at(s, a) > 0.0 && decay.at(s, b) > 0.0 {
         return 1.0;
     }
     s
@@ -340,7 +333,7 @@ pub fn summary(ct: &CornerTable, boundary: BoundaryInterpolation) -> Summary {
         sharp_vertices: sharp.sharp_vertices().len(),
         ..Summary::default()
     };
-    if let Some(f) = Features::of(&ct, Creasing::Uniform) {
+    if let Some(f) = Features::of(&*ct, Creasing::Uniform) {
         for v in f.vertices() {
             match v.rule {
                 Rule::Corner => s.corners += 1,

@@ -36,7 +36,7 @@ impl Jarek {
             && f.vertex(v).is_some()
         {
             s.add(v, -scale);
-            crease::vertex_stencil(&Jarek, ct, v, &mut crease::Scaled { sink: s, scale });
+            crease::vertex_stencil(&crease::OnLevel { r: &Jarek, lv: ct }, v, &mut crease::Scaled { sink: s, scale });
             return;
         }
         Self::smooth_displacement(ct, v, scale, s);
@@ -100,7 +100,7 @@ impl Rules for Jarek {
             for vf in f.vertices() {
                 let v = vf.vertex as usize;
                 let mut acc = Accumulate::new(pos);
-                crease::vertex_stencil(self, lv, vf.vertex, &mut acc);
+                crease::vertex_stencil(&crease::OnLevel { r: self, lv }, vf.vertex, &mut acc);
                 vpart[v] = acc.sum - pos[v];
             }
         }

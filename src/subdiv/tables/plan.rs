@@ -15,7 +15,7 @@ use crate::Result;
 use crate::mesh::order::Relabel;
 use crate::mesh::split;
 use crate::mesh::{CornerTable, Creasing};
-use crate::subdiv::rules::crease::{Unsplit, edge_stencil, vertex_stencil};
+use crate::subdiv::rules::crease::{OnLevel, Unsplit, edge_stencil, vertex_stencil};
 use crate::subdiv::rules::features::{Features, with_boundary_corners};
 use crate::subdiv::rules::{Level, Record, Rules};
 use crate::subdiv::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
@@ -107,14 +107,14 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
         }
         let lv = Level::new(&table).with_features(f.as_ref());
         let copies: &[u32] = f.as_ref().map_or(&[], |f| f.copies());
-        let (ct, owners) = (&lv, self.owners);
+        let (on, owners) = (OnLevel { r, lv: &lv }, self.owners);
         let row = |i: usize, rec: &mut Record| {
             let mut s = Unsplit { sink: rec, nv: nv as u32, copies };
             if R::MOVES_VERTICES && i < nv {
-                vertex_stencil(r, ct, i as u32, &mut s);
+                vertex_stencil(&on, i as u32, &mut s);
             } else {
                 let e = if R::MOVES_VERTICES { i - nv } else { i };
-                edge_stencil(r, ct, owners[e], &mut s);
+                edge_stencil(&on, owners[e], &mut s);
             }
         };
         let rows = if R::MOVES_VERTICES { nv + ne } else { ne };

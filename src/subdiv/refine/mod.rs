@@ -6,7 +6,9 @@
 //! caller's [`Stats`]; what a level would cost is predicted before it is
 //! allocated.
 
-use super::rules::crease::{edge_stencil, vertex_stencil};
+pub(crate) mod poly;
+
+use super::rules::crease::{OnLevel, edge_stencil, vertex_stencil};
 use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Level, Rules, boundary_flags};
 use super::{RulesFn, Stats, ms};
@@ -217,7 +219,7 @@ fn correct<R: Rules>(
             .filter(|vf| vf.parent != Mask::Smooth)
             .map(|vf| {
                 let mut acc = Accumulate::new(pos);
-                vertex_stencil(r, lv, vf.vertex, &mut acc);
+                vertex_stencil(&OnLevel { r, lv }, vf.vertex, &mut acc);
                 (vf.vertex as usize, acc.sum)
             })
             .collect();
@@ -231,7 +233,7 @@ fn correct<R: Rules>(
         .with_min_len(256)
         .map(|ef| {
             let mut acc = Accumulate::new(pos);
-            edge_stencil(r, lv, ef.owner, &mut acc);
+            edge_stencil(&OnLevel { r, lv }, ef.owner, &mut acc);
             // every feature edge is listed by its owner corner (Features::of)
             (ids.rank(ef.owner) as usize, acc.sum)
         })

@@ -1,0 +1,208 @@
+//! The quad split of a polygon table, shared by Catmull-Clark and bilinear
+//! subdivision: every corner becomes one quad, the new twins are written by
+//! formula from the old ones (no rebuild), edges are numbered without
+//! hashing (docs/catmull-clark.md §2).
+//!
+//! Old corner `c` at vertex `v = V[c]`, in face `f`, whose edge leaves to
+//! `V[next(c)]` (edge id `e(c)`) and whose entering edge is `e(prev(c))`,
+//! becomes the quad `c` of corners `4c .. 4c + 3`:
+//!
+//! ```text
+//! V'[4c]     = v                  (its vertex point)
+//! V'[4c + 1] = nv + e(c)          (the point of the edge leaving c)
+//! V'[4c + 2] = nv + ne + f        (the face point)
+//! V'[4c + 3] = nv + e(prev(c))    (the point of the edge entering c)
+//!
+//! T'[4c]     = 4 next(T[c]) + 3   (BORDER on a border edge)
+//! T'[4c + 1] = 4 next(c) + 2
+//! T'[4c + 2] = 4 prev(c) + 1
+//! T'[4c + 3] = 4 T[prev(c)]       (BORDER on a border edge)
+//! ```
+//!
+//! The half of an old edge that a child corner names keeps the edge's
+//! sharpness, decayed (`4c` the half at `V[c]`, `4 next(c) + 3` the half at
+//! `V[next(c)]`); the inner edges are smooth. New `C`: an old vertex keeps
+//! its fan's first child `4 C[v]`; an edge point `4c + 1` of its owner
+//! (`4 next(c) + 3`, the first of its fan, on a border edge); a face point
+//! `4 first(f) + 2`. Valences: unchanged, 4 (3 on the border), the face's
+//! size.
+
+use super::PolyTable;
+use crate::mesh::split::{CHUNK, EdgeIds, EdgeNumbering, number_edges_with};
+use crate::mesh::{BORDER, Creasing};
+use rayon::prelude::*;
+
+/// Splits every face of `old` into quads (see the module docs), the
+/// sharpness decaying by `creasing`. Returns the new table and the old
+/// table's edge numbering (edge `e` became vertex `nv + e`, face `f` vertex
+/// `nv + ne + f`).
+///
+/// # Panics
+/// If the new table's ids would not fit below [`BORDER`] (the subdivision
+/// refuses such levels beforehand).
+pub fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) {
+    let nc = old.num_corners();
+    assert!(4 * nc as u64 + 4 < u64::from(BORDER), "quad split: {nc} corners are too many for 32-bit ids");
+    let ids = EdgeIds::new(&old.t);
+    let edges = number_edges_with(&old.t, ids, |_, _, _| {});
+    let (nv, ne, nf) = (old.num_vertices() as u32, edges.ids.count(), old.num_faces() as u32);
+    let (v, t) = write_v_and_t(old, &edges.ids, nv, ne);
+    let mut vc = Vec::with_capacity((nv + ne + nf) as usize);
+    let mut valence = Vec::with_capacity(vc.capacity());
+    vc.par_extend(old.vc.par_iter().map(|&c| 4 * c));
+    valence.extend_from_slice(&old.valence);
+    let edge_fans: Vec<(u32, u32)> = edges
+        .owners
+        .par_iter()
+        .map(|&c| if old.t[c as usize] == BORDER { (4 * old.next(c) + 3, 3) } else { (4 * c + 1, 4) })
+        .collect();
+    vc.extend(edge_fans.iter().map(|&(c, _)| c));
+    valence.extend(edge_fans.iter().map(|&(_, k)| k));
+    let face_fans: Vec<(u32, u32)> = (0..nf)
+        .into_par_iter()
+        .map(|f| {
+            let r = old.face_corners(f);
+            (4 * r.start + 2, r.end - r.start)
+        })
+        .collect();
+    vc.extend(face_fans.iter().map(|&(c, _)| c));
+    valence.extend(face_fans.iter().map(|&(_, k)| k));
+    let sharpness = old.sharpness().and_then(|s| split_sharpness(s, old, creasing));
+    let pt = PolyTable { faces: None, v, t, vc, valence, sharpness: sharpness.map(Box::new), level: old.level + 1 };
+    (pt, edges)
+}
+
+/// The new V and T, one old corner (four new ones) at a time, in parallel.
+fn write_v_and_t(old: &PolyTable, ids: &EdgeIds, nv: u32, ne: u32) -> (Vec<u32>, Vec<u32>) {
+    let nc = old.num_corners();
+    let mut v: Vec<u32> = crate::mem::zeroed(4 * nc);
+    let mut t: Vec<u32> = crate::mem::zeroed(4 * nc);
+    let edge = |c: u32| ids.edge(c, old.t[c as usize]);
+    v.par_chunks_mut(4 * CHUNK).zip(t.par_chunks_mut(4 * CHUNK)).enumerate().for_each(|(k, (vch, tch))| {
+        let base = (k * CHUNK) as u32;
+        for (i, (vq, tq)) in vch.chunks_exact_mut(4).zip(tch.chunks_exact_mut(4)).enumerate() {
+            let c = base + i as u32;
+            let (next, prev) = (old.next(c), old.prev(c));
+            vq[0] = old.v[c as usize];
+            vq[1] = nv + edge(c);
+            vq[2] = nv + ne + old.face(c);
+            vq[3] = nv + edge(prev);
+            let (tc, tp) = (old.t[c as usize], old.t[prev as usize]);
+            tq[0] = if tc == BORDER { BORDER } else { 4 * old.next(tc) + 3 };
+            tq[1] = 4 * next + 2;
+            tq[2] = 4 * prev + 1;
+            tq[3] = if tp == BORDER { BORDER } else { 4 * tp };
+        }
+    });
+    (v, t)
+}
+
+/// The sharpness after the split (see the module docs), or `None` when
+/// every value decayed to smooth.
+fn split_sharpness(
+    s: &crate::mesh::sharpness::Sharpness,
+    old: &PolyTable,
+    creasing: Creasing,
+) -> Option<crate::mesh::sharpness::Sharpness> {
+    let decay = s.edge_decay(old, creasing);
+    let mut corners = Vec::with_capacity(2 * s.sharp_corners().len());
+    for &(c, x) in s.sharp_corners() {
+        let next = old.next(c);
+        corners.push((4 * c, decay.at(x, old.v[c as usize])));
+        corners.push((4 * next + 3, decay.at(x, old.v[next as usize])));
+    }
+    let vertices = s.sharp_vertices().iter().map(|&(v, x)| (v, crate::mesh::sharpness::decrement(x))).collect();
+    crate::mesh::sharpness::Sharpness::from_lists(corners, vertices)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::edges::EdgeTable;
+
+    /// Every table the split makes equals the table built from its faces
+    /// (twins, fans, valences), whatever the face sizes, closed or open.
+    fn assert_equals_rebuild(pt: &PolyTable) {
+        let nf = pt.num_faces() as u32;
+        let mut starts = vec![0u32];
+        let mut corners = Vec::new();
+        for f in 0..nf {
+            corners.extend(pt.face_corners(f).map(|c| pt.vtx(c)));
+            starts.push(corners.len() as u32);
+        }
+        let (rebuilt, rep, kept) = PolyTable::build(pt.num_vertices(), &starts, &corners, None).unwrap();
+        assert_eq!((rep.unreferenced, kept), (0, None));
+        assert_eq!(rebuilt.t, pt.t, "twins");
+        assert_eq!(rebuilt.valence, pt.valence, "valences");
+        for x in 0..pt.num_vertices() as u32 {
+            let c = pt.corner_of(x);
+            assert_eq!(pt.vtx(c), x);
+            assert_eq!(pt.is_boundary_vertex(x), rebuilt.is_boundary_vertex(x), "vertex {x}");
+            if pt.is_boundary_vertex(x) {
+                assert_eq!(pt.twin_entry(c), BORDER, "C of boundary vertex {x} starts its fan");
+            }
+        }
+    }
+
+    /// A triangular prism whose bottom quad and front side carry an extra
+    /// vertex (6, between 0 and 1): faces of 3, 4 and 5 corners; `open`
+    /// leaves out the side x = 0, so that the mesh has a border.
+    fn prism_faces(open: bool) -> (Vec<u32>, Vec<u32>) {
+        let mut faces: Vec<Vec<u32>> = vec![vec![2, 1, 6, 0], vec![3, 4, 5], vec![0, 6, 1, 4, 3], vec![1, 2, 5, 4]];
+        if !open {
+            faces.push(vec![2, 0, 3, 5]);
+        }
+        let mut starts = vec![0u32];
+        let mut corners = Vec::new();
+        for f in faces {
+            corners.extend(f);
+            starts.push(corners.len() as u32);
+        }
+        (starts, corners)
+    }
+
+    #[test]
+    fn twins_carried_through_four_splits_equal_a_rebuild() {
+        for open in [false, true] {
+            let (starts, corners) = prism_faces(open);
+            let (mut pt, _, _) = PolyTable::build(7, &starts, &corners, None).unwrap();
+            assert_equals_rebuild(&pt);
+            for level in 1..=4 {
+                let (e, f, v) = (pt.num_edges(), pt.num_faces(), pt.num_vertices());
+                let h = pt.num_corners();
+                let (next, numbering) = split(&pt, Creasing::Uniform);
+                assert_eq!(numbering.owners.len(), e);
+                assert_eq!(next.num_vertices(), v + e + f, "level {level}");
+                assert_eq!((next.num_faces(), next.num_edges()), (h, 2 * e + h), "level {level}");
+                assert!(next.is_quads());
+                assert_equals_rebuild(&next);
+                pt = next;
+            }
+        }
+    }
+
+    #[test]
+    fn edge_generations_follow_the_splits() {
+        let (starts, corners) = prism_faces(true);
+        let (pt, _, _) = PolyTable::build(7, &starts, &corners, None).unwrap();
+        let (one, _) = split(&pt, Creasing::Uniform);
+        let (two, _) = split(&one, Creasing::Uniform);
+        for c in 0..two.num_corners() as u32 {
+            let g = two.edge_generation(c);
+            // a control-edge half joins two vertices that are old vertices
+            // or edge points of control edges; check against the level-1
+            // parent directly: children 4x+1, 4x+2 are new (2)
+            match c % 4 {
+                1 | 2 => assert_eq!(g, 2),
+                0 => assert_eq!(g, one.edge_generation(c / 4)),
+                _ => assert_eq!(g, one.edge_generation(one.prev(c / 4))),
+            }
+            // both corners of an interior edge agree
+            if let Some(x) = two.twin(c) {
+                assert_eq!(two.edge_generation(x), g);
+            }
+            let (a, b) = two.edge_ends(c);
+            assert!(a != b);
+        }
+    }
+}

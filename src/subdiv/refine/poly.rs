@@ -1,0 +1,170 @@
+//! Refinement of polygon meshes (Catmull-Clark, bilinear), level after
+//! level: the quad split ([`crate::mesh::poly::split`]), then the new
+//! points. Face points first, then edge points from them, then vertex
+//! points from both (the direct evaluation of the masks of
+//! [`crate::subdiv::rules::catmull_clark`], reusing the face points instead
+//! of expanding them), then the points of sharp features again through
+//! their blended stencils. New vertex ids: old vertices keep theirs, edge
+//! `e` is `nv + e`, face `f` is `nv + ne + f`.
+
+use super::super::rules::Accumulate;
+use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules};
+use super::super::rules::crease::{edge_stencil, vertex_stencil};
+use super::super::rules::features::{Features, Mask};
+use super::super::{Stats, ms};
+use crate::mesh::poly::{PolyMesh, PolyTable, split};
+use crate::mesh::sharpness::Sharpness;
+use crate::mesh::split::EdgeIds;
+use crate::mesh::{BoundaryInterpolation, Creasing};
+use crate::{Error, Result};
+use glam::Vec3;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// One level of `r` on `mesh`, timed into `stats`.
+pub(crate) fn level<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, stats: &mut Stats) -> PolyMesh {
+    let old = &mesh.pt;
+    let t0 = Instant::now();
+    let (pt, edges) = split::split(old, creasing);
+    stats.split_ms += ms(t0.elapsed());
+    let (nv, ne, nf) = (old.num_vertices(), edges.owners.len(), old.num_faces());
+    let mut positions: Vec<Vec3> = crate::mem::zeroed(nv + ne + nf);
+    let (vpart, rest) = positions.split_at_mut(nv);
+    let (epart, fpart) = rest.split_at_mut(ne);
+    let pos = &mesh.positions[..];
+    let features = if R::SMOOTH { Features::of(old, creasing) } else { None };
+    let lv = PolyLevel { pt: old, features: features.as_ref() };
+    let t1 = Instant::now();
+    face_points(old, pos, fpart);
+    edge_points::<R>(&lv, &edges.owners, pos, fpart, epart);
+    let t2 = Instant::now();
+    vertex_points::<R>(&lv, pos, fpart, vpart);
+    stats.edge_ms += ms(t2 - t1);
+    stats.vertex_ms += ms(t2.elapsed());
+    if let Some(f) = &features {
+        correct(&PolyOn { r, lv: &lv }, f, &edges.ids, old, pos, vpart, epart);
+    }
+    PolyMesh { pt, positions }
+}
+
+/// Every face's point: the average of its vertices.
+fn face_points(pt: &PolyTable, pos: &[Vec3], out: &mut [Vec3]) {
+    out.par_iter_mut().enumerate().with_min_len(4096).for_each(|(f, q)| {
+        let r = pt.face_corners(f as u32);
+        let k = (r.end - r.start) as f32;
+        *q = r.map(|c| pos[pt.vtx(c) as usize]).sum::<Vec3>() / k;
+    });
+}
+
+/// Every edge's point, in owner order, from the face points `fp`.
+fn edge_points<R: PolyRules>(lv: &PolyLevel, owners: &[u32], pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
+    let pt = lv.pt;
+    out.par_iter_mut().zip(owners.par_iter()).with_min_len(4096).for_each(|(q, &c)| {
+        let (a, b) = (pos[pt.vtx(c) as usize], pos[pt.vtx(pt.next(c)) as usize]);
+        *q = match pt.twin(c) {
+            Some(t) if R::SMOOTH => (a + b + fp[pt.face(c) as usize] + fp[pt.face(t) as usize]) * 0.25,
+            _ => (a + b) * 0.5,
+        };
+    });
+}
+
+/// Every old vertex's new position, from the face points `fp`.
+fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
+    let pt = lv.pt;
+    if !R::SMOOTH {
+        out.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &p)| *q = p);
+        return;
+    }
+    out.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
+        let v = v as u32;
+        let p = pos[v as usize];
+        if pt.is_boundary_vertex(v) {
+            let (a, b) = lv.border_neighbours(v);
+            *q = (pos[a as usize] + pos[b as usize]) * 0.125 + p * 0.75;
+            return;
+        }
+        let n = pt.valences()[v as usize] as f32;
+        let mut sum = Vec3::ZERO;
+        for c in pt.fan(v) {
+            sum += pos[pt.vtx(pt.next(c)) as usize] + fp[pt.face(c) as usize];
+        }
+        *q = p * ((n - 2.0) / n) + sum / (n * n);
+    });
+}
+
+/// The feature vertices' and edges' points through their blended stencils.
+fn correct<R: PolyRules>(
+    b: &PolyOn<R>,
+    f: &Features,
+    ids: &EdgeIds,
+    pt: &PolyTable,
+    pos: &[Vec3],
+    vout: &mut [Vec3],
+    eout: &mut [Vec3],
+) {
+    let points: Vec<(usize, Vec3)> = f
+        .vertices()
+        .par_iter()
+        .with_min_len(256)
+        .filter(|vf| vf.parent != Mask::Smooth)
+        .map(|vf| {
+            let mut acc = Accumulate::new(pos);
+            vertex_stencil(b, vf.vertex, &mut acc);
+            (vf.vertex as usize, acc.sum)
+        })
+        .collect();
+    for (v, q) in points {
+        vout[v] = q;
+    }
+    let points: Vec<(usize, Vec3)> = f
+        .edges()
+        .par_iter()
+        .with_min_len(256)
+        .map(|ef| {
+            let mut acc = Accumulate::new(pos);
+            edge_stencil(b, ef.owner, &mut acc);
+            (ids.edge(ef.owner, pt.twin_entry(ef.owner)) as usize, acc.sum)
+        })
+        .collect();
+    for (e, q) in points {
+        eout[e] = q;
+    }
+}
+
+/// The table the schemes see for the control level with `boundary`: with
+/// [`BoundaryInterpolation::EdgeAndCorner`] every boundary vertex with a
+/// single face is an infinitely sharp corner (as OpenSubdiv does).
+pub(crate) fn with_boundary_corners(pt: &PolyTable, boundary: BoundaryInterpolation) -> Option<PolyTable> {
+    if boundary == BoundaryInterpolation::EdgeOnly {
+        return None;
+    }
+    let corners: Vec<u32> =
+        (0..pt.num_vertices() as u32).filter(|&v| pt.is_boundary_vertex(v) && pt.fan(v).count() == 1).collect();
+    if corners.is_empty() {
+        return None;
+    }
+    let s = Sharpness::with_corners(pt.sharpness().cloned(), &corners);
+    Some(pt.clone().with_sharpness(s))
+}
+
+/// Checks that `more` levels of the polygon table `pt` (already `done`
+/// levels deep) fit in `limit` bytes and 32-bit ids.
+///
+/// # Errors
+/// [`Error::TooLarge`] naming the first level that does not fit.
+pub(crate) fn check_levels_fit(pt: &PolyTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
+    let mut h = pt.num_corners() as u64;
+    let (mut nv, mut ne, mut nf) = (pt.num_vertices() as u64, pt.num_edges() as u64, pt.num_faces() as u64);
+    let limit_bytes = limit.unwrap_or(u64::MAX);
+    for level in done + 1..=done + more {
+        // new V and T (8 bytes a corner), positions, C and valences (20 a
+        // vertex), the old level alive
+        let bytes = 4 * h * 8 + (nv + ne + nf) * 20 + h * 8 + nv * 20;
+        if 4 * h + 4 >= u64::from(u32::MAX) || nv + ne + nf >= u64::from(u32::MAX) || bytes > limit_bytes {
+            let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
+            return Err(Error::TooLarge { level, faces: h, bytes, limit });
+        }
+        (nv, ne, nf, h) = (nv + ne + nf, 2 * ne + h, h, 4 * h);
+    }
+    Ok(())
+}
