@@ -49,4 +49,4 @@ pub mod app;
 
 pub use error::{Error, MeshError, Result};
 pub use mesh::{BORDER, CornerTable, Mesh};
-pub use subdiv::{LoopBeta, Options, Scheme, Stats, subdivide};
+pub use subdiv::{LoopBeta, Options, Scheme, Stats, subdivide, subdivide_poly};

@@ -423,3 +423,37 @@ pub fn analyze(path: &std::path::Path) -> subdiv::Result<(Mesh, subdiv::mesh::Re
     let l = read_file_as(path, subdiv::io::Topology::Analyze)?;
     Ok((l.mesh, l.notes.repair.unwrap_or_default()))
 }
+
+/// The `v x y z` lines of a file (an OpenSubdiv fixture).
+pub fn read_points(path: &std::path::Path) -> Vec<Vec3> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let c: Vec<f32> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            Vec3::new(c[0], c[1], c[2])
+        })
+        .collect()
+}
+
+/// Every point of `ours` has a point of `theirs` within `tol` and the
+/// matching is one to one (OpenSubdiv numbers edge vertices differently).
+pub fn assert_same_points(ours: &[Vec3], theirs: &[Vec3], tol: f32, what: &str) {
+    assert_eq!(ours.len(), theirs.len(), "{what}: vertex counts");
+    let mut used = vec![false; theirs.len()];
+    let mut worst = 0.0f32;
+    for (i, p) in ours.iter().enumerate() {
+        let (j, d) = theirs
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| !used[j])
+            .map(|(j, q)| (j, p.distance(*q)))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        assert!(d <= tol, "{what}: our vertex {i} at {p} has no OpenSubdiv point within {tol} (nearest {d})");
+        used[j] = true;
+        worst = worst.max(d);
+    }
+    eprintln!("{what}: {} points, worst distance {worst:.2e}", ours.len());
+}

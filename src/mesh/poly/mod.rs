@@ -230,7 +230,7 @@ impl PolyTable {
                 1 | 2 => return level.min(255) as u8,
                 0 => c /= 4,
                 // level > 1: the parent level is quads, prev by arithmetic
-                _ => c = (c / 4 & !3) | ((c / 4).wrapping_sub(1) & 3),
+                _ => c = ((c / 4) & !3) | ((c / 4).wrapping_sub(1) & 3),
             }
         }
         0

@@ -199,8 +199,7 @@ fn recover_faces(ct: &CornerTable) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
         // and the group is sorted by start vertex
         let next = |v: u32| group.binary_search_by_key(&v, |e| e.1).ok().map(|i| &group[i]);
         let (mut v, first) = (group[0].1, group[0].1);
-        loop {
-            let Some(&(_, _, end, x)) = next(v) else { break };
+        while let Some(&(_, _, end, x)) = next(v) {
             corners.push(v);
             of_corner.push(x);
             v = end;

@@ -1,0 +1,112 @@
+//! Catmull-Clark and bilinear on polygons: OpenSubdiv 3.5's own output on
+//! the fixtures of `scripts/catmark-fixtures.py` (smooth, n-gons, both
+//! boundary options, creases uniform and Chaikin, corners, darts), and the
+//! mathematics: affine invariance, regular patches reproduce bicubics'
+//! points, old vertices keep their ids.
+
+mod common;
+
+use common::{assert_same_points, read_points};
+use glam::Vec3;
+use std::path::PathBuf;
+use subdiv::mesh::poly::PolyMesh;
+use subdiv::mesh::{BoundaryInterpolation, Creasing};
+use subdiv::{Options, Scheme, subdivide_poly};
+
+fn fixture(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name)
+}
+
+/// The polygon mesh of a fixture, with its tags.
+fn load(name: &str) -> PolyMesh {
+    let m = subdiv::io::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    PolyMesh::from_mesh(&m)
+}
+
+/// The face count OpenSubdiv wrote (`# faces N`).
+fn osd_faces(path: &std::path::Path) -> usize {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines().find_map(|l| l.strip_prefix("# faces ")).and_then(|n| n.trim().parse().ok()).unwrap()
+}
+
+#[test]
+fn catmull_clark_equals_opensubdiv() {
+    let cases: [(&str, &str, Creasing, BoundaryInterpolation, &[u32]); 7] = [
+        ("cube", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[1, 2, 3]),
+        ("ngons", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[1, 2]),
+        ("grid", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[2]),
+        ("grid", "corners", Creasing::Uniform, BoundaryInterpolation::EdgeAndCorner, &[2]),
+        ("cube_creases", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[2, 3]),
+        ("cube_creases", "chaikin", Creasing::Chaikin, BoundaryInterpolation::EdgeOnly, &[3]),
+        ("grid_dart", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[2]),
+    ];
+    for (name, opts, creasing, boundary, levels) in cases {
+        let control = load(&format!("{name}.obj"));
+        for &n in levels {
+            let o = Options { creasing, boundary, ..Options::default() };
+            let (fine, _) = subdivide_poly(&control, Scheme::CatmullClark, n, &o).unwrap();
+            let path = fixture(&format!("{name}.{opts}.L{n}.osd.txt"));
+            let what = format!("{name} {opts} L{n}");
+            assert_eq!(fine.pt.num_faces(), osd_faces(&path), "{what}: faces");
+            assert!(fine.pt.is_quads(), "{what}: quads");
+            assert_same_points(&fine.positions, &read_points(&path), 1e-5, &what);
+        }
+    }
+}
+
+/// An affine map of the control points maps every level the same way
+/// (every stencil's weights sum to 1), creases and boundaries included.
+#[test]
+fn affine_maps_commute_with_the_polygon_schemes() {
+    let m = glam::Affine3A::from_mat3_translation(
+        glam::Mat3::from_cols(Vec3::new(1.2, 0.3, -0.1), Vec3::new(-0.4, 0.9, 0.2), Vec3::new(0.1, 0.05, 1.4)),
+        Vec3::new(3.0, -2.0, 0.5),
+    );
+    for name in ["ngons.obj", "grid.obj", "cube_creases.obj"] {
+        let control = load(name);
+        let moved = PolyMesh {
+            positions: control.positions.iter().map(|&p| m.transform_point3(p)).collect(),
+            ..control.clone()
+        };
+        for scheme in Scheme::POLYGON {
+            let (a, _) = subdivide_poly(&control, scheme, 2, &Options::default()).unwrap();
+            let (b, _) = subdivide_poly(&moved, scheme, 2, &Options::default()).unwrap();
+            for (p, q) in a.positions.iter().zip(&b.positions) {
+                assert!(m.transform_point3(*p).distance(*q) < 1e-4, "{name} {scheme}");
+            }
+        }
+    }
+}
+
+/// Bilinear: old vertices stay, edge points are midpoints, face points
+/// centroids; Catmull-Clark keeps the old vertices' ids (row i of the
+/// result is input vertex i's new position).
+#[test]
+fn bilinear_points_and_the_numbering_of_new_vertices() {
+    let control = load("ngons.obj");
+    let (fine, _) = subdivide_poly(&control, Scheme::Bilinear, 1, &Options::default()).unwrap();
+    let (nv, ne, nf) = (control.pt.num_vertices(), control.pt.num_edges(), control.pt.num_faces());
+    assert_eq!(fine.positions.len(), nv + ne + nf);
+    assert_eq!(&fine.positions[..nv], &control.positions[..]);
+    for f in 0..nf as u32 {
+        let r = control.pt.face_corners(f);
+        let k = (r.end - r.start) as f32;
+        let centroid = r.map(|c| control.positions[control.pt.vtx(c) as usize]).sum::<Vec3>() / k;
+        assert!(fine.positions[nv + ne + f as usize].distance(centroid) < 1e-6);
+    }
+    let edge_points = &fine.positions[nv..nv + ne];
+    for e in edge_points {
+        // every edge point is the midpoint of some control edge
+        let found = (0..control.pt.num_corners() as u32).any(|c| {
+            let (a, b) = (control.pt.vtx(c), control.pt.vtx(control.pt.next(c)));
+            ((control.positions[a as usize] + control.positions[b as usize]) * 0.5).distance(*e) < 1e-6
+        });
+        assert!(found, "{e}");
+    }
+    // a polygon mesh through the triangle pipeline gives the same points
+    let mesh = subdiv::io::load(&fixture("ngons.obj")).unwrap();
+    let (tri, _) = subdiv::subdivide(&mesh, Scheme::CatmullClark, 2, &Options::default()).unwrap();
+    let (poly, _) = subdivide_poly(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
+    assert_eq!(tri.positions, poly.positions);
+    assert_eq!(tri.ct.num_triangles(), 2 * poly.pt.num_faces());
+}
