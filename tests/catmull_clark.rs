@@ -110,3 +110,65 @@ fn bilinear_points_and_the_numbering_of_new_vertices() {
     assert_eq!(tri.positions, poly.positions);
     assert_eq!(tri.ct.num_triangles(), 2 * poly.pt.num_faces());
 }
+
+/// Faces as vertex lists, each rotated to start at its least id (a reader
+/// may start a polygon at another corner), in file order.
+fn face_lists(m: &PolyMesh) -> Vec<Vec<u32>> {
+    m.faces()
+        .map(|f| {
+            let k = (0..f.len()).min_by_key(|&i| f[i]).unwrap_or(0);
+            f[k..].iter().chain(&f[..k]).copied().collect()
+        })
+        .collect()
+}
+
+/// OBJ, PLY, OFF and `.ct` write polygons and read them back as the same
+/// polygons (faces of 3 to 6 corners and the quads of a level), positions
+/// exactly as written.
+#[test]
+fn polygon_formats_round_trip() {
+    let dir = common::scratch_dir("poly-round-trip");
+    let control = load("ngons.obj");
+    let (level1, _) = subdivide_poly(&control, Scheme::CatmullClark, 1, &Options::default()).unwrap();
+    for (what, mesh) in [("ngons", &control), ("ngons L1", &level1)] {
+        for ext in ["obj", "ply", "off", "ct"] {
+            let path = dir.join(format!("{}.{ext}", what.replace(' ', "_")));
+            subdiv::io::save_poly(&path, mesh, &Default::default()).unwrap();
+            let back = PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap_or_else(|e| panic!("{ext}: {e}")));
+            assert_eq!(face_lists(&back), face_lists(mesh), "{what} .{ext}: faces");
+            for (a, b) in back.positions.iter().zip(&mesh.positions) {
+                assert!((*a - *b).length() < 1e-6, "{what} .{ext}: {a} against {b}");
+            }
+        }
+    }
+}
+
+/// A `.ct` polygon file's twin rows are checked: one that does not name the
+/// corner across the same edge is refused with the row's line.
+#[test]
+fn ct_polygon_twins_are_checked() {
+    let dir = common::scratch_dir("poly-ct-twins");
+    let path = dir.join("two.ct");
+    let control = load("ngons.obj");
+    subdiv::io::save_poly(&path, &control, &Default::default()).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(subdiv::io::load(&path).is_ok());
+    // Swap two twin entries: each row still names corners, but not the ones
+    // across the same edge.
+    // The twin rows follow the vertex count, the positions, `polygons F`
+    // and the F face rows.
+    let faces = control.pt.num_faces();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let row = 1 + control.positions.len() + 1 + faces;
+    let mut ids: Vec<String> = lines[row].split_whitespace().map(str::to_string).collect();
+    let k = ids.iter().position(|s| s != "-1").expect("an inner edge");
+    let j = ids.iter().rposition(|s| s != "-1" && s != &ids[k]).unwrap_or(k);
+    ids.swap(k, j);
+    if k == j {
+        ids[k] = "0".into();
+    }
+    lines[row] = ids.join(" ");
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    let err = subdiv::io::load(&path).expect_err("a wrong twin is refused").to_string();
+    assert!(err.contains(&format!("two.ct:{}:", row + 1)) && err.contains("twin"), "{err}");
+}

@@ -57,24 +57,68 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
     let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
-    let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
-    // Texture coordinates and colours ride along (see subdiv::attributes).
-    let fine_attrs = if attrs.is_empty() {
+    let attrs = if attrs.is_empty() || io::keeps_attributes(&a.output) {
         attrs
-    } else if io::keeps_attributes(&a.output) {
-        subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, s.scheme, levels, &s.options())?
     } else {
         if logging::warnings_shown() {
             eprintln!("subdiv: note: {} keeps no texture coordinates or colours", a.output.display());
         }
         Default::default()
     };
-    let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &fine_attrs)?;
+    let (vertices, out_faces, st, save_ms) = if s.scheme.is_polygonal() {
+        subdivide_polygons(a, &mesh, &attrs)?
+    } else {
+        let (fine, st) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
+        // Texture coordinates and colours ride along (see subdiv::attributes).
+        let fine_attrs = if attrs.is_empty() {
+            attrs
+        } else {
+            subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, s.scheme, levels, &s.options())?
+        };
+        let t1 = Instant::now();
+        io::save_with(&a.output, &fine, &fine_attrs)?;
+        (fine.positions.len(), fine.ct.num_triangles(), st, t1.elapsed().as_secs_f64() * 1e3)
+    };
     if let Some(pb) = spin {
         pb.finish_and_clear();
     }
-    let save_ms = t1.elapsed().as_secs_f64() * 1e3;
+    let file_faces = match subdiv::mesh::poly::PolyMesh::is_polygonal(&mesh) {
+        true => subdiv::mesh::poly::PolyMesh::from_mesh(&mesh).pt.num_faces(),
+        false => mesh.ct.num_triangles(),
+    };
+    report(a, (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
+}
+
+/// A polygon scheme's subdivision, straight on the polygons (the faces of
+/// the file, their attributes per corner), written as polygons: the
+/// output's vertices, faces, the stats and the milliseconds of the save.
+fn subdivide_polygons(
+    a: &SubdivideArgs,
+    mesh: &Mesh,
+    attrs: &subdiv::mesh::attributes::Attributes,
+) -> Result<(usize, usize, subdiv::Stats, f64)> {
+    let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
+    let (control, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
+    let (fine, st) = subdiv::subdivide_poly(&control, s.scheme, levels, &s.options())?;
+    let fine_attrs = if pattrs.is_empty() {
+        pattrs
+    } else {
+        subdiv::subdiv::tables::attributes::refine_poly(&control, &pattrs, s.scheme, levels, &s.options())?
+    };
+    let t1 = Instant::now();
+    io::save_poly(&a.output, &fine, &fine_attrs)?;
+    Ok((fine.positions.len(), fine.pt.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3))
+}
+
+/// What `subdivide` prints: `--stats`, `--json` or a line.
+fn report(
+    a: &SubdivideArgs,
+    (in_vertices, in_faces): (usize, usize),
+    (vertices, faces): (usize, usize),
+    st: &subdiv::Stats,
+    (load_ms, save_ms): (f64, f64),
+) -> Result<()> {
+    let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
     if a.stats {
         println!("subdivide_ms={:.3}", st.total_ms);
         println!(
@@ -93,10 +137,10 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
             output: &output,
             scheme: s.scheme.to_string(),
             levels,
-            input_vertices: mesh.positions.len(),
-            input_faces: mesh.ct.num_triangles(),
-            vertices: fine.positions.len(),
-            faces: fine.ct.num_triangles(),
+            input_vertices: in_vertices,
+            input_faces: in_faces,
+            vertices,
+            faces,
             subdivide_ms: st.total_ms,
             split_ms: st.split_ms,
             edge_ms: st.edge_ms,
@@ -111,8 +155,8 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
             a.output.display(),
             levels,
             s.scheme,
-            fine.positions.len(),
-            fine.ct.num_triangles()
+            vertices,
+            faces
         );
     }
     Ok(())

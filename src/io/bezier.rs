@@ -222,6 +222,7 @@ pub const BEZ_FORMAT: Format = Format {
     reader: Some(read_bez),
     writer: None,
     written_as: &[],
+    poly_writer: None,
     keeps: Keeps { uv: false, colors: false, materials: false },
 };
 
@@ -234,6 +235,7 @@ pub const BZC_FORMAT: Format = Format {
     reader: None,
     writer: None,
     written_as: &[],
+    poly_writer: None,
     keeps: Keeps { uv: false, colors: false, materials: false },
 };
 

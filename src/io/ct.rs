@@ -56,6 +56,11 @@ impl<'a> Tokens<'a> {
     fn err(&self, msg: impl Into<String>) -> Error {
         Error::Parse { file: self.file.to_string(), line: self.line.max(1), msg: msg.into() }
     }
+    /// The next token without taking it.
+    fn peek(&self) -> Option<&'a str> {
+        let mut copy = Tokens { lines: self.lines.clone(), cur: self.cur.clone(), line: self.line, file: self.file };
+        copy.next_tok()
+    }
     fn num<T: std::str::FromStr>(&mut self, what: &str) -> Result<T> {
         let t = self.next_tok().ok_or_else(|| self.err(format!("file ends where {what} was expected")))?;
         t.parse().map_err(|_| self.err(format!("'{t}' is not a valid {what}")))
@@ -70,6 +75,7 @@ pub const FORMAT: Format = Format {
     reader: Some(read),
     writer: Some(|path, mesh, _| save(path, mesh)),
     written_as: &["ct"],
+    poly_writer: Some(|path, mesh, _| save_poly(path, mesh)),
     keeps: Keeps { uv: false, colors: false, materials: false },
 };
 
@@ -103,6 +109,11 @@ fn read(input: &Input) -> Result<RawMesh> {
         }
         raw.positions.push(Vec3::new(x, y, z));
         raw.sources.vertex_lines.push(tk.line as u32);
+    }
+    let peek = tk.peek();
+    if peek == Some("polygons") {
+        tk.next_tok();
+        return read_polygons(&mut tk, raw, k, text.len(), input);
     }
     let t: u64 = tk.num("triangle count")?;
     if t > text.len() as u64 / 6 + 1 {
@@ -140,23 +151,81 @@ fn read(input: &Input) -> Result<RawMesh> {
 /// The optional opposite table (`3 t` corner ids, -1 for a border) whose
 /// first token is `first`; the line of each row goes to `lines`.
 fn opposite_table<'a>(tk: &mut Tokens<'a>, first: &'a str, t: u64, lines: &mut Vec<u32>) -> Result<Vec<u32>> {
-    let mut stored = Vec::with_capacity(3 * t as usize);
+    corner_ids(tk, first, 3 * t, lines, "opposite", t as usize)
+}
+
+/// `h` corner ids (`-1`: [`BORDER`]) of a table, the first token `first`;
+/// `rows` rows, whose lines go to `lines` (one per row of equal share).
+fn corner_ids<'a>(
+    tk: &mut Tokens<'a>,
+    first: &'a str,
+    h: u64,
+    lines: &mut Vec<u32>,
+    what: &str,
+    rows: usize,
+) -> Result<Vec<u32>> {
+    let mut stored = Vec::with_capacity(h as usize);
     let mut tok = Some(first);
-    for _ in 0..3 * t {
+    let per_row = (h as usize).div_ceil(rows.max(1)).max(1);
+    for _ in 0..h {
         let s = match tok.take() {
             Some(s) => s,
-            None => tk.next_tok().ok_or_else(|| tk.err("the opposite table ends early"))?,
+            None => tk.next_tok().ok_or_else(|| tk.err(format!("the {what} table ends early")))?,
         };
         let x: i64 = s.parse().map_err(|_| tk.err(format!("'{s}' is not a corner id")))?;
-        if x < -1 || x >= 3 * t as i64 {
-            return Err(tk.err(format!("opposite corner {x} out of range")));
+        if x < -1 || x >= h as i64 {
+            return Err(tk.err(format!("{what} corner {x} out of range")));
         }
         stored.push(if x < 0 { BORDER } else { x as u32 });
-        if stored.len() % 3 == 0 {
+        if stored.len() % per_row == 0 {
             lines.push(tk.line as u32);
         }
     }
     Ok(stored)
+}
+
+/// The polygon extension: after the vertices, `polygons F`, then `F` lines
+/// of a corner count and that many vertex ids, then optionally `F` lines of
+/// the corners' twins (the corner across the edge leaving each corner, in
+/// the order the faces list their corners, `-1` on the border), then the
+/// sections.
+fn read_polygons(tk: &mut Tokens, mut raw: RawMesh, k: u64, bytes: usize, input: &Input) -> Result<RawMesh> {
+    let file = input.file;
+    let f: u64 = tk.num("polygon count")?;
+    // every face needs at least "3 0 1 2\n" (8 bytes)
+    if f > bytes as u64 / 8 + 1 {
+        return Err(tk.err(format!("header claims {f} polygons but the file has only {bytes} bytes")));
+    }
+    input.budget.take_faces(f, file, "polygon count")?;
+    let mut ids = Vec::new();
+    for face in 0..f as usize {
+        let n: u64 = tk.num("corner count")?;
+        input.budget.check("face-size", n, file, &format!("line {}", tk.line))?;
+        if n < 3 || n > bytes as u64 / 2 {
+            return Err(tk.err(format!("polygon {face} has {n} corners (3 or more, as many as the file holds)")));
+        }
+        ids.clear();
+        for _ in 0..n {
+            let i: i64 = tk.num("vertex id")?;
+            if i < 0 || i as u64 >= k {
+                let source = MeshError::IndexOutOfRange { face, index: i, len: k as usize };
+                return Err(Error::Mesh { file: file.into(), line: Some(tk.line), source });
+            }
+            ids.push(i as u32);
+        }
+        raw.push_face(&ids);
+        raw.sources.face_lines.push(tk.line as u32);
+    }
+    let mut next = tk.next_tok();
+    if let Some(first) = next.filter(|s| !is_section(s)) {
+        let h = raw.corners.len() as u64;
+        raw.twins = Some(corner_ids(tk, first, h, &mut raw.sources.opposite_lines, "twin", raw.face_starts.len() - 1)?);
+        next = tk.next_tok();
+    }
+    let (tags, tag_lines) = parse_sections(tk, next, bytes)?;
+    raw.tags = tags;
+    raw.sources.tag_lines = tag_lines;
+    Ok(raw)
 }
 
 fn is_section(tok: &str) -> bool {
@@ -215,6 +284,54 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
         super::write_formatted(&[], text.chunks(), |k| text.chunk(k), &mut sink)?;
         sink(&text.tags())
     })
+}
+
+/// Saves a polygon mesh as `.ct` with the polygon extension (`polygons F`,
+/// the faces, their twins, the sharpness), in one buffer.
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh) -> Result<()> {
+    let pt = &mesh.pt;
+    let mut out = Vec::new();
+    let _ = writeln!(out, "{}", mesh.positions.len());
+    for q in &mesh.positions {
+        let _ = writeln!(out, "{} {} {}", q.x, q.y, q.z);
+    }
+    let _ = writeln!(out, "polygons {}", pt.num_faces());
+    let rows = |out: &mut Vec<u8>, value: &dyn Fn(u32) -> String| {
+        for f in 0..pt.num_faces() as u32 {
+            let r = pt.face_corners(f);
+            let line: Vec<String> = r.map(value).collect();
+            let _ = writeln!(out, "{}", line.join(" "));
+        }
+    };
+    let count_and_vertex = |c: u32| {
+        let v = pt.vtx(c).to_string();
+        if c == pt.face_corners(pt.face(c)).start { format!("{} {v}", pt.face_size(pt.face(c))) } else { v }
+    };
+    rows(&mut out, &count_and_vertex);
+    rows(&mut out, &|c| if pt.twin_entry(c) == BORDER { "-1".into() } else { pt.twin_entry(c).to_string() });
+    if let Some(s) = pt.sharpness() {
+        section_lines(&mut out, &s.to_tags(pt));
+    }
+    atomic_write(path, |w| w.write_all(&out).map_err(|e| Error::io(path, e)))
+}
+
+/// The `creases` and `corners` sections of `tags`.
+fn section_lines(out: &mut Vec<u8>, tags: &Tags) {
+    if !tags.creases.is_empty() {
+        let _ = writeln!(out, "creases {}", tags.creases.len());
+        for t in &tags.creases {
+            let _ = writeln!(out, "{} {} {}", t.v0, t.v1, t.sharpness);
+        }
+    }
+    if !tags.corners.is_empty() {
+        let _ = writeln!(out, "corners {}", tags.corners.len());
+        for t in &tags.corners {
+            let _ = writeln!(out, "{} {}", t.vertex, t.sharpness);
+        }
+    }
 }
 
 /// The text of a `.ct` file in chunks of lines: the vertex count and the
@@ -281,19 +398,7 @@ impl<'a> Text<'a> {
     fn tags(&self) -> Vec<u8> {
         let mut w = Vec::new();
         if let Some(s) = self.mesh.ct.sharpness() {
-            let tags = s.to_tags(&self.mesh.ct);
-            if !tags.creases.is_empty() {
-                let _ = writeln!(w, "creases {}", tags.creases.len());
-                for t in &tags.creases {
-                    let _ = writeln!(w, "{} {} {}", t.v0, t.v1, t.sharpness);
-                }
-            }
-            if !tags.corners.is_empty() {
-                let _ = writeln!(w, "corners {}", tags.corners.len());
-                for t in &tags.corners {
-                    let _ = writeln!(w, "{} {}", t.vertex, t.sharpness);
-                }
-            }
+            section_lines(&mut w, &s.to_tags(&self.mesh.ct));
         }
         w
     }

@@ -42,6 +42,7 @@ pub const FORMAT: Format = Format {
     reader: Some(read),
     writer: None,
     written_as: &[],
+    poly_writer: None,
     keeps: Keeps { uv: false, colors: false, materials: false },
 };
 

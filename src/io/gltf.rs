@@ -40,6 +40,7 @@ pub const FORMAT: Format = Format {
     reader: Some(read),
     writer: Some(save),
     written_as: &["glb"],
+    poly_writer: None,
     keeps: Keeps { uv: true, colors: true, materials: false },
 };
 

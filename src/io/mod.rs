@@ -42,6 +42,7 @@ pub(crate) use write::{atomic_write_pieces, write_formatted};
 
 use crate::mesh::Mesh;
 use crate::mesh::attributes::Attributes;
+use crate::mesh::poly::PolyMesh;
 use crate::{Error, Result};
 use resolve::Resolver;
 use std::cell::RefCell;
@@ -62,12 +63,18 @@ pub struct Format {
     writer: Option<Writer>,
     /// The extensions the writer writes (glTF: `.glb` only).
     written_as: &'static [&'static str],
+    /// Its writer of polygon meshes (`None`: polygons are written fanned
+    /// into triangles).
+    poly_writer: Option<PolyWriter>,
     /// What its writer keeps of a mesh's attributes.
     pub keeps: Keeps,
 }
 
 /// A format's writer: the mesh with its attributes into a file.
 type Writer = fn(&Path, &Mesh, &Attributes) -> Result<()>;
+
+/// A format's writer of polygon meshes (attributes per polygon corner and face).
+type PolyWriter = fn(&Path, &PolyMesh, &Attributes) -> Result<()>;
 
 /// What a format's writer keeps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -391,11 +398,19 @@ pub fn keeps_attributes(path: &Path) -> bool {
 }
 
 /// [`save`] with the mesh's attributes where the format keeps them (see
-/// [`Format::keeps`]); elsewhere they are dropped.
+/// [`Format::keeps`]); elsewhere they are dropped. A mesh that stands for
+/// polygons (fanned faces, triangulated quads: its diagonals hidden) is
+/// written as polygons by the formats that keep them (OBJ, PLY, OFF, `.ct`).
 ///
 /// # Errors
 /// As [`save`].
 pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+    if let Some(write) = Format::for_output(path).and_then(|f| f.poly_writer)
+        && PolyMesh::is_polygonal(mesh)
+    {
+        let (pm, pattrs) = PolyMesh::from_mesh_with_attributes(mesh, attrs);
+        return write(path, &pm, &pattrs);
+    }
     match Format::for_output(path).and_then(|f| f.writer) {
         Some(write) => write(path, mesh, attrs),
         None => Err(Error::UnknownFormat {
@@ -404,6 +419,31 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
             direction: "output",
             known: ".obj, .ply, .ct, .stl, .off or .glb",
         }),
+    }
+}
+
+/// Saves a polygon mesh by extension, its attributes per polygon corner
+/// (texture coordinates) and face (materials) where the format keeps them;
+/// STL and `.glb` get its faces fanned into triangles.
+///
+/// # Errors
+/// An unknown extension or an I/O error.
+pub fn save_poly(path: &Path, mesh: &PolyMesh, attrs: &Attributes) -> Result<()> {
+    match Format::for_output(path) {
+        Some(Format { poly_writer: Some(write), .. }) => write(path, mesh, attrs),
+        Some(_) => {
+            let fan = mesh.pt.fan_corners();
+            let tri_attrs = Attributes {
+                uv: attrs.uv.as_ref().map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
+                colors: attrs.colors.clone(),
+                materials: attrs.materials.as_ref().map(|m| crate::mesh::attributes::MaterialGroups {
+                    face: fan.chunks_exact(3).map(|t| m.face[mesh.pt.face(t[0]) as usize]).collect(),
+                    ..m.clone()
+                }),
+            };
+            save_with(path, &mesh.triangulated(), &tri_attrs)
+        }
+        None => save_with(path, &mesh.triangulated(), attrs),
     }
 }
 

@@ -32,6 +32,7 @@ pub const FORMAT: Format = Format {
     reader: Some(read),
     writer: Some(save_with),
     written_as: &["obj"],
+    poly_writer: Some(save_poly),
     keeps: Keeps { uv: true, colors: true, materials: true },
 };
 
@@ -574,9 +575,12 @@ fn face_text(ch: &[u32]) -> Vec<u8> {
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b
 /// s` and `t corner 1/1/0 v s`, 0-based ids), so a file round-trips.
 pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
+    mesh.ct.sharpness().map_or_else(Vec::new, |s| tag_lines(&s.to_tags(&mesh.ct)))
+}
+
+/// OBJ tag records of `tags`.
+fn tag_lines(tags: &crate::mesh::sharpness::Tags) -> Vec<u8> {
     let mut out = Vec::new();
-    let Some(s) = mesh.ct.sharpness() else { return out };
-    let tags = s.to_tags(&mesh.ct);
     let mut rb = zmij::Buffer::new();
     for t in &tags.creases {
         out.extend_from_slice(format!("t crease 2/1/0 {} {} ", t.v0, t.v1).as_bytes());
@@ -591,6 +595,18 @@ pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
     out
 }
 
+/// The faces an OBJ writer writes: a triangle table's or a polygon table's,
+/// each face with the index of its first corner (the corners of all faces
+/// in order are the `vt` records when there are texture coordinates).
+pub(crate) struct FaceSource<'a> {
+    /// The vertex of every corner, face after face.
+    pub corners: &'a [u32],
+    /// Faces.
+    pub count: usize,
+    /// The first corner of face `f`, and one past its last.
+    pub face: &'a (dyn Fn(usize) -> std::ops::Range<usize> + Sync),
+}
+
 /// Formats OBJ text for `mesh` with its attributes: `v x y z r g b` when
 /// there are colours, one `vt` per corner and `f a/ta b/tb c/tc` when there
 /// are texture coordinates, the `mtllib` records and a `usemtl` wherever the
@@ -603,6 +619,57 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
     if attrs.is_empty() {
         return write_obj(mesh, sink);
     }
+    let tri = |t: usize| 3 * t..3 * t + 3;
+    let faces = FaceSource { corners: mesh.ct.v_table(), count: mesh.ct.num_triangles(), face: &tri };
+    write_records(&mesh.positions, &faces, attrs, &tag_records(mesh), sink)
+}
+
+/// [`write_obj_with`] of a polygon mesh: one `f` line per polygon (texture
+/// coordinates per polygon corner, a material per face).
+///
+/// # Errors
+/// The first error of `sink`.
+pub fn write_poly(
+    mesh: &crate::mesh::poly::PolyMesh,
+    attrs: &Attributes,
+    sink: &mut dyn FnMut(&[u8]) -> Result<()>,
+) -> Result<()> {
+    let pt = &mesh.pt;
+    let tags = poly_tag_records(pt);
+    if attrs.is_empty() {
+        const ROWS: usize = 1 << 15;
+        let pos = &mesh.positions;
+        let header = format!("# subdiv: {} vertices, {} faces\n", pos.len(), pt.num_faces());
+        let vchunks: Vec<&[Vec3]> = pos.chunks(ROWS).collect();
+        let (nv, nf) = (vchunks.len(), pt.num_faces().div_ceil(ROWS));
+        let text = |k: usize| {
+            if k < nv {
+                return vertex_text(vchunks[k]);
+            }
+            let first = ((k - nv) * ROWS) as u32;
+            let last = (first + ROWS as u32).min(pt.num_faces() as u32);
+            text::face_lines(b"f ", pt, first..last, false, |line, v| line.put_u32(v.wrapping_add(1)))
+        };
+        crate::io::write_formatted(&[header.as_bytes()], nv + nf, text, sink)?;
+        return sink(&tags);
+    }
+    let face = |f: usize| {
+        let r = pt.face_corners(f as u32);
+        r.start as usize..r.end as usize
+    };
+    let faces = FaceSource { corners: pt.v_table(), count: pt.num_faces(), face: &face };
+    write_records(&mesh.positions, &faces, attrs, &tags, sink)
+}
+
+/// The OBJ records of positions and `faces` with attributes (see
+/// [`write_obj_with`]), then `tags`.
+fn write_records(
+    positions: &[Vec3],
+    faces: &FaceSource,
+    attrs: &Attributes,
+    tags: &[u8],
+    sink: &mut dyn FnMut(&[u8]) -> Result<()>,
+) -> Result<()> {
     let mut out = Vec::with_capacity(1 << 20);
     // appends one record, handing the text to `sink` every megabyte
     let mut record = |out: &mut Vec<u8>, write: &mut dyn FnMut(&mut Vec<u8>)| -> Result<()> {
@@ -614,10 +681,11 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
         Ok(())
     };
     let (mut rb, mut ib) = (zmij::Buffer::new(), itoa::Buffer::new());
-    let header = format!("# subdiv: {} vertices, {} triangles\n", mesh.positions.len(), mesh.ct.num_triangles());
+    let noun = if faces.corners.len() == 3 * faces.count { "triangles" } else { "faces" };
+    let header = format!("# subdiv: {} vertices, {} {noun}\n", positions.len(), faces.count);
     record(&mut out, &mut |o| o.extend_from_slice(header.as_bytes()))?;
-    let colors = attrs.colors.as_ref().filter(|c| c.len() == mesh.positions.len());
-    for (i, q) in mesh.positions.iter().enumerate() {
+    let colors = attrs.colors.as_ref().filter(|c| c.len() == positions.len());
+    for (i, q) in positions.iter().enumerate() {
         let rgb = colors.map(|c| c[i].to_array());
         record(&mut out, &mut |o| {
             o.push(b'v');
@@ -628,11 +696,11 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
             o.push(b'\n');
         })?;
     }
-    let mats = attrs.materials.as_ref().filter(|m| m.face.len() == mesh.ct.num_triangles());
+    let mats = attrs.materials.as_ref().filter(|m| m.face.len() == faces.count);
     for lib in mats.map(|m| m.libraries.as_slice()).unwrap_or_default() {
         record(&mut out, &mut |o| o.extend_from_slice(format!("mtllib {lib}\n").as_bytes()))?;
     }
-    let uv = attrs.uv.as_ref().filter(|u| u.len() == mesh.ct.v_table().len());
+    let uv = attrs.uv.as_ref().filter(|u| u.len() == faces.corners.len());
     for t in uv.into_iter().flatten() {
         record(&mut out, &mut |o| {
             o.extend_from_slice(b"vt");
@@ -644,30 +712,43 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
         })?;
     }
     let mut current = u32::MAX;
-    for (t, tri) in mesh.ct.v_table().chunks_exact(3).enumerate() {
+    for f in 0..faces.count {
         if let Some(m) = mats
-            && m.face[t] != current
+            && m.face[f] != current
         {
-            current = m.face[t];
+            current = m.face[f];
             let name = m.list.get(current as usize).map_or("default", |x| x.name.as_str());
             record(&mut out, &mut |o| o.extend_from_slice(format!("usemtl {name}\n").as_bytes()))?;
         }
         record(&mut out, &mut |o| {
             o.push(b'f');
-            for (k, v) in tri.iter().enumerate() {
+            for c in (faces.face)(f) {
                 o.push(b' ');
-                o.extend_from_slice(ib.format(v + 1).as_bytes());
+                o.extend_from_slice(ib.format(faces.corners[c] + 1).as_bytes());
                 if uv.is_some() {
                     // one vt per corner, in corner order
                     o.push(b'/');
-                    o.extend_from_slice(ib.format(3 * t + k + 1).as_bytes());
+                    o.extend_from_slice(ib.format(c + 1).as_bytes());
                 }
             }
             o.push(b'\n');
         })?;
     }
-    out.extend_from_slice(&tag_records(mesh));
+    out.extend_from_slice(tags);
     sink(&out)
+}
+
+/// The sharpness of a polygon table as OBJ tag records.
+fn poly_tag_records(pt: &crate::mesh::poly::PolyTable) -> Vec<u8> {
+    pt.sharpness().map_or_else(Vec::new, |s| tag_lines(&s.to_tags(pt)))
+}
+
+/// Saves a polygon mesh with its attributes as OBJ (atomically).
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, attrs: &Attributes) -> Result<()> {
+    atomic_write(path, |w| write_poly(mesh, attrs, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e))))
 }
 
 /// Saves `mesh` with its attributes as OBJ (atomically).

@@ -35,6 +35,7 @@ pub const FORMAT: Format = Format {
     reader: Some(read),
     writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
     written_as: &["off"],
+    poly_writer: Some(|path, mesh, attrs| save_poly(path, mesh, attrs.colors.as_deref())),
     keeps: Keeps { uv: false, colors: true, materials: false },
 };
 
@@ -190,6 +191,34 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
     atomic_write(path, |w| {
         let mut sink = |b: &[u8]| w.write_all(b).map_err(|e| Error::io(path, e));
         super::write_formatted(&[head.as_bytes()], vertex_chunks + nt.div_ceil(ROWS), text, &mut sink)
+    })
+}
+
+/// Saves a polygon mesh as OFF text (one `k a b c ...` line per face;
+/// `COFF` with colours when given, one per vertex).
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option<&[Vec3]>) -> Result<()> {
+    let colors = colors.filter(|c| c.len() == mesh.positions.len());
+    let magic = if colors.is_some() { "COFF" } else { "OFF" };
+    let (nv, nf) = (mesh.positions.len(), mesh.pt.num_faces());
+    let head = format!("{magic}\n{nv} {nf} 0\n");
+    const ROWS: usize = 1 << 15;
+    let vertex_chunks = nv.div_ceil(ROWS);
+    let text = |k: usize| {
+        if k < vertex_chunks {
+            let rows = k * ROWS..((k + 1) * ROWS).min(nv);
+            vertex_lines(&mesh.positions[rows.clone()], colors.map(|c| &c[rows]))
+        } else {
+            let first = ((k - vertex_chunks) * ROWS) as u32;
+            let last = (first + ROWS as u32).min(nf as u32);
+            super::text::face_lines(b"", &mesh.pt, first..last, true, Line::put_u32)
+        }
+    };
+    atomic_write(path, |w| {
+        let mut sink = |b: &[u8]| w.write_all(b).map_err(|e| Error::io(path, e));
+        super::write_formatted(&[head.as_bytes()], vertex_chunks + nf.div_ceil(ROWS), text, &mut sink)
     })
 }
 

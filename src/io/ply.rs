@@ -19,8 +19,8 @@
 
 use super::raw::{RawMesh, check_count, format_err};
 use super::{Format, Input, Keeps};
-use crate::Result;
 use crate::mesh::Mesh;
+use crate::{Error, Result};
 use glam::{Vec2, Vec3};
 use std::borrow::Cow;
 use std::path::Path;
@@ -130,6 +130,7 @@ pub const FORMAT: Format = Format {
     reader: Some(read),
     writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
     written_as: &["ply"],
+    poly_writer: Some(|path, mesh, attrs| save_poly(path, mesh, attrs.colors.as_deref())),
     keeps: Keeps { uv: false, colors: true, materials: false },
 };
 
@@ -418,18 +419,78 @@ fn read_faces(body: &mut Body, el: &Element, count: usize, input: &Input, raw: &
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
-    let colors = colors.filter(|c| c.len() == mesh.positions.len());
+    write(path, &mesh.positions, colors, &Faces::Triangles(mesh.ct.v_table()))
+}
+
+/// [`save_with`] of a polygon mesh: one list record per polygon.
+///
+/// # Errors
+/// I/O errors naming `path`; a face of more than 255 corners (a `uchar` count).
+pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option<&[Vec3]>) -> Result<()> {
+    let pt = &mesh.pt;
+    if let Some(f) = (0..pt.num_faces() as u32).find(|&f| pt.face_size(f) > 255) {
+        let msg = format!("face {f} has {} corners, more than a PLY uchar count holds", pt.face_size(f));
+        return Err(Error::Usage(format!("{}: {msg}", path.display())));
+    }
+    // the offset of every chunk of faces: a prefix sum of record sizes
+    let chunks = pt.num_faces().div_ceil(FACE_ROWS);
+    let mut starts = Vec::with_capacity(chunks + 1);
+    let mut at = 0u64;
+    for k in 0..chunks {
+        starts.push(at);
+        let faces = (k * FACE_ROWS) as u32..(((k + 1) * FACE_ROWS).min(pt.num_faces())) as u32;
+        at += faces.map(|f| 1 + 4 * u64::from(pt.face_size(f))).sum::<u64>();
+    }
+    write(path, &mesh.positions, colors, &Faces::Polygons(pt, &starts))
+}
+
+/// The faces [`write`] writes: triangles (13-byte records) or polygons
+/// (with the byte offset of every chunk of [`FACE_ROWS`] faces).
+enum Faces<'a> {
+    Triangles(&'a [u32]),
+    Polygons(&'a crate::mesh::poly::PolyTable, &'a [u64]),
+}
+
+impl Faces<'_> {
+    fn count(&self) -> usize {
+        match self {
+            Faces::Triangles(v) => v.len() / 3,
+            Faces::Polygons(pt, _) => pt.num_faces(),
+        }
+    }
+    /// Chunk `k`'s offset among the face records, and its records.
+    fn chunk(&self, k: usize) -> (u64, Vec<u8>) {
+        let first = k * FACE_ROWS;
+        let last = (first + FACE_ROWS).min(self.count());
+        match self {
+            Faces::Triangles(v) => (13 * first as u64, face_records(&v[3 * first..3 * last])),
+            Faces::Polygons(pt, starts) => {
+                let mut out = Vec::new();
+                for f in first as u32..last as u32 {
+                    let r = pt.face_corners(f);
+                    out.push((r.end - r.start) as u8);
+                    for c in r {
+                        out.extend_from_slice(&pt.vtx(c).to_le_bytes());
+                    }
+                }
+                (starts[k], out)
+            }
+        }
+    }
+}
+
+/// Writes positions, colours and `faces` as binary PLY: every piece's
+/// offset is known before any is made, so the pieces are made and written
+/// in parallel (io::atomic_write_pieces).
+fn write(path: &Path, positions: &[Vec3], colors: Option<&[Vec3]>, faces: &Faces) -> Result<()> {
+    let colors = colors.filter(|c| c.len() == positions.len());
     let rgb = if colors.is_some() { "property uchar red\nproperty uchar green\nproperty uchar blue\n" } else { "" };
+    let (nv, nf) = (positions.len(), faces.count());
     let header = format!(
-        "ply\nformat binary_little_endian 1.0\ncomment written by subdiv\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n{rgb}element face {}\nproperty list uchar int vertex_indices\nend_header\n",
-        mesh.positions.len(),
-        mesh.ct.num_triangles()
+        "ply\nformat binary_little_endian 1.0\ncomment written by subdiv\nelement vertex {nv}\nproperty float x\nproperty float y\nproperty float z\n{rgb}element face {nf}\nproperty list uchar int vertex_indices\nend_header\n",
     );
-    // every record has a fixed size, so every piece's offset is known: the
-    // pieces are made and written in parallel (io::atomic_write_pieces)
     let vertex_size = if colors.is_some() { 15 } else { 12 };
-    let (nv, nt) = (mesh.positions.len(), mesh.ct.num_triangles());
-    let (vertex_pieces, face_pieces) = (nv.div_ceil(VERTEX_ROWS), nt.div_ceil(FACE_ROWS));
+    let (vertex_pieces, face_pieces) = (nv.div_ceil(VERTEX_ROWS), nf.div_ceil(FACE_ROWS));
     let faces_at = (header.len() + nv * vertex_size) as u64;
     let piece = |k: usize| -> (u64, Cow<'_, [u8]>) {
         if k == 0 {
@@ -441,15 +502,12 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
             let at = (header.len() + first * vertex_size) as u64;
             return match colors {
                 // little-endian f32 triples are the PLY records as they lie in memory
-                None if cfg!(target_endian = "little") => {
-                    (at, Cow::Borrowed(bytemuck::cast_slice(&mesh.positions[rows])))
-                }
-                _ => (at, Cow::Owned(vertex_records(&mesh.positions[rows.clone()], colors.map(|c| &c[rows])))),
+                None if cfg!(target_endian = "little") => (at, Cow::Borrowed(bytemuck::cast_slice(&positions[rows]))),
+                _ => (at, Cow::Owned(vertex_records(&positions[rows.clone()], colors.map(|c| &c[rows])))),
             };
         }
-        let first = (k - 1 - vertex_pieces) * FACE_ROWS;
-        let tris = &mesh.ct.v_table()[3 * first..3 * (first + FACE_ROWS).min(nt)];
-        (faces_at + 13 * first as u64, Cow::Owned(face_records(tris)))
+        let (at, bytes) = faces.chunk(k - 1 - vertex_pieces);
+        (faces_at + at, Cow::Owned(bytes))
     };
     crate::io::atomic_write_pieces(path, 1 + vertex_pieces + face_pieces, piece)
 }

@@ -40,6 +40,10 @@ pub struct RawMesh {
     /// an all-triangle mesh, [`BORDER`] for none: it must be the table the
     /// faces define.
     pub opposite: Option<Vec<u32>>,
+    /// A twin table stored in the file (`.ct` polygons: the corner across
+    /// the edge leaving each corner, [`BORDER`] for none): it must be the
+    /// table the faces define.
+    pub twins: Option<Vec<u32>>,
     /// Where the records are in the file, for messages.
     pub sources: Sources,
 }
@@ -204,6 +208,9 @@ impl RawMesh {
         }
         if let Some(stored) = &self.opposite {
             check_opposite(&mesh.ct, stored, notes.unreferenced, &locate)?;
+        }
+        if let Some(stored) = &self.twins {
+            check_twins(&self.face_starts, &self.corners, nrec, stored, &locate)?;
         }
         if !self.tags.is_empty() {
             let Mesh { ct, positions } = mesh;
@@ -388,6 +395,28 @@ fn check_opposite(ct: &CornerTable, stored: &[u32], unreferenced: usize, at: &Lo
     };
     let msg = format!("stored {}, but the faces give {}", show(stored.get(c)), show(built.get(c)));
     let line = at.sources.opposite_lines.get(c / 3).map(|&l| l as usize);
+    Err(Error::Mesh { file, line, source: MeshError::BadOppositeTable { corner: c, msg } })
+}
+
+/// Refuses a stored twin table (polygon `.ct`) that is not the one the
+/// faces define.
+fn check_twins(starts: &[u32], corners: &[u32], nv: usize, stored: &[u32], at: &Locate) -> Result<()> {
+    let file = at.file.to_string();
+    let (pt, _, _) = crate::mesh::poly::PolyTable::build(nv, starts, corners, None).map_err(|source| Error::Mesh {
+        file: file.clone(),
+        line: None,
+        source,
+    })?;
+    let Some(c) = (0..pt.num_corners().max(stored.len())).find(|&c| pt.t_table().get(c) != stored.get(c)) else {
+        return Ok(());
+    };
+    let show = |x: Option<&u32>| match x {
+        Some(&BORDER) => "-1 (border)".to_string(),
+        Some(x) => x.to_string(),
+        None => "nothing".to_string(),
+    };
+    let msg = format!("stored twin {}, but the faces give {}", show(stored.get(c)), show(pt.t_table().get(c)));
+    let line = at.sources.opposite_lines.get(pt.face(c as u32) as usize).map(|&l| l as usize);
     Err(Error::Mesh { file, line, source: MeshError::BadOppositeTable { corner: c, msg } })
 }
 

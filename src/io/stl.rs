@@ -24,6 +24,7 @@ pub const FORMAT: Format = Format {
     reader: Some(read),
     writer: Some(|path, mesh, _| save(path, mesh)),
     written_as: &["stl"],
+    poly_writer: None,
     keeps: Keeps { uv: false, colors: false, materials: false },
 };
 

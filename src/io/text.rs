@@ -122,3 +122,62 @@ fn put_u32<const CAP: usize>(line: &mut [u8; CAP], at: usize, mut x: u32) -> usi
     }
     end
 }
+
+/// One line per face of `pt` in `faces`: `prefix`, then (with `count`) the
+/// face's size, then each corner's vertex as `put` writes it, separated by
+/// spaces. The face lines of OBJ (1-based) and OFF for polygon meshes.
+pub(crate) fn face_lines(
+    prefix: &[u8],
+    pt: &crate::mesh::poly::PolyTable,
+    faces: std::ops::Range<u32>,
+    count: bool,
+    put: impl Fn(&mut Line, u32),
+) -> Vec<u8> {
+    let mut out = Vec::with_capacity(faces.len() * (LONGEST + 16) + 64);
+    let mut line: Line = Line::new(prefix);
+    let mut long = itoa::Buffer::new();
+    for f in faces {
+        let r = pt.face_corners(f);
+        let k = r.end - r.start;
+        if k <= 4 {
+            // a prefix and up to five numbers of 10 digits fit the line
+            line.reset();
+            if count {
+                line.put_u32(k);
+                line.push(b' ');
+            }
+            for (i, c) in r.enumerate() {
+                if i > 0 {
+                    line.push(b' ');
+                }
+                put(&mut line, pt.vtx(c));
+            }
+            line.push(b'\n');
+            line.append_to(&mut out);
+        } else {
+            // a long polygon: one number at a time
+            out.extend_from_slice(prefix);
+            if count {
+                out.extend_from_slice(long.format(k).as_bytes());
+                out.push(b' ');
+            }
+            for (i, c) in r.enumerate() {
+                if i > 0 {
+                    out.push(b' ');
+                }
+                let mut one: Line<16> = Line::new(b"");
+                put_into(&mut one, &put, pt.vtx(c));
+                one.append_to(&mut out);
+            }
+            out.push(b'\n');
+        }
+    }
+    out
+}
+
+/// `put` of the default line into a shorter one (one number).
+fn put_into(one: &mut Line<16>, put: &impl Fn(&mut Line, u32), x: u32) {
+    let mut wide: Line = Line::new(b"");
+    put(&mut wide, x);
+    one.put(&wide.bytes[..wide.at]);
+}

@@ -13,6 +13,7 @@
 //! `T_(j+1)` pairs corner `3 (t0 + j) + 1` with `3 (t0 + j + 1) + 2`.
 
 use super::{PolyMesh, PolyTable};
+use crate::mesh::attributes::{Attributes, MaterialGroups};
 use crate::mesh::sharpness::Sharpness;
 use crate::mesh::{BORDER, CornerTable, Generations, Mesh};
 #[cfg(test)]
@@ -39,6 +40,19 @@ impl PolyTable {
         } else {
             3 * (t0 + i - 1)
         }
+    }
+
+    /// The polygon corner of every corner of [`PolyTable::triangulated`]
+    /// (to carry per-corner values onto the triangles).
+    pub fn fan_corners(&self) -> Vec<u32> {
+        let mut out = Vec::with_capacity(3 * (self.num_corners() - 2 * self.num_faces()));
+        for f in 0..self.num_faces() as u32 {
+            let r = self.face_corners(f);
+            for j in 0..(r.end - r.start) - 2 {
+                out.extend_from_slice(&[r.start, r.start + j + 1, r.start + j + 2]);
+            }
+        }
+        out
     }
 
     /// The table of the fanned faces (see the module docs), with its
@@ -127,6 +141,33 @@ impl PolyMesh {
     /// mark) become one face each; every other triangle is a face of its
     /// own. Vertex ids are kept; the sharpness goes with its edges.
     pub fn from_mesh(mesh: &Mesh) -> PolyMesh {
+        Self::joined(mesh).0
+    }
+
+    /// [`PolyMesh::from_mesh`] with the mesh's attributes moved onto the
+    /// polygons: texture coordinates per polygon corner (from the corner of
+    /// a triangle at the same vertex in the same face), colours as they are,
+    /// a material per face.
+    pub fn from_mesh_with_attributes(mesh: &Mesh, attrs: &Attributes) -> (PolyMesh, Attributes) {
+        let (pm, of_corner) = Self::joined(mesh);
+        // the triangle corner at V[c] in the triangle naming c's edge is n(x)
+        let uv = attrs
+            .uv
+            .as_ref()
+            .filter(|u| u.len() == mesh.ct.num_corners())
+            .map(|u| of_corner.iter().map(|&x| u[crate::mesh::n(x) as usize]).collect());
+        let materials = attrs.materials.as_ref().filter(|m| m.face.len() == mesh.ct.num_triangles()).map(|m| {
+            let face = (0..pm.pt.num_faces() as u32)
+                .map(|f| m.face[(of_corner[pm.pt.face_corners(f).start as usize] / 3) as usize])
+                .collect();
+            MaterialGroups { face, ..m.clone() }
+        });
+        (pm, Attributes { uv, colors: attrs.colors.clone(), materials })
+    }
+
+    /// The polygons of `mesh` and, for every polygon corner, the triangle
+    /// corner naming its edge.
+    fn joined(mesh: &Mesh) -> (PolyMesh, Vec<u32>) {
         let ct = &mesh.ct;
         let (starts, corners, of_corner) = recover_faces(ct);
         // the faces are those of a valid table, re-joined: a valid polygon table
@@ -150,7 +191,13 @@ impl PolyMesh {
                 pt.with_sharpness(Sharpness::from_lists(sharp, s.sharp_vertices().to_vec()))
             }
         };
-        PolyMesh { pt, positions: mesh.positions.clone() }
+        (PolyMesh { pt, positions: mesh.positions.clone() }, of_corner)
+    }
+
+    /// Whether the mesh stands for polygons (it has hidden diagonals).
+    pub fn is_polygonal(mesh: &Mesh) -> bool {
+        mesh.ct.generations().is_some()
+            && (0..mesh.ct.num_corners() as u32).any(|c| mesh.ct.edge_generation(c) == Generations::HIDDEN)
     }
 }
 
