@@ -63,3 +63,46 @@ fn every_model_can_animate_with_generated_paths() {
         Animation::new(&m, &Paths::generated(&m, 4), Tweak::Jarek, 20, Scheme::Loop, 1, &Options::default()).is_err()
     );
 }
+
+/// Catmull-Clark and bilinear animate through their stencil plans: every
+/// frame equals a direct subdivision of that frame's control polygons
+/// (creases uniform and Chaikin, semi-sharp edges, corners, a boundary with
+/// both options, faces of 3 to 6 corners), and the finest level is drawn as
+/// its quads' triangles.
+#[test]
+fn polygon_schemes_animate_like_a_direct_subdivision() {
+    use subdiv::mesh::{BoundaryInterpolation, Creasing};
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark");
+    let chaikin = Options { creasing: Creasing::Chaikin, ..Options::default() };
+    let corners = Options { boundary: BoundaryInterpolation::EdgeAndCorner, ..Options::default() };
+    let cases = [
+        ("ngons.obj", Scheme::CatmullClark, 3, Options::default()),
+        ("cube_creases.obj", Scheme::CatmullClark, 3, chaikin),
+        ("grid_dart.obj", Scheme::CatmullClark, 2, Options::default()),
+        ("grid.obj", Scheme::CatmullClark, 2, corners),
+        ("ngons.obj", Scheme::Bilinear, 2, Options::default()),
+    ];
+    for (name, scheme, level, opts) in cases {
+        let m = subdiv::io::load(&dir.join(name)).unwrap();
+        let p = Paths::generated(&m, 4);
+        let mut a = Animation::new(&m, &p, Tweak::FourPoint, 2, scheme, level, &opts).unwrap();
+        let order = a.plan().order().cloned();
+        for f in [0, 3, 9] {
+            let control = Mesh { ct: m.ct.clone(), positions: a.control(f).to_vec() };
+            let control = match &order {
+                Some(o) => control.relabelled(o),
+                None => control,
+            };
+            let (full, _) = subdivide(&control, scheme, level, &opts).unwrap();
+            let what = format!("{name} {scheme} L{level} frame {f}");
+            assert_eq!(a.topology().v_table(), full.ct.v_table(), "{what}: topology");
+            let (pos, nrm) = a.evaluate(f);
+            for (x, y) in pos.iter().zip(&full.positions) {
+                assert!((*x - *y).abs().max_element() < 1e-5, "{what}: {x} against {y}");
+            }
+            for (n, m) in nrm.iter().zip(full.vertex_normals()) {
+                assert!(n.distance(m) < 1e-4, "{what}: normal {n} against {m}");
+            }
+        }
+    }
+}

@@ -19,6 +19,16 @@ fn tetrahedron() -> (Mesh, Paths) {
     (bundled("tetrahedron.obj"), paths)
 }
 
+/// A polygon fixture (faces of 3 to 6 corners, or creased quads) with
+/// generated paths.
+fn polygons(name: &str) -> (Mesh, Paths) {
+    let m =
+        subdiv::io::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name))
+            .unwrap();
+    let p = Paths::generated(&m, 4);
+    (m, p)
+}
+
 fn creased() -> (Mesh, Paths) {
     let m = subdiv::io::load(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/creases/ico_crease.obj"),
@@ -47,6 +57,9 @@ fn gpu_positions_and_normals_equal_the_cpu_plan() {
         ("ico_crease", creased(), Scheme::Loop, 2),
         ("ico_crease", creased(), Scheme::Butterfly, 2),
         ("ico_crease", creased(), Scheme::Jarek, 2),
+        ("ngons", polygons("ngons.obj"), Scheme::CatmullClark, 3),
+        ("cube_creases", polygons("cube_creases.obj"), Scheme::CatmullClark, 2),
+        ("ngons", polygons("ngons.obj"), Scheme::Bilinear, 2),
     ];
     for (name, (m, paths), scheme, level) in cases {
         let mut anim = Animation::new(&m, &paths, Tweak::Jarek, 3, scheme, level, &Options::default()).unwrap();

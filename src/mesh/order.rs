@@ -141,7 +141,17 @@ impl CornerTable {
         // of vertices, maps a table with the invariants (CornerTable's docs)
         // to one with them: O still pairs the same edges, reversed; each fan
         // maps to a fan, and C[v] to the same (first) corner of it.
-        CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness)
+        // edge generations (hidden polygon diagonals among them) go with
+        // their corners
+        let generations = self.generations().map(|g| {
+            let old = g.corners();
+            let mut new = vec![0u8; old.len()];
+            for (c, &x) in old.iter().enumerate() {
+                new[corner(c as u32) as usize] = x;
+            }
+            super::Generations::explicit(new, g.level())
+        });
+        CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness).with_generations(generations)
     }
 }
 

@@ -168,7 +168,27 @@ impl PolyMesh {
     /// The polygons of `mesh` and, for every polygon corner, the triangle
     /// corner naming its edge.
     fn joined(mesh: &Mesh) -> (PolyMesh, Vec<u32>) {
-        let ct = &mesh.ct;
+        let (pt, of_corner) = PolyTable::joined(&mesh.ct);
+        (PolyMesh { pt, positions: mesh.positions.clone() }, of_corner)
+    }
+
+    /// Whether the mesh stands for polygons (it has hidden diagonals).
+    pub fn is_polygonal(mesh: &Mesh) -> bool {
+        mesh.ct.generations().is_some()
+            && (0..mesh.ct.num_corners() as u32).any(|c| mesh.ct.edge_generation(c) == Generations::HIDDEN)
+    }
+}
+
+impl PolyTable {
+    /// The polygon table a triangle table stands for (see
+    /// [`PolyMesh::from_mesh`]).
+    pub fn from_corner_table(ct: &CornerTable) -> PolyTable {
+        Self::joined(ct).0
+    }
+
+    /// The polygons of `ct` and, for every polygon corner, the triangle
+    /// corner naming its edge.
+    fn joined(ct: &CornerTable) -> (PolyTable, Vec<u32>) {
         let (starts, corners, of_corner) = recover_faces(ct);
         // the faces are those of a valid table, re-joined: a valid polygon table
         let (pt, _, kept) = PolyTable::build(ct.num_vertices(), &starts, &corners, None)
@@ -191,13 +211,7 @@ impl PolyMesh {
                 pt.with_sharpness(Sharpness::from_lists(sharp, s.sharp_vertices().to_vec()))
             }
         };
-        (PolyMesh { pt, positions: mesh.positions.clone() }, of_corner)
-    }
-
-    /// Whether the mesh stands for polygons (it has hidden diagonals).
-    pub fn is_polygonal(mesh: &Mesh) -> bool {
-        mesh.ct.generations().is_some()
-            && (0..mesh.ct.num_corners() as u32).any(|c| mesh.ct.edge_generation(c) == Generations::HIDDEN)
+        (pt, of_corner)
     }
 }
 

@@ -7,6 +7,7 @@
 pub mod attributes;
 pub mod packed;
 pub mod plan;
+mod poly_plan;
 pub mod rows;
 
 pub use plan::{PlanScratch, StencilPlan};

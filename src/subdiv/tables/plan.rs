@@ -65,7 +65,7 @@ struct RecordLevel<'a> {
     creasing: Creasing,
 }
 
-fn record_rows(rows: usize, f: impl Fn(usize, &mut Record) + Sync) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
+pub(super) fn record_rows(rows: usize, f: impl Fn(usize, &mut Record) + Sync) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
     const ROWS: usize = 4096;
     let parts: Vec<(Vec<u32>, Record)> = (0..rows.div_ceil(ROWS))
         .into_par_iter()
@@ -135,6 +135,9 @@ impl StencilPlan {
 
     /// The levels recorded on `ct`, and the finest topology.
     fn record(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Vec<LevelPlan>, CornerTable)> {
+        if scheme.is_polygonal() {
+            return super::poly_plan::record(ct, scheme, levels, opts);
+        }
         let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
         check_levels_fit(ct, 0, levels, limit)?;
         let mut cur = with_boundary_corners(ct, opts.boundary).into_owned();
