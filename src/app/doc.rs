@@ -14,7 +14,7 @@ use crate::anim::paths::Paths;
 use crate::mesh::edit::EditError;
 use crate::mesh::sharpness::{CreaseTag, INFINITE, Tags};
 use crate::render::export::{ExportStyle, ExportTarget};
-use crate::subdiv::{check_levels_fit, default_memory_limit, predict_faces};
+use crate::subdiv::{ControlCounts, default_memory_limit};
 use crate::{Error, Mesh, Options, Scheme, bundled};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -164,14 +164,16 @@ impl Doc {
         }
     }
 
-    /// Triangles of level `level` of the current control mesh.
+    /// Faces of level `level` of the current control mesh with the chosen
+    /// scheme: triangles, or the polygon schemes' quads.
     pub(crate) fn predicted_faces(&self, level: u32) -> u64 {
-        predict_faces(&self.model.control.mesh.ct, level)
+        ControlCounts::of_topology(&self.model.control.topo).faces_at(self.request.scheme, level)
     }
 
     /// Why `level` cannot be shown ([`Error::TooLarge`]), if it cannot.
     pub(crate) fn level_refusal(&self, level: u32) -> Option<Error> {
-        check_levels_fit(&self.model.control.mesh.ct, 0, level, self.request.limit).err()
+        let counts = ControlCounts::of_topology(&self.model.control.topo);
+        counts.check(self.request.scheme, level, self.request.limit).err()
     }
 
     /// Highest level that fits in memory (at most [`MAX_LEVEL`]).

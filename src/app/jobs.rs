@@ -14,7 +14,7 @@ use crate::anim::player::Animation;
 use crate::anim::tweak::Tweak;
 use crate::mesh::attributes::Attributes;
 use crate::render::export::{ExportStyle, ExportTarget, export_animation};
-use crate::subdiv::{Stats, predict_faces, subdivide_with_progress};
+use crate::subdiv::{ControlCounts, Stats, subdivide_with_progress};
 use crate::{Mesh, Options, Result, Scheme, bundled};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
@@ -392,7 +392,13 @@ pub(crate) fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened>
     let loaded = bundled::read(path, &opts)?;
     let mut notes: Vec<String> = loaded.warnings;
     if loaded.notes.fanned > 0 {
-        notes.insert(0, format!("{} polygons fanned into triangles", loaded.notes.fanned));
+        notes.insert(
+            0,
+            format!(
+                "{} polygons: kept by Catmull-Clark and bilinear, fanned for the triangle schemes",
+                loaded.notes.fanned
+            ),
+        );
     }
     if let Some(r) = loaded.notes.repair.filter(|r| !r.is_empty()) {
         notes.insert(0, format!("repaired: {r}"));
@@ -412,10 +418,10 @@ pub(crate) fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened>
 
 /// The highest level below `level` with at most [`PROXY_FACES`] triangles,
 /// when `level` itself has more.
-fn proxy_level(mesh: &Mesh, level: u32) -> Option<u32> {
-    (predict_faces(&mesh.ct, level) > PROXY_FACES)
-        .then(|| (0..level).rev().find(|&l| predict_faces(&mesh.ct, l) <= PROXY_FACES))
-        .flatten()
+fn proxy_level(mesh: &Mesh, scheme: Scheme, level: u32) -> Option<u32> {
+    let counts = ControlCounts::of(&mesh.ct);
+    let drawn = |l: u32| counts.triangles_at(scheme, l);
+    (drawn(level) > PROXY_FACES).then(|| (0..level).rev().find(|&l| drawn(l) <= PROXY_FACES)).flatten()
 }
 
 /// The subdivision of `job`, through its proxy level when the output is big
@@ -430,7 +436,7 @@ fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> 
             live()
         })
     };
-    let proxy_level = proxy_level(&control.mesh, level);
+    let proxy_level = proxy_level(&control.mesh, job.scheme, level);
     let (proxy, first_stats) = match proxy_level {
         Some(0) => (Some(control.clone()), Stats::default()),
         Some(l) => {

@@ -25,6 +25,10 @@ pub struct Topology {
     pub genus: i64,
     /// `histogram[k]` = number of vertices with `k` edges.
     pub valence_histogram: Vec<usize>,
+    /// Inner diagonals of polygons drawn as triangles (edges of generation
+    /// [`super::Generations::HIDDEN`]): the mesh stands for
+    /// `faces - diagonals` polygons.
+    pub diagonals: usize,
 }
 
 impl Topology {
@@ -96,7 +100,21 @@ pub fn topology(ct: &CornerTable) -> Topology {
         euler: nv as i64 - edges as i64 + nf as i64,
         genus,
         valence_histogram,
+        diagonals: diagonals(ct),
     }
+}
+
+/// The inner diagonals of `ct`'s polygons (none without edge generations).
+pub fn diagonals(ct: &CornerTable) -> usize {
+    if ct.generations().is_none() {
+        return 0;
+    }
+    (0..ct.num_corners() as u32)
+        .filter(|&c| {
+            let o = ct.o_table()[c as usize];
+            o != BORDER && super::owns_edge(c, o) && ct.edge_generation(c) == super::Generations::HIDDEN
+        })
+        .count()
 }
 
 /// Component id of every triangle (0-based, in order of first triangle).

@@ -18,6 +18,7 @@
 
 pub mod refine;
 pub mod rules;
+pub mod sizes;
 pub mod tables;
 
 use crate::Result;
@@ -31,6 +32,7 @@ use std::borrow::Cow;
 use std::time::Instant;
 
 pub use loop_::LoopBeta;
+pub use sizes::ControlCounts;
 
 /// A subdivision scheme.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]

@@ -16,7 +16,11 @@ pub(crate) fn subdivision_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Comman
     let mut changed = false;
     let mut tension_moved = false;
     egui::ComboBox::from_label("Scheme").selected_text(req.scheme.name()).show_ui(ui, |ui| {
-        for s in Scheme::ALL {
+        for s in Scheme::TRIANGLE {
+            changed |= ui.selectable_value(&mut req.scheme, s, s.name()).changed();
+        }
+        ui.separator();
+        for s in Scheme::POLYGON {
             changed |= ui.selectable_value(&mut req.scheme, s, s.name()).changed();
         }
     });
@@ -56,7 +60,12 @@ fn level_row(ui: &mut egui::Ui, doc: &Doc, req: &mut Request) -> bool {
         }
     });
     let faces = doc.predicted_faces(req.level);
-    ui.label(format!("level {}: {} triangles", req.level, sep(faces)));
+    let what = match (req.scheme.is_polygonal(), req.level) {
+        (false, _) => "triangles",
+        (true, 0) => "polygons",
+        (true, _) => "quads",
+    };
+    ui.label(format!("level {}: {} {what}", req.level, sep(faces)));
     if max < MAX_LEVEL {
         let why = doc.level_refusal(max + 1).map(|e| e.to_string()).unwrap_or_default();
         ui.label(

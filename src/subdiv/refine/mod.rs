@@ -80,9 +80,24 @@ pub fn check_level_fits(ct: &CornerTable, level: u32, limit: Option<u64>) -> Res
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
 pub fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
-    let mut nt = ct.num_triangles() as u64;
-    let mut nv = ct.num_vertices() as u64;
-    let mut ne = (3 * nt + ct.num_border_edges() as u64) / 2;
+    let nt = ct.num_triangles() as u64;
+    let ne = (3 * nt + ct.num_border_edges() as u64) / 2;
+    check_counts_fit(nt, ct.num_vertices() as u64, ne, done, more, limit)
+}
+
+/// [`check_levels_fit`] for a table of `nt` triangles, `nv` vertices and
+/// `ne` edges.
+///
+/// # Errors
+/// As [`check_levels_fit`].
+pub(crate) fn check_counts_fit(
+    mut nt: u64,
+    mut nv: u64,
+    mut ne: u64,
+    done: u32,
+    more: u32,
+    limit: Option<u64>,
+) -> Result<()> {
     let limit_bytes = limit.unwrap_or(u64::MAX);
     for level in done + 1..=done + more {
         let bytes = predict_level_bytes(nt, nv, ne);

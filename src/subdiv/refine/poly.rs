@@ -153,13 +153,31 @@ pub(crate) fn with_boundary_corners(pt: &PolyTable, boundary: BoundaryInterpolat
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
 pub(crate) fn check_levels_fit(pt: &PolyTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
-    let mut h = pt.num_corners() as u64;
-    let (mut nv, mut ne, mut nf) = (pt.num_vertices() as u64, pt.num_edges() as u64, pt.num_faces() as u64);
+    let (h, nv, ne, nf) =
+        (pt.num_corners() as u64, pt.num_vertices() as u64, pt.num_edges() as u64, pt.num_faces() as u64);
+    check_counts_fit(h, nv, ne, nf, done, more, limit)
+}
+
+/// [`check_levels_fit`] for a table of `h` corners, `nv` vertices, `ne`
+/// edges and `nf` faces.
+///
+/// # Errors
+/// As [`check_levels_fit`].
+pub(crate) fn check_counts_fit(
+    mut h: u64,
+    mut nv: u64,
+    mut ne: u64,
+    mut nf: u64,
+    done: u32,
+    more: u32,
+    limit: Option<u64>,
+) -> Result<()> {
     let limit_bytes = limit.unwrap_or(u64::MAX);
     for level in done + 1..=done + more {
         // new V and T (8 bytes a corner), positions, C and valences (20 a
-        // vertex), the old level alive
-        let bytes = 4 * h * 8 + (nv + ne + nf) * 20 + h * 8 + nv * 20;
+        // vertex), the old level alive, and the new level drawn as
+        // triangles (2h of them: V, O and a generation, 27 bytes each)
+        let bytes = 4 * h * 8 + (nv + ne + nf) * 20 + h * 8 + nv * 20 + 2 * h * 27;
         if 4 * h + 4 >= u64::from(u32::MAX) || nv + ne + nf >= u64::from(u32::MAX) || bytes > limit_bytes {
             let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
             return Err(Error::TooLarge { level, faces: h, bytes, limit });

@@ -1,0 +1,126 @@
+//! What a scheme's levels will hold, predicted from the control mesh's
+//! counts alone (so the viewer can say it every frame and refuse a level
+//! before any work): the triangle schemes split every triangle in four,
+//! the polygon schemes every `k`-gon into `k` quads.
+//!
+//! ```text
+//! triangles   F' = 4F      E' = 2E + 3F     V' = V + E
+//! polygons    H' = 4H      E' = 2E + H      V' = V + E + F     F' = H
+//! ```
+//! (`H`: polygon corners, the sum of the face sizes; from level 1 on every
+//! face is a quad, drawn as two triangles.)
+
+use crate::mesh::CornerTable;
+use crate::mesh::topology::{Topology, diagonals};
+use crate::{Result, Scheme};
+
+/// The counts of a control mesh that predict its levels: its triangles and
+/// the polygons they stand for (triangles joined across their hidden
+/// diagonals, [`crate::mesh::Generations::HIDDEN`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ControlCounts {
+    /// Vertices.
+    pub vertices: u64,
+    /// Edges of the triangles, diagonals included.
+    pub edges: u64,
+    /// Triangles.
+    pub triangles: u64,
+    /// Hidden diagonals: inner edges of polygons drawn as triangles.
+    pub diagonals: u64,
+}
+
+impl ControlCounts {
+    /// The counts of `ct` (one pass over its corners when it has edge
+    /// generations; none otherwise).
+    pub fn of(ct: &CornerTable) -> ControlCounts {
+        ControlCounts {
+            vertices: ct.num_vertices() as u64,
+            edges: ct.num_edges() as u64,
+            triangles: ct.num_triangles() as u64,
+            diagonals: diagonals(ct) as u64,
+        }
+    }
+
+    /// The counts [`topology`](crate::mesh::topology::topology) found.
+    pub fn of_topology(t: &Topology) -> ControlCounts {
+        ControlCounts {
+            vertices: t.vertices as u64,
+            edges: t.edges as u64,
+            triangles: t.faces as u64,
+            diagonals: t.diagonals as u64,
+        }
+    }
+
+    /// Faces of the polygon mesh (each diagonal joins two triangles).
+    pub fn polygons(&self) -> u64 {
+        self.triangles - self.diagonals
+    }
+
+    /// Polygon corners: the sum of the face sizes.
+    pub fn polygon_corners(&self) -> u64 {
+        3 * self.triangles - 2 * self.diagonals
+    }
+
+    /// Faces after `levels` levels of `scheme`: triangles for a triangle
+    /// scheme, polygons (quads from level 1 on) for a polygon scheme.
+    pub fn faces_at(&self, scheme: Scheme, levels: u32) -> u64 {
+        let grow = 4u64.saturating_pow(levels.saturating_sub(1));
+        match (scheme.is_polygonal(), levels) {
+            (false, _) => self.triangles.saturating_mul(4u64.saturating_pow(levels)),
+            (true, 0) => self.polygons(),
+            (true, _) => self.polygon_corners().saturating_mul(grow),
+        }
+    }
+
+    /// Triangles drawn after `levels` levels of `scheme` (a quad is two).
+    pub fn triangles_at(&self, scheme: Scheme, levels: u32) -> u64 {
+        match (scheme.is_polygonal(), levels) {
+            (true, 1..) => self.faces_at(scheme, levels).saturating_mul(2),
+            _ if scheme.is_polygonal() => self.triangles,
+            _ => self.faces_at(scheme, levels),
+        }
+    }
+
+    /// Checks that `levels` levels of `scheme` fit in `limit` bytes and in
+    /// 32-bit ids at every level.
+    ///
+    /// # Errors
+    /// [`crate::Error::TooLarge`] naming the first level that does not fit.
+    pub fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
+        if scheme.is_polygonal() {
+            let (h, ne, nf) = (self.polygon_corners(), self.edges - self.diagonals, self.polygons());
+            super::refine::poly::check_counts_fit(h, self.vertices, ne, nf, 0, levels, limit)
+        } else {
+            super::refine::check_counts_fit(self.triangles, self.vertices, self.edges, 0, levels, limit)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::poly::PolyMesh;
+    use crate::subdiv::{Options, subdivide_poly};
+    use glam::Vec3;
+
+    /// A quad, a pentagon and a triangle sharing edges, refined: the
+    /// predicted counts are the refined mesh's own.
+    #[test]
+    fn predicted_polygon_levels_are_the_refined_counts() {
+        let positions: Vec<Vec3> = (0..8).map(|i| Vec3::new(i as f32, (i * i % 5) as f32, (i % 3) as f32)).collect();
+        let (pm, _) = PolyMesh::from_faces(positions, &[0, 4, 9, 12], &[0, 1, 2, 3, 1, 4, 5, 6, 2, 2, 6, 7]).unwrap();
+        let counts = ControlCounts::of(&pm.triangulated().ct);
+        assert_eq!((counts.polygons(), counts.polygon_corners()), (3, 12));
+        for levels in 0..4 {
+            let (fine, _) = subdivide_poly(&pm, Scheme::CatmullClark, levels, &Options::default()).unwrap();
+            assert_eq!(counts.faces_at(Scheme::CatmullClark, levels), fine.pt.num_faces() as u64, "L{levels}");
+            let drawn = fine.triangulated();
+            assert_eq!(counts.triangles_at(Scheme::Bilinear, levels), drawn.ct.num_triangles() as u64);
+            let again = ControlCounts::of(&drawn.ct);
+            assert_eq!(again.polygons(), fine.pt.num_faces() as u64, "L{levels}: quads joined again");
+        }
+        assert!(counts.check(Scheme::CatmullClark, 3, Some(1 << 30)).is_ok());
+        assert!(counts.check(Scheme::CatmullClark, 12, Some(1 << 30)).is_err());
+        assert_eq!(counts.faces_at(Scheme::Loop, 2), 16 * counts.triangles);
+    }
+}
