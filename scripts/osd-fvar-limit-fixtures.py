@@ -7,10 +7,11 @@ Debian's libosd-dev 3.5.0), OpenSubdiv 3.5's face-varying and limit results:
 
     python3 scripts/osd-fvar-limit-fixtures.py [/tmp/peers/osd_fvar_limit]
 
-Face-varying: CASE.uv.FVAR[.vtxcorners].L<n>.osd.txt, written by
-`osd_fvar_limit uv CASE.obj n FVAR OUT [--corners]`, FVAR "all" = FVAR_LINEAR_ALL, "corners" =
-FVAR_LINEAR_CORNERS_ONLY, ".vtxcorners" = VTX_BOUNDARY_EDGE_AND_CORNER (else EDGE_ONLY); uniform
-creasing; the UVs refined level by level with PrimvarRefiner::InterpolateFaceVarying. Lines:
+Face-varying: CASE.uv.FVAR[.vtxcorners|.chaikin].L<n>.osd.txt, written by
+`osd_fvar_limit uv CASE.obj n FVAR OUT [--corners] [--chaikin]`, FVAR "all" = FVAR_LINEAR_ALL,
+"corners" = FVAR_LINEAR_CORNERS_ONLY, ".vtxcorners" = VTX_BOUNDARY_EDGE_AND_CORNER (else
+EDGE_ONLY), ".chaikin" = CREASE_CHAIKIN (else uniform creasing; cube_creases_uv.obj carries
+cube_creases.obj's tags); the UVs refined level by level with PrimvarRefiner::InterpolateFaceVarying. Lines:
 "# faces F" (faces at level n), then per face at level n (OpenSubdiv's order) and per corner
 (in order) "c x y z u v": the corner's refined position and its face-varying value.
 
@@ -105,6 +106,17 @@ for k in range(6):
 write_uv("ngons_uv", ngon_v, ngon_uv, ngon_uvf,
          note="ngons.obj with a UV strip round the sides and two discs: seams, faces of 3 to 6")
 
+# D: cube_uv's unfolding with cube_creases.obj's tags (infinite and semi-sharp creases, a
+# semi-sharp corner): the mesh's sharpness through the face-varying rules
+with open(os.path.join(out, "cube_uv.obj")) as f:
+    body = [l for l in f if not l.startswith("#")]
+with open(os.path.join(out, "cube_creases.obj")) as f:
+    tags = [l for l in f if l.startswith("t ")]
+with open(os.path.join(out, "cube_creases_uv.obj"), "w") as f:
+    f.write("# cube_uv.obj's cross unfolding with cube_creases.obj's creases and corner\n")
+    f.write("# written by scripts/osd-fvar-limit-fixtures.py\n")
+    f.writelines(body + tags)
+
 uv_cases = [  # (case, fvar, flags, suffix, levels)
     ("cube_uv", "all", [], "", [2]),
     ("cube_uv", "corners", [], "", [2]),
@@ -113,6 +125,9 @@ uv_cases = [  # (case, fvar, flags, suffix, levels)
     ("grid_uv", "corners", ["--corners"], ".vtxcorners", [2]),
     ("ngons_uv", "all", [], "", [2]),
     ("ngons_uv", "corners", [], "", [2]),
+    ("cube_creases_uv", "all", [], "", [2]),
+    ("cube_creases_uv", "corners", [], "", [2]),
+    ("cube_creases_uv", "corners", ["--chaikin"], ".chaikin", [3]),
 ]
 limit_cases = [  # (case, opts, flags, levels)
     ("cube", "uniform", [], [1, 2]),

@@ -172,3 +172,65 @@ fn ct_polygon_twins_are_checked() {
     let err = subdiv::io::load(&path).expect_err("a wrong twin is refused").to_string();
     assert!(err.contains(&format!("two.ct:{}:", row + 1)) && err.contains("twin"), "{err}");
 }
+
+/// The `c x y z u v` lines of a face-varying fixture: each fine corner's
+/// position and texture coordinate.
+fn read_corners(path: &std::path::Path) -> Vec<[f32; 5]> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .filter_map(|l| l.strip_prefix("c "))
+        .map(|l| {
+            let x: Vec<f32> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+            [x[0], x[1], x[2], x[3], x[4]]
+        })
+        .collect()
+}
+
+/// Texture coordinates through Catmull-Clark equal OpenSubdiv's
+/// face-varying interpolation, linear (`FVAR_LINEAR_ALL`) and smooth
+/// (`FVAR_LINEAR_CORNERS_ONLY`), on a cube unfolded as a cross (seams where
+/// a vertex has two or three values), faces of 3 to 6 corners with a seam,
+/// and an open grid with both boundary options: every fine corner's
+/// (position, texture coordinate) is one of OpenSubdiv's, one for one.
+#[test]
+fn texture_coordinates_equal_opensubdiv_face_varying() {
+    use subdiv::subdiv::UvInterpolation;
+    use subdiv::subdiv::tables::attributes::refine_poly;
+    let (edge, corners) = (BoundaryInterpolation::EdgeOnly, BoundaryInterpolation::EdgeAndCorner);
+    let (linear, smooth) = (UvInterpolation::Linear, UvInterpolation::Smooth);
+    let (uniform, chaikin) = (Creasing::Uniform, Creasing::Chaikin);
+    let cases = [
+        ("cube_uv", "all.L2", linear, edge, uniform, 2),
+        ("cube_uv", "corners.L2", smooth, edge, uniform, 2),
+        ("ngons_uv", "all.L2", linear, edge, uniform, 2),
+        ("ngons_uv", "corners.L2", smooth, edge, uniform, 2),
+        ("grid_uv", "corners.L2", smooth, edge, uniform, 2),
+        ("grid_uv", "corners.vtxcorners.L2", smooth, corners, uniform, 2),
+        ("cube_creases_uv", "all.L2", linear, edge, uniform, 2),
+        ("cube_creases_uv", "corners.L2", smooth, edge, uniform, 2),
+        ("cube_creases_uv", "corners.chaikin.L3", smooth, edge, chaikin, 3),
+    ];
+    for (name, mode, uv, boundary, creasing, level) in cases {
+        let opts = subdiv::io::ReadOptions { attributes: true, ..Default::default() };
+        let loaded = subdiv::io::read(subdiv::io::Source::File(&fixture(&format!("{name}.obj"))), &opts).unwrap();
+        let (control, attrs) = PolyMesh::from_mesh_with_attributes(&loaded.mesh, &loaded.attributes);
+        let o = Options { uv, boundary, creasing, ..Options::default() };
+        let (fine, _) = subdivide_poly(&control, Scheme::CatmullClark, level, &o).unwrap();
+        let fine_uv = refine_poly(&control, &attrs, Scheme::CatmullClark, level, &o).unwrap().uv.expect("uvs");
+        let want = read_corners(&fixture(&format!("{name}.uv.{mode}.osd.txt")));
+        let what = format!("{name} {mode}");
+        assert_eq!(fine_uv.len(), want.len(), "{what}: corners");
+        let mut taken = vec![false; want.len()];
+        for (c, t) in fine_uv.iter().enumerate() {
+            let p = fine.positions[fine.pt.vtx(c as u32) as usize];
+            let close = |w: &[f32; 5]| {
+                (p - Vec3::new(w[0], w[1], w[2])).abs().max_element() < 1e-5
+                    && (t.x - w[3]).abs() < 1e-5
+                    && (t.y - w[4]).abs() < 1e-5
+            };
+            let k = (0..want.len()).find(|&k| !taken[k] && close(&want[k]));
+            let k = k.unwrap_or_else(|| panic!("{what}: corner {c} at {p} with uv {t} is not OpenSubdiv's"));
+            taken[k] = true;
+        }
+    }
+}

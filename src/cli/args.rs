@@ -118,7 +118,7 @@ impl SubdivArgs {
 /// A scheme and its options.
 #[derive(clap::Args, Clone, Default)]
 pub struct SchemeArgs {
-    /// Scheme: midpoint, loop, butterfly, modified-butterfly, jarek.
+    /// Scheme: midpoint, loop, butterfly, modified-butterfly, jarek (triangles); catmull-clark (catmark), bilinear (polygons).
     #[arg(long, short, default_value = "loop")]
     pub scheme: Scheme,
     /// Use Warren's beta for Loop instead of Loop's.
@@ -130,6 +130,9 @@ pub struct SchemeArgs {
     /// Refuse levels predicted to need more than this (e.g. 2G, 500M; default: 80% of available memory).
     #[arg(long, value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
+    /// Texture coordinates through Catmull-Clark: smooth (the scheme on the UV charts, corners kept) or linear.
+    #[arg(long, default_value = "smooth")]
+    pub uv: subdiv::subdiv::UvInterpolation,
     #[command(flatten)]
     pub features: FeatureArgs,
 }
@@ -143,6 +146,7 @@ impl SchemeArgs {
             max_memory: self.max_memory,
             creasing: self.features.creasing,
             boundary: self.features.sharp.boundary,
+            uv: self.uv,
         }
     }
 }

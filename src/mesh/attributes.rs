@@ -23,6 +23,32 @@ use super::{n, p};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
+/// How the polygon schemes refine texture coordinates (OpenSubdiv's
+/// `Sdc::Options::FVarLinearInterpolation`; the triangle schemes always
+/// interpolate them linearly in each triangle).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum UvInterpolation {
+    /// Bilinear in every face, so every seam and chart stays where it was
+    /// (`FVAR_LINEAR_ALL`).
+    Linear,
+    /// The scheme's own rules on the UV charts, their borders following the
+    /// boundary rule and their one-face corners kept (`FVAR_LINEAR_CORNERS_ONLY`,
+    /// Blender's "Keep Corners"): textures stay smooth across faces.
+    #[default]
+    Smooth,
+}
+
+impl std::str::FromStr for UvInterpolation {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "linear" | "linear-all" => Ok(UvInterpolation::Linear),
+            "smooth" | "corners" | "keep-corners" => Ok(UvInterpolation::Smooth),
+            _ => Err(format!("unknown UV interpolation '{s}' (expected linear or smooth)")),
+        }
+    }
+}
+
 /// Optional attributes of a mesh.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Attributes {

@@ -23,6 +23,7 @@ pub mod tables;
 
 use crate::Result;
 use crate::mesh::Mesh;
+pub use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
 pub use crate::mesh::{BoundaryInterpolation, Creasing};
 use refine::OneLevel;
@@ -131,6 +132,8 @@ pub struct Options {
     pub creasing: Creasing,
     /// Whether boundary vertices with one face are corners.
     pub boundary: BoundaryInterpolation,
+    /// How the polygon schemes refine texture coordinates.
+    pub uv: UvInterpolation,
 }
 
 impl Default for Options {
@@ -141,6 +144,7 @@ impl Default for Options {
             max_memory: None,
             creasing: Creasing::Uniform,
             boundary: BoundaryInterpolation::EdgeOnly,
+            uv: UvInterpolation::Smooth,
         }
     }
 }

@@ -12,6 +12,7 @@
 use super::plan::{PlanScratch, StencilPlan};
 use crate::mesh::CornerTable;
 pub use crate::mesh::attributes::{Attributes, refine_corner_uvs, split_corner_uvs};
+use crate::subdiv::UvInterpolation;
 use crate::{Options, Result, Scheme};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -109,8 +110,9 @@ pub fn split_poly_uvs(pt: &crate::mesh::poly::PolyTable, uv: &[glam::Vec2]) -> V
 
 /// The attributes of a polygon mesh (texture coordinates per polygon
 /// corner, colours per vertex, a material per face) after `levels` levels
-/// of the polygon scheme `scheme`: texture coordinates bilinear in each
-/// face ([`split_poly_uvs`]), colours with the scheme's own weights
+/// of the polygon scheme `scheme`: texture coordinates as `opts.uv` says
+/// (smooth on the charts, [`super::face_varying`], or bilinear in each face,
+/// [`split_poly_uvs`]), colours with the scheme's own weights
 /// (clamped to [0, 1]), each child face keeping its parent's material.
 ///
 /// # Errors
@@ -133,9 +135,16 @@ pub fn refine_poly(
     };
     let mut pt = mesh.pt.clone();
     let mut uv = attrs.uv.clone().filter(|u| u.len() == pt.num_corners());
+    let smooth = match &uv {
+        Some(u) if opts.uv == UvInterpolation::Smooth && scheme == Scheme::CatmullClark => {
+            super::face_varying::smooth_uvs(&pt, u, scheme, levels, opts)?
+        }
+        _ => None,
+    };
+    let linear = smooth.is_none();
     let mut face = attrs.materials.as_ref().map(|m| m.face.clone()).filter(|f| f.len() == pt.num_faces());
     for _ in 0..levels {
-        uv = uv.map(|u| split_poly_uvs(&pt, &u));
+        uv = uv.filter(|_| linear).map(|u| split_poly_uvs(&pt, &u));
         // child face c is old corner c: it keeps its face's material
         face = face.map(|f| (0..pt.num_corners() as u32).map(|c| f[pt.face(c) as usize]).collect());
         pt = split::split(&pt, opts.creasing).0;
@@ -145,5 +154,5 @@ pub fn refine_poly(
         .as_ref()
         .zip(face)
         .map(|(m, face)| crate::mesh::attributes::MaterialGroups { face, ..m.clone() });
-    Ok(Attributes { uv, colors, materials })
+    Ok(Attributes { uv: smooth.or(uv), colors, materials })
 }

@@ -5,6 +5,7 @@
 //! colours and texture coordinates ([`attributes`]).
 
 pub mod attributes;
+pub mod face_varying;
 pub mod packed;
 pub mod plan;
 mod poly_plan;
