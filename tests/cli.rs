@@ -387,3 +387,34 @@ fn animate_stats_times_every_frame_without_writing() {
     // without --stats an output is still required
     assert!(!bin().args(["animate", "--level", "1"]).output().unwrap().status.success());
 }
+
+/// `limit --scheme catmull-clark` keeps the polygons and moves every vertex
+/// to OpenSubdiv's limit (faces of 3 to 6: through one level, whose first
+/// vertices are the control's); a scheme without limit masks is refused.
+#[test]
+fn limit_on_catmull_clark_keeps_polygons_and_gives_opensubdivs_limit() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark");
+    let input = dir.join("ngons.obj");
+    let out = tmp("ngons-limit.obj");
+    let o = bin().args(["limit", input.to_str().unwrap(), out.to_str().unwrap(), "-s", "catmark"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let sizes: Vec<usize> =
+        text.lines().filter(|l| l.starts_with("f ")).map(|l| l.split_whitespace().count() - 1).collect();
+    assert!(sizes.contains(&6) && sizes.contains(&5) && sizes.contains(&3), "polygons kept: {sizes:?}");
+    let after = subdiv::io::load(&out).unwrap();
+    let osd: Vec<glam::Vec3> = std::fs::read_to_string(dir.join("ngons.limit.uniform.L1.osd.txt"))
+        .unwrap()
+        .lines()
+        .filter_map(|l| l.strip_prefix("l "))
+        .map(|l| {
+            let x: Vec<f32> = l.split_whitespace().map(|t| t.parse().unwrap()).collect();
+            glam::Vec3::new(x[3], x[4], x[5])
+        })
+        .collect();
+    for (v, p) in after.positions.iter().enumerate() {
+        assert!(p.distance(osd[v]) < 1e-5, "vertex {v}: {p} against {}", osd[v]);
+    }
+    let err = run_fail(&["limit", input.to_str().unwrap(), out.to_str().unwrap(), "-s", "butterfly"]);
+    assert!(err.contains("butterfly"), "{err}");
+}

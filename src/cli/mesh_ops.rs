@@ -221,12 +221,48 @@ pub fn smooth(a: &SmoothArgs) -> Result<()> {
     Ok(())
 }
 
+/// `subdiv limit` arguments.
+#[derive(clap::Args)]
+pub struct LimitCmdArgs {
+    /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Output mesh (format by extension; written atomically; polygons kept where the format keeps them).
+    output: PathBuf,
+    #[command(flatten)]
+    from: InputArgs,
+    /// The surface: loop (triangles) or catmull-clark (polygons).
+    #[arg(long, short, default_value = "loop")]
+    scheme: subdiv::Scheme,
+    #[command(flatten)]
+    features: super::args::FeatureArgs,
+}
+
 /// `subdiv limit`.
-pub fn limit(a: &InOut) -> Result<()> {
-    let mesh = a.from.load(&a.input)?;
-    let positions = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh);
-    io::save(&a.output, &Mesh { ct: mesh.ct, positions })?;
-    println!("{} -> {}: Loop limit positions", a.input.display(), a.output.display());
+pub fn limit(a: &LimitCmdArgs) -> Result<()> {
+    let mesh = a.features.apply(a.from.load(&a.input)?);
+    match a.scheme {
+        subdiv::Scheme::Loop => {
+            let positions = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh);
+            io::save(&a.output, &Mesh { ct: mesh.ct, positions })?;
+        }
+        subdiv::Scheme::CatmullClark => {
+            let opts = subdiv::Options {
+                creasing: a.features.creasing,
+                boundary: a.features.sharp.boundary,
+                ..Default::default()
+            };
+            let mut poly = subdiv::mesh::poly::PolyMesh::from_mesh(&mesh);
+            let frames = subdiv::subdiv::rules::catmark_limit::limit_frames(&poly, &opts)?;
+            poly.positions = frames.iter().map(|f| f.position).collect();
+            io::save_poly(&a.output, &poly, &Default::default())?;
+        }
+        s => {
+            return Err(Error::Usage(format!(
+                "{s} has no limit masks here: `limit` takes --scheme loop or catmull-clark"
+            )));
+        }
+    }
+    println!("{} -> {}: {} limit positions", a.input.display(), a.output.display(), a.scheme);
     Ok(())
 }
 

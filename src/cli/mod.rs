@@ -46,8 +46,8 @@ enum Cmd {
     Subdivide(mesh_ops::SubdivideArgs),
     /// Taubin lambda/mu smoothing (no shrinkage), or plain Laplacian with --laplacian.
     Smooth(mesh_ops::SmoothArgs),
-    /// Move every vertex to its limit position on the Loop surface (after `subdivide --scheme loop`).
-    Limit(mesh_ops::InOut),
+    /// Move every vertex to its limit position on the Loop or Catmull-Clark surface (after `subdivide`).
+    Limit(mesh_ops::LimitCmdArgs),
     /// Repair a mesh into a valid manifold one and write it (format by extension).
     ///
     /// Drops degenerate and duplicate faces, cuts non-manifold edges, makes the

@@ -15,6 +15,7 @@
 //! [`crate::subdiv::tables`].
 
 pub mod butterfly;
+pub mod catmark_limit;
 pub mod catmull_clark;
 pub mod crease;
 pub mod features;

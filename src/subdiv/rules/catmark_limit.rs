@@ -1,0 +1,303 @@
+//! Catmull-Clark limit positions and tangents (OpenSubdiv 3.5
+//! `sdc/catmarkScheme.h`, `assign*LimitMask` and `assign*LimitTangentMasks`;
+//! docs/schemes.md §12.4).
+//!
+//! The masks read a vertex's 1-ring on an all-quad level: its edges'
+//! other ends `e_i` and, for each face, the vertex opposite it `f_i`, in
+//! fan order (counter-clockwise about the normal, face `i` between edges `i`
+//! and `i + 1`; on the boundary edge 0 and the last edge are the border).
+//!
+//! ```text
+//! smooth, valence n (darts too, as OpenSubdiv):
+//!   position  v (1 - n (e + f)) + e sum e_i + f sum f_i,   f = 1/(n(n+5)), e = 4f
+//!             regular: 4/9 v + 1/9 sum e_i + 1/36 sum f_i
+//!   tan1      e_i: 4 cos(i t),  f_i: (cos(i t) + cos((i+1) t)) / (4 l - 1),  v: 0
+//!             t = 2 pi / n,  l = 5/16 + (cos t + cos(t/2) sqrt(2 (9 + cos t))) / 16
+//!             regular: 4 (e_0 - e_2) + f_0 - f_1 - f_2 + f_3
+//!   tan2      tan1's weights moved one place on (e_i takes tan1's e_{i-1})
+//!   valence 2: the corner masks
+//! crease through e_a, e_b (a < b in fan order; the border's two edges on
+//! the boundary):
+//!   position  2/3 v + 1/6 (e_a + e_b)
+//!   tan1      (e_a - e_b) / 2
+//!   tan2      across the faces from a to b, k = b - a:
+//!             k = 1: -6 v + 3 e_a + 3 e_b
+//!             k = 2: -4/6 v - 1/6 (e_a + e_b) + 4/6 e_{a+1} + 1/6 (f_a + f_{a+1})
+//!             k > 2 (Biermann, Levin, Zorin 2000), s = pi / k, d = 1/(k (3 + cos s)),
+//!               R = (cos s + 1) / sin s:
+//!               v: 4 R (cos s - 1) d,  e_a, e_b: -R (1 + 2 cos s) d,
+//!               e_{a+i}: 4 sin(i s) d,  f_{a+i}: (sin(i s) + sin((i+1) s)) d
+//! corner:
+//!   position  v;   tan1 = e_0 - v,   tan2 = e_1 - v
+//! ```
+//! The rule is the vertex's at the level the masks read (an edge still
+//! semi-sharp there counts as sharp, as in OpenSubdiv's `Limit`);
+//! [`limit_frames`] refines first until every face is a quad and no
+//! semi-sharp feature is left, so its positions are the limit surface's
+//! (darts aside: OpenSubdiv's smooth mask is not the dart's eigenvector).
+//! `tan1 x tan2` points to the side the faces' normals do.
+
+use super::features::{Features, Mask};
+use crate::mesh::Creasing;
+use crate::mesh::poly::{PolyMesh, PolyTable};
+use crate::mesh::sharpness::INFINITE;
+use crate::subdiv::{Options, Scheme, subdivide_poly};
+use crate::{Error, Result};
+use glam::{DVec3, Vec3};
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// A point of the limit surface and two tangents there (scaled as
+/// OpenSubdiv scales them; `tan1 x tan2` is along the normal).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LimitFrame {
+    /// The limit position.
+    pub position: Vec3,
+    /// The first tangent.
+    pub tan1: Vec3,
+    /// The second tangent.
+    pub tan2: Vec3,
+}
+
+impl LimitFrame {
+    /// The unit normal `tan1 x tan2` (zero where the tangents are parallel).
+    pub fn normal(&self) -> Vec3 {
+        self.tan1.cross(self.tan2).normalize_or_zero()
+    }
+}
+
+/// The limit frames of every vertex of `mesh` (same ids), through as many
+/// Catmull-Clark levels as it takes for every face to be a quad and every
+/// semi-sharp feature to have decayed (at most 8; beyond, and where a
+/// level does not fit in memory, what is left counts as sharp).
+///
+/// # Errors
+/// None in practice: levels that do not fit are skipped, not refused.
+pub fn limit_frames(mesh: &PolyMesh, opts: &Options) -> Result<Vec<LimitFrame>> {
+    let nv = mesh.positions.len();
+    let mut levels = semi_sharp_levels(&mesh.pt).min(8);
+    if !mesh.pt.is_quads() {
+        levels = levels.max(1);
+    }
+    let mut refined = None;
+    while levels > 0 {
+        match subdivide_poly(mesh, Scheme::CatmullClark, levels, opts) {
+            Ok((m, _)) => {
+                refined = Some(m);
+                break;
+            }
+            Err(Error::TooLarge { .. }) => levels -= 1,
+            Err(e) => return Err(e),
+        }
+    }
+    let at = refined.as_ref().unwrap_or(mesh);
+    // old vertices keep their ids through the levels
+    Ok(frames_at(&at.pt, &at.positions, opts.creasing).into_iter().take(nv).collect())
+}
+
+/// Levels until the sharpest semi-sharp edge or vertex has decayed.
+fn semi_sharp_levels(pt: &PolyTable) -> u32 {
+    let Some(s) = pt.sharpness() else { return 0 };
+    let semi = s.sharp_corners().iter().chain(s.sharp_vertices()).map(|&(_, x)| x).filter(|&x| x < INFINITE);
+    semi.fold(0.0f32, f32::max).ceil() as u32
+}
+
+/// The masks' frames of every vertex of an all-quad level, its rules taken
+/// at this level. Vertices on a face of another size get zeros.
+pub fn frames_at(pt: &PolyTable, pos: &[Vec3], creasing: Creasing) -> Vec<LimitFrame> {
+    let features = Features::of(pt, creasing);
+    (0..pt.num_vertices() as u32)
+        .into_par_iter()
+        .with_min_len(2048)
+        .map_init(Ring::default, |ring, v| {
+            if !ring.gather(pt, v, pt.corner_of(v)) {
+                return LimitFrame::default();
+            }
+            ring.frame(pos, rule(pt, features.as_ref(), v))
+        })
+        .collect()
+}
+
+/// The frame of vertex `v` with its fan started at corner `first` (one of
+/// `v`'s corners; on the boundary the fan always starts at the border):
+/// where edge 0 falls decides the tangents' frame, as in OpenSubdiv,
+/// though not the normal. `None` when a face at `v` is not a quad.
+pub fn frame_from(pt: &PolyTable, pos: &[Vec3], creasing: Creasing, v: u32, first: u32) -> Option<LimitFrame> {
+    let features = Features::of(pt, creasing);
+    let mut ring = Ring::default();
+    let start = if pt.is_boundary_vertex(v) { pt.corner_of(v) } else { first };
+    ring.gather(pt, v, start).then(|| ring.frame(pos, rule(pt, features.as_ref(), v)))
+}
+
+/// The limit rule of `v`: its features' mask at this level, else the
+/// border's crease, else smooth.
+fn rule(pt: &PolyTable, f: Option<&Features>, v: u32) -> Mask {
+    match f.and_then(|f| f.vertex(v)) {
+        Some(vf) if vf.parent != Mask::Smooth => vf.parent,
+        _ if pt.is_boundary_vertex(v) => {
+            let first = pt.corner_of(v);
+            let last = pt.fan(v).last().unwrap_or(first);
+            Mask::Crease(pt.vtx(pt.next(first)), pt.vtx(pt.prev(last)))
+        }
+        _ => Mask::Smooth,
+    }
+}
+
+/// A vertex's 1-ring in fan order.
+#[derive(Default)]
+struct Ring {
+    v: u32,
+    boundary: bool,
+    /// Other ends of the edges (one more than the faces on the boundary).
+    e: Vec<u32>,
+    /// The vertex across each face.
+    f: Vec<u32>,
+}
+
+impl Ring {
+    /// Fills the ring of `v` from corner `start`; false where a face at `v`
+    /// is not a quad.
+    fn gather(&mut self, pt: &PolyTable, v: u32, start: u32) -> bool {
+        self.v = v;
+        self.e.clear();
+        self.f.clear();
+        let mut c = start;
+        loop {
+            if pt.face_size(pt.face(c)) != 4 {
+                return false;
+            }
+            self.e.push(pt.vtx(pt.next(c)));
+            self.f.push(pt.vtx(pt.next(pt.next(c))));
+            match pt.swing(c) {
+                Some(x) if x != start => c = x,
+                Some(_) => break,
+                None => {
+                    // the border edge entering the last corner
+                    self.e.push(pt.vtx(pt.prev(c)));
+                    break;
+                }
+            }
+        }
+        self.boundary = self.e.len() > self.f.len();
+        true
+    }
+
+    /// The frame for `mask` (the vertex's rule).
+    fn frame(&self, pos: &[Vec3], mask: Mask) -> LimitFrame {
+        let p = |i: u32| pos[i as usize].as_dvec3();
+        let v = p(self.v);
+        let e: Vec<DVec3> = self.e.iter().map(|&i| p(i)).collect();
+        let f: Vec<DVec3> = self.f.iter().map(|&i| p(i)).collect();
+        let (position, tan1, tan2) = match mask {
+            Mask::Smooth if self.f.len() == 2 || self.boundary => corner(v, &e),
+            Mask::Smooth => smooth(v, &e, &f),
+            Mask::Corner => corner(v, &e),
+            Mask::Crease(a, b) => {
+                let ia = self.e.iter().position(|&x| x == a);
+                let ib = self.e.iter().position(|&x| x == b);
+                match (ia, ib) {
+                    (Some(ia), Some(ib)) => crease(v, &e, &f, ia.min(ib), ia.max(ib)),
+                    _ => corner(v, &e),
+                }
+            }
+        };
+        LimitFrame { position: position.as_vec3(), tan1: tan1.as_vec3(), tan2: tan2.as_vec3() }
+    }
+}
+
+/// The corner masks: the vertex, and its first two edges.
+fn corner(v: DVec3, e: &[DVec3]) -> (DVec3, DVec3, DVec3) {
+    (v, e[0] - v, e[1 % e.len()] - v)
+}
+
+/// The smooth masks at an interior vertex of valence `n = e.len() >= 3`.
+fn smooth(v: DVec3, e: &[DVec3], f: &[DVec3]) -> (DVec3, DVec3, DVec3) {
+    let n = e.len();
+    let nf = n as f64;
+    let (fw, ew) = if n == 4 { (1.0 / 36.0, 1.0 / 9.0) } else { (1.0 / (nf * (nf + 5.0)), 4.0 / (nf * (nf + 5.0))) };
+    let sum_e: DVec3 = e.iter().sum();
+    let sum_f: DVec3 = f.iter().sum();
+    let position = v * (1.0 - nf * (ew + fw)) + sum_e * ew + sum_f * fw;
+    let (we, wf) = smooth_tangent_weights(n);
+    let mut tan1 = DVec3::ZERO;
+    let mut tan2 = DVec3::ZERO;
+    for i in 0..n {
+        tan1 += e[i] * we[i] + f[i] * wf[i];
+        // tan2's weight at i is tan1's at i - 1
+        let j = (i + n - 1) % n;
+        tan2 += e[i] * we[j] + f[i] * wf[j];
+    }
+    (position, tan1, tan2)
+}
+
+/// tan1's edge and face weights at an interior vertex of valence `n`.
+pub fn smooth_tangent_weights(n: usize) -> (Vec<f64>, Vec<f64>) {
+    if n == 4 {
+        return (vec![4.0, 0.0, -4.0, 0.0], vec![1.0, -1.0, -1.0, 1.0]);
+    }
+    let t = 2.0 * PI / n as f64;
+    let lambda = 5.0 / 16.0 + (t.cos() + (t * 0.5).cos() * (2.0 * (9.0 + t.cos())).sqrt()) / 16.0;
+    let face_scale = 1.0 / (4.0 * lambda - 1.0);
+    let we = (0..n).map(|i| 4.0 * (i as f64 * t).cos()).collect();
+    let wf = (0..n).map(|i| face_scale * ((i as f64 * t).cos() + ((i + 1) as f64 * t).cos())).collect();
+    (we, wf)
+}
+
+/// The crease masks for the crease through edges `a < b`.
+fn crease(v: DVec3, e: &[DVec3], f: &[DVec3], a: usize, b: usize) -> (DVec3, DVec3, DVec3) {
+    let position = v * (2.0 / 3.0) + (e[a] + e[b]) * (1.0 / 6.0);
+    let tan1 = (e[a] - e[b]) * 0.5;
+    let (wv, we, wf) = crease_across_weights(b - a);
+    let mut tan2 = v * wv;
+    for (i, &w) in we.iter().enumerate() {
+        tan2 += e[a + i] * w;
+    }
+    for (i, &w) in wf.iter().enumerate() {
+        tan2 += f[a + i] * w;
+    }
+    (position, tan1, tan2)
+}
+
+/// The across-crease tangent's weights for a span of `k` faces: the
+/// vertex's, the edges' `a ..= a + k`, the faces' `a .. a + k`.
+pub fn crease_across_weights(k: usize) -> (f64, Vec<f64>, Vec<f64>) {
+    match k {
+        0 | 1 => (-6.0, vec![3.0, 3.0], vec![0.0]),
+        2 => (-4.0 / 6.0, vec![-1.0 / 6.0, 4.0 / 6.0, -1.0 / 6.0], vec![1.0 / 6.0, 1.0 / 6.0]),
+        _ => {
+            let kf = k as f64;
+            let s = PI / kf;
+            let d = 1.0 / (kf * (3.0 + s.cos()));
+            let r = (s.cos() + 1.0) / s.sin();
+            let mut we = vec![0.0; k + 1];
+            we[0] = -r * (1.0 + 2.0 * s.cos()) * d;
+            we[k] = we[0];
+            for (i, w) in we.iter_mut().enumerate().take(k).skip(1) {
+                *w = 4.0 * (i as f64 * s).sin() * d;
+            }
+            let wf = (0..k).map(|i| ((i as f64 * s).sin() + ((i + 1) as f64 * s).sin()) * d).collect();
+            (4.0 * r * (s.cos() - 1.0) * d, we, wf)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every position mask sums to 1 and every tangent mask to 0 (affine
+    /// invariance), for valences 3 to 12 and crease spans 1 to 8.
+    #[test]
+    fn masks_sum_to_one_and_zero() {
+        for n in 3..=12 {
+            let (we, wf) = smooth_tangent_weights(n);
+            let total: f64 = we.iter().chain(&wf).sum();
+            assert!(total.abs() < 1e-12, "valence {n}: tan1 sums to {total}");
+        }
+        for k in 1..=8 {
+            let (wv, we, wf) = crease_across_weights(k);
+            let total: f64 = wv + we.iter().chain(&wf).sum::<f64>();
+            assert!(total.abs() < 1e-12, "span {k}: tan2 sums to {total}");
+        }
+    }
+}
