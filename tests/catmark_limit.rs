@@ -86,6 +86,19 @@ fn level_of(case: &Case) -> (PolyMesh, Options) {
     (fine, o)
 }
 
+/// Where our limit position differs from OpenSubdiv's (at a dart, whose
+/// smooth mask OpenSubdiv uses is not its eigenvector), ours is the one the
+/// refined surface converges to: seven more levels lie ten times nearer to
+/// ours than to OpenSubdiv's, and within 1e-4 of it.
+fn exact_where_opensubdiv_is_not(fine: &PolyMesh, o: &Options, v: usize, ours: Vec3, theirs: Vec3, what: &str) {
+    let (deep, _) = subdivide_poly(fine, Scheme::CatmullClark, 7, o).unwrap();
+    let (to_ours, to_theirs) = (deep.positions[v].distance(ours), deep.positions[v].distance(theirs));
+    assert!(
+        to_ours < 1e-4 && to_ours * 10.0 < to_theirs,
+        "{what} vertex {v}: ours {ours}, OpenSubdiv's {theirs}; level +7 is {to_ours} from ours, {to_theirs} from OpenSubdiv's"
+    );
+}
+
 /// Mask for mask: on the level the fixture was evaluated at, every vertex's
 /// limit position and both tangents equal OpenSubdiv's, its fan started at
 /// OpenSubdiv's edge 0 (the masks' frame); the rules are the level's own,
@@ -106,7 +119,9 @@ fn limit_masks_equal_opensubdiv() {
                 .unwrap_or_else(|| panic!("{what}: vertex {v} has no edge to OpenSubdiv's e0"));
             let f = frame_from(pt, &fine.positions, o.creasing, v, first).expect("quads");
             let at = format!("{what} vertex {v} at {}", fine.positions[v as usize]);
-            assert!(close(f.position, o_v.limit, 1e-5), "{at}: position {} against {}", f.position, o_v.limit);
+            if !close(f.position, o_v.limit, 1e-5) {
+                exact_where_opensubdiv_is_not(&fine, &o, v as usize, f.position, o_v.limit, &at);
+            }
             assert!(close(f.tan1, o_v.tan1, 1e-4), "{at}: tan1 {} against {}", f.tan1, o_v.tan1);
             assert!(close(f.tan2, o_v.tan2, 1e-4), "{at}: tan2 {} against {}", f.tan2, o_v.tan2);
         }
@@ -126,7 +141,9 @@ fn limit_normals_equal_opensubdiv_from_any_edge() {
         for (v, f) in frames.iter().enumerate() {
             let o_v = &osd[osd_at(&osd, fine.positions[v], &what)];
             let want = LimitFrame { position: o_v.limit, tan1: o_v.tan1, tan2: o_v.tan2 };
-            assert!(close(f.position, want.position, 1e-5), "{what} vertex {v}: position");
+            if !close(f.position, want.position, 1e-5) {
+                exact_where_opensubdiv_is_not(&fine, &o, v, f.position, want.position, &what);
+            }
             let interior_crease = !fine.pt.is_boundary_vertex(v as u32) && f.tan1.dot(want.tan1) < 0.0;
             // an interior crease's two sides are two surfaces: OpenSubdiv's
             // frame takes the side after its edge 0, ours after our first
@@ -194,10 +211,11 @@ fn limit_is_the_same_from_the_next_level_and_the_mesh_converges() {
         let dart = case.name == "grid_dart";
         for (v, f) in here.iter().enumerate() {
             let g = next[v];
-            if !dart {
-                assert!(close(f.position, g.position, 1e-5), "{what} vertex {v}: {} then {}", f.position, g.position);
-                assert!(f.normal().distance(g.normal()) < 1e-4, "{what} vertex {v}: normal");
-            }
+            assert!(close(f.position, g.position, 1e-5), "{what} vertex {v}: {} then {}", f.position, g.position);
+            // a dart's tangents are OpenSubdiv's smooth masks, not its own
+            // eigenvectors: its normal may turn a little from level to level
+            let turn = if dart { 2e-2 } else { 1e-4 };
+            assert!(f.normal().distance(g.normal()) < turn, "{what} vertex {v}: normal");
             let gap = deep.positions[v].distance(f.position);
             assert!(gap < 2e-3, "{what} vertex {v}: level +6 is {gap} from the limit");
         }

@@ -13,20 +13,21 @@ pub(crate) enum NormalMode {
     /// Area-weighted average of the face normals around each vertex.
     #[default]
     FanAverage,
-    /// Exact normals of the Loop limit surface (tangent masks).
-    LoopLimit,
+    /// Exact normals of the limit surface (tangent masks): Catmull-Clark's
+    /// on its levels, Loop's on the triangle schemes'.
+    Limit,
     /// Butterfly tangent masks.
     Butterfly,
 }
 
 impl NormalMode {
     /// All modes, in menu order.
-    pub(crate) const ALL: [NormalMode; 3] = [NormalMode::FanAverage, NormalMode::LoopLimit, NormalMode::Butterfly];
+    pub(crate) const ALL: [NormalMode; 3] = [NormalMode::FanAverage, NormalMode::Limit, NormalMode::Butterfly];
     /// Menu label.
     pub(crate) fn name(self) -> &'static str {
         match self {
             NormalMode::FanAverage => "fan-averaged",
-            NormalMode::LoopLimit => "Loop limit",
+            NormalMode::Limit => "limit surface",
             NormalMode::Butterfly => "butterfly masks",
         }
     }
@@ -118,7 +119,7 @@ pub(crate) struct Display {
     pub(crate) pick: bool,
     /// Shading normals of the result.
     pub(crate) normal_mode: NormalMode,
-    /// Show the Loop limit positions instead of the level's points.
+    /// Show the limit positions instead of the level's points.
     pub(crate) snap_limit: bool,
     /// Per-vertex colouring of the result.
     pub(crate) coloring: Coloring,

@@ -209,7 +209,7 @@ impl Doc {
         m.original = None;
         m.picked.set(None);
         m.proxy = None;
-        m.made = Made { loop_beta: self.request.opts.loop_beta, scheme: m.made.scheme, ..Made::default() };
+        m.made = Made { opts: self.request.opts, scheme: m.made.scheme, ..Made::default() };
         match paths {
             Some(p) => {
                 self.anim.paths = p;
@@ -490,8 +490,7 @@ impl Doc {
         m.attrs.refined = s.attrs;
         m.raw = s.shown;
         m.proxy = s.proxy;
-        m.made =
-            Made { level: s.level, scheme: s.scheme, loop_beta: s.opts.loop_beta, stats: Some(s.stats), job_ms: s.ms };
+        m.made = Made { level: s.level, scheme: s.scheme, opts: s.opts, stats: Some(s.stats), job_ms: s.ms };
         self.reshade();
     }
 }

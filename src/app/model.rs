@@ -10,8 +10,9 @@
 
 use super::display::{Coloring, Display, NormalMode};
 use crate::mesh::attributes::Attributes;
+use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::topology::{Topology, topology};
-use crate::subdiv::{LoopBeta, Stats};
+use crate::subdiv::Stats;
 use crate::{Error, Mesh, Scheme};
 use glam::{Vec2, Vec3};
 use std::path::PathBuf;
@@ -120,8 +121,9 @@ pub(crate) struct Made {
     pub(crate) level: u32,
     /// Scheme of the output.
     pub(crate) scheme: Scheme,
-    /// Loop's vertex weights of the output (what limit snapping must use).
-    pub(crate) loop_beta: LoopBeta,
+    /// The options of the output (what limit snapping must use: Loop's
+    /// weights, Catmull-Clark's creasing and boundary).
+    pub(crate) opts: crate::Options,
     /// Phase times of the subdivision.
     pub(crate) stats: Option<Stats>,
     /// Wall time of the subdivision job, ms.
@@ -203,15 +205,15 @@ impl Model {
         let creased = self.raw.creased.clone();
         let shown = match creased {
             // the normals are the cut mesh's (creased_view)
-            Some(_) => Shown { mesh: snapped(&self.raw, display, self.made.loop_beta), ..self.raw.clone() },
-            None => snapped_and_normals(&self.raw, display, self.made.loop_beta),
+            Some(_) => Shown { mesh: snapped(&self.raw, display, &self.made), ..self.raw.clone() },
+            None => snapped_and_normals(&self.raw, display, &self.made),
         };
         let (colors, color_max, error) = match result_colors(self, &shown.mesh, display.coloring) {
             Ok((c, max)) => (c, max, None),
             Err(e) => (None, 0.0, Some(e)),
         };
         let (shown, colors) = match &creased {
-            Some(cr) => (creased_view(&shown, cr, display), colors.map(|c| cr.extend(&c))),
+            Some(cr) => (creased_view(&self.raw, &shown, cr, display, &self.made), colors.map(|c| cr.extend(&c))),
             None => (shown, colors),
         };
         self.result.set(Shaded { shown, colors, color_max });
@@ -227,29 +229,62 @@ impl Model {
     }
 }
 
-/// `raw` with its points moved to the Loop limit (with the weights `beta`
-/// it was made with) when asked, and the normals of the normal mode.
-fn snapped_and_normals(raw: &Shown, display: &Display, beta: LoopBeta) -> Shown {
-    use crate::subdiv::rules::limit::{butterfly_normals, loop_limit_normals};
-    let mesh = snapped(raw, display, beta);
+/// `raw` with its points moved to the limit when asked, and the normals of
+/// the normal mode.
+fn snapped_and_normals(raw: &Shown, display: &Display, made: &Made) -> Shown {
+    use crate::subdiv::rules::limit::butterfly_normals;
+    let mesh = snapped(raw, display, made);
     let normals = match display.normal_mode {
         // the worker's fan normals, unless the points moved to the limit
         NormalMode::FanAverage if !display.snap_limit => raw.normals.clone(),
         NormalMode::FanAverage => Arc::new(mesh.vertex_normals()),
-        NormalMode::LoopLimit => Arc::new(loop_limit_normals(&mesh)),
+        NormalMode::Limit => Arc::new(limit_normals(&raw.mesh, &mesh, made)),
         NormalMode::Butterfly => Arc::new(butterfly_normals(&mesh)),
     };
     // snapping moves points, not connectivity: the topology is the raw one
     Shown { mesh, normals, topo: raw.topo.clone(), creased: raw.creased.clone() }
 }
 
-/// `raw`'s mesh, with its points moved to the Loop limit when asked.
-fn snapped(raw: &Shown, display: &Display, beta: LoopBeta) -> Arc<Mesh> {
+/// `raw`'s mesh, with its points moved to the limit of the scheme that made
+/// it when asked: Loop's (with its weights) for the triangle schemes,
+/// Catmull-Clark's (refining on where a semi-sharp feature is left); a
+/// bilinear level is its own limit.
+fn snapped(raw: &Shown, display: &Display, made: &Made) -> Arc<Mesh> {
+    use crate::subdiv::rules::catmark_limit::limit_frames;
     use crate::subdiv::rules::limit::loop_limit_positions_with;
-    if display.snap_limit {
-        Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions: loop_limit_positions_with(&raw.mesh, beta) })
-    } else {
-        raw.mesh.clone()
+    if !display.snap_limit {
+        return raw.mesh.clone();
+    }
+    let positions = match made.scheme {
+        Scheme::Bilinear => return raw.mesh.clone(),
+        Scheme::CatmullClark => {
+            let poly =
+                PolyMesh { pt: PolyTable::from_corner_table(&raw.mesh.ct), positions: raw.mesh.positions.clone() };
+            match limit_frames(&poly, &made.opts) {
+                Ok(frames) => frames.iter().map(|f| f.position).collect(),
+                Err(_) => return raw.mesh.clone(),
+            }
+        }
+        _ => loop_limit_positions_with(&raw.mesh, made.opts.loop_beta),
+    };
+    Arc::new(Mesh { ct: raw.mesh.ct.clone(), positions })
+}
+
+/// The limit normals of the level `level` (its own points; `shown` is the
+/// same table, its points maybe snapped): Catmull-Clark's tangent masks on
+/// a Catmull-Clark level (fan normals where a face is not a quad), Loop's
+/// on `shown` for the triangle schemes, fan normals on a bilinear level.
+fn limit_normals(level: &Mesh, shown: &Mesh, made: &Made) -> Vec<Vec3> {
+    use crate::subdiv::rules::catmark_limit::frames_at;
+    match made.scheme {
+        Scheme::CatmullClark => {
+            let pt = PolyTable::from_corner_table(&level.ct);
+            let fan = level.vertex_normals();
+            let frames = frames_at(&pt, &level.positions, made.opts.creasing);
+            frames.iter().zip(fan).map(|(f, n)| if f.normal() == Vec3::ZERO { n } else { f.normal() }).collect()
+        }
+        Scheme::Bilinear => shown.vertex_normals(),
+        _ => crate::subdiv::rules::limit::loop_limit_normals(shown),
     }
 }
 
@@ -258,13 +293,16 @@ fn snapped(raw: &Shown, display: &Display, beta: LoopBeta) -> Arc<Mesh> {
 /// (the worker's fan normals when nothing moved the points; else the
 /// normal mode's, computed on the cut mesh, where a crease vertex is a
 /// boundary vertex of each side).
-fn creased_view(shown: &Shown, cr: &Creased, display: &Display) -> Shown {
-    use crate::subdiv::rules::limit::{butterfly_normals, loop_limit_normals};
+fn creased_view(raw: &Shown, shown: &Shown, cr: &Creased, display: &Display, made: &Made) -> Shown {
+    use crate::subdiv::rules::limit::butterfly_normals;
     let mesh = Arc::new(Mesh { ct: cr.ct.clone(), positions: cr.extend(&shown.mesh.positions) });
     let normals = match display.normal_mode {
         NormalMode::FanAverage if !display.snap_limit => cr.normals.clone(),
         NormalMode::FanAverage => mesh.vertex_normals(),
-        NormalMode::LoopLimit => loop_limit_normals(&mesh),
+        NormalMode::Limit => {
+            let level = Mesh { ct: cr.ct.clone(), positions: cr.extend(&raw.mesh.positions) };
+            limit_normals(&level, &mesh, made)
+        }
         NormalMode::Butterfly => butterfly_normals(&mesh),
     };
     Shown { mesh, normals: Arc::new(normals), topo: shown.topo.clone(), creased: None }

@@ -274,7 +274,7 @@ fn display_options_recolour_and_renormal_the_result() {
     assert_eq!(colors[0], zero, "level-0 vertices are dark");
     assert_eq!(*colors.last().unwrap(), Vec3::from(colormap(1.0)), "the newest vertices are bright");
     set_display(&mut v, |d| {
-        d.normal_mode = NormalMode::LoopLimit;
+        d.normal_mode = NormalMode::Limit;
         d.snap_limit = true;
     });
     let shown = &v.doc.model.result.shown;
@@ -572,4 +572,59 @@ fn the_headless_viewer_plays_the_animation_on_its_own_clock() {
     assert!(v.advance(0.0));
     let frames = v.doc.anim.playback.as_ref().unwrap().clock.frames();
     assert_eq!(v.doc.anim.shown.unwrap().frame, (before + 1) % frames);
+}
+
+#[test]
+fn catmull_clark_snaps_and_shades_with_its_own_limit() {
+    // A quad cube with a crease (so the result is drawn cut open) at level
+    // 1: snapped points are the limit masks' (tests/catmark_limit.rs checks
+    // those against OpenSubdiv and convergence), the limit normals are unit
+    // and, on the smooth part, those of the mesh five levels finer.
+    let text = "v 0 0 0\nv 0 0 1\nv 0 1 0\nv 0 1 1\nv 1 0 0\nv 1 0 1\nv 1 1 0\nv 1 1 1\n\
+                f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\nt crease 2/1/0 0 1 10\n";
+    let cube = crate::io::read(
+        crate::io::Source::Bytes { bytes: text.as_bytes(), name: "creased_cube.obj", folder: None },
+        &Default::default(),
+    )
+    .expect("the cube")
+    .mesh;
+    let opts = crate::Options::default();
+    let level1 = crate::subdivide(&cube, Scheme::CatmullClark, 1, &opts).unwrap().0;
+    let converged = crate::subdivide(&cube, Scheme::CatmullClark, 6, &opts).unwrap().0;
+    let again = crate::subdivide(&level1, Scheme::CatmullClark, 5, &opts).unwrap().0;
+    assert!(
+        again.positions.iter().zip(&converged.positions).all(|(a, b)| a.distance(*b) < 1e-5),
+        "levels go on from a drawn level"
+    );
+    let mut v = Viewer::new();
+    v.doc.adopt("creased_cube.obj".into(), cube, None);
+    v.apply(Command::Subdivide(Request { scheme: Scheme::CatmullClark, level: 1, opts, ..v.doc.request }));
+    settle(&mut v);
+    assert!(v.doc.model.raw.creased.is_some(), "drawn cut open along the crease");
+    set_display(&mut v, |d| {
+        d.snap_limit = true;
+        d.normal_mode = crate::app::display::NormalMode::Limit;
+    });
+    let raw = &v.doc.model.raw.mesh;
+    let shown = &v.doc.model.result.shown;
+    let limit =
+        crate::subdiv::rules::catmark_limit::limit_frames(&crate::mesh::poly::PolyMesh::from_mesh(raw), &opts).unwrap();
+    for (i, f) in limit.iter().enumerate() {
+        assert!(shown.mesh.positions[i].distance(f.position) < 1e-6, "vertex {i} snapped to its limit");
+    }
+    assert!(shown.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4), "unit normals");
+    let fine_normals = converged.vertex_normals();
+    let smooth = (0..raw.positions.len()).filter(|&i| raw.ct.sharpness().is_none_or(|s| s.vertex(i as u32) == 0.0));
+    let mut checked = 0;
+    for i in smooth {
+        // the cut mesh numbers the uncut vertices first
+        if shown.normals[i].dot(fine_normals[i]) > 0.9999 {
+            checked += 1;
+        }
+    }
+    assert!(
+        checked > raw.positions.len() / 2,
+        "{checked} of {} normals agree with the converged mesh",
+        raw.positions.len()
+    );
 }

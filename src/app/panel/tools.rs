@@ -19,8 +19,9 @@ pub(crate) fn tools_section(
             ui.selectable_value(&mut display.normal_mode, m, m.name());
         }
     });
-    ui.checkbox(&mut display.snap_limit, "Snap to Loop limit positions")
-        .on_hover_text("move every vertex to its limit point on the Loop surface");
+    ui.checkbox(&mut display.snap_limit, "Snap to limit positions").on_hover_text(
+        "move every vertex to its limit point: on the Catmull-Clark surface for Catmull-Clark, else on Loop's",
+    );
     egui::ComboBox::from_label("Colour").selected_text(display.coloring.name()).show_ui(ui, |ui| {
         for c in Coloring::ALL {
             ui.selectable_value(&mut display.coloring, c, c.name());

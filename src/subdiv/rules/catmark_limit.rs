@@ -8,7 +8,7 @@
 //! and `i + 1`; on the boundary edge 0 and the last edge are the border).
 //!
 //! ```text
-//! smooth, valence n (darts too, as OpenSubdiv):
+//! smooth, valence n:
 //!   position  v (1 - n (e + f)) + e sum e_i + f sum f_i,   f = 1/(n(n+5)), e = 4f
 //!             regular: 4/9 v + 1/9 sum e_i + 1/36 sum f_i
 //!   tan1      e_i: 4 cos(i t),  f_i: (cos(i t) + cos((i+1) t)) / (4 l - 1),  v: 0
@@ -29,18 +29,23 @@
 //!               e_{a+i}: 4 sin(i s) d,  f_{a+i}: (sin(i s) + sin((i+1) s)) d
 //! corner:
 //!   position  v;   tan1 = e_0 - v,   tan2 = e_1 - v
+//! dart (one infinitely sharp edge): the smooth tangents (as OpenSubdiv);
+//!   the position by the dart's own eigenvector (`dart_position`), where
+//!   OpenSubdiv takes the smooth mask (8e-4 off on the dart fixture)
 //! ```
 //! The rule is the vertex's at the level the masks read (an edge still
-//! semi-sharp there counts as sharp, as in OpenSubdiv's `Limit`);
-//! [`limit_frames`] refines first until every face is a quad and no
-//! semi-sharp feature is left, so its positions are the limit surface's
-//! (darts aside: OpenSubdiv's smooth mask is not the dart's eigenvector).
+//! semi-sharp there counts as sharp, as in OpenSubdiv's `Limit`; a dart
+//! whose edge is semi-sharp takes the smooth mask); [`limit_frames`]
+//! refines first until every face is a quad and no semi-sharp feature is
+//! left, so its positions are the limit surface's.
 //! `tan1 x tan2` points to the side the faces' normals do.
 
-use super::features::{Features, Mask};
+use super::features::{Features, Mask, Rule};
 use crate::mesh::Creasing;
+use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::INFINITE;
+use crate::subdiv::refine::poly::with_boundary_corners;
 use crate::subdiv::{Options, Scheme, subdivide_poly};
 use crate::{Error, Result};
 use glam::{DVec3, Vec3};
@@ -90,9 +95,16 @@ pub fn limit_frames(mesh: &PolyMesh, opts: &Options) -> Result<Vec<LimitFrame>> 
             Err(e) => return Err(e),
         }
     }
-    let at = refined.as_ref().unwrap_or(mesh);
     // old vertices keep their ids through the levels
-    Ok(frames_at(&at.pt, &at.positions, opts.creasing).into_iter().take(nv).collect())
+    let frames = match &refined {
+        Some(m) => frames_at(&m.pt, &m.positions, opts.creasing),
+        None => {
+            // the control level itself: its one-face corners as the option says
+            let pt = with_boundary_corners(&mesh.pt, opts.boundary);
+            frames_at(pt.as_ref().unwrap_or(&mesh.pt), &mesh.positions, opts.creasing)
+        }
+    };
+    Ok(frames.into_iter().take(nv).collect())
 }
 
 /// Levels until the sharpest semi-sharp edge or vertex has decayed.
@@ -113,7 +125,7 @@ pub fn frames_at(pt: &PolyTable, pos: &[Vec3], creasing: Creasing) -> Vec<LimitF
             if !ring.gather(pt, v, pt.corner_of(v)) {
                 return LimitFrame::default();
             }
-            ring.frame(pos, rule(pt, features.as_ref(), v))
+            ring.frame(pt, pos, rule(pt, features.as_ref(), v))
         })
         .collect()
 }
@@ -126,20 +138,39 @@ pub fn frame_from(pt: &PolyTable, pos: &[Vec3], creasing: Creasing, v: u32, firs
     let features = Features::of(pt, creasing);
     let mut ring = Ring::default();
     let start = if pt.is_boundary_vertex(v) { pt.corner_of(v) } else { first };
-    ring.gather(pt, v, start).then(|| ring.frame(pos, rule(pt, features.as_ref(), v)))
+    ring.gather(pt, v, start).then(|| ring.frame(pt, pos, rule(pt, features.as_ref(), v)))
 }
 
-/// The limit rule of `v`: its features' mask at this level, else the
-/// border's crease, else smooth.
-fn rule(pt: &PolyTable, f: Option<&Features>, v: u32) -> Mask {
+/// The limit rule of a vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum LimitRule {
+    /// The smooth masks.
+    Smooth,
+    /// One sharp edge: the smooth tangents, the position by the dart's
+    /// own eigenvector ([`dart_position`]).
+    Dart,
+    /// The crease through these two neighbours.
+    Crease(u32, u32),
+    /// The corner masks.
+    Corner,
+}
+
+/// The limit rule of `v`: its features' at this level, else the border's
+/// crease, else smooth.
+fn rule(pt: &PolyTable, f: Option<&Features>, v: u32) -> LimitRule {
     match f.and_then(|f| f.vertex(v)) {
-        Some(vf) if vf.parent != Mask::Smooth => vf.parent,
-        _ if pt.is_boundary_vertex(v) => {
+        Some(vf) if vf.rule == Rule::Dart => LimitRule::Dart,
+        Some(vf) => match vf.parent {
+            Mask::Smooth => LimitRule::Smooth,
+            Mask::Crease(a, b) => LimitRule::Crease(a, b),
+            Mask::Corner => LimitRule::Corner,
+        },
+        None if pt.is_boundary_vertex(v) => {
             let first = pt.corner_of(v);
             let last = pt.fan(v).last().unwrap_or(first);
-            Mask::Crease(pt.vtx(pt.next(first)), pt.vtx(pt.prev(last)))
+            LimitRule::Crease(pt.vtx(pt.next(first)), pt.vtx(pt.prev(last)))
         }
-        _ => Mask::Smooth,
+        None => LimitRule::Smooth,
     }
 }
 
@@ -182,17 +213,23 @@ impl Ring {
         true
     }
 
-    /// The frame for `mask` (the vertex's rule).
-    fn frame(&self, pos: &[Vec3], mask: Mask) -> LimitFrame {
+    /// The frame for `rule` (the vertex's).
+    fn frame(&self, pt: &PolyTable, pos: &[Vec3], rule: LimitRule) -> LimitFrame {
         let p = |i: u32| pos[i as usize].as_dvec3();
         let v = p(self.v);
         let e: Vec<DVec3> = self.e.iter().map(|&i| p(i)).collect();
         let f: Vec<DVec3> = self.f.iter().map(|&i| p(i)).collect();
-        let (position, tan1, tan2) = match mask {
-            Mask::Smooth if self.f.len() == 2 || self.boundary => corner(v, &e),
-            Mask::Smooth => smooth(v, &e, &f),
-            Mask::Corner => corner(v, &e),
-            Mask::Crease(a, b) => {
+        let smooth_like = self.f.len() > 2 && !self.boundary;
+        let (position, tan1, tan2) = match rule {
+            LimitRule::Smooth if smooth_like => smooth(v, &e, &f),
+            LimitRule::Dart if smooth_like => {
+                let (_, tan1, tan2) = smooth(v, &e, &f);
+                // a semi-sharp dart edge decays: the smooth mask is nearer
+                let sharp = |x: &u32| pt.edge_between(self.v, *x).is_some_and(|c| pt.edge_sharpness(c) >= INFINITE);
+                let d = self.e.iter().position(sharp);
+                (d.map_or_else(|| smooth(v, &e, &f).0, |d| dart_position(v, &e, &f, d)), tan1, tan2)
+            }
+            LimitRule::Crease(a, b) => {
                 let ia = self.e.iter().position(|&x| x == a);
                 let ib = self.e.iter().position(|&x| x == b);
                 match (ia, ib) {
@@ -200,9 +237,71 @@ impl Ring {
                     _ => corner(v, &e),
                 }
             }
+            _ => corner(v, &e),
         };
         LimitFrame { position: position.as_vec3(), tan1: tan1.as_vec3(), tan2: tan2.as_vec3() }
     }
+}
+
+/// The limit position of a dart: the left eigenvector of eigenvalue 1 of
+/// its 1-ring's subdivision matrix, found by iterating the rules on the
+/// weights. OpenSubdiv gives a dart the smooth mask, which is not this
+/// eigenvector (the dart's edge takes the crease rule, so the ring
+/// refines differently): off by 8e-4 on a unit grid. The ring `(v, e_i,
+/// f_i)` maps to itself under one level: `v' = (n-2)/n v + 1/n^2 sum e_j +
+/// 1/n^2 sum F_j`, `e_i' = (v + e_i + F_{i-1} + F_i) / 4` (the dart's edge
+/// `d`: `(v + e_d) / 2`), `f_i' = F_i`, with the face points
+/// `F_i = (v + e_i + f_i + e_{i+1}) / 4`.
+fn dart_position(v: DVec3, e: &[DVec3], f: &[DVec3], d: usize) -> DVec3 {
+    let n = e.len();
+    let nf = n as f64;
+    // rows of S: index 0 = v, 1 + i = e_i, 1 + n + i = f_i
+    let mut s = vec![vec![0.0f64; 1 + 2 * n]; 1 + 2 * n];
+    let face = |row: &mut [f64], i: usize, w: f64| {
+        row[0] += w / 4.0;
+        row[1 + i] += w / 4.0;
+        row[1 + (i + 1) % n] += w / 4.0;
+        row[1 + n + i] += w / 4.0;
+    };
+    s[0][0] = (nf - 2.0) / nf;
+    for j in 0..n {
+        s[0][1 + j] += 1.0 / (nf * nf);
+        let row = &mut s[0];
+        face(row, j, 1.0 / (nf * nf));
+    }
+    for i in 0..n {
+        let row = &mut s[1 + i];
+        row[0] += if i == d { 0.5 } else { 0.25 };
+        row[1 + i] += if i == d { 0.5 } else { 0.25 };
+        if i != d {
+            face(row, (i + n - 1) % n, 0.25);
+            face(row, i, 0.25);
+        }
+        face(&mut s[1 + n + i], i, 1.0);
+    }
+    // l S = l from the smooth mask on: the other eigenvalues are below 1
+    let (fw, ew) = (1.0 / (nf * (nf + 5.0)), 4.0 / (nf * (nf + 5.0)));
+    let mut l: Vec<f64> = std::iter::once(1.0 - nf * (ew + fw))
+        .chain(std::iter::repeat_n(ew, n))
+        .chain(std::iter::repeat_n(fw, n))
+        .collect();
+    let mut next = vec![0.0; l.len()];
+    for _ in 0..400 {
+        next.iter_mut().for_each(|x| *x = 0.0);
+        for (r, row) in s.iter().enumerate() {
+            for (c, &w) in row.iter().enumerate() {
+                next[c] += l[r] * w;
+            }
+        }
+        let change = l.iter().zip(&next).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        std::mem::swap(&mut l, &mut next);
+        if change < 1e-15 {
+            break;
+        }
+    }
+    v * l[0]
+        + e.iter().zip(&l[1..=n]).map(|(p, w)| *p * *w).sum::<DVec3>()
+        + f.iter().zip(&l[1 + n..]).map(|(p, w)| *p * *w).sum::<DVec3>()
 }
 
 /// The corner masks: the vertex, and its first two edges.
