@@ -66,6 +66,7 @@ pub const MODELS: &[Model] = &[
     model!("lprism.ct", "L-shaped prism as a corner table"),
     model!("torus.obj", "torus, 1024 triangles"),
     model!("torus.ct", "torus as a corner table"),
+    model!("critter.obj", "box-modelled animal, 172 quads (try Catmull-Clark)"),
     model!("teapot.bez", "Newell's teapot, 32 Bezier patches (needs repair)"),
     model!("curve.bzc", "a degree-4 Bezier curve"),
 ];
