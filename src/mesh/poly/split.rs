@@ -45,31 +45,37 @@ pub fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) 
     assert!(4 * nc as u64 + 4 < u64::from(BORDER), "quad split: {nc} corners are too many for 32-bit ids");
     let ids = EdgeIds::new(&old.t);
     let edges = number_edges_with(&old.t, ids, |_, _, _| {});
-    let (nv, ne, nf) = (old.num_vertices() as u32, edges.ids.count(), old.num_faces() as u32);
+    let (nv, ne) = (old.num_vertices() as u32, edges.ids.count());
     let (v, t) = write_v_and_t(old, &edges.ids, nv, ne);
-    let mut vc = Vec::with_capacity((nv + ne + nf) as usize);
-    let mut valence = Vec::with_capacity(vc.capacity());
-    vc.par_extend(old.vc.par_iter().map(|&c| 4 * c));
-    valence.extend_from_slice(&old.valence);
-    let edge_fans: Vec<(u32, u32)> = edges
-        .owners
-        .par_iter()
-        .map(|&c| if old.t[c as usize] == BORDER { (4 * old.next(c) + 3, 3) } else { (4 * c + 1, 4) })
-        .collect();
-    vc.extend(edge_fans.iter().map(|&(c, _)| c));
-    valence.extend(edge_fans.iter().map(|&(_, k)| k));
-    let face_fans: Vec<(u32, u32)> = (0..nf)
-        .into_par_iter()
-        .map(|f| {
-            let r = old.face_corners(f);
-            (4 * r.start + 2, r.end - r.start)
-        })
-        .collect();
-    vc.extend(face_fans.iter().map(|&(c, _)| c));
-    valence.extend(face_fans.iter().map(|&(_, k)| k));
+    let (vc, valence) = write_c_and_valence(old, &edges.owners);
     let sharpness = old.sharpness().and_then(|s| split_sharpness(s, old, creasing));
     let pt = PolyTable { faces: None, v, t, vc, valence, sharpness: sharpness.map(Box::new), level: old.level + 1 };
     (pt, edges)
+}
+
+/// The new C and valences (see the module docs): old vertices, then edge
+/// points in owner order, then face points, each range written in parallel
+/// straight into its place.
+fn write_c_and_valence(old: &PolyTable, owners: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let (nv, ne, nf) = (old.num_vertices(), owners.len(), old.num_faces());
+    let mut vc: Vec<u32> = crate::mem::zeroed(nv + ne + nf);
+    let mut valence: Vec<u32> = crate::mem::zeroed(nv + ne + nf);
+    let (vc_old, rest) = vc.split_at_mut(nv);
+    let (vc_edge, vc_face) = rest.split_at_mut(ne);
+    let (val_old, rest) = valence.split_at_mut(nv);
+    let (val_edge, val_face) = rest.split_at_mut(ne);
+    vc_old.par_iter_mut().zip(old.vc.par_iter()).with_min_len(CHUNK).for_each(|(x, &c)| *x = 4 * c);
+    val_old.par_iter_mut().zip(old.valence.par_iter()).with_min_len(CHUNK).for_each(|(x, &k)| *x = k);
+    vc_edge.par_iter_mut().zip(val_edge.par_iter_mut()).zip(owners.par_iter()).with_min_len(CHUNK).for_each(
+        |((x, k), &c)| {
+            (*x, *k) = if old.t[c as usize] == BORDER { (4 * old.next(c) + 3, 3) } else { (4 * c + 1, 4) };
+        },
+    );
+    vc_face.par_iter_mut().zip(val_face.par_iter_mut()).enumerate().with_min_len(CHUNK).for_each(|(f, (x, k))| {
+        let r = old.face_corners(f as u32);
+        (*x, *k) = (4 * r.start + 2, r.end - r.start);
+    });
+    (vc, valence)
 }
 
 /// The new V and T, one old corner (four new ones) at a time, in parallel.
@@ -78,6 +84,10 @@ fn write_v_and_t(old: &PolyTable, ids: &EdgeIds, nv: u32, ne: u32) -> (Vec<u32>,
     let mut v: Vec<u32> = crate::mem::zeroed(4 * nc);
     let mut t: Vec<u32> = crate::mem::zeroed(4 * nc);
     let edge = |c: u32| ids.edge(c, old.t[c as usize]);
+    if old.is_quads() {
+        write_quads(old, ids, nv, ne, &mut v, &mut t);
+        return (v, t);
+    }
     v.par_chunks_mut(4 * CHUNK).zip(t.par_chunks_mut(4 * CHUNK)).enumerate().for_each(|(k, (vch, tch))| {
         let base = (k * CHUNK) as u32;
         for (i, (vq, tq)) in vch.chunks_exact_mut(4).zip(tch.chunks_exact_mut(4)).enumerate() {
@@ -95,6 +105,34 @@ fn write_v_and_t(old: &PolyTable, ids: &EdgeIds, nv: u32, ne: u32) -> (Vec<u32>,
         }
     });
     (v, t)
+}
+
+/// [`write_v_and_t`] of an all-quad table, a face (16 new corners) at a
+/// time: the four edge ids of a face are ranked once, each serving the
+/// corner it leaves and the one it enters; next and previous are
+/// arithmetic.
+fn write_quads(old: &PolyTable, ids: &EdgeIds, nv: u32, ne: u32, v: &mut [u32], t: &mut [u32]) {
+    const FACES: usize = CHUNK / 4;
+    v.par_chunks_mut(16 * FACES).zip(t.par_chunks_mut(16 * FACES)).enumerate().for_each(|(k, (vch, tch))| {
+        let base = (k * FACES) as u32;
+        for (i, (vf, tf)) in vch.chunks_exact_mut(16).zip(tch.chunks_exact_mut(16)).enumerate() {
+            let f = base + i as u32;
+            let c0 = 4 * f;
+            let tw: [u32; 4] = std::array::from_fn(|j| old.t[(c0 + j as u32) as usize]);
+            let e: [u32; 4] = std::array::from_fn(|j| nv + ids.edge(c0 + j as u32, tw[j]));
+            let fp = nv + ne + f;
+            for j in 0..4 {
+                let (c, p) = (c0 + j as u32, (j + 3) % 4);
+                let (vq, tq) = (&mut vf[4 * j..4 * j + 4], &mut tf[4 * j..4 * j + 4]);
+                vq.copy_from_slice(&[old.v[c as usize], e[j], fp, e[p]]);
+                let (tc, tp) = (tw[j], tw[p]);
+                tq[0] = if tc == BORDER { BORDER } else { 4 * ((tc & !3) | ((tc + 1) & 3)) + 3 };
+                tq[1] = 4 * (c0 + (j as u32 + 1) % 4) + 2;
+                tq[2] = 4 * (c0 + p as u32) + 1;
+                tq[3] = if tp == BORDER { BORDER } else { 4 * tp };
+            }
+        }
+    });
 }
 
 /// The sharpness after the split (see the module docs), or `None` when

@@ -17,7 +17,7 @@ use crate::mesh::sharpness::Sharpness;
 use crate::mesh::split::EdgeIds;
 use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::{Error, Result};
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -68,27 +68,42 @@ fn edge_points<R: PolyRules>(lv: &PolyLevel, owners: &[u32], pos: &[Vec3], fp: &
     });
 }
 
-/// Every old vertex's new position, from the face points `fp`.
+/// Every old vertex's new position, from the face points `fp`. The sums
+/// over each vertex's edges and faces are scattered from the corners in
+/// order (corner `c` adds its edge's far end and its face's point to
+/// `V[c]`: each edge leaving a vertex and each face at it has exactly one
+/// such corner), which reads the tables as streams instead of walking every
+/// fan through the twins; each thread sums its range of corners into a
+/// buffer of its own, and the buffers are added per vertex.
 fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
     let pt = lv.pt;
     if !R::SMOOTH {
         out.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &p)| *q = p);
         return;
     }
-    out.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
-        let v = v as u32;
-        let p = pos[v as usize];
-        if pt.is_boundary_vertex(v) {
-            let (a, b) = lv.border_neighbours(v);
+    let (nv, nc) = (pos.len(), pt.num_corners());
+    let parts = rayon::current_num_threads().clamp(1, nc / (1 << 16) + 1);
+    let sums: Vec<Vec<Vec3A>> = (0..parts)
+        .into_par_iter()
+        .map(|k| {
+            let mut acc: Vec<Vec3A> = crate::mem::zeroed(nv);
+            for c in (k * nc / parts) as u32..((k + 1) * nc / parts) as u32 {
+                let far = pos[pt.vtx(pt.next(c)) as usize];
+                acc[pt.vtx(c) as usize] += Vec3A::from(far) + Vec3A::from(fp[pt.face(c) as usize]);
+            }
+            acc
+        })
+        .collect();
+    out.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, q)| {
+        let p = pos[v];
+        if pt.is_boundary_vertex(v as u32) {
+            let (a, b) = lv.border_neighbours(v as u32);
             *q = (pos[a as usize] + pos[b as usize]) * 0.125 + p * 0.75;
             return;
         }
-        let n = pt.valences()[v as usize] as f32;
-        let mut sum = Vec3::ZERO;
-        for c in pt.fan(v) {
-            sum += pos[pt.vtx(pt.next(c)) as usize] + fp[pt.face(c) as usize];
-        }
-        *q = p * ((n - 2.0) / n) + sum / (n * n);
+        let n = pt.valences()[v] as f32;
+        let sum: Vec3A = sums.iter().map(|s| s[v]).sum();
+        *q = p * ((n - 2.0) / n) + Vec3::from(sum) / (n * n);
     });
 }
 
