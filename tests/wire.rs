@@ -179,3 +179,67 @@ fn a_window_screenshot_renders_its_viewports_at_n_times_their_size() {
     assert_eq!(img.get_pixel(0, 0).0[3], 0);
     assert_eq!(img.get_pixel(200, 100).0[3], 255);
 }
+
+/// The brightest wire ink (luminance above the background of its row) in a
+/// 5x5 block around the projection of `p`.
+fn ink_at(img: &RgbaImage, cam: &subdiv::render::Camera, p: glam::Vec3) -> f64 {
+    let ndc = cam.project(p, W as f32 / H as f32);
+    let (x, y) = (((ndc.x + 1.0) * 0.5 * W as f32) as i64, ((1.0 - ndc.y) * 0.5 * H as f32) as i64);
+    let mut ink = 0.0f64;
+    for yy in (y - 2).max(0)..=(y + 2).min(H as i64 - 1) {
+        for xx in (x - 2).max(0)..=(x + 2).min(W as i64 - 1) {
+            let row = luminance(img.get_pixel(0, yy as u32));
+            ink = ink.max(luminance(img.get_pixel(xx as u32, yy as u32)) - row);
+        }
+    }
+    ink
+}
+
+/// A quad grid draws its quads' edges and never the diagonals its
+/// triangles are drawn with, at level 0 (fanned from the file) and through
+/// Catmull-Clark; the same grid read as triangles draws them, so the
+/// samples can tell.
+#[test]
+fn a_quad_wire_renders_without_diagonals() {
+    let Some(mut off) = offscreen() else { return };
+    let mut quads = String::new();
+    let mut triangles = String::new();
+    for j in 0..3 {
+        for i in 0..3 {
+            let line = format!("v {} {} {}\n", i as f32, j as f32, 0.1 * ((i * j) % 2) as f32);
+            quads.push_str(&line);
+            triangles.push_str(&line);
+        }
+    }
+    for j in 0..2 {
+        for i in 0..2 {
+            let (a, b, c, d) = (1 + i + 3 * j, 2 + i + 3 * j, 5 + i + 3 * j, 4 + i + 3 * j);
+            quads.push_str(&format!("f {a} {b} {c} {d}\n"));
+            triangles.push_str(&format!("f {a} {b} {c}\nf {a} {c} {d}\n"));
+        }
+    }
+    let read = |text: &str, name: &str| common::read_bytes(text.as_bytes(), name).unwrap().mesh;
+    let (q, t) = (read(&quads, "quads.obj"), read(&triangles, "triangles.obj"));
+    let opts = RenderOptions { width: W, height: H, ..Default::default() };
+    let cam = default_camera(&q, &opts);
+    let look = Shading::Wire.look();
+    let draw = |off: &mut Offscreen, m: &Mesh| {
+        let gm = off.upload(m).unwrap();
+        off.render_one(cam, &gm, None, look).unwrap()
+    };
+    let cc = subdivide(&q, Scheme::CatmullClark, 1, &Options::default()).unwrap().0;
+    let (img_q, img_t, img_cc) = (draw(&mut off, &q), draw(&mut off, &t), draw(&mut off, &cc));
+    let at = |img: &RgbaImage, x: f32, y: f32| ink_at(img, &cam, glam::Vec3::new(x, y, 0.05));
+    for (x, y) in [(0.5, 0.5), (1.5, 0.5), (0.5, 1.5), (1.5, 1.5)] {
+        // the centre of each quad lies on its diagonal (a quarter of the way
+        // along it, for Catmull-Clark's quads); the inner edges x = 1 and
+        // y = 1 pass beside it
+        let (diag_t, diag_q) = (at(&img_t, x, y), at(&img_q, x, y));
+        eprintln!("quad ({x}, {y}): ink on the diagonal {diag_t:.0} as triangles, {diag_q:.0} as a quad");
+        assert!(diag_t > 40.0, "the triangles' diagonal at ({x}, {y}) is drawn ({diag_t:.0})");
+        assert!(diag_q < 10.0, "no diagonal drawn in the quad at ({x}, {y}) ({diag_q:.0})");
+        assert!(at(&img_q, 1.0, y) > 40.0 && at(&img_q, x, 1.0) > 40.0, "the inner edges by ({x}, {y}) are drawn");
+        let quarter = at(&img_cc, x - 0.25, y - 0.25);
+        assert!(quarter < 10.0, "no diagonal in Catmull-Clark's quads near ({x}, {y}) ({quarter:.0})");
+    }
+}
