@@ -21,7 +21,7 @@ use subdiv::Result;
 
 /// The command line.
 #[derive(Parser)]
-#[command(name = "subdiv", version, about = "Triangle-mesh subdivision: viewer and command line", long_about = None)]
+#[command(name = "subdiv", version, about = "Subdivision surfaces (triangle and polygon schemes): viewer and command line", long_about = None)]
 pub struct Cli {
     #[command(subcommand)]
     cmd: Option<Cmd>,
