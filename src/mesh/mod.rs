@@ -159,6 +159,12 @@ impl Generations {
     pub fn explicit(corners: Vec<u8>, level: u8) -> Generations {
         Generations { base: Some((corners, level)), splits: Vec::new() }
     }
+    /// Whether some edge may be [`Self::HIDDEN`]: only a table given its
+    /// generations per corner (a triangulated polygon mesh) and not split
+    /// since (a triangle split shows every edge).
+    pub fn may_hide(&self) -> bool {
+        self.splits.is_empty() && self.base.as_ref().is_some_and(|(b, _)| b.contains(&Self::HIDDEN))
+    }
     /// The newest generation of the table.
     pub fn level(&self) -> u8 {
         let base = self.base.as_ref().map_or(0, |b| b.1);

@@ -106,7 +106,7 @@ pub fn topology(ct: &CornerTable) -> Topology {
 
 /// The inner diagonals of `ct`'s polygons (none without edge generations).
 pub fn diagonals(ct: &CornerTable) -> usize {
-    if ct.generations().is_none() {
+    if !ct.generations().is_some_and(super::Generations::may_hide) {
         return 0;
     }
     (0..ct.num_corners() as u32)

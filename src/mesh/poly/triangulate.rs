@@ -174,7 +174,7 @@ impl PolyMesh {
 
     /// Whether the mesh stands for polygons (it has hidden diagonals).
     pub fn is_polygonal(mesh: &Mesh) -> bool {
-        mesh.ct.generations().is_some()
+        mesh.ct.generations().is_some_and(Generations::may_hide)
             && (0..mesh.ct.num_corners() as u32).any(|c| mesh.ct.edge_generation(c) == Generations::HIDDEN)
     }
 }
@@ -221,7 +221,7 @@ impl PolyTable {
 fn recover_faces(ct: &CornerTable) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
     let nt = ct.num_triangles();
     let hidden = |c: u32| ct.edge_generation(c) == Generations::HIDDEN && ct.o_entry(c) != BORDER;
-    let any_hidden = ct.generations().is_some() && (0..ct.num_corners() as u32).any(hidden);
+    let any_hidden = ct.generations().is_some_and(Generations::may_hide) && (0..ct.num_corners() as u32).any(hidden);
     if !any_hidden {
         let starts = (0..=nt as u32).map(|t| 3 * t).collect();
         // triangle corner c names the edge opposite it, the polygon corner
