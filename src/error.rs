@@ -157,6 +157,14 @@ pub enum MeshError {
         /// What is wrong.
         msg: String,
     },
+    /// The twin table stored in a `.ct` polygon file contradicts the faces.
+    #[error("stored twin table is inconsistent at corner {corner}: {}", clean(msg, MSG_CHARS))]
+    BadTwinTable {
+        /// The polygon corner id.
+        corner: usize,
+        /// What is wrong.
+        msg: String,
+    },
 }
 
 impl MeshError {

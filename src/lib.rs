@@ -1,10 +1,12 @@
-//! # subdiv: triangle-mesh subdivision on a corner table
+//! # subdiv: subdivision surfaces on corner tables, triangles and polygons
 //!
 //! The library is four layers, data flowing one way:
 //! [`io`] (OBJ with MTL materials, `.ct`, PLY, STL, OFF, glTF, COLLADA,
 //! `.paths`) → [`mesh`] (Rossignac's corner table: V, O,
-//! one corner per vertex, valences) → [`subdiv`] (the shared 1-to-4 split with
-//! a linear-time O update, one file of rules per scheme, stencil plans) →
+//! one corner per vertex, valences; and its polygon form, faces of any size
+//! then quads, [`mesh::poly`]) → [`subdiv`] (the shared 1-to-4 and quad
+//! splits with linear-time O and twin updates, one file of rules per scheme,
+//! Catmull-Clark's limit, stencil plans) →
 //! [`anim`] (split-and-tweak paths). The renderer and the window (feature
 //! `viewer`) only see flat arrays.
 //!

@@ -67,8 +67,9 @@ fn every_model_can_animate_with_generated_paths() {
 /// Catmull-Clark and bilinear animate through their stencil plans: every
 /// frame equals a direct subdivision of that frame's control polygons
 /// (creases uniform and Chaikin, semi-sharp edges, corners, a boundary with
-/// both options, faces of 3 to 6 corners), and the finest level is drawn as
-/// its quads' triangles.
+/// both options, faces of 3 to 6 corners), the finest level drawn as its
+/// quads' triangles and shaded with the normals of each vertex's ring of
+/// edge neighbours.
 #[test]
 fn polygon_schemes_animate_like_a_direct_subdivision() {
     use subdiv::mesh::{BoundaryInterpolation, Creasing};
@@ -100,9 +101,24 @@ fn polygon_schemes_animate_like_a_direct_subdivision() {
             for (x, y) in pos.iter().zip(&full.positions) {
                 assert!((*x - *y).abs().max_element() < 1e-5, "{what}: {x} against {y}");
             }
-            for (n, m) in nrm.iter().zip(full.vertex_normals()) {
+            for (v, n) in nrm.iter().enumerate() {
+                let m = edge_ring_normal(&subdiv::mesh::poly::PolyMesh::from_mesh(&full), v as u32);
                 assert!(n.distance(m) < 1e-4, "{what}: normal {n} against {m}");
             }
         }
     }
+}
+
+/// The unit normal of the polygon of `v`'s edge neighbours in fan order
+/// (with `v` itself on the boundary), by Newell's sum of cross products.
+fn edge_ring_normal(m: &subdiv::mesh::poly::PolyMesh, v: u32) -> glam::Vec3 {
+    let pt = &m.pt;
+    let mut ring: Vec<glam::Vec3> = pt.fan(v).map(|c| m.positions[pt.vtx(pt.next(c)) as usize]).collect();
+    if pt.is_boundary_vertex(v) {
+        let last = pt.fan(v).last().expect("a fan");
+        ring.push(m.positions[pt.vtx(pt.prev(last)) as usize]);
+        ring.insert(0, m.positions[v as usize]);
+    }
+    let k = ring.len();
+    (0..k).map(|i| ring[i].cross(ring[(i + 1) % k])).sum::<glam::Vec3>().normalize()
 }

@@ -90,7 +90,12 @@ impl Animation {
         });
         let t0 = Instant::now();
         let plan = StencilPlan::build_local(&control.ct, scheme, level, opts)?;
-        let normals_by = match VertexRings::new(&plan.ct) {
+        // a polygon scheme's normals from its quads' rings of edge neighbours
+        let rings = match plan.polygons() {
+            Some(pt) => VertexRings::new(pt),
+            None => VertexRings::new(&plan.ct),
+        };
+        let normals_by = match rings {
             Some(r) => NormalsBy::Rings(r),
             None => NormalsBy::Faces(Vec::new(), VertexFaces::new(&plan.ct)),
         };

@@ -311,21 +311,21 @@ fn creased_view(raw: &Shown, shown: &Shown, cr: &Creased, display: &Display, mad
 /// The per-vertex colours of `mesh` (the shown result of `model`) for a
 /// colouring, and the largest value behind them.
 fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Result<(Option<Vec<Vec3>>, f32)> {
-    use crate::mesh::inspect::{colormap, displacement_from_control, vertex_counts_per_level, vertex_creation_level};
+    use crate::mesh::inspect::colormap;
+    use crate::subdiv::inspect::{creation_levels, displacement};
     let nv = mesh.positions.len();
-    let level = model.made.level;
+    let (level, scheme) = (model.made.level, model.made.scheme);
     let ramp = |t: &[f32]| t.iter().map(|&t| Vec3::from(colormap(t))).collect::<Vec<_>>();
     Ok(match coloring {
         Coloring::None | Coloring::Checker | Coloring::Material => (None, 0.0),
         Coloring::Shells => {
-            let counts = vertex_counts_per_level(&model.control.mesh.ct, level);
-            let lv = vertex_creation_level(&counts, nv);
+            let lv = creation_levels(&model.control.mesh, scheme, level, nv);
             let t: Vec<f32> = lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect();
             (Some(ramp(&t)), level as f32)
         }
         Coloring::File => (model.attrs.refined.colors.clone().filter(|c| c.len() == nv), 1.0),
         Coloring::Displacement => {
-            let d = displacement_from_control(&model.control.mesh, mesh, level)?;
+            let d = displacement(&model.control.mesh, mesh, scheme, level)?;
             let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
             let t: Vec<f32> = d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 }).collect();
             (Some(ramp(&t)), max)

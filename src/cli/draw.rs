@@ -207,8 +207,9 @@ mod gpu {
     use glam::Vec3;
     use subdiv::app::display::Coloring;
     use subdiv::mesh::attributes::Attributes;
-    use subdiv::mesh::inspect::{colormap, displacement_from_control, vertex_counts_per_level, vertex_creation_level};
+    use subdiv::mesh::inspect::colormap;
     use subdiv::render::Paint;
+    use subdiv::subdiv::inspect::{creation_levels, displacement};
     use subdiv::{Error, Mesh, Result, Scheme};
 
     fn ramp(t: impl Iterator<Item = f32>) -> Vec<Vec3> {
@@ -216,8 +217,8 @@ mod gpu {
     }
 
     /// The colours of the levels that made each vertex of a `levels`-deep refinement of `control`.
-    fn shells(control: &Mesh, levels: u32, nv: usize) -> Vec<Vec3> {
-        let lv = vertex_creation_level(&vertex_counts_per_level(&control.ct, levels), nv);
+    fn shells(control: &Mesh, scheme: Scheme, levels: u32, nv: usize) -> Vec<Vec3> {
+        let lv = creation_levels(control, scheme, levels, nv);
         ramp(lv.iter().map(|&l| f32::from(l) / levels.max(1) as f32))
     }
 
@@ -233,9 +234,9 @@ mod gpu {
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         Ok(match coloring {
             Coloring::None => Paint::Material,
-            Coloring::Shells => Paint::Colors(shells(control, levels, fine.positions.len())),
+            Coloring::Shells => Paint::Colors(shells(control, scheme, levels, fine.positions.len())),
             Coloring::Displacement => {
-                let d = displacement_from_control(control, fine, levels)?;
+                let d = displacement(control, fine, scheme, levels)?;
                 let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
                 Paint::Colors(ramp(d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 })))
             }
@@ -314,7 +315,7 @@ mod gpu {
         let nv = anim.topology().num_vertices();
         let colors = match coloring {
             Coloring::None => None,
-            Coloring::Shells => Some(shells(&mesh, level, nv)),
+            Coloring::Shells => Some(shells(&mesh, s.scheme, level, nv)),
             Coloring::File => {
                 let only = Attributes { colors: attrs.colors, ..Default::default() };
                 let r = subdiv::subdiv::tables::attributes::refine(&mesh.ct, &only, s.scheme, level, &s.options())?;

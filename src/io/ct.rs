@@ -151,22 +151,22 @@ fn read(input: &Input) -> Result<RawMesh> {
 /// The optional opposite table (`3 t` corner ids, -1 for a border) whose
 /// first token is `first`; the line of each row goes to `lines`.
 fn opposite_table<'a>(tk: &mut Tokens<'a>, first: &'a str, t: u64, lines: &mut Vec<u32>) -> Result<Vec<u32>> {
-    corner_ids(tk, first, 3 * t, lines, "opposite", t as usize)
+    corner_ids(tk, first, 3 * t, lines, "opposite", &|n| n % 3 == 0)
 }
 
 /// `h` corner ids (`-1`: [`BORDER`]) of a table, the first token `first`;
-/// `rows` rows, whose lines go to `lines` (one per row of equal share).
+/// the line of each row goes to `lines`, a row ending after `n` ids where
+/// `row_end(n)` (a face's corners).
 fn corner_ids<'a>(
     tk: &mut Tokens<'a>,
     first: &'a str,
     h: u64,
     lines: &mut Vec<u32>,
     what: &str,
-    rows: usize,
+    row_end: &dyn Fn(usize) -> bool,
 ) -> Result<Vec<u32>> {
     let mut stored = Vec::with_capacity(h as usize);
     let mut tok = Some(first);
-    let per_row = (h as usize).div_ceil(rows.max(1)).max(1);
     for _ in 0..h {
         let s = match tok.take() {
             Some(s) => s,
@@ -177,7 +177,7 @@ fn corner_ids<'a>(
             return Err(tk.err(format!("{what} corner {x} out of range")));
         }
         stored.push(if x < 0 { BORDER } else { x as u32 });
-        if stored.len() % per_row == 0 {
+        if row_end(stored.len()) {
             lines.push(tk.line as u32);
         }
     }
@@ -219,7 +219,9 @@ fn read_polygons(tk: &mut Tokens, mut raw: RawMesh, k: u64, bytes: usize, input:
     let mut next = tk.next_tok();
     if let Some(first) = next.filter(|s| !is_section(s)) {
         let h = raw.corners.len() as u64;
-        raw.twins = Some(corner_ids(tk, first, h, &mut raw.sources.opposite_lines, "twin", raw.face_starts.len() - 1)?);
+        let starts = &raw.face_starts;
+        let row_end = |n: usize| starts.binary_search(&(n as u32)).is_ok();
+        raw.twins = Some(corner_ids(tk, first, h, &mut raw.sources.opposite_lines, "twin", &row_end)?);
         next = tk.next_tok();
     }
     let (tags, tag_lines) = parse_sections(tk, next, bytes)?;

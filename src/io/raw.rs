@@ -417,7 +417,7 @@ fn check_twins(starts: &[u32], corners: &[u32], nv: usize, stored: &[u32], at: &
     };
     let msg = format!("stored twin {}, but the faces give {}", show(stored.get(c)), show(pt.t_table().get(c)));
     let line = at.sources.opposite_lines.get(pt.face(c as u32) as usize).map(|&l| l as usize);
-    Err(Error::Mesh { file, line, source: MeshError::BadOppositeTable { corner: c, msg } })
+    Err(Error::Mesh { file, line, source: MeshError::BadTwinTable { corner: c, msg } })
 }
 
 /// `ct` with the sharpness of `tags`, whose vertex ids are records of the

@@ -129,16 +129,47 @@ pub struct VertexRings {
     chunk_start: Vec<u32>,
 }
 
+/// A table whose fans give every vertex's one-ring: triangles (the fan's
+/// faces, `(v, a, b)`) or polygons (the fan's edges, `a` leaving `v` in a
+/// face and `b` entering it: the ring of edge neighbours, which for a quad
+/// mesh gives each vertex the normal of its four neighbours' quadrilateral
+/// rather than of the triangles the quads are drawn with).
+pub trait Fans: Sync {
+    /// Vertices.
+    fn num_vertices(&self) -> usize;
+    /// The `(a, b)` of each face around `v` in fan order.
+    fn fan_pairs(&self, v: u32, out: &mut Vec<(u32, u32)>);
+}
+
+impl Fans for CornerTable {
+    fn num_vertices(&self) -> usize {
+        CornerTable::num_vertices(self)
+    }
+    fn fan_pairs(&self, v: u32, out: &mut Vec<(u32, u32)>) {
+        use super::{n, p};
+        out.clear();
+        out.extend(self.fan(v).map(|c| (self.v_table()[n(c) as usize], self.v_table()[p(c) as usize])));
+    }
+}
+
+impl Fans for super::poly::PolyTable {
+    fn num_vertices(&self) -> usize {
+        super::poly::PolyTable::num_vertices(self)
+    }
+    fn fan_pairs(&self, v: u32, out: &mut Vec<(u32, u32)>) {
+        out.clear();
+        out.extend(self.fan(v).map(|c| (self.vtx(self.next(c)), self.vtx(self.prev(c)))));
+    }
+}
+
 /// The chained one-ring of `v`, the first entry repeated when it closes,
 /// or `None` when the fan's faces do not chain (impossible under the
 /// table's invariants) or an id is out of range.
-fn chained_ring(ct: &CornerTable, v: u32, ring: &mut Vec<u32>) -> Option<()> {
-    use super::{n, p};
+fn chained_ring<T: Fans + ?Sized>(ct: &T, v: u32, pairs: &mut Vec<(u32, u32)>, ring: &mut Vec<u32>) -> Option<()> {
     let nv = ct.num_vertices();
-    let v_of = |c: u32| ct.v_table()[c as usize];
     ring.clear();
-    for c in ct.fan(v) {
-        let (a, b) = (v_of(n(c)), v_of(p(c)));
+    ct.fan_pairs(v, pairs);
+    for &(a, b) in pairs.iter() {
         if a as usize >= nv || b as usize >= nv || ring.last().is_some_and(|&l| l != a) {
             return None;
         }
@@ -163,12 +194,12 @@ fn fan_polygon(v: u32, ring: &mut Vec<u32>) {
 /// ring repeats its first neighbour at the end), the faces around `v` being
 /// `(v, ids[k], ids[k+1])`: the layout the GPU's normal pass reads. `None`
 /// as for [`VertexRings::new`].
-pub fn ring_lists(ct: &CornerTable) -> Option<(Vec<u32>, Vec<u32>)> {
+pub fn ring_lists<T: Fans + ?Sized>(ct: &T) -> Option<(Vec<u32>, Vec<u32>)> {
     let nv = ct.num_vertices();
-    let (mut offsets, mut ids, mut ring) = (Vec::with_capacity(nv + 1), Vec::new(), Vec::new());
+    let (mut offsets, mut ids, mut ring, mut pairs) = (Vec::with_capacity(nv + 1), Vec::new(), Vec::new(), Vec::new());
     offsets.push(0u32);
     for v in 0..nv {
-        chained_ring(ct, v as u32, &mut ring)?;
+        chained_ring(ct, v as u32, &mut pairs, &mut ring)?;
         ids.extend_from_slice(&ring);
         offsets.push(u32::try_from(ids.len()).ok()?);
     }
@@ -178,14 +209,15 @@ pub fn ring_lists(ct: &CornerTable) -> Option<(Vec<u32>, Vec<u32>)> {
 impl VertexRings {
     /// The polygons of every vertex of `ct`, or `None` when a vertex has
     /// more than 253 neighbours (then use [`VertexFaces`]).
-    pub fn new(ct: &CornerTable) -> Option<VertexRings> {
+    pub fn new<T: Fans + ?Sized>(ct: &T) -> Option<VertexRings> {
         let nv = ct.num_vertices();
         let parts: Vec<Option<(Vec<u8>, Vec<u32>)>> = (0..nv.div_ceil(RING_CHUNK))
             .into_par_iter()
             .map(|k| {
                 let (mut len, mut ring, mut poly) = (Vec::with_capacity(RING_CHUNK), Vec::new(), Vec::new());
+                let mut pairs = Vec::new();
                 for v in k * RING_CHUNK..((k + 1) * RING_CHUNK).min(nv) {
-                    chained_ring(ct, v as u32, &mut poly)?;
+                    chained_ring(ct, v as u32, &mut pairs, &mut poly)?;
                     fan_polygon(v as u32, &mut poly);
                     len.push(u8::try_from(poly.len()).ok()?);
                     ring.extend_from_slice(&poly);

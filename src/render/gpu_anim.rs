@@ -166,8 +166,12 @@ impl GpuAnimator {
                 buffers.push(d);
             }
         }
-        let (offsets, ids) = ring_lists(&plan.ct)
-            .ok_or_else(|| Error::Gpu("a vertex has too many neighbours for the GPU normals".into()))?;
+        let rings = match plan.polygons() {
+            Some(pt) => ring_lists(pt),
+            None => ring_lists(&plan.ct),
+        };
+        let (offsets, ids) =
+            rings.ok_or_else(|| Error::Gpu("a vertex has too many neighbours for the GPU normals".into()))?;
         let offsets = storage(device, "ring offsets", bytemuck::cast_slice(&offsets));
         let ids = storage(device, "rings", bytemuck::cast_slice(&ids));
         let nv = plan.ct.num_vertices() as u32;

@@ -13,7 +13,7 @@
 //! At the control level the faces are stored by their first corners
 //! (`starts`, and each corner's face); from the first split on every face
 //! is a quad, corner `c` in face `c / 4`, `next` and `prev` by arithmetic,
-//! and nothing else is stored (docs/catmull-clark.md §2).
+//! and nothing else is stored (docs/schemes.md §12.1).
 
 mod build;
 pub mod split;

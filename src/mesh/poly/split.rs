@@ -1,7 +1,7 @@
 //! The quad split of a polygon table, shared by Catmull-Clark and bilinear
 //! subdivision: every corner becomes one quad, the new twins are written by
 //! formula from the old ones (no rebuild), edges are numbered without
-//! hashing (docs/catmull-clark.md §2).
+//! hashing (docs/schemes.md §12.2).
 //!
 //! Old corner `c` at vertex `v = V[c]`, in face `f`, whose edge leaves to
 //! `V[next(c)]` (edge id `e(c)`) and whose entering edge is `e(prev(c))`,

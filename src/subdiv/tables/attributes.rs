@@ -6,8 +6,12 @@
 //!   an affine function of position stays that function wherever the scheme
 //!   reproduces it), then clamped to [0, 1] since the interpolating schemes'
 //!   negative weights can overshoot.
-//! * **Texture coordinates** are refined linearly inside each triangle,
-//!   whatever the scheme ([`refine_corner_uvs`]).
+//! * **Texture coordinates** are refined linearly inside each triangle by
+//!   the triangle schemes ([`refine_corner_uvs`]); the polygon schemes take
+//!   them per polygon corner, smooth on the UV charts
+//!   ([`super::face_varying`], the default) or bilinear in each face
+//!   ([`split_poly_uvs`]), as [`crate::Options::uv`] says.
+//! * **Materials**: each child face keeps its parent's.
 
 use super::plan::{PlanScratch, StencilPlan};
 use crate::mesh::CornerTable;

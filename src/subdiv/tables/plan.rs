@@ -37,7 +37,14 @@ pub struct StencilPlan {
     /// The renumbering of the control mesh the levels were recorded in
     /// ([`StencilPlan::build_local`]); `None`: the control mesh's own order.
     order: Option<Relabel>,
+    /// A polygon scheme's finest level as polygons (`ct` is their
+    /// triangles).
+    poly: Option<crate::mesh::poly::PolyTable>,
 }
+
+/// Recorded levels, the finest topology, and its polygons for a polygon
+/// scheme.
+type Recorded = (Vec<LevelPlan>, CornerTable, Option<crate::mesh::poly::PolyTable>);
 
 /// Reusable buffers for [`StencilPlan::apply`]: the intermediate levels,
 /// 16 bytes a point (see [`Point`]).
@@ -129,14 +136,15 @@ impl StencilPlan {
     /// # Errors
     /// [`crate::Error::TooLarge`] when a level would not fit in memory.
     pub fn build(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<Self> {
-        let (plans, fine) = Self::record(ct, scheme, levels, opts)?;
-        Ok(Self::packed(scheme, plans, fine, None))
+        let (plans, fine, poly) = Self::record(ct, scheme, levels, opts)?;
+        Ok(Self::packed(scheme, plans, (fine, poly), None))
     }
 
     /// The levels recorded on `ct`, and the finest topology.
-    fn record(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Vec<LevelPlan>, CornerTable)> {
+    fn record(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<Recorded> {
         if scheme.is_polygonal() {
-            return super::poly_plan::record(ct, scheme, levels, opts);
+            let (plans, poly) = super::poly_plan::record(ct, scheme, levels, opts)?;
+            return Ok((plans, poly.triangulated(), Some(poly)));
         }
         let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
         check_levels_fit(ct, 0, levels, limit)?;
@@ -148,13 +156,18 @@ impl StencilPlan {
             plans.push(with_rules(scheme, opts, record));
             cur = next;
         }
-        Ok((plans, cur))
+        Ok((plans, cur, None))
     }
 
     /// A plan of recorded levels, packed for evaluation.
-    fn packed(scheme: Scheme, levels: Vec<LevelPlan>, ct: CornerTable, order: Option<Relabel>) -> Self {
+    fn packed(
+        scheme: Scheme,
+        levels: Vec<LevelPlan>,
+        (ct, poly): (CornerTable, Option<crate::mesh::poly::PolyTable>),
+        order: Option<Relabel>,
+    ) -> Self {
         let packed = levels.par_iter().map(PackedLevel::pack).collect();
-        StencilPlan { scheme, levels, ct, packed, order }
+        StencilPlan { scheme, levels, ct, packed, order, poly }
     }
 
     /// [`StencilPlan::build`] for speed of evaluation: the levels are
@@ -175,9 +188,9 @@ impl StencilPlan {
             return Self::build(ct, scheme, levels, opts);
         }
         let order = Relabel::breadth_first(ct);
-        let (mut plans, fine) = Self::record(&ct.relabelled(&order), scheme, levels, opts)?;
+        let (mut plans, fine, poly) = Self::record(&ct.relabelled(&order), scheme, levels, opts)?;
         plans[0] = std::mem::take(&mut plans[0]).reading_through(&order.old_vertices());
-        Ok(Self::packed(scheme, plans, fine, Some(order)))
+        Ok(Self::packed(scheme, plans, (fine, poly), Some(order)))
     }
 
     /// The renumbering of the control table whose subdivision this plan's
@@ -185,6 +198,13 @@ impl StencilPlan {
     /// `None` when they are the control table's own.
     pub fn order(&self) -> Option<&Relabel> {
         self.order.as_ref()
+    }
+
+    /// The finest level's polygons, for a polygon scheme's plan (its
+    /// [`StencilPlan::ct`] is their triangles): what the normals' rings of
+    /// edge neighbours are built from.
+    pub fn polygons(&self) -> Option<&crate::mesh::poly::PolyTable> {
+        self.poly.as_ref()
     }
 
     /// Number of control vertices the plan expects.

@@ -20,7 +20,7 @@ use crate::subdiv::{Options, Scheme};
 
 /// The levels of polygon scheme `scheme` recorded on the polygons `ct`
 /// stands for (its hidden diagonals joined, [`PolyTable::from_corner_table`]),
-/// and the finest level's quads as triangles (vertex ids those of the rows).
+/// and the finest level's quads (vertex ids those of the rows).
 ///
 /// # Errors
 /// [`crate::Error::TooLarge`] when a level would not fit in memory.
@@ -29,7 +29,7 @@ pub(super) fn record(
     scheme: Scheme,
     levels: u32,
     opts: &Options,
-) -> Result<(Vec<LevelPlan>, CornerTable)> {
+) -> Result<(Vec<LevelPlan>, PolyTable)> {
     let control = PolyTable::from_corner_table(ct);
     let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
     check_levels_fit(&control, 0, levels, limit)?;
@@ -43,7 +43,7 @@ pub(super) fn record(
         plans.push(plan);
         cur = split::split(&cur, opts.creasing).0;
     }
-    Ok((plans, cur.triangulated()))
+    Ok((plans, cur))
 }
 
 /// One level's rows: a vertex row per old vertex (omitted where `R` keeps
