@@ -39,7 +39,7 @@ pub struct StencilPlan {
     order: Option<Relabel>,
     /// A polygon scheme's finest level as polygons (`ct` is their
     /// triangles).
-    poly: Option<crate::mesh::poly::PolyTable>,
+    poly: Option<Box<crate::mesh::poly::PolyTable>>,
 }
 
 /// Recorded levels, the finest topology, and its polygons for a polygon
@@ -167,7 +167,7 @@ impl StencilPlan {
         order: Option<Relabel>,
     ) -> Self {
         let packed = levels.par_iter().map(PackedLevel::pack).collect();
-        StencilPlan { scheme, levels, ct, packed, order, poly }
+        StencilPlan { scheme, levels, ct, packed, order, poly: poly.map(Box::new) }
     }
 
     /// [`StencilPlan::build`] for speed of evaluation: the levels are
@@ -204,7 +204,7 @@ impl StencilPlan {
     /// [`StencilPlan::ct`] is their triangles): what the normals' rings of
     /// edge neighbours are built from.
     pub fn polygons(&self) -> Option<&crate::mesh::poly::PolyTable> {
-        self.poly.as_ref()
+        self.poly.as_deref()
     }
 
     /// Number of control vertices the plan expects.
