@@ -172,26 +172,10 @@ fn read(input: &Input) -> Result<RawMesh> {
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
-    let colors = colors.filter(|c| c.len() == mesh.positions.len());
-    let magic = if colors.is_some() { "COFF" } else { "OFF" };
-    let (nv, nt) = (mesh.positions.len(), mesh.ct.num_triangles());
-    let head = format!("{magic}\n{nv} {nt} 0\n");
-    // chunks of lines formatted in parallel and written in order
-    const ROWS: usize = 1 << 15;
-    let vertex_chunks = nv.div_ceil(ROWS);
-    let text = |k: usize| {
-        if k < vertex_chunks {
-            let rows = k * ROWS..((k + 1) * ROWS).min(nv);
-            vertex_lines(&mesh.positions[rows.clone()], colors.map(|c| &c[rows]))
-        } else {
-            let first = (k - vertex_chunks) * ROWS;
-            triple_lines(b"3 ", &mesh.ct.v_table()[3 * first..3 * (first + ROWS).min(nt)], Line::put_u32)
-        }
-    };
-    atomic_write(path, |w| {
-        let mut sink = |b: &[u8]| w.write_all(b).map_err(|e| Error::io(path, e));
-        super::write_formatted(&[head.as_bytes()], vertex_chunks + nt.div_ceil(ROWS), text, &mut sink)
-    })
+    let nt = mesh.ct.num_triangles();
+    let faces =
+        |first: usize| triple_lines(b"3 ", &mesh.ct.v_table()[3 * first..3 * (first + ROWS).min(nt)], Line::put_u32);
+    write_off(path, &mesh.positions, colors, nt, faces)
 }
 
 /// Saves a polygon mesh as OFF text (one `k a b c ...` line per face;
@@ -200,20 +184,39 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option<&[Vec3]>) -> Result<()> {
-    let colors = colors.filter(|c| c.len() == mesh.positions.len());
+    let nf = mesh.pt.num_faces();
+    let faces = |first: usize| {
+        let rows = first as u32..(first + ROWS).min(nf) as u32;
+        super::text::face_lines(b"", &mesh.pt, rows, true, Line::put_u32)
+    };
+    write_off(path, &mesh.positions, colors, nf, faces)
+}
+
+/// Lines per chunk formatted in parallel.
+const ROWS: usize = 1 << 15;
+
+/// The OFF file of `positions` (with `colors`, one per vertex, as `COFF`)
+/// and `nf` faces whose lines from face `first` on (`ROWS` of them, or what
+/// is left) `faces(first)` formats; chunks formatted in parallel, written
+/// in order.
+fn write_off(
+    path: &Path,
+    positions: &[Vec3],
+    colors: Option<&[Vec3]>,
+    nf: usize,
+    faces: impl Fn(usize) -> Vec<u8> + Sync,
+) -> Result<()> {
+    let colors = colors.filter(|c| c.len() == positions.len());
     let magic = if colors.is_some() { "COFF" } else { "OFF" };
-    let (nv, nf) = (mesh.positions.len(), mesh.pt.num_faces());
+    let nv = positions.len();
     let head = format!("{magic}\n{nv} {nf} 0\n");
-    const ROWS: usize = 1 << 15;
     let vertex_chunks = nv.div_ceil(ROWS);
     let text = |k: usize| {
         if k < vertex_chunks {
             let rows = k * ROWS..((k + 1) * ROWS).min(nv);
-            vertex_lines(&mesh.positions[rows.clone()], colors.map(|c| &c[rows]))
+            vertex_lines(&positions[rows.clone()], colors.map(|c| &c[rows]))
         } else {
-            let first = ((k - vertex_chunks) * ROWS) as u32;
-            let last = (first + ROWS as u32).min(nf as u32);
-            super::text::face_lines(b"", &mesh.pt, first..last, true, Line::put_u32)
+            faces((k - vertex_chunks) * ROWS)
         }
     };
     atomic_write(path, |w| {

@@ -8,7 +8,7 @@
 
 pub(crate) mod poly;
 
-use super::rules::crease::{OnLevel, edge_stencil, vertex_stencil};
+use super::rules::crease::{Blend, OnLevel, edge_stencil, vertex_stencil};
 use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Level, Rules, boundary_flags};
 use super::{RulesFn, Stats, ms};
@@ -226,7 +226,25 @@ fn correct<R: Rules>(
     vout: &mut [Vec3],
     eout: &mut [Vec3],
 ) {
-    if R::MOVES_VERTICES {
+    let vout = if R::MOVES_VERTICES { Some(vout) } else { None };
+    // every feature edge is listed by its owner corner (Features::of)
+    feature_points(&OnLevel { r, lv }, f, pos, vout, eout, |c| ids.rank(c) as usize);
+}
+
+/// The points of a level's sharp features through their blended stencils
+/// ([`vertex_stencil`], [`edge_stencil`]), over the points the smooth rules
+/// wrote: the vertices whose mask is not smooth into `vout` (none where the
+/// scheme keeps its old vertices), every feature edge into `eout` at
+/// `slot(owner corner)`. Shared by the triangle and the polygon schemes.
+pub(crate) fn feature_points<B: Blend + Sync>(
+    b: &B,
+    f: &Features,
+    pos: &[Vec3],
+    vout: Option<&mut [Vec3]>,
+    eout: &mut [Vec3],
+    slot: impl Fn(u32) -> usize + Sync,
+) {
+    if let Some(vout) = vout {
         let points: Vec<(usize, Vec3)> = f
             .vertices()
             .par_iter()
@@ -234,7 +252,7 @@ fn correct<R: Rules>(
             .filter(|vf| vf.parent != Mask::Smooth)
             .map(|vf| {
                 let mut acc = Accumulate::new(pos);
-                vertex_stencil(&OnLevel { r, lv }, vf.vertex, &mut acc);
+                vertex_stencil(b, vf.vertex, &mut acc);
                 (vf.vertex as usize, acc.sum)
             })
             .collect();
@@ -248,9 +266,8 @@ fn correct<R: Rules>(
         .with_min_len(256)
         .map(|ef| {
             let mut acc = Accumulate::new(pos);
-            edge_stencil(&OnLevel { r, lv }, ef.owner, &mut acc);
-            // every feature edge is listed by its owner corner (Features::of)
-            (ids.rank(ef.owner) as usize, acc.sum)
+            edge_stencil(b, ef.owner, &mut acc);
+            (slot(ef.owner), acc.sum)
         })
         .collect();
     for (e, q) in points {

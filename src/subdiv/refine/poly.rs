@@ -7,14 +7,11 @@
 //! their blended stencils. New vertex ids: old vertices keep theirs, edge
 //! `e` is `nv + e`, face `f` is `nv + ne + f`.
 
-use super::super::rules::Accumulate;
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules};
-use super::super::rules::crease::{edge_stencil, vertex_stencil};
-use super::super::rules::features::{Features, Mask};
+use super::super::rules::features::Features;
 use super::super::{Stats, ms};
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
-use crate::mesh::split::EdgeIds;
 use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::{Error, Result};
 use glam::{Vec3, Vec3A};
@@ -42,7 +39,8 @@ pub(crate) fn level<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, st
     stats.edge_ms += ms(t2 - t1);
     stats.vertex_ms += ms(t2.elapsed());
     if let Some(f) = &features {
-        correct(&PolyOn { r, lv: &lv }, f, &edges.ids, old, pos, vpart, epart);
+        let slot = |c: u32| edges.ids.edge(c, old.twin_entry(c)) as usize;
+        super::feature_points(&PolyOn { r, lv: &lv }, f, pos, Some(vpart), epart, slot);
     }
     PolyMesh { pt, positions }
 }
@@ -105,45 +103,6 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
         let sum: Vec3A = sums.iter().map(|s| s[v]).sum();
         *q = p * ((n - 2.0) / n) + Vec3::from(sum) / (n * n);
     });
-}
-
-/// The feature vertices' and edges' points through their blended stencils.
-fn correct<R: PolyRules>(
-    b: &PolyOn<R>,
-    f: &Features,
-    ids: &EdgeIds,
-    pt: &PolyTable,
-    pos: &[Vec3],
-    vout: &mut [Vec3],
-    eout: &mut [Vec3],
-) {
-    let points: Vec<(usize, Vec3)> = f
-        .vertices()
-        .par_iter()
-        .with_min_len(256)
-        .filter(|vf| vf.parent != Mask::Smooth)
-        .map(|vf| {
-            let mut acc = Accumulate::new(pos);
-            vertex_stencil(b, vf.vertex, &mut acc);
-            (vf.vertex as usize, acc.sum)
-        })
-        .collect();
-    for (v, q) in points {
-        vout[v] = q;
-    }
-    let points: Vec<(usize, Vec3)> = f
-        .edges()
-        .par_iter()
-        .with_min_len(256)
-        .map(|ef| {
-            let mut acc = Accumulate::new(pos);
-            edge_stencil(b, ef.owner, &mut acc);
-            (ids.edge(ef.owner, pt.twin_entry(ef.owner)) as usize, acc.sum)
-        })
-        .collect();
-    for (e, q) in points {
-        eout[e] = q;
-    }
 }
 
 /// The table the schemes see for the control level with `boundary`: with
