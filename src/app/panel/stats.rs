@@ -16,10 +16,12 @@ pub(crate) fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Co
         ui.label("control");
         ui.label(format!("level {}", m.made.level));
         ui.end_row();
+        // a polygon mesh counts its polygons and their edges, not the
+        // triangles and diagonals it is drawn with
         for (name, a, b) in [
             ("vertices", c.vertices, t.vertices),
-            ("edges", c.edges, t.edges),
-            ("faces", c.faces, t.faces),
+            ("edges", c.edges - c.diagonals, t.edges - t.diagonals),
+            ("faces", c.faces - c.diagonals, t.faces - t.diagonals),
             ("boundary loops", c.boundary_loops, t.boundary_loops),
             ("components", c.components, t.components),
         ] {

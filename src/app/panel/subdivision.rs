@@ -3,7 +3,7 @@
 use super::sep;
 use crate::app::command::Command;
 use crate::app::doc::{Doc, MAX_LEVEL, Request};
-use crate::subdiv::LoopBeta;
+use crate::subdiv::{LoopBeta, UvInterpolation};
 use crate::{Scheme, error::human_bytes};
 use egui::{Color32, RichText};
 use std::sync::atomic::Ordering;
@@ -29,6 +29,14 @@ pub(crate) fn subdivision_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Comman
             let mut warren = req.opts.loop_beta == LoopBeta::Warren;
             if ui.checkbox(&mut warren, "Warren's beta").changed() {
                 req.opts.loop_beta = if warren { LoopBeta::Warren } else { LoopBeta::Loop };
+                changed = true;
+            }
+        }
+        Scheme::CatmullClark => {
+            let mut smooth = req.opts.uv == UvInterpolation::Smooth;
+            let hint = "texture coordinates refined on their UV charts, corners kept (else bilinear in each face)";
+            if ui.checkbox(&mut smooth, "Smooth texture coordinates").on_hover_text(hint).changed() {
+                req.opts.uv = if smooth { UvInterpolation::Smooth } else { UvInterpolation::Linear };
                 changed = true;
             }
         }
