@@ -191,14 +191,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     println!("edges:           {}", t.edges);
     println!("faces:           {}", t.faces);
     if notes.fanned > 0 {
-        let sizes: Vec<String> =
-            face_sizes.iter().map(|(k, c)| format!("{k}{}:{c}", if *k == 8 { "+" } else { "" })).collect();
-        println!(
-            "file faces:      {} ({}); {} polygons fanned into triangles for the triangle schemes",
-            notes.faces,
-            sizes.join(" "),
-            notes.fanned
-        );
+        print_polygons(&mesh, &t, &face_sizes, (notes.faces, notes.fanned));
     }
     println!("closed:          {}", if t.is_closed() { "yes" } else { "no" });
     println!("boundary loops:  {} ({} border edges)", t.boundary_loops, t.border_edges);
@@ -223,6 +216,36 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         print!("{r}");
     }
     Ok(())
+}
+
+/// The lines of `info` about the polygons a mesh was read as: the file's
+/// faces by size, and the polygon mesh's edges and valences (what the
+/// polygon schemes refine), beside the triangles' above.
+fn print_polygons(
+    mesh: &subdiv::Mesh,
+    t: &subdiv::mesh::topology::Topology,
+    face_sizes: &BTreeMap<usize, usize>,
+    (faces, fanned): (usize, usize),
+) {
+    let sizes: Vec<String> =
+        face_sizes.iter().map(|(k, c)| format!("{k}{}:{c}", if *k == 8 { "+" } else { "" })).collect();
+    println!(
+        "file faces:      {faces} ({}); {fanned} polygons fanned into triangles for the triangle schemes",
+        sizes.join(" ")
+    );
+    let pt = subdiv::mesh::poly::PolyTable::from_corner_table(&mesh.ct);
+    let mut valence = BTreeMap::new();
+    for &k in pt.valences() {
+        *valence.entry(k).or_insert(0usize) += 1;
+    }
+    let hist: Vec<String> = valence.iter().map(|(k, c)| format!("{k}:{c}")).collect();
+    println!(
+        "polygons:        {} faces, {} edges (the triangles' less {} diagonals), valence {}",
+        pt.num_faces(),
+        t.edges - t.diagonals,
+        t.diagonals,
+        hist.join(" ")
+    );
 }
 
 /// The manifold line of `info`, with the offending ids when there are any.
