@@ -237,3 +237,15 @@ fn texture_coordinates_equal_opensubdiv_face_varying() {
         }
     }
 }
+
+/// Asking for a repair keeps the polygons of a file that needs none: the
+/// bundled critter reads as its 172 quads either way.
+#[test]
+fn a_repair_with_nothing_to_mend_keeps_the_polygons() {
+    for topology in [subdiv::io::Topology::Refuse, subdiv::io::Topology::Repair] {
+        let opts = subdiv::io::ReadOptions { topology, ..Default::default() };
+        let loaded = subdiv::bundled::read(std::path::Path::new("bundled:critter.obj"), &opts).unwrap();
+        let pm = PolyMesh::from_mesh(&loaded.mesh);
+        assert_eq!((pm.pt.num_faces(), pm.pt.is_quads()), (172, true), "{topology:?}");
+    }
+}

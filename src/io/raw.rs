@@ -184,8 +184,14 @@ impl RawMesh {
         let locate = Locate { file, sources: &self.sources, tri_face: tri_face.as_deref() };
         if topology != Topology::Refuse {
             let cap = if topology == Topology::Analyze { usize::MAX } else { crate::mesh::repair::EXAMPLES };
-            let (mesh, mut report) =
+            let (mut mesh, mut report) =
                 repair_with_cap(self.positions, &triangles, cap).map_err(|e| locate.mesh_error(e))?;
+            if let Some(of) = tri_face.as_ref().filter(|_| mesh.ct.v_table() == &triangles[..]) {
+                // the repair kept every triangle where it was: the polygons
+                // stay joinable, as the plain build keeps them
+                let Mesh { ct, positions } = mesh;
+                mesh = Mesh { ct: ct.with_generations(Some(fan_generations(of))), positions };
+            }
             report.id_base = self.sources.id_base;
             notes.vertex_records = report.vertices_in;
             notes.repair = Some(report);
