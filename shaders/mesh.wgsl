@@ -34,6 +34,9 @@ struct View {
     // x, y: the viewport's size in pixels, z: the radius of dots in pixels,
     // w: the viewport's top row in the target
     viewport: vec4<f32>,
+    // zebra and isophotes (params.x 3 and 4): x = stripe count, y = the
+    // light bars' angle from vertical on the screen (radians)
+    stripes: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> u: View;
@@ -121,6 +124,9 @@ fn shade(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, front: bool) -> 
         front_base = select(vec3<f32>(0.85, 0.85, 0.8), vec3<f32>(0.08, 0.12, 0.35), odd == 1);
     }
     let base = select(u.back_color.rgb, front_base, front);
+    if u.params.x > 2.5 {
+        return stripes(n, v, u.params.x > 3.5, front);
+    }
     if u.params.x > 1.5 {
         return studio(n, base, front);
     }
@@ -145,6 +151,32 @@ fn studio(n_world: vec3<f32>, base: vec3<f32>, front: bool) -> vec3<f32> {
     let high = pow(max(dot(n, normalize(vec3<f32>(-0.3, 0.45, 0.85))), 0.0), 24.0);
     let rim = pow(1.0 - clamp(n.z, 0.0, 1.0), 3.0);
     return clay * (0.35 * sky + 0.75 * key) + vec3<f32>(0.22 * high) + 0.25 * rim * vec3<f32>(0.75, 0.82, 0.95);
+}
+
+// Reflection lines (zebra) and isophotes, per pixel from the normal, in
+// view space so the environment turns with the camera. Zebra: the surface
+// mirrors a ring of parallel light bars around the object, their axis in the
+// screen plane at u.stripes.y from vertical; the reflected view direction
+// r = reflect(-v, n) is seen at azimuth atan2(r . across, r . z) around that
+// axis, and u.stripes.x bars fill the turn, so the stripes follow the normal
+// and a jump in it is a jump in the stripes, a jump in curvature a kink.
+// Isophotes: bands of equal angle acos(n . v), from facing the eye to
+// grazing. Stripe edges are anti-aliased over about one pixel (fwidth).
+fn stripes(n_world: vec3<f32>, v_world: vec3<f32>, isophote: bool, front: bool) -> vec3<f32> {
+    let n = normalize((u.view * vec4<f32>(n_world, 0.0)).xyz);
+    let v = normalize((u.view * vec4<f32>(v_world, 0.0)).xyz);
+    let r = reflect(-v, n);
+    let across = vec3<f32>(cos(u.stripes.y), -sin(u.stripes.y), 0.0);
+    let azimuth = atan2(dot(r, across), r.z) / 6.2831853 + 0.5;
+    let facing = acos(clamp(dot(n, v), -1.0, 1.0)) * 2.0 / 3.14159265;
+    let t = select(azimuth, facing, isophote) * u.stripes.x;
+    // the seam of atan2 behind the object would blur one pixel row: ignore
+    // derivatives of a whole period or more
+    let w = clamp(fwidth(t), 1e-4, 0.5);
+    // light where the phase is within a quarter period of a band's middle
+    let light = clamp((abs(fract(t) - 0.5) - 0.25) / w + 0.5, 0.0, 1.0);
+    let ink = mix(vec3<f32>(0.02, 0.02, 0.025), vec3<f32>(0.92, 0.92, 0.9), light);
+    return select(ink * vec3<f32>(0.75, 0.6, 0.5), ink, front);
 }
 
 // The background: one triangle over the whole viewport, a quiet vertical

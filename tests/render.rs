@@ -297,3 +297,67 @@ fn without_msaa_the_fxaa_pass_smooths_silhouettes() {
         eprintln!("NOTE: this adapter has no MSAA; only the single-sample half of the FXAA test ran");
     }
 }
+
+/// Dark-to-light and light-to-dark changes along a line of pixels of the
+/// object (dark: luminance below 100, light above 160; the anti-aliased
+/// pixels between them and the background count for neither).
+fn transitions(img: &RgbaImage, line: impl Iterator<Item = (u32, u32)>) -> usize {
+    let mut last = None;
+    let mut n = 0;
+    for (x, y) in line.filter(|&(x, y)| !is_background(img, x, y)) {
+        let l = luminance(img.get_pixel(x, y).0);
+        let now = if l < 100.0 {
+            Some(false)
+        } else if l > 160.0 {
+            Some(true)
+        } else {
+            None
+        };
+        if let Some(now) = now {
+            if last.is_some_and(|was| was != now) {
+                n += 1;
+            }
+            last = Some(now);
+        }
+    }
+    n
+}
+
+#[test]
+fn zebra_stripes_follow_their_count_and_angle() {
+    let Some(mut off) = offscreen(240, 240) else { return };
+    let sphere = subdiv::mesh::shapes::icosphere(4);
+    let zebra = |count, angle| Look {
+        surface: Surface::Zebra,
+        stripes: subdiv::render::Stripes { count, angle },
+        ..Look::default()
+    };
+    let row = |img: &RgbaImage| transitions(img, (0..240).map(|x| (x, 120)));
+    let column = |img: &RgbaImage| transitions(img, (0..240).map(|y| (120, y)));
+    let few = render(&mut off, &sphere, None, zebra(8, 0), false);
+    let many = render(&mut off, &sphere, None, zebra(24, 0), false);
+    let turned = render(&mut off, &sphere, None, zebra(24, 90), false);
+    // vertical light bars: the stripes cross the middle row, not the middle column
+    assert!(row(&few) >= 4, "{} changes across 8 stripes", row(&few));
+    assert!(row(&many) >= 2 * row(&few), "24 stripes {} against 8 stripes {}", row(&many), row(&few));
+    assert!(column(&many) <= 2, "{} changes down the middle of vertical bars", column(&many));
+    // turned a quarter: the same stripes cross the middle column instead
+    assert!(
+        column(&turned) >= row(&many) / 2 && row(&turned) <= 2,
+        "turned: row {} column {}",
+        row(&turned),
+        column(&turned)
+    );
+}
+
+#[test]
+fn isophotes_are_rings_around_the_view_direction() {
+    let Some(mut off) = offscreen(240, 240) else { return };
+    let sphere = subdiv::mesh::shapes::icosphere(4);
+    let look = Look { surface: Surface::Isophotes, ..Look::default() };
+    let img = render(&mut off, &sphere, None, look, true);
+    let row = transitions(&img, (0..240).map(|x| (x, 120)));
+    let column = transitions(&img, (0..240).map(|y| (120, y)));
+    // concentric bands: as many changes across as down, and several of them
+    assert!(row >= 6 && row.abs_diff(column) <= 2, "row {row} column {column}");
+}

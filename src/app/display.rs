@@ -5,7 +5,7 @@
 //! colours, `Display::reshades_result`), and applying those recomputes it
 //! from the subdivision output.
 
-use crate::render::{Look, Surface, WireEdges};
+use crate::render::{Look, Stripes, Surface, WireEdges};
 
 /// Which normals shade the result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -129,6 +129,8 @@ pub(crate) struct Display {
     pub(crate) click_creases: bool,
     /// Which edges the wireframe draws (all, control only, up to a level).
     pub(crate) wire_edges: WireEdges,
+    /// The zebra's and the isophotes' stripes.
+    pub(crate) stripes: Stripes,
 }
 
 impl Display {
@@ -150,6 +152,7 @@ impl Display {
             sharp_edges: true,
             click_creases: false,
             wire_edges: WireEdges::All,
+            stripes: Stripes::default(),
         }
     }
 
@@ -164,6 +167,7 @@ impl Display {
             uv_checker: false,
             sharp: self.sharp_edges,
             wire_edges: self.wire_edges,
+            stripes: self.stripes,
         }
     }
 
@@ -187,7 +191,8 @@ impl Display {
         self.surface = match self.surface {
             Surface::Smooth => Surface::Flat,
             Surface::Flat => Surface::Studio,
-            Surface::Studio => Surface::Hidden,
+            Surface::Studio => Surface::Zebra,
+            Surface::Zebra | Surface::Isophotes => Surface::Hidden,
             Surface::Hidden => Surface::Smooth,
         };
         if self.surface == Surface::Hidden {

@@ -22,7 +22,8 @@ pub struct RenderArgs {
     sub: SubdivArgs,
     #[command(flatten)]
     color: ColorArgs,
-    /// phong, flat, studio (matcap), wire or phong+wire.
+    /// phong, flat, studio (matcap), wire, phong+wire, zebra (reflection
+    /// lines) or isophotes.
     #[arg(long, default_value = "phong")]
     shading: String,
     /// Image size WxH.
@@ -52,6 +53,12 @@ pub struct RenderLook {
     /// Render N times the size (lines N times as wide: the same picture, sharper).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=8))]
     scale: u32,
+    /// Zebra and isophotes: the number of stripes.
+    #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u8).range(2..=96))]
+    stripes: u8,
+    /// Zebra: the light bars' direction on the screen, degrees from vertical.
+    #[arg(long, default_value_t = 0, allow_negative_numbers = true, value_parser = clap::value_parser!(i16).range(-180..=180))]
+    stripe_angle: i16,
 }
 
 /// `subdiv animate` arguments.
@@ -274,7 +281,9 @@ mod gpu {
         let (width, height) = a.size;
         let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
         let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
-        let opts = subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot };
+        let stripes = subdiv::render::Stripes { count: a.look.stripes, angle: a.look.stripe_angle };
+        let opts =
+            subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot, stripes };
         let img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
         subdiv::render::save_png(&img, &a.output)
     }

@@ -41,6 +41,30 @@ pub enum Surface {
     Studio,
     /// Faces not drawn (they still hide the lines behind them when the wireframe is on).
     Hidden,
+    /// Reflection lines (zebra): the mirror image of parallel light bars
+    /// fixed to the camera, from the normal per pixel ([`Stripes`]), so a
+    /// break in tangent continuity shows as a jump in the stripes and one in
+    /// curvature as a kink.
+    Zebra,
+    /// Isophotes: bands of equal angle between the normal and the view
+    /// direction ([`Stripes`] sets their count).
+    Isophotes,
+}
+
+/// The stripes of [`Surface::Zebra`] and [`Surface::Isophotes`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Stripes {
+    /// Zebra: light bars in the ring around the object the surface
+    /// mirrors; isophotes: bands from facing the eye to grazing.
+    pub count: u8,
+    /// Direction of the light bars on the screen, in degrees from vertical.
+    pub angle: i16,
+}
+
+impl Default for Stripes {
+    fn default() -> Self {
+        Stripes { count: 16, angle: 0 }
+    }
 }
 
 /// What one viewport shows.
@@ -62,6 +86,8 @@ pub struct Look {
     pub sharp: bool,
     /// Which edges the wireframe draws, by generation.
     pub wire_edges: WireEdges,
+    /// The stripes of the zebra and isophote surfaces.
+    pub stripes: Stripes,
 }
 
 /// The edges a wireframe draws, by the level at which each was made (see
@@ -114,6 +140,10 @@ pub enum Shading {
     Wire,
     /// Phong with the wireframe over it.
     PhongWire,
+    /// Reflection lines ([`Surface::Zebra`]).
+    Zebra,
+    /// Isophotes ([`Surface::Isophotes`]).
+    Isophotes,
 }
 
 impl Shading {
@@ -125,6 +155,8 @@ impl Shading {
             Shading::Studio => (Surface::Studio, false),
             Shading::Wire => (Surface::Hidden, true),
             Shading::PhongWire => (Surface::Smooth, true),
+            Shading::Zebra => (Surface::Zebra, false),
+            Shading::Isophotes => (Surface::Isophotes, false),
         };
         Look { surface, wireframe, ..Look::default() }
     }
@@ -139,7 +171,11 @@ impl std::str::FromStr for Shading {
             "studio" | "matcap" => Ok(Shading::Studio),
             "wire" | "wireframe" => Ok(Shading::Wire),
             "phong+wire" | "phong-wire" => Ok(Shading::PhongWire),
-            _ => Err(format!("unknown shading '{s}' (expected phong, flat, studio, wire or phong+wire)")),
+            "zebra" | "reflection-lines" => Ok(Shading::Zebra),
+            "isophotes" => Ok(Shading::Isophotes),
+            _ => Err(format!(
+                "unknown shading '{s}' (expected phong, flat, studio, wire, phong+wire, zebra or isophotes)"
+            )),
         }
     }
 }
@@ -159,6 +195,8 @@ pub struct RenderOptions {
     pub wire_edges: WireEdges,
     /// How the image is taken (transparent background, scale).
     pub shot: Shot,
+    /// The stripes of the zebra and isophote shadings.
+    pub stripes: Stripes,
 }
 
 impl Default for RenderOptions {
@@ -170,6 +208,7 @@ impl Default for RenderOptions {
             orthographic: false,
             wire_edges: WireEdges::All,
             shot: Shot::default(),
+            stripes: Stripes::default(),
         }
     }
 }
@@ -243,7 +282,8 @@ pub fn render_image_painted(
     let (w, h) = opts.shot.size(opts.width, opts.height);
     let mut off = Offscreen::new(w, h)?;
     off.set_shot(opts.shot);
-    let mut look = Look { control: control.is_some(), wire_edges: opts.wire_edges, ..opts.shading.look() };
+    let mut look =
+        Look { control: control.is_some(), wire_edges: opts.wire_edges, stripes: opts.stripes, ..opts.shading.look() };
     let gm = match paint {
         Paint::Material => off.upload(mesh)?,
         Paint::Colors(c) => {

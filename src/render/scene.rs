@@ -91,6 +91,7 @@ struct ViewUniform {
     line: [f32; 4],
     wire: [f32; 4],
     viewport: [f32; 4],
+    stripes: [f32; 4],
 }
 
 const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "uniforms are arrays of vec4");
@@ -236,6 +237,8 @@ impl Renderer {
                 match d.look.surface {
                     Surface::Flat => 1.0,
                     Surface::Studio => 2.0,
+                    Surface::Zebra => 3.0,
+                    Surface::Isophotes => 4.0,
                     _ => 0.0,
                 },
                 f32::from(!self.format.is_srgb()),
@@ -250,6 +253,7 @@ impl Renderer {
                 WIRE_STRENGTH,
             ],
             viewport: [d.rect[2], d.rect[3], DOT_RADIUS * self.pixel_scale, d.rect[1]],
+            stripes: [f32::from(d.look.stripes.count.max(1)), f32::from(d.look.stripes.angle).to_radians(), 0.0, 0.0],
         }
     }
 

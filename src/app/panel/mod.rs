@@ -167,6 +167,27 @@ fn screenshot_row(ui: &mut egui::Ui, view: &View) -> Vec<Command> {
     out
 }
 
+/// The surface checks: zebra (reflection lines) and isophotes, with their
+/// stripe count and the light bars' angle when one is on.
+fn stripes_row(ui: &mut egui::Ui, display: &mut Display) {
+    ui.horizontal(|ui| {
+        ui.label("Check");
+        ui.selectable_value(&mut display.surface, Surface::Zebra, "Zebra").on_hover_text(
+            "reflection lines: a kink shows a jump in curvature, a jump in the stripes one in the normal",
+        );
+        ui.selectable_value(&mut display.surface, Surface::Isophotes, "Isophotes")
+            .on_hover_text("bands of equal angle between the normal and the view");
+    });
+    if matches!(display.surface, Surface::Zebra | Surface::Isophotes) {
+        ui.horizontal(|ui| {
+            ui.add(egui::Slider::new(&mut display.stripes.count, 2..=48).text("stripes"));
+            if display.surface == Surface::Zebra {
+                ui.add(egui::Slider::new(&mut display.stripes.angle, -90..=90).text("angle°"));
+            }
+        });
+    }
+}
+
 fn display_section(ui: &mut egui::Ui, doc: &Doc, view: &View, display: &mut Display) -> Vec<Command> {
     let mut out = Vec::new();
     ui.horizontal(|ui| {
@@ -176,6 +197,7 @@ fn display_section(ui: &mut egui::Ui, doc: &Doc, view: &View, display: &mut Disp
         ui.selectable_value(&mut display.surface, Surface::Studio, "Studio");
         ui.selectable_value(&mut display.surface, Surface::Hidden, "None");
     });
+    stripes_row(ui, display);
     ui.horizontal_wrapped(|ui| {
         ui.checkbox(&mut display.wireframe, "Wireframe (W)");
         ui.checkbox(&mut display.control, "Control mesh (C)");
