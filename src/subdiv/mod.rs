@@ -16,6 +16,7 @@
 //! level with their exact sizes (`V' = V + E`, `F' = 4F`); the work is spread
 //! over rayon's threads in chunks.
 
+pub mod eval;
 pub mod inspect;
 pub mod refine;
 pub mod rules;

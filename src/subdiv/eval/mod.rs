@@ -1,0 +1,403 @@
+//! Exact evaluation of the Loop limit surface at any parameter point:
+//! position, first and second derivatives, unit normal, mean, Gaussian and
+//! principal curvatures and directions (docs/evaluation.md).
+//!
+//! A point is `(f, u, v)`: control triangle `f` and the barycentric point
+//! `(1 - u - v) c0 + u c1 + v c2` of its corners in the order the file lists
+//! them. The method (Stam, "Evaluation of Loop Subdivision Surfaces", 1998,
+//! with his eigen decomposition replaced by an exact power table):
+//!
+//! 1. [`level1`]: one Loop step in f64 isolates the extraordinary vertices,
+//!    so each child face has at most one;
+//! 2. a child face whose three vertices have valence 6 is a regular patch,
+//!    the quartic box spline of 12 points ([`patch`]);
+//! 3. a child face with one extraordinary vertex is subdivided towards it
+//!    `m` times, `m = floor(-log2(u + v))` in its corner's coordinates,
+//!    through the power table of its valence ([`extraordinary`]): at most
+//!    11 matrix-vector products however close the point is; the point then
+//!    lies on one of three regular patches;
+//! 4. at the extraordinary vertex itself: its limit position and the
+//!    normal of its tangent masks (the derivatives there are 0 or infinite
+//!    and the curvature undefined: those fields are NaN).
+//!
+//! The faces evaluated are those whose three control vertices are interior
+//! and carry no sharp feature (no sharp incident edge, no sharp vertex);
+//! others are refused with an error naming the face. Schemes other than
+//! Loop are refused by name.
+
+mod extraordinary;
+mod level1;
+mod patch;
+
+use crate::mesh::{Mesh, n, p};
+use crate::subdiv::{Options, Scheme};
+use crate::{Error, Result};
+use extraordinary::Extraordinary;
+use glam::DVec3;
+use level1::Level1;
+use patch::{BoxSpline, Jet};
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// The limit surface at one parameter point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sample {
+    /// Limit position.
+    pub position: DVec3,
+    /// Unit normal, on the side the face's winding makes its front.
+    pub normal: DVec3,
+    /// First derivatives with respect to `u` and `v`.
+    pub du: DVec3,
+    /// See `du`.
+    pub dv: DVec3,
+    /// Second derivatives `d2/du2`, `d2/dudv`, `d2/dv2`.
+    pub duu: DVec3,
+    /// See `duu`.
+    pub duv: DVec3,
+    /// See `duu`.
+    pub dvv: DVec3,
+    /// Mean curvature, positive where the surface bends away from its
+    /// normal (a sphere with outward normals: `1/R`).
+    pub mean: f64,
+    /// Gaussian curvature (`1/R^2` on a sphere).
+    pub gaussian: f64,
+    /// Principal curvatures, `k1 >= k2` (same sign convention as `mean`).
+    pub k1: f64,
+    /// See `k1`.
+    pub k2: f64,
+    /// Unit principal directions of `k1` and `k2` (tangent to the surface).
+    pub dir1: DVec3,
+    /// See `dir1`.
+    pub dir2: DVec3,
+}
+
+/// An affine map of parameters `(s, t) = J (u, v) + b`.
+#[derive(Clone, Copy, Debug)]
+struct Affine {
+    j: [[f64; 2]; 2],
+    b: [f64; 2],
+}
+
+impl Affine {
+    const IDENTITY: Affine = Affine { j: [[1.0, 0.0], [0.0, 1.0]], b: [0.0, 0.0] };
+    fn apply(&self, (u, v): (f64, f64)) -> (f64, f64) {
+        (self.j[0][0] * u + self.j[0][1] * v + self.b[0], self.j[1][0] * u + self.j[1][1] * v + self.b[1])
+    }
+    /// `self` after `first`: the linear parts only (derivatives need no more).
+    fn after(&self, first: &Affine) -> [[f64; 2]; 2] {
+        let (a, b) = (&self.j, &first.j);
+        let m = |i: usize, k: usize| a[i][0] * b[0][k] + a[i][1] * b[1][k];
+        [[m(0, 0), m(0, 1)], [m(1, 0), m(1, 1)]]
+    }
+}
+
+/// The four children of a triangle (`level1` module docs): child `k` and
+/// the map from the parent's `(u, v)` to the child's.
+fn child_of((u, v): (f64, f64), corner: bool) -> (usize, Affine) {
+    let a = |j, b| Affine { j, b };
+    if corner && u + v <= 0.5 {
+        (0, a([[2.0, 0.0], [0.0, 2.0]], [0.0, 0.0]))
+    } else if u >= 0.5 {
+        (1, a([[2.0, 0.0], [0.0, 2.0]], [-1.0, 0.0]))
+    } else if v >= 0.5 {
+        (2, a([[2.0, 0.0], [0.0, 2.0]], [0.0, -1.0]))
+    } else {
+        (3, a([[2.0, 2.0], [-2.0, 0.0]], [-1.0, 1.0]))
+    }
+}
+
+/// The map that makes corner `i` of a triangle its corner 0 (the corners
+/// rotated to `(c_i, c_{i+1}, c_{i+2})`).
+fn rotation(i: usize) -> Affine {
+    match i {
+        1 => Affine { j: [[0.0, 1.0], [-1.0, -1.0]], b: [0.0, 1.0] },
+        2 => Affine { j: [[-1.0, -1.0], [1.0, 0.0]], b: [1.0, 0.0] },
+        _ => Affine::IDENTITY,
+    }
+}
+
+/// Evaluates the Loop limit surface of one control mesh at any point.
+pub struct Evaluator {
+    level1: Level1,
+    /// Control faces that are refused (a control vertex on a boundary or a
+    /// sharp feature).
+    refused: Vec<bool>,
+    spline: BoxSpline,
+    valences: HashMap<u32, Extraordinary>,
+    faces: usize,
+}
+
+/// Whether each control face touches a boundary or a sharp feature.
+fn refused_faces(mesh: &Mesh) -> Vec<bool> {
+    let ct = &mesh.ct;
+    let mut special = vec![false; ct.num_vertices()];
+    for c in 0..ct.num_corners() as u32 {
+        if ct.edge_sharpness(c) > 0.0 {
+            special[ct.vtx(n(c)) as usize] = true;
+            special[ct.vtx(p(c)) as usize] = true;
+        }
+    }
+    if let Some(sharp) = ct.sharpness() {
+        for &(v, s) in sharp.sharp_vertices() {
+            special[v as usize] |= s > 0.0;
+        }
+    }
+    (0..ct.num_triangles()).map(|f| (0..3).any(|i| special[ct.vtx(3 * f as u32 + i) as usize])).collect()
+}
+
+impl Evaluator {
+    /// Prepares `mesh` for evaluation under `scheme` and `opts` (only
+    /// [`Scheme::Loop`] has an exact evaluation here; `opts.loop_beta`
+    /// chooses its weights).
+    ///
+    /// # Errors
+    /// [`Error::Usage`] naming a scheme without an exact evaluation.
+    pub fn new(mesh: &Mesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
+        if scheme != Scheme::Loop {
+            let why = if scheme.is_interpolating() {
+                "an interpolating scheme has no closed-form limit to evaluate"
+            } else {
+                "exact evaluation exists for Loop only so far"
+            };
+            return Err(Error::Usage(format!("cannot evaluate the {scheme} limit surface: {why}")));
+        }
+        let level1 = Level1::new(mesh, opts.loop_beta)?;
+        let spline = BoxSpline::derive();
+        let refused = refused_faces(mesh);
+        let mut valences = HashMap::new();
+        for v in 0..level1.ct.num_vertices() as u32 {
+            let k = level1.ct.valence(v);
+            if k != 6 && k >= 3 && !level1.ct.is_boundary_vertex(v) {
+                valences.entry(k).or_insert_with(|| Extraordinary::new(k, opts.loop_beta, &spline));
+            }
+        }
+        Ok(Evaluator { level1, refused, spline, valences, faces: mesh.ct.num_triangles() })
+    }
+
+    /// The number of control faces.
+    pub fn num_faces(&self) -> usize {
+        self.faces
+    }
+
+    /// Whether control face `f` can be evaluated (interior, no sharp feature).
+    pub fn accepts(&self, f: usize) -> bool {
+        self.refused.get(f) == Some(&false)
+    }
+
+    /// The limit surface at `(f, u, v)`.
+    ///
+    /// # Errors
+    /// [`Error::Usage`] for a face out of range or refused, or a parameter
+    /// outside the triangle (`u, v >= 0`, `u + v <= 1 + 1e-6`, finite).
+    pub fn eval(&self, f: usize, u: f64, v: f64) -> Result<Sample> {
+        if f >= self.faces {
+            return Err(Error::Usage(format!("face {f} out of range (the mesh has {} faces)", self.faces)));
+        }
+        if !(u >= 0.0 && v >= 0.0 && u + v <= 1.0 + 1e-6) {
+            return Err(Error::Usage(format!("({u}, {v}) is not in the triangle (u, v >= 0, u + v <= 1)")));
+        }
+        if self.refused[f] {
+            return Err(Error::Usage(format!(
+                "face {f} touches a boundary or a sharp feature: exact evaluation covers smooth interior faces only"
+            )));
+        }
+        let s = u + v;
+        let (u, v) = if s > 1.0 { (u / s, v / s) } else { (u, v) };
+        let (k, map) = child_of((u, v), true);
+        let face = 4 * f as u32 + k as u32;
+        Ok(self.eval_level1(face, map.apply((u, v)), map))
+    }
+
+    /// The child face `face` of level 1 at its `(s, t)`; `first` maps the
+    /// control face's parameters to these.
+    fn eval_level1(&self, face: u32, st: (f64, f64), first: Affine) -> Sample {
+        let ct = &self.level1.ct;
+        let ev = (0..3).find(|&i| ct.valence(ct.vtx(3 * face + i)) != 6);
+        let Some(i) = ev else {
+            let pts = self.support(3 * face);
+            let q = self.spline.quartic(&pts);
+            let jet = patch::jet(&q, st.0, st.1);
+            return finish(&jet, DVec3::ZERO, 1.0, first.j, 1.0);
+        };
+        let rot = rotation(i as usize);
+        let (u, v) = rot.apply(st);
+        let j = rot.after(&first);
+        let valence = ct.valence(ct.vtx(3 * face + i));
+        let table = &self.valences[&valence];
+        let mut pts = self.support(3 * face + i);
+        let limit: DVec3 = pts.iter().zip(&table.limit).map(|(&p, &w)| p * w).sum();
+        if u + v <= 0.0 {
+            return at_vertex(&pts, table, limit);
+        }
+        let m = level_of(u + v);
+        let (u, v) = (scale2(u, m), scale2(v, m));
+        pts.iter_mut().for_each(|p| *p -= limit);
+        table.power(m as u32, &mut pts);
+        let (child, map) = child_of((u, v), false);
+        let q = table.quartic(child, &pts);
+        let (s, t) = map.apply((u, v));
+        let jet = patch::jet(&q, s, t);
+        let c = table.lambda.powi(m);
+        let jj = Affine { j, b: [0.0; 2] };
+        finish(&jet, limit, c, map.after(&jj), 2f64.powi(m))
+    }
+
+    /// The support of the level-1 triangle of corner `c`, in walk order
+    /// ([`patch`] module docs).
+    fn support(&self, c: u32) -> Vec<DVec3> {
+        let ct = &self.level1.ct;
+        let pos = &self.level1.pos;
+        let mut out = Vec::with_capacity(ct.valence(ct.vtx(c)) as usize + 6);
+        out.push(pos[ct.vtx(c) as usize]);
+        let mut x = c;
+        loop {
+            out.push(pos[ct.vtx(n(x)) as usize]);
+            match ct.s(x) {
+                Some(next) if next != c => x = next,
+                _ => break,
+            }
+        }
+        // the outer neighbours of c1 (ring from c2: c2 c0 z o1 o2 o3) and
+        // of c2 (ring from c0: c0 c1 o3 o4 o5)
+        let ring_at = |start: u32, skip: usize, take: usize, out: &mut Vec<DVec3>| {
+            let mut x = start;
+            for i in 0..skip + take {
+                if i >= skip {
+                    out.push(pos[ct.vtx(n(x)) as usize]);
+                }
+                x = ct.s(x).unwrap_or(x);
+            }
+        };
+        ring_at(n(c), 3, 3, &mut out);
+        ring_at(p(c), 3, 2, &mut out);
+        out
+    }
+
+    /// Every point of `points`, in parallel; the first error stops it.
+    ///
+    /// # Errors
+    /// As [`Evaluator::eval`], naming the point's index.
+    pub fn eval_all(&self, points: &[(usize, f64, f64)]) -> Result<Vec<Sample>> {
+        points
+            .par_iter()
+            .enumerate()
+            .map(|(i, &(f, u, v))| self.eval(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1))))
+            .collect()
+    }
+}
+
+/// The limit surface of `mesh` under `scheme` at each `(face, u, v)`.
+///
+/// # Errors
+/// As [`Evaluator::new`] and [`Evaluator::eval_all`].
+pub fn evaluate(mesh: &Mesh, scheme: Scheme, opts: &Options, points: &[(usize, f64, f64)]) -> Result<Vec<Sample>> {
+    Evaluator::new(mesh, scheme, opts)?.eval_all(points)
+}
+
+/// `m` with `s 2^m` in `(1/2, 1]`, for `0 < s <= 1`.
+fn level_of(s: f64) -> i32 {
+    let mut m = (-s.log2()).floor().max(0.0) as i32;
+    while scale2(s, m) <= 0.5 {
+        m += 1;
+    }
+    while m > 0 && scale2(s, m) > 1.0 {
+        m -= 1;
+    }
+    m
+}
+
+/// `x 2^m` without overflow of `2^m` (m up to 1100).
+fn scale2(x: f64, m: i32) -> f64 {
+    x * 2f64.powi(m / 2) * 2f64.powi(m - m / 2)
+}
+
+/// At the extraordinary vertex: its limit position and the normal of its
+/// tangent masks.
+fn at_vertex(pts: &[DVec3], table: &Extraordinary, limit: DVec3) -> Sample {
+    let t = |mask: &[f64]| -> DVec3 { pts.iter().zip(mask).map(|(&p, &w)| p * w).sum() };
+    let normal = t(&table.tangents[0]).cross(t(&table.tangents[1])).normalize();
+    let nan = DVec3::NAN;
+    Sample {
+        position: limit,
+        normal,
+        du: nan,
+        dv: nan,
+        duu: nan,
+        duv: nan,
+        dvv: nan,
+        mean: f64::NAN,
+        gaussian: f64::NAN,
+        k1: f64::NAN,
+        k2: f64::NAN,
+        dir1: nan,
+        dir2: nan,
+    }
+}
+
+/// The sample from the patch jet `jet` of the surface `base + c R`, where
+/// the patch's `(s, t)` are `scale * J (u, v) + const`.
+fn finish(jet: &Jet, base: DVec3, c: f64, j: [[f64; 2]; 2], scale: f64) -> Sample {
+    let cross = jet.ds.cross(jet.dt);
+    let normal = cross.normalize();
+    let curv = curvature(jet, normal);
+    // chain rule: P_u = c scale (R_s ds/du + R_t dt/du)
+    let d1 = c * scale;
+    let d2 = d1 * scale;
+    let du = (jet.ds * j[0][0] + jet.dt * j[1][0]) * d1;
+    let dv = (jet.ds * j[0][1] + jet.dt * j[1][1]) * d1;
+    let second = |a: usize, b: usize| {
+        (jet.dss * (j[0][a] * j[0][b])
+            + jet.dst * (j[0][a] * j[1][b] + j[1][a] * j[0][b])
+            + jet.dtt * (j[1][a] * j[1][b]))
+            * d2
+    };
+    Sample {
+        position: base + jet.p * c,
+        normal,
+        du,
+        dv,
+        duu: second(0, 0),
+        duv: second(0, 1),
+        dvv: second(1, 1),
+        mean: curv.mean / c,
+        gaussian: curv.gaussian / (c * c),
+        k1: curv.k1 / c,
+        k2: curv.k2 / c,
+        dir1: curv.dir1,
+        dir2: curv.dir2,
+    }
+}
+
+struct Curvature {
+    mean: f64,
+    gaussian: f64,
+    k1: f64,
+    k2: f64,
+    dir1: DVec3,
+    dir2: DVec3,
+}
+
+/// Curvatures from the fundamental forms of the patch (any parameters).
+/// Sign: `k = -II / I`, so a sphere with outward normals has `k = 1/R`.
+fn curvature(jet: &Jet, normal: DVec3) -> Curvature {
+    let (e, f, g) = (jet.ds.dot(jet.ds), jet.ds.dot(jet.dt), jet.dt.dot(jet.dt));
+    let (l, m, nn) = (-jet.dss.dot(normal), -jet.dst.dot(normal), -jet.dtt.dot(normal));
+    let det = e * g - f * f;
+    let gaussian = (l * nn - m * m) / det;
+    let mean = (l * g - 2.0 * m * f + nn * e) / (2.0 * det);
+    let disc = (mean * mean - gaussian).max(0.0).sqrt();
+    let (k1, k2) = (mean + disc, mean - disc);
+    // a principal direction a R_s + b R_t solves (II - k I) (a, b) = 0
+    let dir = |k: f64| -> DVec3 {
+        let (a11, a12, a22) = (l - k * e, m - k * f, nn - k * g);
+        let (a, b) = if a11.abs() + a12.abs() >= a12.abs() + a22.abs() { (-a12, a11) } else { (a22, -a12) };
+        let d = jet.ds * a + jet.dt * b;
+        if d.length_squared() > 0.0 { d.normalize() } else { jet.ds.normalize() }
+    };
+    let dir1 = dir(k1);
+    let dir2 = if disc > 0.0 { dir(k2) } else { normal.cross(dir1) };
+    Curvature { mean, gaussian, k1, k2, dir1, dir2 }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,287 @@
+//! The regular Loop patch: the three-direction quartic box spline over one
+//! triangle whose three vertices have valence 6 (Loop 1987; Stam,
+//! "Evaluation of Loop Subdivision Surfaces", 1998, §2).
+//!
+//! ```text
+//! support, on the triangular lattice (edges along (1,0), (0,1), (1,1)),
+//! the triangle c0 = (0,0), c1 = (1,0), c2 = (1,1):
+//!
+//!            11(1,2)  10(2,2)
+//!      3(0,1)    2(1,1)    9(2,1)
+//!  4(-1,0)   0(0,0)    1(1,0)    8(2,0)
+//!      5(-1,-1)  6(0,-1)   7(1,-1)
+//!
+//! parameter: P(u, v) = (1 - u - v) c0 + u c1 + v c2, lattice (x, y) = (u + v, v)
+//! ```
+//!
+//! The order is the one [`super::support`] walks on a mesh: `c0`, the ring
+//! of `c0` counter-clockwise from `c1` (`c1 c2 3 4 5 6`), then the three
+//! outer neighbours of `c1` (`7 8 9`) and the two of `c2` (`10 11`).
+//!
+//! The 12 basis functions are **derived here from the subdivision rules**,
+//! not copied from a table: the limit surface over the triangle is a quartic
+//! polynomial (15 coefficients), so its values at 15 points determine it.
+//! [`BoxSpline::derive`] subdivides each control point's unit impulse twice
+//! on the infinite lattice with Loop's regular masks (vertex `10/16, 1/16`;
+//! edge `3/8, 3/8, 1/8, 1/8`), applies the regular limit mask (`1/2` and
+//! `1/12` on each of the six neighbours) at the 15 level-2 points of the
+//! triangle, `(u, v) = (i/4, j/4)`, and solves the 15 x 15 Vandermonde system
+//! for the monomial coefficients. The unit tests check the partition of
+//! unity, symmetry and polynomial reproduction; `tests/loop_eval.rs`
+//! compares with OpenSubdiv's regular patches.
+
+use glam::DVec3;
+
+/// Exponents `(i, j)` of the 15 quartic monomials `s^i t^j`, `i + j <= 4`.
+pub(crate) const MONOMIALS: [(u8, u8); 15] = [
+    (0, 0),
+    (1, 0),
+    (0, 1),
+    (2, 0),
+    (1, 1),
+    (0, 2),
+    (3, 0),
+    (2, 1),
+    (1, 2),
+    (0, 3),
+    (4, 0),
+    (3, 1),
+    (2, 2),
+    (1, 3),
+    (0, 4),
+];
+
+/// Lattice coordinates of the 12 support points, in walk order (module docs).
+pub(crate) const SUPPORT: [(i32, i32); 12] =
+    [(0, 0), (1, 0), (1, 1), (0, 1), (-1, 0), (-1, -1), (0, -1), (1, -1), (2, 0), (2, 1), (2, 2), (1, 2)];
+
+/// The six lattice neighbours.
+const NEIGHBOURS: [(i32, i32); 6] = [(1, 0), (1, 1), (0, 1), (-1, 0), (-1, -1), (0, -1)];
+
+/// The box spline's basis: `coef[m][k]`, the coefficient of monomial `m` in
+/// the basis function of support point `k`.
+#[derive(Clone, Debug)]
+pub(crate) struct BoxSpline {
+    pub(crate) coef: [[f64; 12]; 15],
+}
+
+/// A quartic polynomial patch with values in R^3, by monomial.
+pub(crate) type Quartic = [DVec3; 15];
+
+/// A point of a patch and its derivatives in the patch's own `(s, t)`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Jet {
+    pub(crate) p: DVec3,
+    pub(crate) ds: DVec3,
+    pub(crate) dt: DVec3,
+    pub(crate) dss: DVec3,
+    pub(crate) dst: DVec3,
+    pub(crate) dtt: DVec3,
+}
+
+/// A function on a square window of the lattice, zero outside it.
+struct Grid {
+    lo: i32,
+    n: i32,
+    vals: Vec<f64>,
+}
+
+impl Grid {
+    fn new(lo: i32, n: i32) -> Grid {
+        Grid { lo, n, vals: vec![0.0; (n * n) as usize] }
+    }
+    fn get(&self, x: i32, y: i32) -> f64 {
+        let (i, j) = (x - self.lo, y - self.lo);
+        if (0..self.n).contains(&i) && (0..self.n).contains(&j) { self.vals[(i * self.n + j) as usize] } else { 0.0 }
+    }
+    fn set(&mut self, x: i32, y: i32, v: f64) {
+        let (i, j) = (x - self.lo, y - self.lo);
+        self.vals[(i * self.n + j) as usize] = v;
+    }
+    fn ring_sum(&self, x: i32, y: i32) -> f64 {
+        NEIGHBOURS.iter().map(|&(dx, dy)| self.get(x + dx, y + dy)).sum()
+    }
+    /// One step of regular Loop subdivision on the lattice.
+    fn subdivide(&self) -> Grid {
+        let mut out = Grid::new(2 * self.lo - 2, 2 * self.n + 4);
+        for x in out.lo..out.lo + out.n {
+            for y in out.lo..out.lo + out.n {
+                let (px, py) = (x.div_euclid(2), y.div_euclid(2));
+                let v = match (x.rem_euclid(2), y.rem_euclid(2)) {
+                    (0, 0) => 10.0 / 16.0 * self.get(px, py) + self.ring_sum(px, py) / 16.0,
+                    d => {
+                        // the edge from p to p + d and its two opposite vertices
+                        let (o1, o2) = match d {
+                            (1, 0) => ((1, 1), (0, -1)),
+                            (0, 1) => ((1, 1), (-1, 0)),
+                            _ => ((1, 0), (0, 1)),
+                        };
+                        0.375 * (self.get(px, py) + self.get(px + d.0, py + d.1))
+                            + 0.125 * (self.get(px + o1.0, py + o1.1) + self.get(px + o2.0, py + o2.1))
+                    }
+                };
+                out.set(x, y, v);
+            }
+        }
+        out
+    }
+}
+
+impl BoxSpline {
+    /// The basis, derived from Loop's regular rules (module docs).
+    pub(crate) fn derive() -> BoxSpline {
+        // the 15 level-2 points of the triangle and their (u, v)
+        let mut points = Vec::with_capacity(15);
+        for x in 0..=4 {
+            for y in 0..=x {
+                points.push((x, y, f64::from(x - y) / 4.0, f64::from(y) / 4.0));
+            }
+        }
+        let vandermonde: Vec<[f64; 15]> = points.iter().map(|&(_, _, u, v)| monomials(u, v)).collect();
+        let mut rhs = vec![[0.0; 12]; 15];
+        for (k, &(sx, sy)) in SUPPORT.iter().enumerate() {
+            let mut g = Grid::new(-4, 10);
+            g.set(sx, sy, 1.0);
+            let g = g.subdivide().subdivide();
+            for (row, &(x, y, _, _)) in points.iter().enumerate() {
+                rhs[row][k] = 0.5 * g.get(x, y) + g.ring_sum(x, y) / 12.0;
+            }
+        }
+        BoxSpline { coef: solve(vandermonde, rhs) }
+    }
+
+    /// The patch of 12 control points (walk order) as a polynomial.
+    pub(crate) fn quartic(&self, pts: &[DVec3]) -> Quartic {
+        let mut q = [DVec3::ZERO; 15];
+        for (m, row) in self.coef.iter().enumerate() {
+            q[m] = row.iter().zip(pts).map(|(&w, &p)| p * w).sum();
+        }
+        q
+    }
+}
+
+/// The 15 monomials at `(s, t)`.
+fn monomials(s: f64, t: f64) -> [f64; 15] {
+    let mut out = [0.0; 15];
+    for (m, &(i, j)) in MONOMIALS.iter().enumerate() {
+        out[m] = s.powi(i32::from(i)) * t.powi(i32::from(j));
+    }
+    out
+}
+
+/// `x^k` and its first two derivatives' factors: `(x^k, k x^(k-1), k (k-1) x^(k-2))`.
+fn power(pw: &[f64; 5], k: u8) -> (f64, f64, f64) {
+    let k = usize::from(k);
+    let d1 = if k >= 1 { k as f64 * pw[k - 1] } else { 0.0 };
+    let d2 = if k >= 2 { (k * (k - 1)) as f64 * pw[k - 2] } else { 0.0 };
+    (pw[k], d1, d2)
+}
+
+/// The patch and its derivatives at `(s, t)`.
+pub(crate) fn jet(q: &Quartic, s: f64, t: f64) -> Jet {
+    let sp = [1.0, s, s * s, s * s * s, s * s * s * s];
+    let tp = [1.0, t, t * t, t * t * t, t * t * t * t];
+    let mut j = Jet::default();
+    for (m, &(i, k)) in MONOMIALS.iter().enumerate() {
+        let (a, da, dda) = power(&sp, i);
+        let (b, db, ddb) = power(&tp, k);
+        let c = q[m];
+        j.p += c * (a * b);
+        j.ds += c * (da * b);
+        j.dt += c * (a * db);
+        j.dss += c * (dda * b);
+        j.dst += c * (da * db);
+        j.dtt += c * (a * ddb);
+    }
+    j
+}
+
+/// Solves `a x = b` (15 x 15, 12 right-hand sides) by Gaussian elimination
+/// with partial pivoting; `a` is a fixed, well-conditioned Vandermonde
+/// matrix of distinct points, so every pivot is non-zero.
+fn solve(mut a: Vec<[f64; 15]>, mut b: Vec<[f64; 12]>) -> [[f64; 12]; 15] {
+    let n = 15;
+    for col in 0..n {
+        let pivot = (col..n).max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs())).unwrap_or(col);
+        a.swap(col, pivot);
+        b.swap(col, pivot);
+        for row in 0..n {
+            if row != col {
+                let f = a[row][col] / a[col][col];
+                if f != 0.0 {
+                    for k in 0..n {
+                        a[row][k] -= f * a[col][k];
+                    }
+                    for k in 0..12 {
+                        b[row][k] -= f * b[col][k];
+                    }
+                }
+            }
+        }
+    }
+    let mut x = [[0.0; 12]; 15];
+    for row in 0..n {
+        for k in 0..12 {
+            x[row][k] = b[row][k] / a[row][row];
+        }
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lattice_points(f: impl Fn(f64, f64) -> f64) -> Vec<DVec3> {
+        // the lattice point (x, y) as a point of the plane z = f(x, y)
+        SUPPORT.iter().map(|&(x, y)| DVec3::new(f64::from(x), f64::from(y), f(f64::from(x), f64::from(y)))).collect()
+    }
+
+    #[test]
+    fn the_basis_is_a_partition_of_unity() {
+        let b = BoxSpline::derive();
+        for (m, row) in b.coef.iter().enumerate() {
+            let sum: f64 = row.iter().sum();
+            let want = if m == 0 { 1.0 } else { 0.0 };
+            assert!((sum - want).abs() < 1e-12, "monomial {m}: {sum}");
+        }
+    }
+
+    #[test]
+    fn linear_functions_are_reproduced() {
+        // a box spline reproduces linear functions exactly (and quadratics
+        // up to a constant); on the plane z = 2x - 3y + 1 the patch lies in it
+        let b = BoxSpline::derive();
+        let q = b.quartic(&lattice_points(|x, y| 2.0 * x - 3.0 * y + 1.0));
+        for &(u, v) in &[(0.1, 0.2), (0.7, 0.05), (0.3, 0.3)] {
+            let j = jet(&q, u, v);
+            let (x, y) = (u + v, v);
+            assert!((j.p - DVec3::new(x, y, 2.0 * x - 3.0 * y + 1.0)).length() < 1e-12, "{:?}", j.p);
+            // d/du moves along (1, 0), d/dv along (1, 1) on the lattice
+            assert!((j.ds - DVec3::new(1.0, 0.0, 2.0)).length() < 1e-12);
+            assert!((j.dt - DVec3::new(1.0, 1.0, -1.0)).length() < 1e-12);
+            assert!(j.dss.length() < 1e-12 && j.dst.length() < 1e-12 && j.dtt.length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn quadratics_keep_their_second_derivatives() {
+        // Loop reproduces quadratic polynomials up to lower-order terms:
+        // the second derivatives of z = x^2 are exact
+        let b = BoxSpline::derive();
+        let q = b.quartic(&lattice_points(|x, _| x * x));
+        let j = jet(&q, 0.25, 0.4);
+        // z = (u + v)^2: z_uu = z_uv = z_vv = 2
+        assert!((j.dss.z - 2.0).abs() < 1e-12 && (j.dst.z - 2.0).abs() < 1e-12 && (j.dtt.z - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_corners_are_the_regular_limit_positions() {
+        let b = BoxSpline::derive();
+        let pts: Vec<DVec3> = (0..12).map(|k| DVec3::new(k as f64, (k * k) as f64 * 0.1, (k % 3) as f64)).collect();
+        let q = b.quartic(&pts);
+        // c0's limit: 1/2 c0 + 1/12 of its ring (walk entries 1..7)
+        let want = pts[0] * 0.5 + pts[1..7].iter().sum::<DVec3>() / 12.0;
+        assert!((jet(&q, 0.0, 0.0).p - want).length() < 1e-12);
+    }
+}

@@ -1,0 +1,56 @@
+//! Internal checks of the evaluation: the power-table path against direct
+//! subdivision of the same patch, and the parameter maps.
+
+use super::*;
+use crate::mesh::shapes;
+
+#[test]
+fn children_tile_the_triangle_and_keep_orientation() {
+    for &(u, v) in &[(0.1, 0.1), (0.7, 0.1), (0.1, 0.8), (0.3, 0.3), (0.49, 0.02)] {
+        let (_, a) = child_of((u, v), true);
+        let (s, t) = a.apply((u, v));
+        assert!(s >= -1e-12 && t >= -1e-12 && s + t <= 1.0 + 1e-12, "({u}, {v}) -> ({s}, {t})");
+        let det = a.j[0][0] * a.j[1][1] - a.j[0][1] * a.j[1][0];
+        assert!(det > 0.0);
+    }
+    for i in 0..3 {
+        let r = rotation(i);
+        let det = r.j[0][0] * r.j[1][1] - r.j[0][1] * r.j[1][0];
+        assert_eq!(det, 1.0);
+        // corner i goes to (0, 0)
+        let corner = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)][i];
+        assert_eq!(r.apply(corner), (0.0, 0.0));
+    }
+}
+
+#[test]
+fn levels_put_the_point_in_the_outer_half() {
+    for s in [1.0, 0.75, 0.5, 0.3, 0.25, 1e-3, 1e-100, 5e-324] {
+        let m = level_of(s);
+        let x = scale2(s, m);
+        assert!(x > 0.5 && x <= 1.0, "s {s}: m {m}, s 2^m = {x}");
+    }
+}
+
+#[test]
+fn the_surface_is_continuous_around_an_extraordinary_vertex() {
+    // the icosahedron: every vertex has valence 5; approach one along a ray
+    // and across the boundary between the power-table levels
+    let mesh = shapes::icosahedron();
+    let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+    let at_vertex = ev.eval(0, 0.0, 0.0).unwrap();
+    let mut last = f64::INFINITY;
+    for k in 1..60 {
+        let s = 0.5f64.powi(k);
+        let here = ev.eval(0, 0.3 * s, 0.2 * s).unwrap();
+        let d = (here.position - at_vertex.position).length();
+        assert!(d < last, "distance to the vertex grows at 2^-{k}");
+        last = d;
+        // either side of a level boundary
+        let a = ev.eval(0, 0.25 * s * (1.0 + 1e-9), 0.25 * s * (1.0 + 1e-9)).unwrap();
+        let b = ev.eval(0, 0.25 * s * (1.0 - 1e-9), 0.25 * s * (1.0 - 1e-9)).unwrap();
+        assert!((a.position - b.position).length() < 1e-6 * s.max(1e-300) + 1e-15, "jump at level {k}");
+        assert!(a.normal.dot(b.normal) > 1.0 - 1e-6);
+    }
+    assert!(last < 1e-12);
+}
