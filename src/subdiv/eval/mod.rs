@@ -127,7 +127,8 @@ pub struct Evaluator {
     faces: usize,
 }
 
-/// Whether each control face touches a boundary or a sharp feature.
+/// Whether each control face touches a boundary, a sharp feature or a
+/// vertex of valence 2.
 fn refused_faces(mesh: &Mesh) -> Vec<bool> {
     let ct = &mesh.ct;
     let mut special = vec![false; ct.num_vertices()];
@@ -136,6 +137,11 @@ fn refused_faces(mesh: &Mesh) -> Vec<bool> {
             special[ct.vtx(n(c)) as usize] = true;
             special[ct.vtx(p(c)) as usize] = true;
         }
+    }
+    for (v, flag) in special.iter_mut().enumerate() {
+        // an interior vertex of valence 2 (two triangles back to back) has
+        // no smooth limit patch
+        *flag |= ct.valence(v as u32) < 3;
     }
     if let Some(sharp) = ct.sharpness() {
         for &(v, s) in sharp.sharp_vertices() {
@@ -198,7 +204,7 @@ impl Evaluator {
         }
         if self.refused[f] {
             return Err(Error::Usage(format!(
-                "face {f} touches a boundary or a sharp feature: exact evaluation covers smooth interior faces only"
+                "face {f} touches a boundary, a sharp feature or a valence-2 vertex: exact evaluation covers smooth interior faces only"
             )));
         }
         let s = u + v;

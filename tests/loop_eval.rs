@@ -1,0 +1,335 @@
+//! Exact Loop limit evaluation (`subdiv::subdiv::eval`) against independent
+//! truths: the limit positions of subdivided vertices at dyadic parameters
+//! (subdivision and limit masks, not the evaluator), OpenSubdiv's regular
+//! patches (tests/fixtures/loop_eval), finite differences of positions for
+//! the derivatives, continuity across patch edges, and the curvature of a
+//! sphere and a torus.
+
+mod common;
+use common::*;
+use glam::{DVec3, Vec3};
+use subdiv::subdiv::eval::{Evaluator, Sample};
+use subdiv::subdiv::rules::limit::loop_limit_positions_with;
+use subdiv::{LoopBeta, Mesh, Options, Scheme, subdivide};
+
+/// A closed bipyramid: two apexes of valence `n` around an `n`-gon of
+/// valence-4 vertices, moved off their symmetric places.
+fn bipyramid(n: u32, seed: u64) -> Mesh {
+    let mut rng = Rng(seed);
+    let mut pos = vec![Vec3::Z, -Vec3::Z];
+    for i in 0..n {
+        let a = i as f32 * std::f32::consts::TAU / n as f32;
+        pos.push(Vec3::new(a.cos(), a.sin(), 0.0) + rng.vec3() * 0.1);
+    }
+    let mut tris = Vec::new();
+    for i in 0..n {
+        let (a, b) = (2 + i, 2 + (i + 1) % n);
+        tris.extend([0, a, b, 1, b, a]);
+    }
+    Mesh::from_triangles(pos, &tris).unwrap()
+}
+
+/// Closed meshes with extraordinary vertices of valence 3, 4, 5, 7, 8 and 12.
+fn closed_meshes() -> Vec<(String, Mesh)> {
+    let mut out = vec![("tetrahedron".to_string(), bundled("tetrahedron.obj")), ("icosahedron".into(), icosahedron())];
+    for n in [3, 5, 7, 8, 12] {
+        out.push((format!("bipyramid {n}"), bipyramid(n, 0x9e3779b97f4a7c15 ^ u64::from(n))));
+    }
+    out.push(("cube".into(), bundled("cube.obj")));
+    out
+}
+
+fn opts(beta: LoopBeta) -> Options {
+    Options { loop_beta: beta, ..Options::default() }
+}
+
+/// The vertex of level `k` at the dyadic point `(u, v)` of control face `f`,
+/// following the split's layout (src/mesh/split.rs): the central child
+/// keeps the parent's corner ids with the vertex on the opposite edge, the
+/// corner child of corner `c` starts at `3 nt (c % 3 + 1) + 3 t`.
+fn vertex_at(levels: &[Mesh], f: u32, u: f64, v: f64) -> u32 {
+    let (mut t, mut w) = (f, [1.0 - u - v, u, v]);
+    for lv in &levels[..levels.len() - 1] {
+        let nt = lv.ct.num_triangles() as u32;
+        let i = (0..3).max_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap();
+        if w[i] >= 0.5 {
+            let b = [2.0 * w[(i + 1) % 3], 2.0 * w[(i + 2) % 3]];
+            t = nt * (i as u32 + 1) + t;
+            w = [1.0 - b[0] - b[1], b[0], b[1]];
+        } else {
+            w = [1.0 - 2.0 * w[0], 1.0 - 2.0 * w[1], 1.0 - 2.0 * w[2]];
+        }
+    }
+    let i = (0..3).find(|&i| (w[i] - 1.0).abs() < 1e-9).expect("a dyadic point ends on a vertex");
+    levels[levels.len() - 1].ct.vtx(3 * t + i as u32)
+}
+
+#[test]
+fn dyadic_points_are_the_limits_of_subdivided_vertices() {
+    for beta in [LoopBeta::Loop, LoopBeta::Warren] {
+        for (name, mesh) in closed_meshes() {
+            let ev = Evaluator::new(&mesh, Scheme::Loop, &opts(beta)).unwrap();
+            let mut levels = vec![mesh.clone()];
+            for _ in 0..4 {
+                let next = subdivide(levels.last().unwrap(), Scheme::Loop, 1, &opts(beta)).unwrap().0;
+                levels.push(next);
+            }
+            let size = f64::from(scale(&mesh));
+            let mut worst = 0.0f64;
+            for k in 0..=4usize {
+                let limits = loop_limit_positions_with(&levels[k], beta);
+                let d = f64::from(1u32 << k);
+                for f in 0..mesh.ct.num_triangles() as u32 {
+                    for i in 0..=(1u32 << k) {
+                        for j in 0..=(1u32 << k) - i {
+                            let (u, v) = (f64::from(i) / d, f64::from(j) / d);
+                            let want = limits[vertex_at(&levels[..=k], f, u, v) as usize].as_dvec3();
+                            let got = ev.eval(f as usize, u, v).unwrap().position;
+                            worst = worst.max((got - want).length() / size);
+                        }
+                    }
+                }
+            }
+            // the reference is computed in f32
+            assert!(worst < 2e-6, "{name} ({beta:?}): worst relative distance {worst:e}");
+        }
+    }
+}
+
+fn scale(m: &Mesh) -> f32 {
+    let (lo, hi) = m.bounds();
+    (hi - lo).length()
+}
+
+/// Random interior parameter points of every face.
+fn random_points(mesh: &Mesh, per_face: usize, seed: u64) -> Vec<(usize, f64, f64)> {
+    let mut rng = Rng(seed);
+    let mut out = Vec::new();
+    for f in 0..mesh.ct.num_triangles() {
+        for _ in 0..per_face {
+            let (mut a, mut b) = (f64::from(rng.next_f32()) * 0.5 + 0.5, f64::from(rng.next_f32()) * 0.5 + 0.5);
+            if a + b > 1.0 {
+                (a, b) = (1.0 - a, 1.0 - b);
+            }
+            // inside, away from the corners and edges: u, v >= 0.02, u + v <= 0.98
+            out.push((f, 0.02 + 0.94 * a, 0.02 + 0.94 * b));
+        }
+    }
+    out
+}
+
+#[test]
+fn derivatives_match_finite_differences() {
+    let h = 1e-5;
+    for (name, mesh) in closed_meshes() {
+        let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+        let size = f64::from(scale(&mesh));
+        for (f, u, v) in random_points(&mesh, 6, 11) {
+            let s = ev.eval(f, u, v).unwrap();
+            let at = |a: f64, b: f64| ev.eval(f, a, b).unwrap();
+            let (pu, mu, pv, mv) = (at(u + h, v), at(u - h, v), at(u, v + h), at(u, v - h));
+            let du = (pu.position - mu.position) / (2.0 * h);
+            let dv = (pv.position - mv.position) / (2.0 * h);
+            let duu = (pu.du - mu.du) / (2.0 * h);
+            let duv = (pv.du - mv.du) / (2.0 * h);
+            let dvv = (pv.dv - mv.dv) / (2.0 * h);
+            let close = |a: DVec3, b: DVec3, tol: f64| (a - b).length() <= tol * (size + b.length());
+            assert!(close(s.du, du, 1e-6) && close(s.dv, dv, 1e-6), "{name} face {f} ({u}, {v}): first derivatives");
+            assert!(
+                close(s.duu, duu, 1e-4) && close(s.duv, duv, 1e-4) && close(s.dvv, dvv, 1e-4),
+                "{name} face {f} ({u}, {v}): second derivatives {:?} against {duu:?}",
+                s.duu
+            );
+            let n = s.du.cross(s.dv).normalize();
+            assert!(n.dot(s.normal) > 1.0 - 1e-12);
+        }
+    }
+}
+
+/// The point `t` of the way along edge (a, b) in a face whose corners are
+/// `corners`, as that face's `(u, v)`.
+fn on_edge(corners: [u32; 3], a: u32, b: u32, t: f64) -> (f64, f64) {
+    let mut w = [0.0; 3];
+    for (i, &c) in corners.iter().enumerate() {
+        if c == a {
+            w[i] = 1.0 - t;
+        }
+        if c == b {
+            w[i] = t;
+        }
+    }
+    (w[1], w[2])
+}
+
+#[test]
+fn patches_meet_with_one_tangent_plane_and_one_curvature() {
+    for (name, mesh) in closed_meshes() {
+        let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+        let ct = &mesh.ct;
+        let corners = |f: u32| [ct.vtx(3 * f), ct.vtx(3 * f + 1), ct.vtx(3 * f + 2)];
+        for c in 0..ct.num_corners() as u32 {
+            let Some(o) = ct.o(c) else { continue };
+            let (f, g) = (c / 3, o / 3);
+            let (a, b) = (ct.vtx(subdiv::mesh::n(c)), ct.vtx(subdiv::mesh::p(c)));
+            for t in [0.13, 0.5, 0.77] {
+                let (uf, vf) = on_edge(corners(f), a, b, t);
+                let (ug, vg) = on_edge(corners(g), a, b, t);
+                let (x, y) = (ev.eval(f as usize, uf, vf).unwrap(), ev.eval(g as usize, ug, vg).unwrap());
+                assert!((x.position - y.position).length() < 1e-12, "{name}: edge {a}-{b} at {t}");
+                assert!(x.normal.dot(y.normal) > 1.0 - 1e-12, "{name}: normals across edge {a}-{b}");
+                // Loop is C2 away from extraordinary vertices: so is the curvature
+                assert!((x.mean - y.mean).abs() < 1e-6 * (1.0 + x.mean.abs()), "{name}: H {} {}", x.mean, y.mean);
+            }
+        }
+    }
+}
+
+/// Mean |H R - 1| and |K R^2 - 1| over random points of an icosphere of
+/// radius `r`, R each point's distance from the centre.
+fn sphere_deviation(levels: u32, r: f32) -> (f64, f64) {
+    let mut mesh = icosphere(levels);
+    mesh.positions.iter_mut().for_each(|p| *p *= r);
+    let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+    let (mut dev, mut count) = ((0.0, 0.0), 0.0);
+    for (f, u, v) in random_points(&mesh, 2, 5) {
+        let s: Sample = ev.eval(f, u, v).unwrap();
+        let radius = s.position.length();
+        let (h, k) = (s.mean * radius - 1.0, s.gaussian * radius * radius - 1.0);
+        assert!(h.abs() < 0.25 && k.abs() < 0.5, "H R = {}, K R^2 = {}", 1.0 + h, 1.0 + k);
+        assert!(s.k1 >= s.k2 && s.k2 > 0.0);
+        assert!(s.normal.dot(s.position.normalize()) > 0.999, "the normal points outward");
+        assert!(s.dir1.dot(s.normal).abs() < 1e-9 && s.dir2.dot(s.normal).abs() < 1e-9);
+        dev = (dev.0 + h.abs(), dev.1 + k.abs());
+        count += 1.0;
+    }
+    (dev.0 / count, dev.1 / count)
+}
+
+#[test]
+fn a_sphere_like_mesh_has_curvature_one_over_its_radius() {
+    // a Loop surface is not a sphere: the curvature ripples around the
+    // valence-5 vertices and along the icosahedron's edges (where the
+    // icosphere's sampling has kinks), by a few percent on average, and
+    // comes closer on a finer control mesh
+    let coarse = sphere_deviation(3, 2.5);
+    let fine = sphere_deviation(4, 2.5);
+    println!("mean deviations: icosphere 3 {coarse:?}, icosphere 4 {fine:?}");
+    assert!(fine.0 < 0.02 && fine.1 < 0.04, "{fine:?}");
+    assert!(fine.0 < coarse.0 && fine.1 < coarse.1, "{coarse:?} then {fine:?}");
+}
+
+#[test]
+fn a_torus_is_elliptic_outside_and_hyperbolic_inside() {
+    let mesh = bundled("torus.obj");
+    let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+    // the torus's axis and radii from its vertices
+    let (lo, hi) = mesh.bounds();
+    let centre = ((lo + hi) * 0.5).as_dvec3();
+    let ext = (hi - lo).as_dvec3();
+    let axis = if ext.x <= ext.y && ext.x <= ext.z {
+        DVec3::X
+    } else if ext.y <= ext.z {
+        DVec3::Y
+    } else {
+        DVec3::Z
+    };
+    let (outer, tube) = ((ext.max_element()) / 2.0, ext.min_element() / 2.0);
+    let big_r = outer - tube;
+    let (mut pos, mut neg) = (0, 0);
+    for (f, u, v) in random_points(&mesh, 1, 3) {
+        let s = ev.eval(f, u, v).unwrap();
+        let d = s.position - centre;
+        let from_axis = (d - axis * d.dot(axis)).length();
+        if from_axis > big_r + 0.5 * tube {
+            assert!(s.gaussian > 0.0, "outside, at {from_axis}: K = {}", s.gaussian);
+            pos += 1;
+        } else if from_axis < big_r - 0.5 * tube {
+            assert!(s.gaussian < 0.0, "inside, at {from_axis}: K = {}", s.gaussian);
+            neg += 1;
+        }
+        assert!(s.mean > 0.0 || from_axis < big_r, "H > 0 on the outer half");
+    }
+    assert!(pos > 50 && neg > 50, "{pos} outside, {neg} inside");
+}
+
+#[test]
+fn other_schemes_faces_and_parameters_are_refused_by_name() {
+    let mesh = icosahedron();
+    for s in [Scheme::Butterfly, Scheme::ModifiedButterfly, Scheme::Jarek, Scheme::Midpoint] {
+        let e = Evaluator::new(&mesh, s, &Options::default()).err().expect("refused");
+        assert!(e.to_string().contains(s.name()), "{e}");
+    }
+    let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+    assert!(ev.eval(20, 0.1, 0.1).unwrap_err().to_string().contains("face 20"));
+    for (u, v) in [(-0.1, 0.2), (0.7, 0.5), (f64::NAN, 0.1), (0.1, f64::INFINITY)] {
+        assert!(ev.eval(0, u, v).is_err(), "({u}, {v})");
+    }
+    // u + v a hair over 1 is on the edge
+    assert!(ev.eval(0, 0.5, 0.5 + 1e-9).is_ok());
+    let open = hemisphere();
+    let ev = Evaluator::new(&open, Scheme::Loop, &Options::default()).unwrap();
+    let border = (0..open.ct.num_triangles()).find(|&f| !ev.accepts(f)).expect("a face on the border");
+    assert!(ev.eval(border, 0.2, 0.2).unwrap_err().to_string().contains("boundary"));
+}
+
+#[test]
+fn the_extraordinary_vertex_itself_has_its_limit_and_normal() {
+    let mesh = bipyramid(7, 3);
+    let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+    let limits = loop_limit_positions_with(&mesh, LoopBeta::Loop);
+    let normals = subdiv::subdiv::rules::limit::loop_limit_normals(&mesh);
+    let ct = &mesh.ct;
+    for f in 0..ct.num_triangles() as u32 {
+        for (i, (u, v)) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
+            let s = ev.eval(f as usize, u, v).unwrap();
+            let vert = ct.vtx(3 * f + i as u32) as usize;
+            assert!((s.position - limits[vert].as_dvec3()).length() < 1e-6);
+            assert!(s.normal.dot(normals[vert].as_dvec3()) > 1.0 - 1e-6);
+            // approaching the vertex, the normal tends to it
+            let near = ev.eval(f as usize, 1e-9 + u * (1.0 - 3e-9), 1e-9 + v * (1.0 - 3e-9)).unwrap();
+            assert!(near.normal.dot(s.normal) > 1.0 - 1e-4);
+        }
+    }
+}
+
+/// The numbers of a fixture's lines that are not comments.
+fn rows(path: &std::path::Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect()
+}
+
+#[test]
+fn regular_patches_equal_opensubdivs() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/loop_eval");
+    for (case, mesh_path) in [
+        ("torus", model_path("torus.obj")),
+        ("torus_sheared", dir.join("torus_sheared.obj")),
+        ("icosphere", dir.join("icosphere.obj")),
+    ] {
+        let (mesh, _) = load_with_attributes(&mesh_path);
+        let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+        let points = rows(&dir.join(format!("{case}.points.txt")));
+        let want = rows(&dir.join(format!("{case}.osd.txt")));
+        assert_eq!(points.len(), want.len());
+        assert!(points.len() >= 200);
+        let size = f64::from(scale(&mesh));
+        let mut worst = 0.0f64;
+        for (pt, w) in points.iter().zip(&want) {
+            let s = ev.eval(pt[0] as usize, pt[1], pt[2]).unwrap();
+            let v = |i: usize| DVec3::new(w[3 * i], w[3 * i + 1], w[3 * i + 2]);
+            for (i, got) in
+                [s.position, s.du, s.dv, s.duu, s.duv, s.dvv].into_iter().enumerate()
+            {
+                // our control points are the file's numbers rounded to f32,
+                // OpenSubdiv's the numbers in f64: 1e-7 of the size apart
+                let tol = 2e-7 * (size + v(i).length());
+                worst = worst.max((got - v(i)).length() / (size + v(i).length()));
+                assert!((got - v(i)).length() <= tol, "{case} {pt:?} column {i}: {got:?} against {:?}", v(i));
+            }
+        }
+        println!("{case}: worst relative difference {worst:e}");
+    }
+}
