@@ -320,9 +320,7 @@ fn regular_patches_equal_opensubdivs() {
         for (pt, w) in points.iter().zip(&want) {
             let s = ev.eval(pt[0] as usize, pt[1], pt[2]).unwrap();
             let v = |i: usize| DVec3::new(w[3 * i], w[3 * i + 1], w[3 * i + 2]);
-            for (i, got) in
-                [s.position, s.du, s.dv, s.duu, s.duv, s.dvv].into_iter().enumerate()
-            {
+            for (i, got) in [s.position, s.du, s.dv, s.duu, s.duv, s.dvv].into_iter().enumerate() {
                 // our control points are the file's numbers rounded to f32,
                 // OpenSubdiv's the numbers in f64: 1e-7 of the size apart
                 let tol = 2e-7 * (size + v(i).length());

@@ -1,4 +1,4 @@
-//! The `subdiv` command line: view | animate | subdivide | smooth | limit |
+//! The `subdiv` command line: view | animate | subdivide | smooth | limit | eval |
 //! repair | info | render | models | completions. Every command that reads a
 //! model takes a file or `bundled:NAME`, a model compiled into the binary
 //! (`subdiv models` lists them), through `subdiv::bundled`.
@@ -9,6 +9,7 @@
 
 pub mod args;
 mod draw;
+mod eval;
 mod info;
 pub mod logging;
 mod mesh_ops;
@@ -48,6 +49,8 @@ enum Cmd {
     Smooth(mesh_ops::SmoothArgs),
     /// Move every vertex to its limit position on the Loop or Catmull-Clark surface (after `subdivide`).
     Limit(mesh_ops::LimitCmdArgs),
+    /// The exact Loop limit surface at points `f u v`: position and normal (and curvature).
+    Eval(eval::EvalArgs),
     /// Repair a mesh into a valid manifold one and write it (format by extension).
     ///
     /// Drops degenerate and duplicate faces, cuts non-manifold edges, makes the
@@ -110,6 +113,7 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
         Some(Cmd::Repair(args)) => mesh_ops::repair(&args),
         Some(Cmd::Smooth(args)) => mesh_ops::smooth(&args),
         Some(Cmd::Limit(args)) => mesh_ops::limit(&args),
+        Some(Cmd::Eval(args)) => eval::eval(&args),
         Some(Cmd::Info(args)) => info::info(&args),
         Some(Cmd::Models) => {
             info::models();

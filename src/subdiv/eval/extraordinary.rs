@@ -33,7 +33,7 @@
 //! the limit point is exact and the surface near it is `l . C +
 //! lambda^m (...)`, with no cancellation however close the point is.
 
-use super::patch::{BoxSpline, Quartic};
+use super::patch::BoxSpline;
 use crate::subdiv::LoopBeta;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -54,9 +54,10 @@ pub(crate) struct Extraordinary {
     pub(crate) tangents: [Vec<f64>; 2],
     /// `(B / lambda)^(2^j)`, row-major `k x k`.
     powers: Vec<Vec<f64>>,
-    /// Per child 1, 2, 3: the monomial coefficients of its patch on the
-    /// support (`15 x k`, box spline times `P_k`).
-    picks: [Vec<f64>; 3],
+    /// Per child 1, 2, 3: the basis of its patch on the support, by
+    /// monomial (`k x 15`, the box spline's basis times `P_k`; the layout
+    /// [`super::patch::jet`] reads).
+    pub(crate) picks: [Vec<f64>; 3],
 }
 
 /// Directed edge -> the third vertex of its triangle.
@@ -216,36 +217,28 @@ impl Extraordinary {
         Extraordinary { k, lambda, limit, tangents, powers, picks }
     }
 
-    /// `(B / lambda)^m c` for the support points `c` (with `l . c = 0`).
-    pub(crate) fn power(&self, m: u32, c: &mut Vec<DVec3>) {
-        let mut tmp = vec![DVec3::ZERO; self.k];
+    /// `(B / lambda)^m c` for the support points `c` (with `l . c = 0`),
+    /// using `tmp` (as long as `c`) as scratch.
+    pub(crate) fn power(&self, m: u32, c: &mut [DVec3], tmp: &mut [DVec3]) {
         for (j, table) in self.powers.iter().enumerate() {
             if m >> j & 1 == 1 {
                 for (row, out) in table.chunks_exact(self.k).zip(tmp.iter_mut()) {
                     *out = row.iter().zip(c.iter()).map(|(&w, &p)| p * w).sum();
                 }
-                std::mem::swap(c, &mut tmp);
+                c.copy_from_slice(tmp);
             }
         }
     }
-
-    /// The patch of child `child` (1, 2 or 3) on the support `c`.
-    pub(crate) fn quartic(&self, child: usize, c: &[DVec3]) -> Quartic {
-        let mut q = [DVec3::ZERO; 15];
-        for (m, row) in self.picks[child - 1].chunks_exact(self.k).enumerate() {
-            q[m] = row.iter().zip(c).map(|(&w, &p)| p * w).sum();
-        }
-        q
-    }
 }
 
-/// The box spline's monomial coefficients times the pick rows: `15 x k`.
+/// The box spline's basis through the pick rows: `k x 15`, support point
+/// `i`'s monomial coefficients `sum_j coef[m][j] rows[j][i]`.
 fn pick(spline: &BoxSpline, rows: &[Vec<f64>], k: usize) -> Vec<f64> {
     let mut out = vec![0.0; 15 * k];
     for (m, coef) in spline.coef.iter().enumerate() {
         for (j, row) in rows.iter().enumerate() {
             for i in 0..k {
-                out[m * k + i] += coef[j] * row[i];
+                out[i * 15 + m] += coef[j] * row[i];
             }
         }
     }
@@ -339,10 +332,10 @@ mod tests {
         let mut c: Vec<DVec3> = (0..ev.k).map(|i| DVec3::new(i as f64, 1.0, -(i as f64))).collect();
         let mean: DVec3 = c.iter().zip(&ev.limit).map(|(p, &w)| *p * w).sum();
         c.iter_mut().for_each(|p| *p -= mean);
-        let (mut two, mut four) = (c.clone(), c.clone());
-        ev.power(2, &mut two);
-        ev.power(2, &mut two);
-        ev.power(4, &mut four);
+        let (mut two, mut four, mut tmp) = (c.clone(), c.clone(), c.clone());
+        ev.power(2, &mut two, &mut tmp);
+        ev.power(2, &mut two, &mut tmp);
+        ev.power(4, &mut four, &mut tmp);
         for (x, y) in two.iter().zip(&four) {
             assert!((*x - *y).length() < 1e-12);
         }

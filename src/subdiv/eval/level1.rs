@@ -28,6 +28,34 @@ pub(crate) struct Level1 {
     pub(crate) pos: Vec<DVec3>,
 }
 
+/// No extraordinary corner.
+pub(crate) const REGULAR: u8 = u8::MAX;
+
+/// Appends the support of the triangle of corner `c` in walk order (the
+/// patch module docs): `c0`, the ring of `c0` from `c1`, the outer
+/// neighbours of `c1` (its ring from `c2`: `c2 c0 z o1 o2 o3`) and of `c2`
+/// (from `c0`: `c0 c1 o3 o4 o5`).
+fn walk(ct: &CornerTable, c: u32, mut out: impl FnMut(u32)) {
+    out(ct.vtx(c));
+    let mut x = c;
+    loop {
+        out(ct.vtx(n(x)));
+        match ct.s(x) {
+            Some(next) if next != c => x = next,
+            _ => break,
+        }
+    }
+    for (start, take) in [(n(c), 3), (p(c), 2)] {
+        let mut x = start;
+        for i in 0..3 + take {
+            if i >= 3 {
+                out(ct.vtx(n(x)));
+            }
+            x = ct.s(x).unwrap_or(x);
+        }
+    }
+}
+
 /// The edge id of every corner (the edge opposite it) and their count.
 fn edge_ids(ct: &CornerTable) -> (Vec<u32>, u32) {
     let nc = ct.num_corners() as u32;
@@ -92,5 +120,97 @@ impl Level1 {
             None => out,
         };
         Ok(Level1 { ct: ct1, pos })
+    }
+
+    /// Face `g`'s extraordinary corner ([`REGULAR`] if none) and the size
+    /// of its support (valence + 6).
+    #[inline]
+    pub(crate) fn shape(&self, g: u32) -> (u8, usize) {
+        let ct = &self.ct;
+        for i in 0..3 {
+            let k = ct.valence(ct.vtx(3 * g + i));
+            if k != 6 {
+                return (i as u8, k as usize + 6);
+            }
+        }
+        (REGULAR, 12)
+    }
+}
+
+/// The level-1 neighbourhood of every control face, stored face after face
+/// so that one point reads one contiguous block: the points of control
+/// face `f`'s four children's supports (the vertex points of its corners
+/// and the edge points of their edges), and per child its support as
+/// indices into the block (walk order from its extraordinary corner).
+pub(crate) struct Blocks {
+    pos: Vec<DVec3>,
+    /// Control face `f`'s points are `pos[face_start[f]..face_start[f + 1]]`.
+    face_start: Vec<u32>,
+    /// Level-1 face `g`'s support is `index[child_start[g]..child_start[g + 1]]`.
+    index: Vec<u16>,
+    child_start: Vec<u32>,
+    /// Level-1 face `g`'s extraordinary corner, [`REGULAR`] if none.
+    corner: Vec<u8>,
+}
+
+impl Blocks {
+    /// The blocks of the control faces not `refused`.
+    pub(crate) fn new(l1: &Level1, refused: &[bool]) -> Result<Blocks> {
+        let nf = refused.len();
+        let mut b = Blocks {
+            pos: Vec::new(),
+            face_start: Vec::with_capacity(nf + 1),
+            index: Vec::new(),
+            child_start: Vec::with_capacity(4 * nf + 1),
+            corner: Vec::with_capacity(4 * nf),
+        };
+        b.face_start.push(0);
+        b.child_start.push(0);
+        let too_big = || Error::Usage("the mesh is too large to evaluate (over 2^32 block entries)".into());
+        let mut local: Vec<u32> = Vec::new();
+        for (f, &refused) in refused.iter().enumerate() {
+            local.clear();
+            for g in 4 * f as u32..4 * f as u32 + 4 {
+                let (corner, _) = l1.shape(g);
+                if !refused {
+                    let start = if corner == REGULAR { 0 } else { u32::from(corner) };
+                    walk(&l1.ct, 3 * g + start, |v| {
+                        let i = local.iter().position(|&x| x == v).unwrap_or_else(|| {
+                            local.push(v);
+                            local.len() - 1
+                        });
+                        // a block holds the rings of three vertices: far
+                        // fewer than 2^16 points for any valence a corner
+                        // table allows
+                        b.index.push(u16::try_from(i).unwrap_or(u16::MAX));
+                    });
+                }
+                b.child_start.push(u32::try_from(b.index.len()).map_err(|_| too_big())?);
+                b.corner.push(corner);
+            }
+            b.pos.extend(local.iter().map(|&v| l1.pos[v as usize]));
+            b.face_start.push(u32::try_from(b.pos.len()).map_err(|_| too_big())?);
+        }
+        Ok(b)
+    }
+
+    /// Level-1 face `g`'s extraordinary corner ([`REGULAR`] if none) and its
+    /// support size.
+    #[inline]
+    pub(crate) fn shape(&self, g: u32) -> (u8, usize) {
+        let g = g as usize;
+        (self.corner[g], (self.child_start[g + 1] - self.child_start[g]) as usize)
+    }
+
+    /// Writes the support of level-1 face `g` (a child of control face `g /
+    /// 4`) to `out`.
+    #[inline]
+    pub(crate) fn support(&self, g: u32, out: &mut [DVec3]) {
+        let g = g as usize;
+        let block = &self.pos[self.face_start[g / 4] as usize..self.face_start[g / 4 + 1] as usize];
+        let index = &self.index[self.child_start[g] as usize..self.child_start[g + 1] as usize];
+        for (o, &i) in out.iter_mut().zip(index) {
+            *o = block[usize::from(i)];
+        }
     }
 }

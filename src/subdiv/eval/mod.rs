@@ -28,16 +28,18 @@
 mod extraordinary;
 mod level1;
 mod patch;
+mod points;
+
+pub use points::{EDGE_SLACK, parse_points};
 
 use crate::mesh::{Mesh, n, p};
 use crate::subdiv::{Options, Scheme};
 use crate::{Error, Result};
 use extraordinary::Extraordinary;
 use glam::DVec3;
-use level1::Level1;
+use level1::{Blocks, Level1, REGULAR};
 use patch::{BoxSpline, Jet};
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 /// The limit surface at one parameter point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,6 +71,25 @@ pub struct Sample {
     pub dir1: DVec3,
     /// See `dir1`.
     pub dir2: DVec3,
+}
+
+impl Sample {
+    /// Every field NaN.
+    pub const NAN: Sample = Sample {
+        position: DVec3::NAN,
+        normal: DVec3::NAN,
+        du: DVec3::NAN,
+        dv: DVec3::NAN,
+        duu: DVec3::NAN,
+        duv: DVec3::NAN,
+        dvv: DVec3::NAN,
+        mean: f64::NAN,
+        gaussian: f64::NAN,
+        k1: f64::NAN,
+        k2: f64::NAN,
+        dir1: DVec3::NAN,
+        dir2: DVec3::NAN,
+    };
 }
 
 /// An affine map of parameters `(s, t) = J (u, v) + b`.
@@ -116,14 +137,18 @@ fn rotation(i: usize) -> Affine {
     }
 }
 
+/// Supports up to this size live on the stack (valence 18).
+const STACK_POINTS: usize = 24;
+
 /// Evaluates the Loop limit surface of one control mesh at any point.
 pub struct Evaluator {
-    level1: Level1,
+    blocks: Blocks,
     /// Control faces that are refused (a control vertex on a boundary or a
     /// sharp feature).
     refused: Vec<bool>,
     spline: BoxSpline,
-    valences: HashMap<u32, Extraordinary>,
+    /// The tables of each extraordinary valence present, by valence.
+    valences: Vec<Option<Extraordinary>>,
     faces: usize,
 }
 
@@ -167,17 +192,21 @@ impl Evaluator {
             };
             return Err(Error::Usage(format!("cannot evaluate the {scheme} limit surface: {why}")));
         }
-        let level1 = Level1::new(mesh, opts.loop_beta)?;
-        let spline = BoxSpline::derive();
         let refused = refused_faces(mesh);
-        let mut valences = HashMap::new();
+        let level1 = Level1::new(mesh, opts.loop_beta)?;
+        let blocks = Blocks::new(&level1, &refused)?;
+        let spline = BoxSpline::derive();
+        let mut valences: Vec<Option<Extraordinary>> = Vec::new();
         for v in 0..level1.ct.num_vertices() as u32 {
             let k = level1.ct.valence(v);
             if k != 6 && k >= 3 && !level1.ct.is_boundary_vertex(v) {
-                valences.entry(k).or_insert_with(|| Extraordinary::new(k, opts.loop_beta, &spline));
+                if valences.len() <= k as usize {
+                    valences.resize(k as usize + 1, None);
+                }
+                valences[k as usize].get_or_insert_with(|| Extraordinary::new(k, opts.loop_beta, &spline));
             }
         }
-        Ok(Evaluator { level1, refused, spline, valences, faces: mesh.ct.num_triangles() })
+        Ok(Evaluator { blocks, refused, spline, valences, faces: mesh.ct.num_triangles() })
     }
 
     /// The number of control faces.
@@ -190,16 +219,37 @@ impl Evaluator {
         self.refused.get(f) == Some(&false)
     }
 
-    /// The limit surface at `(f, u, v)`.
+    /// The limit surface at `(f, u, v)`: everything [`Sample`] holds.
     ///
     /// # Errors
     /// [`Error::Usage`] for a face out of range or refused, or a parameter
     /// outside the triangle (`u, v >= 0`, `u + v <= 1 + 1e-6`, finite).
     pub fn eval(&self, f: usize, u: f64, v: f64) -> Result<Sample> {
+        self.eval_with(f, u, v, true)
+    }
+
+    /// [`Evaluator::eval`] without the second derivatives and curvatures
+    /// (NaN in the sample): position, normal and first derivatives, at
+    /// about half the cost.
+    ///
+    /// # Errors
+    /// As [`Evaluator::eval`].
+    pub fn eval_first(&self, f: usize, u: f64, v: f64) -> Result<Sample> {
+        self.eval_with(f, u, v, false)
+    }
+
+    fn eval_with(&self, f: usize, u: f64, v: f64, second: bool) -> Result<Sample> {
+        let (u, v) = self.check(f, u, v)?;
+        Ok(self.eval_checked(f, u, v, second))
+    }
+
+    /// `(u, v)` if face `f` and the point are good, scaled onto the edge when
+    /// `u + v` is a hair over 1.
+    fn check(&self, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
         if f >= self.faces {
             return Err(Error::Usage(format!("face {f} out of range (the mesh has {} faces)", self.faces)));
         }
-        if !(u >= 0.0 && v >= 0.0 && u + v <= 1.0 + 1e-6) {
+        if !(u >= 0.0 && v >= 0.0 && u + v <= 1.0 + EDGE_SLACK) {
             return Err(Error::Usage(format!("({u}, {v}) is not in the triangle (u, v >= 0, u + v <= 1)")));
         }
         if self.refused[f] {
@@ -208,87 +258,80 @@ impl Evaluator {
             )));
         }
         let s = u + v;
-        let (u, v) = if s > 1.0 { (u / s, v / s) } else { (u, v) };
+        Ok(if s > 1.0 { (u / s, v / s) } else { (u, v) })
+    }
+
+    /// A point [`Evaluator::check`] passed.
+    fn eval_checked(&self, f: usize, u: f64, v: f64, second: bool) -> Sample {
         let (k, map) = child_of((u, v), true);
         let face = 4 * f as u32 + k as u32;
-        Ok(self.eval_level1(face, map.apply((u, v)), map))
-    }
-
-    /// The child face `face` of level 1 at its `(s, t)`; `first` maps the
-    /// control face's parameters to these.
-    fn eval_level1(&self, face: u32, st: (f64, f64), first: Affine) -> Sample {
-        let ct = &self.level1.ct;
-        let ev = (0..3).find(|&i| ct.valence(ct.vtx(3 * face + i)) != 6);
-        let Some(i) = ev else {
-            let pts = self.support(3 * face);
-            let q = self.spline.quartic(&pts);
-            let jet = patch::jet(&q, st.0, st.1);
-            return finish(&jet, DVec3::ZERO, 1.0, first.j, 1.0);
+        let (corner, len) = self.blocks.shape(face);
+        let mut stack = [DVec3::ZERO; 2 * STACK_POINTS];
+        let mut heap = Vec::new();
+        let buf: &mut [DVec3] = if 2 * len <= stack.len() {
+            &mut stack
+        } else {
+            heap.resize(2 * len, DVec3::ZERO);
+            &mut heap
         };
-        let rot = rotation(i as usize);
-        let (u, v) = rot.apply(st);
-        let j = rot.after(&first);
-        let valence = ct.valence(ct.vtx(3 * face + i));
-        let table = &self.valences[&valence];
-        let mut pts = self.support(3 * face + i);
-        let limit: DVec3 = pts.iter().zip(&table.limit).map(|(&p, &w)| p * w).sum();
-        if u + v <= 0.0 {
-            return at_vertex(&pts, table, limit);
+        self.blocks.support(face, buf);
+        let (pts, tmp) = buf.split_at_mut(len);
+        let st = map.apply((u, v));
+        if corner == REGULAR {
+            let jet = patch::jet(&self.spline.basis, pts, st.0, st.1, second);
+            return finish(&jet, DVec3::ZERO, 1.0, map.j, 1.0, second);
         }
-        let m = level_of(u + v);
-        let (u, v) = (scale2(u, m), scale2(v, m));
-        pts.iter_mut().for_each(|p| *p -= limit);
-        table.power(m as u32, &mut pts);
-        let (child, map) = child_of((u, v), false);
-        let q = table.quartic(child, &pts);
-        let (s, t) = map.apply((u, v));
-        let jet = patch::jet(&q, s, t);
-        let c = table.lambda.powi(m);
-        let jj = Affine { j, b: [0.0; 2] };
-        finish(&jet, limit, c, map.after(&jj), 2f64.powi(m))
+        let table = self.valences[len - 6].as_ref().unwrap_or_else(|| unreachable!("tables of every valence"));
+        near_vertex(table, (pts, &mut tmp[..len]), st, (rotation(corner.into()), map), second)
     }
+}
 
-    /// The support of the level-1 triangle of corner `c`, in walk order
-    /// ([`patch`] module docs).
-    fn support(&self, c: u32) -> Vec<DVec3> {
-        let ct = &self.level1.ct;
-        let pos = &self.level1.pos;
-        let mut out = Vec::with_capacity(ct.valence(ct.vtx(c)) as usize + 6);
-        out.push(pos[ct.vtx(c) as usize]);
-        let mut x = c;
-        loop {
-            out.push(pos[ct.vtx(n(x)) as usize]);
-            match ct.s(x) {
-                Some(next) if next != c => x = next,
-                _ => break,
-            }
-        }
-        // the outer neighbours of c1 (ring from c2: c2 c0 z o1 o2 o3) and
-        // of c2 (ring from c0: c0 c1 o3 o4 o5)
-        let ring_at = |start: u32, skip: usize, take: usize, out: &mut Vec<DVec3>| {
-            let mut x = start;
-            for i in 0..skip + take {
-                if i >= skip {
-                    out.push(pos[ct.vtx(n(x)) as usize]);
-                }
-                x = ct.s(x).unwrap_or(x);
-            }
-        };
-        ring_at(n(c), 3, 3, &mut out);
-        ring_at(p(c), 3, 2, &mut out);
-        out
+/// A point `st` of a level-1 face with an extraordinary corner: `pts` its
+/// support (and scratch as long), the rotation making that corner the first
+/// and the map from the control face to the level-1 face.
+fn near_vertex(
+    table: &Extraordinary,
+    (pts, tmp): (&mut [DVec3], &mut [DVec3]),
+    st: (f64, f64),
+    (rot, first): (Affine, Affine),
+    second: bool,
+) -> Sample {
+    let (u, v) = rot.apply(st);
+    let j = rot.after(&first);
+    let limit: DVec3 = pts.iter().zip(&table.limit).map(|(&p, &w)| p * w).sum();
+    if u + v <= 0.0 {
+        return at_vertex(pts, table, limit);
     }
+    let m = level_of(u + v);
+    let (u, v) = (scale2(u, m), scale2(v, m));
+    pts.iter_mut().for_each(|p| *p -= limit);
+    table.power(m as u32, pts, tmp);
+    let (child, map) = child_of((u, v), false);
+    let (s, t) = map.apply((u, v));
+    let jet = patch::jet(&table.picks[child - 1], pts, s, t, second);
+    let c = table.lambda.powi(m);
+    let jj = Affine { j, b: [0.0; 2] };
+    finish(&jet, limit, c, map.after(&jj), 2f64.powi(m), second)
+}
 
-    /// Every point of `points`, in parallel; the first error stops it.
+impl Evaluator {
+    /// Every point of `points`, in parallel, with the second derivatives and
+    /// curvatures when `second`. The points are checked first: the first
+    /// bad one is refused, naming it, before any is evaluated.
     ///
     /// # Errors
     /// As [`Evaluator::eval`], naming the point's index.
-    pub fn eval_all(&self, points: &[(usize, f64, f64)]) -> Result<Vec<Sample>> {
-        points
-            .par_iter()
-            .enumerate()
-            .map(|(i, &(f, u, v))| self.eval(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1))))
-            .collect()
+    pub fn eval_all(&self, points: &[(usize, f64, f64)], second: bool) -> Result<Vec<Sample>> {
+        let mut checked = Vec::with_capacity(points.len());
+        for (i, &(f, u, v)) in points.iter().enumerate() {
+            let (u, v) = self.check(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1)))?;
+            checked.push((f, u, v));
+        }
+        let mut out = vec![Sample::NAN; points.len()];
+        out.par_iter_mut().zip(checked.par_iter()).with_min_len(256).for_each(|(s, &(f, u, v))| {
+            *s = self.eval_checked(f, u, v, second);
+        });
+        Ok(out)
     }
 }
 
@@ -297,7 +340,7 @@ impl Evaluator {
 /// # Errors
 /// As [`Evaluator::new`] and [`Evaluator::eval_all`].
 pub fn evaluate(mesh: &Mesh, scheme: Scheme, opts: &Options, points: &[(usize, f64, f64)]) -> Result<Vec<Sample>> {
-    Evaluator::new(mesh, scheme, opts)?.eval_all(points)
+    Evaluator::new(mesh, scheme, opts)?.eval_all(points, true)
 }
 
 /// `m` with `s 2^m` in `(1/2, 1]`, for `0 < s <= 1`.
@@ -342,29 +385,30 @@ fn at_vertex(pts: &[DVec3], table: &Extraordinary, limit: DVec3) -> Sample {
 
 /// The sample from the patch jet `jet` of the surface `base + c R`, where
 /// the patch's `(s, t)` are `scale * J (u, v) + const`.
-fn finish(jet: &Jet, base: DVec3, c: f64, j: [[f64; 2]; 2], scale: f64) -> Sample {
+fn finish(jet: &Jet, base: DVec3, c: f64, j: [[f64; 2]; 2], scale: f64, second: bool) -> Sample {
     let cross = jet.ds.cross(jet.dt);
     let normal = cross.normalize();
-    let curv = curvature(jet, normal);
+    let curv = if second { curvature(jet, normal) } else { Curvature::NAN };
     // chain rule: P_u = c scale (R_s ds/du + R_t dt/du)
     let d1 = c * scale;
     let d2 = d1 * scale;
     let du = (jet.ds * j[0][0] + jet.dt * j[1][0]) * d1;
     let dv = (jet.ds * j[0][1] + jet.dt * j[1][1]) * d1;
-    let second = |a: usize, b: usize| {
+    let second_d = |a: usize, b: usize| {
         (jet.dss * (j[0][a] * j[0][b])
             + jet.dst * (j[0][a] * j[1][b] + j[1][a] * j[0][b])
             + jet.dtt * (j[1][a] * j[1][b]))
             * d2
     };
+    let nan = |x: DVec3| if second { x } else { DVec3::NAN };
     Sample {
         position: base + jet.p * c,
         normal,
         du,
         dv,
-        duu: second(0, 0),
-        duv: second(0, 1),
-        dvv: second(1, 1),
+        duu: nan(second_d(0, 0)),
+        duv: nan(second_d(0, 1)),
+        dvv: nan(second_d(1, 1)),
         mean: curv.mean / c,
         gaussian: curv.gaussian / (c * c),
         k1: curv.k1 / c,
@@ -381,6 +425,17 @@ struct Curvature {
     k2: f64,
     dir1: DVec3,
     dir2: DVec3,
+}
+
+impl Curvature {
+    const NAN: Curvature = Curvature {
+        mean: f64::NAN,
+        gaussian: f64::NAN,
+        k1: f64::NAN,
+        k2: f64::NAN,
+        dir1: DVec3::NAN,
+        dir2: DVec3::NAN,
+    };
 }
 
 /// Curvatures from the fundamental forms of the patch (any parameters).

@@ -63,10 +63,10 @@ const NEIGHBOURS: [(i32, i32); 6] = [(1, 0), (1, 1), (0, 1), (-1, 0), (-1, -1), 
 #[derive(Clone, Debug)]
 pub(crate) struct BoxSpline {
     pub(crate) coef: [[f64; 12]; 15],
+    /// The same transposed, `12 x 15` row-major: the basis function of each
+    /// support point by monomial (the layout [`jet`] reads).
+    pub(crate) basis: Vec<f64>,
 }
-
-/// A quartic polynomial patch with values in R^3, by monomial.
-pub(crate) type Quartic = [DVec3; 15];
 
 /// A point of a patch and its derivatives in the patch's own `(s, t)`.
 #[derive(Clone, Copy, Debug, Default)]
@@ -147,16 +147,9 @@ impl BoxSpline {
                 rhs[row][k] = 0.5 * g.get(x, y) + g.ring_sum(x, y) / 12.0;
             }
         }
-        BoxSpline { coef: solve(vandermonde, rhs) }
-    }
-
-    /// The patch of 12 control points (walk order) as a polynomial.
-    pub(crate) fn quartic(&self, pts: &[DVec3]) -> Quartic {
-        let mut q = [DVec3::ZERO; 15];
-        for (m, row) in self.coef.iter().enumerate() {
-            q[m] = row.iter().zip(pts).map(|(&w, &p)| p * w).sum();
-        }
-        q
+        let coef = solve(vandermonde, rhs);
+        let basis = (0..12).flat_map(|k| coef.iter().map(move |row| row[k])).collect();
+        BoxSpline { coef, basis }
     }
 }
 
@@ -169,31 +162,53 @@ fn monomials(s: f64, t: f64) -> [f64; 15] {
     out
 }
 
-/// `x^k` and its first two derivatives' factors: `(x^k, k x^(k-1), k (k-1) x^(k-2))`.
-fn power(pw: &[f64; 5], k: u8) -> (f64, f64, f64) {
-    let k = usize::from(k);
-    let d1 = if k >= 1 { k as f64 * pw[k - 1] } else { 0.0 };
-    let d2 = if k >= 2 { (k * (k - 1)) as f64 * pw[k - 2] } else { 0.0 };
-    (pw[k], d1, d2)
+/// The monomials at `(s, t)` and their derivatives: rows value, `d/ds`,
+/// `d/dt` and, when `second`, `d2/ds2`, `d2/dsdt`, `d2/dt2`. Branch-free:
+/// the powers are stored from index 2 (`x^k` at `k + 2`, zeros below), so
+/// `i x^(i-1)` and `i (i-1) x^(i-2)` need no test for small `i`.
+fn monomial_jet(s: f64, t: f64, second: bool) -> [[f64; 15]; 6] {
+    let (s2, t2) = (s * s, t * t);
+    let sp = [0.0, 0.0, 1.0, s, s2, s2 * s, s2 * s2];
+    let tp = [0.0, 0.0, 1.0, t, t2, t2 * t, t2 * t2];
+    let mut out = [[0.0; 15]; 6];
+    for (m, &(i, j)) in MONOMIALS.iter().enumerate() {
+        let (i, j) = (usize::from(i), usize::from(j));
+        let (fi, fj) = (i as f64, j as f64);
+        out[0][m] = sp[i + 2] * tp[j + 2];
+        out[1][m] = fi * sp[i + 1] * tp[j + 2];
+        out[2][m] = fj * sp[i + 2] * tp[j + 1];
+        if second {
+            out[3][m] = fi * (fi - 1.0) * sp[i] * tp[j + 2];
+            out[4][m] = fi * fj * sp[i + 1] * tp[j + 1];
+            out[5][m] = fj * (fj - 1.0) * sp[i + 2] * tp[j];
+        }
+    }
+    out
 }
 
-/// The patch and its derivatives at `(s, t)`.
-pub(crate) fn jet(q: &Quartic, s: f64, t: f64) -> Jet {
-    let sp = [1.0, s, s * s, s * s * s, s * s * s * s];
-    let tp = [1.0, t, t * t, t * t * t, t * t * t * t];
-    let mut j = Jet::default();
-    for (m, &(i, k)) in MONOMIALS.iter().enumerate() {
-        let (a, da, dda) = power(&sp, i);
-        let (b, db, ddb) = power(&tp, k);
-        let c = q[m];
-        j.p += c * (a * b);
-        j.ds += c * (da * b);
-        j.dt += c * (a * db);
-        j.dss += c * (dda * b);
-        j.dst += c * (da * db);
-        j.dtt += c * (a * ddb);
+/// The patch whose support point `i` has the basis function with monomial
+/// coefficients `basis[15 i .. 15 i + 15]`, over the points `c`, at
+/// `(s, t)`; the second derivatives only when `second`.
+///
+/// The polynomial's coefficients are summed first, point by point into 15
+/// independent accumulators (no chain of dependent additions), then the
+/// monomials are applied.
+pub(crate) fn jet(basis: &[f64], c: &[DVec3], s: f64, t: f64, second: bool) -> Jet {
+    let mut q = [[0.0f64; 15]; 3];
+    for (row, p) in basis.chunks_exact(15).zip(c) {
+        for m in 0..15 {
+            q[0][m] += row[m] * p.x;
+            q[1][m] += row[m] * p.y;
+            q[2][m] += row[m] * p.z;
+        }
     }
-    j
+    let mj = monomial_jet(s, t, second);
+    let apply = |r: &[f64; 15]| -> DVec3 {
+        let d = |k: usize| q[k].iter().zip(r).map(|(a, b)| a * b).sum::<f64>();
+        DVec3::new(d(0), d(1), d(2))
+    };
+    let (dss, dst, dtt) = if second { (apply(&mj[3]), apply(&mj[4]), apply(&mj[5])) } else { Default::default() };
+    Jet { p: apply(&mj[0]), ds: apply(&mj[1]), dt: apply(&mj[2]), dss, dst, dtt }
 }
 
 /// Solves `a x = b` (15 x 15, 12 right-hand sides) by Gaussian elimination
@@ -252,9 +267,9 @@ mod tests {
         // a box spline reproduces linear functions exactly (and quadratics
         // up to a constant); on the plane z = 2x - 3y + 1 the patch lies in it
         let b = BoxSpline::derive();
-        let q = b.quartic(&lattice_points(|x, y| 2.0 * x - 3.0 * y + 1.0));
+        let pts = lattice_points(|x, y| 2.0 * x - 3.0 * y + 1.0);
         for &(u, v) in &[(0.1, 0.2), (0.7, 0.05), (0.3, 0.3)] {
-            let j = jet(&q, u, v);
+            let j = jet(&b.basis, &pts, u, v, true);
             let (x, y) = (u + v, v);
             assert!((j.p - DVec3::new(x, y, 2.0 * x - 3.0 * y + 1.0)).length() < 1e-12, "{:?}", j.p);
             // d/du moves along (1, 0), d/dv along (1, 1) on the lattice
@@ -269,8 +284,7 @@ mod tests {
         // Loop reproduces quadratic polynomials up to lower-order terms:
         // the second derivatives of z = x^2 are exact
         let b = BoxSpline::derive();
-        let q = b.quartic(&lattice_points(|x, _| x * x));
-        let j = jet(&q, 0.25, 0.4);
+        let j = jet(&b.basis, &lattice_points(|x, _| x * x), 0.25, 0.4, true);
         // z = (u + v)^2: z_uu = z_uv = z_vv = 2
         assert!((j.dss.z - 2.0).abs() < 1e-12 && (j.dst.z - 2.0).abs() < 1e-12 && (j.dtt.z - 2.0).abs() < 1e-12);
     }
@@ -279,9 +293,8 @@ mod tests {
     fn the_corners_are_the_regular_limit_positions() {
         let b = BoxSpline::derive();
         let pts: Vec<DVec3> = (0..12).map(|k| DVec3::new(k as f64, (k * k) as f64 * 0.1, (k % 3) as f64)).collect();
-        let q = b.quartic(&pts);
         // c0's limit: 1/2 c0 + 1/12 of its ring (walk entries 1..7)
         let want = pts[0] * 0.5 + pts[1..7].iter().sum::<DVec3>() / 12.0;
-        assert!((jet(&q, 0.0, 0.0).p - want).length() < 1e-12);
+        assert!((jet(&b.basis, &pts, 0.0, 0.0, false).p - want).length() < 1e-12);
     }
 }
