@@ -52,13 +52,14 @@ fn main() -> subdiv::Result<()> {
         }
         best[1] = best[1].min(t.elapsed().as_secs_f64() * 1e3);
         let t = Instant::now();
-        let batch = one.install(|| ev.eval_all(&points, false))?;
+        let keep = |s: &subdiv::subdiv::eval::Sample| [s.position, s.normal];
+        let batch = one.install(|| ev.eval_map(&points, false, keep))?;
         best[2] = best[2].min(t.elapsed().as_secs_f64() * 1e3);
-        check += batch[n / 2].position.z;
+        check += batch[n / 2][0].z;
         let t = Instant::now();
-        let batch = ev.eval_all(&points, false)?;
+        let batch = ev.eval_map(&points, false, keep)?;
         best[3] = best[3].min(t.elapsed().as_secs_f64() * 1e3);
-        check += batch[n / 3].position.z;
+        check += batch[n / 3][0].z;
     }
     let per = |ms: f64| format!("{ms:.1} ms ({:.0} ns/point, {:.2} M/s)", ms * 1e6 / n as f64, n as f64 / ms / 1e3);
     println!(
@@ -68,8 +69,8 @@ fn main() -> subdiv::Result<()> {
     );
     println!("  one thread, one at a time: position+normal {}", per(best[0]));
     println!("  one thread, one at a time: with curvature  {}", per(best[1]));
-    println!("  eval_all (grouped by face), one thread:     {}", per(best[2]));
-    println!("  eval_all, {} threads:                        {}", rayon::current_num_threads(), per(best[3]));
+    println!("  eval_map (grouped by face), one thread:     {}", per(best[2]));
+    println!("  eval_map, {} threads:                        {}", rayon::current_num_threads(), per(best[3]));
     println!("  [checksum {check:.3}]");
     Ok(())
 }

@@ -418,3 +418,55 @@ fn limit_on_catmull_clark_keeps_polygons_and_gives_opensubdivs_limit() {
     let err = run_fail(&["limit", input.to_str().unwrap(), out.to_str().unwrap(), "-s", "butterfly"]);
     assert!(err.contains("butterfly"), "{err}");
 }
+
+#[test]
+fn eval_writes_one_line_per_point_and_refuses_bad_points_by_line() {
+    // a point past the tetrahedron's 4 faces is refused by its line
+    let points = write("eval-points.txt", "# f u v\n0 0 0\n3 0.5 0.5\n7 0.2 0.3\n");
+    let out = tmp("eval-out.txt");
+    let model = "bundled:tetrahedron.obj";
+    let ok = bin().args(["eval", model, points.to_str().unwrap(), out.to_str().unwrap()]).output().unwrap();
+    assert!(!ok.status.success(), "the tetrahedron has 4 faces: face 7 is refused");
+    let err = String::from_utf8_lossy(&ok.stderr);
+    assert!(err.contains("eval-points.txt:4:") && err.contains("face 7 out of range"), "{err}");
+    assert!(!out.exists(), "nothing written for a refused point");
+
+    let points = write("eval-points.txt", "0 0 0\n3 0.5 0.5\n2 0.2 0.3\n");
+    for (curv, columns) in [(false, 6), (true, 8)] {
+        let mut args = vec!["eval", model, points.to_str().unwrap(), out.to_str().unwrap()];
+        if curv {
+            args.push("--curvature");
+        }
+        let r = bin().args(&args).output().unwrap();
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let text = std::fs::read_to_string(&out).unwrap();
+        let rows: Vec<Vec<f64>> =
+            text.lines().map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect()).collect();
+        assert_eq!(rows.len(), 3);
+        for row in &rows {
+            assert_eq!(row.len(), columns, "{row:?}");
+            let n = (row[3] * row[3] + row[4] * row[4] + row[5] * row[5]).sqrt();
+            assert!((n - 1.0).abs() < 1e-12, "unit normals");
+        }
+        // the limit of a corner is the vertex's limit position (2/5 v + 1/5 ring at valence 3)
+        let mesh = bundled("tetrahedron.obj");
+        let lim = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh)[mesh.ct.vtx(0) as usize];
+        assert!((rows[0][0] - f64::from(lim.x)).abs() < 1e-6 && (rows[0][1] - f64::from(lim.y)).abs() < 1e-6);
+        if curv {
+            // at an extraordinary vertex the curvature is undefined; elsewhere H > 0 (convex, outward)
+            assert!(rows[0][6].is_nan() && rows[2][6] > 0.0 && rows[2][7] > 0.0, "{rows:?}");
+        }
+    }
+    for (text, line, what) in [
+        ("0 0.1 0.1\n0 -0.2 0.1\n", 2, "u = -0.2"),
+        ("0 0.7 0.7\n", 1, "outside the triangle"),
+        ("0 nan 0.1\n", 1, "u = NaN"),
+        ("x 0.1 0.1\n", 1, "not a non-negative integer"),
+    ] {
+        let p = write("eval-bad.txt", text);
+        let err = run_fail(&["eval", model, p.to_str().unwrap(), out.to_str().unwrap()]);
+        assert!(err.contains(&format!("eval-bad.txt:{line}:")) && err.contains(what), "{text:?}: {err}");
+    }
+    let err = run_fail(&["eval", model, points.to_str().unwrap(), out.to_str().unwrap(), "-s", "butterfly"]);
+    assert!(err.contains("butterfly"), "{err}");
+}

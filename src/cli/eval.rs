@@ -50,15 +50,17 @@ pub fn eval(a: &EvalArgs) -> Result<()> {
     let start = Instant::now();
     let ev = Evaluator::new(&mesh, a.scheme.scheme, &a.scheme.options())?;
     let prepared = start.elapsed();
-    let samples = ev.eval_all(&points, a.curvature)?;
+    let samples = ev.eval_map(&points, a.curvature, |s| {
+        let (p, n) = (s.position, s.normal);
+        [p.x, p.y, p.z, n.x, n.y, n.z, s.mean, s.gaussian]
+    })?;
     let evaluated = start.elapsed() - prepared;
     atomic_write(&a.output, |w| {
         let io = |e| Error::io(&a.output, e);
         for s in &samples {
-            let (p, n) = (s.position, s.normal);
-            write!(w, "{} {} {} {} {} {}", p.x, p.y, p.z, n.x, n.y, n.z).map_err(io)?;
+            write!(w, "{} {} {} {} {} {}", s[0], s[1], s[2], s[3], s[4], s[5]).map_err(io)?;
             if a.curvature {
-                write!(w, " {} {}", s.mean, s.gaussian).map_err(io)?;
+                write!(w, " {} {}", s[6], s[7]).map_err(io)?;
             }
             writeln!(w).map_err(io)?;
         }

@@ -335,6 +335,61 @@ impl Evaluator {
     }
 }
 
+impl Evaluator {
+    /// [`Evaluator::eval_all`] kept small: each sample mapped by `keep` (say
+    /// to the position and normal) as soon as it is made. The points are
+    /// evaluated grouped by face (a counting sort), so the points of one
+    /// face find its neighbourhood in the cache, and the kept values are put
+    /// back in the order of `points`.
+    ///
+    /// # Errors
+    /// As [`Evaluator::eval_all`].
+    pub fn eval_map<T: Copy + Default + Send + Sync>(
+        &self,
+        points: &[(usize, f64, f64)],
+        second: bool,
+        keep: impl Fn(&Sample) -> T + Sync,
+    ) -> Result<Vec<T>> {
+        let mut checked = Vec::with_capacity(points.len());
+        for (i, &(f, u, v)) in points.iter().enumerate() {
+            let (u, v) = self.check(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1)))?;
+            checked.push((f, u, v));
+        }
+        let order = by_face(&checked, self.faces);
+        let sorted: Vec<T> = order
+            .par_iter()
+            .with_min_len(256)
+            .map(|&i| {
+                let (f, u, v) = checked[i];
+                keep(&self.eval_checked(f, u, v, second))
+            })
+            .collect();
+        let mut out = vec![T::default(); points.len()];
+        for (&i, &x) in order.iter().zip(&sorted) {
+            out[i] = x;
+        }
+        Ok(out)
+    }
+}
+
+/// The indices of `points` grouped by face (a counting sort; every face is
+/// below `faces`).
+fn by_face(points: &[(usize, f64, f64)], faces: usize) -> Vec<usize> {
+    let mut start = vec![0usize; faces + 1];
+    for &(f, _, _) in points {
+        start[f + 1] += 1;
+    }
+    for k in 1..start.len() {
+        start[k] += start[k - 1];
+    }
+    let mut order = vec![0; points.len()];
+    for (i, &(f, _, _)) in points.iter().enumerate() {
+        order[start[f]] = i;
+        start[f] += 1;
+    }
+    order
+}
+
 /// The limit surface of `mesh` under `scheme` at each `(face, u, v)`.
 ///
 /// # Errors
