@@ -25,12 +25,15 @@
 //! others are refused with an error naming the face. Schemes other than
 //! Loop are refused by name.
 
+pub mod color;
 mod extraordinary;
 mod level1;
 mod patch;
 mod points;
+mod vertices;
 
 pub use points::{EDGE_SLACK, parse_points};
+pub use vertices::{vertex_params, vertex_samples};
 
 use crate::mesh::{Mesh, n, p};
 use crate::subdiv::{Options, Scheme};
