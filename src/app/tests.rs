@@ -628,3 +628,43 @@ fn catmull_clark_snaps_and_shades_with_its_own_limit() {
         raw.positions.len()
     );
 }
+
+#[test]
+fn materials_are_drawn_with_their_textures_sampled_per_pixel() {
+    use crate::app::display::Coloring;
+    let mut off = match crate::render::Offscreen::new(160, 160) {
+        Ok(o) => o,
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => return eprintln!("SKIPPED: {e}"),
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    };
+    // a cube, each face's texture red on the left half and green on the right
+    let dir = common::scratch_dir("viewer-texture");
+    let obj = "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+               vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl t\nf 5/1 6/2 7/3 8/4\nf 2/1 1/2 4/3 3/4\nf 6/1 2/2 3/3 7/4\n\
+               f 1/1 5/2 8/3 4/4\nf 8/1 7/2 3/3 4/4\nf 1/1 2/2 6/3 5/4\n";
+    std::fs::write(dir.join("c.obj"), obj).unwrap();
+    std::fs::write(dir.join("c.mtl"), "newmtl t\nKd 1 1 1\nmap_Kd t.png\n").unwrap();
+    let png = image::RgbImage::from_fn(64, 64, |x, _| image::Rgb(if x < 32 { [255, 0, 0] } else { [0, 255, 0] }));
+    png.save(dir.join("t.png")).unwrap();
+    let mut v = Viewer::new();
+    v.doc.request.level = 1;
+    v.apply(Command::Open(dir.join("c.obj")));
+    settle(&mut v);
+    set_display(&mut v, |d| d.coloring = Coloring::Material);
+    settle(&mut v);
+    let mut scene = super::gpu_scene::GpuScene::default();
+    scene.sync(&off.gpu.device, &off.gpu.queue, &v.doc, 0.05);
+    let mesh = scene.result.as_ref().expect("the result is uploaded");
+    assert_eq!(mesh.materials().map(|m| m.mip_level_counts()), Some(vec![7]), "one texture, 64 down to 1");
+    let (lo, hi) = v.doc.model.control.mesh.bounds();
+    let cam = crate::render::Camera::framing(lo, hi, 1.0);
+    let img = off.render_one(cam, mesh, None, v.doc.display.look()).unwrap();
+    let count =
+        |f: &dyn Fn([u32; 3]) -> bool| img.pixels().filter(|p| f(p.0.map(u32::from)[..3].try_into().unwrap())).count();
+    let red = count(&|[r, g, b]| r > 2 * g + 20 && r > 2 * b + 20);
+    let green = count(&|[r, g, b]| g > 2 * r + 20 && g > 2 * b + 20);
+    let yellow = count(&|[r, g, b]| r > 60 && g > 60 && 2 * b < r.min(g) && r.abs_diff(g) < r.max(g) / 2);
+    assert!(red > 1000 && green > 1000, "red {red}, green {green}");
+    assert!(yellow < (red + green) / 100, "{yellow} yellowish pixels beside {red} red and {green} green");
+    let _ = std::fs::remove_dir_all(&dir);
+}
