@@ -632,7 +632,7 @@ fn catmull_clark_snaps_and_shades_with_its_own_limit() {
 #[test]
 fn materials_are_drawn_with_their_textures_sampled_per_pixel() {
     use crate::app::display::Coloring;
-    let mut off = match crate::render::Offscreen::new(160, 160) {
+    let mut off = match crate::render::Offscreen::new(256, 256) {
         Ok(o) => o,
         Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => return eprintln!("SKIPPED: {e}"),
         Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
@@ -659,12 +659,16 @@ fn materials_are_drawn_with_their_textures_sampled_per_pixel() {
     let (lo, hi) = v.doc.model.control.mesh.bounds();
     let cam = crate::render::Camera::framing(lo, hi, 1.0);
     let img = off.render_one(cam, mesh, None, v.doc.display.look()).unwrap();
-    let count =
-        |f: &dyn Fn([u32; 3]) -> bool| img.pixels().filter(|p| f(p.0.map(u32::from)[..3].try_into().unwrap())).count();
-    let red = count(&|[r, g, b]| r > 2 * g + 20 && r > 2 * b + 20);
-    let green = count(&|[r, g, b]| g > 2 * r + 20 && g > 2 * b + 20);
-    let yellow = count(&|[r, g, b]| r > 60 && g > 60 && 2 * b < r.min(g) && r.abs_diff(g) < r.max(g) / 2);
-    assert!(red > 1000 && green > 1000, "red {red}, green {green}");
-    assert!(yellow < (red + green) / 100, "{yellow} yellowish pixels beside {red} red and {green} green");
+    let count = |f: &dyn Fn(i32, i32, i32) -> bool| {
+        img.pixels().filter(|p| f(i32::from(p.0[0]), i32::from(p.0[1]), i32::from(p.0[2]))).count()
+    };
+    // mostly red or green (lit, highlighted or shadowed), and red and green alike
+    let red = count(&|r, g, b| r > 30 && 3 * (r - g.max(b)) > r);
+    let green = count(&|r, g, b| g > 30 && 3 * (g - r.max(b)) > g);
+    let yellow = count(&|r, g, b| r > 60 && g > 60 && 3 * (r - g).abs() < r.max(g) && 4 * b < 3 * r.min(g));
+    assert!(red > 2000 && green > 2000, "red {red}, green {green}");
+    // the two meet in a pixel or two: interpolating between samples at the
+    // corners blended a band of yellow across every face
+    assert!(yellow < (red + green) / 12, "{yellow} yellowish pixels beside {red} red and {green} green");
     let _ = std::fs::remove_dir_all(&dir);
 }
