@@ -15,6 +15,7 @@ use glam::{Vec2, Vec3};
 use image::RgbaImage;
 use std::path::{Path, PathBuf};
 use subdiv::mesh::attributes::{MaterialGroups, Wrap};
+use subdiv::render::textures::MaterialDraw;
 use subdiv::render::{Camera, GpuMesh, Look, Offscreen, Paint, RenderOptions};
 use subdiv::{Mesh, Scheme};
 
@@ -161,8 +162,8 @@ fn head_on() -> Camera {
 /// `mesh` with the materials `groups` and per-corner `uv`, rendered head on.
 fn draw(off: &mut Offscreen, mesh: &Mesh, uv: &[Vec2], groups: &MaterialGroups) -> (RgbaImage, GpuMesh) {
     let (device, queue) = (&off.gpu.device, &off.gpu.queue);
-    let g =
-        GpuMesh::textured(device, queue, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), Some(uv), groups).unwrap();
+    let materials = MaterialDraw { groups, uv: Some(uv), reuse: None };
+    let g = GpuMesh::textured(device, queue, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), materials).unwrap();
     let img = off.render_one(head_on(), &g, None, Look { materials: true, ..Look::default() }).unwrap();
     (img, g)
 }

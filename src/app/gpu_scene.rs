@@ -19,6 +19,7 @@ use crate::io::bezier::{curve_polyline, de_casteljau_construction};
 use crate::mesh::attributes::MaterialGroups;
 use crate::render::GpuMesh;
 use crate::render::gpu_anim::{GpuAnimator, supports_compute};
+use crate::render::textures::MaterialDraw;
 use glam::{Vec2, Vec3};
 
 /// What was uploaded last: the document versions, the animation frame.
@@ -160,7 +161,10 @@ impl GpuScene {
         let corner_uv = refined.uv.as_deref().filter(|u| u.len() == r.mesh.ct.v_table().len());
         let mesh = match (shown_materials(doc), corner_uv) {
             (Some(groups), uv) => {
-                GpuMesh::textured(device, queue, &r.mesh.ct, &r.mesh.positions, &r.normals, uv, groups)
+                // the model's textures stay on the GPU from one level to the next
+                let reuse = self.result.as_ref().and_then(GpuMesh::materials);
+                let materials = MaterialDraw { groups, uv, reuse };
+                GpuMesh::textured(device, queue, &r.mesh.ct, &r.mesh.positions, &r.normals, materials)
             }
             (None, Some(uv)) if checker => {
                 let attr: Vec<Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();

@@ -655,7 +655,8 @@ fn materials_are_drawn_with_their_textures_sampled_per_pixel() {
     let mut scene = super::gpu_scene::GpuScene::default();
     scene.sync(&off.gpu.device, &off.gpu.queue, &v.doc, 0.05);
     let mesh = scene.result.as_ref().expect("the result is uploaded");
-    assert_eq!(mesh.materials().map(|m| m.mip_level_counts()), Some(vec![7]), "one texture, 64 down to 1");
+    let uploads = mesh.materials().map(|m| (m.uploaded(), m.mip_level_counts()));
+    assert_eq!(uploads, Some((1, vec![7])), "one texture, 64 down to 1");
     let (lo, hi) = v.doc.model.control.mesh.bounds();
     let cam = crate::render::Camera::framing(lo, hi, 1.0);
     let img = off.render_one(cam, mesh, None, v.doc.display.look()).unwrap();
@@ -670,5 +671,11 @@ fn materials_are_drawn_with_their_textures_sampled_per_pixel() {
     // the two meet in a pixel or two: interpolating between samples at the
     // corners blended a band of yellow across every face
     assert!(yellow < (red + green) / 12, "{yellow} yellowish pixels beside {red} red and {green} green");
+    // the next level takes the texture over rather than uploading it again
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    scene.sync(&off.gpu.device, &off.gpu.queue, &v.doc, 0.05);
+    let next = scene.result.as_ref().and_then(crate::render::GpuMesh::materials).expect("materials at level 2");
+    assert_eq!((next.uploaded(), next.mip_level_counts()), (0, vec![7]));
     let _ = std::fs::remove_dir_all(&dir);
 }

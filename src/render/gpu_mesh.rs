@@ -194,10 +194,10 @@ impl GpuMesh {
     }
 
     /// One GPU vertex per corner ([`GpuMesh::unwelded`]) carrying its
-    /// texture coordinate (`uv`, one per corner; without them, or with too
-    /// few, every material is drawn in its flat colour), with the material
-    /// groups bound for drawing: each group's texture sampled per pixel
-    /// (see [`super::textures`]).
+    /// texture coordinate (`materials.uv`; without them every material is
+    /// drawn in its flat colour), with the material groups bound for
+    /// drawing: each group's texture sampled per pixel (see
+    /// [`super::textures`]).
     ///
     /// # Errors
     /// As [`GpuMesh::unwelded`].
@@ -207,15 +207,16 @@ impl GpuMesh {
         ct: &CornerTable,
         positions: &[Vec3],
         normals: &[Vec3],
-        uv: Option<&[glam::Vec2]>,
-        groups: &crate::mesh::attributes::MaterialGroups,
+        materials: super::textures::MaterialDraw,
     ) -> Result<GpuMesh> {
         let corners = ct.v_table().len();
-        let uv = uv.filter(|u| u.len() == corners);
+        let uv = materials.uv.filter(|u| u.len() == corners);
         let attr: Vec<Vec3> = uv.map_or_else(Vec::new, |u| u.iter().map(|t| t.extend(0.0)).collect());
         let mut mesh = GpuMesh::unwelded(device, ct, positions, normals, &attr)?;
+        let groups = materials.groups;
         if groups.face.len() == ct.num_triangles() {
-            mesh.materials = Some(super::textures::GpuMaterials::new(device, queue, groups, uv.is_some()));
+            let reuse = materials.reuse;
+            mesh.materials = Some(super::textures::GpuMaterials::new(device, queue, groups, uv.is_some(), reuse));
         }
         Ok(mesh)
     }

@@ -311,7 +311,8 @@ pub fn render_image_painted(
         Paint::Materials { groups, uv } => {
             look.materials = true;
             let (device, queue, normals) = (&off.gpu.device, &off.gpu.queue, mesh.vertex_normals());
-            GpuMesh::textured(device, queue, &mesh.ct, &mesh.positions, &normals, uv.as_deref(), groups)?
+            let materials = textures::MaterialDraw { groups, uv: uv.as_deref(), reuse: None };
+            GpuMesh::textured(device, queue, &mesh.ct, &mesh.positions, &normals, materials)?
         }
     };
     let gc = control.map(|c| off.upload(c)).transpose()?;

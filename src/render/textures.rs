@@ -35,8 +35,10 @@ pub struct GpuMaterials {
     /// The range of `order` each material draws.
     pub(super) runs: Vec<Run>,
     slots: Vec<Slot>,
-    /// The textures uploaded, with their mip level counts.
-    textures: Vec<(Arc<wgpu::Texture>, u32)>,
+    /// The textures bound, in the order the materials first use them.
+    textures: Vec<Uploaded>,
+    /// How many of them were uploaded here.
+    uploaded: usize,
     /// The bind group of each slot, made on first draw with the renderer's layout.
     groups: std::sync::OnceLock<Vec<wgpu::BindGroup>>,
 }
@@ -103,51 +105,79 @@ fn sampler(device: &wgpu::Device, wrap: [Wrap; 2]) -> wgpu::Sampler {
     })
 }
 
+/// A texture on the GPU and the pixels it was made from (`None`: the white
+/// texel of untextured materials).
+struct Uploaded {
+    pixels: Option<Arc<Texture>>,
+    view: Arc<wgpu::TextureView>,
+    mips: u32,
+}
+
 /// The textures of a mesh's materials, each uploaded once however many
-/// materials share it, and the white one of the untextured.
+/// materials share it (or taken from the materials the mesh replaces, when
+/// they drew the same pixels), and the white one of the untextured.
 struct Uploads<'a> {
     device: &'a wgpu::Device,
     queue: &'a wgpu::Queue,
-    by_pixels: Vec<(*const Texture, Arc<wgpu::TextureView>)>,
-    white: Option<Arc<wgpu::TextureView>>,
-    textures: Vec<(Arc<wgpu::Texture>, u32)>,
+    reuse: &'a [Uploaded],
+    done: Vec<Uploaded>,
+    uploaded: usize,
 }
 
 impl Uploads<'_> {
-    fn add(&mut self, t: &Texture) -> Arc<wgpu::TextureView> {
-        let texture = Arc::new(upload_texture(self.device, self.queue, t));
-        let view = Arc::new(texture.create_view(&Default::default()));
-        self.textures.push((texture.clone(), texture.mip_level_count()));
+    fn view(&mut self, t: Option<&Arc<Texture>>) -> Arc<wgpu::TextureView> {
+        let same = |u: &&Uploaded| match (&u.pixels, t) {
+            (Some(a), Some(b)) => Arc::ptr_eq(a, b),
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if let Some(u) = self.done.iter().find(same) {
+            return u.view.clone();
+        }
+        let u = match self.reuse.iter().find(same) {
+            Some(u) => Uploaded { pixels: u.pixels.clone(), view: u.view.clone(), mips: u.mips },
+            None => {
+                let white = Texture { width: 1, height: 1, rgba: vec![255; 4] };
+                let texture = upload_texture(self.device, self.queue, t.map_or(&white, |t| &**t));
+                let view = Arc::new(texture.create_view(&Default::default()));
+                self.uploaded += 1;
+                Uploaded { pixels: t.cloned(), view, mips: texture.mip_level_count() }
+            }
+        };
+        let view = u.view.clone();
+        self.done.push(u);
         view
     }
+}
 
-    fn view(&mut self, t: Option<&Arc<Texture>>) -> Arc<wgpu::TextureView> {
-        let Some(t) = t else {
-            return match &self.white {
-                Some(v) => v.clone(),
-                None => {
-                    let v = self.add(&Texture { width: 1, height: 1, rgba: vec![255; 4] });
-                    self.white = Some(v.clone());
-                    v
-                }
-            };
-        };
-        if let Some((_, v)) = self.by_pixels.iter().find(|(p, _)| std::ptr::eq(*p, Arc::as_ptr(t))) {
-            return v.clone();
-        }
-        let v = self.add(t);
-        self.by_pixels.push((Arc::as_ptr(t), v.clone()));
-        v
-    }
+/// The materials of a mesh to draw: its groups, its texture coordinates
+/// (one per corner) and the materials it replaces, whose textures are
+/// taken where they are the same pixels rather than uploaded again (the
+/// viewer's next level keeps the model's textures).
+#[derive(Clone, Copy)]
+pub struct MaterialDraw<'a> {
+    /// The groups, one material per triangle.
+    pub groups: &'a MaterialGroups,
+    /// Texture coordinates, one per corner; `None` (or too few) draws the
+    /// flat colours.
+    pub uv: Option<&'a [glam::Vec2]>,
+    /// The materials of the mesh this one replaces.
+    pub reuse: Option<&'a GpuMaterials>,
 }
 
 impl GpuMaterials {
     /// The materials of `groups` for a mesh of `groups.face.len()` triangles
     /// drawn one GPU vertex per corner; `textured` false (no texture
     /// coordinates) draws every material in its flat colour.
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, groups: &MaterialGroups, textured: bool) -> GpuMaterials {
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        groups: &MaterialGroups,
+        textured: bool,
+        reuse: Option<&GpuMaterials>,
+    ) -> GpuMaterials {
         let (order, runs) = material_runs(&groups.face, groups.list.len());
-        let mut up = Uploads { device, queue, by_pixels: Vec::new(), white: None, textures: Vec::new() };
+        let reuse = reuse.map_or(&[][..], |r| &r.textures[..]);
+        let mut up = Uploads { device, queue, reuse, done: Vec::new(), uploaded: 0 };
         let mut slots = Vec::with_capacity(groups.list.len() + 1);
         // a slot for ids that name no material, when some triangle has one
         let missing = runs
@@ -174,13 +204,27 @@ impl GpuMaterials {
             contents: &bytes,
             usage: wgpu::BufferUsages::INDEX,
         });
-        GpuMaterials { order, runs, slots, textures: up.textures, groups: std::sync::OnceLock::new() }
+        GpuMaterials {
+            order,
+            runs,
+            slots,
+            textures: up.done,
+            uploaded: up.uploaded,
+            groups: std::sync::OnceLock::new(),
+        }
     }
 
-    /// The mip level count of each texture uploaded (the white one of
-    /// untextured materials included), in the order they were.
+    /// The mip level count of each texture bound (the white one of
+    /// untextured materials included), in the order the materials first
+    /// use them.
     pub fn mip_level_counts(&self) -> Vec<u32> {
-        self.textures.iter().map(|(_, n)| *n).collect()
+        self.textures.iter().map(|u| u.mips).collect()
+    }
+
+    /// How many of the textures bound were uploaded for these materials
+    /// (the others were taken over from the materials they replace).
+    pub fn uploaded(&self) -> usize {
+        self.uploaded
     }
 
     /// The bind group of each material (made once) with `layout` (from
