@@ -267,3 +267,16 @@ fn gltf_wrap_modes_are_read_per_axis_with_the_base_colour() {
     assert_eq!(m.diffuse, Vec3::new(1.0, 0.5, 0.25));
     assert_eq!(m.texture.as_ref().map(|t| (t.width, t.height)), Some((8, 8)));
 }
+
+#[test]
+fn a_texture_whose_pixels_do_not_fill_its_size_is_drawn_flat() {
+    let Some(mut off) = offscreen(64, 64) else { return };
+    let mut groups = groups_from_mtl("tex-short", "map_Kd t.png", false);
+    let short = subdiv::mesh::attributes::Texture { width: 64, height: 64, rgba: vec![255, 0, 0, 255] };
+    groups.list[0].texture = Some(std::sync::Arc::new(short));
+    let (mesh, uv) = square(0.0, 1.0);
+    let (img, g) = draw(&mut off, &mesh, &uv, &groups);
+    // its Kd (white) alone: no red, and only the white texel bound
+    assert_eq!(img.pixels().filter(|p| is_red(p.0)).count(), 0);
+    assert_eq!(g.materials().unwrap().mip_level_counts(), [1]);
+}

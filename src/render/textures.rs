@@ -92,6 +92,11 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, t: &Texture) -> wg
     texture
 }
 
+/// Whether `t` has pixels and exactly the bytes its size says.
+fn is_whole(t: &Texture) -> bool {
+    t.width > 0 && t.height > 0 && t.rgba.len() as u64 == 4 * u64::from(t.width) * u64::from(t.height)
+}
+
 /// A trilinear, anisotropic sampler with the wrap modes along `u` and `v`.
 fn sampler(device: &wgpu::Device, wrap: [Wrap; 2]) -> wgpu::Sampler {
     device.create_sampler(&wgpu::SamplerDescriptor {
@@ -188,7 +193,8 @@ impl GpuMaterials {
             .filter(|r| r.material == groups.list.len())
             .map(|_| Material { diffuse: MISSING, ..Material::named("") });
         for m in groups.list.iter().chain(missing.as_ref()) {
-            let texture = m.texture.as_ref().filter(|_| textured);
+            // (pixels that do not fill the size they claim are not drawn)
+            let texture = m.texture.as_ref().filter(|t| textured && is_whole(t));
             let u = MaterialUniform {
                 factor: m.diffuse.max(Vec3::ZERO).extend(1.0).to_array(),
                 flags: [f32::from(texture.is_some()), 0.0, 0.0, 0.0],
