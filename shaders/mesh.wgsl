@@ -453,3 +453,39 @@ fn fs_wire(i: WireOut, @builtin(front_facing) front: bool) -> @location(0) vec4<
 fn fs_wire_colored(i: WireColoredOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
     return wire_fragment(i.world, i.normal, i.color, i.bary, i.generations, front);
 }
+
+// ---- Materials ------------------------------------------------------------
+//
+// One material group at a time (render/textures.rs): the base colour of a
+// fragment is the material's factor (MTL Kd, glTF baseColorFactor) times
+// its texture sampled at the interpolated texture coordinate, which the
+// colour attribute carries as (u, v, 0). The texture is sRGB, so the
+// sample is linear light, filtered between texels and between mipmap
+// levels; v points up from the image's bottom row (OBJ's convention), the
+// texture's rows run down. Materials without a texture bind a white texel
+// and clear flags.x.
+
+struct SurfaceMaterial {
+    factor: vec4<f32>,
+    // x: 1 = the texture is sampled
+    flags: vec4<f32>,
+};
+
+@group(3) @binding(0) var material_texture: texture_2d<f32>;
+@group(3) @binding(1) var material_sampler: sampler;
+@group(3) @binding(2) var<uniform> surface_material: SurfaceMaterial;
+
+fn material_color(uv: vec2<f32>) -> vec3<f32> {
+    let t = textureSample(material_texture, material_sampler, vec2<f32>(uv.x, 1.0 - uv.y)).rgb;
+    return surface_material.factor.rgb * select(vec3<f32>(1.0), t, surface_material.flags.x > 0.5);
+}
+
+@fragment
+fn fs_mesh_textured(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return finish(shade(i.world, i.normal, material_color(i.color.xy), front));
+}
+
+@fragment
+fn fs_wire_textured(i: WireColoredOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+    return wire_fragment(i.world, i.normal, material_color(i.color.xy), i.bary, i.generations, front);
+}

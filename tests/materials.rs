@@ -1,7 +1,7 @@
 //! MTL materials: `usemtl` groups read with their `Kd` and `map_Kd`, carried through the 1-to-4 split (each child triangle keeps its
 //! parent's material), written back as `mtllib`/`usemtl`, and drawn: the
 //! texture sampled through the refined texture coordinates, red where the
-//! texture is red. The model, its MTL and its PNG are written here.
+//! texture is red (tests/textures.rs asserts it per pixel). The model, its MTL and its PNG are written here.
 
 mod common;
 use common::{load_with_attributes, scratch_dir, with_attributes};
@@ -105,7 +105,21 @@ fn subdivide_writes_mtllib_and_usemtl_back() {
 #[cfg(feature = "viewer")]
 mod drawn {
     use super::*;
-    use subdiv::render::materials::corner_colors;
+    use subdiv::mesh::attributes::MaterialGroups;
+
+    /// The colour of each corner: its material's `Kd` times the texture at
+    /// the corner's texture coordinate (the CPU's reference sampler, what
+    /// the GPU samples there at full size).
+    fn corner_colors(groups: &MaterialGroups, uv: Option<&[glam::Vec2]>) -> Vec<Vec3> {
+        let uv = uv.unwrap();
+        (0..uv.len())
+            .map(|c| {
+                let m = &groups.list[groups.face[c / 3] as usize];
+                let tex = m.texture.as_ref().map_or(Vec3::ONE, |t| subdiv::render::materials::sample(t, uv[c], m.wrap));
+                m.diffuse * tex
+            })
+            .collect()
+    }
 
     /// The model with its textures decoded, as the viewer and `render` read it.
     fn load_textured(path: &std::path::Path) -> (subdiv::Mesh, subdiv::mesh::attributes::Attributes) {

@@ -165,6 +165,7 @@ impl Display {
             normals: self.normals,
             colors: false,
             uv_checker: false,
+            materials: false,
             sharp: self.sharp_edges,
             wire_edges: self.wire_edges,
             stripes: self.stripes,
@@ -176,6 +177,7 @@ impl Display {
         Look {
             colors: self.coloring != Coloring::None,
             uv_checker: self.coloring == Coloring::Checker,
+            materials: self.coloring == Coloring::Material,
             ..self.plain_look()
         }
     }

@@ -16,8 +16,10 @@ use super::doc::Doc;
 use super::model::{Curve, Shown};
 use crate::Result;
 use crate::io::bezier::{curve_polyline, de_casteljau_construction};
+use crate::mesh::attributes::MaterialGroups;
 use crate::render::GpuMesh;
 use crate::render::gpu_anim::{GpuAnimator, supports_compute};
+use crate::render::textures::MaterialDraw;
 use glam::{Vec2, Vec3};
 
 /// What was uploaded last: the document versions, the animation frame.
@@ -58,6 +60,14 @@ fn upload(device: &wgpu::Device, shown: &Shown) -> Result<GpuMesh> {
     GpuMesh::new(device, &shown.mesh.ct, &shown.mesh.positions, &shown.normals)
 }
 
+/// The material groups of the shown result, when the colouring is
+/// `Material` and the model has groups for each of its triangles.
+fn shown_materials(doc: &Doc) -> Option<&MaterialGroups> {
+    let groups = doc.model.attrs.refined.materials.as_ref()?;
+    let nt = doc.model.result.shown.mesh.ct.num_triangles();
+    (doc.display.coloring == super::display::Coloring::Material && groups.face.len() == nt).then_some(groups)
+}
+
 fn lift(points: &[Vec2]) -> Vec<Vec3> {
     points.iter().map(|p| p.extend(0.0)).collect()
 }
@@ -96,7 +106,8 @@ impl GpuScene {
         normal_length: f32,
     ) -> GpuReport {
         let mut report = GpuReport { compute: supports_compute(device), ..Default::default() };
-        report.uploaded = self.sync_control(device, doc, &mut report) | self.sync_result(device, doc, &mut report);
+        report.uploaded =
+            self.sync_control(device, doc, &mut report) | self.sync_result((device, queue), doc, &mut report);
         self.sync_highlight(device, doc);
         self.sync_curve(device, doc);
         self.sync_animation(device, queue, doc, &mut report);
@@ -138,17 +149,23 @@ impl GpuScene {
         self.seen.picked = picked.version();
     }
 
-    fn sync_result(&mut self, device: &wgpu::Device, doc: &Doc, report: &mut GpuReport) -> bool {
+    fn sync_result(&mut self, gpu: (&wgpu::Device, &wgpu::Queue), doc: &Doc, report: &mut GpuReport) -> bool {
         let result = &doc.model.result;
         if result.version() == self.seen.result {
             return false;
         }
+        let (device, queue) = gpu;
         let r = &result.shown;
         let checker = doc.display.coloring == super::display::Coloring::Checker;
         let refined = &doc.model.attrs.refined;
         let corner_uv = refined.uv.as_deref().filter(|u| u.len() == r.mesh.ct.v_table().len());
-        let mesh = match (self.corner_attribute(doc, corner_uv), corner_uv) {
-            (Some(attr), _) => GpuMesh::unwelded(device, &r.mesh.ct, &r.mesh.positions, &r.normals, &attr),
+        let mesh = match (shown_materials(doc), corner_uv) {
+            (Some(groups), uv) => {
+                // the model's textures stay on the GPU from one level to the next
+                let reuse = self.result.as_ref().and_then(GpuMesh::materials);
+                let materials = MaterialDraw { groups, uv, reuse };
+                GpuMesh::textured(device, queue, &r.mesh.ct, &r.mesh.positions, &r.normals, materials)
+            }
             (None, Some(uv)) if checker => {
                 let attr: Vec<Vec3> = uv.iter().map(|t| t.extend(0.0)).collect();
                 GpuMesh::unwelded(device, &r.mesh.ct, &r.mesh.positions, &r.normals, &attr)
@@ -156,23 +173,13 @@ impl GpuScene {
             _ => upload(device, r),
         };
         self.result = mesh.map_err(|e| report.errors.push(e)).ok();
-        if let (Some(m), Some(colors), false) = (&mut self.result, &result.colors, checker) {
+        let materials = self.result.as_ref().is_some_and(|m| m.materials().is_some());
+        if let (Some(m), Some(colors), false, false) = (&mut self.result, &result.colors, checker, materials) {
             m.set_colors(device, colors);
         }
         self.proxy = doc.model.proxy.as_ref().and_then(|p| upload(device, p).map_err(|e| report.errors.push(e)).ok());
         self.seen.result = result.version();
         true
-    }
-
-    /// The per-corner material colours of the shown result, when the
-    /// colouring is `Material` and the model has material groups.
-    fn corner_attribute(&mut self, doc: &Doc, uv: Option<&[Vec2]>) -> Option<Vec<Vec3>> {
-        let groups = doc.model.attrs.refined.materials.as_ref()?;
-        let nt = doc.model.result.shown.mesh.ct.num_triangles();
-        if doc.display.coloring != super::display::Coloring::Material || groups.face.len() != nt {
-            return None;
-        }
-        Some(crate::render::materials::corner_colors(groups, uv))
     }
 
     fn sync_curve(&mut self, device: &wgpu::Device, doc: &Doc) {

@@ -628,3 +628,54 @@ fn catmull_clark_snaps_and_shades_with_its_own_limit() {
         raw.positions.len()
     );
 }
+
+#[test]
+fn materials_are_drawn_with_their_textures_sampled_per_pixel() {
+    use crate::app::display::Coloring;
+    let mut off = match crate::render::Offscreen::new(256, 256) {
+        Ok(o) => o,
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => return eprintln!("SKIPPED: {e}"),
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    };
+    // a cube, each face's texture red on the left half and green on the right
+    let dir = common::scratch_dir("viewer-texture");
+    let obj = "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
+               vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl t\nf 5/1 6/2 7/3 8/4\nf 2/1 1/2 4/3 3/4\nf 6/1 2/2 3/3 7/4\n\
+               f 1/1 5/2 8/3 4/4\nf 8/1 7/2 3/3 4/4\nf 1/1 2/2 6/3 5/4\n";
+    std::fs::write(dir.join("c.obj"), obj).unwrap();
+    std::fs::write(dir.join("c.mtl"), "newmtl t\nKd 1 1 1\nmap_Kd t.png\n").unwrap();
+    let png = image::RgbImage::from_fn(64, 64, |x, _| image::Rgb(if x < 32 { [255, 0, 0] } else { [0, 255, 0] }));
+    png.save(dir.join("t.png")).unwrap();
+    let mut v = Viewer::new();
+    v.doc.request.level = 1;
+    v.apply(Command::Open(dir.join("c.obj")));
+    settle(&mut v);
+    set_display(&mut v, |d| d.coloring = Coloring::Material);
+    settle(&mut v);
+    let mut scene = super::gpu_scene::GpuScene::default();
+    scene.sync(&off.gpu.device, &off.gpu.queue, &v.doc, 0.05);
+    let mesh = scene.result.as_ref().expect("the result is uploaded");
+    let uploads = mesh.materials().map(|m| (m.uploaded(), m.mip_level_counts()));
+    assert_eq!(uploads, Some((1, vec![7])), "one texture, 64 down to 1");
+    let (lo, hi) = v.doc.model.control.mesh.bounds();
+    let cam = crate::render::Camera::framing(lo, hi, 1.0);
+    let img = off.render_one(cam, mesh, None, v.doc.display.look()).unwrap();
+    let count = |f: &dyn Fn(i32, i32, i32) -> bool| {
+        img.pixels().filter(|p| f(i32::from(p.0[0]), i32::from(p.0[1]), i32::from(p.0[2]))).count()
+    };
+    // mostly red or green (lit, highlighted or shadowed), and red and green alike
+    let red = count(&|r, g, b| r > 30 && 3 * (r - g.max(b)) > r);
+    let green = count(&|r, g, b| g > 30 && 3 * (g - r.max(b)) > g);
+    let yellow = count(&|r, g, b| r > 60 && g > 60 && 3 * (r - g).abs() < r.max(g) && 4 * b < 3 * r.min(g));
+    assert!(red > 2000 && green > 2000, "red {red}, green {green}");
+    // the two meet in a pixel or two: interpolating between samples at the
+    // corners blended a band of yellow across every face
+    assert!(yellow < (red + green) / 12, "{yellow} yellowish pixels beside {red} red and {green} green");
+    // the next level takes the texture over rather than uploading it again
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    scene.sync(&off.gpu.device, &off.gpu.queue, &v.doc, 0.05);
+    let next = scene.result.as_ref().and_then(crate::render::GpuMesh::materials).expect("materials at level 2");
+    assert_eq!((next.uploaded(), next.mip_level_counts()), (0, vec![7]));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -261,7 +261,7 @@ mod gpu {
                 let Some(m) = attrs.materials.clone() else { return Err(missing("materials (usemtl)")) };
                 let a = refined(Attributes { uv: attrs.uv.clone(), materials: Some(m), ..Default::default() })?;
                 let groups = a.materials.ok_or_else(|| missing("materials (usemtl)"))?;
-                Paint::Corners(subdiv::render::materials::corner_colors(&groups, a.uv.as_deref()))
+                Paint::Materials { groups, uv: a.uv }
             }
         })
     }

@@ -80,7 +80,7 @@ fn read(input: &Input) -> Result<RawMesh> {
 
 /// What is drawn of a glTF material: its base colour factor (linear RGB) as
 /// the diffuse colour and its base colour texture (a file inside the
-/// model's folder, or an image in a buffer view), with its sampler's wrap.
+/// model's folder, or an image in a buffer view), with its sampler's wrap modes.
 fn material(m: &gltf::Material, buffers: &[Vec<u8>], input: &Input) -> Material {
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, _] = pbr.base_color_factor();
@@ -88,11 +88,12 @@ fn material(m: &gltf::Material, buffers: &[Vec<u8>], input: &Input) -> Material 
     let mut out = Material { diffuse: Vec3::new(r, g, b), ..Material::named(&name) };
     let Some(info) = pbr.base_color_texture() else { return out };
     let tex = info.texture();
-    out.wrap = match tex.sampler().wrap_s() {
+    let wrap = |mode| match mode {
         gltf::texture::WrappingMode::ClampToEdge => Wrap::Clamp,
         gltf::texture::WrappingMode::MirroredRepeat => Wrap::Mirror,
         gltf::texture::WrappingMode::Repeat => Wrap::Repeat,
     };
+    out.wrap = [wrap(tex.sampler().wrap_s()), wrap(tex.sampler().wrap_t())];
     let at = format!("image {}", tex.source().index());
     let warn = |e: &dyn std::fmt::Display| input.warnings.warn("textures that cannot be read", e.to_string());
     match tex.source().source() {

@@ -434,7 +434,8 @@ fn materials(p: &mut Parsed, input: &Input) -> Result<()> {
             list.push(Material::named(n));
             continue;
         };
-        let mut m = Material { diffuse: e.diffuse.unwrap_or(Vec3::splat(0.8)), wrap: e.wrap, ..Material::named(n) };
+        let mut m =
+            Material { diffuse: e.diffuse.unwrap_or(Vec3::splat(0.8)), wrap: [e.wrap; 2], ..Material::named(n) };
         if let Some(t) = &e.texture {
             let at = format!("material '{n}' map_Kd");
             match input.refs.resolve_in(folder, t, Scope::Anywhere, &at) {

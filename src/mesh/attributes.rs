@@ -77,8 +77,9 @@ pub struct Material {
     /// Diffuse texture `map_Kd` (glTF: base colour texture), resolved
     /// against the folder of the file that names it.
     pub diffuse_texture: Option<std::path::PathBuf>,
-    /// How the texture repeats outside [0, 1].
-    pub wrap: Wrap,
+    /// How the texture repeats outside [0, 1], along `u` and along `v`
+    /// (glTF's `wrapS` and `wrapT`; MTL's `-clamp on` clamps both).
+    pub wrap: [Wrap; 2],
     /// The texture's pixels, when the load asked for textures and it could
     /// be decoded within the budget.
     pub texture: Option<std::sync::Arc<Texture>>,
@@ -91,7 +92,7 @@ impl Material {
             name: name.to_string(),
             diffuse: Vec3::splat(0.8),
             diffuse_texture: None,
-            wrap: Wrap::Repeat,
+            wrap: [Wrap::Repeat; 2],
             texture: None,
         }
     }

@@ -38,6 +38,9 @@ pub struct GpuMesh {
     /// The storage bind group of the wire pipeline, made on first use
     /// (`None` inside: a buffer exceeds the device's storage binding size).
     pub(super) data_group: std::sync::OnceLock<Option<wgpu::BindGroup>>,
+    /// The material groups with their textures (a mesh made by
+    /// [`GpuMesh::textured`]), drawn when the look asks for materials.
+    pub(super) materials: Option<super::textures::GpuMaterials>,
 }
 
 /// Face culling of a mesh.
@@ -140,6 +143,7 @@ impl GpuMesh {
             sharp: index_buffer(device, "sharp edges", &sharp_edge_indices(ct)),
             generations: generation_buffer(device, ct),
             data_group: std::sync::OnceLock::new(),
+            materials: None,
         })
     }
 
@@ -185,7 +189,41 @@ impl GpuMesh {
             sharp: index_buffer(device, "sharp edges", &sharp_corner_pairs(ct)),
             generations: generation_buffer(device, ct),
             data_group: std::sync::OnceLock::new(),
+            materials: None,
         })
+    }
+
+    /// One GPU vertex per corner ([`GpuMesh::unwelded`]) carrying its
+    /// texture coordinate (`materials.uv`; without them every material is
+    /// drawn in its flat colour), with the material groups bound for
+    /// drawing: each group's texture sampled per pixel (see
+    /// [`super::textures`]).
+    ///
+    /// # Errors
+    /// As [`GpuMesh::unwelded`].
+    pub fn textured(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        ct: &CornerTable,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        materials: super::textures::MaterialDraw,
+    ) -> Result<GpuMesh> {
+        let corners = ct.v_table().len();
+        let uv = materials.uv.filter(|u| u.len() == corners);
+        let attr: Vec<Vec3> = uv.map_or_else(Vec::new, |u| u.iter().map(|t| t.extend(0.0)).collect());
+        let mut mesh = GpuMesh::unwelded(device, ct, positions, normals, &attr)?;
+        let groups = materials.groups;
+        if groups.face.len() == ct.num_triangles() {
+            let reuse = materials.reuse;
+            mesh.materials = Some(super::textures::GpuMaterials::new(device, queue, groups, uv.is_some(), reuse));
+        }
+        Ok(mesh)
+    }
+
+    /// The materials bound by [`GpuMesh::textured`].
+    pub fn materials(&self) -> Option<&super::textures::GpuMaterials> {
+        self.materials.as_ref()
     }
 
     /// Lines only (no faces): `points` joined by the index pairs in `pairs`
@@ -209,6 +247,7 @@ impl GpuMesh {
             sharp: None,
             generations: buffer(device, "no generations", &[], wgpu::BufferUsages::STORAGE),
             data_group: std::sync::OnceLock::new(),
+            materials: None,
         }
     }
 

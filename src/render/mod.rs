@@ -15,6 +15,7 @@ pub mod offscreen;
 pub mod pipelines;
 pub mod readback;
 pub mod scene;
+pub mod textures;
 
 pub use camera::Camera;
 pub use gpu::Gpu;
@@ -82,6 +83,9 @@ pub struct Look {
     pub colors: bool,
     /// The colour attribute holds texture coordinates: show a checker texture.
     pub uv_checker: bool,
+    /// The material groups of a mesh that has them ([`GpuMesh::textured`]):
+    /// each group's colour times its texture, sampled per pixel.
+    pub materials: bool,
     /// Sharp edges (creases) drawn in their own colour.
     pub sharp: bool,
     /// Which edges the wireframe draws, by generation.
@@ -265,8 +269,15 @@ pub enum Paint {
     Colors(Vec<glam::Vec3>),
     /// A checker through texture coordinates, one per corner.
     Checker(Vec<glam::Vec2>),
-    /// Linear RGB colours, one per corner (materials, see [`materials`]).
-    Corners(Vec<glam::Vec3>),
+    /// The material groups (one material per triangle), each drawn in its
+    /// colour times its texture sampled per pixel through the texture
+    /// coordinates (one per corner; without them the flat colours).
+    Materials {
+        /// The groups, their materials and decoded textures.
+        groups: crate::mesh::attributes::MaterialGroups,
+        /// Texture coordinates, one per corner.
+        uv: Option<Vec<glam::Vec2>>,
+    },
 }
 
 /// [`render_image`] with the faces painted by `paint`.
@@ -297,9 +308,11 @@ pub fn render_image_painted(
             (look.colors, look.uv_checker) = (true, true);
             GpuMesh::unwelded(&off.gpu.device, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), &attr)?
         }
-        Paint::Corners(c) => {
-            look.colors = true;
-            GpuMesh::unwelded(&off.gpu.device, &mesh.ct, &mesh.positions, &mesh.vertex_normals(), c)?
+        Paint::Materials { groups, uv } => {
+            look.materials = true;
+            let (device, queue, normals) = (&off.gpu.device, &off.gpu.queue, mesh.vertex_normals());
+            let materials = textures::MaterialDraw { groups, uv: uv.as_deref(), reuse: None };
+            GpuMesh::textured(device, queue, &mesh.ct, &mesh.positions, &normals, materials)?
         }
     };
     let gc = control.map(|c| off.upload(c)).transpose()?;

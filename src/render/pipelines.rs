@@ -7,6 +7,8 @@
 //! | `mesh_colored`| `vs_mesh_colored`   | position, normal, rgb | yes    | write, <   | yes           |
 //! | `wire`        | `vs_wire`, `fs_wire`| none: storage, group 2| blend  | write, <   | yes           |
 //! | `wire_colored`| `vs_wire_colored`, `fs_wire_colored` | none: storage, group 2 | blend | write, < | yes |
+//! | `mesh_textured` | `vs_mesh_colored`, `fs_mesh_textured` | position, normal, uv; group 3 | yes | write, < | yes |
+//! | `wire_textured` | `vs_wire_colored`, `fs_wire_textured` | none: storage, group 2; group 3 | blend | write, < | yes |
 //! | `lines`       | `vs_line`           | position              | yes    | write, <=  | no            |
 //! | `background`  | `vs_background`     | none                  | yes    | always     | no            |
 //! | `lines_hidden`| `vs_line`, `fs_line_hidden` | position      | blend  | always     | no            |
@@ -19,6 +21,12 @@
 //! `wire` draws the faces and their wireframe in one pass, without an index
 //! buffer: it reads the mesh from the storage buffers of group 2 by the
 //! vertex index (one vertex per corner, see shaders/mesh.wgsl).
+//!
+//! The `_textured` pipelines draw one material group at a time: group 3
+//! binds its texture, sampler and colour ([`super::textures`]), the
+//! colour attribute holds the texture coordinates, and the draw is indexed
+//! by the mesh's corners ordered by material (for `wire_textured` the
+//! index is the corner its storage buffers are read at).
 //!
 //! The per-cull arrays are indexed by [`super::gpu_mesh::Cull`] `as usize`:
 //! closed meshes skip the faces turned away from the eye.
@@ -65,6 +73,10 @@ pub struct Pipelines {
     pub wire: [wgpu::RenderPipeline; 3],
     /// `wire` with per-vertex colours (or texture coordinates) from group 2.
     pub wire_colored: [wgpu::RenderPipeline; 3],
+    /// Shaded faces of one material group, its texture sampled per pixel.
+    pub mesh_textured: [wgpu::RenderPipeline; 3],
+    /// `wire` for one material group, its texture sampled per pixel.
+    pub wire_textured: [wgpu::RenderPipeline; 3],
     /// Line lists (wireframe, control mesh, normals, highlights).
     pub lines: wgpu::RenderPipeline,
     /// The viewport's background gradient (one full-viewport triangle).
@@ -81,6 +93,8 @@ pub struct Pipelines {
     pub style_layout: wgpu::BindGroupLayout,
     /// Group 2 of the wire pipeline: the mesh's storage buffers.
     pub mesh_data_layout: wgpu::BindGroupLayout,
+    /// Group 3 of the textured pipelines: a material's texture, sampler and colour.
+    pub material_layout: wgpu::BindGroupLayout,
 }
 
 /// The storage buffers of the wire pipeline, in binding order (see
@@ -204,6 +218,38 @@ fn lines_and_dots(factory: &Factory, layout: &wgpu::PipelineLayout) -> [wgpu::Re
     [&line_spec, &hidden, &dot_spec, &dots_hidden].map(|spec| factory.build(spec))
 }
 
+/// The textured pipelines, faces then faces with their wire (group 3 the
+/// material; the wire's group 2 its storage buffers).
+fn textured(
+    factory: &Factory,
+    [view, mesh_data, material]: [&wgpu::BindGroupLayout; 3],
+) -> [[wgpu::RenderPipeline; 3]; 2] {
+    let faces = pipeline_layout(factory.device, "mesh textured", &[Some(view), None, None, Some(material)]);
+    let wire = pipeline_layout(factory.device, "wire textured", &[Some(view), None, Some(mesh_data), Some(material)]);
+    let spec = Spec {
+        label: "mesh textured",
+        layout: &faces,
+        vertex_shader: "vs_mesh_colored",
+        buffers: &[Some(POS_LAYOUT), Some(NRM_LAYOUT), Some(COLOR_LAYOUT)],
+        topology: wgpu::PrimitiveTopology::TriangleList,
+        fragment_shader: "fs_mesh_textured",
+        depth_write: true,
+        depth_compare: wgpu::CompareFunction::Less,
+        cull_mode: None,
+        blend: None,
+    };
+    let wire_spec = Spec {
+        label: "wire textured",
+        layout: &wire,
+        vertex_shader: "vs_wire_colored",
+        buffers: &[],
+        fragment_shader: "fs_wire_textured",
+        blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+        ..spec
+    };
+    [factory.per_cull(spec), factory.per_cull(wire_spec)]
+}
+
 /// A bind group layout with one uniform buffer at binding 0.
 pub fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -281,6 +327,8 @@ impl Pipelines {
         let wire = factory.per_cull(wire_spec("wire", "vs_wire", "fs_wire"));
         let wire_colored = factory.per_cull(wire_spec("wire colored", "vs_wire_colored", "fs_wire_colored"));
         let [lines, lines_hidden, dots, dots_hidden] = lines_and_dots(&factory, &line_layout);
+        let material_layout = super::textures::material_layout(device);
+        let [mesh_textured, wire_textured] = textured(&factory, [&view_layout, &mesh_data_layout, &material_layout]);
         let background = factory.build(&Spec {
             label: "background",
             layout: &mesh_layout,
@@ -294,6 +342,8 @@ impl Pipelines {
             mesh_colored,
             wire,
             wire_colored,
+            mesh_textured,
+            wire_textured,
             lines,
             background,
             lines_hidden,
@@ -302,6 +352,7 @@ impl Pipelines {
             view_layout,
             style_layout,
             mesh_data_layout,
+            material_layout,
         }
     }
 }

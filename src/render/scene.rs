@@ -11,6 +11,7 @@
 
 use super::camera::Camera;
 use super::pipelines::{Pipelines, uniform_group};
+use super::textures::GpuMaterials;
 use super::{DEPTH_FORMAT, Look, Surface};
 use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
@@ -223,7 +224,7 @@ impl Renderer {
     fn uniform(&self, d: &ViewportDraw) -> ViewUniform {
         let aspect = d.rect[2] / d.rect[3].max(1.0);
         let cam = &d.camera;
-        let colors = d.mesh.is_some_and(|m| shown_colors(m, d.look).is_some());
+        let colors = d.mesh.is_some_and(|m| shown_colors(m, d.look).is_some() || shown_materials(m, d.look).is_some());
         ViewUniform {
             proj: cam.proj(aspect).to_cols_array_2d(),
             view: cam.view().to_cols_array_2d(),
@@ -272,6 +273,9 @@ impl Renderer {
         self.write_uniforms(device, queue, draws);
         for m in draws.iter().filter(|d| d.look.wireframe).filter_map(|d| d.mesh) {
             m.data_group(device, &self.pipelines.mesh_data_layout);
+        }
+        for mats in draws.iter().filter_map(|d| d.mesh.and_then(|m| shown_materials(m, d.look))) {
+            mats.bind_groups(device, &self.pipelines.material_layout);
         }
         // without MSAA the scene goes through the FXAA pass on its way to `resolve`
         let post = targets.post.as_ref().filter(|_| self.fxaa);
@@ -358,7 +362,9 @@ impl Renderer {
         }
         if let Some(m) = d.mesh {
             let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
-            if let Some(group) = wire_group {
+            if let Some(mats) = shown_materials(m, d.look) {
+                self.draw_materials(pass, m, mats, d.look, wire_group);
+            } else if let Some(group) = wire_group {
                 let wire =
                     if shown_colors(m, d.look).is_some() { &self.pipelines.wire_colored } else { &self.pipelines.wire };
                 pass.set_pipeline(&wire[m.cull as usize]);
@@ -412,6 +418,39 @@ impl Renderer {
             pass.set_pipeline(&self.pipelines.mesh[cull]);
         }
         pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+    }
+
+    /// The faces one material group at a time, each with its material
+    /// bound (and with their wireframe, through `wire`'s storage buffers,
+    /// when given); nothing when the surface is hidden without a wire.
+    fn draw_materials(
+        &self,
+        pass: &mut wgpu::RenderPass,
+        m: &GpuMesh,
+        mats: &GpuMaterials,
+        look: Look,
+        wire: Option<&wgpu::BindGroup>,
+    ) {
+        let (Some(groups), Some(uv)) = (mats.made_groups(), &m.colors) else { return };
+        let cull = m.cull as usize;
+        if let Some(wire) = wire {
+            pass.set_pipeline(&self.pipelines.wire_textured[cull]);
+            pass.set_bind_group(2, wire, &[]);
+        } else {
+            if m.triangle_indices == 0 || look.surface == Surface::Hidden {
+                return;
+            }
+            pass.set_pipeline(&self.pipelines.mesh_textured[cull]);
+            pass.set_vertex_buffer(0, m.positions.slice(..));
+            pass.set_vertex_buffer(1, m.normals.slice(..));
+            pass.set_vertex_buffer(2, uv.slice(..));
+        }
+        pass.set_index_buffer(mats.order.slice(..), wgpu::IndexFormat::Uint32);
+        for run in &mats.runs {
+            let Some(group) = groups.get(run.material) else { continue };
+            pass.set_bind_group(3, group, &[]);
+            pass.draw_indexed(run.corners.clone(), 0, 0..1);
+        }
     }
 
     /// The control cage: its edges and vertices (dots), faint where the
@@ -475,4 +514,10 @@ impl Renderer {
 /// decides it, for the uniforms, the wire pipeline and the face pipeline.
 fn shown_colors(m: &GpuMesh, look: Look) -> Option<&wgpu::Buffer> {
     m.colors.as_ref().filter(|_| look.colors)
+}
+
+/// The material groups a mesh is drawn with under `look`: its materials
+/// when it has them and the look shows materials.
+fn shown_materials(m: &GpuMesh, look: Look) -> Option<&GpuMaterials> {
+    m.materials.as_ref().filter(|_| look.materials)
 }
