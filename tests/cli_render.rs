@@ -189,3 +189,30 @@ fn render_takes_a_wire_level_a_scale_and_a_transparent_background() {
     assert!(!bad.status.success());
     assert!(String::from_utf8_lossy(&bad.stderr).contains("unknown wire level 'fine'"));
 }
+
+#[test]
+fn curvature_colours_a_torus_red_outside_blue_inside_with_a_colour_bar() {
+    let out = tmp("torus-gaussian.png");
+    let torus = model_path("torus.obj");
+    let args = ["render", torus.to_str().unwrap(), out.to_str().unwrap(), "-n", "2", "--color", "gaussian-curvature"];
+    let Some(r) = run(&[&args[..], &["--size", "480x360", "--ortho"]].concat()) else { return };
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let img = image::open(&out).unwrap().to_rgba8();
+    let (mut red, mut blue) = (0, 0);
+    for p in img.pixels() {
+        let [r, g, b, _] = p.0.map(i32::from);
+        red += usize::from(r > b + 12 && r > g + 8);
+        blue += usize::from(b > r + 40 && b > g + 10);
+    }
+    // K > 0 on the outer half (pale red: the range is set by the larger
+    // |K| around the hole), K < 0 around the hole (blue), and the bar at the
+    // right edge holds both ends of the map
+    assert!(red > 2000 && blue > 500, "red {red}, blue {blue}");
+    let x = img.width() - 8;
+    let top = img.get_pixel(x, img.height() / 5 + 4).0;
+    let bottom = img.get_pixel(x, img.height() * 4 / 5 - 4).0;
+    assert!(top[0] > top[2] + 60 && bottom[2] > bottom[0] + 60, "bar {top:?} {bottom:?}");
+    // a scheme whose curvature is not the Loop limit's is refused by name
+    let r = run(&[&args[..], &["-s", "butterfly"]].concat()).unwrap();
+    assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("loop"));
+}

@@ -6,6 +6,7 @@
 //! from the subdivision output.
 
 use crate::render::{Look, Stripes, Surface, WireEdges};
+use crate::subdiv::eval::color::CurvatureKind;
 
 /// Which normals shade the result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -50,17 +51,24 @@ pub enum Coloring {
     /// The OBJ's MTL materials per group: `Kd` times `map_Kd` through the
     /// refined texture coordinates (see [`crate::render::materials`]).
     Material,
+    /// A curvature of the exact Loop limit surface at each drawn vertex,
+    /// on a diverging map (see [`crate::subdiv::eval::color`]).
+    Curvature(CurvatureKind),
 }
 
 impl Coloring {
     /// All modes, in menu order.
-    pub const ALL: [Coloring; 6] = [
+    pub const ALL: [Coloring; 10] = [
         Coloring::None,
         Coloring::Shells,
         Coloring::Displacement,
         Coloring::File,
         Coloring::Checker,
         Coloring::Material,
+        Coloring::Curvature(CurvatureKind::Mean),
+        Coloring::Curvature(CurvatureKind::Gaussian),
+        Coloring::Curvature(CurvatureKind::Min),
+        Coloring::Curvature(CurvatureKind::Max),
     ];
     /// The colouring a model opens with: the one asked for, or with none
     /// asked (`--color auto`) its MTL materials when it has them, else the
@@ -77,6 +85,10 @@ impl Coloring {
             Coloring::File => "colours of the file",
             Coloring::Checker => "texture (checker through vt)",
             Coloring::Material => "materials (MTL Kd and map_Kd)",
+            Coloring::Curvature(CurvatureKind::Mean) => "mean curvature (exact)",
+            Coloring::Curvature(CurvatureKind::Gaussian) => "Gaussian curvature (exact)",
+            Coloring::Curvature(CurvatureKind::Min) => "minimum curvature (exact)",
+            Coloring::Curvature(CurvatureKind::Max) => "maximum curvature (exact)",
         }
     }
 }
@@ -91,7 +103,13 @@ impl std::str::FromStr for Coloring {
             "file" | "colors" | "colours" => Ok(Coloring::File),
             "checker" | "uv" | "texture" => Ok(Coloring::Checker),
             "material" | "materials" | "mtl" => Ok(Coloring::Material),
-            _ => Err(format!("unknown colouring '{s}' (none, shells, displacement, file, checker, material)")),
+            "mean-curvature" | "mean" => Ok(Coloring::Curvature(CurvatureKind::Mean)),
+            "gaussian-curvature" | "gaussian" => Ok(Coloring::Curvature(CurvatureKind::Gaussian)),
+            "min-curvature" => Ok(Coloring::Curvature(CurvatureKind::Min)),
+            "max-curvature" => Ok(Coloring::Curvature(CurvatureKind::Max)),
+            _ => Err(format!(
+                "unknown colouring '{s}' (none, shells, displacement, file, checker, material, mean-curvature, gaussian-curvature, min-curvature, max-curvature)"
+            )),
         }
     }
 }

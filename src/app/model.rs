@@ -309,7 +309,8 @@ fn creased_view(raw: &Shown, shown: &Shown, cr: &Creased, display: &Display, mad
 }
 
 /// The per-vertex colours of `mesh` (the shown result of `model`) for a
-/// colouring, and the largest value behind them.
+/// colouring, and the largest value behind them (for curvature, the
+/// half-width of the symmetric range).
 fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Result<(Option<Vec<Vec3>>, f32)> {
     use crate::mesh::inspect::colormap;
     use crate::subdiv::inspect::{creation_levels, displacement};
@@ -329,6 +330,18 @@ fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Resul
             let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
             let t: Vec<f32> = d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 }).collect();
             (Some(ramp(&t)), max)
+        }
+        Coloring::Curvature(kind) => {
+            use crate::subdiv::eval::{color, vertex_samples};
+            if scheme != Scheme::Loop {
+                return Err(crate::Error::Usage(format!(
+                    "curvature colours show the exact Loop limit surface; the result is {scheme}"
+                )));
+            }
+            let samples = vertex_samples(&model.control.mesh, mesh, level, &model.made.opts)?;
+            let values: Vec<f64> = samples.iter().map(|s| kind.of(s)).collect();
+            let range = color::symmetric_range(&values, color::PERCENTILE);
+            (Some(color::colors(&values, range)), range as f32)
         }
     })
 }

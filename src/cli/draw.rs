@@ -236,10 +236,10 @@ mod gpu {
         fine: &Mesh,
         attrs: &Attributes,
         (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
-    ) -> Result<Paint> {
+    ) -> Result<(Paint, Option<f64>)> {
         let refined = |a: Attributes| subdiv::subdiv::tables::attributes::refine(&control.ct, &a, scheme, levels, opts);
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
-        Ok(match coloring {
+        let paint = match coloring {
             Coloring::None => Paint::Material,
             Coloring::Shells => Paint::Colors(shells(control, scheme, levels, fine.positions.len())),
             Coloring::Displacement => {
@@ -263,7 +263,21 @@ mod gpu {
                 let groups = a.materials.ok_or_else(|| missing("materials (usemtl)"))?;
                 Paint::Materials { groups, uv: a.uv }
             }
-        })
+            Coloring::Curvature(kind) => {
+                use subdiv::subdiv::eval::{color, vertex_samples};
+                if scheme != Scheme::Loop {
+                    return Err(Error::Usage(format!(
+                        "--color {}: the exact curvature is the Loop limit's; use -s loop",
+                        kind.name()
+                    )));
+                }
+                let samples = vertex_samples(control, fine, levels, opts)?;
+                let values: Vec<f64> = samples.iter().map(|s| kind.of(s)).collect();
+                let range = color::symmetric_range(&values, color::PERCENTILE);
+                return Ok((Paint::Colors(color::colors(&values, range)), Some(range)));
+            }
+        };
+        Ok((paint, None))
     }
 
     /// `subdiv render`.
@@ -277,14 +291,17 @@ mod gpu {
         let coloring = Coloring::initial(a.color.asked()?, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
-        let paint = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
+        let (paint, range) = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
         let (width, height) = a.size;
         let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
         let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
         let stripes = subdiv::render::Stripes { count: a.look.stripes, angle: a.look.stripe_angle };
         let opts =
             subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot, stripes };
-        let img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
+        let mut img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
+        if let Some(range) = range {
+            subdiv::render::colorbar::draw(&mut img, range);
+        }
         subdiv::render::save_png(&img, &a.output)
     }
 

@@ -6,6 +6,7 @@
 
 pub mod blit;
 pub mod camera;
+pub mod colorbar;
 pub mod export;
 pub mod gpu;
 pub mod gpu_anim;

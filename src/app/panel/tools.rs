@@ -56,6 +56,10 @@ pub(crate) fn tools_section(
 /// What the colours mean, or why there are none.
 fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, coloring: Coloring) {
     let m = &doc.model;
+    if let Coloring::Curvature(_) = coloring {
+        curvature_bar(ui, m.result.color_max);
+        return;
+    }
     let text = match coloring {
         Coloring::Shells => format!("dark: level 0 vertices … bright: level {}", m.made.level),
         Coloring::Displacement => format!("dark: on the control mesh … bright: {:.4} away", m.result.color_max),
@@ -73,7 +77,37 @@ fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, coloring: Coloring) {
                 g.list.len()
             ),
         },
-        Coloring::File | Coloring::None => return,
+        Coloring::File | Coloring::None | Coloring::Curvature(_) => return,
     };
     ui.label(RichText::new(text).small());
+}
+
+/// The curvature colours' bar: the diverging map from `-range` (blue)
+/// through 0 (white) to `range` (red), with its numbers.
+fn curvature_bar(ui: &mut egui::Ui, range: f32) {
+    use crate::subdiv::eval::color::diverging;
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width().min(220.0), 12.0), egui::Sense::hover());
+    let steps = 48;
+    for i in 0..steps {
+        let t = (i as f32 + 0.5) / steps as f32 * 2.0 - 1.0;
+        let c = diverging(t);
+        let srgb = |x: f32| (if x <= 0.0031308 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 } * 255.0) as u8;
+        let x0 = rect.left() + rect.width() * i as f32 / steps as f32;
+        let r = egui::Rect::from_min_max(
+            egui::pos2(x0, rect.top()),
+            egui::pos2(x0 + rect.width() / steps as f32 + 0.5, rect.bottom()),
+        );
+        ui.painter().rect_filled(r, 0.0, egui::Color32::from_rgb(srgb(c.x), srgb(c.y), srgb(c.z)));
+    }
+    ui.horizontal(|ui| {
+        ui.label(RichText::new(format!("{:.3e}", -range)).small());
+        ui.add_space(60.0);
+        ui.label(RichText::new("0").small());
+        ui.add_space(60.0);
+        ui.label(RichText::new(format!("{range:.3e}")).small());
+    });
+    ui.label(
+        RichText::new("exact Loop limit at each drawn vertex; range clamped at the 2nd and 98th percentiles; grey: not evaluated (boundary or sharp feature)")
+            .small(),
+    );
 }

@@ -7,6 +7,9 @@
 use super::Sample;
 use glam::Vec3;
 
+/// The default clamp of [`symmetric_range`]: the 2nd and 98th percentiles.
+pub const PERCENTILE: f64 = 2.0;
+
 /// A curvature to colour by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CurvatureKind {
