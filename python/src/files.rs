@@ -10,7 +10,7 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use subdiv::Mesh;
-use subdiv::io::{self, ReadOptions, Source};
+use subdiv::io::{self, ReadOptions, Source, Topology};
 use subdiv::mesh::attributes::Attributes;
 use subdiv::mesh::poly::PolyMesh;
 
@@ -21,7 +21,8 @@ type Read = (Vec<f64>, Vec<i64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<(Vec
 
 /// The arrays a file holds: `(vertices, faces, uv, colors, polygons)`,
 /// `uv` `(3m, 2)` (one per triangle corner), `colors` `(n, 3)`,
-/// `polygons` `(corners (c, 1), offsets (m + 1, 1))` or `None`.
+/// `polygons` `(corners (c, 1), offsets (m + 1, 1))` or `None`; `repair`
+/// mends a non-manifold mesh instead of refusing it.
 ///
 /// # Errors
 /// `SubdivError` with the reader's message (file, line or element, problem).
@@ -30,6 +31,7 @@ type Read = (Vec<f64>, Vec<i64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<(Vec
 pub fn load_file(
     py: Python<'_>,
     path: PathBuf,
+    repair: bool,
 ) -> PyResult<(
     Bound<'_, PyArray2<f64>>,
     Bound<'_, PyArray2<i64>>,
@@ -37,7 +39,7 @@ pub fn load_file(
     Option<Bound<'_, PyArray2<f64>>>,
     Option<(Bound<'_, PyArray2<i64>>, Bound<'_, PyArray2<i64>>)>,
 )> {
-    let (v, f, uv, colors, polys) = run(py, None, || read(&path))?;
+    let (v, f, uv, colors, polys) = run(py, None, || read(&path, repair))?;
     let uv = uv.map(|u| f64_array(py, u, 2)).transpose()?;
     let colors = colors.map(|c| f64_array(py, c, 3)).transpose()?;
     let polys = match polys {
@@ -47,9 +49,12 @@ pub fn load_file(
     Ok((f64_array(py, v, 3)?, i64_array(py, f, 3)?, uv, colors, polys))
 }
 
-/// Reads `path` with the default budget, attributes included.
-fn read(path: &std::path::Path) -> Result<Read, Msg> {
-    let loaded = io::read(Source::File(path), &ReadOptions::default()).map_err(msg)?;
+/// Reads `path` with the default budget, attributes included (dropped by
+/// a repair, which renumbers).
+fn read(path: &std::path::Path, repair: bool) -> Result<Read, Msg> {
+    let topology = if repair { Topology::Repair } else { Topology::Refuse };
+    let opts = ReadOptions { topology, ..ReadOptions::default() };
+    let loaded = io::read(Source::File(path), &opts).map_err(msg)?;
     let mesh = &loaded.mesh;
     let Attributes { uv, colors, .. } = loaded.attributes;
     let uv = uv.map(|u| u.iter().flat_map(|p: &Vec2| [f64::from(p.x), f64::from(p.y)]).collect());

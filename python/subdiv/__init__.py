@@ -191,10 +191,11 @@ class Mesh:
         return f"subdiv.Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles{extra})"
 
 
-def load(path) -> Mesh:
+def load(path, *, repair=False) -> Mesh:
     """Read a mesh file (OBJ with MTL, ``.ct``, PLY, STL, OFF, glTF/GLB,
     COLLADA, Bezier patches), the format chosen by the extension, else by
-    the content. Vertices no face uses are dropped.
+    the content. Vertices no face uses are dropped. ``repair=True`` mends a
+    non-manifold mesh (as ``subdivide``'s ``repair``; attributes are then dropped).
 
     Raises :class:`SubdivError` naming the file, the line or element and the
     problem (also for a mesh that is not manifold).
@@ -205,7 +206,7 @@ def load(path) -> Mesh:
     >>> subdiv.load(p).faces.tolist()
     [[0, 1, 2]]
     """
-    v, f, uv, colors, polys = _subdiv.load_file(path)
+    v, f, uv, colors, polys = _subdiv.load_file(path, bool(repair))
     if uv is not None:
         uv = uv.reshape(-1, 3, 2)
     if polys is not None:
