@@ -38,7 +38,7 @@ const MAX_CORNERS: usize = (u32::MAX / 8) as usize;
 /// # Errors
 /// Naming the first bad vertex.
 pub fn positions(flat: &[f64]) -> Result<Vec<Vec3>, Msg> {
-    if flat.len() % 3 != 0 {
+    if !flat.len().is_multiple_of(3) {
         return Err(format!("vertices must have 3 coordinates each, got {} numbers", flat.len()));
     }
     if flat.len() / 3 >= u32::MAX as usize {
@@ -50,7 +50,10 @@ pub fn positions(flat: &[f64]) -> Result<Vec<Vec3>, Msg> {
             return Err(format!("vertex {i} has a non-finite coordinate (NaN or infinity)"));
         }
         if p.iter().any(|x| x.abs() > f64::from(f32::MAX)) {
-            return Err(format!("vertex {i} has a coordinate beyond single precision ({:e})", p.iter().fold(0.0f64, |m, x| m.max(x.abs()))));
+            return Err(format!(
+                "vertex {i} has a coordinate beyond single precision ({:e})",
+                p.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+            ));
         }
         out.push(Vec3::new(p[0] as f32, p[1] as f32, p[2] as f32));
     }
@@ -116,7 +119,8 @@ pub fn creases(edges: &[i64], sharpness: &[f64], nv: usize) -> Result<Vec<(u32, 
 /// When `flat` does not hold `rows * cols` values (a bug).
 pub fn f64_array(py: Python<'_>, flat: Vec<f64>, cols: usize) -> PyResult<Bound<'_, PyArray2<f64>>> {
     let rows = flat.len().checked_div(cols).unwrap_or(0);
-    let a = Array2::from_shape_vec((rows, cols), flat).map_err(|e| crate::guard::SubdivError::new_err(e.to_string()))?;
+    let a =
+        Array2::from_shape_vec((rows, cols), flat).map_err(|e| crate::guard::SubdivError::new_err(e.to_string()))?;
     Ok(a.into_pyarray(py))
 }
 
@@ -126,7 +130,8 @@ pub fn f64_array(py: Python<'_>, flat: Vec<f64>, cols: usize) -> PyResult<Bound<
 /// When `flat` does not hold `rows * cols` values (a bug).
 pub fn i64_array(py: Python<'_>, flat: Vec<i64>, cols: usize) -> PyResult<Bound<'_, PyArray2<i64>>> {
     let rows = flat.len().checked_div(cols).unwrap_or(0);
-    let a = Array2::from_shape_vec((rows, cols), flat).map_err(|e| crate::guard::SubdivError::new_err(e.to_string()))?;
+    let a =
+        Array2::from_shape_vec((rows, cols), flat).map_err(|e| crate::guard::SubdivError::new_err(e.to_string()))?;
     Ok(a.into_pyarray(py))
 }
 

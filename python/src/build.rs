@@ -115,8 +115,8 @@ pub fn control(req: Request<'_>) -> Result<(Control, Remap), Msg> {
     }
     let n_input = req.positions.len();
     let (c, kept) = if poly {
-        let (pt, _, kept) = PolyTable::build(n_input, &req.faces.starts, &req.faces.corners, Some(&req.positions))
-            .map_err(msg)?;
+        let (pt, _, kept) =
+            PolyTable::build(n_input, &req.faces.starts, &req.faces.corners, Some(&req.positions)).map_err(msg)?;
         (Control::Poly(PolyMesh { pt, positions: kept_positions(req.positions, kept.as_deref()) }), kept)
     } else {
         let (ct, _, kept) = CornerTable::build(n_input, &req.faces.corners, Some(&req.positions)).map_err(msg)?;
@@ -128,7 +128,9 @@ pub fn control(req: Request<'_>) -> Result<(Control, Remap), Msg> {
         c
     } else {
         match c {
-            Control::Tri(Mesh { ct, positions }) => Control::Tri(Mesh { ct: ct.with_tags(&tags).map_err(msg)?, positions }),
+            Control::Tri(Mesh { ct, positions }) => {
+                Control::Tri(Mesh { ct: ct.with_tags(&tags).map_err(msg)?, positions })
+            }
             Control::Poly(PolyMesh { pt, positions }) => {
                 Control::Poly(PolyMesh { pt: pt.with_tags(&tags).map_err(msg)?, positions })
             }
@@ -160,12 +162,8 @@ fn tags(creases: &[(u32, u32, f32)], remap: &Remap) -> Result<Tags, Msg> {
 
 /// The repaired mesh (its own vertex ids).
 fn repaired(positions: Vec<Vec3>, faces: &Faces, poly: bool) -> Result<(Control, Remap), Msg> {
-    let raw = RawMesh {
-        positions,
-        face_starts: faces.starts.clone(),
-        corners: faces.corners.clone(),
-        ..RawMesh::default()
-    };
+    let raw =
+        RawMesh { positions, face_starts: faces.starts.clone(), corners: faces.corners.clone(), ..RawMesh::default() };
     let (mesh, _, _) = raw.build("the arrays", Topology::Repair, false).map_err(msg)?;
     let remap = Remap { n_input: mesh.positions.len(), kept: None };
     let c = if poly { Control::Poly(PolyMesh::from_mesh(&mesh)) } else { Control::Tri(mesh) };

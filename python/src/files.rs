@@ -62,7 +62,8 @@ fn read(path: &std::path::Path, repair: bool) -> Result<Read, Msg> {
     let polys = PolyMesh::is_polygonal(mesh).then(|| {
         let pm = PolyMesh::from_mesh(mesh);
         let corners = pm.pt.v_table().iter().map(|&v| i64::from(v)).collect();
-        let mut starts: Vec<i64> = (0..pm.pt.num_faces() as u32).map(|f| i64::from(pm.pt.face_corners(f).start)).collect();
+        let mut starts: Vec<i64> =
+            (0..pm.pt.num_faces() as u32).map(|f| i64::from(pm.pt.face_corners(f).start)).collect();
         starts.push(pm.pt.num_corners() as i64);
         (corners, starts)
     });
@@ -96,4 +97,3 @@ fn write(path: &std::path::Path, v: &[f64], c: &[i64], s: &[i64]) -> Result<(), 
         io::save_poly(path, &pm, &Attributes::default()).map_err(msg)
     }
 }
-

@@ -62,6 +62,9 @@ fn named(names: &(String, String, String)) -> Result<(Scheme, Options), Msg> {
     Ok((options::scheme(&names.0)?, options::options(&names.1, &names.2)?))
 }
 
+/// Two arrays: float64 points and a second array of `T` (faces, normals).
+type Pair<'py, T> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<T>>);
+
 /// Refined vertices (flat, caller's numbering), faces (flat) and their size.
 type Refined = (Vec<f64>, Vec<i64>, usize);
 
@@ -78,7 +81,7 @@ pub fn subdivide_arrays<'py>(
     levels: u32,
     repair: bool,
     threads: Option<usize>,
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<i64>>)> {
+) -> PyResult<Pair<'py, i64>> {
     let s = mesh.slices(&creases)?;
     let (v, f, k) = run(py, threads, || {
         let (scheme, opts) = named(&names)?;
@@ -89,7 +92,14 @@ pub fn subdivide_arrays<'py>(
 }
 
 /// Subdivides the control mesh and renumbers the result.
-fn refine(c: Control, remap: &Remap, scheme: Scheme, levels: u32, opts: &Options, input: &[f64]) -> Result<Refined, Msg> {
+fn refine(
+    c: Control,
+    remap: &Remap,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+    input: &[f64],
+) -> Result<Refined, Msg> {
     match c {
         Control::Tri(mesh) => {
             let (fine, _) = subdivide(&mesh, scheme, levels, opts).map_err(msg)?;
@@ -109,7 +119,8 @@ fn face_size(pt: &subdiv::mesh::poly::PolyTable) -> Result<usize, Msg> {
     if (0..pt.num_faces() as u32).all(|f| pt.face_size(f) as usize == k) {
         Ok(k)
     } else {
-        Err("the faces have different sizes: at levels=0 a mixed polygon mesh is no (m, k) array; ask for levels >= 1".into())
+        Err("the faces have different sizes: at levels=0 a mixed polygon mesh is no (m, k) array; ask for levels >= 1"
+            .into())
     }
 }
 
@@ -155,7 +166,15 @@ pub fn plan_levels<'py>(
     let lv = plan
         .levels
         .into_iter()
-        .map(|l| (l.n_in, l.copy_vertices, l.offsets.into_pyarray(py), l.indices.into_pyarray(py), l.weights.into_pyarray(py)))
+        .map(|l| {
+            (
+                l.n_in,
+                l.copy_vertices,
+                l.offsets.into_pyarray(py),
+                l.indices.into_pyarray(py),
+                l.weights.into_pyarray(py),
+            )
+        })
         .collect();
     Ok((lv, i64_array(py, faces, k)?, remap.kept.map(|k| k.into_pyarray(py)), remap.n_input))
 }
@@ -193,7 +212,7 @@ pub fn limit_arrays<'py>(
     mesh: MeshArgs<'py>,
     creases: CreaseArgs<'py>,
     names: (String, String),
-) -> PyResult<(Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>)> {
+) -> PyResult<Pair<'py, f64>> {
     let s = mesh.slices(&creases)?;
     let (p, n) = run(py, None, || {
         let opts = options::options(&names.0, &names.1)?;

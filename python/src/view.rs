@@ -39,7 +39,9 @@ pub fn render_image<'py>(
 ) -> PyResult<Bound<'py, PyArray3<u8>>> {
     let (w, h) = size;
     if !(1..=MAX_SIDE).contains(&w) || !(1..=MAX_SIDE).contains(&h) {
-        return Err(SubdivError::new_err(format!("size must be between 1 and {MAX_SIDE} pixels a side, got {w} x {h}")));
+        return Err(SubdivError::new_err(format!(
+            "size must be between 1 and {MAX_SIDE} pixels a side, got {w} x {h}"
+        )));
     }
     let s = mesh.slices(&creases)?;
     let img = run(py, None, || {
