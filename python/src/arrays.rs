@@ -6,6 +6,7 @@ use glam::Vec3;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2};
 use pyo3::prelude::*;
+use rayon::prelude::*;
 
 /// Faces as flat corner lists: face `f` is `corners[starts[f]..starts[f + 1]]`.
 #[derive(Clone, Debug, Default)]
@@ -135,11 +136,29 @@ pub fn i64_array(py: Python<'_>, flat: Vec<i64>, cols: usize) -> PyResult<Bound<
     Ok(a.into_pyarray(py))
 }
 
-/// `points` as flat float64 `x y z` values.
+/// Elements converted per task of the parallel conversions.
+const CHUNK: usize = 1 << 16;
+
+/// `points` as flat float64 `x y z` values (converted in parallel into
+/// memory from the library's allocator, pre-faulted: the output of a
+/// large subdivision is tens of megabytes of fresh pages).
 pub fn flat_f64(points: &[Vec3]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len() * 3);
-    for p in points {
-        out.extend([f64::from(p.x), f64::from(p.y), f64::from(p.z)]);
-    }
+    let mut out = subdiv::mem::zeroed::<f64>(points.len() * 3);
+    out.par_chunks_mut(3 * CHUNK).zip(points.par_chunks(CHUNK)).for_each(|(o, p)| {
+        for (o, p) in o.chunks_exact_mut(3).zip(p) {
+            o.copy_from_slice(&[f64::from(p.x), f64::from(p.y), f64::from(p.z)]);
+        }
+    });
+    out
+}
+
+/// `ids` as int64, each through `f` (in parallel, as [`flat_f64`]).
+pub fn ids_i64(ids: &[u32], f: impl Fn(u32) -> i64 + Sync) -> Vec<i64> {
+    let mut out = subdiv::mem::zeroed::<i64>(ids.len());
+    out.par_chunks_mut(CHUNK).zip(ids.par_chunks(CHUNK)).for_each(|(o, i)| {
+        for (o, &i) in o.iter_mut().zip(i) {
+            *o = f(i);
+        }
+    });
     out
 }

@@ -2,7 +2,7 @@
 //! renumbering that keeps the input's vertex order and carries the vertices
 //! no face uses.
 
-use crate::arrays::{Faces, flat_f64};
+use crate::arrays::{Faces, flat_f64, ids_i64};
 use crate::guard::{Msg, msg};
 use glam::Vec3;
 use subdiv::io::{RawMesh, Topology};
@@ -46,9 +46,9 @@ impl Remap {
     /// Every vertex id of `v` in the caller's numbering.
     pub fn ids(&self, v: &[u32]) -> Vec<i64> {
         if self.kept.is_none() {
-            return v.iter().map(|&j| i64::from(j)).collect();
+            return ids_i64(v, i64::from);
         }
-        v.iter().map(|&j| self.id(j)).collect()
+        ids_i64(v, |j| self.id(j))
     }
     /// The refined positions `fine` as flat rows in the caller's numbering,
     /// the vertices no face uses carried from `input` (flat) unchanged.

@@ -103,14 +103,25 @@ fn refine(
     match c {
         Control::Tri(mesh) => {
             let (fine, _) = subdivide(&mesh, scheme, levels, opts).map_err(msg)?;
-            Ok((remap.positions(&fine.positions, input), remap.ids(fine.ct.v_table()), 3))
+            let out = (remap.positions(&fine.positions, input), remap.ids(fine.ct.v_table()), 3);
+            drop_later(fine);
+            Ok(out)
         }
         Control::Poly(mesh) => {
             let (fine, _) = subdivide_poly(&mesh, scheme, levels, opts).map_err(msg)?;
             let k = face_size(&fine.pt)?;
-            Ok((remap.positions(&fine.positions, input), remap.ids(fine.pt.v_table()), k))
+            let out = (remap.positions(&fine.positions, input), remap.ids(fine.pt.v_table()), k);
+            drop_later(fine);
+            Ok(out)
         }
     }
+}
+
+/// Frees `value` on another thread: unmapping the hundreds of megabytes of a
+/// fine level's tables need not delay the caller.
+fn drop_later<T: Send + 'static>(value: T) {
+    // without a thread the closure, and the value with it, is dropped here
+    let _ = std::thread::Builder::new().name("subdiv-free".into()).spawn(move || drop(value));
 }
 
 /// The size of every face of `pt`, when they all have one.
