@@ -66,3 +66,18 @@ fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
         "a panic without a message".to_string()
     }
 }
+
+/// Panics inside [`run`], as a bug in the library would: for the test that
+/// a panic reaches Python as `SubdivError` and never aborts the interpreter.
+///
+/// # Errors
+/// Always `SubdivError`.
+#[pyfunction]
+pub fn _panic_for_tests(py: Python<'_>, threads: Option<usize>) -> PyResult<()> {
+    run(py, threads, || -> Result<(), Msg> {
+        use rayon::prelude::*;
+        // on a worker thread too: rayon carries the panic back to the caller
+        (0..64).into_par_iter().for_each(|i| assert!(i != 37, "a deliberate panic"));
+        Ok(())
+    })
+}

@@ -23,6 +23,7 @@ fn _subdiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("HAS_VIEWER", cfg!(feature = "viewer"))?;
     m.add("MAX_THREADS", guard::MAX_THREADS)?;
+    m.add_function(wrap_pyfunction!(guard::_panic_for_tests, m)?)?;
     m.add_function(wrap_pyfunction!(ops::subdivide_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(ops::plan_levels, m)?)?;
     m.add_function(wrap_pyfunction!(ops::limit_arrays, m)?)?;

@@ -93,8 +93,8 @@ def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary
     >>> import numpy as np, subdiv
     >>> V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
     >>> V2, F2 = subdiv.subdivide(V, [[0, 1, 2]], levels=1, scheme="midpoint")
-    >>> V2[3:].tolist()
-    [[0.5, 0.0, 0.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.0]]
+    >>> V2[3:].tolist()  # one point per edge, the edge opposite corner 0 first
+    [[0.5, 0.5, 0.0], [0.0, 0.5, 0.0], [0.5, 0.0, 0.0]]
     """
     v = _checks.vertices(vertices)
     corners, starts = _checks.faces(faces)

@@ -117,3 +117,10 @@ def test_view_without_a_display_raises():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, env=env)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "RAISED SubdivError" in r.stdout, r.stdout
+
+
+@pytest.mark.parametrize("threads", ["None", "1", "2"])
+def test_a_panic_becomes_subdiv_error(threads):
+    r = run_python(PRELUDE + RUNNER.replace("{body}", f"    subdiv._subdiv._panic_for_tests({threads})"))
+    assert r.returncode == 0, f"the interpreter died ({r.returncode}): {r.stderr[-2000:]}"
+    assert "RAISED SubdivError | internal error" in r.stdout and "deliberate panic" in r.stdout, r.stdout
