@@ -13,7 +13,7 @@ pyo3::create_exception!(
 );
 
 /// Most worker threads a call may ask for.
-pub const MAX_THREADS: usize = 1024;
+pub const MAX_THREADS: usize = 256;
 
 /// A library failure, as one line.
 pub type Msg = String;

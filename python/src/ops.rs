@@ -103,6 +103,7 @@ fn refine(
     match c {
         Control::Tri(mesh) => {
             let (fine, _) = subdivide(&mesh, scheme, levels, opts).map_err(msg)?;
+            check_output(remap, fine.positions.len(), fine.ct.num_corners())?;
             let out = (remap.positions(&fine.positions, input), remap.ids(fine.ct.v_table()), 3);
             drop_later(fine);
             Ok(out)
@@ -110,10 +111,28 @@ fn refine(
         Control::Poly(mesh) => {
             let (fine, _) = subdivide_poly(&mesh, scheme, levels, opts).map_err(msg)?;
             let k = face_size(&fine.pt)?;
+            check_output(remap, fine.positions.len(), fine.pt.num_corners())?;
             let out = (remap.positions(&fine.positions, input), remap.ids(fine.pt.v_table()), k);
             drop_later(fine);
             Ok(out)
         }
+    }
+}
+
+/// Refuses output arrays (float64 points, int64 corners) larger than the
+/// memory the library may use, before allocating them: the library checked
+/// its own tables, these come on top.
+///
+/// # Errors
+/// The bytes needed and available.
+pub fn check_output(remap: &Remap, points: usize, corners: usize) -> Result<(), Msg> {
+    let rows = (points + remap.n_input) as u64;
+    let bytes = rows.saturating_mul(24).saturating_add((corners as u64).saturating_mul(8));
+    match subdiv::subdiv::default_memory_limit() {
+        Some(limit) if bytes > limit => {
+            Err(format!("the output arrays need {bytes} bytes, more than the {limit} bytes of memory available"))
+        }
+        _ => Ok(()),
     }
 }
 

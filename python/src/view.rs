@@ -43,6 +43,11 @@ pub fn render_image<'py>(
             "size must be between 1 and {MAX_SIDE} pixels a side, got {w} x {h}"
         )));
     }
+    // the image, its readback and the render targets: about 16 bytes a pixel
+    let bytes = u64::from(w) * u64::from(h) * 16;
+    if subdiv::subdiv::default_memory_limit().is_some_and(|limit| bytes > limit) {
+        return Err(SubdivError::new_err(format!("a {w} x {h} image needs more memory than is available")));
+    }
     let s = mesh.slices(&creases)?;
     let img = run(py, None, || {
         let shading: Shading = names.3.parse::<Shading>()?;
