@@ -73,3 +73,27 @@ def test_unreferenced_vertex_keeps_position_zero_normal():
     vx = np.vstack([v, [[3.0, 2.0, 1.0]]])
     p, n = subdiv.limit(vx, f)
     assert np.array_equal(p[-1], [3.0, 2.0, 1.0]) and np.array_equal(n[-1], [0, 0, 0])
+
+
+def test_boundary_and_corner_masks():
+    from conftest import open_grid
+
+    v, f = open_grid(3, seed=5)
+    p, _ = subdiv.limit(v, f)
+    # a boundary vertex with two border neighbours a, b: 2/3 v + 1/6 (a + b); vertex 1
+    # (i=0, j=1) lies between 0 and 2 on the border j-axis
+    np.testing.assert_allclose(p[1], 2 / 3 * v[1] + (v[0] + v[2]) / 6, atol=1e-6)
+    counts = np.bincount(f.ravel(), minlength=len(v))
+    corner = int(np.flatnonzero(counts == 1)[0])
+    pc, _ = subdiv.limit(v, f, boundary="edge-and-corner")
+    np.testing.assert_allclose(pc[corner], v[corner], rtol=1e-7)
+    assert not np.allclose(p[corner], v[corner])
+
+
+def test_crease_limit_mask():
+    from conftest import cube_triangles
+
+    v, f = cube_triangles()
+    edges = np.array([[0, 1], [1, 3], [3, 2], [2, 0]])
+    p, _ = subdiv.limit(v, f, creases=(edges, np.full(4, 10.0)))
+    np.testing.assert_allclose(p[0], 2 / 3 * v[0] + (v[1] + v[2]) / 6, atol=1e-6)
