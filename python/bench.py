@@ -4,8 +4,8 @@ that are installed (trimesh, libigl, pymeshlab, Open3D), in one run.
 
     python3 python/bench.py [MESH] [--levels 3]
 
-MESH defaults to the Stanford bunny of the project's shared models
-(../shared/models/stanford-bunny-compact.obj beside the repository). Each
+MESH defaults to the Stanford bunny of the team's shared models, a checkout
+beside the repository (not part of it). Each
 tool gets the same float64 (n, 3) and int64 (m, 3) arrays and must hand back
 arrays; subdiv is timed as the minimum of 5 calls after a warm-up, each peer
 as the minimum of 3, the calls interleaved round by round so that a busy
