@@ -3,14 +3,16 @@ subdivide_loop (Loop's beta) and libigl's loop (Warren's beta), as point
 sets and as face sets. Peers are test dependencies; a test of a peer skips
 only when its import fails.
 
-Open meshes are not compared: trimesh treats a vertex as a boundary vertex's
-neighbour along the border when the neighbour is on the border at all (an
-interior edge between two border vertices counts as a border edge there,
-trimesh/remesh.py, subdivide_loop), which our rule (and OpenSubdiv's) does not."""
+On open meshes libigl's boundary rules are ours (3/4 v + 1/8 (a + b) at a
+border vertex, the midpoint of a border edge): compared as above. trimesh takes
+as a border vertex's curve neighbours every neighbour that lies on the border
+(trimesh/remesh.py, subdivide_loop), so it differs at a border vertex joined to
+another border vertex by an interior edge; the test checks that it differs
+there and only there."""
 
 import numpy as np
 import pytest
-from conftest import bipyramid, icosahedron, sphere
+from conftest import bipyramid, icosahedron, open_grid, sphere
 from scipy.spatial import cKDTree
 
 import subdiv
@@ -67,3 +69,29 @@ def test_the_betas_really_differ():
     a, _ = subdiv.subdivide(v, f, 1, beta="loop")
     b, _ = subdiv.subdivide(v, f, 1, beta="warren")
     assert np.abs(a - b).max() > 1e-3
+
+
+@pytest.mark.parametrize("levels", [1, 3])
+def test_equal_to_libigl_on_an_open_mesh(levels):
+    igl = pytest.importorskip("igl")
+    v, f = open_grid(4)
+    iv, if_ = igl.loop(v, f.astype(np.int64), levels)
+    ov, of = subdiv.subdivide(v, f, levels, beta="warren")
+    match(ov, of, iv, if_, tol=1e-5)
+
+
+def test_trimesh_differs_on_an_open_mesh_only_where_its_rule_does():
+    trimesh = pytest.importorskip("trimesh")
+    v, f = open_grid(4)
+    tv, tf = trimesh.remesh.subdivide_loop(v, f, iterations=1)
+    ov, _ = subdiv.subdivide(v, f, 1)
+    d, _ = cKDTree(tv).query(ov)
+    differ = set(np.flatnonzero(d > 1e-5).tolist())
+    # border vertices with an interior edge to another border vertex
+    e = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+    edges, count = np.unique(e, axis=0, return_counts=True)
+    border = set(edges[count == 1].ravel().tolist())
+    inner = edges[count == 2]
+    ambiguous = {int(x) for a, b in inner if a in border and b in border for x in (a, b)}
+    assert ambiguous, "the grid must have such vertices for this test to mean anything"
+    assert differ == ambiguous
