@@ -110,3 +110,25 @@ def test_save_refuses_non_manifold(tmp_path):
 def test_load_refuses_or_repairs_the_teapot():
     with pytest.raises(subdiv.SubdivError, match="teapot.bez.*non-manifold"):
         subdiv.load(os.path.join(MODELS, "teapot.bez"))
+
+
+def test_gltf_text_is_read(tmp_path):
+    import json
+
+    pos = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], np.float32).tobytes()
+    (tmp_path / "t.bin").write_bytes(pos)
+    doc = {
+        "asset": {"version": "2.0"},
+        "buffers": [{"uri": "t.bin", "byteLength": len(pos)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": [{"mesh": 0}],
+        "scenes": [{"nodes": [0]}],
+        "scene": 0,
+    }
+    (tmp_path / "t.gltf").write_text(json.dumps(doc))
+    m = subdiv.load(tmp_path / "t.gltf")
+    assert m.faces.shape == (1, 3)
+    assert sorted(map(tuple, m.vertices)) == [(0, 0, 0), (0, 1, 0), (1, 0, 0)]
