@@ -5,7 +5,9 @@ use crate::arrays::{self, f64_array, i64_array};
 use crate::build::{self, Control, Remap, Request};
 use crate::guard::{Msg, msg, run};
 use crate::options;
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use subdiv::subdiv::rules::features::with_boundary_corners;
@@ -36,7 +38,15 @@ pub struct Slices<'a> {
 }
 
 impl<'py> MeshArgs<'py> {
+    /// The arrays' data, with the creases `c`.
+    ///
+    /// # Errors
+    /// `TypeError` for vertices not `(n, 3)` or arrays not C-contiguous
+    /// (the Python layer passes neither; a direct caller might).
     pub fn slices<'a>(&'a self, c: &'a CreaseArgs<'py>) -> PyResult<Slices<'a>> {
+        if self.0.shape()[1] != 3 {
+            return Err(PyTypeError::new_err("vertices must have shape (n, 3)"));
+        }
         let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
         Ok(Slices {
             vertices: self.0.as_slice().map_err(bad)?,
