@@ -1,0 +1,99 @@
+//! `subdiv.load` and `subdiv.save`: every format the command line reads,
+//! through the library's one reading pipeline and its budget.
+
+use crate::arrays::{self, f64_array, i64_array};
+use crate::guard::{Msg, msg, run};
+use crate::ops::MeshArgs;
+use glam::Vec2;
+use numpy::PyArray2;
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use std::path::PathBuf;
+use subdiv::Mesh;
+use subdiv::io::{self, ReadOptions, Source, Topology};
+use subdiv::mesh::attributes::Attributes;
+use subdiv::mesh::poly::PolyMesh;
+
+/// What a file held, flat: vertices, triangles, per-corner texture
+/// coordinates, per-vertex colours, and the polygons (corners, offsets)
+/// when the file's faces were not all triangles.
+type Read = (Vec<f64>, Vec<i64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<(Vec<i64>, Vec<i64>)>);
+
+/// The arrays a file holds: `(vertices, faces, uv, colors, polygons)`,
+/// `uv` `(3m, 2)` (one per triangle corner), `colors` `(n, 3)`,
+/// `polygons` `(corners (c, 1), offsets (m + 1, 1))` or `None`; `repair`
+/// mends a non-manifold mesh instead of refusing it.
+///
+/// # Errors
+/// `SubdivError` with the reader's message (file, line or element, problem).
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+pub fn load_file(
+    py: Python<'_>,
+    path: PathBuf,
+    repair: bool,
+) -> PyResult<(
+    Bound<'_, PyArray2<f64>>,
+    Bound<'_, PyArray2<i64>>,
+    Option<Bound<'_, PyArray2<f64>>>,
+    Option<Bound<'_, PyArray2<f64>>>,
+    Option<(Bound<'_, PyArray2<i64>>, Bound<'_, PyArray2<i64>>)>,
+)> {
+    let (v, f, uv, colors, polys) = run(py, None, || read(&path, repair))?;
+    let uv = uv.map(|u| f64_array(py, u, 2)).transpose()?;
+    let colors = colors.map(|c| f64_array(py, c, 3)).transpose()?;
+    let polys = match polys {
+        Some((c, s)) => Some((i64_array(py, c, 1)?, i64_array(py, s, 1)?)),
+        None => None,
+    };
+    Ok((f64_array(py, v, 3)?, i64_array(py, f, 3)?, uv, colors, polys))
+}
+
+/// Reads `path` with the default budget, attributes included (dropped by
+/// a repair, which renumbers).
+fn read(path: &std::path::Path, repair: bool) -> Result<Read, Msg> {
+    let topology = if repair { Topology::Repair } else { Topology::Refuse };
+    let opts = ReadOptions { topology, ..ReadOptions::default() };
+    let loaded = io::read(Source::File(path), &opts).map_err(msg)?;
+    let mesh = &loaded.mesh;
+    let Attributes { uv, colors, .. } = loaded.attributes;
+    let uv = uv.map(|u| u.iter().flat_map(|p: &Vec2| [f64::from(p.x), f64::from(p.y)]).collect());
+    let colors = colors.map(|c| arrays::flat_f64(&c));
+    let polys = PolyMesh::is_polygonal(mesh).then(|| {
+        let pm = PolyMesh::from_mesh(mesh);
+        let corners = pm.pt.v_table().iter().map(|&v| i64::from(v)).collect();
+        let mut starts: Vec<i64> =
+            (0..pm.pt.num_faces() as u32).map(|f| i64::from(pm.pt.face_corners(f).start)).collect();
+        starts.push(pm.pt.num_corners() as i64);
+        (corners, starts)
+    });
+    let faces = mesh.triangles().iter().map(|&v| i64::from(v)).collect();
+    Ok((arrays::flat_f64(&mesh.positions), faces, uv, colors, polys))
+}
+
+/// Writes the mesh to `path`, the format chosen by the extension; faces
+/// that are not all triangles are written as polygons where the format
+/// keeps them.
+///
+/// # Errors
+/// `SubdivError` for a mesh the library refuses, an unknown extension or
+/// an I/O error.
+#[pyfunction]
+pub fn save_file(py: Python<'_>, path: PathBuf, mesh: MeshArgs<'_>) -> PyResult<()> {
+    let MeshArgs(v, c, s) = &mesh;
+    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous");
+    let (v, c, s) = (v.as_slice().map_err(bad)?, c.as_slice().map_err(bad)?, s.as_slice().map_err(bad)?);
+    run(py, None, || write(&path, v, c, s))
+}
+
+fn write(path: &std::path::Path, v: &[f64], c: &[i64], s: &[i64]) -> Result<(), Msg> {
+    let positions = arrays::positions(v)?;
+    let faces = arrays::faces(c, s, positions.len())?;
+    if faces.all_triangles() {
+        let mesh = Mesh::from_triangles(positions, &faces.corners).map_err(msg)?;
+        io::save(path, &mesh).map_err(msg)
+    } else {
+        let (pm, _) = PolyMesh::from_faces(positions, &faces.starts, &faces.corners).map_err(msg)?;
+        io::save_poly(path, &pm, &Attributes::default()).map_err(msg)
+    }
+}

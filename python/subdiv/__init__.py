@@ -1,0 +1,280 @@
+"""subdiv: subdivision surfaces from numpy.
+
+Loop (Loop's or Warren's beta), midpoint, butterfly, modified butterfly and
+Jarek on triangle meshes; Catmull-Clark and bilinear on polygon meshes;
+creases, limit positions and normals, stencil matrices, every file format
+of the ``subdiv`` command line, and an offscreen renderer. The work is done
+by the Rust library ``subdiv`` (the same code as the command line), with the
+GIL released; nothing you pass can crash the interpreter: refused values
+raise :class:`SubdivError`.
+
+>>> import numpy as np, subdiv
+>>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+>>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+>>> V2, F2 = subdiv.subdivide(V, F, levels=2)
+>>> V2.shape, F2.shape
+((34, 3), (64, 3))
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _checks, _subdiv
+from ._subdiv import SubdivError, __version__
+
+SubdivError.__module__ = "subdiv"
+
+__all__ = [
+    "SubdivError",
+    "Mesh",
+    "subdivide",
+    "matrix",
+    "limit",
+    "load",
+    "save",
+    "render",
+    "view",
+    "TRIANGLE_SCHEMES",
+    "POLYGON_SCHEMES",
+    "__version__",
+]
+
+#: The schemes of triangle meshes: faces ``(m, 3)`` in, ``(4m, 3)`` out per level.
+TRIANGLE_SCHEMES = ("midpoint", "loop", "butterfly", "modified-butterfly", "jarek")
+#: The schemes of polygon meshes: faces of any size in, quads ``(m2, 4)`` out.
+POLYGON_SCHEMES = ("catmull-clark", "bilinear")
+
+
+def _names(scheme, beta, boundary):
+    return (_checks.name(scheme, "scheme"), _checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
+
+
+def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary="edge", creases=None,
+              repair=False, threads=None):
+    """Subdivide a mesh ``levels`` times.
+
+    Parameters
+    ----------
+    vertices : array-like (n, 3) of float
+    faces : array-like (m, 3) of int for the triangle schemes; for
+        ``catmull-clark`` and ``bilinear`` also (m, k) arrays or lists of
+        polygons of any size.
+    levels : int, 0 or more.
+    scheme : ``"loop"`` (default), ``"midpoint"``, ``"butterfly"``,
+        ``"modified-butterfly"``, ``"jarek"``, ``"catmull-clark"``, ``"bilinear"``.
+    beta : ``"loop"`` (Loop's original vertex weights, as trimesh) or
+        ``"warren"`` (as libigl and Open3D).
+    boundary : ``"edge"`` or ``"edge-and-corner"`` (boundary vertices with
+        one face stay put).
+    creases : None or ``(edges (k, 2) int, sharpness (k,) float)``;
+        sharpness 10 or more is infinitely sharp, below decays a level at a time.
+    repair : repair a non-manifold mesh instead of refusing it (the vertex
+        order is then the repaired mesh's).
+    threads : None (all cores) or the number of threads; the result is the
+        same bit for bit.
+
+    Returns
+    -------
+    V2 : float64 (n2, 3). Row ``i < n`` is the refined position of input
+        vertex ``i``; vertices no face uses are carried unchanged.
+    F2 : int64 (m2, 3) (triangle schemes) or (m2, 4) (quads).
+        At one level of a triangle scheme ``n2 = n + edges``, ``m2 = 4 m``.
+
+    Raises
+    ------
+    SubdivError : a non-manifold mesh (naming the edge's vertex ids), an
+        index out of range, a non-finite coordinate, an unknown name, a
+        level count that does not fit in memory (refused before allocating).
+    TypeError, ValueError : wrong shapes or dtypes (float faces are refused).
+
+    Examples
+    --------
+    >>> import numpy as np, subdiv
+    >>> V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float)
+    >>> V2, F2 = subdiv.subdivide(V, [[0, 1, 2]], levels=1, scheme="midpoint")
+    >>> V2[3:].tolist()  # one point per edge, the edge opposite corner 0 first
+    [[0.5, 0.5, 0.0], [0.0, 0.5, 0.0], [0.5, 0.0, 0.0]]
+    """
+    v = _checks.vertices(vertices)
+    corners, starts = _checks.faces(faces)
+    mesh = (v, corners, starts)
+    return _subdiv.subdivide_arrays(mesh, _checks.creases(creases), _names(scheme, beta, boundary),
+                                    _checks.levels(levels), bool(repair), _checks.threads(threads))
+
+
+def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boundary="edge", creases=None,
+           return_faces=False):
+    """The subdivision matrix ``S`` (scipy.sparse.csr_matrix, (n2, n)):
+    ``S @ V`` equals ``subdivide(V, faces, levels, scheme, ...)[0]`` for
+    any ``V`` of ``n`` rows (to single precision: the library computes in
+    float32), on the same faces ``F2``. It is composed from the library's
+    stencil plan, level by level.
+
+    Parameters
+    ----------
+    faces, levels, scheme, beta, boundary, creases : as :func:`subdivide`.
+    n_vertices : the number of control vertices (default: the largest index
+        in ``faces`` plus one); vertices no face uses get an identity row.
+    return_faces : also return ``F2``, the faces of ``subdivide``.
+
+    Returns
+    -------
+    S : scipy.sparse.csr_matrix, float64 (n2, n); or ``(S, F2)`` with
+        ``return_faces=True``, ``F2`` int64 (m2, 3) or (m2, 4).
+
+    Examples
+    --------
+    >>> import numpy as np, subdiv
+    >>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    >>> S = subdiv.matrix(F, levels=1)
+    >>> S.shape, bool(np.allclose(S.sum(axis=1), 1))
+    ((10, 4), True)
+    """
+    from ._matrix import compose
+
+    corners, starts = _checks.faces(faces)
+    if n_vertices is None:
+        n = int(corners.max()) + 1 if corners.size else 0
+    else:
+        n = _checks.count(n_vertices, "n_vertices")
+    plan = _subdiv.plan_levels((corners, starts), n, _checks.creases(creases), _names(scheme, beta, boundary),
+                               _checks.levels(levels))
+    s, f2 = compose(*plan)
+    return (s, f2) if return_faces else s
+
+
+def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
+    """Loop limit positions and unit limit normals of every vertex.
+
+    Returns
+    -------
+    P : float64 (n, 3), the point of the limit surface each vertex converges to.
+    N : float64 (n, 3), unit normals (zero for a vertex no face uses).
+
+    Examples
+    --------
+    >>> import numpy as np, subdiv
+    >>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    >>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    >>> P, N = subdiv.limit(V, F)
+    >>> bool(np.allclose(np.linalg.norm(N, axis=1), 1))
+    True
+    """
+    v = _checks.vertices(vertices)
+    corners, starts = _checks.faces(faces)
+    names = (_checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
+    return _subdiv.limit_arrays((v, corners, starts), _checks.creases(creases), names)
+
+
+class Mesh:
+    """What :func:`load` read.
+
+    Attributes
+    ----------
+    vertices : float64 (n, 3)
+    faces : int64 (m, 3), triangles (polygons fanned)
+    uv : float64 (m, 3, 2) per triangle corner, or None
+    colors : float64 (n, 3) linear RGB in [0, 1], or None
+    polygons : the file's polygons when they are not all triangles: an int64
+        (m, k) array when all have k corners, else a list of int64 arrays; None
+        for a triangle mesh.
+    """
+
+    __slots__ = ("vertices", "faces", "uv", "colors", "polygons")
+
+    def __init__(self, vertices, faces, uv=None, colors=None, polygons=None):
+        self.vertices, self.faces, self.uv, self.colors, self.polygons = vertices, faces, uv, colors, polygons
+
+    def __repr__(self):
+        extra = "".join(f", {k}" for k in ("uv", "colors", "polygons") if getattr(self, k) is not None)
+        return f"subdiv.Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles{extra})"
+
+
+def load(path, *, repair=False) -> Mesh:
+    """Read a mesh file (OBJ with MTL, ``.ct``, PLY, STL, OFF, glTF/GLB,
+    COLLADA, Bezier patches), the format chosen by the extension, else by
+    the content. Vertices no face uses are dropped. ``repair=True`` mends a
+    non-manifold mesh (as ``subdivide``'s ``repair``; attributes are then dropped).
+
+    Raises :class:`SubdivError` naming the file, the line or element and the
+    problem (also for a mesh that is not manifold).
+
+    >>> import subdiv, tempfile, os
+    >>> p = os.path.join(tempfile.mkdtemp(), "t.obj")
+    >>> subdiv.save(p, [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    >>> subdiv.load(p).faces.tolist()
+    [[0, 1, 2]]
+    """
+    v, f, uv, colors, polys = _subdiv.load_file(path, bool(repair))
+    if uv is not None:
+        uv = uv.reshape(-1, 3, 2)
+    if polys is not None:
+        corners, starts = polys[0].reshape(-1), polys[1].reshape(-1)
+        sizes = np.diff(starts)
+        if sizes.size and np.all(sizes == sizes[0]):
+            polys = corners.reshape(-1, int(sizes[0]))
+        else:
+            polys = np.split(corners, starts[1:-1])
+    return Mesh(v, f, uv, colors, polys)
+
+
+def save(path, vertices, faces) -> None:
+    """Write a mesh, the format chosen by the extension (``.obj``, ``.ply``,
+    ``.off``, ``.stl``, ``.glb``, ``.ct``); polygons (quads, lists) are kept as
+    polygons by OBJ, PLY, OFF and ``.ct``. The file is written atomically.
+    The mesh must be manifold (vertices no face uses are dropped)."""
+    v = _checks.vertices(vertices)
+    corners, starts = _checks.faces(faces)
+    _subdiv.save_file(path, (v, corners, starts))
+
+
+def _viewer():
+    if not _subdiv.HAS_VIEWER:
+        raise SubdivError("this build of subdiv has no viewer (built without the 'viewer' feature)")
+
+
+def render(vertices, faces, *, size=(640, 480), shading="phong", levels=0, scheme="loop", beta="loop",
+           boundary="edge", creases=None):
+    """Render the mesh (subdivided ``levels`` times with ``scheme``)
+    offscreen, the camera framing it.
+
+    shading : ``"phong"``, ``"flat"``, ``"studio"``, ``"wire"`` or ``"phong+wire"``.
+
+    Returns an RGBA image, numpy uint8 (height, width, 4). Needs a GPU
+    adapter; Mesa's software Vulkan (lavapipe) suffices.
+
+    >>> import numpy as np, subdiv
+    >>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    >>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    >>> subdiv.render(V, F, size=(64, 48), levels=2).shape  # doctest: +SKIP
+    (48, 64, 4)
+    """
+    _viewer()
+    v = _checks.vertices(vertices)
+    corners, starts = _checks.faces(faces)
+    w, h = _checks.size(size)
+    names = _names(scheme, beta, boundary) + (_checks.name(shading, "shading"),)
+    return _subdiv.render_image((v, corners, starts), _checks.creases(creases), names, _checks.levels(levels),
+                                (w, h))
+
+
+def view(vertices, faces, *, levels=0, scheme="loop", beta="loop", boundary="edge", wireframe=False,
+         control=False, frames=None, screenshot=None) -> None:
+    """Open the viewer's window on the mesh; return when it is closed (as
+    ``polyscope.show()``). The window's panel changes the scheme, the level,
+    the shading and more (keys: docs/viewer.md).
+
+    wireframe, control : start with the wireframe, or the control mesh, shown.
+    frames : close the window by itself after this many frames (scripts,
+        tests); ``screenshot`` then saves the last one as a PNG.
+
+    Needs a display (or Xvfb) and a GPU adapter, else raises SubdivError;
+    one window per process (winit cannot make a second event loop)."""
+    _viewer()
+    v = _checks.vertices(vertices)
+    corners, starts = _checks.faces(faces)
+    frames = None if frames is None else _checks.count(frames, "frames")
+    shot = None if screenshot is None else str(screenshot)
+    _subdiv.view_window((v, corners, starts), _names(scheme, beta, boundary), _checks.levels(levels),
+                        (bool(wireframe), bool(control)), (frames, shot))

@@ -1,0 +1,99 @@
+"""Type stubs of the subdiv package."""
+
+from os import PathLike
+from typing import Literal, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+import scipy.sparse
+
+__version__: str
+
+TriangleScheme = Literal["midpoint", "loop", "butterfly", "modified-butterfly", "jarek"]
+PolygonScheme = Literal["catmull-clark", "bilinear"]
+Scheme = Union[TriangleScheme, PolygonScheme]
+Beta = Literal["loop", "warren"]
+Boundary = Literal["edge", "edge-and-corner"]
+Shading = Literal["phong", "flat", "studio", "wire", "phong+wire"]
+Faces = Union[npt.ArrayLike, Sequence[Sequence[int]]]
+Creases = tuple[npt.ArrayLike, npt.ArrayLike] | None
+Path = Union[str, PathLike[str]]
+
+TRIANGLE_SCHEMES: tuple[str, ...]
+POLYGON_SCHEMES: tuple[str, ...]
+
+class SubdivError(ValueError): ...
+
+class Mesh:
+    vertices: npt.NDArray[np.float64]
+    faces: npt.NDArray[np.int64]
+    uv: npt.NDArray[np.float64] | None
+    colors: npt.NDArray[np.float64] | None
+    polygons: npt.NDArray[np.int64] | list[npt.NDArray[np.int64]] | None
+    def __init__(
+        self,
+        vertices: npt.NDArray[np.float64],
+        faces: npt.NDArray[np.int64],
+        uv: npt.NDArray[np.float64] | None = ...,
+        colors: npt.NDArray[np.float64] | None = ...,
+        polygons: npt.NDArray[np.int64] | list[npt.NDArray[np.int64]] | None = ...,
+    ) -> None: ...
+
+def subdivide(
+    vertices: npt.ArrayLike,
+    faces: Faces,
+    levels: int = 1,
+    scheme: Scheme = "loop",
+    *,
+    beta: Beta = "loop",
+    boundary: Boundary = "edge",
+    creases: Creases = None,
+    repair: bool = False,
+    threads: int | None = None,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
+def matrix(
+    faces: Faces,
+    levels: int = 1,
+    scheme: Scheme = "loop",
+    *,
+    n_vertices: int | None = None,
+    beta: Beta = "loop",
+    boundary: Boundary = "edge",
+    creases: Creases = None,
+    return_faces: bool = False,
+) -> scipy.sparse.csr_matrix | tuple[scipy.sparse.csr_matrix, npt.NDArray[np.int64]]: ...
+def limit(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    *,
+    beta: Beta = "loop",
+    boundary: Boundary = "edge",
+    creases: Creases = None,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def load(path: Path, *, repair: bool = False) -> Mesh: ...
+def save(path: Path, vertices: npt.ArrayLike, faces: Faces) -> None: ...
+def render(
+    vertices: npt.ArrayLike,
+    faces: Faces,
+    *,
+    size: tuple[int, int] = (640, 480),
+    shading: Shading = "phong",
+    levels: int = 0,
+    scheme: Scheme = "loop",
+    beta: Beta = "loop",
+    boundary: Boundary = "edge",
+    creases: Creases = None,
+) -> npt.NDArray[np.uint8]: ...
+def view(
+    vertices: npt.ArrayLike,
+    faces: Faces,
+    *,
+    levels: int = 0,
+    scheme: Scheme = "loop",
+    beta: Beta = "loop",
+    boundary: Boundary = "edge",
+    wireframe: bool = False,
+    control: bool = False,
+    frames: int | None = None,
+    screenshot: Path | None = None,
+) -> None: ...
