@@ -54,7 +54,7 @@ fn vertex_at(levels: &[Mesh], f: u32, u: f64, v: f64) -> u32 {
         let i = (0..3).max_by(|&a, &b| w[a].total_cmp(&w[b])).unwrap();
         if w[i] >= 0.5 {
             let b = [2.0 * w[(i + 1) % 3], 2.0 * w[(i + 2) % 3]];
-            t = nt * (i as u32 + 1) + t;
+            t += nt * (i as u32 + 1);
             w = [1.0 - b[0] - b[1], b[0], b[1]];
         } else {
             w = [1.0 - 2.0 * w[0], 1.0 - 2.0 * w[1], 1.0 - 2.0 * w[2]];

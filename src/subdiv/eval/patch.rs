@@ -224,12 +224,9 @@ fn solve(mut a: Vec<[f64; 15]>, mut b: Vec<[f64; 12]>) -> [[f64; 12]; 15] {
             if row != col {
                 let f = a[row][col] / a[col][col];
                 if f != 0.0 {
-                    for k in 0..n {
-                        a[row][k] -= f * a[col][k];
-                    }
-                    for k in 0..12 {
-                        b[row][k] -= f * b[col][k];
-                    }
+                    let (pa, pb) = (a[col], b[col]);
+                    a[row].iter_mut().zip(pa).for_each(|(x, p)| *x -= f * p);
+                    b[row].iter_mut().zip(pb).for_each(|(x, p)| *x -= f * p);
                 }
             }
         }
