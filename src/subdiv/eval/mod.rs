@@ -7,13 +7,13 @@
 //! them. The method (Stam, "Evaluation of Loop Subdivision Surfaces", 1998,
 //! with his eigen decomposition replaced by an exact power table):
 //!
-//! 1. [`level1`]: one Loop step in f64 isolates the extraordinary vertices,
+//! 1. `level1.rs`: one Loop step in f64 isolates the extraordinary vertices,
 //!    so each child face has at most one;
 //! 2. a child face whose three vertices have valence 6 is a regular patch,
-//!    the quartic box spline of 12 points ([`patch`]);
+//!    the quartic box spline of 12 points (`patch.rs`);
 //! 3. a child face with one extraordinary vertex is subdivided towards it
 //!    `m` times, `m = floor(-log2(u + v))` in its corner's coordinates,
-//!    through the power table of its valence ([`extraordinary`]): at most
+//!    through the power table of its valence (`extraordinary.rs`): at most
 //!    11 matrix-vector products however close the point is; the point then
 //!    lies on one of three regular patches;
 //! 4. at the extraordinary vertex itself: its limit position and the
@@ -423,22 +423,7 @@ fn scale2(x: f64, m: i32) -> f64 {
 fn at_vertex(pts: &[DVec3], table: &Extraordinary, limit: DVec3) -> Sample {
     let t = |mask: &[f64]| -> DVec3 { pts.iter().zip(mask).map(|(&p, &w)| p * w).sum() };
     let normal = t(&table.tangents[0]).cross(t(&table.tangents[1])).normalize();
-    let nan = DVec3::NAN;
-    Sample {
-        position: limit,
-        normal,
-        du: nan,
-        dv: nan,
-        duu: nan,
-        duv: nan,
-        dvv: nan,
-        mean: f64::NAN,
-        gaussian: f64::NAN,
-        k1: f64::NAN,
-        k2: f64::NAN,
-        dir1: nan,
-        dir2: nan,
-    }
+    Sample { position: limit, normal, ..Sample::NAN }
 }
 
 /// The sample from the patch jet `jet` of the surface `base + c R`, where
