@@ -8,6 +8,7 @@
 
 mod arrays;
 mod build;
+mod evaluate;
 mod files;
 mod guard;
 mod ops;
@@ -27,6 +28,7 @@ fn _subdiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ops::subdivide_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(ops::plan_levels, m)?)?;
     m.add_function(wrap_pyfunction!(ops::limit_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate::evaluate_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(files::load_file, m)?)?;
     m.add_function(wrap_pyfunction!(files::save_file, m)?)?;
     #[cfg(feature = "viewer")]

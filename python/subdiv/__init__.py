@@ -27,6 +27,7 @@ SubdivError.__module__ = "subdiv"
 
 __all__ = [
     "SubdivError",
+    "evaluate",
     "Mesh",
     "subdivide",
     "matrix",
@@ -165,6 +166,49 @@ def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
     corners, starts = _checks.faces(faces)
     names = (_checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
     return _subdiv.limit_arrays((v, corners, starts), _checks.creases(creases), names)
+
+
+def evaluate(vertices, faces, face, uv, *, beta="loop", curvature=False):
+    """The exact Loop limit surface at points of the control triangles.
+
+    A point is a control triangle ``face[i]`` (its index in ``faces``) and
+    barycentric ``uv[i] = (u, v)``: the point ``(1-u-v) c0 + u c1 + v c2``
+    of the triangle's corners in the order ``faces`` lists them, as
+    ``subdiv eval`` reads them. Exact at any point (Stam's method, no
+    fixed-level approximation); triangles touching a boundary are refused.
+
+    Returns
+    -------
+    P : float64 (k, 3), limit positions.
+    N : float64 (k, 3), unit normals (on the side the winding makes the front).
+    H, K : float64 (k,), mean and Gaussian curvature, only with
+        ``curvature=True`` (``H > 0`` on a convex surface with outward normals;
+        NaN at an extraordinary vertex itself).
+
+    Examples
+    --------
+    >>> import numpy as np, subdiv
+    >>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    >>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    >>> P, N, H, K = subdiv.evaluate(V, F, [0, 1], [[0.2, 0.3], [0.5, 0.5]], curvature=True)
+    >>> bool((H > 0).all() and (K > 0).all())
+    True
+    """
+    v = _checks.vertices(vertices)
+    corners, starts = _checks.faces(faces)
+    f = _checks._int_array(np.atleast_1d(np.asarray(face)), "face")
+    if f.ndim != 1:
+        raise ValueError(f"face must be one index per point, got shape {f.shape}")
+    w = np.asarray(uv)
+    if w.dtype.kind not in "fiu":
+        raise TypeError(f"uv must be real numbers, got dtype {w.dtype}")
+    w = np.ascontiguousarray(np.atleast_2d(w), dtype=np.float64)
+    if w.ndim != 2 or w.shape != (f.shape[0], 2):
+        raise ValueError(f"uv must have shape ({f.shape[0]}, 2), got shape {w.shape}")
+    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), f, w, _checks.name(beta, "beta"), bool(curvature))
+    if curvature:
+        return p, n, hk[:, 0].copy(), hk[:, 1].copy()
+    return p, n
 
 
 class Mesh:

@@ -62,6 +62,18 @@ def matrix(
     creases: Creases = None,
     return_faces: bool = False,
 ) -> scipy.sparse.csr_matrix | tuple[scipy.sparse.csr_matrix, npt.NDArray[np.int64]]: ...
+def evaluate(
+    vertices: npt.ArrayLike,
+    faces: npt.ArrayLike,
+    face: npt.ArrayLike,
+    uv: npt.ArrayLike,
+    *,
+    beta: str = "loop",
+    curvature: bool = False,
+) -> (
+    tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]
+    | tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]
+): ...
 def limit(
     vertices: npt.ArrayLike,
     faces: npt.ArrayLike,

@@ -97,3 +97,24 @@ def test_crease_limit_mask():
     edges = np.array([[0, 1], [1, 3], [3, 2], [2, 0]])
     p, _ = subdiv.limit(v, f, creases=(edges, np.full(4, 10.0)))
     np.testing.assert_allclose(p[0], 2 / 3 * v[0] + (v[1] + v[2]) / 6, atol=1e-6)
+
+
+def test_evaluate_is_the_exact_limit_at_corners_and_refuses_bad_points():
+    # the exact limit at a triangle's corner is the limit position of that vertex
+    V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    P_lim, N_lim = subdiv.limit(V, F)
+    P, N = subdiv.evaluate(V, F, [0, 0, 0], [[0, 0], [1, 0], [0, 1]])
+    assert np.allclose(P, P_lim[F[0]], atol=1e-6)
+    assert np.allclose(N, N_lim[F[0]], atol=1e-5)
+    # curvature: a convex closed surface, H > 0 and K > 0 away from its vertices
+    P, N, H, K = subdiv.evaluate(V, F, [1, 2, 3], [[0.2, 0.3], [0.4, 0.4], [0.1, 0.6]], curvature=True)
+    assert P.shape == (3, 3) and H.shape == (3,) and (H > 0).all() and (K > 0).all()
+    assert np.allclose(np.linalg.norm(N, axis=1), 1)
+    for face, uv, what in [([4], [[0.1, 0.1]], "face 4"), ([0], [[0.7, 0.7]], "triangle"), ([-1], [[0.1, 0.1]], "face -1")]:
+        with pytest.raises(subdiv.SubdivError, match=what):
+            subdiv.evaluate(V, F, face, uv)
+    with pytest.raises(TypeError):
+        subdiv.evaluate(V, F, [0.5], [[0.1, 0.1]])
+    with pytest.raises(ValueError):
+        subdiv.evaluate(V, F, [0, 1], [[0.1, 0.1]])

@@ -1,0 +1,57 @@
+//! `evaluate`: the exact Loop limit surface at points `(face, u, v)`, the
+//! native half of `subdiv.evaluate` (the library's `subdiv eval`).
+
+use crate::arrays::f64_array;
+use crate::guard::run;
+use crate::ops::{CreaseArgs, MeshArgs, control};
+use crate::options;
+use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::exceptions::PyTypeError;
+use pyo3::prelude::*;
+use subdiv::Scheme;
+
+/// Positions `(k, 3)`, unit normals `(k, 3)` and `(H, K)` per point `(k, 2)`
+/// (NaN unless `curvature`).
+type Samples<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>);
+
+/// The exact Loop limit at control face `face[i]`, barycentric `uv[i]`.
+///
+/// # Errors
+/// `SubdivError` for anything the library refuses: a face out of range or
+/// on a boundary or sharp feature, a point outside its triangle, a mesh the
+/// library does not build.
+#[pyfunction]
+pub fn evaluate_arrays<'py>(
+    py: Python<'py>,
+    mesh: MeshArgs<'py>,
+    face: PyReadonlyArray1<'py, i64>,
+    uv: PyReadonlyArray2<'py, f64>,
+    beta: String,
+    curvature: bool,
+) -> PyResult<Samples<'py>> {
+    let creases = CreaseArgs::empty(py);
+    let s = mesh.slices(&creases)?;
+    if uv.shape()[1] != 2 || uv.shape()[0] != face.len() {
+        return Err(PyTypeError::new_err("uv must have shape (k, 2) with one row per face index"));
+    }
+    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
+    let (face, uv) = (face.as_slice().map_err(bad)?, uv.as_slice().map_err(bad)?);
+    let out = run(py, None, || {
+        let opts = options::options(&beta, "edge")?;
+        let (c, _) = control(&s, Scheme::Loop, false)?;
+        let crate::build::Control::Tri(mesh) = c else { return Err("Loop built a polygon table (a bug)".into()) };
+        let mut points = Vec::with_capacity(face.len());
+        for (i, (&f, w)) in face.iter().zip(uv.chunks_exact(2)).enumerate() {
+            let f = usize::try_from(f).map_err(|_| format!("point {}: face {f} out of range", i + 1))?;
+            points.push((f, w[0], w[1]));
+        }
+        let ev = subdiv::subdiv::eval::Evaluator::new(&mesh, Scheme::Loop, &opts).map_err(|e| e.to_string())?;
+        ev.eval_map(&points, curvature, |s| {
+            let (p, n) = (s.position, s.normal);
+            [p.x, p.y, p.z, n.x, n.y, n.z, s.mean, s.gaussian]
+        })
+        .map_err(|e| e.to_string())
+    })?;
+    let column = |a: usize, b: usize| out.iter().flat_map(|r| r[a..b].to_vec()).collect::<Vec<f64>>();
+    Ok((f64_array(py, column(0, 3), 3)?, f64_array(py, column(3, 6), 3)?, f64_array(py, column(6, 8), 2)?))
+}
