@@ -76,6 +76,13 @@ pub struct Sample {
     pub dir2: DVec3,
 }
 
+impl Default for Sample {
+    /// [`Sample::NAN`].
+    fn default() -> Self {
+        Sample::NAN
+    }
+}
+
 impl Sample {
     /// Every field NaN.
     pub const NAN: Sample = Sample {
@@ -325,20 +332,9 @@ impl Evaluator {
     /// # Errors
     /// As [`Evaluator::eval`], naming the point's index.
     pub fn eval_all(&self, points: &[(usize, f64, f64)], second: bool) -> Result<Vec<Sample>> {
-        let mut checked = Vec::with_capacity(points.len());
-        for (i, &(f, u, v)) in points.iter().enumerate() {
-            let (u, v) = self.check(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1)))?;
-            checked.push((f, u, v));
-        }
-        let mut out = vec![Sample::NAN; points.len()];
-        out.par_iter_mut().zip(checked.par_iter()).with_min_len(256).for_each(|(s, &(f, u, v))| {
-            *s = self.eval_checked(f, u, v, second);
-        });
-        Ok(out)
+        self.eval_map(points, second, |s| *s)
     }
-}
 
-impl Evaluator {
     /// [`Evaluator::eval_all`] kept small: each sample mapped by `keep` (say
     /// to the position and normal) as soon as it is made. The points are
     /// evaluated grouped by face (a counting sort), so the points of one
@@ -429,61 +425,32 @@ fn at_vertex(pts: &[DVec3], table: &Extraordinary, limit: DVec3) -> Sample {
 /// The sample from the patch jet `jet` of the surface `base + c R`, where
 /// the patch's `(s, t)` are `scale * J (u, v) + const`.
 fn finish(jet: &Jet, base: DVec3, c: f64, j: [[f64; 2]; 2], scale: f64, second: bool) -> Sample {
-    let cross = jet.ds.cross(jet.dt);
-    let normal = cross.normalize();
-    let curv = if second { curvature(jet, normal) } else { Curvature::NAN };
+    let normal = jet.ds.cross(jet.dt).normalize();
     // chain rule: P_u = c scale (R_s ds/du + R_t dt/du)
     let d1 = c * scale;
     let d2 = d1 * scale;
     let du = (jet.ds * j[0][0] + jet.dt * j[1][0]) * d1;
     let dv = (jet.ds * j[0][1] + jet.dt * j[1][1]) * d1;
-    let second_d = |a: usize, b: usize| {
-        (jet.dss * (j[0][a] * j[0][b])
-            + jet.dst * (j[0][a] * j[1][b] + j[1][a] * j[0][b])
-            + jet.dtt * (j[1][a] * j[1][b]))
-            * d2
-    };
-    let nan = |x: DVec3| if second { x } else { DVec3::NAN };
-    Sample {
-        position: base + jet.p * c,
-        normal,
-        du,
-        dv,
-        duu: nan(second_d(0, 0)),
-        duv: nan(second_d(0, 1)),
-        dvv: nan(second_d(1, 1)),
-        mean: curv.mean / c,
-        gaussian: curv.gaussian / (c * c),
-        k1: curv.k1 / c,
-        k2: curv.k2 / c,
-        dir1: curv.dir1,
-        dir2: curv.dir2,
+    let mut out = Sample { position: base + jet.p * c, normal, du, dv, ..Sample::NAN };
+    if second {
+        let second_d = |a: usize, b: usize| {
+            (jet.dss * (j[0][a] * j[0][b])
+                + jet.dst * (j[0][a] * j[1][b] + j[1][a] * j[0][b])
+                + jet.dtt * (j[1][a] * j[1][b]))
+                * d2
+        };
+        (out.duu, out.duv, out.dvv) = (second_d(0, 0), second_d(0, 1), second_d(1, 1));
+        curvature(jet, c, &mut out);
     }
+    out
 }
 
-struct Curvature {
-    mean: f64,
-    gaussian: f64,
-    k1: f64,
-    k2: f64,
-    dir1: DVec3,
-    dir2: DVec3,
-}
-
-impl Curvature {
-    const NAN: Curvature = Curvature {
-        mean: f64::NAN,
-        gaussian: f64::NAN,
-        k1: f64::NAN,
-        k2: f64::NAN,
-        dir1: DVec3::NAN,
-        dir2: DVec3::NAN,
-    };
-}
-
-/// Curvatures from the fundamental forms of the patch (any parameters).
-/// Sign: `k = -II / I`, so a sphere with outward normals has `k = 1/R`.
-fn curvature(jet: &Jet, normal: DVec3) -> Curvature {
+/// The curvatures of `out` (its normal set) from the fundamental forms of
+/// the patch (any parameters) of the surface `base + c R`: those of `R`
+/// divided by `c` (by `c^2` for the Gaussian). Sign: `k = -II / I`, so a
+/// sphere with outward normals has `k = 1/R`.
+fn curvature(jet: &Jet, c: f64, out: &mut Sample) {
+    let normal = out.normal;
     let (e, f, g) = (jet.ds.dot(jet.ds), jet.ds.dot(jet.dt), jet.dt.dot(jet.dt));
     let (l, m, nn) = (-jet.dss.dot(normal), -jet.dst.dot(normal), -jet.dtt.dot(normal));
     let det = e * g - f * f;
@@ -500,7 +467,8 @@ fn curvature(jet: &Jet, normal: DVec3) -> Curvature {
     };
     let dir1 = dir(k1);
     let dir2 = if disc > 0.0 { dir(k2) } else { normal.cross(dir1) };
-    Curvature { mean, gaussian, k1, k2, dir1, dir2 }
+    (out.mean, out.gaussian, out.k1, out.k2) = (mean / c, gaussian / (c * c), k1 / c, k2 / c);
+    (out.dir1, out.dir2) = (dir1, dir2);
 }
 
 #[cfg(test)]
