@@ -64,6 +64,97 @@ fn vertex_at(levels: &[Mesh], f: u32, u: f64, v: f64) -> u32 {
     levels[levels.len() - 1].ct.vtx(3 * t + i as u32)
 }
 
+/// `mesh` with the crease tags `(v0, v1, sharpness)` and corner tags
+/// `(vertex, sharpness)`.
+fn tagged(mut mesh: Mesh, creases: &[(u32, u32, f32)], corners: &[(u32, f32)]) -> Mesh {
+    use subdiv::mesh::sharpness::{CornerTag, CreaseTag, Tags};
+    let tags = Tags {
+        creases: creases.iter().map(|&(v0, v1, sharpness)| CreaseTag { v0, v1, sharpness }).collect(),
+        corners: corners.iter().map(|&(vertex, sharpness)| CornerTag { vertex, sharpness }).collect(),
+    };
+    mesh.ct = mesh.ct.clone().with_tags(&tags).unwrap();
+    mesh
+}
+
+/// `mesh` without the faces touching vertex `v`, moved a little.
+fn with_hole(mesh: &Mesh, v: u32, seed: u64) -> Mesh {
+    let mut rng = Rng(seed);
+    let tris: Vec<u32> = mesh.ct.v_table().chunks_exact(3).filter(|t| !t.contains(&v)).flatten().copied().collect();
+    let pos = mesh.positions.iter().map(|&p| p + rng.vec3() * 0.05).collect();
+    Mesh::from_triangles(pos, &tris).unwrap()
+}
+
+/// Meshes with borders, creases of every kind and sharp vertices, and the
+/// options to subdivide them with. No dart is infinitely sharp: the limit
+/// mask the truth uses there is OpenSubdiv's smooth one, which is not the
+/// limit of the dart's rules.
+fn featured_meshes() -> Vec<(String, Mesh, Options)> {
+    let d = Options::default;
+    let equator = |n: u32, s: f32| -> Vec<(u32, u32, f32)> { (0..n).map(|i| (2 + i, 2 + (i + 1) % n, s)).collect() };
+    let chaikin = Options { creasing: subdiv::mesh::Creasing::Chaikin, ..d() };
+    let corners = Options { boundary: subdiv::mesh::BoundaryInterpolation::EdgeAndCorner, ..d() };
+    let mut bumpy = flat_grid(5);
+    let mut rng = Rng(11);
+    bumpy.positions.iter_mut().for_each(|p| p.z += rng.next_f32() * 0.3);
+    let steps: Vec<(u32, u32, f32)> =
+        equator(6, 0.0).iter().zip([0.5, 1.5, 2.3, 3.0, 1.0, 0.7]).map(|(e, s)| (e.0, e.1, s)).collect();
+    vec![
+        ("hemisphere".into(), hemisphere(), d()),
+        (
+            "icosphere with a hole".into(),
+            with_hole(&icosphere(2), 0, 5),
+            Options { loop_beta: LoopBeta::Warren, ..d() },
+        ),
+        ("open bipyramid".into(), with_hole(&bipyramid(5, 9), 0, 6), d()),
+        ("bumpy grid".into(), bumpy.clone(), d()),
+        ("bumpy grid, corners".into(), bumpy, corners),
+        ("infinite crease".into(), tagged(bipyramid(6, 1), &equator(6, 10.0), &[]), d()),
+        ("crease and corner".into(), tagged(bipyramid(7, 2), &equator(7, 10.0), &[(0, 10.0), (1, 2.5)]), d()),
+        ("semi-sharp".into(), tagged(bipyramid(5, 3), &equator(5, 1.5), &[(0, 0.8)]), d()),
+        ("semi-sharp steps".into(), tagged(bipyramid(6, 4), &steps, &[]), d()),
+        ("semi-sharp, Chaikin".into(), tagged(bipyramid(6, 4), &steps, &[]), chaikin),
+    ]
+}
+
+/// The worst distance, relative to the size, between the evaluator and the
+/// limit masks of the level-4 refinement at every dyadic point of levels 0
+/// to 4 of every face (a level-k vertex keeps its id at level 4, where
+/// every semi-sharp feature of sharpness <= 4 has decayed, so the masks
+/// are the limit).
+fn dyadic_worst(mesh: &Mesh, opts: &Options) -> f64 {
+    let ev = Evaluator::new(mesh, Scheme::Loop, opts).unwrap();
+    let mut levels = vec![mesh.clone()];
+    for _ in 0..4 {
+        levels.push(subdivide(levels.last().unwrap(), Scheme::Loop, 1, opts).unwrap().0);
+    }
+    let limits = loop_limit_positions_with(&levels[4], opts.loop_beta);
+    let size = f64::from(scale(mesh));
+    let mut worst = 0.0f64;
+    for k in 0..=4usize {
+        let d = f64::from(1u32 << k);
+        for f in 0..mesh.ct.num_triangles() as u32 {
+            for i in 0..=(1u32 << k) {
+                for j in 0..=(1u32 << k) - i {
+                    let (u, v) = (f64::from(i) / d, f64::from(j) / d);
+                    let want = limits[vertex_at(&levels[..=k], f, u, v) as usize].as_dvec3();
+                    let got = ev.eval(f as usize, u, v).unwrap().position;
+                    worst = worst.max((got - want).length() / size);
+                }
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn dyadic_points_near_borders_creases_and_corners_are_the_limits() {
+    for (name, mesh, opts) in featured_meshes() {
+        let worst = dyadic_worst(&mesh, &opts);
+        // the reference is computed in f32
+        assert!(worst < 2e-6, "{name}: worst relative distance {worst:e}");
+    }
+}
+
 #[test]
 fn dyadic_points_are_the_limits_of_subdivided_vertices() {
     for beta in [LoopBeta::Loop, LoopBeta::Warren] {
@@ -266,10 +357,15 @@ fn other_schemes_faces_and_parameters_are_refused_by_name() {
     }
     // u + v a hair over 1 is on the edge
     assert!(ev.eval(0, 0.5, 0.5 + 1e-9).is_ok());
+    // borders are evaluated; only an interior vertex of valence 2 is refused
     let open = hemisphere();
     let ev = Evaluator::new(&open, Scheme::Loop, &Options::default()).unwrap();
-    let border = (0..open.ct.num_triangles()).find(|&f| !ev.accepts(f)).expect("a face on the border");
-    assert!(ev.eval(border, 0.2, 0.2).unwrap_err().to_string().contains("boundary"));
+    assert!((0..open.ct.num_triangles()).all(|f| ev.accepts(f)));
+    // (the pillow's level 1 is not even a manifold table)
+    if let Ok(ev) = Evaluator::new(&pillow(), Scheme::Loop, &Options::default()) {
+        assert!(!ev.accepts(0));
+        assert!(ev.eval(0, 0.2, 0.2).unwrap_err().to_string().contains("valence 2"));
+    }
 }
 
 #[test]

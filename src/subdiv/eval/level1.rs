@@ -35,7 +35,7 @@ pub(crate) const REGULAR: u8 = u8::MAX;
 /// patch module docs): `c0`, the ring of `c0` from `c1`, the outer
 /// neighbours of `c1` (its ring from `c2`: `c2 c0 z o1 o2 o3`) and of `c2`
 /// (from `c0`: `c0 c1 o3 o4 o5`).
-fn walk(ct: &CornerTable, c: u32, mut out: impl FnMut(u32)) {
+pub(crate) fn walk(ct: &CornerTable, c: u32, mut out: impl FnMut(u32)) {
     out(ct.vtx(c));
     let mut x = c;
     loop {

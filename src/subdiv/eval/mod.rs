@@ -20,14 +20,20 @@
 //!    normal of its tangent masks (the derivatives there are 0 or infinite
 //!    and the curvature undefined: those fields are NaN).
 //!
-//! The faces evaluated are those whose three control vertices are interior
-//! and carry no sharp feature (no sharp incident edge, no sharp vertex);
-//! others are refused with an error naming the face. Schemes other than
-//! Loop are refused by name.
+//! That path serves the faces whose three control vertices are interior
+//! and carry no sharp feature (no sharp incident edge, no sharp vertex).
+//! A face touching a boundary, a crease of any sharpness or a sharp vertex
+//! is evaluated by local subdivision with the library's own rules until
+//! the point lies on a regular patch (a box spline, with phantom points
+//! beyond a border or an infinitely sharp crease) or next to a smooth
+//! extraordinary vertex (`local.rs`). Only a face touching an interior
+//! vertex of valence 2 (two triangles back to back) is refused, with an
+//! error naming it. Schemes other than Loop are refused by name.
 
 pub mod color;
 mod extraordinary;
 mod level1;
+mod local;
 mod patch;
 mod points;
 mod vertices;
@@ -153,37 +159,54 @@ const STACK_POINTS: usize = 24;
 /// Evaluates the Loop limit surface of one control mesh at any point.
 pub struct Evaluator {
     blocks: Blocks,
-    /// Control faces that are refused (a control vertex on a boundary or a
-    /// sharp feature).
-    refused: Vec<bool>,
+    /// How each control face is evaluated.
+    path: Vec<Path>,
+    /// The control mesh for the faces of [`Path::Local`] (`None` if none).
+    base: Option<local::Base>,
     spline: BoxSpline,
     /// The tables of each extraordinary valence present, by valence.
     valences: Vec<Option<Extraordinary>>,
     faces: usize,
 }
 
-/// Whether each control face touches a boundary, a sharp feature or a
-/// vertex of valence 2.
-fn refused_faces(mesh: &Mesh) -> Vec<bool> {
+/// How a control face is evaluated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum Path {
+    /// Its level-1 block and the power tables.
+    Smooth,
+    /// Local subdivision (a boundary or sharp feature at a corner).
+    Local,
+    /// Not at all (an interior vertex of valence 2 at a corner).
+    Refused,
+}
+
+/// The path of each control face, from what its corners carry.
+fn face_paths(mesh: &Mesh) -> Vec<Path> {
     let ct = &mesh.ct;
-    let mut special = vec![false; ct.num_vertices()];
+    let mut at = vec![Path::Smooth; ct.num_vertices()];
     for c in 0..ct.num_corners() as u32 {
         if ct.edge_sharpness(c) > 0.0 {
-            special[ct.vtx(n(c)) as usize] = true;
-            special[ct.vtx(p(c)) as usize] = true;
+            at[ct.vtx(n(c)) as usize] = Path::Local;
+            at[ct.vtx(p(c)) as usize] = Path::Local;
         }
-    }
-    for (v, flag) in special.iter_mut().enumerate() {
-        // an interior vertex of valence 2 (two triangles back to back) has
-        // no smooth limit patch
-        *flag |= ct.valence(v as u32) < 3;
     }
     if let Some(sharp) = ct.sharpness() {
         for &(v, s) in sharp.sharp_vertices() {
-            special[v as usize] |= s > 0.0;
+            if s > 0.0 {
+                at[v as usize] = at[v as usize].max(Path::Local);
+            }
         }
     }
-    (0..ct.num_triangles()).map(|f| (0..3).any(|i| special[ct.vtx(3 * f as u32 + i) as usize])).collect()
+    for (v, path) in at.iter_mut().enumerate() {
+        // an interior vertex of valence 2 (two triangles back to back) has
+        // no smooth limit patch
+        if ct.valence(v as u32) < 3 && !ct.is_boundary_vertex(v as u32) {
+            *path = Path::Refused;
+        }
+    }
+    (0..ct.num_triangles())
+        .map(|f| (0..3).map(|i| at[ct.vtx(3 * f as u32 + i) as usize]).max().unwrap_or(Path::Smooth))
+        .collect()
 }
 
 impl Evaluator {
@@ -202,21 +225,25 @@ impl Evaluator {
             };
             return Err(Error::Usage(format!("cannot evaluate the {scheme} limit surface: {why}")));
         }
-        let refused = refused_faces(mesh);
+        let path = face_paths(mesh);
         let level1 = Level1::new(mesh, opts.loop_beta)?;
-        let blocks = Blocks::new(&level1, &refused)?;
+        let not_smooth: Vec<bool> = path.iter().map(|&x| x != Path::Smooth).collect();
+        let blocks = Blocks::new(&level1, &not_smooth)?;
+        let base = path.contains(&Path::Local).then(|| local::Base::new(mesh, opts));
         let spline = BoxSpline::derive();
         let mut valences: Vec<Option<Extraordinary>> = Vec::new();
-        for v in 0..level1.ct.num_vertices() as u32 {
-            let k = level1.ct.valence(v);
-            if k != 6 && k >= 3 && !level1.ct.is_boundary_vertex(v) {
+        // every smooth extraordinary vertex of any level is a control vertex
+        // of the same valence (an edge vertex inside has valence 6)
+        for v in 0..mesh.ct.num_vertices() as u32 {
+            let k = mesh.ct.valence(v);
+            if k != 6 && k >= 3 && !mesh.ct.is_boundary_vertex(v) {
                 if valences.len() <= k as usize {
                     valences.resize(k as usize + 1, None);
                 }
                 valences[k as usize].get_or_insert_with(|| Extraordinary::new(k, opts.loop_beta, &spline));
             }
         }
-        Ok(Evaluator { blocks, refused, spline, valences, faces: mesh.ct.num_triangles() })
+        Ok(Evaluator { blocks, path, base, spline, valences, faces: mesh.ct.num_triangles() })
     }
 
     /// The number of control faces.
@@ -224,9 +251,10 @@ impl Evaluator {
         self.faces
     }
 
-    /// Whether control face `f` can be evaluated (interior, no sharp feature).
+    /// Whether control face `f` can be evaluated (every face but those
+    /// touching an interior vertex of valence 2).
     pub fn accepts(&self, f: usize) -> bool {
-        self.refused.get(f) == Some(&false)
+        self.path.get(f).is_some_and(|&x| x != Path::Refused)
     }
 
     /// The limit surface at `(f, u, v)`: everything [`Sample`] holds.
@@ -262,9 +290,9 @@ impl Evaluator {
         if !(u >= 0.0 && v >= 0.0 && u + v <= 1.0 + EDGE_SLACK) {
             return Err(Error::Usage(format!("({u}, {v}) is not in the triangle (u, v >= 0, u + v <= 1)")));
         }
-        if self.refused[f] {
+        if self.path[f] == Path::Refused {
             return Err(Error::Usage(format!(
-                "face {f} touches a boundary, a sharp feature or a valence-2 vertex: exact evaluation covers smooth interior faces only"
+                "face {f} touches an interior vertex of valence 2 (two triangles back to back), which has no limit patch"
             )));
         }
         let s = u + v;
@@ -273,6 +301,10 @@ impl Evaluator {
 
     /// A point [`Evaluator::check`] passed.
     fn eval_checked(&self, f: usize, u: f64, v: f64, second: bool) -> Sample {
+        if let (Path::Local, Some(base)) = (self.path[f], &self.base) {
+            let tables = local::Tables { spline: &self.spline, valences: &self.valences };
+            return local::eval(base, &tables, f as u32, (u, v), second);
+        }
         let (k, map) = child_of((u, v), true);
         let face = 4 * f as u32 + k as u32;
         let (corner, len) = self.blocks.shape(face);

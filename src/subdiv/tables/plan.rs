@@ -130,6 +130,16 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
     }
 }
 
+/// One level of triangle `scheme` recorded on `ct` as it is (its boundary
+/// corners already applied, [`with_boundary_corners`]), and the split table
+/// it makes: the local subdivision of exact evaluation runs the very rules
+/// the one-shot subdivision runs.
+pub(crate) fn record_one_level(ct: &CornerTable, scheme: Scheme, opts: &Options) -> (LevelPlan, CornerTable) {
+    let (next, edges) = split::split_with(ct, opts.creasing);
+    let record = RecordLevel { ct: ct.clone(), owners: &edges.owners, creasing: opts.creasing };
+    (with_rules(scheme, opts, record), next)
+}
+
 impl StencilPlan {
     /// Records `levels` levels of `scheme` on topology `ct`.
     ///

@@ -1,0 +1,366 @@
+//! Exact evaluation of the faces near a boundary or a sharp feature, by
+//! local subdivision (the second construction of docs/evaluation.md).
+//!
+//! ```text
+//! region   the faces around the point's face F: those incident to F's
+//!          vertices or their neighbours, with the sharpness they carry,
+//!          positions in f64 relative to F's centre
+//! step     one Loop level of the region by the library's own rule code
+//!          (the rows the stencil plans record: boundary, crease, corner,
+//!          semi-sharp and Chaikin rules exactly as `subdivide` runs them),
+//!          applied in f64 with each row's weights summing to one; the
+//!          point moves to the child of F that holds it; the next region
+//!          is cut around that child
+//! stop     1. F's three vertices are regular: smooth with valence 6, or
+//!             on exactly two infinitely sharp edges (a border or a crease)
+//!             with three faces on F's side: F is the quartic box spline of
+//!             its 12 lattice points, where a point missing beyond a sharp
+//!             edge (a, b) of a triangle (a, b, r) is the phantom
+//!             a + b - r (OpenSubdiv's regular boundary patches,
+//!             `far/patchBasis.cpp`, `adjustBoxSplineTriBoundaryWeights`);
+//!          2. one vertex is a smooth extraordinary vertex and the other two
+//!             are smooth with valence 6: the power table of its valence
+//!             (`extraordinary.rs`), however close the point is;
+//!          3. otherwise another level; after MAX_LEVELS the point is
+//!             within 2^-60 of the face's size from an irregular vertex on
+//!             a sharp feature: its position is the face's (closer to the
+//!             limit than a double resolves), its normal the face's, the
+//!             derivatives and curvature NaN.
+//! ```
+//!
+//! A region's rim (vertices whose faces are not all in it) is subdivided
+//! with wrong rules, but nothing the next region keeps depends on the rim:
+//! the vertex points of F's vertices and their neighbours and the edge
+//! points of edges touching them read only the region's faces. Semi-sharp
+//! features decay in at most [`crate::mesh::sharpness::INFINITE`] levels;
+//! infinitely sharp ones are stationary, and a face touching them stops by
+//! rule 1 as soon as its corners are regular.
+
+use super::extraordinary::Extraordinary;
+use super::level1::walk;
+use super::patch::{self, BoxSpline, SUPPORT};
+use super::{Affine, Sample, finish, near_vertex, rotation};
+use crate::mesh::sharpness::{INFINITE, Sharpness};
+use crate::mesh::{CornerTable, Mesh, n, p};
+use crate::subdiv::rules::features::with_boundary_corners;
+use crate::subdiv::tables::plan::record_one_level;
+use crate::subdiv::{Options, Scheme};
+use glam::DVec3;
+
+/// Levels of local subdivision before rule 3's last resort (module docs).
+pub(crate) const MAX_LEVELS: u32 = 60;
+
+/// The control mesh as the local subdivision reads it.
+pub(crate) struct Base {
+    ct: CornerTable,
+    pos: Vec<DVec3>,
+    opts: Options,
+}
+
+impl Base {
+    /// `mesh` with its boundary corners tagged as `opts` asks.
+    pub(crate) fn new(mesh: &Mesh, opts: &Options) -> Base {
+        let ct = with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
+        Base { ct, pos: mesh.positions.iter().map(|p| p.as_dvec3()).collect(), opts: *opts }
+    }
+}
+
+/// The tables a patch is evaluated with.
+pub(crate) struct Tables<'a> {
+    pub(crate) spline: &'a BoxSpline,
+    pub(crate) valences: &'a [Option<Extraordinary>],
+}
+
+/// The faces around the point's face `face`, positions relative to `origin`.
+struct Region {
+    ct: CornerTable,
+    pos: Vec<DVec3>,
+    origin: DVec3,
+    face: u32,
+}
+
+fn find(root: &mut [u32], mut x: u32) -> u32 {
+    while root[x as usize] != x {
+        root[x as usize] = root[root[x as usize] as usize];
+        x = root[x as usize];
+    }
+    x
+}
+
+/// The region around triangle `face` of `ct` (positions `pos`, relative to
+/// `origin`), recentred on the face. A vertex whose faces in the region
+/// form two fans (possible on the rim only) becomes two vertices, so the
+/// region is a manifold table. `None` if the table cannot be built.
+fn extract(ct: &CornerTable, pos: &[DVec3], origin: DVec3, face: u32) -> Option<Region> {
+    let mut near: Vec<u32> = Vec::with_capacity(32);
+    for c in 3 * face..3 * face + 3 {
+        near.push(ct.vtx(c));
+        near.extend(ct.ring(ct.vtx(c)));
+    }
+    near.sort_unstable();
+    near.dedup();
+    let mut faces: Vec<u32> = near.iter().flat_map(|&v| ct.fan(v).map(|c| c / 3)).collect();
+    faces.sort_unstable();
+    faces.dedup();
+    let local = |t: u32| faces.binary_search(&t).ok().map(|i| i as u32);
+    let nc = 3 * faces.len() as u32;
+    let global = |lc: u32| 3 * faces[(lc / 3) as usize] + lc % 3;
+    let mut root: Vec<u32> = (0..nc).collect();
+    for lc in 0..nc {
+        if let Some((s, j)) = ct.s(global(lc)).and_then(|s| Some((s, local(s / 3)?))) {
+            let (a, b) = (find(&mut root, lc), find(&mut root, 3 * j + s % 3));
+            root[a as usize] = b;
+        }
+    }
+    let mut id = vec![u32::MAX; nc as usize];
+    let (mut tris, mut verts) = (Vec::with_capacity(nc as usize), Vec::new());
+    for lc in 0..nc {
+        let r = find(&mut root, lc) as usize;
+        if id[r] == u32::MAX {
+            id[r] = verts.len() as u32;
+            verts.push(ct.vtx(global(lc)));
+        }
+        tris.push(id[r]);
+    }
+    let centre = (0..3).map(|i| pos[ct.vtx(3 * face + i) as usize]).sum::<DVec3>() / 3.0;
+    let sharp = ct.sharpness().and_then(|s| {
+        let corners = (0..nc).map(|lc| (lc, s.corner(global(lc)))).filter(|x| x.1 > 0.0).collect();
+        let vertices = verts.iter().enumerate().map(|(l, &g)| (l as u32, s.vertex(g))).filter(|x| x.1 > 0.0).collect();
+        Sharpness::from_lists(corners, vertices)
+    });
+    let (table, _, remap) = CornerTable::build(verts.len(), &tris, None).ok()?;
+    // every vertex is used and the triangles keep their order and corners
+    if remap.is_some() || table.v_table() != tris.as_slice() {
+        return None;
+    }
+    Some(Region {
+        ct: table.with_sharpness(sharp),
+        pos: verts.iter().map(|&g| pos[g as usize] - centre).collect(),
+        origin: origin + centre,
+        face: local(face)?,
+    })
+}
+
+/// One Loop level of `r` in f64: the split table and its positions.
+fn subdivide(r: &Region, opts: &Options) -> (CornerTable, Vec<DVec3>) {
+    let (plan, fine) = record_one_level(&r.ct, Scheme::Loop, opts);
+    let pos = plan
+        .offsets
+        .windows(2)
+        .map(|w| {
+            let (a, b) = (w[0] as usize, w[1] as usize);
+            let total: f64 = plan.weights[a..b].iter().map(|&x| f64::from(x)).sum();
+            let sum: DVec3 = (a..b).map(|i| r.pos[plan.indices[i] as usize] * f64::from(plan.weights[i])).sum();
+            sum / total
+        })
+        .collect();
+    (fine, pos)
+}
+
+/// The child of triangle `face` (of `nt`) holding `(u, v)` in the split's
+/// layout (`src/mesh/split.rs`: the corner child of corner `j` is triangle
+/// `nt (j + 1) + face` with corners `(v_j, mid(j, j+1), mid(j, j+2))`, the
+/// central child keeps the id with corners `(mid12, mid20, mid01)`), and the
+/// map to its `(s, t)`.
+fn child_in_split(face: u32, nt: u32, (u, v): (f64, f64)) -> (u32, Affine) {
+    let a = |j, b| Affine { j, b };
+    if u + v <= 0.5 {
+        (nt + face, a([[2.0, 0.0], [0.0, 2.0]], [0.0, 0.0]))
+    } else if u >= 0.5 {
+        (2 * nt + face, a([[0.0, 2.0], [-2.0, -2.0]], [0.0, 2.0]))
+    } else if v >= 0.5 {
+        (3 * nt + face, a([[-2.0, -2.0], [2.0, 0.0]], [2.0, 0.0]))
+    } else {
+        (face, a([[-2.0, 0.0], [0.0, -2.0]], [1.0, 1.0]))
+    }
+}
+
+/// What the vertex of a corner of F is for the stopping rules.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Kind {
+    /// Smooth, valence 6.
+    Regular,
+    /// On exactly two infinitely sharp edges, three faces on F's side.
+    Crease,
+    /// Smooth, interior, valence `k >= 3`, not 6.
+    Extraordinary(u32),
+    /// Anything else: a corner, a dart, a semi-sharp feature, another
+    /// number of faces on a crease.
+    Other,
+}
+
+fn kind(ct: &CornerTable, c: u32) -> Kind {
+    let v = ct.vtx(c);
+    if ct.sharpness().is_some_and(|s| s.vertex(v) > 0.0) {
+        return Kind::Other;
+    }
+    // the edge (v, v(n(x))) is opposite p(x) for each corner x of the fan;
+    // a boundary fan's last edge is a border
+    let mut sharp = u32::from(ct.is_boundary_vertex(v));
+    for x in ct.fan(v) {
+        match ct.edge_sharpness(p(x)) {
+            s if s >= INFINITE => sharp += 1,
+            s if s > 0.0 => return Kind::Other,
+            _ => {}
+        }
+    }
+    match (sharp, ct.valence(v)) {
+        (0, 6) => Kind::Regular,
+        (0, k) if k >= 3 => Kind::Extraordinary(k),
+        (2, _) if side_faces(ct, c) == 3 => Kind::Crease,
+        _ => Kind::Other,
+    }
+}
+
+/// The faces around `v(c)` between the sharp edges on either side of `c`.
+fn side_faces(ct: &CornerTable, c: u32) -> u32 {
+    let mut count = 1;
+    for forward in [true, false] {
+        let mut x = c;
+        loop {
+            let edge = if forward { n(x) } else { p(x) };
+            if ct.edge_sharpness(edge) > 0.0 {
+                break;
+            }
+            match if forward { ct.s(x) } else { ct.u(x) } {
+                Some(y) if y != c => (x, count) = (y, count + 1),
+                _ => return u32::MAX,
+            }
+        }
+    }
+    count
+}
+
+type Coord = (i32, i32);
+
+fn add(a: Coord, b: Coord, r: Coord) -> Coord {
+    (a.0 + b.0 - r.0, a.1 + b.1 - r.1)
+}
+
+/// The 12 points of F's box spline in walk order (`patch.rs`): the
+/// vertices of the faces around F's corners laid on the lattice from F's
+/// corners `(0,0) (1,0) (1,1)`, without crossing a sharp edge at a corner
+/// of F; a point missing beyond such an edge `(a, b)` of the triangle
+/// `(a, b, r)` is the phantom `a + b - r`. `None` if the faces do not lie
+/// on the lattice or a point is missing.
+fn lattice_support(ct: &CornerTable, pos: &[DVec3], face: u32) -> Option<[DVec3; 12]> {
+    let corners = [ct.vtx(3 * face), ct.vtx(3 * face + 1), ct.vtx(3 * face + 2)];
+    let mut coord: Vec<(u32, Coord)> = vec![(corners[0], (0, 0)), (corners[1], (1, 0)), (corners[2], (1, 1))];
+    let mut phantoms: Vec<(Coord, DVec3)> = Vec::new();
+    let (mut queue, mut seen) = (vec![face], vec![face]);
+    let at = |coord: &[(u32, Coord)], v: u32| coord.iter().find(|x| x.0 == v).map(|x| x.1);
+    while let Some(t) = queue.pop() {
+        for c in 3 * t..3 * t + 3 {
+            let (a, b, r) = (ct.vtx(n(c)), ct.vtx(p(c)), ct.vtx(c));
+            let (ca, cb, cr) = (at(&coord, a)?, at(&coord, b)?, at(&coord, r)?);
+            let x = add(ca, cb, cr);
+            let touches = corners.contains(&a) || corners.contains(&b);
+            if touches && ct.edge_sharpness(c) > 0.0 {
+                phantoms.push((x, pos[a as usize] + pos[b as usize] - pos[r as usize]));
+                continue;
+            }
+            let Some(o) = ct.o(c) else { continue };
+            let w = ct.vtx(o);
+            let allowed = (3 * (o / 3)..3 * (o / 3) + 3).any(|y| corners.contains(&ct.vtx(y)));
+            match at(&coord, w) {
+                Some(have) if have != x => return None,
+                Some(_) => {}
+                None if allowed => coord.push((w, x)),
+                None => continue,
+            }
+            if allowed && !seen.contains(&(o / 3)) {
+                seen.push(o / 3);
+                queue.push(o / 3);
+            }
+        }
+    }
+    let mut out = [DVec3::ZERO; 12];
+    for (o, &want) in out.iter_mut().zip(&SUPPORT) {
+        *o = match coord.iter().find(|x| x.1 == want) {
+            Some(&(v, _)) => pos[v as usize],
+            None => phantoms.iter().find(|x| x.0 == want)?.1,
+        };
+    }
+    Some(out)
+}
+
+/// Rules 1 and 2 of the module docs on region `r` at the point `st`, `jac`
+/// the derivative of `st` with respect to the control face's `(u, v)`.
+fn try_patch(r: &Region, st: (f64, f64), jac: [[f64; 2]; 2], tables: &Tables, second: bool) -> Option<Sample> {
+    let kinds = [0, 1, 2].map(|i| kind(&r.ct, 3 * r.face + i));
+    let mut sample = if kinds.iter().all(|k| matches!(k, Kind::Regular | Kind::Crease)) {
+        let pts = lattice_support(&r.ct, &r.pos, r.face)?;
+        let jet = patch::jet(&tables.spline.basis, &pts, st.0, st.1, second);
+        finish(&jet, DVec3::ZERO, 1.0, jac, 1.0, second)
+    } else {
+        let mut odd = kinds.iter().enumerate().filter(|(_, k)| **k != Kind::Regular);
+        let (i, &Kind::Extraordinary(k)) = odd.next()? else { return None };
+        if odd.next().is_some() {
+            return None;
+        }
+        let table = tables.valences.get(k as usize)?.as_ref()?;
+        let mut pts = Vec::with_capacity(k as usize + 6);
+        walk(&r.ct, 3 * r.face + i as u32, |v| pts.push(r.pos[v as usize]));
+        let mut tmp = vec![DVec3::ZERO; pts.len()];
+        let first = Affine { j: jac, b: [0.0; 2] };
+        near_vertex(table, (&mut pts, &mut tmp), st, (rotation(i), first), second)
+    };
+    sample.position += r.origin;
+    Some(sample)
+}
+
+/// The limit surface at `(u, v)` of control face `f` (checked by the
+/// caller) by local subdivision.
+pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), second: bool) -> Sample {
+    let Some(mut region) = extract(&base.ct, &base.pos, DVec3::ZERO, f) else { return Sample::NAN };
+    let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
+    for _ in 0..MAX_LEVELS {
+        if let Some(sample) = try_patch(&region, st, jac, tables, second) {
+            return sample;
+        }
+        let (fine, pos) = subdivide(&region, &base.opts);
+        let (child, map) = child_in_split(region.face, region.ct.num_triangles() as u32, st);
+        let (s, t) = map.apply(st);
+        let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
+        st = if s + t > 1.0 { (s / (s + t), t / (s + t)) } else { (s, t) };
+        jac = map.after(&Affine { j: jac, b: [0.0; 2] });
+        match extract(&fine, &pos, region.origin, child) {
+            Some(next) => region = next,
+            None => return Sample::NAN,
+        }
+    }
+    let corner = |i: u32| region.pos[region.ct.vtx(3 * region.face + i) as usize];
+    let (a, b, c) = (corner(0), corner(1), corner(2));
+    let position = region.origin + a * (1.0 - st.0 - st.1) + b * st.0 + c * st.1;
+    Sample { position, normal: (b - a).cross(c - a).normalize(), ..Sample::NAN }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes;
+
+    #[test]
+    fn a_regular_face_gathers_the_walk_support_from_the_lattice() {
+        let mesh = shapes::icosphere(2);
+        let ct = &mesh.ct;
+        let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let f = (0..ct.num_triangles() as u32).find(|&f| (0..3).all(|i| ct.valence(ct.vtx(3 * f + i)) == 6)).unwrap();
+        let mut want = Vec::new();
+        walk(ct, 3 * f, |v| want.push(pos[v as usize]));
+        let got = lattice_support(ct, &pos, f).unwrap();
+        assert_eq!(got.to_vec(), want);
+    }
+
+    #[test]
+    fn the_region_keeps_the_face_and_its_corners() {
+        let mesh = shapes::icosphere(1);
+        let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let r = extract(&mesh.ct, &pos, DVec3::ZERO, 7).unwrap();
+        for i in 0..3 {
+            let here = r.pos[r.ct.vtx(3 * r.face + i) as usize] + r.origin;
+            assert!((here - pos[mesh.ct.vtx(21 + i) as usize]).length() < 1e-12);
+            assert_eq!(r.ct.valence(r.ct.vtx(3 * r.face + i)), mesh.ct.valence(mesh.ct.vtx(21 + i)));
+        }
+    }
+}
