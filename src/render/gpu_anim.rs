@@ -44,6 +44,9 @@ struct Pass {
 pub struct GpuAnimator {
     control: wgpu::Buffer,
     n_control: usize,
+    /// A plan of no level: the control positions are the finest, copied
+    /// into the drawn buffer as they are (no pass writes it).
+    copy_to: Option<wgpu::Buffer>,
     level: wgpu::ComputePipeline,
     normals: wgpu::ComputePipeline,
     /// One per level, then the normals.
@@ -59,13 +62,14 @@ pub fn supports_compute(device: &wgpu::Device) -> bool {
         && device.limits().max_compute_workgroups_per_dimension > 0
 }
 
+/// A storage buffer (also a copy source and target) holding `bytes`.
 fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
     // a binding may not be empty: pad to one word
     let contents: &[u8] = if bytes.is_empty() { &[0; 4] } else { bytes };
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(label),
         contents,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
     })
 }
 
@@ -186,6 +190,7 @@ impl GpuAnimator {
         passes.push(Pass { group: normals_group, threads: nv });
         buffers.extend([offsets, ids]);
         Ok(GpuAnimator {
+            copy_to: plan.levels.is_empty().then(|| mesh.positions.clone()),
             control,
             n_control,
             level: pipeline(device, &pl, "level"),
@@ -209,6 +214,9 @@ impl GpuAnimator {
             )));
         }
         queue.write_buffer(&self.control, 0, bytemuck::cast_slice(control));
+        if let Some(positions) = &self.copy_to {
+            encoder.copy_buffer_to_buffer(&self.control, 0, positions, 0, (control.len() * 12) as u64);
+        }
         let mut pass =
             encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("anim"), timestamp_writes: None });
         let n = self.passes.len();
