@@ -1,10 +1,11 @@
 //! `subdiv render` and `subdiv animate`: files written whole, right sizes and
-//! frame counts; refusals leave existing files alone. Skips only without a GPU
+//! frame counts; refusals leave existing files alone; `animate --eval gpu`
+//! writes the CPU's frames. Skips only without a GPU
 //! adapter when SUBDIV_REQUIRE_GPU is unset.
 #![cfg(all(feature = "viewer", feature = "cli"))]
 
 mod common;
-use common::{model_path, scratch_dir};
+use common::{model_path, scratch_dir, share_within};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -107,6 +108,50 @@ fn animate_writes_k_times_two_to_the_n_frames() {
     ])
     .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// The PNG frames `animate --eval EVAL` writes for `extra`, and its stdout.
+fn animate_frames(eval: &str, extra: &[&str]) -> Option<(Vec<image::RgbaImage>, String)> {
+    let dir = tmp(&format!("frames-{eval}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    let args = ["animate", "--eval", eval, "--size", "96x96", "--frames-dir", dir.to_str().unwrap()];
+    let o = run(&[&args[..], extra].concat())?;
+    assert!(o.status.success(), "--eval {eval}: {}", String::from_utf8_lossy(&o.stderr));
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    names.sort();
+    let frames = names.iter().map(|p| image::open(p).unwrap().to_rgba8()).collect();
+    Some((frames, String::from_utf8_lossy(&o.stdout).into_owned()))
+}
+
+#[test]
+fn animate_eval_gpu_writes_the_cpus_frames() {
+    // the bundled tetrahedron, Loop level 3, its 4 keys refined once: 8 frames
+    let extra = ["--level", "3", "--refine", "1", "--shading", "phong+wire", "--control"];
+    let Some((cpu, cpu_out)) = animate_frames("cpu", &extra) else { return };
+    let (gpu, gpu_out) = animate_frames("gpu", &extra).unwrap();
+    assert!(cpu_out.contains("evaluated on the CPU"), "{cpu_out}");
+    assert!(gpu_out.contains("wrote 8 frames") && gpu_out.contains("evaluated on the GPU"), "{gpu_out}");
+    assert_eq!((cpu.len(), gpu.len()), (8, 8));
+    for (f, (c, g)) in cpu.iter().zip(&gpu).enumerate() {
+        let share = share_within(c, g, 8);
+        assert!(share >= 0.995, "frame {f}: only {:.2}% of the pixels within 8 levels", share * 100.0);
+    }
+    // the GPU's frames move: each differs from the one before
+    for f in 1..gpu.len() {
+        let moved = 1.0 - share_within(&gpu[f - 1], &gpu[f], 8);
+        assert!(moved > 0.01, "GPU frame {f} is frame {} ({:.3}% of the pixels moved)", f - 1, moved * 100.0);
+    }
+    // a GIF too, and --stats with an output says only what it measured
+    let gif = tmp("tetra-gpu.gif");
+    let args = ["animate", "--eval", "gpu", "-l", "2", "--refine", "1", "--size", "48x48", "--stats"];
+    let o = run(&[&args[..], &["--gif", gif.to_str().unwrap()][..]].concat()).unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("plan_ms=") && !out.contains("frame_ms="), "{out}");
+    let frames = image::AnimationDecoder::into_frames(
+        image::codecs::gif::GifDecoder::new(std::io::BufReader::new(std::fs::File::open(&gif).unwrap())).unwrap(),
+    );
+    assert_eq!(frames.count(), 8);
 }
 
 #[test]

@@ -1,15 +1,17 @@
 //! The animation's compute passes (render::gpu_anim) against the CPU plan:
 //! the same positions within 1e-5 relative and the same normals, on the
 //! bundled tetrahedron animation and a creased model, for several schemes,
-//! and frames drawn from either the same image. Runs on any wgpu adapter
+//! frames drawn from either the same image, and exports evaluated on the GPU
+//! (no frame on the CPU) the CPU's exports. Runs on any wgpu adapter
 //! (lavapipe in CI); skips only when no adapter exists and
 //! SUBDIV_REQUIRE_GPU is unset.
 #![cfg(feature = "viewer")]
 
 mod common;
 
-use common::{bundled, offscreen};
+use common::{bundled, offscreen, scratch_dir, share_within};
 use subdiv::anim::{Animation, Paths, Tweak};
+use subdiv::render::export::{Evaluation, ExportStyle, ExportTarget, export_animation, frame_path};
 use subdiv::render::gpu_anim::{GpuAnimator, read_vec3};
 use subdiv::render::{Camera, GpuMesh, Look, Offscreen};
 use subdiv::{Mesh, Options, Scheme};
@@ -53,6 +55,8 @@ fn gpu_positions_and_normals_equal_the_cpu_plan() {
     let (dev, queue) = (&off.gpu.device, &off.gpu.queue);
     let cases = [
         ("tetrahedron", tetrahedron(), Scheme::Loop, 4),
+        // no level: the control positions are drawn as they are
+        ("tetrahedron", tetrahedron(), Scheme::Loop, 0),
         ("tetrahedron", tetrahedron(), Scheme::ModifiedButterfly, 3),
         ("ico_crease", creased(), Scheme::Loop, 2),
         ("ico_crease", creased(), Scheme::Butterfly, 2),
@@ -113,5 +117,59 @@ fn frames_evaluated_on_the_gpu_draw_the_cpu_image() {
         };
         assert!(differ(&first, &by_cpu, 8) > 50, "frame {f} moves");
         assert!(differ(&by_cpu, &by_gpu, 2) <= 3, "frame {f}: {} pixels differ", differ(&by_cpu, &by_gpu, 2));
+    }
+}
+
+/// The PNG frames of `anim` exported with `look`, evaluated where `eval`
+/// says, and whether the CPU evaluated any frame of it.
+fn exported(
+    name: &str,
+    (m, paths): &(Mesh, Paths),
+    (scheme, level): (Scheme, u32),
+    look: Look,
+    eval: Evaluation,
+) -> (Vec<image::RgbaImage>, bool) {
+    let mut anim = Animation::new(m, paths, Tweak::Jarek, 1, scheme, level, &Options::default()).unwrap();
+    assert!(anim.frame_ms().is_none(), "recording the plan evaluates no frame");
+    let dir = scratch_dir(&format!("gpu-export-{name}-{eval:?}"));
+    let style = ExportStyle { size: (96, 96), look, fps: 30.0, eval };
+    let n = export_animation(&mut anim, m, &ExportTarget::Frames(dir.clone()), &style, |_, _| true).unwrap();
+    assert_eq!(n, anim.frame_count());
+    let frames = (0..n).map(|f| image::open(frame_path(&dir, f, n)).unwrap().to_rgba8()).collect();
+    let _ = std::fs::remove_dir_all(&dir);
+    (frames, anim.frame_ms().is_some())
+}
+
+#[test]
+fn exports_evaluated_on_the_gpu_are_the_cpus_without_a_frame_evaluated_on_the_cpu() {
+    if offscreen(8, 8).is_none() {
+        return;
+    }
+    let overlay = Look { control: true, wireframe: true, ..Look::default() };
+    let cases = [
+        ("tetrahedron", tetrahedron(), (Scheme::Loop, 3), Look::default()),
+        ("cube_creases", polygons("cube_creases.obj"), (Scheme::CatmullClark, 2), overlay),
+        ("ico_crease", creased(), (Scheme::ModifiedButterfly, 2), Look::default()),
+    ];
+    for (name, model, sub, look) in cases {
+        let (cpu, on_cpu) = exported(name, &model, sub, look, Evaluation::Cpu);
+        let (gpu, gpu_on_cpu) = exported(name, &model, sub, look, Evaluation::Gpu);
+        assert!(on_cpu, "{name}: the CPU export evaluates its frames on the CPU");
+        assert!(!gpu_on_cpu, "{name}: the GPU export evaluated a frame on the CPU");
+        assert_eq!(cpu.len(), gpu.len());
+        for (f, (c, g)) in cpu.iter().zip(&gpu).enumerate() {
+            let share = share_within(c, g, 8);
+            assert!(share >= 0.995, "{name} frame {f}: only {:.2}% of the pixels within 8 levels", share * 100.0);
+        }
+        // every frame of the GPU's moves from the one before: the passes ran on each frame's control points
+        for f in 1..gpu.len() {
+            let moved = 1.0 - share_within(&gpu[f - 1], &gpu[f], 8);
+            assert!(
+                moved > 0.01,
+                "{name}: GPU frame {f} is frame {} ({:.3}% of the pixels moved)",
+                f - 1,
+                moved * 100.0
+            );
+        }
     }
 }

@@ -18,7 +18,7 @@ use crate::Result;
 use crate::io::bezier::{curve_polyline, de_casteljau_construction};
 use crate::mesh::attributes::MaterialGroups;
 use crate::render::GpuMesh;
-use crate::render::gpu_anim::{GpuAnimator, supports_compute};
+use crate::render::gpu_anim::{AnimatedMesh, supports_compute};
 use crate::render::textures::MaterialDraw;
 use glam::{Vec2, Vec3};
 
@@ -44,11 +44,12 @@ pub(crate) struct GpuScene {
     pub(crate) result: Option<GpuMesh>,
     /// The result's proxy.
     pub(crate) proxy: Option<GpuMesh>,
-    /// The animated result.
-    pub(crate) anim: Option<GpuMesh>,
-    /// The compute passes writing `anim` (GPU evaluation), with its plan id
-    /// (`None` inside: the plan does not fit the device; not retried).
-    animator: Option<(u64, Option<GpuAnimator>)>,
+    /// The animated result, with its compute passes once built (GPU
+    /// evaluation: the same type the animation export evaluates with).
+    pub(crate) anim: Option<AnimatedMesh>,
+    /// The plan whose compute passes were built into `anim`, or tried (a
+    /// plan that does not fit the device is not retried).
+    gpu_tried: Option<u64>,
     /// A Bezier curve: its polyline and its control polygon (with the construction highlighted).
     pub(crate) curve: Option<(GpuMesh, GpuMesh)>,
     seen: Seen,
@@ -115,10 +116,7 @@ impl GpuScene {
         if report.uploaded {
             self.version += 1;
         }
-        report.gpu_ready = match &self.animator {
-            Some((id, Some(_))) => Some(*id),
-            _ => None,
-        };
+        report.gpu_ready = self.gpu_tried.filter(|_| self.anim.as_ref().is_some_and(AnimatedMesh::gpu_ready));
         report
     }
 
@@ -213,32 +211,30 @@ impl GpuScene {
         if shown.on_cpu {
             let (pos, nrm) = p.player.evaluated();
             match &mut self.anim {
-                Some(m) if !fresh => m.update(queue, pos, nrm),
+                Some(m) if !fresh => m.upload(queue, pos, nrm),
                 _ => {
-                    self.anim = GpuMesh::new(device, p.player.topology(), pos, nrm).ok();
-                    self.animator = None;
+                    self.anim = AnimatedMesh::new(device, p.player.topology(), pos, nrm).ok();
+                    self.gpu_tried = None;
                 }
             }
-        } else if let Some((_, Some(a))) = &self.animator {
-            match a.update(device, queue, p.player.control(f)) {
+        } else if let Some(m) = self.anim.as_ref().filter(|m| m.gpu_ready()) {
+            match m.evaluate(device, queue, p.player.control(f)) {
                 Ok(()) => report.on_gpu = true,
                 Err(e) => report.errors.push(e),
             }
         }
         // the compute passes for this plan, once its mesh is up (a plan the
         // GPU cannot take is said once, and the CPU evaluates it)
-        let wanted = report.compute && doc.anim.gpu_eval && self.anim.is_some();
-        if wanted && self.animator.as_ref().is_none_or(|(a, _)| *a != id) {
-            let built = self.anim.as_ref().map(|m| GpuAnimator::new(device, p.player.plan(), m));
-            let built = match built {
-                Some(Err(e)) => {
-                    log::warn!("GPU evaluation unavailable, evaluating on the CPU: {e}");
-                    report.gpu_unavailable = Some(e.to_string());
-                    None
-                }
-                b => b.and_then(Result::ok),
-            };
-            self.animator = Some((id, built));
+        if report.compute
+            && doc.anim.gpu_eval
+            && self.gpu_tried != Some(id)
+            && let Some(m) = &mut self.anim
+        {
+            if let Err(e) = m.start_gpu(device, p.player.plan()) {
+                log::warn!("GPU evaluation unavailable, evaluating on the CPU: {e}");
+                report.gpu_unavailable = Some(e.to_string());
+            }
+            self.gpu_tried = Some(id);
         }
         let cpos = p.player.control(f);
         if let Some(c) = &mut self.control {
@@ -254,7 +250,7 @@ impl GpuScene {
     /// current by [`GpuMesh::update`] while the animation plays.
     fn sync_normal_lines(&mut self, device: &wgpu::Device, doc: &Doc, length: f32) {
         if !doc.display.normals {
-            for m in [&mut self.result, &mut self.anim].into_iter().flatten() {
+            for m in [self.result.as_mut(), self.anim.as_mut().map(AnimatedMesh::mesh_mut)].into_iter().flatten() {
                 if m.has_normal_lines() {
                     m.clear_normal_lines();
                     self.version += 1;
@@ -268,7 +264,7 @@ impl GpuScene {
             self.version += 1;
         }
         // with normals shown every frame is evaluated on the CPU
-        if let (Some(m), Some(p)) = (self.anim.as_mut(), doc.anim.playback.as_ref())
+        if let (Some(m), Some(p)) = (self.anim.as_mut().map(AnimatedMesh::mesh_mut), doc.anim.playback.as_ref())
             && !m.has_normal_lines()
             && doc.anim.shown.is_some_and(|s| s.on_cpu)
         {

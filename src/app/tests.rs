@@ -575,6 +575,48 @@ fn the_headless_viewer_plays_the_animation_on_its_own_clock() {
 }
 
 #[test]
+fn the_gpu_mirror_evaluates_the_frames_with_the_exports_animated_mesh() {
+    // the window's sync without a window: the mirror builds the compute
+    // passes of the plan, and the frames after the first are evaluated
+    // there (not by the document) into the drawn buffers, at level 0 (the
+    // control points drawn as they are) as at level 2
+    let off = match crate::render::Offscreen::new(8, 8) {
+        Ok(o) => o,
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => return eprintln!("SKIPPED: {e}"),
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    };
+    let (device, queue) = (&off.gpu.device, &off.gpu.queue);
+    for level in [0, 2] {
+        let mut v = Viewer::new();
+        subdivide(&mut v, Scheme::Loop, level);
+        settle(&mut v);
+        v.apply(Command::TogglePlay);
+        settle(&mut v);
+        let mut scene = super::gpu_scene::GpuScene::default();
+        let mut on_gpu = Vec::new();
+        for _ in 0..5 {
+            assert!(v.advance(0.1), "a tenth of a second moves the frame");
+            let report = scene.sync(device, queue, &v.doc, 0.05);
+            v.apply(Command::Gpu(Box::new(report)));
+            let shown = v.doc.anim.shown.expect("a current frame");
+            if shown.on_cpu {
+                continue;
+            }
+            assert!(v.doc.anim.on_gpu, "the mirror says it evaluated the frame");
+            let drawn = scene.anim.as_ref().expect("the animated mesh").positions(device, queue).unwrap();
+            let p = v.doc.anim.playback.as_mut().unwrap();
+            let cpu = p.player.evaluate(shown.frame).0;
+            let scale = cpu.iter().fold(1.0f32, |s, q| s.max(q.abs().max_element()));
+            assert_eq!(drawn.len(), cpu.len());
+            let close = drawn.iter().zip(cpu).all(|(g, c)| (*g - *c).abs().max_element() <= 1e-5 * scale);
+            assert!(close, "level {level} frame {}: the drawn positions are not the frame's", shown.frame);
+            on_gpu.push(shown.frame);
+        }
+        assert!(on_gpu.len() >= 4, "level {level}: only frames {on_gpu:?} were evaluated on the GPU");
+    }
+}
+
+#[test]
 fn catmull_clark_snaps_and_shades_with_its_own_limit() {
     // A quad cube with a crease (so the result is drawn cut open) at level
     // 1: snapped points are the limit masks' (tests/catmark_limit.rs checks

@@ -8,6 +8,7 @@ use super::command::Command;
 use super::gpu_scene::GpuScene;
 use super::surface::SurfaceWrapper;
 use crate::render::blit::Blit;
+use crate::render::gpu_anim::AnimatedMesh;
 use crate::render::readback::{Readback, capture_texture};
 use crate::render::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
 use crate::render::{Camera, Gpu, Look, Surface};
@@ -331,7 +332,7 @@ impl Win {
         }
         let s = &self.scene;
         let result = if viewer.doc.anim.active {
-            s.anim.as_ref().or(s.result.as_ref())
+            s.anim.as_ref().map(AnimatedMesh::mesh).or(s.result.as_ref())
         } else if use_proxy {
             s.proxy.as_ref()
         } else {
@@ -362,7 +363,11 @@ impl Win {
         let px = |v: f32| (v * ppp).round().max(1.0) as u32;
         let (w, h) = shot.size(px(rect.width()), px(rect.height()));
         let s = &self.scene;
-        let result = if viewer.doc.anim.active { s.anim.as_ref().or(s.result.as_ref()) } else { s.result.as_ref() };
+        let result = if viewer.doc.anim.active {
+            s.anim.as_ref().map(AnimatedMesh::mesh).or(s.result.as_ref())
+        } else {
+            s.result.as_ref()
+        };
         let display = &viewer.doc.display;
         let r = [0.0, 0.0, w as f32, h as f32];
         let draws = viewport_draws(s, result, viewer.view.camera, display.look(), display.side_by_side, r);

@@ -107,7 +107,9 @@ pub struct AnimateArgs {
     /// evaluated and nothing is written.
     #[arg(long)]
     stats: bool,
-    /// Where --stats evaluates the frames: cpu, or gpu (compute passes).
+    /// Where the frames are evaluated, for the GIF, the PNG frames and --stats:
+    /// cpu, or gpu (the stencil and normal compute passes, drawn straight from
+    /// the buffers they write).
     #[arg(long, default_value = "cpu", value_parser = ["cpu", "gpu"])]
     eval: String,
 }
@@ -306,7 +308,7 @@ mod gpu {
     }
 
     /// `subdiv animate --stats --eval gpu`: every frame through the compute passes.
-    fn animate_stats_gpu(anim: &mut subdiv::anim::Animation) -> Result<()> {
+    fn animate_stats_gpu(anim: &subdiv::anim::Animation) -> Result<()> {
         let n = anim.frame_count().max(32);
         let (mut times, upload_ms, adapter) = subdiv::render::gpu_anim::time_frames(anim, n)?;
         times.sort_by(f64::total_cmp);
@@ -323,20 +325,17 @@ mod gpu {
 
     /// `subdiv animate`.
     pub fn animate(a: AnimateArgs) -> Result<()> {
-        use subdiv::render::export::{ExportStyle, ExportTarget, export_animation_painted};
+        use subdiv::render::export::{Evaluation, ExportStyle, ExportTarget, export_animation_painted};
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
         let coloring: Coloring = a.color.parse().map_err(Error::Usage)?;
         let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
         let (mesh, attrs, paths, mut anim) = animation_of(&a)?;
         if a.stats_only() {
             if a.eval == "gpu" {
-                return animate_stats_gpu(&mut anim);
+                return animate_stats_gpu(&anim);
             }
             animate_stats(&mut anim);
             return Ok(());
-        }
-        if a.eval == "gpu" {
-            return Err(Error::Usage("--eval gpu times frames with --stats; exports evaluate on the CPU".into()));
         }
         let nv = anim.topology().num_vertices();
         let colors = match coloring {
@@ -355,7 +354,8 @@ mod gpu {
             (None, None) => return Err(Error::Usage("give --gif FILE or --frames-dir DIR".into())),
         };
         let look = subdiv::render::Look { control: a.control, ..shading.look() };
-        let style = ExportStyle { size: a.size, look, fps: a.fps };
+        let eval = if a.eval == "gpu" { Evaluation::Gpu } else { Evaluation::Cpu };
+        let style = ExportStyle { size: a.size, look, fps: a.fps, eval };
         let t0 = std::time::Instant::now();
         let total = anim.frame_count();
         let bar = progress::bar(total as u64, "frames");
@@ -368,15 +368,21 @@ mod gpu {
             ExportTarget::Gif(p) | ExportTarget::Frames(p) => p.display().to_string(),
         };
         println!(
-            "wrote {n} frames ({} keys x 2^{}, {} triangles each) to {out} in {:.2} s",
+            "wrote {n} frames ({} keys x 2^{}, {} triangles each, evaluated on the {}) to {out} in {:.2} s",
             paths.keys_per_vertex,
             a.refine,
             anim.topology().num_triangles(),
+            a.eval.to_uppercase(),
             t0.elapsed().as_secs_f64()
         );
-        if a.stats {
+        match (a.stats, eval) {
             // the median of the last 64 evaluations (the export's)
-            println!("plan_ms={:.3} frame_ms={:.3}", anim.plan_ms(), anim.frame_ms().unwrap_or(0.0));
+            (true, Evaluation::Cpu) => {
+                println!("plan_ms={:.3} frame_ms={:.3}", anim.plan_ms(), anim.frame_ms().unwrap_or(0.0))
+            }
+            // no frame was evaluated on the CPU; --stats without an output times the GPU's
+            (true, Evaluation::Gpu) => println!("plan_ms={:.3}", anim.plan_ms()),
+            (false, _) => {}
         }
         Ok(())
     }

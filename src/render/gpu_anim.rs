@@ -8,11 +8,16 @@
 //! the [`GpuMesh`]'s vertex buffers, which the renderer draws as they are.
 //! The rows are the ones the CPU evaluates, so both agree to rounding (the
 //! GPU may fuse multiply-adds).
+//!
+//! An [`AnimatedMesh`] pairs the drawn mesh with its animator: the one way
+//! the viewer, the animation export (`animate --eval gpu`) and
+//! `animate --stats --eval gpu` evaluate frames on the GPU.
 
-use super::gpu_mesh::GpuMesh;
+use super::gpu::Gpu;
+use super::gpu_mesh::{GpuMesh, cull_for};
 use crate::mesh::normals::ring_lists;
 use crate::subdiv::tables::StencilPlan;
-use crate::{Error, Result};
+use crate::{CornerTable, Error, Result};
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use wgpu::util::DeviceExt;
@@ -39,6 +44,9 @@ struct Pass {
 pub struct GpuAnimator {
     control: wgpu::Buffer,
     n_control: usize,
+    /// A plan of no level: the control positions are the finest, copied
+    /// into the drawn buffer as they are (no pass writes it).
+    copy_to: Option<wgpu::Buffer>,
     level: wgpu::ComputePipeline,
     normals: wgpu::ComputePipeline,
     /// One per level, then the normals.
@@ -54,13 +62,14 @@ pub fn supports_compute(device: &wgpu::Device) -> bool {
         && device.limits().max_compute_workgroups_per_dimension > 0
 }
 
+/// A storage buffer (also a copy source and target) holding `bytes`.
 fn storage(device: &wgpu::Device, label: &str, bytes: &[u8]) -> wgpu::Buffer {
     // a binding may not be empty: pad to one word
     let contents: &[u8] = if bytes.is_empty() { &[0; 4] } else { bytes };
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some(label),
         contents,
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
     })
 }
 
@@ -181,6 +190,7 @@ impl GpuAnimator {
         passes.push(Pass { group: normals_group, threads: nv });
         buffers.extend([offsets, ids]);
         Ok(GpuAnimator {
+            copy_to: plan.levels.is_empty().then(|| mesh.positions.clone()),
             control,
             n_control,
             level: pipeline(device, &pl, "level"),
@@ -204,6 +214,9 @@ impl GpuAnimator {
             )));
         }
         queue.write_buffer(&self.control, 0, bytemuck::cast_slice(control));
+        if let Some(positions) = &self.copy_to {
+            encoder.copy_buffer_to_buffer(&self.control, 0, positions, 0, (control.len() * 12) as u64);
+        }
         let mut pass =
             encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("anim"), timestamp_writes: None });
         let n = self.passes.len();
@@ -229,7 +242,7 @@ impl GpuAnimator {
     }
 }
 
-/// Reads a buffer of packed `Vec3`s back (tests, `animate --eval gpu`'s check).
+/// Reads a buffer of packed `Vec3`s back (tests, the export's motion bounds).
 ///
 /// # Errors
 /// [`Error::Gpu`] when mapping fails.
@@ -270,28 +283,129 @@ impl GpuMesh {
     }
 }
 
-/// Times `frames` evaluations of `anim` on a headless device: per frame the
-/// upload of the control positions, the passes and the wait for them (ms).
-/// Returns the times, the upload time of the plan (ms) and the adapter.
+/// Whether `gpu`'s device has the compute passes, as an error naming the
+/// adapter when it has not.
+///
+/// # Errors
+/// [`Error::Gpu`] without compute shaders with six storage buffers.
+pub fn require_compute(gpu: &Gpu) -> Result<()> {
+    if supports_compute(&gpu.device) {
+        Ok(())
+    } else {
+        Err(Error::Gpu(format!("{} has no compute shaders with six storage buffers", gpu.describe())))
+    }
+}
+
+/// An animation's finest mesh on the device and the way its frames get
+/// there: uploaded from the CPU's evaluation ([`AnimatedMesh::upload`]), or
+/// evaluated in place by the compute passes ([`AnimatedMesh::evaluate`]) once
+/// they are built ([`AnimatedMesh::start_gpu`], [`AnimatedMesh::on_gpu`]).
+/// The viewer, the animation export and `animate --stats --eval gpu` all
+/// evaluate frames on the GPU through this one type.
+pub struct AnimatedMesh {
+    mesh: GpuMesh,
+    /// The compute passes writing `mesh` (`None`: frames come from the CPU).
+    animator: Option<GpuAnimator>,
+}
+
+impl AnimatedMesh {
+    /// The mesh of a frame the CPU evaluated (`ct` the plan's finest topology).
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] when the mesh exceeds the device's buffer limit.
+    pub fn new(device: &wgpu::Device, ct: &CornerTable, positions: &[Vec3], normals: &[Vec3]) -> Result<AnimatedMesh> {
+        Ok(AnimatedMesh { mesh: GpuMesh::new(device, ct, positions, normals)?, animator: None })
+    }
+
+    /// The finest mesh of `plan` with the frame whose control positions are
+    /// `control` evaluated by the compute passes from the start: no frame is
+    /// evaluated on the CPU (the side to cull is found from the positions
+    /// the GPU wrote, read back).
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] without compute shaders, or as [`GpuAnimator::new`];
+    /// [`Error::Usage`] as [`GpuAnimator::encode`].
+    pub fn on_gpu(gpu: &Gpu, plan: &StencilPlan, control: &[Vec3]) -> Result<AnimatedMesh> {
+        require_compute(gpu)?;
+        let zeros = vec![Vec3::ZERO; plan.ct.num_vertices()];
+        let mut animated = AnimatedMesh::new(&gpu.device, &plan.ct, &zeros, &zeros)?;
+        animated.start_gpu(&gpu.device, plan)?;
+        animated.evaluate(&gpu.device, &gpu.queue, control)?;
+        let positions = animated.positions(&gpu.device, &gpu.queue)?;
+        animated.mesh.cull = cull_for(&plan.ct, &positions);
+        Ok(animated)
+    }
+
+    /// Builds the compute passes of `plan` (whose finest topology this mesh
+    /// has), so that [`AnimatedMesh::evaluate`] can run.
+    ///
+    /// # Errors
+    /// As [`GpuAnimator::new`]; the mesh is then left as it was.
+    pub fn start_gpu(&mut self, device: &wgpu::Device, plan: &StencilPlan) -> Result<()> {
+        self.animator = Some(GpuAnimator::new(device, plan, &self.mesh)?);
+        Ok(())
+    }
+
+    /// Whether the compute passes are built.
+    pub fn gpu_ready(&self) -> bool {
+        self.animator.is_some()
+    }
+
+    /// Takes a frame the CPU evaluated (the compute passes, if built, stay).
+    pub fn upload(&mut self, queue: &wgpu::Queue, positions: &[Vec3], normals: &[Vec3]) {
+        self.mesh.update(queue, positions, normals);
+    }
+
+    /// Evaluates the frame whose control positions are `control` with the
+    /// compute passes, straight into the drawn buffers (submitted; a later
+    /// submission draws it).
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] before [`AnimatedMesh::start_gpu`]; as
+    /// [`GpuAnimator::update`].
+    pub fn evaluate(&self, device: &wgpu::Device, queue: &wgpu::Queue, control: &[Vec3]) -> Result<()> {
+        let animator =
+            self.animator.as_ref().ok_or_else(|| Error::Gpu("the GPU evaluation passes are not built".into()))?;
+        animator.update(device, queue, control)
+    }
+
+    /// The positions in the drawn buffer, read back (waits for the GPU).
+    ///
+    /// # Errors
+    /// As [`read_vec3`].
+    pub fn positions(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<Vec3>> {
+        read_vec3(device, queue, &self.mesh.positions, self.mesh.vertex_count())
+    }
+
+    /// The mesh as drawn.
+    pub fn mesh(&self) -> &GpuMesh {
+        &self.mesh
+    }
+
+    /// The mesh as drawn, to add colours or normal segments to.
+    pub fn mesh_mut(&mut self) -> &mut GpuMesh {
+        &mut self.mesh
+    }
+}
+
+/// Times `frames` evaluations of `anim` on a headless device through
+/// [`AnimatedMesh`]: per frame the upload of the control positions, the
+/// passes and the wait for them (ms). Returns the times, the time to upload
+/// the plan and evaluate a first frame (ms), and the adapter.
 ///
 /// # Errors
 /// [`Error::Gpu`] without an adapter with compute, or when the plan does not
 /// fit on the device.
-pub fn time_frames(anim: &mut crate::anim::Animation, frames: usize) -> Result<(Vec<f64>, f64, String)> {
-    let gpu = super::gpu::Gpu::headless()?;
-    if !supports_compute(&gpu.device) {
-        return Err(Error::Gpu(format!("{} has no compute shaders with six storage buffers", gpu.describe())));
-    }
+pub fn time_frames(anim: &crate::anim::Animation, frames: usize) -> Result<(Vec<f64>, f64, String)> {
+    let gpu = Gpu::headless()?;
     let t0 = std::time::Instant::now();
-    let (ct, p, n) = anim.evaluate_with_topology(0);
-    let mesh = GpuMesh::new(&gpu.device, ct, p, n)?;
-    let animator = GpuAnimator::new(&gpu.device, anim.plan(), &mesh)?;
+    let animated = AnimatedMesh::on_gpu(&gpu, anim.plan(), anim.control(0))?;
     let upload_ms = t0.elapsed().as_secs_f64() * 1e3;
     let wait = |d: &wgpu::Device| d.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| Error::Gpu(e.to_string()));
     let mut times = Vec::with_capacity(frames);
     for f in 0..frames {
         let t = std::time::Instant::now();
-        animator.update(&gpu.device, &gpu.queue, anim.control(f))?;
+        animated.evaluate(&gpu.device, &gpu.queue, anim.control(f))?;
         wait(&gpu.device)?;
         times.push(t.elapsed().as_secs_f64() * 1e3);
     }

@@ -40,6 +40,14 @@ fn or_skip(made: subdiv::Result<subdiv::render::Offscreen>) -> Option<subdiv::re
     }
 }
 
+/// The share of pixels of `a` and `b` (the same size) whose red, green and
+/// blue each differ by at most `tol` levels.
+pub fn share_within(a: &image::RgbaImage, b: &image::RgbaImage, tol: u8) -> f64 {
+    assert_eq!(a.dimensions(), b.dimensions(), "images of one size");
+    let close = a.pixels().zip(b.pixels()).filter(|(p, q)| (0..3).all(|i| p.0[i].abs_diff(q.0[i]) <= tol)).count();
+    close as f64 / (a.width() * a.height()).max(1) as f64
+}
+
 pub fn model_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("models").join(name)
 }

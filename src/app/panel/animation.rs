@@ -5,7 +5,7 @@ use crate::anim::tweak::Tweak;
 use crate::app::command::Command;
 use crate::app::display::Display;
 use crate::app::doc::Doc;
-use crate::render::export::{ExportStyle, ExportTarget};
+use crate::render::export::{Evaluation, ExportStyle, ExportTarget};
 use egui::RichText;
 use std::path::PathBuf;
 use std::sync::atomic::Ordering;
@@ -122,7 +122,11 @@ fn export_rows(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &D
                 }
             },
         );
-        let style = ExportStyle { size: (panel.export_size, panel.export_size), look: display.plain_look(), fps: 30.0 };
+        // exported as shown: on the GPU when the frames are evaluated there
+        let on_gpu = doc.anim.gpu_eval && doc.anim.gpu_compute == Some(true);
+        let eval = if on_gpu { Evaluation::Gpu } else { Evaluation::Cpu };
+        let size = (panel.export_size, panel.export_size);
+        let style = ExportStyle { size, look: display.plain_look(), fps: 30.0, eval };
         let busy = doc.jobs.busy.exporting.is_some();
         if ui.add_enabled(!busy, egui::Button::new("GIF")).on_hover_text("all K*2^n frames as one GIF").clicked() {
             let mut p = PathBuf::from(panel.export_path.trim());
