@@ -65,7 +65,10 @@ fn any_point_of_a_flat_face_comes_back_with_its_parameters() {
         let p = picked.expect("the ray hits");
         let ControlFace::Triangle { face, u: pu, v: pv } = p.face else { panic!("a triangle") };
         assert_eq!(face, MIDDLE);
-        assert!((pu - f64::from(u)).abs() < 1e-5 && (pv - f64::from(v)).abs() < 1e-5, "({u}, {v}) came back as ({pu}, {pv})");
+        assert!(
+            (pu - f64::from(u)).abs() < 1e-5 && (pv - f64::from(v)).abs() < 1e-5,
+            "({u}, {v}) came back as ({pu}, {pv})"
+        );
     }
 }
 
@@ -206,7 +209,9 @@ fn the_text_block_says_what_was_found() {
     let ico = icosahedron();
     let (_, p) = pick_on(&ico, Scheme::Loop, 2, Vec3::new(0.1, 0.2, 5.0), -Vec3::Z);
     let text = p.expect("hits").to_string();
-    for line in ["control face:", "u v:", "nearest control vertex:", "valence 5", "limit position:", "mean curvature H:"] {
+    for line in
+        ["control face:", "u v:", "nearest control vertex:", "valence 5", "limit position:", "mean curvature H:"]
+    {
         assert!(text.contains(line), "{line} missing from\n{text}");
     }
     let (_, p) = pick_on(&ico, Scheme::Butterfly, 1, Vec3::new(0.1, 0.2, 5.0), -Vec3::Z);
@@ -233,7 +238,8 @@ fn time_a_ray_against_a_million_triangles() {
     }
     let ms = t0.elapsed().as_secs_f64() * 1e3 / 20.0;
     let lv = Level { control: &torus, drawn: &drawn, scheme: Scheme::Loop, level };
-    let origin = (0..20).map(|i| Vec3::new(0.05 * i as f32, 0.3, 10.0)).find(|&o| nearest_hit(&drawn, o, -Vec3::Z).is_some());
+    let origin =
+        (0..20).map(|i| Vec3::new(0.05 * i as f32, 0.3, 10.0)).find(|&o| nearest_hit(&drawn, o, -Vec3::Z).is_some());
     let t1 = std::time::Instant::now();
     let p = pick(&lv, &Options::default(), origin.expect("a ray hits"), -Vec3::Z).unwrap();
     let pick_ms = t1.elapsed().as_secs_f64() * 1e3;

@@ -11,7 +11,8 @@
 //! file's face order (polygons fanned for the triangle schemes) and the
 //! point `(1 - u - v) c0 + u c1 + v c2` of its corners in the order the file
 //! lists them. The polygon schemes (Catmull-Clark, bilinear) name the
-//! control polygon and the corner whose quarter of it holds the hit.
+//! control polygon and its corner nearest the hit (whose quarter of the
+//! polygon, its level-1 quad, holds the hit).
 //! Where the evaluator has nothing exact (another scheme, a face at a
 //! boundary or a sharp feature), [`Limit::Unavailable`] says why.
 
@@ -56,8 +57,9 @@ pub enum ControlFace {
         face: u32,
         /// Its number of corners.
         size: u32,
-        /// The corner (0-based in the polygon's order) whose quarter of
-        /// the face holds the hit.
+        /// The corner (0-based in the polygon's order) nearest the hit:
+        /// whose quarter of the face (its level-1 quad) holds it, or,
+        /// drawn unrefined, nearest in space.
         corner: u32,
     },
 }
@@ -99,9 +101,10 @@ pub struct Pick {
     pub scheme: Scheme,
     /// The control face and the point in it.
     pub face: ControlFace,
-    /// The control vertex of that face nearest the hit in its parameters
-    /// (the corner of largest weight; for a polygon, the corner of its
-    /// quarter).
+    /// The control vertex of that face nearest the hit: in its parameters
+    /// for a triangle (the corner of largest weight), the corner of the
+    /// quarter holding the hit for a refined polygon, the corner nearest in
+    /// space for a polygon drawn unrefined.
     pub vertex: ControlVertex,
     /// The exact limit surface there.
     pub limit: Limit,
@@ -168,25 +171,27 @@ pub fn trace(level: &Level, hit: &Hit) -> Result<(ControlFace, ControlVertex)> {
     let k = (0..3).max_by(|&a, &b| weights[a].total_cmp(&weights[b])).unwrap_or(0);
     let nearest = vertex(ct.vtx(3 * f + k as u32));
     if level.scheme.is_polygonal() {
-        // level 0 of a polygon scheme: the fanned triangle's polygon
+        // level 0 of a polygon scheme: the fanned triangle's polygon, and
+        // its corner nearest the hit
         let pt = PolyTable::from_corner_table(ct);
-        let (polygon, corner) = polygon_of(&pt, ct, f, nearest.id).ok_or_else(mismatch)?;
-        let size = pt.face_size(polygon);
-        let v = ControlVertex { valence: pt.valences()[nearest.id as usize], ..nearest };
-        return Ok((ControlFace::Polygon { face: polygon, size, corner }, v));
+        let polygon = polygon_of(&pt, ct, f).ok_or_else(mismatch)?;
+        let r = pt.face_corners(polygon);
+        let dist = |c: u32| level.control.positions[pt.vtx(c) as usize].distance_squared(hit.point);
+        let c = r.clone().min_by(|&a, &b| dist(a).total_cmp(&dist(b))).unwrap_or(r.start);
+        let v = ControlVertex { valence: pt.valences()[pt.vtx(c) as usize], ..vertex(pt.vtx(c)) };
+        return Ok((ControlFace::Polygon { face: polygon, size: r.end - r.start, corner: c - r.start }, v));
     }
     Ok((ControlFace::Triangle { face: f, u, v }, nearest))
 }
 
-/// The polygon of `pt` holding the three vertices of triangle `f` of `ct`,
-/// and its corner at vertex `at`.
-fn polygon_of(pt: &PolyTable, ct: &CornerTable, f: u32, at: u32) -> Option<(u32, u32)> {
+/// The polygon of `pt` holding the three vertices of triangle `f` of `ct`
+/// (a polygon's fan triangles use its corners only).
+fn polygon_of(pt: &PolyTable, ct: &CornerTable, f: u32) -> Option<u32> {
     let tri = [ct.vtx(3 * f), ct.vtx(3 * f + 1), ct.vtx(3 * f + 2)];
-    (0..pt.num_faces() as u32).find_map(|g| {
+    (0..pt.num_faces() as u32).find(|&g| {
         let r = pt.face_corners(g);
         let verts = &pt.v_table()[r.start as usize..r.end as usize];
-        let corner = verts.iter().position(|&x| x == at)?;
-        tri.iter().all(|x| verts.contains(x)).then_some((g, corner as u32))
+        tri.iter().all(|x| verts.contains(x))
     })
 }
 
@@ -218,7 +223,8 @@ pub fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &ControlFa
 /// the boundary, at a sharp edge or sharp itself, or of valence 2 (the
 /// faces [`Evaluator::accepts`] refuses).
 fn refusal(ct: &CornerTable, f: u32) -> Option<String> {
-    let sharp_vertex = |v: u32| ct.sharpness().is_some_and(|s| s.sharp_vertices().iter().any(|&(x, s)| x == v && s > 0.0));
+    let sharp_vertex =
+        |v: u32| ct.sharpness().is_some_and(|s| s.sharp_vertices().iter().any(|&(x, s)| x == v && s > 0.0));
     (0..3).find_map(|k| {
         let v = ct.vtx(3 * f + k);
         if ct.is_boundary_vertex(v) {
@@ -242,7 +248,7 @@ impl std::fmt::Display for Pick {
         match self.face {
             ControlFace::Triangle { face, u, v } => writeln!(f, "control face: {face}  u v: {u:.6} {v:.6}")?,
             ControlFace::Polygon { face, size, corner } => {
-                writeln!(f, "control face: polygon {face} ({size} corners), in the quarter of its corner {corner}")?
+                writeln!(f, "control face: polygon {face} ({size} corners), nearest its corner {corner}")?
             }
         }
         let cv = &self.vertex;

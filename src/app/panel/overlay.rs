@@ -84,8 +84,9 @@ fn marker(painter: &egui::Painter, rect: egui::Rect, doc: &Doc, view: &View, dis
     let aspect = viewport_aspect(rect, display.side_by_side);
     let to_screen = |p: glam::Vec3| {
         let ndc = view.camera.project(p, aspect);
-        ((0.0..=1.0).contains(&ndc.z) && ndc.is_finite())
-            .then(|| egui::pos2(vp.left() + (ndc.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - ndc.y) * 0.5 * vp.height()))
+        ((0.0..=1.0).contains(&ndc.z) && ndc.is_finite()).then(|| {
+            egui::pos2(vp.left() + (ndc.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - ndc.y) * 0.5 * vp.height())
+        })
     };
     let p = &probe.pick;
     let Some(at) = to_screen(p.point) else { return };

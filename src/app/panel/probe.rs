@@ -30,7 +30,7 @@ pub(crate) fn probe_section(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
         }
     });
     if let Limit::Unavailable(why) = &p.limit {
-        ui.label(RichText::new(format!("limit evaluation: not available for {why}")).small());
+        ui.label(format!("limit evaluation: not available for {why}"));
     }
     ui.horizontal(|ui| {
         if ui.button("Copy").on_hover_text("these facts as plain text").clicked() {
@@ -59,7 +59,7 @@ fn rows(p: &Pick, target: Target) -> Vec<(&'static str, String)> {
         }
         ControlFace::Polygon { face, size, corner } => {
             rows.push(("Control face", format!("polygon {face} ({size} corners)")));
-            rows.push(("Quarter of", format!("corner {corner}")));
+            rows.push(("Nearest corner", corner.to_string()));
         }
     }
     let cv = &p.vertex;
