@@ -197,6 +197,35 @@ fn polygon_schemes_name_the_polygon_and_the_corner_of_its_quarter() {
 }
 
 #[test]
+fn a_faces_neighbourhood_has_the_same_limit_as_the_whole_mesh() {
+    use subdiv::subdiv::eval::Evaluator;
+    use subdiv::subdiv::pick::neighbourhood;
+    let mut rng = Rng(11);
+    let (torus, ico) = (bundled("torus.obj"), icosahedron());
+    let (lumpy, _) = subdivide(&bundled("cube.obj"), Scheme::Loop, 1, &Options::default()).unwrap();
+    for (name, mesh) in [("torus", &torus), ("icosahedron", &ico), ("cube level 1", &lumpy)] {
+        let whole = Evaluator::new(mesh, Scheme::Loop, &Options::default()).unwrap();
+        let mut local_count = 0;
+        for f in 0..mesh.ct.num_triangles() as u32 {
+            let Some(local) = neighbourhood(mesh, f) else { continue };
+            local_count += 1;
+            let part = Evaluator::new(&local, Scheme::Loop, &Options::default()).unwrap();
+            assert!(part.accepts(0), "{name}: face {f} is interior in its neighbourhood");
+            for _ in 0..3 {
+                let (a, b) = (rng.next_f32().abs() as f64, rng.next_f32().abs() as f64);
+                let (u, v) = if a + b > 1.0 { (1.0 - a, 1.0 - b) } else { (a, b) };
+                let (x, y) = (whole.eval(f as usize, u, v).unwrap(), part.eval(0, u, v).unwrap());
+                let d = (x.position - y.position).length() + (x.normal - y.normal).length();
+                assert!(d < 1e-12, "{name} face {f} at ({u}, {v}): {d}");
+                assert!((x.mean - y.mean).abs() < 1e-9 * (1.0 + x.mean.abs()), "{name} face {f}: H");
+                assert!((x.gaussian - y.gaussian).abs() < 1e-9 * (1.0 + x.gaussian.abs()), "{name} face {f}: K");
+            }
+        }
+        assert!(local_count * 2 > mesh.ct.num_triangles(), "{name}: most faces have a neighbourhood of their own");
+    }
+}
+
+#[test]
 fn a_drawn_mesh_of_another_level_is_refused() {
     let ico = icosahedron();
     let (drawn, _) = subdivide(&ico, Scheme::Loop, 2, &Options::default()).unwrap();
@@ -248,5 +277,14 @@ fn time_a_ray_against_a_million_triangles() {
         drawn.ct.num_triangles(),
         rayon::current_num_threads(),
         p.map(|p| p.limit)
+    );
+    // the same million triangles as a control mesh: the limit needs its evaluator
+    let lv = Level { control: &drawn, drawn: &drawn, scheme: Scheme::Loop, level: 0 };
+    let t2 = std::time::Instant::now();
+    let p = pick(&lv, &Options::default(), origin.expect("a ray hits"), -Vec3::Z).unwrap();
+    println!(
+        "a pick on a control mesh of a million triangles: {:.1} ms ({})",
+        t2.elapsed().as_secs_f64() * 1e3,
+        p.is_some()
     );
 }
