@@ -769,3 +769,28 @@ fn side_by_side_the_left_viewport_picks_the_control_mesh() {
     assert!(v.doc.model.probe.is_none());
     assert!(v.doc.model.picked.is_some());
 }
+
+#[test]
+fn a_creased_result_is_picked_and_its_faces_say_why_there_is_no_limit() {
+    use crate::app::probe::{Ray, Target};
+    use crate::subdiv::pick::Limit;
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path("cube.obj")));
+    settle(&mut v);
+    v.apply(Command::AutoCrease(40.0));
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    assert!(v.doc.model.result.shown.creased.is_none() && v.doc.model.raw.creased.is_some(), "drawn cut open");
+    // onto the middle of the cube's top from above
+    let (lo, hi) = v.doc.model.control.mesh.bounds();
+    let top = Vec3::new((lo.x + hi.x) / 2.0 + 0.1, hi.y + 3.0, (lo.z + hi.z) / 2.0 - 0.05);
+    v.apply(Command::PickSurface(Ray { origin: top, dir: -Vec3::Y, target: Target::Result }));
+    let p = &v.doc.model.probe.as_ref().expect("the top is hit").pick;
+    let Limit::Unavailable(why) = &p.limit else { panic!("a face at a crease has no exact limit here") };
+    assert!(why.contains("sharp feature"), "{why}");
+    assert!(p.to_string().contains("limit evaluation: not available for control face"));
+    // in the animation mode the drawn frame is not the static level: no pick
+    v.apply(Command::TogglePlay);
+    v.apply(Command::PickSurface(Ray { origin: top, dir: -Vec3::Y, target: Target::Result }));
+    assert!(v.doc.status.notice.as_deref().is_some_and(|n| n.contains("animation")));
+}
