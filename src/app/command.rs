@@ -50,6 +50,10 @@ pub(crate) enum Command {
         /// Unit ray direction.
         dir: Vec3,
     },
+    /// Pick the point of the surface under a ray (clears it when it misses).
+    PickSurface(super::probe::Ray),
+    /// Forget the picked point.
+    ClearSurfacePick,
     /// Set the sharpness of the control edge opposite `corner` (0 smooth,
     /// 10 infinitely sharp).
     SetSharpness {
@@ -191,6 +195,8 @@ impl Viewer {
                     doc.toggle_crease(c);
                 }
             }
+            Command::PickSurface(ray) => doc.pick_surface(ray),
+            Command::ClearSurfacePick => doc.model.probe = None,
             Command::SetSharpness { corner, sharpness } => doc.set_sharpness(corner, sharpness),
             Command::AutoCrease(degrees) => doc.auto_crease(degrees),
             Command::ClearCreases => doc.set_control_tags(&crate::mesh::Tags::default()),

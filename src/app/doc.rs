@@ -208,6 +208,7 @@ impl Doc {
         m.attrs.refined = m.attrs.file.clone();
         m.original = None;
         m.picked.set(None);
+        m.probe = None;
         m.proxy = None;
         m.made = Made { opts: self.request.opts, scheme: m.made.scheme, ..Made::default() };
         match paths {
@@ -295,6 +296,8 @@ impl Doc {
         if let Some(e) = self.model.reshade(&self.display) {
             self.fail(Problem::Displacement(e));
         }
+        // the drawn surface changed: the picked point is picked again
+        self.repick();
     }
 }
 

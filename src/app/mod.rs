@@ -5,7 +5,8 @@
 //! Viewer (viewer.rs)            the viewer without a window; what the tests drive
 //! ├── doc: Doc (doc.rs)         the document
 //! │   ├── model (model.rs)        control mesh, subdivision output, shown result, proxy,
-//! │   │                           attributes, picked edge, curve; versions per artefact
+//! │   │                           attributes, picked edge, picked point (probe.rs),
+//! │   │                           curve; versions per artefact
 //! │   ├── display (display.rs)    surface, wireframe, overlays, normals, colouring
 //! │   ├── anim (animation.rs)     paths, the built plan, the playback clock
 //! │   ├── jobs (jobs.rs)          worker channel, tickets, busy slots, cancellation
@@ -33,6 +34,7 @@ mod gpu_scene;
 pub(crate) mod jobs;
 pub(crate) mod model;
 pub(crate) mod panel;
+pub(crate) mod probe;
 pub(crate) mod surface;
 pub(crate) mod view;
 pub(crate) mod viewer;

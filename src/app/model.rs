@@ -175,6 +175,8 @@ pub(crate) struct Model {
     pub(crate) attrs: Attrs,
     /// A picked control-mesh corner: the edge opposite it is selected.
     pub(crate) picked: Versioned<Option<u32>>,
+    /// The picked point of the surface (a click when edge picking is off).
+    pub(crate) probe: Option<super::probe::Probe>,
     /// A Bezier curve shown instead of the mesh.
     pub(crate) curve: Versioned<Option<Curve>>,
 }
@@ -194,6 +196,7 @@ impl Model {
             result: Versioned::new(Shaded { shown, colors: None, color_max: 0.0 }),
             attrs: Attrs::default(),
             picked: Versioned::new(None),
+            probe: None,
             curve: Versioned::new(None),
         }
     }

@@ -721,3 +721,118 @@ fn materials_are_drawn_with_their_textures_sampled_per_pixel() {
     assert_eq!((next.uploaded(), next.mip_level_counts()), (0, vec![7]));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A click (press, then release in the next frame) at `pos`, half a second
+/// (of egui's frame clock) after the last one: not a double click.
+fn click(ctx: &egui::Context, v: &mut Viewer, pos: egui::Pos2) {
+    for _ in 0..30 {
+        frame(ctx, v, vec![]);
+    }
+    let button = |pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: Default::default(),
+    };
+    frame(ctx, v, vec![egui::Event::PointerMoved(pos), button(true)]);
+    frame(ctx, v, vec![button(false)]);
+}
+
+#[test]
+fn a_click_picks_a_point_of_the_surface_and_escape_or_empty_space_clears_it() {
+    use crate::app::probe::{Target, ray_at};
+    use crate::subdiv::pick::{ControlFace, Limit};
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    frame(&ctx, &mut v, vec![]);
+    let rect = v.view.scene_rect;
+    // the middle of the 3D area: the framed tetrahedron's centre is behind it
+    let at = rect.center() + egui::vec2(7.0, -5.0);
+    click(&ctx, &mut v, at);
+    let probe = v.doc.model.probe.clone().expect("a click on the surface picks it");
+    assert_eq!(probe.ray.target, Target::Result);
+    let p = &probe.pick;
+    assert_eq!((p.scheme, p.level), (Scheme::Loop, 2));
+    let ControlFace::Triangle { face, u, v: w } = p.face else { panic!("Loop names a triangle") };
+    assert!(face < 4 && u >= 0.0 && w >= 0.0 && u + w <= 1.0 + 1e-9, "{:?}", p.face);
+    // the same pick as the library's for the same pixel
+    let again = v.doc.cast(ray_at(&v.view.camera, rect, false, at)).unwrap().expect("hits");
+    assert_eq!(&again, p);
+    // a closed Loop surface has its exact limit everywhere, near the level-2 hit
+    let Limit::Exact(s) = &p.limit else { panic!("{:?}", p.limit) };
+    assert!((s.position - p.point.as_dvec3()).length() < 0.1, "{} from {}", s.position, p.point);
+    assert_eq!(p.vertex.valence, 3, "every tetrahedron vertex has valence 3");
+    assert!(p.to_string().contains(&format!("control face: {face}")));
+
+    // a new level picks again along the same ray
+    subdivide(&mut v, Scheme::Loop, 3);
+    settle(&mut v);
+    let p3 = v.doc.model.probe.as_ref().expect("still picked").pick.clone();
+    assert_eq!(p3.level, 3);
+    let ControlFace::Triangle { face: f3, u: u3, v: v3 } = p3.face else { panic!("a triangle") };
+    // the level-3 surface lies nearer the limit: about the same parameters
+    assert_eq!(f3, face, "the same ray lands in the same control face");
+    assert!((u3 - u).abs() < 0.05 && (v3 - w).abs() < 0.05, "({u}, {w}) at level 2, ({u3}, {v3}) at 3");
+
+    // Escape clears; so does a click on empty space
+    frame(&ctx, &mut v, vec![key(egui::Key::Escape)]);
+    assert!(v.doc.model.probe.is_none(), "Escape clears the pick");
+    click(&ctx, &mut v, at);
+    assert!(v.doc.model.probe.is_some());
+    click(&ctx, &mut v, rect.right_top() + egui::vec2(-3.0, 3.0));
+    assert!(v.doc.model.probe.is_none(), "a click on empty space clears the pick");
+}
+
+#[test]
+fn side_by_side_the_left_viewport_picks_the_control_mesh() {
+    use crate::app::probe::Target;
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    subdivide(&mut v, Scheme::Butterfly, 2);
+    settle(&mut v);
+    set_display(&mut v, |d| d.side_by_side = true);
+    frame(&ctx, &mut v, vec![]);
+    let rect = v.view.scene_rect;
+    let half = rect.width() / 4.0;
+    click(&ctx, &mut v, rect.center() - egui::vec2(half, 0.0));
+    let probe = v.doc.model.probe.clone().expect("the control mesh is hit");
+    assert_eq!((probe.ray.target, probe.pick.level), (Target::Control, 0));
+    click(&ctx, &mut v, rect.center() + egui::vec2(half, 0.0));
+    let probe = v.doc.model.probe.clone().expect("the result is hit");
+    assert_eq!((probe.ray.target, probe.pick.level), (Target::Result, 2));
+    let text = probe.pick.to_string();
+    assert!(text.contains("limit evaluation: not available for butterfly"), "{text}");
+    // with edge picking on, a click picks a control edge instead
+    set_display(&mut v, |d| d.pick = true);
+    v.apply(Command::ClearSurfacePick);
+    click(&ctx, &mut v, rect.center() + egui::vec2(half, 0.0));
+    assert!(v.doc.model.probe.is_none());
+    assert!(v.doc.model.picked.is_some());
+}
+
+#[test]
+fn a_creased_result_is_picked_and_its_faces_say_why_there_is_no_limit() {
+    use crate::app::probe::{Ray, Target};
+    use crate::subdiv::pick::Limit;
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path("cube.obj")));
+    settle(&mut v);
+    v.apply(Command::AutoCrease(40.0));
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    assert!(v.doc.model.result.shown.creased.is_none() && v.doc.model.raw.creased.is_some(), "drawn cut open");
+    // onto the middle of the cube's top from above
+    let (lo, hi) = v.doc.model.control.mesh.bounds();
+    let top = Vec3::new((lo.x + hi.x) / 2.0 + 0.1, hi.y + 3.0, (lo.z + hi.z) / 2.0 - 0.05);
+    v.apply(Command::PickSurface(Ray { origin: top, dir: -Vec3::Y, target: Target::Result }));
+    let p = &v.doc.model.probe.as_ref().expect("the top is hit").pick;
+    let Limit::Unavailable(why) = &p.limit else { panic!("a face at a crease has no exact limit here") };
+    assert!(why.contains("sharp feature"), "{why}");
+    assert!(p.to_string().contains("limit evaluation: not available for control face"));
+    // in the animation mode the drawn frame is not the static level: no pick
+    v.apply(Command::TogglePlay);
+    v.apply(Command::PickSurface(Ray { origin: top, dir: -Vec3::Y, target: Target::Result }));
+    assert!(v.doc.status.notice.as_deref().is_some_and(|n| n.contains("animation")));
+}

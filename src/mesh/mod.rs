@@ -19,6 +19,7 @@ pub mod draw;
 pub mod edges;
 pub mod edit;
 pub mod inspect;
+pub mod lineage;
 pub mod normals;
 pub mod order;
 pub mod pick;

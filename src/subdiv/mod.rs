@@ -18,6 +18,7 @@
 
 pub mod eval;
 pub mod inspect;
+pub mod pick;
 pub mod refine;
 pub mod rules;
 pub mod sizes;

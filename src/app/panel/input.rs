@@ -3,12 +3,14 @@
 
 use crate::app::command::Command;
 use crate::app::display::Display;
+use crate::app::probe::ray_at;
 use crate::app::view::{View, cursor_ndc, viewport_aspect};
 use egui::{Key, PointerButton, Sense};
 use glam::Vec2;
 
 /// Drags orbit or pan, the wheel zooms to the cursor, a double click fits, a
-/// click picks (when picking is on); then the keys.
+/// click picks a point of the surface (a control edge when edge picking is
+/// on); then the keys.
 pub(crate) fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, view: &View, display: &mut Display) -> Vec<Command> {
     let mut out = Vec::new();
     let resp = ui.allocate_rect(rect, Sense::click_and_drag());
@@ -26,11 +28,14 @@ pub(crate) fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, view: &View, disp
     if resp.double_clicked() {
         out.push(Command::Fit);
     } else if resp.clicked()
-        && display.pick
         && let Some(pos) = resp.interact_pointer_pos()
     {
-        let (origin, dir) = view.camera.ray(cursor_ndc(rect, display.side_by_side, pos), aspect);
-        out.push(Command::Pick { origin, dir });
+        let ray = ray_at(&view.camera, rect, display.side_by_side, pos);
+        out.push(if display.pick {
+            Command::Pick { origin: ray.origin, dir: ray.dir }
+        } else {
+            Command::PickSurface(ray)
+        });
     }
     if let Some(pos) = resp.hover_pos() {
         let (scroll, zoom) = ui.input(|i| (i.smooth_scroll_delta.y, i.zoom_delta()));
@@ -73,6 +78,7 @@ fn keys(ui: &egui::Ui, view: &View, display: &mut Display) -> Vec<Command> {
         (pressed(Key::ArrowLeft), Command::Step(-1)),
         (pressed(Key::Plus) || pressed(Key::Equals), Command::LevelUp),
         (pressed(Key::Minus), Command::LevelDown),
+        (pressed(Key::Escape), Command::ClearSurfacePick),
     ];
     commands.into_iter().filter_map(|(on, c)| on.then_some(c)).collect()
 }

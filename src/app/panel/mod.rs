@@ -14,6 +14,7 @@ mod creases;
 mod input;
 mod model;
 mod overlay;
+mod probe;
 mod stats;
 mod subdivision;
 mod tools;
@@ -27,8 +28,8 @@ use egui::RichText;
 use std::path::PathBuf;
 
 /// Keyboard help shown at the bottom of the panel.
-pub(crate) const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor. \
-Keys: W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
+pub(crate) const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor, \
+click pick a point, double click fit. Keys: Esc clear the pick, W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
 B side by side, T turntable, Space play/pause, Left/Right step frame, P screenshot.";
 
 /// The panel's own widget state.
@@ -100,6 +101,7 @@ pub(crate) fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelS
             section(ui, "Subdivision", true, |ui| out.extend(subdivision::subdivision_section(ui, doc)));
             section(ui, "Display", true, |ui| out.extend(display_section(ui, doc, view, &mut display)));
             section(ui, "Animation", false, |ui| out.extend(animation::animation_section(ui, doc, panel, &display)));
+            section(ui, "Picked point", true, |ui| out.extend(probe::probe_section(ui, doc)));
             section(ui, "Surface and tools", false, |ui| {
                 out.extend(tools::tools_section(ui, doc, panel, &mut display));
             });

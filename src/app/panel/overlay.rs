@@ -1,4 +1,5 @@
-//! Text over the 3D area: what is shown, a running task, the drop target.
+//! Text over the 3D area: what is shown, a running task, the drop target;
+//! the marker of the picked point.
 
 use crate::app::display::Display;
 use crate::app::doc::Doc;
@@ -19,6 +20,7 @@ pub(crate) fn overlay(ui: &mut egui::Ui, rect: egui::Rect, doc: &Doc, view: &Vie
     } else {
         painter.text(corner, egui::Align2::LEFT_TOP, label(doc), font.clone(), weak);
     }
+    marker(&painter, rect, doc, view, display);
     let busy = &doc.jobs.busy;
     if let Some(b) = busy.subdividing.as_ref().or(busy.loading.as_ref()).or(busy.building.as_ref()) {
         let secs = b.since.elapsed().as_secs_f32();
@@ -62,4 +64,38 @@ fn label(doc: &Doc) -> String {
     } else {
         format!("{} level {}", doc.model.made.scheme.name(), doc.model.made.level)
     }
+}
+
+/// A ring at the picked point, in the viewport it was picked in, with the
+/// limit normal as a short line where the limit is evaluated (drawn over
+/// the surface: the point shows through what hides it).
+fn marker(painter: &egui::Painter, rect: egui::Rect, doc: &Doc, view: &View, display: &Display) {
+    use crate::app::probe::Target;
+    use crate::app::view::viewport_aspect;
+    use crate::subdiv::pick::Limit;
+    let Some(probe) = &doc.model.probe else { return };
+    let mut vp = rect;
+    if display.side_by_side {
+        vp.set_width(rect.width() / 2.0);
+        if probe.ray.target == Target::Result {
+            vp = vp.translate(egui::vec2(vp.width(), 0.0));
+        }
+    }
+    let aspect = viewport_aspect(rect, display.side_by_side);
+    let to_screen = |p: glam::Vec3| {
+        let ndc = view.camera.project(p, aspect);
+        ((0.0..=1.0).contains(&ndc.z) && ndc.is_finite()).then(|| {
+            egui::pos2(vp.left() + (ndc.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - ndc.y) * 0.5 * vp.height())
+        })
+    };
+    let p = &probe.pick;
+    let Some(at) = to_screen(p.point) else { return };
+    let accent = Color32::from_rgb(255, 200, 40);
+    if let Limit::Exact(s) = &p.limit
+        && let Some(tip) = to_screen(p.point + s.normal.as_vec3() * 0.15 * view.camera.radius)
+    {
+        painter.line_segment([at, tip], egui::Stroke::new(2.0, accent));
+    }
+    painter.circle_stroke(at, 6.0, egui::Stroke::new(3.0, Color32::from_black_alpha(160)));
+    painter.circle_stroke(at, 6.0, egui::Stroke::new(1.5, accent));
 }
