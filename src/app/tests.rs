@@ -813,7 +813,7 @@ fn side_by_side_the_left_viewport_picks_the_control_mesh() {
 }
 
 #[test]
-fn a_creased_result_is_picked_and_its_faces_say_why_there_is_no_limit() {
+fn a_creased_result_is_picked_and_its_faces_have_their_exact_limit() {
     use crate::app::probe::{Ray, Target};
     use crate::subdiv::pick::Limit;
     let mut v = Viewer::new();
@@ -828,9 +828,10 @@ fn a_creased_result_is_picked_and_its_faces_say_why_there_is_no_limit() {
     let top = Vec3::new((lo.x + hi.x) / 2.0 + 0.1, hi.y + 3.0, (lo.z + hi.z) / 2.0 - 0.05);
     v.apply(Command::PickSurface(Ray { origin: top, dir: -Vec3::Y, target: Target::Result }));
     let p = &v.doc.model.probe.as_ref().expect("the top is hit").pick;
-    let Limit::Unavailable(why) = &p.limit else { panic!("a face at a crease has no exact limit here") };
-    assert!(why.contains("sharp feature"), "{why}");
-    assert!(p.to_string().contains("limit evaluation: not available for control face"));
+    // every crease and corner is infinitely sharp: the top's limit is flat
+    let Limit::Exact(s) = &p.limit else { panic!("a face at a crease is evaluated: {:?}", p.limit) };
+    assert!((s.position.y - f64::from(hi.y)).abs() < 1e-6 && s.normal.y > 1.0 - 1e-9, "{s:?}");
+    assert!(p.to_string().contains("limit position"), "{p}");
     // in the animation mode the drawn frame is not the static level: no pick
     v.apply(Command::TogglePlay);
     v.apply(Command::PickSurface(Ray { origin: top, dir: -Vec3::Y, target: Target::Result }));

@@ -5,7 +5,8 @@
 //! ray --(mesh::pick::nearest_hit)--> drawn triangle t, barycentric (b1, b2)
 //!     --(mesh::lineage: the split's numbering, level by level)--> control face
 //!     f and the (u, v) of t's corners in f --> (u, v) of the hit in f
-//!     --(eval::Evaluator, Loop only)--> limit position, normal, curvatures
+//!     --(eval::Evaluator on f's neighbourhood, or eval::evaluate_one at a
+//!        border or sharp feature; Loop only)--> limit position, normal, curvatures
 //! ```
 //! A point `(f, u, v)` is the evaluator's: control triangle `f` in the
 //! file's face order (polygons fanned for the triangle schemes) and the
@@ -13,10 +14,10 @@
 //! lists them. The polygon schemes (Catmull-Clark, bilinear) name the
 //! control polygon and its corner nearest the hit (whose quarter of the
 //! polygon, its level-1 quad, holds the hit).
-//! Where the evaluator has nothing exact (another scheme, a face at a
-//! boundary or a sharp feature), [`Limit::Unavailable`] says why.
+//! Where the evaluator has nothing exact (another scheme, a face at an
+//! interior vertex of valence 2), [`Limit::Unavailable`] says why.
 
-use super::eval::{Evaluator, Sample};
+use super::eval::{Evaluator, Sample, evaluate_one};
 use super::{Options, Scheme};
 use crate::mesh::lineage::{barycentric, quad_origin, triangle_origin};
 use crate::mesh::pick::{Hit, nearest_hit};
@@ -209,13 +210,11 @@ pub fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &ControlFa
             format!("{scheme}: exact evaluation exists for Loop only")
         });
     }
-    if let Some(reason) = refusal(&control.ct, face) {
-        return why(format!("control face {face}: {reason}"));
-    }
-    let sample = match neighbourhood(control, face) {
+    let sample = match neighbourhood(control, face).filter(|_| !touches_feature(&control.ct, face)) {
         // the face's own neighbourhood: the same limit at a cost that does not grow with the mesh
         Some(local) => Evaluator::new(&local, scheme, opts).and_then(|ev| ev.eval(0, u, v)),
-        None => Evaluator::new(control, scheme, opts).and_then(|ev| ev.eval(face as usize, u, v)),
+        // a border or sharp feature: local subdivision from this face alone
+        None => evaluate_one(control, scheme, opts, (face as usize, u, v)),
     };
     match sample {
         Ok(s) => Limit::Exact(Box::new(s)),
@@ -260,23 +259,18 @@ pub fn neighbourhood(control: &Mesh, f: u32) -> Option<Mesh> {
     Mesh::from_triangles(positions, &tris).ok()
 }
 
-/// Why the evaluator refuses control triangle `f`, if it does: a vertex on
-/// the boundary, at a sharp edge or sharp itself, or of valence 2 (the
-/// faces [`Evaluator::accepts`] refuses).
-fn refusal(ct: &CornerTable, f: u32) -> Option<String> {
+/// Whether a vertex of control triangle `f` is on the boundary, at a sharp
+/// edge or sharp itself: its limit depends on more than [`neighbourhood`]
+/// keeps (the sharpness, the rings beyond a border), and
+/// [`evaluate_one`] evaluates it from the whole mesh without preparing it.
+fn touches_feature(ct: &CornerTable, f: u32) -> bool {
     let sharp_vertex =
         |v: u32| ct.sharpness().is_some_and(|s| s.sharp_vertices().iter().any(|&(x, s)| x == v && s > 0.0));
-    (0..3).find_map(|k| {
+    (0..3).any(|k| {
         let v = ct.vtx(3 * f + k);
-        if ct.is_boundary_vertex(v) {
-            Some(format!("its vertex {v} is on the boundary (exact evaluation covers interior faces only)"))
-        } else if ct.fan(v).any(|c| ct.edge_sharpness(n(c)) > 0.0 || ct.edge_sharpness(p(c)) > 0.0) || sharp_vertex(v) {
-            Some(format!("its vertex {v} is on a sharp feature (exact evaluation covers smooth faces only)"))
-        } else if ct.valence(v) < 3 {
-            Some(format!("its vertex {v} has valence {} (no smooth limit patch)", ct.valence(v)))
-        } else {
-            None
-        }
+        ct.is_boundary_vertex(v)
+            || sharp_vertex(v)
+            || ct.fan(v).any(|c| ct.edge_sharpness(n(c)) > 0.0 || ct.edge_sharpness(p(c)) > 0.0)
     })
 }
 

@@ -45,23 +45,33 @@ use crate::mesh::{CornerTable, Mesh, n, p};
 use crate::subdiv::rules::features::with_boundary_corners;
 use crate::subdiv::tables::plan::record_one_level;
 use crate::subdiv::{Options, Scheme};
-use glam::DVec3;
+use glam::{DVec3, Vec3};
+use std::borrow::Cow;
 
 /// Levels of local subdivision before rule 3's last resort (module docs).
 pub(crate) const MAX_LEVELS: u32 = 60;
 
 /// The control mesh as the local subdivision reads it.
-pub(crate) struct Base {
-    ct: CornerTable,
-    pos: Vec<DVec3>,
+pub(crate) struct Base<'a> {
+    ct: Cow<'a, CornerTable>,
+    pos: Cow<'a, [Vec3]>,
     opts: Options,
 }
 
-impl Base {
-    /// `mesh` with its boundary corners tagged as `opts` asks.
-    pub(crate) fn new(mesh: &Mesh, opts: &Options) -> Base {
+impl Base<'static> {
+    /// `mesh` with its boundary corners tagged as `opts` asks, copied.
+    pub(crate) fn new(mesh: &Mesh, opts: &Options) -> Base<'static> {
         let ct = with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
-        Base { ct, pos: mesh.positions.iter().map(|p| p.as_dvec3()).collect(), opts: *opts }
+        Base { ct: Cow::Owned(ct), pos: Cow::Owned(mesh.positions.clone()), opts: *opts }
+    }
+}
+
+impl<'a> Base<'a> {
+    /// `mesh` with its boundary corners tagged as `opts` asks, borrowed
+    /// where no corner is tagged.
+    pub(crate) fn borrowed(mesh: &'a Mesh, opts: &Options) -> Base<'a> {
+        let ct = with_boundary_corners(&mesh.ct, opts.boundary);
+        Base { ct, pos: Cow::Borrowed(&mesh.positions), opts: *opts }
     }
 }
 
@@ -91,7 +101,7 @@ fn find(root: &mut [u32], mut x: u32) -> u32 {
 /// `origin`), recentred on the face. A vertex whose faces in the region
 /// form two fans (possible on the rim only) becomes two vertices, so the
 /// region is a manifold table. `None` if the table cannot be built.
-fn extract(ct: &CornerTable, pos: &[DVec3], origin: DVec3, face: u32) -> Option<Region> {
+fn extract(ct: &CornerTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u32) -> Option<Region> {
     let mut near: Vec<u32> = Vec::with_capacity(32);
     for c in 3 * face..3 * face + 3 {
         near.push(ct.vtx(c));
@@ -122,7 +132,7 @@ fn extract(ct: &CornerTable, pos: &[DVec3], origin: DVec3, face: u32) -> Option<
         }
         tris.push(id[r]);
     }
-    let centre = (0..3).map(|i| pos[ct.vtx(3 * face + i) as usize]).sum::<DVec3>() / 3.0;
+    let centre = (0..3).map(|i| pos(ct.vtx(3 * face + i))).sum::<DVec3>() / 3.0;
     let sharp = ct.sharpness().and_then(|s| {
         let corners = (0..nc).map(|lc| (lc, s.corner(global(lc)))).filter(|x| x.1 > 0.0).collect();
         let vertices = verts.iter().enumerate().map(|(l, &g)| (l as u32, s.vertex(g))).filter(|x| x.1 > 0.0).collect();
@@ -135,7 +145,7 @@ fn extract(ct: &CornerTable, pos: &[DVec3], origin: DVec3, face: u32) -> Option<
     }
     Some(Region {
         ct: table.with_sharpness(sharp),
-        pos: verts.iter().map(|&g| pos[g as usize] - centre).collect(),
+        pos: verts.iter().map(|&g| pos(g) - centre).collect(),
         origin: origin + centre,
         face: local(face)?,
     })
@@ -312,7 +322,8 @@ fn try_patch(r: &Region, st: (f64, f64), jac: [[f64; 2]; 2], tables: &Tables, se
 /// The limit surface at `(u, v)` of control face `f` (checked by the
 /// caller) by local subdivision.
 pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), second: bool) -> Sample {
-    let Some(mut region) = extract(&base.ct, &base.pos, DVec3::ZERO, f) else { return Sample::NAN };
+    let control = |v: u32| base.pos[v as usize].as_dvec3();
+    let Some(mut region) = extract(&base.ct, control, DVec3::ZERO, f) else { return Sample::NAN };
     let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
     for _ in 0..MAX_LEVELS {
         if let Some(sample) = try_patch(&region, st, jac, tables, second) {
@@ -324,7 +335,7 @@ pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), sec
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
         st = if s + t > 1.0 { (s / (s + t), t / (s + t)) } else { (s, t) };
         jac = map.after(&Affine { j: jac, b: [0.0; 2] });
-        match extract(&fine, &pos, region.origin, child) {
+        match extract(&fine, |v| pos[v as usize], region.origin, child) {
             Some(next) => region = next,
             None => return Sample::NAN,
         }
@@ -356,7 +367,7 @@ mod tests {
     fn the_region_keeps_the_face_and_its_corners() {
         let mesh = shapes::icosphere(1);
         let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
-        let r = extract(&mesh.ct, &pos, DVec3::ZERO, 7).unwrap();
+        let r = extract(&mesh.ct, |v| pos[v as usize], DVec3::ZERO, 7).unwrap();
         for i in 0..3 {
             let here = r.pos[r.ct.vtx(3 * r.face + i) as usize] + r.origin;
             assert!((here - pos[mesh.ct.vtx(21 + i) as usize]).length() < 1e-12);

@@ -162,7 +162,7 @@ pub struct Evaluator {
     /// How each control face is evaluated.
     path: Vec<Path>,
     /// The control mesh for the faces of [`Path::Local`] (`None` if none).
-    base: Option<local::Base>,
+    base: Option<local::Base<'static>>,
     spline: BoxSpline,
     /// The tables of each extraordinary valence present, by valence.
     valences: Vec<Option<Extraordinary>>,
@@ -198,15 +198,88 @@ fn face_paths(mesh: &Mesh) -> Vec<Path> {
         }
     }
     for (v, path) in at.iter_mut().enumerate() {
-        // an interior vertex of valence 2 (two triangles back to back) has
-        // no smooth limit patch
-        if ct.valence(v as u32) < 3 && !ct.is_boundary_vertex(v as u32) {
+        if refused_vertex(ct, v as u32) {
             *path = Path::Refused;
         }
     }
     (0..ct.num_triangles())
         .map(|f| (0..3).map(|i| at[ct.vtx(3 * f as u32 + i) as usize]).max().unwrap_or(Path::Smooth))
         .collect()
+}
+
+/// An interior vertex of valence 2 (two triangles back to back) has no
+/// smooth limit patch.
+fn refused_vertex(ct: &crate::mesh::CornerTable, v: u32) -> bool {
+    ct.valence(v) < 3 && !ct.is_boundary_vertex(v)
+}
+
+/// Refuses a scheme without an exact evaluation, naming it.
+fn check_scheme(scheme: Scheme) -> Result<()> {
+    if scheme == Scheme::Loop {
+        return Ok(());
+    }
+    let why = if scheme.is_interpolating() {
+        "an interpolating scheme has no closed-form limit to evaluate"
+    } else {
+        "exact evaluation exists for Loop only so far"
+    };
+    Err(Error::Usage(format!("cannot evaluate the {scheme} limit surface: {why}")))
+}
+
+/// `(u, v)` if face `f` (of `faces`) and the point are good, scaled onto
+/// the edge when `u + v` is a hair over 1.
+fn check_point(faces: usize, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
+    if f >= faces {
+        return Err(Error::Usage(format!("face {f} out of range (the mesh has {faces} faces)")));
+    }
+    if !(u >= 0.0 && v >= 0.0 && u + v <= 1.0 + EDGE_SLACK) {
+        return Err(Error::Usage(format!("({u}, {v}) is not in the triangle (u, v >= 0, u + v <= 1)")));
+    }
+    let s = u + v;
+    Ok(if s > 1.0 { (u / s, v / s) } else { (u, v) })
+}
+
+fn valence_two(f: usize) -> Error {
+    Error::Usage(format!(
+        "face {f} touches an interior vertex of valence 2 (two triangles back to back), which has no limit patch"
+    ))
+}
+
+/// The limit of `mesh` at one point `(f, u, v)`, preparing only what that
+/// face needs (the tables of its corners' valences, no level 1 of the whole
+/// mesh): for one query on a large mesh, such as a pick. Every face goes
+/// the way [`Evaluator`] takes the faces at a sharp feature (local
+/// subdivision), so the result equals [`Evaluator::eval`]'s to rounding
+/// (the rules' weights are single precision).
+///
+/// # Errors
+/// As [`Evaluator::new`] and [`Evaluator::eval`].
+pub fn evaluate_one(mesh: &Mesh, scheme: Scheme, opts: &Options, (f, u, v): (usize, f64, f64)) -> Result<Sample> {
+    check_scheme(scheme)?;
+    let ct = &mesh.ct;
+    let (u, v) = check_point(ct.num_triangles(), f, u, v)?;
+    let corners = [0, 1, 2].map(|i| ct.vtx(3 * f as u32 + i));
+    if corners.iter().any(|&x| refused_vertex(ct, x)) {
+        return Err(valence_two(f));
+    }
+    let spline = BoxSpline::derive();
+    let mut valences: Vec<Option<Extraordinary>> = Vec::new();
+    for x in corners {
+        add_table(&mut valences, ct.valence(x), ct.is_boundary_vertex(x), opts, &spline);
+    }
+    let base = local::Base::borrowed(mesh, opts);
+    let tables = local::Tables { spline: &spline, valences: &valences };
+    Ok(local::eval(&base, &tables, f as u32, (u, v), true))
+}
+
+/// The power table of an interior extraordinary valence `k`, once.
+fn add_table(valences: &mut Vec<Option<Extraordinary>>, k: u32, boundary: bool, opts: &Options, spline: &BoxSpline) {
+    if k != 6 && k >= 3 && !boundary {
+        if valences.len() <= k as usize {
+            valences.resize(k as usize + 1, None);
+        }
+        valences[k as usize].get_or_insert_with(|| Extraordinary::new(k, opts.loop_beta, spline));
+    }
 }
 
 impl Evaluator {
@@ -217,14 +290,7 @@ impl Evaluator {
     /// # Errors
     /// [`Error::Usage`] naming a scheme without an exact evaluation.
     pub fn new(mesh: &Mesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
-        if scheme != Scheme::Loop {
-            let why = if scheme.is_interpolating() {
-                "an interpolating scheme has no closed-form limit to evaluate"
-            } else {
-                "exact evaluation exists for Loop only so far"
-            };
-            return Err(Error::Usage(format!("cannot evaluate the {scheme} limit surface: {why}")));
-        }
+        check_scheme(scheme)?;
         let path = face_paths(mesh);
         let level1 = Level1::new(mesh, opts.loop_beta)?;
         let not_smooth: Vec<bool> = path.iter().map(|&x| x != Path::Smooth).collect();
@@ -235,13 +301,7 @@ impl Evaluator {
         // every smooth extraordinary vertex of any level is a control vertex
         // of the same valence (an edge vertex inside has valence 6)
         for v in 0..mesh.ct.num_vertices() as u32 {
-            let k = mesh.ct.valence(v);
-            if k != 6 && k >= 3 && !mesh.ct.is_boundary_vertex(v) {
-                if valences.len() <= k as usize {
-                    valences.resize(k as usize + 1, None);
-                }
-                valences[k as usize].get_or_insert_with(|| Extraordinary::new(k, opts.loop_beta, &spline));
-            }
+            add_table(&mut valences, mesh.ct.valence(v), mesh.ct.is_boundary_vertex(v), opts, &spline);
         }
         Ok(Evaluator { blocks, path, base, spline, valences, faces: mesh.ct.num_triangles() })
     }
@@ -284,19 +344,11 @@ impl Evaluator {
     /// `(u, v)` if face `f` and the point are good, scaled onto the edge when
     /// `u + v` is a hair over 1.
     fn check(&self, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
-        if f >= self.faces {
-            return Err(Error::Usage(format!("face {f} out of range (the mesh has {} faces)", self.faces)));
-        }
-        if !(u >= 0.0 && v >= 0.0 && u + v <= 1.0 + EDGE_SLACK) {
-            return Err(Error::Usage(format!("({u}, {v}) is not in the triangle (u, v >= 0, u + v <= 1)")));
-        }
+        let uv = check_point(self.faces, f, u, v)?;
         if self.path[f] == Path::Refused {
-            return Err(Error::Usage(format!(
-                "face {f} touches an interior vertex of valence 2 (two triangles back to back), which has no limit patch"
-            )));
+            return Err(valence_two(f));
         }
-        let s = u + v;
-        Ok(if s > 1.0 { (u / s, v / s) } else { (u, v) })
+        Ok(uv)
     }
 
     /// A point [`Evaluator::check`] passed.
