@@ -442,3 +442,62 @@ fn every_refined_vertex_gets_the_limit_of_its_own_position() {
         }
     }
 }
+
+#[test]
+fn featured_faces_have_their_derivatives_and_meet_their_neighbours() {
+    let h = 1e-5;
+    for (name, mesh, opts) in featured_meshes() {
+        let ev = Evaluator::new(&mesh, Scheme::Loop, &opts).unwrap();
+        let size = f64::from(scale(&mesh));
+        for (f, u, v) in random_points(&mesh, 2, 17) {
+            let s = ev.eval(f, u, v).unwrap();
+            let at = |du: f64, dv: f64| ev.eval(f, u + du, v + dv).unwrap();
+            let (pu, mu, pv, mv) = (at(h, 0.0), at(-h, 0.0), at(0.0, h), at(0.0, -h));
+            let close = |a: DVec3, b: DVec3, tol: f64| (a - b).length() <= tol * (size + b.length());
+            let (du, dv) = ((pu.position - mu.position) / (2.0 * h), (pv.position - mv.position) / (2.0 * h));
+            assert!(close(s.du, du, 1e-6) && close(s.dv, dv, 1e-6), "{name} face {f} ({u}, {v}): first derivatives");
+            let (duu, dvv) = ((pu.du - mu.du) / (2.0 * h), (pv.dv - mv.dv) / (2.0 * h));
+            assert!(
+                close(s.duu, duu, 1e-4) && close(s.dvv, dvv, 1e-4),
+                "{name} face {f} ({u}, {v}): second derivatives"
+            );
+            assert!(s.du.cross(s.dv).normalize().dot(s.normal) > 1.0 - 1e-12);
+        }
+        let ct = &mesh.ct;
+        let corners = |f: u32| [ct.vtx(3 * f), ct.vtx(3 * f + 1), ct.vtx(3 * f + 2)];
+        for c in 0..ct.num_corners() as u32 {
+            let Some(o) = ct.o(c) else { continue };
+            let (f, g) = (c / 3, o / 3);
+            let (a, b) = (ct.vtx(subdiv::mesh::n(c)), ct.vtx(subdiv::mesh::p(c)));
+            for t in [0.13, 0.5, 0.77] {
+                let (uf, vf) = on_edge(corners(f), a, b, t);
+                let (ug, vg) = on_edge(corners(g), a, b, t);
+                let (x, y) = (ev.eval(f as usize, uf, vf).unwrap(), ev.eval(g as usize, ug, vg).unwrap());
+                assert!((x.position - y.position).length() < 1e-9 * size, "{name}: edge {a}-{b} at {t}");
+                // a crease that never decays is a fold; every other edge is smooth in the limit
+                if ct.edge_sharpness(c) < subdiv::mesh::sharpness::INFINITE {
+                    assert!(x.normal.dot(y.normal) > 1.0 - 1e-9, "{name}: normals across edge {a}-{b} at {t}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn one_point_at_a_time_equals_the_prepared_evaluator() {
+    let mut meshes: Vec<(String, Mesh, Options)> = featured_meshes();
+    meshes.extend(closed_meshes().into_iter().map(|(n, m)| (n, m, Options::default())));
+    for (name, mesh, opts) in meshes {
+        let ev = Evaluator::new(&mesh, Scheme::Loop, &opts).unwrap();
+        let size = f64::from(scale(&mesh));
+        for (f, u, v) in random_points(&mesh, 1, 23).into_iter().chain([(0, 0.0, 0.0), (0, 0.5, 0.5)]) {
+            let (a, b) = (
+                ev.eval(f, u, v).unwrap(),
+                subdiv::subdiv::eval::evaluate_one(&mesh, Scheme::Loop, &opts, (f, u, v)).unwrap(),
+            );
+            // the prepared evaluator's smooth faces use double-precision weights, the local path the rules' single ones
+            assert!((a.position - b.position).length() < 1e-7 * size, "{name} face {f} ({u}, {v})");
+            assert!(a.normal.dot(b.normal) > 1.0 - 1e-9, "{name} face {f} ({u}, {v})");
+        }
+    }
+}
