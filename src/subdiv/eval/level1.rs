@@ -142,6 +142,7 @@ impl Level1 {
 /// face `f`'s four children's supports (the vertex points of its corners
 /// and the edge points of their edges), and per child its support as
 /// indices into the block (walk order from its extraordinary corner).
+#[derive(Default)]
 pub(crate) struct Blocks {
     pos: Vec<DVec3>,
     /// Control face `f`'s points are `pos[face_start[f]..face_start[f + 1]]`.

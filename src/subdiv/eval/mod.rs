@@ -30,6 +30,7 @@
 //! vertex of valence 2 (two triangles back to back) is refused, with an
 //! error naming it. Schemes other than Loop are refused by name.
 
+pub mod catmark;
 pub mod color;
 mod extraordinary;
 mod level1;
@@ -161,6 +162,8 @@ pub struct Evaluator {
     blocks: Blocks,
     /// How each control face is evaluated.
     path: Vec<Path>,
+    /// Catmull-Clark: the control polygons (every other field is empty).
+    poly: Option<Box<catmark::Poly>>,
     /// The control mesh for the faces of [`Path::Local`] (`None` if none).
     base: Option<local::Base<'static>>,
     spline: BoxSpline,
@@ -215,13 +218,13 @@ fn refused_vertex(ct: &crate::mesh::CornerTable, v: u32) -> bool {
 
 /// Refuses a scheme without an exact evaluation, naming it.
 fn check_scheme(scheme: Scheme) -> Result<()> {
-    if scheme == Scheme::Loop {
+    if matches!(scheme, Scheme::Loop | Scheme::CatmullClark) {
         return Ok(());
     }
     let why = if scheme.is_interpolating() {
         "an interpolating scheme has no closed-form limit to evaluate"
     } else {
-        "exact evaluation exists for Loop only so far"
+        "exact evaluation exists for Loop and Catmull-Clark"
     };
     Err(Error::Usage(format!("cannot evaluate the {scheme} limit surface: {why}")))
 }
@@ -237,6 +240,17 @@ fn check_point(faces: usize, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
     }
     let s = u + v;
     Ok(if s > 1.0 { (u / s, v / s) } else { (u, v) })
+}
+
+/// [`check_point`] for a ptex face's unit square.
+fn check_square(faces: usize, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
+    if f >= faces {
+        return Err(Error::Usage(format!("ptex face {f} out of range (the mesh has {faces})")));
+    }
+    if !((0.0..=1.0 + EDGE_SLACK).contains(&u) && (0.0..=1.0 + EDGE_SLACK).contains(&v)) {
+        return Err(Error::Usage(format!("({u}, {v}) is not in the unit square")));
+    }
+    Ok((u.min(1.0), v.min(1.0)))
 }
 
 fn valence_two(f: usize) -> Error {
@@ -256,6 +270,9 @@ fn valence_two(f: usize) -> Error {
 /// As [`Evaluator::new`] and [`Evaluator::eval`].
 pub fn evaluate_one(mesh: &Mesh, scheme: Scheme, opts: &Options, (f, u, v): (usize, f64, f64)) -> Result<Sample> {
     check_scheme(scheme)?;
+    if scheme == Scheme::CatmullClark {
+        return Evaluator::new(mesh, scheme, opts)?.eval(f, u, v);
+    }
     let ct = &mesh.ct;
     let (u, v) = check_point(ct.num_triangles(), f, u, v)?;
     let corners = [0, 1, 2].map(|i| ct.vtx(3 * f as u32 + i));
@@ -291,6 +308,19 @@ impl Evaluator {
     /// [`Error::Usage`] naming a scheme without an exact evaluation.
     pub fn new(mesh: &Mesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
         check_scheme(scheme)?;
+        if scheme == Scheme::CatmullClark {
+            let poly = catmark::Poly::new(&crate::mesh::poly::PolyMesh::from_mesh(mesh), opts);
+            let faces = poly.num_faces();
+            return Ok(Evaluator {
+                blocks: Blocks::default(),
+                path: vec![Path::Local; faces],
+                poly: Some(Box::new(poly)),
+                base: None,
+                spline: BoxSpline::derive(),
+                valences: Vec::new(),
+                faces,
+            });
+        }
         let path = face_paths(mesh);
         let level1 = Level1::new(mesh, opts.loop_beta)?;
         let not_smooth: Vec<bool> = path.iter().map(|&x| x != Path::Smooth).collect();
@@ -303,7 +333,7 @@ impl Evaluator {
         for v in 0..mesh.ct.num_vertices() as u32 {
             add_table(&mut valences, mesh.ct.valence(v), mesh.ct.is_boundary_vertex(v), opts, &spline);
         }
-        Ok(Evaluator { blocks, path, base, spline, valences, faces: mesh.ct.num_triangles() })
+        Ok(Evaluator { blocks, path, poly: None, base, spline, valences, faces: mesh.ct.num_triangles() })
     }
 
     /// The number of control faces.
@@ -344,6 +374,9 @@ impl Evaluator {
     /// `(u, v)` if face `f` and the point are good, scaled onto the edge when
     /// `u + v` is a hair over 1.
     fn check(&self, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
+        if self.poly.is_some() {
+            return check_square(self.faces, f, u, v);
+        }
         let uv = check_point(self.faces, f, u, v)?;
         if self.path[f] == Path::Refused {
             return Err(valence_two(f));
@@ -353,6 +386,9 @@ impl Evaluator {
 
     /// A point [`Evaluator::check`] passed.
     fn eval_checked(&self, f: usize, u: f64, v: f64, second: bool) -> Sample {
+        if let Some(poly) = &self.poly {
+            return poly.eval(f, (u, v), second);
+        }
         if let (Path::Local, Some(base)) = (self.path[f], &self.base) {
             let tables = local::Tables { spline: &self.spline, valences: &self.valences };
             return local::eval(base, &tables, f as u32, (u, v), second);

@@ -8,7 +8,7 @@ pub mod attributes;
 pub mod face_varying;
 pub mod packed;
 pub mod plan;
-mod poly_plan;
+pub(crate) mod poly_plan;
 pub mod rows;
 
 pub use plan::{PlanScratch, StencilPlan};

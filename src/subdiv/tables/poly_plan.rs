@@ -46,6 +46,13 @@ pub(super) fn record(
     Ok((plans, cur))
 }
 
+/// One Catmull-Clark level recorded on `pt` as it is (its boundary corners
+/// already applied) and the split table it makes: the local subdivision of
+/// exact evaluation runs the very rules the refinement runs.
+pub(crate) fn record_one_catmark_level(pt: &PolyTable, creasing: Creasing) -> (LevelPlan, PolyTable) {
+    (record_level(&CatmullClark, pt, creasing), split::split(pt, creasing).0)
+}
+
 /// One level's rows: a vertex row per old vertex (omitted where `R` keeps
 /// the old vertices: bilinear), an edge row per edge in owner order, a face
 /// row per face.

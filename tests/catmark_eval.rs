@@ -1,0 +1,181 @@
+//! Exact Catmull-Clark limit evaluation (`subdiv::subdiv::eval`, ptex faces)
+//! against independent truths: the limit masks of the level-4 refinement at
+//! the dyadic points of levels 0 to 4 (subdivision and masks, not the
+//! evaluator), finite differences of positions for the derivatives, and
+//! continuity across the edges between quads.
+
+mod common;
+
+use glam::DVec3;
+use std::path::PathBuf;
+use subdiv::mesh::poly::PolyMesh;
+use subdiv::mesh::{BoundaryInterpolation, Creasing};
+use subdiv::subdiv::eval::Evaluator;
+use subdiv::subdiv::eval::catmark::ptex_faces;
+use subdiv::subdiv::rules::catmark_limit::frames_at;
+use subdiv::{Mesh, Options, Scheme, subdivide_poly};
+
+fn load(name: &str) -> PolyMesh {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name);
+    PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap_or_else(|e| panic!("{name}: {e}")))
+}
+
+/// The fixture meshes (scripts/catmark-fixtures.py): smooth, creased
+/// (infinite, semi-sharp, a corner), open both ways, n-gons. No dart: the
+/// mask the truth would use there is not the limit of the dart's rules.
+fn cases() -> Vec<(&'static str, PolyMesh, Options)> {
+    let d = Options::default;
+    vec![
+        ("cube", load("cube.obj"), d()),
+        ("cube_creases", load("cube_creases.obj"), d()),
+        ("cube_creases chaikin", load("cube_creases.obj"), Options { creasing: Creasing::Chaikin, ..d() }),
+        ("grid", load("grid.obj"), d()),
+        ("grid corners", load("grid.obj"), Options { boundary: BoundaryInterpolation::EdgeAndCorner, ..d() }),
+        ("ngons", load("ngons.obj"), d()),
+    ]
+}
+
+fn size(m: &PolyMesh) -> f64 {
+    let (mut lo, mut hi) = (DVec3::MAX, DVec3::MIN);
+    for p in &m.positions {
+        lo = lo.min(p.as_dvec3());
+        hi = hi.max(p.as_dvec3());
+    }
+    (hi - lo).length()
+}
+
+/// The quadrant of `(u, v)` and the child's `(s, t)` (the split makes quad
+/// `c` of corner `c`: vertex, edge leaving, face point, edge entering).
+fn quadrant(u: f64, v: f64) -> (u32, f64, f64) {
+    match (u > 0.5, v > 0.5) {
+        (false, false) => (0, 2.0 * u, 2.0 * v),
+        (true, false) => (1, 2.0 * v, 2.0 - 2.0 * u),
+        (true, true) => (2, 2.0 - 2.0 * u, 2.0 - 2.0 * v),
+        (false, true) => (3, 2.0 - 2.0 * v, 2.0 * u),
+    }
+}
+
+/// The vertex at the dyadic point `(u, v)` of ptex face `(f, corner)`, by
+/// the split's numbering through `levels` (levels[0] the control mesh).
+fn vertex_at(levels: &[PolyMesh], (f, corner): (u32, u32), mut u: f64, mut v: f64, k: usize) -> u32 {
+    let (mut face, mut at) = match corner {
+        u32::MAX => (f, 0),
+        c => (levels[0].pt.face_corners(f).start + c, 1),
+    };
+    for _ in 0..k {
+        let (q, s, t) = quadrant(u, v);
+        face = levels[at].pt.face_corners(face).start + q;
+        (u, v, at) = (s, t, at + 1);
+    }
+    let corner = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].iter().position(|&c| c == (u, v)).expect("a corner");
+    levels[at].pt.vtx(levels[at].pt.face_corners(face).start + corner as u32)
+}
+
+#[test]
+fn dyadic_points_are_the_limits_of_subdivided_vertices() {
+    for (name, poly, opts) in cases() {
+        let mesh: Mesh = poly.triangulated();
+        let ev = Evaluator::new(&mesh, Scheme::CatmullClark, &opts).unwrap();
+        let ptex = ptex_faces(&poly.pt);
+        assert_eq!(ev.num_faces(), ptex.len(), "{name}: the evaluator's faces are the ptex faces");
+        let mut levels = vec![poly.clone()];
+        for _ in 0..5 {
+            levels.push(subdivide_poly(levels.last().unwrap(), Scheme::CatmullClark, 1, &opts).unwrap().0);
+        }
+        let fine = &levels[5];
+        let limits = frames_at(&fine.pt, &fine.positions, opts.creasing);
+        let mut worst = 0.0f64;
+        for (p, &face) in ptex.iter().enumerate() {
+            for k in 0..=4usize {
+                let d = f64::from(1u32 << k);
+                for i in 0..=(1u32 << k) {
+                    for j in 0..=(1u32 << k) {
+                        let (u, v) = (f64::from(i) / d, f64::from(j) / d);
+                        let want = limits[vertex_at(&levels, face, u, v, k) as usize].position.as_dvec3();
+                        let got = ev.eval(p, u, v).unwrap().position;
+                        worst = worst.max((got - want).length() / size(&poly));
+                    }
+                }
+            }
+        }
+        // the reference is computed in f32
+        assert!(worst < 2e-6, "{name}: worst relative distance {worst:e}");
+    }
+}
+
+fn random_points(n: usize, per_face: usize, seed: u64) -> Vec<(usize, f64, f64)> {
+    let mut rng = common::Rng(seed);
+    let mut out = Vec::new();
+    for p in 0..n {
+        for _ in 0..per_face {
+            let (a, b) = (f64::from(rng.next_f32()) * 0.5 + 0.5, f64::from(rng.next_f32()) * 0.5 + 0.5);
+            out.push((p, 0.02 + 0.96 * a, 0.02 + 0.96 * b));
+        }
+    }
+    out
+}
+
+#[test]
+fn derivatives_match_finite_differences() {
+    let h = 1e-5;
+    for (name, poly, opts) in cases() {
+        let ev = Evaluator::new(&poly.triangulated(), Scheme::CatmullClark, &opts).unwrap();
+        let size = size(&poly);
+        for (p, u, v) in random_points(ev.num_faces(), 3, 7) {
+            let s = ev.eval(p, u, v).unwrap();
+            let at = |du: f64, dv: f64| ev.eval(p, u + du, v + dv).unwrap();
+            let (pu, mu, pv, mv) = (at(h, 0.0), at(-h, 0.0), at(0.0, h), at(0.0, -h));
+            let close = |a: DVec3, b: DVec3, tol: f64| (a - b).length() <= tol * (size + b.length());
+            let (du, dv) = ((pu.position - mu.position) / (2.0 * h), (pv.position - mv.position) / (2.0 * h));
+            assert!(close(s.du, du, 1e-6) && close(s.dv, dv, 1e-6), "{name} ptex {p} ({u}, {v}): first derivatives");
+            let (duu, duv, dvv) =
+                ((pu.du - mu.du) / (2.0 * h), (pv.du - mv.du) / (2.0 * h), (pv.dv - mv.dv) / (2.0 * h));
+            assert!(
+                close(s.duu, duu, 1e-4) && close(s.duv, duv, 1e-4) && close(s.dvv, dvv, 1e-4),
+                "{name} ptex {p} ({u}, {v}): second derivatives"
+            );
+            assert!(s.du.cross(s.dv).normalize().dot(s.normal) > 1.0 - 1e-12);
+        }
+    }
+}
+
+#[test]
+fn quads_meet_their_neighbours_with_one_tangent_plane() {
+    let param = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+    for (name, poly, opts) in cases().into_iter().filter(|c| c.1.pt.is_quads()) {
+        let ev = Evaluator::new(&poly.triangulated(), Scheme::CatmullClark, &opts).unwrap();
+        let pt = &poly.pt;
+        for c in 0..pt.num_corners() as u32 {
+            let Some(x) = pt.twin(c) else { continue };
+            let (f, g) = (pt.face(c), pt.face(x));
+            let (i, j) = ((c % 4) as usize, (x % 4) as usize);
+            for t in [0.2, 0.5, 0.9] {
+                // the edge leaves corner i of f and, reversed, corner j of g
+                let on = |k: usize, t: f64| {
+                    let (a, b) = (param[k], param[(k + 1) % 4]);
+                    (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+                };
+                let ((uf, vf), (ug, vg)) = (on(i, t), on(j, 1.0 - t));
+                let (a, b) = (ev.eval(f as usize, uf, vf).unwrap(), ev.eval(g as usize, ug, vg).unwrap());
+                assert!((a.position - b.position).length() < 1e-9 * size(&poly), "{name}: edge of corner {c} at {t}");
+                if pt.sharpness().is_none_or(|s| s.corner(c) < subdiv::mesh::sharpness::INFINITE) {
+                    assert!(a.normal.dot(b.normal) > 1.0 - 1e-9, "{name}: normals across corner {c}'s edge at {t}");
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_points_are_refused() {
+    let poly = load("ngons.obj");
+    let ev = Evaluator::new(&poly.triangulated(), Scheme::CatmullClark, &Options::default()).unwrap();
+    let n = ev.num_faces();
+    assert!(ev.eval(n, 0.5, 0.5).unwrap_err().to_string().contains("out of range"));
+    for (u, v) in [(-0.1, 0.5), (0.5, 1.1), (f64::NAN, 0.5)] {
+        assert!(ev.eval(0, u, v).is_err(), "({u}, {v})");
+    }
+    assert!(ev.eval(0, 1.0, 1.0).is_ok());
+    let e = Evaluator::new(&poly.triangulated(), Scheme::Bilinear, &Options::default()).err().expect("refused");
+    assert!(e.to_string().contains("bilinear"), "{e}");
+}
