@@ -470,3 +470,39 @@ fn eval_writes_one_line_per_point_and_refuses_bad_points_by_line() {
     let err = run_fail(&["eval", model, points.to_str().unwrap(), out.to_str().unwrap(), "-s", "butterfly"]);
     assert!(err.contains("butterfly"), "{err}");
 }
+
+#[test]
+fn eval_takes_catmull_clark_ptex_faces_in_the_unit_square() {
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark");
+    let model = dir.join("ngons.obj");
+    let mesh = subdiv::mesh::poly::PolyMesh::from_mesh(&subdiv::io::load(&model).unwrap());
+    let ptex = subdiv::subdiv::eval::catmark::ptex_faces(&mesh.pt).len();
+    assert!(ptex > mesh.pt.num_faces(), "the n-gons have a ptex face per corner");
+    let out = tmp("eval-cc-out.txt");
+    // (0.7, 0.7) is outside a triangle but inside a square
+    let points = write("eval-cc.txt", &format!("0 0.7 0.7\n{} 1 1\n", ptex - 1));
+    let args =
+        ["eval", model.to_str().unwrap(), points.to_str().unwrap(), out.to_str().unwrap(), "-s", "catmull-clark"];
+    let r = bin().args(args).output().unwrap();
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text.lines().count(), 2);
+    // ptex face `ptex` is one past the last; (1.2, 0) is outside the square
+    for (text, what) in
+        [(format!("{ptex} 0.5 0.5\n"), "out of range"), ("0 1.2 0\n".to_string(), "outside the unit square")]
+    {
+        let p = write("eval-cc-bad.txt", &text);
+        let err = run_fail(&[
+            "eval",
+            model.to_str().unwrap(),
+            p.to_str().unwrap(),
+            out.to_str().unwrap(),
+            "-s",
+            "catmull-clark",
+        ]);
+        assert!(err.contains("eval-cc-bad.txt:1:") && err.contains(what), "{text:?}: {err}");
+    }
+    let err =
+        run_fail(&["eval", model.to_str().unwrap(), points.to_str().unwrap(), out.to_str().unwrap(), "-s", "bilinear"]);
+    assert!(err.contains("bilinear"), "{err}");
+}

@@ -1,10 +1,11 @@
-//! `subdiv eval`: the exact Loop limit surface at given parameter points.
+//! `subdiv eval`: the exact Loop or Catmull-Clark limit surface at given
+//! parameter points.
 
 use super::args::{InputArgs, SchemeArgs};
 use std::path::PathBuf;
 use std::time::Instant;
 use subdiv::io::{Budget, atomic_write, resolve::Resolver};
-use subdiv::subdiv::eval::{Evaluator, parse_points};
+use subdiv::subdiv::eval::{Evaluator, parse_points_in};
 use subdiv::{Error, Result};
 
 /// `subdiv eval` arguments.
@@ -12,9 +13,11 @@ use subdiv::{Error, Result};
 pub struct EvalArgs {
     /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
     input: PathBuf,
-    /// Points, one per line: `f u v` (control triangle f, 0-based in the
-    /// file's face order; the point (1-u-v) c0 + u c1 + v c2 of its corners
-    /// in the order the face lists them).
+    /// Points, one per line: `f u v`. Loop: control triangle f, 0-based in
+    /// the file's face order, the point (1-u-v) c0 + u c1 + v c2 of its
+    /// corners in the order the face lists them. Catmull-Clark: ptex face f
+    /// (a quad is one, an n-gon n, one per corner, in file order) and (u, v)
+    /// in its unit square, corner 0 at (0,0), 1 at (1,0), 2 at (1,1).
     points: PathBuf,
     /// Output: one line per point, `x y z nx ny nz` (limit position, unit
     /// normal), with --curvature also `H K`.
@@ -45,16 +48,17 @@ pub fn eval(a: &EvalArgs) -> Result<()> {
         line: 1,
         msg: format!("not UTF-8 text: {e}"),
     })?;
-    let points =
-        parse_points(&text, &shown, mesh.ct.num_triangles(), usize::try_from(max_points).unwrap_or(usize::MAX))?;
     let start = Instant::now();
     let ev = Evaluator::new(&mesh, a.scheme.scheme, &a.scheme.options())?;
     let prepared = start.elapsed();
+    // every point is checked before any is evaluated
+    let points = parse_points_in(&text, &shown, ev.domain(), usize::try_from(max_points).unwrap_or(usize::MAX))?;
+    let start = Instant::now();
     let samples = ev.eval_map(&points, a.curvature, |s| {
         let (p, n) = (s.position, s.normal);
         [p.x, p.y, p.z, n.x, n.y, n.z, s.mean, s.gaussian]
     })?;
-    let evaluated = start.elapsed() - prepared;
+    let evaluated = start.elapsed();
     atomic_write(&a.output, |w| {
         let io = |e| Error::io(&a.output, e);
         for s in &samples {

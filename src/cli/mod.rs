@@ -49,7 +49,7 @@ enum Cmd {
     Smooth(mesh_ops::SmoothArgs),
     /// Move every vertex to its limit position on the Loop or Catmull-Clark surface (after `subdivide`).
     Limit(mesh_ops::LimitCmdArgs),
-    /// The exact Loop limit surface at points `f u v`: position and normal (and curvature).
+    /// The exact Loop or Catmull-Clark limit surface at points `f u v`: position and normal (and curvature).
     Eval(eval::EvalArgs),
     /// Repair a mesh into a valid manifold one and write it (format by extension).
     ///

@@ -39,7 +39,7 @@ mod patch;
 mod points;
 mod vertices;
 
-pub use points::{EDGE_SLACK, parse_points};
+pub use points::{Domain, EDGE_SLACK, parse_points, parse_points_in};
 pub use vertices::{vertex_params, vertex_samples};
 
 use crate::mesh::{Mesh, n, p};
@@ -336,9 +336,15 @@ impl Evaluator {
         Ok(Evaluator { blocks, path, poly: None, base, spline, valences, faces: mesh.ct.num_triangles() })
     }
 
-    /// The number of control faces.
+    /// The number of control faces (Loop: triangles; Catmull-Clark: ptex
+    /// faces).
     pub fn num_faces(&self) -> usize {
         self.faces
+    }
+
+    /// Where the points of this evaluator live.
+    pub fn domain(&self) -> Domain {
+        if self.poly.is_some() { Domain::Ptex(self.faces) } else { Domain::Triangles(self.faces) }
     }
 
     /// Whether control face `f` can be evaluated (every face but those

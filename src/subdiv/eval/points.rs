@@ -1,12 +1,22 @@
-//! The points file of `subdiv eval`: one point per line, `f u v` (control
-//! triangle `f`, 0-based in the file's face order, and the barycentric
-//! `(u, v)`: the point `(1 - u - v) c0 + u c1 + v c2`); blank lines and
-//! lines starting with `#` are skipped.
+//! The points file of `subdiv eval`: one point per line, `f u v` (Loop:
+//! control triangle `f`, 0-based in the file's face order, and the
+//! barycentric `(u, v)`: the point `(1 - u - v) c0 + u c1 + v c2`;
+//! Catmull-Clark: ptex face `f` and `(u, v)` in its unit square, see
+//! [`super::catmark`]); blank lines and lines starting with `#` are skipped.
 
 use crate::{Error, Result};
 
 /// Slack on `u + v <= 1` for parameters written in decimal.
 pub const EDGE_SLACK: f64 = 1e-6;
+
+/// Where a point's `(f, u, v)` lives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Domain {
+    /// This many control triangles, `u, v >= 0`, `u + v <= 1`.
+    Triangles(usize),
+    /// This many ptex faces, `(u, v)` in the unit square.
+    Ptex(usize),
+}
 
 /// Parses and checks a points file `text` (named `file` in messages) for
 /// a mesh of `faces` control triangles, reading at most `max_points`.
@@ -16,6 +26,19 @@ pub const EDGE_SLACK: f64 = 1e-6;
 /// a non-negative integer or out of range, `u` or `v` not a number,
 /// negative, NaN or infinite, `u + v > 1 + 1e-6`, or too many points.
 pub fn parse_points(text: &str, file: &str, faces: usize, max_points: usize) -> Result<Vec<(usize, f64, f64)>> {
+    parse_points_in(text, file, Domain::Triangles(faces), max_points)
+}
+
+/// [`parse_points`] in `domain`: for ptex faces, `u` or `v` over `1 +
+/// 1e-6` is refused instead of `u + v`.
+///
+/// # Errors
+/// As [`parse_points`].
+pub fn parse_points_in(text: &str, file: &str, domain: Domain, max_points: usize) -> Result<Vec<(usize, f64, f64)>> {
+    let (faces, what) = match domain {
+        Domain::Triangles(n) => (n, "triangles"),
+        Domain::Ptex(n) => (n, "ptex faces"),
+    };
     let mut out = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let err = |msg: String| Error::Parse { file: file.to_string(), line: i + 1, msg };
@@ -32,7 +55,7 @@ pub fn parse_points(text: &str, file: &str, faces: usize, max_points: usize) -> 
         };
         let f: usize = f.parse().map_err(|_| err(format!("face '{f}' is not a non-negative integer")))?;
         if f >= faces {
-            return Err(err(format!("face {f} out of range (the mesh has {faces} triangles)")));
+            return Err(err(format!("face {f} out of range (the mesh has {faces} {what})")));
         }
         let num = |s: &str, name: &str| -> Result<f64> {
             let x: f64 = s.parse().map_err(|_| err(format!("{name} '{s}' is not a number")))?;
@@ -42,8 +65,14 @@ pub fn parse_points(text: &str, file: &str, faces: usize, max_points: usize) -> 
             Ok(x)
         };
         let (u, v) = (num(u, "u")?, num(v, "v")?);
-        if u + v > 1.0 + EDGE_SLACK {
-            return Err(err(format!("u + v = {} > 1: the point is outside the triangle", u + v)));
+        match domain {
+            Domain::Triangles(_) if u + v > 1.0 + EDGE_SLACK => {
+                return Err(err(format!("u + v = {} > 1: the point is outside the triangle", u + v)));
+            }
+            Domain::Ptex(_) if u.max(v) > 1.0 + EDGE_SLACK => {
+                return Err(err(format!("({u}, {v}) is outside the unit square")));
+            }
+            _ => {}
         }
         out.push((f, u, v));
     }
