@@ -18,8 +18,8 @@ type Samples<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound
 ///
 /// # Errors
 /// `SubdivError` for anything the library refuses: a face out of range or
-/// on a boundary or sharp feature, a point outside its triangle, a mesh the
-/// library does not build.
+/// at an interior vertex of valence 2, a point outside its triangle, a mesh
+/// the library does not build.
 #[pyfunction]
 pub fn evaluate_arrays<'py>(
     py: Python<'py>,

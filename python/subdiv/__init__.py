@@ -175,7 +175,8 @@ def evaluate(vertices, faces, face, uv, *, beta="loop", curvature=False):
     barycentric ``uv[i] = (u, v)``: the point ``(1-u-v) c0 + u c1 + v c2``
     of the triangle's corners in the order ``faces`` lists them, as
     ``subdiv eval`` reads them. Exact at any point (Stam's method, no
-    fixed-level approximation); triangles touching a boundary are refused.
+    fixed-level approximation), borders included (local subdivision with
+    the boundary rules).
 
     Returns
     -------

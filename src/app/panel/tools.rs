@@ -107,7 +107,7 @@ fn curvature_bar(ui: &mut egui::Ui, range: f32) {
         ui.label(RichText::new(format!("{range:.3e}")).small());
     });
     ui.label(
-        RichText::new("exact Loop limit at each drawn vertex; range clamped at the 2nd and 98th percentiles; grey: not evaluated (boundary or sharp feature)")
+        RichText::new("exact Loop limit at each drawn vertex; range clamped at the 2nd and 98th percentiles; grey: no curvature (at an extraordinary vertex itself)")
             .small(),
     );
 }

@@ -184,11 +184,11 @@ fn extract(pt: &PolyTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u32)
     }
     let mut id = vec![u32::MAX; global.len()];
     let (mut corners, mut verts) = (Vec::with_capacity(global.len()), Vec::new());
-    for lc in 0..global.len() {
+    for (lc, &c) in global.iter().enumerate() {
         let r = find(&mut root, lc as u32) as usize;
         if id[r] == u32::MAX {
             id[r] = verts.len() as u32;
-            verts.push(pt.vtx(global[lc]));
+            verts.push(pt.vtx(c));
         }
         corners.push(id[r]);
     }

@@ -1,6 +1,9 @@
-//! Exact evaluation of the Loop limit surface at any parameter point:
-//! position, first and second derivatives, unit normal, mean, Gaussian and
-//! principal curvatures and directions (docs/evaluation.md).
+//! Exact evaluation of the Loop and Catmull-Clark limit surfaces at any
+//! parameter point: position, first and second derivatives, unit normal,
+//! mean, Gaussian and principal curvatures and directions
+//! (docs/evaluation.md). Catmull-Clark points are ptex faces with `(u, v)`
+//! in the unit square, evaluated by local subdivision (`catmark.rs`); the
+//! rest of these notes are Loop's.
 //!
 //! A point is `(f, u, v)`: control triangle `f` and the barycentric point
 //! `(1 - u - v) c0 + u c1 + v c2` of its corners in the order the file lists
@@ -28,7 +31,8 @@
 //! beyond a border or an infinitely sharp crease) or next to a smooth
 //! extraordinary vertex (`local.rs`). Only a face touching an interior
 //! vertex of valence 2 (two triangles back to back) is refused, with an
-//! error naming it. Schemes other than Loop are refused by name.
+//! error naming it. Schemes other than Loop and Catmull-Clark are refused
+//! by name.
 
 pub mod catmark;
 pub mod color;

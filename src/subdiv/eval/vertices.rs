@@ -50,7 +50,8 @@ pub fn vertex_params(control_faces: usize, fine: &CornerTable, levels: u32) -> R
 
 /// The exact Loop limit (with curvature) at every vertex of `fine`, the
 /// Loop refinement of `control` by `levels`; NaN samples where the control
-/// face is not evaluated (a boundary or sharp feature).
+/// face is refused (an interior vertex of valence 2), NaN curvature where
+/// it is not defined (an extraordinary vertex itself).
 ///
 /// # Errors
 /// A `fine` that is not such a refinement, or the evaluator's errors.
