@@ -178,10 +178,20 @@ fn polygon_schemes_name_the_polygon_and_the_corner_of_its_quarter() {
         let (_, p) = pick_on(&grid, Scheme::CatmullClark, level, near + Vec3::Z, -Vec3::Z);
         let p = p.expect("hits");
         // the grid has no polygons: each triangle is a face of its own
-        assert_eq!(p.face, ControlFace::Polygon { face: MIDDLE, size: 3, corner: 1 }, "level {level}");
+        let ControlFace::Polygon { face, size, corner, ptex } = p.face else { panic!("a polygon: {:?}", p.face) };
+        assert_eq!((face, size, corner), (MIDDLE, 3, 1), "level {level}");
         assert_eq!(p.vertex.id, grid.ct.vtx(3 * MIDDLE + 1));
-        let Limit::Unavailable(why) = &p.limit else { panic!("no exact Catmull-Clark evaluation") };
-        assert!(why.contains("Loop only"), "{why}");
+        match (&p.limit, ptex) {
+            // a triangle drawn unrefined has no ptex point (its ptex faces are its level-1 quads)
+            (Limit::Unavailable(why), None) => assert!(level == 0 && why.contains("unrefined"), "{why}"),
+            (Limit::Exact(s), Some((q, u, v))) => {
+                // the flat grid's limit is flat; the ptex face is triangle MIDDLE's corner 1
+                assert!(s.position.z.abs() < 1e-9 && s.normal.z.abs() > 1.0 - 1e-9, "{s:?}");
+                assert_eq!(q, 3 * MIDDLE + 1);
+                assert!((0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v));
+            }
+            other => panic!("level {level}: {other:?}"),
+        }
     }
     // a quad file: a cube of six quads, fanned on reading, joined again
     let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n\
@@ -192,8 +202,18 @@ fn polygon_schemes_name_the_polygon_and_the_corner_of_its_quarter() {
         // onto the top face z = 1 near its corner (1, 1, 1), the file's vertex 7 (id 6)
         let (_, p) = pick_on(&cube, Scheme::CatmullClark, level, Vec3::new(0.65, 0.7, 5.0), -Vec3::Z);
         let p = p.expect("hits the top");
-        assert_eq!(p.face, ControlFace::Polygon { face: 1, size: 4, corner: 2 }, "level {level}");
+        let ControlFace::Polygon { face, size, corner, ptex } = p.face else { panic!("a polygon: {:?}", p.face) };
+        assert_eq!((face, size, corner), (1, 4, 2), "level {level}");
         assert_eq!((p.vertex.id, p.vertex.valence), (6, 3), "every cube vertex has three edges");
+        // every face a quad: ptex face = face; the hit (0.65, 0.7) of the top
+        // quad (1 0 1) (1 1 1) ... drawn at its corner 2 side; the exact
+        // limit lies below the hit, inside the cube, closer at level 2
+        let (q, u, v) = ptex.expect("a quad has a ptex point");
+        assert_eq!(q, 1);
+        assert!(u > 0.5 && v > 0.5, "({u}, {v}) in corner 2's quarter");
+        let Limit::Exact(s) = &p.limit else { panic!("Catmull-Clark is evaluated: {:?}", p.limit) };
+        let gap = (s.position - p.point.as_dvec3()).length();
+        assert!(s.normal.z > 0.7 && gap < if level == 0 { 0.3 } else { 0.05 }, "level {level}: gap {gap}, {s:?}");
     }
 }
 

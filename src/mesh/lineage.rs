@@ -60,6 +60,38 @@ pub fn quad_origin(t: u32, levels: u32) -> u32 {
     q
 }
 
+/// The parameters of a quad's corners: the vertex, the edge leaving it, the
+/// face point, the edge entering it (a level-1 quad's corners in the split).
+pub const QUAD_CORNERS: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+
+/// The point `(s, t)` of child quad `k` of a quad (the child of its corner
+/// `k`) in the parent's parameters: the inverse of the quadrant maps
+/// (child `k` covers the parent's quarter at its corner `k`).
+pub fn quad_parent(k: u32, [s, t]: [f64; 2]) -> [f64; 2] {
+    match k % 4 {
+        0 => [s / 2.0, t / 2.0],
+        1 => [1.0 - t / 2.0, s / 2.0],
+        2 => [1.0 - s / 2.0, 1.0 - t / 2.0],
+        _ => [t / 2.0, 1.0 - s / 2.0],
+    }
+}
+
+/// The point of barycentrics `(b1, b2)` in triangle `t` of the triangulated
+/// level `levels >= 1` of the quad split: the control corner whose level-1
+/// quad holds it ([`quad_origin`]) and its `(u, v)` in that quad (corners
+/// [`QUAD_CORNERS`]). Quad `q` is drawn as triangles `2q` (corners 0 1 2)
+/// and `2q + 1` (corners 0 2 3).
+pub fn quad_point(t: u32, levels: u32, b1: f64, b2: f64) -> (u32, [f64; 2]) {
+    let c = QUAD_CORNERS;
+    let tri = if t % 2 == 0 { [c[0], c[1], c[2]] } else { [c[0], c[2], c[3]] };
+    let (mut q, mut uv) = (t / 2, barycentric(&tri, b1, b2));
+    for _ in 1..levels {
+        uv = quad_parent(q % 4, uv);
+        q /= 4;
+    }
+    (q, uv)
+}
+
 /// The point `(1 - b1 - b2) a + b1 b + b2 c` of the parameters `[a, b, c]`.
 pub fn barycentric(corners: &[[f64; 2]; 3], b1: f64, b2: f64) -> [f64; 2] {
     let b0 = 1.0 - b1 - b2;
@@ -110,6 +142,32 @@ mod tests {
         assert_eq!(quad_origin(2 * 7 + 1, 1), 7);
         assert_eq!(quad_origin(2 * (4 * 7 + 3) + 1, 2), 7);
         assert_eq!(quad_origin(2 * (16 * 7 + 9), 3), 7);
+    }
+
+    #[test]
+    fn a_point_of_a_refined_quad_finds_its_level_one_parameters() {
+        use crate::mesh::poly::PolyMesh;
+        use crate::subdiv::{Options, Scheme, subdivide_poly};
+        // bilinear subdivision of the unit square keeps every point at its
+        // own parameters: level-1 quad 0 (corner 0's) is [0, 1/2]^2
+        let square =
+            PolyMesh::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::ONE.with_z(0.0), Vec3::Y], &[0, 4], &[0, 1, 2, 3])
+                .expect("a square")
+                .0;
+        for levels in 1..4 {
+            let fine = subdivide_poly(&square, Scheme::Bilinear, levels, &Options::default()).expect("levels").0;
+            let tris = fine.pt.triangulated();
+            for t in 0..tris.num_triangles() as u32 {
+                let at = |k: u32| fine.positions[tris.vtx(3 * t + k) as usize];
+                let (b1, b2) = (0.3, 0.2);
+                let p = at(0) * 0.5 + at(1) * b1 as f32 + at(2) * b2 as f32;
+                let (q, [u, v]) = quad_point(t, levels, b1, b2);
+                assert_eq!(q, quad_origin(t, levels));
+                // quad q's quarter of the square, mapped back to the square
+                let [x, y] = quad_parent(q, [u, v]);
+                assert!((f64::from(p.x) - x).abs() < 1e-6 && (f64::from(p.y) - y).abs() < 1e-6, "{t} at {levels}");
+            }
+        }
     }
 
     #[test]

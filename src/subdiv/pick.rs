@@ -19,7 +19,7 @@
 
 use super::eval::{Evaluator, Sample, evaluate_one};
 use super::{Options, Scheme};
-use crate::mesh::lineage::{barycentric, quad_origin, triangle_origin};
+use crate::mesh::lineage::{QUAD_CORNERS, barycentric, quad_parent, quad_point, triangle_origin};
 use crate::mesh::pick::{Hit, nearest_hit};
 use crate::mesh::poly::PolyTable;
 use crate::mesh::{CornerTable, Mesh, n, p};
@@ -62,6 +62,10 @@ pub enum ControlFace {
         /// whose quarter of the face (its level-1 quad) holds it, or,
         /// drawn unrefined, nearest in space.
         corner: u32,
+        /// The hit as the Catmull-Clark evaluator's point: the ptex face
+        /// ([`super::eval::catmark::ptex_faces`]) and `(u, v)` in its unit
+        /// square; `None` on a polygon other than a quad drawn unrefined.
+        ptex: Option<(u32, f64, f64)>,
     },
 }
 
@@ -157,12 +161,13 @@ pub fn trace(level: &Level, hit: &Hit) -> Result<(ControlFace, ControlVertex)> {
         if level.drawn.ct.num_triangles() as u64 != 2 * quads {
             return Err(mismatch());
         }
-        let c = quad_origin(hit.triangle, level.level);
+        let (c, uv) = quad_point(hit.triangle, level.level, b1, b2);
         let f = pt.face(c);
         let (first, size) = (pt.face_corners(f).start, pt.face_size(f));
         // the polygons' valence: a fanned face's diagonals are no edges
         let v = ControlVertex { valence: pt.valences()[pt.vtx(c) as usize], ..vertex(pt.vtx(c)) };
-        return Ok((ControlFace::Polygon { face: f, size, corner: c - first }, v));
+        let ptex = ptex_point(&pt, f, c - first, uv);
+        return Ok((ControlFace::Polygon { face: f, size, corner: c - first, ptex: Some(ptex) }, v));
     }
     let (f, corners) = triangle_origin(hit.triangle, nt, level.level)
         .filter(|_| level.drawn.ct.num_triangles() as u64 == (nt as u64) << (2 * level.level))
@@ -180,9 +185,33 @@ pub fn trace(level: &Level, hit: &Hit) -> Result<(ControlFace, ControlVertex)> {
         let dist = |c: u32| level.control.positions[pt.vtx(c) as usize].distance_squared(hit.point);
         let c = r.clone().min_by(|&a, &b| dist(a).total_cmp(&dist(b))).unwrap_or(r.start);
         let v = ControlVertex { valence: pt.valences()[pt.vtx(c) as usize], ..vertex(pt.vtx(c)) };
-        return Ok((ControlFace::Polygon { face: polygon, size: r.end - r.start, corner: c - r.start }, v));
+        // a quad drawn unrefined: the fan triangle's corners are quad corners
+        let size = r.end - r.start;
+        let quad_corner =
+            |k: u32| (0..4).find(|&i| pt.vtx(r.start + i) == ct.vtx(3 * f + k)).map(|i| QUAD_CORNERS[i as usize]);
+        let ptex = match (size, quad_corner(0), quad_corner(1), quad_corner(2)) {
+            (4, Some(a), Some(b), Some(c)) => {
+                let [u, v] = barycentric(&[a, b, c], b1, b2);
+                Some((ptex_point(&pt, polygon, 0, [0.0, 0.0]).0, u, v))
+            }
+            _ => None,
+        };
+        return Ok((ControlFace::Polygon { face: polygon, size, corner: c - r.start, ptex }, v));
     }
     Ok((ControlFace::Triangle { face: f, u, v }, nearest))
+}
+
+/// The ptex face and `(u, v)` of the point `uv` of the level-1 quad of
+/// corner `k` of polygon `f`: a quad's quarter maps back to the quad's
+/// square; an n-gon's ptex face is that level-1 quad itself.
+fn ptex_point(pt: &PolyTable, f: u32, k: u32, uv: [f64; 2]) -> (u32, f64, f64) {
+    let before: u32 = (0..f).map(|g| if pt.face_size(g) == 4 { 1 } else { pt.face_size(g) }).sum();
+    if pt.face_size(f) == 4 {
+        let [u, v] = quad_parent(k, uv);
+        (before, u, v)
+    } else {
+        (before + k, uv[0], uv[1])
+    }
 }
 
 /// The polygon of `pt` holding the three vertices of triangle `f` of `ct`
@@ -200,16 +229,18 @@ fn polygon_of(pt: &PolyTable, ct: &CornerTable, f: u32) -> Option<u32> {
 /// there is none (the scheme, or what the face touches).
 pub fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &ControlFace) -> Limit {
     let why = |s: String| Limit::Unavailable(s);
-    let &ControlFace::Triangle { face, u, v } = face else {
-        return why(format!("{scheme}: exact evaluation exists for Loop only"));
+    let exact = |r: Result<Sample>| r.map_or_else(|e| why(e.to_string()), |s| Limit::Exact(Box::new(s)));
+    let (face, u, v) = match (scheme, *face) {
+        (Scheme::Loop, ControlFace::Triangle { face, u, v }) => (face, u, v),
+        (Scheme::CatmullClark, ControlFace::Polygon { ptex: Some((p, u, v)), .. }) => {
+            return exact(evaluate_one(control, scheme, opts, (p as usize, u, v)));
+        }
+        (Scheme::CatmullClark, _) => return why(format!("{scheme}: a polygon drawn unrefined (subdivide once)")),
+        (s, _) if s.is_interpolating() => {
+            return why(format!("{scheme}: an interpolating scheme has no closed-form limit"));
+        }
+        _ => return why(format!("{scheme}: exact evaluation exists for Loop and Catmull-Clark")),
     };
-    if scheme != Scheme::Loop {
-        return why(if scheme.is_interpolating() {
-            format!("{scheme}: an interpolating scheme has no closed-form limit")
-        } else {
-            format!("{scheme}: exact evaluation exists for Loop only")
-        });
-    }
     let sample = match neighbourhood(control, face).filter(|_| !touches_feature(&control.ct, face)) {
         // the face's own neighbourhood: the same limit at a cost that does not grow with the mesh
         Some(local) => Evaluator::new(&local, scheme, opts).and_then(|ev| ev.eval(0, u, v)),
@@ -282,8 +313,11 @@ impl std::fmt::Display for Pick {
         writeln!(f, "hit on the drawn surface: {}", v3(self.point))?;
         match self.face {
             ControlFace::Triangle { face, u, v } => writeln!(f, "control face: {face}  u v: {u:.6} {v:.6}")?,
-            ControlFace::Polygon { face, size, corner } => {
-                writeln!(f, "control face: polygon {face} ({size} corners), nearest its corner {corner}")?
+            ControlFace::Polygon { face, size, corner, ptex } => {
+                writeln!(f, "control face: polygon {face} ({size} corners), nearest its corner {corner}")?;
+                if let Some((p, u, v)) = ptex {
+                    writeln!(f, "ptex face: {p}  u v: {u:.6} {v:.6}")?;
+                }
             }
         }
         let cv = &self.vertex;

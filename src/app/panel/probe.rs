@@ -57,9 +57,12 @@ fn rows(p: &Pick, target: Target) -> Vec<(&'static str, String)> {
             rows.push(("Control face", face.to_string()));
             rows.push(("u, v", format!("{u:.6} {v:.6}")));
         }
-        ControlFace::Polygon { face, size, corner } => {
+        ControlFace::Polygon { face, size, corner, ptex } => {
             rows.push(("Control face", format!("polygon {face} ({size} corners)")));
             rows.push(("Nearest corner", corner.to_string()));
+            if let Some((p, u, v)) = ptex {
+                rows.push(("Ptex face, u, v", format!("{p}  {u:.6} {v:.6}")));
+            }
         }
     }
     let cv = &p.vertex;
