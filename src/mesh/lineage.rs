@@ -83,7 +83,7 @@ pub fn quad_parent(k: u32, [s, t]: [f64; 2]) -> [f64; 2] {
 /// and `2q + 1` (corners 0 2 3).
 pub fn quad_point(t: u32, levels: u32, b1: f64, b2: f64) -> (u32, [f64; 2]) {
     let c = QUAD_CORNERS;
-    let tri = if t % 2 == 0 { [c[0], c[1], c[2]] } else { [c[0], c[2], c[3]] };
+    let tri = if t.is_multiple_of(2) { [c[0], c[1], c[2]] } else { [c[0], c[2], c[3]] };
     let (mut q, mut uv) = (t / 2, barycentric(&tri, b1, b2));
     for _ in 1..levels {
         uv = quad_parent(q % 4, uv);
