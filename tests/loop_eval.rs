@@ -209,31 +209,37 @@ fn random_points(mesh: &Mesh, per_face: usize, seed: u64) -> Vec<(usize, f64, f6
     out
 }
 
+/// The derivatives of `ev` at `points` against central differences of
+/// positions (first) and of first derivatives (second); the normal is
+/// `du x dv` normalised.
+fn check_derivatives(ev: &Evaluator, points: &[(usize, f64, f64)], size: f64, name: &str) {
+    let h = 1e-5;
+    for &(f, u, v) in points {
+        let s = ev.eval(f, u, v).unwrap();
+        let at = |a: f64, b: f64| ev.eval(f, a, b).unwrap();
+        let (pu, mu, pv, mv) = (at(u + h, v), at(u - h, v), at(u, v + h), at(u, v - h));
+        let du = (pu.position - mu.position) / (2.0 * h);
+        let dv = (pv.position - mv.position) / (2.0 * h);
+        let duu = (pu.du - mu.du) / (2.0 * h);
+        let duv = (pv.du - mv.du) / (2.0 * h);
+        let dvv = (pv.dv - mv.dv) / (2.0 * h);
+        let close = |a: DVec3, b: DVec3, tol: f64| (a - b).length() <= tol * (size + b.length());
+        assert!(close(s.du, du, 1e-6) && close(s.dv, dv, 1e-6), "{name} face {f} ({u}, {v}): first derivatives");
+        assert!(
+            close(s.duu, duu, 1e-4) && close(s.duv, duv, 1e-4) && close(s.dvv, dvv, 1e-4),
+            "{name} face {f} ({u}, {v}): second derivatives {:?} against {duu:?}",
+            s.duu
+        );
+        let n = s.du.cross(s.dv).normalize();
+        assert!(n.dot(s.normal) > 1.0 - 1e-12);
+    }
+}
+
 #[test]
 fn derivatives_match_finite_differences() {
-    let h = 1e-5;
     for (name, mesh) in closed_meshes() {
         let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
-        let size = f64::from(scale(&mesh));
-        for (f, u, v) in random_points(&mesh, 6, 11) {
-            let s = ev.eval(f, u, v).unwrap();
-            let at = |a: f64, b: f64| ev.eval(f, a, b).unwrap();
-            let (pu, mu, pv, mv) = (at(u + h, v), at(u - h, v), at(u, v + h), at(u, v - h));
-            let du = (pu.position - mu.position) / (2.0 * h);
-            let dv = (pv.position - mv.position) / (2.0 * h);
-            let duu = (pu.du - mu.du) / (2.0 * h);
-            let duv = (pv.du - mv.du) / (2.0 * h);
-            let dvv = (pv.dv - mv.dv) / (2.0 * h);
-            let close = |a: DVec3, b: DVec3, tol: f64| (a - b).length() <= tol * (size + b.length());
-            assert!(close(s.du, du, 1e-6) && close(s.dv, dv, 1e-6), "{name} face {f} ({u}, {v}): first derivatives");
-            assert!(
-                close(s.duu, duu, 1e-4) && close(s.duv, duv, 1e-4) && close(s.dvv, dvv, 1e-4),
-                "{name} face {f} ({u}, {v}): second derivatives {:?} against {duu:?}",
-                s.duu
-            );
-            let n = s.du.cross(s.dv).normalize();
-            assert!(n.dot(s.normal) > 1.0 - 1e-12);
-        }
+        check_derivatives(&ev, &random_points(&mesh, 6, 11), f64::from(scale(&mesh)), &name);
     }
 }
 
@@ -445,24 +451,10 @@ fn every_refined_vertex_gets_the_limit_of_its_own_position() {
 
 #[test]
 fn featured_faces_have_their_derivatives_and_meet_their_neighbours() {
-    let h = 1e-5;
     for (name, mesh, opts) in featured_meshes() {
         let ev = Evaluator::new(&mesh, Scheme::Loop, &opts).unwrap();
         let size = f64::from(scale(&mesh));
-        for (f, u, v) in random_points(&mesh, 2, 17) {
-            let s = ev.eval(f, u, v).unwrap();
-            let at = |du: f64, dv: f64| ev.eval(f, u + du, v + dv).unwrap();
-            let (pu, mu, pv, mv) = (at(h, 0.0), at(-h, 0.0), at(0.0, h), at(0.0, -h));
-            let close = |a: DVec3, b: DVec3, tol: f64| (a - b).length() <= tol * (size + b.length());
-            let (du, dv) = ((pu.position - mu.position) / (2.0 * h), (pv.position - mv.position) / (2.0 * h));
-            assert!(close(s.du, du, 1e-6) && close(s.dv, dv, 1e-6), "{name} face {f} ({u}, {v}): first derivatives");
-            let (duu, dvv) = ((pu.du - mu.du) / (2.0 * h), (pv.dv - mv.dv) / (2.0 * h));
-            assert!(
-                close(s.duu, duu, 1e-4) && close(s.dvv, dvv, 1e-4),
-                "{name} face {f} ({u}, {v}): second derivatives"
-            );
-            assert!(s.du.cross(s.dv).normalize().dot(s.normal) > 1.0 - 1e-12);
-        }
+        check_derivatives(&ev, &random_points(&mesh, 2, 17), size, &name);
         let ct = &mesh.ct;
         let corners = |f: u32| [ct.vtx(3 * f), ct.vtx(3 * f + 1), ct.vtx(3 * f + 2)];
         for c in 0..ct.num_corners() as u32 {

@@ -29,7 +29,7 @@
 //! Near an extraordinary vertex the levels grow as log2 of 1 / distance
 //! (there is no power table for Catmull-Clark yet), bounded by the cap.
 
-use super::local::MAX_LEVELS;
+use super::local::{MAX_LEVELS, apply_rows, find};
 use super::patch::Jet;
 use super::{Affine, Sample, finish};
 use crate::mesh::edges::EdgeTable;
@@ -142,14 +142,6 @@ struct Region {
     face: u32,
 }
 
-fn find(root: &mut [u32], mut x: u32) -> u32 {
-    while root[x as usize] != x {
-        root[x as usize] = root[root[x as usize] as usize];
-        x = root[x as usize];
-    }
-    x
-}
-
 /// The faces of `pt` at the vertices of face `face` or their neighbours,
 /// recentred on the face; a vertex whose faces here form two fans (on the
 /// rim) becomes two. `None` if the table cannot be built.
@@ -213,17 +205,7 @@ fn extract(pt: &PolyTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u32)
 /// One Catmull-Clark level of `r` in f64.
 fn subdivide(r: &Region, opts: &Options) -> (PolyTable, Vec<DVec3>) {
     let (plan, fine) = record_one_catmark_level(&r.pt, opts.creasing);
-    let pos = plan
-        .offsets
-        .windows(2)
-        .map(|w| {
-            let (a, b) = (w[0] as usize, w[1] as usize);
-            let total: f64 = plan.weights[a..b].iter().map(|&x| f64::from(x)).sum();
-            let sum: DVec3 = (a..b).map(|i| r.pos[plan.indices[i] as usize] * f64::from(plan.weights[i])).sum();
-            sum / total
-        })
-        .collect();
-    (fine, pos)
+    (fine, apply_rows(&plan, &r.pos))
 }
 
 /// Whether the vertex of corner `c` of F keeps F a regular patch (module

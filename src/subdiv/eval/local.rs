@@ -44,6 +44,7 @@ use crate::mesh::sharpness::{INFINITE, Sharpness};
 use crate::mesh::{CornerTable, Mesh, n, p};
 use crate::subdiv::rules::features::with_boundary_corners;
 use crate::subdiv::tables::plan::record_one_level;
+use crate::subdiv::tables::rows::LevelPlan;
 use crate::subdiv::{Options, Scheme};
 use glam::{DVec3, Vec3};
 use std::borrow::Cow;
@@ -89,7 +90,8 @@ struct Region {
     face: u32,
 }
 
-fn find(root: &mut [u32], mut x: u32) -> u32 {
+/// The root of `x` in the union-find forest `root` (halving the path).
+pub(super) fn find(root: &mut [u32], mut x: u32) -> u32 {
     while root[x as usize] != x {
         root[x as usize] = root[root[x as usize] as usize];
         x = root[x as usize];
@@ -154,17 +156,21 @@ fn extract(ct: &CornerTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u3
 /// One Loop level of `r` in f64: the split table and its positions.
 fn subdivide(r: &Region, opts: &Options) -> (CornerTable, Vec<DVec3>) {
     let (plan, fine) = record_one_level(&r.ct, Scheme::Loop, opts);
-    let pos = plan
-        .offsets
+    (fine, apply_rows(&plan, &r.pos))
+}
+
+/// The rows of `plan` (a level whose old vertices have rows of their own)
+/// on `pos` in f64, each row's weights scaled to sum to one.
+pub(super) fn apply_rows(plan: &LevelPlan, pos: &[DVec3]) -> Vec<DVec3> {
+    plan.offsets
         .windows(2)
         .map(|w| {
             let (a, b) = (w[0] as usize, w[1] as usize);
             let total: f64 = plan.weights[a..b].iter().map(|&x| f64::from(x)).sum();
-            let sum: DVec3 = (a..b).map(|i| r.pos[plan.indices[i] as usize] * f64::from(plan.weights[i])).sum();
+            let sum: DVec3 = (a..b).map(|i| pos[plan.indices[i] as usize] * f64::from(plan.weights[i])).sum();
             sum / total
         })
-        .collect();
-    (fine, pos)
+        .collect()
 }
 
 /// The child of triangle `face` (of `nt`) holding `(u, v)` in the split's
