@@ -106,7 +106,9 @@ mod tests {
         let ink = (0..300).flat_map(|x| (40..60).map(move |y| (x, y))).filter(|&(x, y)| img.get_pixel(x, y).0[0] > 200);
         assert!(ink.count() > 20);
         // ticks: dark rows across the bar, 2 per side and zero for 2 isolines
-        let dark_rows = |img: &RgbaImage| (0..240).filter(|&y| img.get_pixel(x - 2, y).0[0] < 40).count();
+        // (the bar's rows: 48 to 191)
+        let dark_rows =
+            |img: &RgbaImage| (48..192).filter(|&y| img.get_pixel(x - 2, y).0[..3].iter().all(|&c| c < 40)).count();
         assert_eq!(dark_rows(&img), 0);
         draw(&mut img, 0.5, 2);
         assert_eq!(dark_rows(&img), 5);
