@@ -37,6 +37,12 @@ struct View {
     // zebra and isophotes (params.x 3 and 4): x = stripe count, y = the
     // light bars' angle from vertical on the screen (radians)
     stripes: vec4<f32>,
+    // curvature values (render/mod.rs: Look::values): x: 1 = the colour
+    // attribute holds (t, e, 0), t the value over the colour range's
+    // half-width and e 1 where evaluated (0: grey), mapped per pixel on the
+    // diverging map; y = isolines per side of zero (0: none), z = their
+    // width in pixels
+    contour: vec4<f32>,
 };
 
 @group(0) @binding(0) var<uniform> u: View;
@@ -117,6 +123,9 @@ fn shade(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, front: bool) -> 
         }
     }
     var front_base = color;
+    if u.contour.x > 0.5 {
+        front_base = value_color(color);
+    }
     if u.line.z > 0.5 {
         // Checker texture from the interpolated texture coordinates (8 x 8 squares per unit).
         let cell = floor(color.xy * 8.0);
@@ -179,6 +188,51 @@ fn stripes(n_world: vec3<f32>, v_world: vec3<f32>, isophote: bool, front: bool) 
     return select(ink * vec3<f32>(0.75, 0.6, 0.5), ink, front);
 }
 
+// Blue (-1) through white (0) to red (+1), linear RGB; the same map as
+// diverging() in src/subdiv/eval/color.rs.
+fn diverging(t: f32) -> vec3<f32> {
+    let s = clamp(t, -1.0, 1.0);
+    let white = vec3<f32>(0.92);
+    return select(mix(white, vec3<f32>(0.75, 0.06, 0.05), s), mix(white, vec3<f32>(0.05, 0.18, 0.75), -s), s < 0.0);
+}
+
+// The colour of a value attribute (t, e, 0) (see View.contour): mid grey
+// where not evaluated (e = 0), blending into the map across the triangles
+// that touch such a vertex; t / e is the mean of the evaluated corners.
+fn value_color(c: vec3<f32>) -> vec3<f32> {
+    let e = clamp(c.y, 0.0, 1.0);
+    return mix(vec3<f32>(0.45), diverging(c.x / max(e, 1e-6)), e);
+}
+
+// Isolines of the value over a shaded colour `c`: zero and N levels on
+// each side (N = contour.y), at every multiple of 1 / (N + 1) of the
+// range's half-width, short of its ends (where the clamped extremes would
+// draw ragged loops); the zero level twice as wide and darker. With
+// s = N + 1, the distance in pixels to the nearest level is
+// |ts - round(ts)| / fwidth(ts), so the lines keep their width in pixels
+// at any zoom and fade over about a pixel (no stairs). Only where all
+// three corners were evaluated (e = 1).
+fn isolines(c: vec3<f32>, value: vec3<f32>, front: bool) -> vec3<f32> {
+    if u.contour.x < 0.5 || u.contour.y < 0.5 || u.params.x > 2.5 {
+        return c;
+    }
+    let n = u.contour.y;
+    let v = value.x * (n + 1.0);
+    let w = max(fwidth(v), 1e-6);
+    let k = round(v);
+    let zero = k == 0.0;
+    let half = 0.5 * u.contour.z * select(1.0, 2.0, zero);
+    let d = abs(v - k) / w;
+    // where the levels crowd (grazing angles, steep values) closer than a
+    // few line widths they fade out instead of blackening the colours
+    let spacing = 1.0 / (w * u.contour.z);
+    let line = (1.0 - smoothstep(half - 0.5, half + 0.75, d)) * smoothstep(1.2, 2.4, spacing);
+    let shown = front && value.y > 0.999 && abs(k) <= n;
+    let a = select(0.0, line, shown);
+    let ink = c * select(0.25, 0.05, zero);
+    return mix(c, ink, a);
+}
+
 // The background: one triangle over the whole viewport, a quiet vertical
 // gradient (render/scene.rs: BACKGROUND_TOP to BACKGROUND_BOTTOM, linear).
 @vertex
@@ -196,7 +250,7 @@ fn fs_background(@builtin(position) p: vec4<f32>) -> @location(0) vec4<f32> {
 
 @fragment
 fn fs_mesh(i: MeshOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
-    return finish(shade(i.world, i.normal, i.color, front));
+    return finish(isolines(shade(i.world, i.normal, i.color, front), i.color, front));
 }
 
 // Lines are pulled towards the eye so they win the depth test against the
@@ -437,7 +491,7 @@ fn wire_fragment(world: vec3<f32>, normal: vec3<f32>, color: vec3<f32>, b: vec2<
         let ink = select(vec3<f32>(0.55, 0.5, 0.45), vec3<f32>(0.80, 0.84, 0.92), front);
         return vec4<f32>(finish(ink).rgb, a);
     }
-    let c = clamp(shade(world, normal, color, front), vec3<f32>(0.0), vec3<f32>(1.0));
+    let c = clamp(isolines(shade(world, normal, color, front), color, front), vec3<f32>(0.0), vec3<f32>(1.0));
     let lum = dot(c, vec3<f32>(0.2126, 0.7152, 0.0722));
     // darken lit faces, lighten faces in shadow
     let ink = select(c * 0.2, mix(c, vec3<f32>(0.75, 0.8, 0.9), 0.55), lum < 0.06);

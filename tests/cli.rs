@@ -506,3 +506,22 @@ fn eval_takes_catmull_clark_ptex_faces_in_the_unit_square() {
         run_fail(&["eval", model.to_str().unwrap(), points.to_str().unwrap(), out.to_str().unwrap(), "-s", "bilinear"]);
     assert!(err.contains("bilinear"), "{err}");
 }
+
+#[cfg(feature = "viewer")]
+#[test]
+fn isolines_take_a_count_from_1_to_50_on_a_curvature_colouring_only() {
+    let m = model_path("torus.obj");
+    let out = tmp("iso.png");
+    let (m, o) = (m.to_str().unwrap(), out.to_str().unwrap());
+    for bad in ["0", "-3", "ten", "2.5", "51", ""] {
+        let err = run_fail(&["render", m, o, "--color", "mean-curvature", "--isolines", bad]);
+        assert!(err.contains("--isolines") && err.contains("1 to 50"), "{bad}: {err}");
+    }
+    let err = run_fail(&["render", m, o, "--color", "shells", "--isolines", "4"]);
+    assert!(err.contains("curvature"), "{err}");
+    let err = run_fail(&["view", m, "--isolines", "4"]);
+    assert!(err.contains("curvature"), "{err}");
+    assert!(!out.exists(), "nothing is written on a refusal");
+    let help = bin().args(["render", "--help"]).output().unwrap();
+    assert!(String::from_utf8_lossy(&help.stdout).contains("--isolines <N>"));
+}

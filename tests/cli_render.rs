@@ -261,3 +261,90 @@ fn curvature_colours_a_torus_red_outside_blue_inside_with_a_colour_bar() {
     let r = run(&[&args[..], &["-s", "butterfly"]].concat()).unwrap();
     assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("loop"));
 }
+
+/// Pixels of `img` (off the colour bar at the right edge) much darker than
+/// the lightest opaque pixel within 4 px across or along them, with every
+/// pixel within 4 px opaque (off the silhouette, where shading may fall
+/// fast): the dark valley of a line, not a slope of the shading.
+fn line_pixels(img: &image::RgbaImage) -> Vec<(i64, i64)> {
+    let (w, h) = (i64::from(img.width()), i64::from(img.height()));
+    let lum = |x: i64, y: i64| {
+        let [r, g, b, a] = img.get_pixel(x as u32, y as u32).0.map(f64::from);
+        (a == 255.0).then_some(0.2126 * r + 0.7152 * g + 0.0722 * b)
+    };
+    let mut out = Vec::new();
+    for y in 4..h - 4 {
+        for x in 4..w - 60 {
+            let Some(l) = lum(x, y) else { continue };
+            let around: Option<Vec<f64>> =
+                (-4..=4).flat_map(|d| [lum(x + d, y), lum(x, y + d), lum(x + d, y + d), lum(x + d, y - d)]).collect();
+            let Some(around) = around else { continue };
+            if l < 0.5 * around.iter().fold(0.0f64, |a, &b| a.max(b)) {
+                out.push((x, y));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn isolines_trace_the_zero_of_gaussian_curvature_between_red_and_blue() {
+    let torus = model_path("torus.obj");
+    let render = |extra: &[&str]| {
+        let out = tmp(&format!("torus-iso{}.png", extra.join("")));
+        let args =
+            ["render", torus.to_str().unwrap(), out.to_str().unwrap(), "-n", "2", "--color", "gaussian-curvature"];
+        let r = run(&[&args[..], &["--size", "640x480", "--transparent"], extra].concat())?;
+        assert!(r.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&r.stderr));
+        Some(image::open(&out).unwrap().to_rgba8())
+    };
+    let Some(off) = render(&[]) else { return };
+    let (on, dense) = (render(&["--isolines", "2"]).unwrap(), render(&["--isolines", "6"]).unwrap());
+    // dark valleys: many with isolines, none without
+    let (lines_off, valleys_on) = (line_pixels(&off), line_pixels(&on));
+    assert!(lines_off.is_empty(), "no isolines asked, {} line pixels", lines_off.len());
+    assert!(valleys_on.len() > 300, "{} line pixels with 2 levels per side", valleys_on.len());
+    // darkened from the plain colouring (the same picture but for the
+    // lines): more with more levels
+    let darker = |img: &image::RgbaImage| {
+        let lum = |p: &image::Rgba<u8>| 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]);
+        let (w, h) = (i64::from(img.width()), i64::from(img.height()));
+        (0..h)
+            .flat_map(|y| (0..w - 60).map(move |x| (x, y)))
+            .filter(|&(x, y)| {
+                let (a, b) = (off.get_pixel(x as u32, y as u32), img.get_pixel(x as u32, y as u32));
+                a[3] == 255 && b[3] == 255 && lum(b) < lum(a) - 20.0
+            })
+            .collect::<Vec<_>>()
+    };
+    let (lines_on, lines_dense) = (darker(&on), darker(&dense));
+    eprintln!("darkened pixels: {} with 2 levels per side, {} with 6", lines_on.len(), lines_dense.len());
+    assert!(
+        lines_dense.len() * 2 > lines_on.len() * 3,
+        "6 levels {} vs 2 levels {}",
+        lines_dense.len(),
+        lines_on.len()
+    );
+    // K = 0 where the colours turn from red (outside, K > 0) to blue
+    // (around the hole): opaque pixels of the plain colouring redder than
+    // blue next to one bluer than red (the map is white at 0, the shading
+    // scales it). Each has a line pixel of the isolined picture within 3 px.
+    let sign = |x: i64, y: i64| {
+        let [r, _, b, a] = off.get_pixel(x as u32, y as u32).0.map(i32::from);
+        if a < 255 { 0 } else { (r - b).signum() }
+    };
+    let (w, h) = (i64::from(off.width()), i64::from(off.height()));
+    let near = |p: (i64, i64), set: &[(i64, i64)], d: i64| {
+        set.iter().any(|q| (q.0 - p.0).abs() <= d && (q.1 - p.1).abs() <= d)
+    };
+    let boundary: Vec<(i64, i64)> = (2..h - 2)
+        .flat_map(|y| (2..w - 60).map(move |x| (x, y)))
+        .filter(|&(x, y)| sign(x, y) == 1 && (-1..=1).any(|dy| (-1..=1).any(|dx| sign(x + dx, y + dy) == -1)))
+        .collect();
+    let traced = boundary.iter().filter(|&&p| near(p, &lines_on, 3)).count();
+    eprintln!("{traced} of {} red-blue boundary pixels by a line", boundary.len());
+    assert!(boundary.len() > 50, "the red-blue boundary: {} pixels", boundary.len());
+    assert!(traced * 10 >= boundary.len() * 9, "{traced} of {} boundary pixels by a line", boundary.len());
+    // and the zero line is there only: the plain colouring's boundary is not dark
+    assert!(!boundary.iter().any(|&p| near(p, &lines_off, 3)));
+}

@@ -114,6 +114,24 @@ impl std::str::FromStr for Coloring {
     }
 }
 
+/// Contour lines over the curvature colours (the panel's checkbox and
+/// slider, `--isolines N`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Isolines {
+    /// Drawn (with a curvature colouring).
+    pub(crate) on: bool,
+    /// Levels per side of zero, evenly spaced short of the colour range's
+    /// ends (see [`crate::render::Look::isolines`]),
+    /// 1..=[`crate::subdiv::eval::color::MAX_ISOLINES`].
+    pub(crate) count: u8,
+}
+
+impl Default for Isolines {
+    fn default() -> Self {
+        Isolines { on: false, count: 5 }
+    }
+}
+
 /// Everything the panel's display and surface controls (and their keys) set.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Display {
@@ -149,6 +167,8 @@ pub(crate) struct Display {
     pub(crate) wire_edges: WireEdges,
     /// The zebra's and the isophotes' stripes.
     pub(crate) stripes: Stripes,
+    /// Isolines over the curvature colours.
+    pub(crate) isolines: Isolines,
 }
 
 impl Display {
@@ -171,6 +191,7 @@ impl Display {
             click_creases: false,
             wire_edges: WireEdges::All,
             stripes: Stripes::default(),
+            isolines: Isolines::default(),
         }
     }
 
@@ -187,15 +208,21 @@ impl Display {
             sharp: self.sharp_edges,
             wire_edges: self.wire_edges,
             stripes: self.stripes,
+            values: false,
+            isolines: 0,
         }
     }
 
-    /// The look of the result viewport in the window, with the colouring.
+    /// The look of the result viewport in the window, with the colouring
+    /// (and the isolines of a curvature colouring, when on).
     pub(crate) fn look(&self) -> Look {
+        let values = matches!(self.coloring, Coloring::Curvature(_));
         Look {
             colors: self.coloring != Coloring::None,
             uv_checker: self.coloring == Coloring::Checker,
             materials: self.coloring == Coloring::Material,
+            values,
+            isolines: if values && self.isolines.on { self.isolines.count } else { 0 },
             ..self.plain_look()
         }
     }

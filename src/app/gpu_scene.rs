@@ -172,8 +172,12 @@ impl GpuScene {
         };
         self.result = mesh.map_err(|e| report.errors.push(e)).ok();
         let materials = self.result.as_ref().is_some_and(|m| m.materials().is_some());
-        if let (Some(m), Some(colors), false, false) = (&mut self.result, &result.colors, checker, materials) {
-            m.set_colors(device, colors);
+        if let (Some(m), false, false) = (&mut self.result, checker, materials) {
+            if let Some(values) = &result.values {
+                m.set_values(device, values);
+            } else if let Some(colors) = &result.colors {
+                m.set_colors(device, colors);
+            }
         }
         self.proxy = doc.model.proxy.as_ref().and_then(|p| upload(device, p).map_err(|e| report.errors.push(e)).ok());
         self.seen.result = result.version();

@@ -84,6 +84,9 @@ pub struct ViewOptions {
     pub repair: bool,
     /// Initial colouring; `None` is auto (see [`Coloring::initial`]).
     pub coloring: Option<Coloring>,
+    /// Start with this many isolines per side of zero over a curvature
+    /// colouring (`None`: off).
+    pub isolines: Option<u8>,
     /// Tag the edges sharper than this dihedral angle (degrees) on opening.
     pub crease_angle: Option<f32>,
     /// Start with the control mesh (the cage) shown.
@@ -287,6 +290,9 @@ impl App {
         let coloring = Coloring::initial(opts.coloring, doc.model.attrs.file.materials.is_some());
         doc.display =
             Display { turntable: opts.turntable, coloring, control: opts.control, ..Display::new(opts.wireframe) };
+        if let Some(count) = opts.isolines {
+            doc.display.isolines = display::Isolines { on: true, count };
+        }
         doc.reshade();
         if doc.request.level > 0 {
             doc.request_subdivision();

@@ -137,8 +137,27 @@ pub(crate) struct Shaded {
     pub(crate) shown: Shown,
     /// Per-vertex colours (with the colouring), linear RGB.
     pub(crate) colors: Option<Vec<Vec3>>,
+    /// Per-vertex values instead of colours (the curvature colourings):
+    /// each over `color_max`, NaN where not evaluated, coloured per pixel
+    /// on the diverging map (where the isolines are drawn).
+    pub(crate) values: Option<Vec<f32>>,
     /// Largest value behind the colours (levels, or a distance), for the legend.
     pub(crate) color_max: f32,
+}
+
+/// What a colouring gives each vertex of the result: colours or values
+/// (see [`Shaded`]) and the largest value behind them.
+#[derive(Default)]
+struct Painted {
+    colors: Option<Vec<Vec3>>,
+    values: Option<Vec<f32>>,
+    max: f32,
+}
+
+impl Painted {
+    fn colors(colors: Option<Vec<Vec3>>, max: f32) -> Painted {
+        Painted { colors, values: None, max }
+    }
 }
 
 /// Vertex colours and corner texture coordinates: of the control mesh (from
@@ -193,7 +212,7 @@ impl Model {
             raw: shown.clone(),
             made: Made::default(),
             proxy: None,
-            result: Versioned::new(Shaded { shown, colors: None, color_max: 0.0 }),
+            result: Versioned::new(Shaded { shown, colors: None, values: None, color_max: 0.0 }),
             attrs: Attrs::default(),
             picked: Versioned::new(None),
             probe: None,
@@ -211,15 +230,19 @@ impl Model {
             Some(_) => Shown { mesh: snapped(&self.raw, display, &self.made), ..self.raw.clone() },
             None => snapped_and_normals(&self.raw, display, &self.made),
         };
-        let (colors, color_max, error) = match result_colors(self, &shown.mesh, display.coloring) {
-            Ok((c, max)) => (c, max, None),
-            Err(e) => (None, 0.0, Some(e)),
+        let (painted, error) = match result_colors(self, &shown.mesh, display.coloring) {
+            Ok(p) => (p, None),
+            Err(e) => (Painted::default(), Some(e)),
         };
-        let (shown, colors) = match &creased {
-            Some(cr) => (creased_view(&self.raw, &shown, cr, display, &self.made), colors.map(|c| cr.extend(&c))),
-            None => (shown, colors),
+        let Painted { mut colors, mut values, max: color_max } = painted;
+        let shown = match &creased {
+            Some(cr) => {
+                (colors, values) = (colors.map(|c| cr.extend(&c)), values.map(|v| cr.extend(&v)));
+                creased_view(&self.raw, &shown, cr, display, &self.made)
+            }
+            None => shown,
         };
-        self.result.set(Shaded { shown, colors, color_max });
+        self.result.set(Shaded { shown, colors, values, color_max });
         error
     }
 
@@ -311,28 +334,28 @@ fn creased_view(raw: &Shown, shown: &Shown, cr: &Creased, display: &Display, mad
     Shown { mesh, normals: Arc::new(normals), topo: shown.topo.clone(), creased: None }
 }
 
-/// The per-vertex colours of `mesh` (the shown result of `model`) for a
-/// colouring, and the largest value behind them (for curvature, the
-/// half-width of the symmetric range).
-fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Result<(Option<Vec<Vec3>>, f32)> {
+/// The per-vertex colours (or values) of `mesh` (the shown result of
+/// `model`) for a colouring, and the largest value behind them (for
+/// curvature, the half-width of the symmetric range).
+fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Result<Painted> {
     use crate::mesh::inspect::colormap;
     use crate::subdiv::inspect::{creation_levels, displacement};
     let nv = mesh.positions.len();
     let (level, scheme) = (model.made.level, model.made.scheme);
     let ramp = |t: &[f32]| t.iter().map(|&t| Vec3::from(colormap(t))).collect::<Vec<_>>();
     Ok(match coloring {
-        Coloring::None | Coloring::Checker | Coloring::Material => (None, 0.0),
+        Coloring::None | Coloring::Checker | Coloring::Material => Painted::default(),
         Coloring::Shells => {
             let lv = creation_levels(&model.control.mesh, scheme, level, nv);
             let t: Vec<f32> = lv.iter().map(|&l| f32::from(l) / level.max(1) as f32).collect();
-            (Some(ramp(&t)), level as f32)
+            Painted::colors(Some(ramp(&t)), level as f32)
         }
-        Coloring::File => (model.attrs.refined.colors.clone().filter(|c| c.len() == nv), 1.0),
+        Coloring::File => Painted::colors(model.attrs.refined.colors.clone().filter(|c| c.len() == nv), 1.0),
         Coloring::Displacement => {
             let d = displacement(&model.control.mesh, mesh, scheme, level)?;
             let max = d.iter().fold(0.0f32, |a, &b| a.max(b));
             let t: Vec<f32> = d.iter().map(|&x| if max > 0.0 { x / max } else { 0.0 }).collect();
-            (Some(ramp(&t)), max)
+            Painted::colors(Some(ramp(&t)), max)
         }
         Coloring::Curvature(kind) => {
             use crate::subdiv::eval::{color, vertex_samples};
@@ -344,7 +367,7 @@ fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Resul
             let samples = vertex_samples(&model.control.mesh, mesh, level, &model.made.opts)?;
             let values: Vec<f64> = samples.iter().map(|s| kind.of(s)).collect();
             let range = color::symmetric_range(&values, color::PERCENTILE);
-            (Some(color::colors(&values, range)), range as f32)
+            Painted { colors: None, values: Some(color::normalized(&values, range)), max: range as f32 }
         }
     })
 }

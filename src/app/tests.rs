@@ -837,3 +837,56 @@ fn a_creased_result_is_picked_and_its_faces_have_their_exact_limit() {
     v.apply(Command::PickSurface(Ray { origin: top, dir: -Vec3::Y, target: Target::Result }));
     assert!(v.doc.status.notice.as_deref().is_some_and(|n| n.contains("animation")));
 }
+
+#[test]
+fn isolines_live_in_the_display_and_only_change_the_look() {
+    use crate::app::display::{Coloring, Isolines};
+    use crate::subdiv::eval::color::CurvatureKind;
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path("torus.obj")));
+    settle(&mut v);
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    set_display(&mut v, |d| d.coloring = Coloring::Curvature(CurvatureKind::Gaussian));
+    settle(&mut v);
+    let result = &v.doc.model.result;
+    let values = result.values.clone().expect("curvature values, coloured per pixel");
+    assert!(result.colors.is_none());
+    assert_eq!(values.len(), result.shown.mesh.positions.len());
+    assert!(values.iter().any(|&t| t > 0.2) && values.iter().any(|&t| t < -0.2), "K of both signs on a torus");
+    let (version, look) = (result.version(), v.doc.display.look());
+    assert!(look.values && look.colors);
+    assert_eq!(look.isolines, 0, "off by default");
+    set_display(&mut v, |d| d.isolines = Isolines { on: true, count: 7 });
+    assert_eq!(v.doc.model.result.version(), version, "turning isolines on does not recompute the curvature");
+    assert_eq!(v.doc.display.look().isolines, 7);
+    set_display(&mut v, |d| d.coloring = Coloring::Shells);
+    settle(&mut v);
+    let look = v.doc.display.look();
+    assert_eq!((look.values, look.isolines), (false, 0), "no isolines on colours that are not values");
+    assert!(v.doc.display.isolines.on, "the setting stays for the next curvature colouring");
+    // the GPU mirror draws them from the document: the same view with and
+    // without differs by dark pixels only
+    let mut off = match crate::render::Offscreen::new(200, 200) {
+        Ok(o) => o,
+        Err(e) if std::env::var_os("SUBDIV_REQUIRE_GPU").is_none() => return eprintln!("SKIPPED: {e}"),
+        Err(e) => panic!("SUBDIV_REQUIRE_GPU is set but {e}"),
+    };
+    set_display(&mut v, |d| d.coloring = Coloring::Curvature(CurvatureKind::Mean));
+    settle(&mut v);
+    let mut scene = super::gpu_scene::GpuScene::default();
+    scene.sync(&off.gpu.device, &off.gpu.queue, &v.doc, 0.05);
+    let mesh = scene.result.as_ref().expect("the result is uploaded");
+    let (lo, hi) = v.doc.model.control.mesh.bounds();
+    let cam = crate::render::Camera::framing(lo, hi, 1.0);
+    let with = off.render_one(cam, mesh, None, v.doc.display.look()).unwrap();
+    let plain = crate::render::Look { isolines: 0, ..v.doc.display.look() };
+    let without = off.render_one(cam, mesh, None, plain).unwrap();
+    let (mut darker, mut lighter) = (0, 0);
+    for (a, b) in with.pixels().zip(without.pixels()) {
+        let sum = |p: &image::Rgba<u8>| p.0[..3].iter().map(|&c| i32::from(c)).sum::<i32>();
+        darker += usize::from(sum(a) + 30 < sum(b));
+        lighter += usize::from(sum(a) > sum(b) + 30);
+    }
+    assert!(darker > 200 && lighter == 0, "{darker} pixels darkened by isolines, {lighter} lightened");
+}

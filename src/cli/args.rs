@@ -209,6 +209,14 @@ pub struct ColorArgs {
     /// or material (Kd and map_Kd of the MTL per group, through the refined UVs).
     #[arg(long, default_value = "auto")]
     pub color: String,
+    /// Draw isolines (contour lines) over a curvature colouring: the zero
+    /// level (wider, darker) and N levels on each side, evenly spaced
+    /// between 0 and the ends of the colour range (every 1/(N+1) of it).
+    /// 1..=50.
+    // a string checked by `isolines` (like --color), so a bad count is one
+    // line of error like every other refusal of the command
+    #[arg(long, value_name = "N", allow_hyphen_values = true)]
+    pub isolines: Option<String>,
 }
 
 impl ColorArgs {
@@ -222,11 +230,34 @@ impl ColorArgs {
             c => c.parse().map(Some).map_err(subdiv::Error::Usage),
         }
     }
+
+    /// The isolines asked for, refused unless `coloring` is a curvature
+    /// (the lines are contours of its value).
+    #[cfg(feature = "viewer")]
+    pub fn isolines(&self, coloring: Option<subdiv::app::display::Coloring>) -> Result<Option<u8>> {
+        use subdiv::app::display::Coloring;
+        let n = self.isolines.as_deref().map(parse_isolines).transpose().map_err(subdiv::Error::Usage)?;
+        match (n, coloring) {
+            (Some(_), Some(Coloring::Curvature(_))) | (None, _) => Ok(n),
+            (Some(_), _) => Err(subdiv::Error::Usage(
+                "--isolines draws contours of a curvature: add --color mean-curvature (or gaussian-, min-, max-curvature)"
+                    .into(),
+            )),
+        }
+    }
+}
+
+/// An isoline count, 1..=50 (`--isolines`).
+pub fn parse_isolines(s: &str) -> std::result::Result<u8, String> {
+    let most = subdiv::subdiv::eval::color::MAX_ISOLINES;
+    let bad = || format!("--isolines '{s}': expected a count of levels per side from 1 to {most}");
+    let n: u8 = s.trim().parse().map_err(|_| bad())?;
+    if (1..=most).contains(&n) { Ok(n) } else { Err(bad()) }
 }
 
 impl Default for ColorArgs {
     fn default() -> Self {
-        ColorArgs { color: "auto".into() }
+        ColorArgs { color: "auto".into(), isolines: None }
     }
 }
 
@@ -265,7 +296,7 @@ mod tests {
 
     #[test]
     fn color_none_is_asked_for_and_auto_is_not() {
-        let asked = |c: &str| ColorArgs { color: c.into() }.asked();
+        let asked = |c: &str| ColorArgs { color: c.into(), isolines: None }.asked();
         assert_eq!(asked("none").unwrap(), Some(Coloring::None));
         assert_eq!(asked("auto").unwrap(), None);
         assert_eq!(asked("material").unwrap(), Some(Coloring::Material));

@@ -231,9 +231,11 @@ mod gpu {
         ramp(lv.iter().map(|&l| f32::from(l) / levels.max(1) as f32))
     }
 
-    /// The paint of a colouring for `fine`, `levels` levels of `scheme` over `control`.
+    /// The paint of a colouring for `fine`, `levels` levels of `scheme`
+    /// over `control` (a curvature's with `isolines` per side of zero), and
+    /// the half-width of a curvature's colour range.
     fn paint(
-        coloring: Coloring,
+        (coloring, isolines): (Coloring, u8),
         control: &Mesh,
         fine: &Mesh,
         attrs: &Attributes,
@@ -276,7 +278,7 @@ mod gpu {
                 let samples = vertex_samples(control, fine, levels, opts)?;
                 let values: Vec<f64> = samples.iter().map(|s| kind.of(s)).collect();
                 let range = color::symmetric_range(&values, color::PERCENTILE);
-                return Ok((Paint::Colors(color::colors(&values, range)), Some(range)));
+                return Ok((Paint::Values { t: color::normalized(&values, range), isolines }, Some(range)));
             }
         };
         Ok((paint, None))
@@ -287,13 +289,15 @@ mod gpu {
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
         let s = &a.sub.scheme;
         let levels = a.sub.levels_or(0);
+        let asked = a.color.asked()?;
+        let isolines = a.color.isolines(asked)?.unwrap_or(0);
         // textures decoded: the materials are drawn
         let loaded = a.from.read(&a.input, true)?;
         let (mesh, attrs) = (loaded.mesh, loaded.attributes);
-        let coloring = Coloring::initial(a.color.asked()?, attrs.materials.is_some());
+        let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
-        let (paint, range) = paint(coloring, &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
+        let (paint, range) = paint((coloring, isolines), &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
         let (width, height) = a.size;
         let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
         let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
@@ -302,7 +306,7 @@ mod gpu {
             subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot, stripes };
         let mut img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
         if let Some(range) = range {
-            subdiv::render::colorbar::draw(&mut img, range);
+            subdiv::render::colorbar::draw(&mut img, range, isolines);
         }
         subdiv::render::save_png(&img, &a.output)
     }

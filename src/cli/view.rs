@@ -46,6 +46,7 @@ pub fn view(a: ViewArgs) -> Result<()> {
         return Err(Error::Usage("--screenshot needs --frames N (or press P in the window)".into()));
     }
     let s = &a.sub.scheme;
+    let coloring = a.color.asked()?;
     subdiv::app::run(subdiv::app::ViewOptions {
         model: a.model,
         scheme: s.scheme,
@@ -59,7 +60,8 @@ pub fn view(a: ViewArgs) -> Result<()> {
         turntable: a.turntable,
         repair: a.from.repair,
         // auto: the viewer shows a model's materials when it has them; none stays none
-        coloring: a.color.asked()?,
+        coloring,
+        isolines: a.color.isolines(coloring)?,
         crease_angle: s.features.sharp.crease_angle,
         control: a.control,
     })

@@ -56,8 +56,10 @@ fn text(img: &mut RgbaImage, text: &str, (right, top): (i64, i64), scale: i64, i
 }
 
 /// Draws the bar and its numbers (`-range`, `0`, `range`) at the right
-/// edge of `img`.
-pub fn draw(img: &mut RgbaImage, range: f64) {
+/// edge of `img`, with a tick left of the bar at each of `isolines` levels
+/// per side of zero (the levels of [`crate::render::Look::isolines`]; none
+/// for 0), the zero tick longer.
+pub fn draw(img: &mut RgbaImage, range: f64, isolines: u8) {
     let (w, h) = (i64::from(img.width()), i64::from(img.height()));
     let scale = (h / 240).clamp(1, 4);
     let (bar_w, bar_h) = (6 * scale, h * 3 / 5);
@@ -71,6 +73,15 @@ pub fn draw(img: &mut RgbaImage, range: f64) {
         let px = Rgba([srgb8(c.x), srgb8(c.y), srgb8(c.z), 255]);
         for x in 0..bar_w {
             img.put_pixel((x0 + x) as u32, (y0 + y) as u32, px);
+        }
+    }
+    let n = i64::from(isolines);
+    for k in (-n..=n).filter(|_| n > 0) {
+        // level k / (n + 1) of the range, from the bar's middle row
+        let y = y0 + bar_h * (n + 1 - k) / (2 * n + 2);
+        let len = if k == 0 { bar_w } else { bar_w / 2 };
+        for x in x0..x0 + len {
+            img.put_pixel(x as u32, y as u32, Rgba([10, 10, 10, 255]));
         }
     }
     let ink = Rgba([235, 235, 235, 255]);
@@ -87,12 +98,19 @@ mod tests {
     #[test]
     fn the_bar_runs_from_blue_to_red_with_its_numbers_beside_it() {
         let mut img = RgbaImage::from_pixel(320, 240, Rgba([0, 0, 0, 255]));
-        draw(&mut img, 0.5);
+        draw(&mut img, 0.5, 0);
         let x = 320 - 6 - 4 + 3;
         let (top, bottom) = (img.get_pixel(x, 50).0, img.get_pixel(x, 190).0);
         assert!(top[0] > top[2] + 80 && bottom[2] > bottom[0] + 80, "{top:?} {bottom:?}");
         // the numbers: light pixels left of the bar
         let ink = (0..300).flat_map(|x| (40..60).map(move |y| (x, y))).filter(|&(x, y)| img.get_pixel(x, y).0[0] > 200);
         assert!(ink.count() > 20);
+        // ticks: dark rows across the bar, 2 per side and zero for 2 isolines
+        // (the bar's rows: 48 to 191)
+        let dark_rows =
+            |img: &RgbaImage| (48..192).filter(|&y| img.get_pixel(x - 2, y).0[..3].iter().all(|&c| c < 40)).count();
+        assert_eq!(dark_rows(&img), 0);
+        draw(&mut img, 0.5, 2);
+        assert_eq!(dark_rows(&img), 5);
     }
 }

@@ -297,6 +297,17 @@ impl GpuMesh {
         self.data_group = std::sync::OnceLock::new();
     }
 
+    /// Sets per-vertex values shown on the curvature colours' diverging map
+    /// (with [`super::Look::values`]): each value over the colour range's
+    /// half-width, NaN where not evaluated (grey). They ride in the colour
+    /// slot as `(t, 1, 0)`, or `(0, 0, 0)` for NaN, so the shader can blend
+    /// the grey in and draw isolines only where every corner has a value.
+    pub fn set_values(&mut self, device: &wgpu::Device, t: &[f32]) {
+        let attr: Vec<Vec3> =
+            t.iter().map(|&t| if t.is_finite() { Vec3::new(t, 1.0, 0.0) } else { Vec3::ZERO }).collect();
+        self.set_colors(device, &attr);
+    }
+
     /// The storage bind group of the wire pipeline (made once), `None` when a
     /// buffer exceeds the device's storage binding size (the wire is then
     /// not drawn) or the mesh has no faces.

@@ -93,6 +93,14 @@ pub struct Look {
     pub wire_edges: WireEdges,
     /// The stripes of the zebra and isophote surfaces.
     pub stripes: Stripes,
+    /// The colour attribute holds values on the curvature colours' diverging
+    /// map (see [`GpuMesh::set_values`]), coloured per pixel.
+    pub values: bool,
+    /// With `values`: contour lines of the value at zero (wider and darker)
+    /// and at `isolines` levels on each side, every multiple of
+    /// `1 / (isolines + 1)` of the colour range's half-width short of its
+    /// ends; 0 draws none.
+    pub isolines: u8,
 }
 
 /// The edges a wireframe draws, by the level at which each was made (see
@@ -268,6 +276,16 @@ pub enum Paint {
     Material,
     /// Linear RGB colours, one per vertex.
     Colors(Vec<glam::Vec3>),
+    /// Values on the diverging map of the curvature colours, one per
+    /// vertex: each value over the range's half-width (NaN: not evaluated,
+    /// grey), coloured per pixel, with `isolines` contour lines per side of
+    /// zero (see [`Look::isolines`]).
+    Values {
+        /// Value over the range's half-width per vertex.
+        t: Vec<f32>,
+        /// Contour lines per side of zero; 0 draws none.
+        isolines: u8,
+    },
     /// A checker through texture coordinates, one per corner.
     Checker(Vec<glam::Vec2>),
     /// The material groups (one material per triangle), each drawn in its
@@ -302,6 +320,12 @@ pub fn render_image_painted(
             let mut gm = off.upload(mesh)?;
             gm.set_colors(&off.gpu.device, c);
             look.colors = true;
+            gm
+        }
+        Paint::Values { t, isolines } => {
+            let mut gm = off.upload(mesh)?;
+            gm.set_values(&off.gpu.device, t);
+            (look.colors, look.values, look.isolines) = (true, true, *isolines);
             gm
         }
         Paint::Checker(uv) => {

@@ -93,6 +93,7 @@ struct ViewUniform {
     wire: [f32; 4],
     viewport: [f32; 4],
     stripes: [f32; 4],
+    contour: [f32; 4],
 }
 
 const _: () = assert!(std::mem::size_of::<ViewUniform>().is_multiple_of(16), "uniforms are arrays of vec4");
@@ -173,6 +174,8 @@ const STYLE_CONTROL_DENSE: usize = 5;
 pub const WIRE_WIDTH: f32 = 1.5;
 /// Radius of the control cage's vertex dots in pixels (at scale 1).
 pub const DOT_RADIUS: f32 = 3.0;
+/// Width of isolines in pixels (at scale 1); the zero level's is twice it.
+pub const ISOLINE_WIDTH: f32 = 1.25;
 /// How strongly a wire line darkens the shading under it (0..1).
 pub const WIRE_STRENGTH: f32 = 0.8;
 
@@ -225,6 +228,9 @@ impl Renderer {
         let aspect = d.rect[2] / d.rect[3].max(1.0);
         let cam = &d.camera;
         let colors = d.mesh.is_some_and(|m| shown_colors(m, d.look).is_some() || shown_materials(m, d.look).is_some());
+        // values only ride in a colour buffer the look shows (never under materials)
+        let values = d.look.values
+            && d.mesh.is_some_and(|m| shown_colors(m, d.look).is_some() && shown_materials(m, d.look).is_none());
         ViewUniform {
             proj: cam.proj(aspect).to_cols_array_2d(),
             view: cam.view().to_cols_array_2d(),
@@ -255,6 +261,12 @@ impl Renderer {
             ],
             viewport: [d.rect[2], d.rect[3], DOT_RADIUS * self.pixel_scale, d.rect[1]],
             stripes: [f32::from(d.look.stripes.count.max(1)), f32::from(d.look.stripes.angle).to_radians(), 0.0, 0.0],
+            contour: [
+                f32::from(values),
+                f32::from(d.look.isolines.min(crate::subdiv::eval::color::MAX_ISOLINES)),
+                ISOLINE_WIDTH * self.pixel_scale,
+                0.0,
+            ],
         }
     }
 

@@ -27,7 +27,10 @@ pub(crate) fn tools_section(
             ui.selectable_value(&mut display.coloring, c, c.name());
         }
     });
-    coloring_legend(ui, doc, display.coloring);
+    if let Coloring::Curvature(_) = display.coloring {
+        isolines_control(ui, display);
+    }
+    coloring_legend(ui, doc, display);
     let mut out = Vec::new();
     ui.horizontal(|ui| {
         ui.add(egui::DragValue::new(&mut panel.smooth_steps).range(1..=200).suffix(" steps"));
@@ -53,11 +56,25 @@ pub(crate) fn tools_section(
     out
 }
 
+/// The isolines over a curvature colouring: on or off, and how many per
+/// side of zero.
+fn isolines_control(ui: &mut egui::Ui, display: &mut Display) {
+    let iso = &mut display.isolines;
+    ui.horizontal(|ui| {
+        ui.checkbox(&mut iso.on, "Isolines").on_hover_text(
+            "contour lines of the curvature at evenly spaced levels of the colour range; the zero level is the wider line",
+        );
+        let slider = egui::Slider::new(&mut iso.count, 1..=crate::subdiv::eval::color::MAX_ISOLINES).suffix(" per side");
+        ui.add_enabled(iso.on, slider).on_hover_text("levels evenly spaced between 0 and each end of the range");
+    });
+}
+
 /// What the colours mean, or why there are none.
-fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, coloring: Coloring) {
+fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, display: &Display) {
     let m = &doc.model;
+    let coloring = display.coloring;
     if let Coloring::Curvature(_) = coloring {
-        curvature_bar(ui, m.result.color_max);
+        curvature_bar(ui, m.result.color_max, display.look().isolines);
         return;
     }
     let text = match coloring {
@@ -83,8 +100,9 @@ fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, coloring: Coloring) {
 }
 
 /// The curvature colours' bar: the diverging map from `-range` (blue)
-/// through 0 (white) to `range` (red), with its numbers.
-fn curvature_bar(ui: &mut egui::Ui, range: f32) {
+/// through 0 (white) to `range` (red), with its numbers and a tick at each
+/// of `isolines` levels per side (none for 0).
+fn curvature_bar(ui: &mut egui::Ui, range: f32, isolines: u8) {
     use crate::subdiv::eval::color::diverging;
     let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width().min(220.0), 12.0), egui::Sense::hover());
     let steps = 48;
@@ -98,6 +116,13 @@ fn curvature_bar(ui: &mut egui::Ui, range: f32) {
             egui::pos2(x0 + rect.width() / steps as f32 + 0.5, rect.bottom()),
         );
         ui.painter().rect_filled(r, 0.0, egui::Color32::from_rgb(srgb(c.x), srgb(c.y), srgb(c.z)));
+    }
+    let n = i32::from(isolines);
+    for k in (-n..=n).filter(|_| n > 0) {
+        let x = rect.center().x + rect.width() * 0.5 * k as f32 / (n + 1) as f32;
+        let (width, top) = if k == 0 { (2.0, rect.top()) } else { (1.0, rect.center().y) };
+        let stroke = egui::Stroke::new(width, egui::Color32::from_gray(20));
+        ui.painter().line_segment([egui::pos2(x, top), egui::pos2(x, rect.bottom())], stroke);
     }
     ui.horizontal(|ui| {
         ui.label(RichText::new(format!("{:.3e}", -range)).small());

@@ -10,6 +10,10 @@ use glam::Vec3;
 /// The default clamp of [`symmetric_range`]: the 2nd and 98th percentiles.
 pub const PERCENTILE: f64 = 2.0;
 
+/// The most isolines per side of zero over the curvature colours
+/// (`--isolines`, the viewer's slider).
+pub const MAX_ISOLINES: u8 = 50;
+
 /// A curvature to colour by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CurvatureKind {
@@ -81,6 +85,25 @@ pub fn colors(values: &[f64], range: f64) -> Vec<Vec3> {
         .collect()
 }
 
+/// Each value over `range` (the half-width of the map, so `[-1, 1]` spans
+/// it; values beyond it stay beyond), for a renderer that colours per pixel
+/// and draws isolines; NaN (not evaluated) stays NaN. A zero range maps
+/// every value to 0, as [`colors`] paints it white.
+pub fn normalized(values: &[f64], range: f64) -> Vec<f32> {
+    values
+        .iter()
+        .map(|&x| {
+            if x.is_nan() {
+                f32::NAN
+            } else if range > 0.0 {
+                (x / range) as f32
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -97,5 +120,9 @@ mod tests {
         assert!(r > 0.6 && r < 0.7, "{r}");
         let c = colors(&v, r);
         assert_eq!(c[v.len() - 1], Vec3::splat(0.45));
+        let t = normalized(&v, r);
+        assert!(t[v.len() - 1].is_nan() && t[v.len() - 2] > 1e6, "NaN kept, outliers not clamped");
+        assert!((f64::from(t[0]) + 0.3 / r).abs() < 1e-6);
+        assert_eq!(normalized(&[2.0], 0.0), [0.0]);
     }
 }
