@@ -6,15 +6,19 @@ Debian's libosd-dev 3.5.0):
 
     python3 scripts/osd-loop-eval-fixtures.py [/tmp/peers/osd_loop_eval]
 
-Cases (all closed triangle meshes; points only on REGULAR faces, i.e. faces whose three
-vertices are interior with valence 6, where OpenSubdiv's patch is one quartic box spline,
-PatchDescriptor::LOOP, at depth 0):
+Cases (points only on REGULAR faces, i.e. faces whose three vertices are interior with
+valence 6 or on the border with 4 neighbours (three faces), where OpenSubdiv's patch is one
+quartic box spline, PatchDescriptor::LOOP, at depth 0, with phantom points beyond a border):
   torus          models/torus.obj (bundled, 512 vertices, 1024 triangles, all valence 6; not copied)
   torus_sheared  a 12 x 9 torus grid with R = 2, r = 0.6, the rows sheared by a quarter cell
                  per ring and the vertices jittered (fixed seed): all valence 6, uneven triangles
   icosphere      an icosahedron split 1:4 twice, projected on the ellipsoid with semi-axes
                  (1.3, 1, 0.8) and jittered: 12 valence-5 vertices (the surface is irregular),
                  points only on the 260 of 320 faces that have no valence-5 vertex
+  open_grid      a 9 x 7 vertex grid, triangulated with every diagonal the same way, bumped
+                 and jittered: an open mesh whose border vertices have 4 neighbours (but the
+                 corners), points on the faces without a corner vertex (the border faces
+                 among them are OpenSubdiv's regular boundary patches)
 For each: CASE.obj (generated cases only), CASE.points.txt (200 points "f u v", fixed seed,
 uniform in the triangle, u, v, 1-u-v > 1e-3 and none of them a multiple of 1/1024), and
 CASE.osd.txt, written by `osd_loop_eval eval MESH CASE.points.txt OUT` (isolation level 4):
@@ -65,19 +69,40 @@ def write_obj(path, note, verts, faces):
 
 
 def neighbours(verts, faces):
-    """1-ring of each vertex; asserts a closed manifold (each edge in exactly two faces)."""
+    """1-ring of each vertex and the border neighbours of each border vertex; asserts a
+    consistently oriented manifold (each directed edge once, at most two faces an edge)."""
     edges = {}
     for fc in faces:
         for k in range(3):
             a, b = fc[k], fc[(k + 1) % 3]
             edges[(a, b)] = edges.get((a, b), 0) + 1
-    for (a, b), c in edges.items():
-        assert c == 1 and edges.get((b, a)) == 1, "not a closed, consistently oriented manifold"
+    assert all(c == 1 for c in edges.values()), "not a consistently oriented manifold"
     nb = [set() for _ in verts]
+    border = [[] for _ in verts]
     for a, b in edges:
         nb[a].add(b)
         nb[b].add(a)
-    return nb
+        if (b, a) not in edges:
+            border[a].append(b)
+            border[b].append(a)
+    return nb, border
+
+
+def open_grid():
+    rng = random.Random(4242)
+    n, m = 9, 7
+    verts = []
+    for j in range(m):
+        for i in range(n):
+            x, y = i + rng.uniform(-0.15, 0.15), j + rng.uniform(-0.15, 0.15)
+            verts.append((x, y, 0.6 * math.sin(0.7 * x) * math.cos(0.9 * y) + rng.uniform(-0.05, 0.05)))
+    idx = lambda i, j: j * n + i
+    faces = []
+    for j in range(m - 1):
+        for i in range(n - 1):
+            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+            faces += [(a, b, c), (a, c, d)]
+    return verts, faces
 
 
 def torus_sheared():
@@ -132,9 +157,13 @@ def icosphere():
     return verts, faces
 
 
-def limit_positions(verts, nb):
+def limit_positions(verts, nb, border):
     out = []
     for i, p in enumerate(verts):
+        if border[i]:
+            a, b = border[i]
+            out.append(tuple(2 / 3 * p[k] + (verts[a][k] + verts[b][k]) / 6 for k in range(3)))
+            continue
         n = len(nb[i])
         beta = (5 / 8 - (3 / 8 + math.cos(2 * math.pi / n) / 4) ** 2) / n
         chi = 1 / (n + 3 / (8 * beta))
@@ -155,21 +184,24 @@ def run_eval(mesh, pts, level=LEVEL):
 
 
 def check(case, mesh, verts, faces, nb, regular_faces, pts):
-    # (u, v) convention: corners of every face against the limit positions
+    # (u, v) convention: corners of every face against the limit positions (on an open mesh
+    # only the regular faces: OpenSubdiv's end caps at irregular border vertices approximate)
+    checked = regular_faces if any(nb[1]) else range(len(faces))
     corner_pts = [(fi, u, v) for fi in range(len(faces)) for u, v in ((0.0, 0.0), (1.0, 0.0), (0.0, 1.0))]
     _, rows = run_eval(mesh, corner_pts)
     with tempfile.TemporaryDirectory() as d:
         lf = os.path.join(d, "l.txt")
         subprocess.check_call([exe, "limit", mesh, lf], cwd=root)
         osd_lim = [tuple(map(float, l.split())) for l in open(lf)]
-    mask_lim = limit_positions(verts, nb)
+    mask_lim = limit_positions(verts, nb[0], nb[1])
     e_osd = e_mask = 0.0
-    for fi, fc in enumerate(faces):
+    for fi in checked:
+        fc = faces[fi]
         for k in range(3):
             p = rows[3 * fi + k][:3]
             e_osd = max(e_osd, max(abs(a - b) for a, b in zip(p, osd_lim[fc[k]])))
             e_mask = max(e_mask, max(abs(a - b) for a, b in zip(p, mask_lim[fc[k]])))
-    print(f"{case}: corners (0,0),(1,0),(0,1) of all {len(faces)} faces vs limit of c0,c1,c2: "
+    print(f"{case}: corners (0,0),(1,0),(0,1) of {len(checked)} of {len(faces)} faces vs limit of c0,c1,c2: "
           f"max |diff| {e_osd:.3g} (PrimvarRefiner::Limit), {e_mask:.3g} (limit mask formula)")
     assert e_osd < 1e-12 and e_mask < 1e-12
     # derivatives against central differences
@@ -215,7 +247,8 @@ def main():
     os.makedirs(outdir, exist_ok=True)
     cases = [("torus", "models/torus.obj", None, 1),
              ("torus_sheared", None, torus_sheared(), 2),
-             ("icosphere", None, icosphere(), 3)]
+             ("icosphere", None, icosphere(), 3),
+             ("open_grid", None, open_grid(), 4)]
     for case, mesh, gen, seed in cases:
         if gen is not None:
             verts, faces = gen
@@ -224,12 +257,15 @@ def main():
                       {"torus_sheared": "a 12 x 9 triangulated torus, R = 2, r = 0.6, rings sheared by a quarter "
                                         "cell and jittered: closed, every vertex valence 6",
                        "icosphere": "an icosahedron split 1:4 twice, on the ellipsoid (1.3, 1, 0.8), jittered: "
-                                    "closed, 12 valence-5 vertices, the rest valence 6"}[case],
+                                    "closed, 12 valence-5 vertices, the rest valence 6",
+                       "open_grid": "a 9 x 7 grid, every diagonal the same way, bumped and jittered: open, "
+                                    "interior valence 6, border vertices 4 neighbours but the corners"}[case],
                       verts, faces)
         verts, faces = read_obj(os.path.join(root, mesh))
         nb = neighbours(verts, faces)
-        val = [len(s) for s in nb]
-        regular = [fi for fi, fc in enumerate(faces) if all(val[c] == 6 for c in fc)]
+        val = [len(s) for s in nb[0]]
+        ok = [val[v] == (4 if nb[1][v] else 6) for v in range(len(verts))]
+        regular = [fi for fi, fc in enumerate(faces) if all(ok[c] for c in fc)]
         print(f"{case}: {len(verts)} vertices, {len(faces)} faces, valences "
               f"{sorted(set(val))}, {len(regular)} regular faces")
         pts = make_points(seed, regular)

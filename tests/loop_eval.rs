@@ -410,6 +410,8 @@ fn regular_patches_equal_opensubdivs() {
         ("torus", model_path("torus.obj")),
         ("torus_sheared", dir.join("torus_sheared.obj")),
         ("icosphere", dir.join("icosphere.obj")),
+        // an open grid: the border faces are OpenSubdiv's regular boundary patches
+        ("open_grid", dir.join("open_grid.obj")),
     ] {
         let (mesh, _) = load_with_attributes(&mesh_path);
         let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
