@@ -81,10 +81,16 @@ impl Poly {
     /// (checked by the caller).
     pub(crate) fn eval(&self, p: usize, (u, v): (f64, f64), second: bool) -> Sample {
         let (f, corner) = self.ptex[p];
+        let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
+        // a quad already regular needs no region
+        if corner == QUAD
+            && let Some(sample) = try_patch(&self.pt, &self.pos, (f, DVec3::ZERO), (st, jac), second)
+        {
+            return sample;
+        }
         let Some(mut region) = extract(&self.pt, |x| self.pos[x as usize], DVec3::ZERO, f) else {
             return Sample::NAN;
         };
-        let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
         if corner != QUAD {
             // the sub-face is the corner's quad of the first level
             let (fine, pos) = subdivide(&region, &self.opts);
@@ -93,7 +99,7 @@ impl Poly {
             region = next;
         }
         for _ in 0..MAX_LEVELS {
-            if let Some(sample) = try_patch(&region, st, jac, second) {
+            if let Some(sample) = try_patch(&region.pt, &region.pos, (region.face, region.origin), (st, jac), second) {
                 return sample;
             }
             let (fine, pos) = subdivide(&region, &self.opts);
@@ -358,14 +364,22 @@ fn bspline(pts: &[DVec3; 16], s: f64, t: f64) -> Jet {
     Jet { p: sum(0, 0), ds: sum(1, 0), dt: sum(0, 1), dss: sum(2, 0), dst: sum(1, 1), dtt: sum(0, 2) }
 }
 
-/// The regular patch of region `r` at `st` if F is one.
-fn try_patch(r: &Region, st: (f64, f64), jac: [[f64; 2]; 2], second: bool) -> Option<Sample> {
-    if !r.pt.face_corners(r.face).all(|c| regular(&r.pt, c)) {
+/// The regular patch of `face` of `pt` (points `pos` relative to
+/// `origin`) at `st` if the face is one, `jac` the derivative of `st` with
+/// respect to the ptex face's `(u, v)`.
+fn try_patch(
+    pt: &PolyTable,
+    pos: &[DVec3],
+    (face, origin): (u32, DVec3),
+    (st, jac): ((f64, f64), [[f64; 2]; 2]),
+    second: bool,
+) -> Option<Sample> {
+    if !pt.face_corners(face).all(|c| regular(pt, c)) {
         return None;
     }
-    let pts = grid(&r.pt, &r.pos, r.face)?;
+    let pts = grid(pt, pos, face)?;
     let mut sample = finish(&bspline(&pts, st.0, st.1), DVec3::ZERO, 1.0, jac, 1.0, second);
-    sample.position += r.origin;
+    sample.position += origin;
     Some(sample)
 }
 

@@ -259,7 +259,7 @@ fn add(a: Coord, b: Coord, r: Coord) -> Coord {
 /// of F; a point missing beyond such an edge `(a, b)` of the triangle
 /// `(a, b, r)` is the phantom `a + b - r`. `None` if the faces do not lie
 /// on the lattice or a point is missing.
-fn lattice_support(ct: &CornerTable, pos: &[DVec3], face: u32) -> Option<[DVec3; 12]> {
+fn lattice_support(ct: &CornerTable, pos: impl Fn(u32) -> DVec3, face: u32) -> Option<[DVec3; 12]> {
     let corners = [ct.vtx(3 * face), ct.vtx(3 * face + 1), ct.vtx(3 * face + 2)];
     let mut coord: Vec<(u32, Coord)> = vec![(corners[0], (0, 0)), (corners[1], (1, 0)), (corners[2], (1, 1))];
     let mut phantoms: Vec<(Coord, DVec3)> = Vec::new();
@@ -272,7 +272,7 @@ fn lattice_support(ct: &CornerTable, pos: &[DVec3], face: u32) -> Option<[DVec3;
             let x = add(ca, cb, cr);
             let touches = corners.contains(&a) || corners.contains(&b);
             if touches && ct.edge_sharpness(c) > 0.0 {
-                phantoms.push((x, pos[a as usize] + pos[b as usize] - pos[r as usize]));
+                phantoms.push((x, pos(a) + pos(b) - pos(r)));
                 continue;
             }
             let Some(o) = ct.o(c) else { continue };
@@ -293,19 +293,34 @@ fn lattice_support(ct: &CornerTable, pos: &[DVec3], face: u32) -> Option<[DVec3;
     let mut out = [DVec3::ZERO; 12];
     for (o, &want) in out.iter_mut().zip(&SUPPORT) {
         *o = match coord.iter().find(|x| x.1 == want) {
-            Some(&(v, _)) => pos[v as usize],
+            Some(&(v, _)) => pos(v),
             None => phantoms.iter().find(|x| x.0 == want)?.1,
         };
     }
     Some(out)
 }
 
-/// Rules 1 and 2 of the module docs on region `r` at the point `st`, `jac`
+/// Where rules 1 and 2 look: a table, its points (relative to `origin`) and
+/// the point's face.
+struct At<'a, P: Fn(u32) -> DVec3> {
+    ct: &'a CornerTable,
+    pos: P,
+    origin: DVec3,
+    face: u32,
+}
+
+/// Rules 1 and 2 of the module docs at the point `st` of `r`'s face, `jac`
 /// the derivative of `st` with respect to the control face's `(u, v)`.
-fn try_patch(r: &Region, st: (f64, f64), jac: [[f64; 2]; 2], tables: &Tables, second: bool) -> Option<Sample> {
-    let kinds = [0, 1, 2].map(|i| kind(&r.ct, 3 * r.face + i));
+fn try_patch<P: Fn(u32) -> DVec3>(
+    r: &At<P>,
+    st: (f64, f64),
+    jac: [[f64; 2]; 2],
+    tables: &Tables,
+    second: bool,
+) -> Option<Sample> {
+    let kinds = [0, 1, 2].map(|i| kind(r.ct, 3 * r.face + i));
     let mut sample = if kinds.iter().all(|k| matches!(k, Kind::Regular | Kind::Crease)) {
-        let pts = lattice_support(&r.ct, &r.pos, r.face)?;
+        let pts = lattice_support(r.ct, &r.pos, r.face)?;
         let jet = patch::jet(&tables.spline.basis, &pts, st.0, st.1, second);
         finish(&jet, DVec3::ZERO, 1.0, jac, 1.0, second)
     } else {
@@ -316,7 +331,7 @@ fn try_patch(r: &Region, st: (f64, f64), jac: [[f64; 2]; 2], tables: &Tables, se
         }
         let table = tables.valences.get(k as usize)?.as_ref()?;
         let mut pts = Vec::with_capacity(k as usize + 6);
-        walk(&r.ct, 3 * r.face + i as u32, |v| pts.push(r.pos[v as usize]));
+        walk(r.ct, 3 * r.face + i as u32, |v| pts.push((r.pos)(v)));
         let mut tmp = vec![DVec3::ZERO; pts.len()];
         let first = Affine { j: jac, b: [0.0; 2] };
         near_vertex(table, (&mut pts, &mut tmp), st, (rotation(i), first), second)
@@ -329,11 +344,23 @@ fn try_patch(r: &Region, st: (f64, f64), jac: [[f64; 2]; 2], tables: &Tables, se
 /// caller) by local subdivision.
 pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), second: bool) -> Sample {
     let control = |v: u32| base.pos[v as usize].as_dvec3();
-    let Some(mut region) = extract(&base.ct, control, DVec3::ZERO, f) else { return Sample::NAN };
     let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
-    for _ in 0..MAX_LEVELS {
-        if let Some(sample) = try_patch(&region, st, jac, tables, second) {
-            return sample;
+    // a face already regular needs no region
+    let at = At { ct: &base.ct, pos: control, origin: DVec3::ZERO, face: f };
+    if let Some(sample) = try_patch(&at, st, jac, tables, second) {
+        return sample;
+    }
+    let Some(mut region) = extract(&base.ct, control, DVec3::ZERO, f) else { return Sample::NAN };
+    for level in 0..=MAX_LEVELS {
+        if level > 0 {
+            let at =
+                At { ct: &region.ct, pos: |v: u32| region.pos[v as usize], origin: region.origin, face: region.face };
+            if let Some(sample) = try_patch(&at, st, jac, tables, second) {
+                return sample;
+            }
+        }
+        if level == MAX_LEVELS {
+            break;
         }
         let (fine, pos) = subdivide(&region, &base.opts);
         let (child, map) = child_in_split(region.face, region.ct.num_triangles() as u32, st);
@@ -365,7 +392,7 @@ mod tests {
         let f = (0..ct.num_triangles() as u32).find(|&f| (0..3).all(|i| ct.valence(ct.vtx(3 * f + i)) == 6)).unwrap();
         let mut want = Vec::new();
         walk(ct, 3 * f, |v| want.push(pos[v as usize]));
-        let got = lattice_support(ct, &pos, f).unwrap();
+        let got = lattice_support(ct, |v| pos[v as usize], f).unwrap();
         assert_eq!(got.to_vec(), want);
     }
 
