@@ -258,26 +258,33 @@ fn on_edge(corners: [u32; 3], a: u32, b: u32, t: f64) -> (f64, f64) {
     (w[1], w[2])
 }
 
+/// Both faces of every interior edge of `mesh` at three points of the edge:
+/// `check(c, x, y)` with `c` a corner facing the edge and the two samples.
+fn across_edges(mesh: &Mesh, ev: &Evaluator, mut check: impl FnMut(u32, &Sample, &Sample)) {
+    let ct = &mesh.ct;
+    let corners = |f: u32| [ct.vtx(3 * f), ct.vtx(3 * f + 1), ct.vtx(3 * f + 2)];
+    for c in 0..ct.num_corners() as u32 {
+        let Some(o) = ct.o(c) else { continue };
+        let (f, g) = (c / 3, o / 3);
+        let (a, b) = (ct.vtx(subdiv::mesh::n(c)), ct.vtx(subdiv::mesh::p(c)));
+        for t in [0.13, 0.5, 0.77] {
+            let (uf, vf) = on_edge(corners(f), a, b, t);
+            let (ug, vg) = on_edge(corners(g), a, b, t);
+            check(c, &ev.eval(f as usize, uf, vf).unwrap(), &ev.eval(g as usize, ug, vg).unwrap());
+        }
+    }
+}
+
 #[test]
 fn patches_meet_with_one_tangent_plane_and_one_curvature() {
     for (name, mesh) in closed_meshes() {
         let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
-        let ct = &mesh.ct;
-        let corners = |f: u32| [ct.vtx(3 * f), ct.vtx(3 * f + 1), ct.vtx(3 * f + 2)];
-        for c in 0..ct.num_corners() as u32 {
-            let Some(o) = ct.o(c) else { continue };
-            let (f, g) = (c / 3, o / 3);
-            let (a, b) = (ct.vtx(subdiv::mesh::n(c)), ct.vtx(subdiv::mesh::p(c)));
-            for t in [0.13, 0.5, 0.77] {
-                let (uf, vf) = on_edge(corners(f), a, b, t);
-                let (ug, vg) = on_edge(corners(g), a, b, t);
-                let (x, y) = (ev.eval(f as usize, uf, vf).unwrap(), ev.eval(g as usize, ug, vg).unwrap());
-                assert!((x.position - y.position).length() < 1e-12, "{name}: edge {a}-{b} at {t}");
-                assert!(x.normal.dot(y.normal) > 1.0 - 1e-12, "{name}: normals across edge {a}-{b}");
-                // Loop is C2 away from extraordinary vertices: so is the curvature
-                assert!((x.mean - y.mean).abs() < 1e-6 * (1.0 + x.mean.abs()), "{name}: H {} {}", x.mean, y.mean);
-            }
-        }
+        across_edges(&mesh, &ev, |c, x, y| {
+            assert!((x.position - y.position).length() < 1e-12, "{name}: edge of corner {c}");
+            assert!(x.normal.dot(y.normal) > 1.0 - 1e-12, "{name}: normals across the edge of corner {c}");
+            // Loop is C2 away from extraordinary vertices: so is the curvature
+            assert!((x.mean - y.mean).abs() < 1e-6 * (1.0 + x.mean.abs()), "{name}: H {} {}", x.mean, y.mean);
+        });
     }
 }
 
@@ -457,23 +464,13 @@ fn featured_faces_have_their_derivatives_and_meet_their_neighbours() {
         let ev = Evaluator::new(&mesh, Scheme::Loop, &opts).unwrap();
         let size = f64::from(scale(&mesh));
         check_derivatives(&ev, &random_points(&mesh, 2, 17), size, &name);
-        let ct = &mesh.ct;
-        let corners = |f: u32| [ct.vtx(3 * f), ct.vtx(3 * f + 1), ct.vtx(3 * f + 2)];
-        for c in 0..ct.num_corners() as u32 {
-            let Some(o) = ct.o(c) else { continue };
-            let (f, g) = (c / 3, o / 3);
-            let (a, b) = (ct.vtx(subdiv::mesh::n(c)), ct.vtx(subdiv::mesh::p(c)));
-            for t in [0.13, 0.5, 0.77] {
-                let (uf, vf) = on_edge(corners(f), a, b, t);
-                let (ug, vg) = on_edge(corners(g), a, b, t);
-                let (x, y) = (ev.eval(f as usize, uf, vf).unwrap(), ev.eval(g as usize, ug, vg).unwrap());
-                assert!((x.position - y.position).length() < 1e-9 * size, "{name}: edge {a}-{b} at {t}");
-                // a crease that never decays is a fold; every other edge is smooth in the limit
-                if ct.edge_sharpness(c) < subdiv::mesh::sharpness::INFINITE {
-                    assert!(x.normal.dot(y.normal) > 1.0 - 1e-9, "{name}: normals across edge {a}-{b} at {t}");
-                }
+        across_edges(&mesh, &ev, |c, x, y| {
+            assert!((x.position - y.position).length() < 1e-9 * size, "{name}: edge of corner {c}");
+            // a crease that never decays is a fold; every other edge is smooth in the limit
+            if mesh.ct.edge_sharpness(c) < subdiv::mesh::sharpness::INFINITE {
+                assert!(x.normal.dot(y.normal) > 1.0 - 1e-9, "{name}: normals across the edge of corner {c}");
             }
-        }
+        });
     }
 }
 
