@@ -159,28 +159,7 @@ fn dyadic_points_near_borders_creases_and_corners_are_the_limits() {
 fn dyadic_points_are_the_limits_of_subdivided_vertices() {
     for beta in [LoopBeta::Loop, LoopBeta::Warren] {
         for (name, mesh) in closed_meshes() {
-            let ev = Evaluator::new(&mesh, Scheme::Loop, &opts(beta)).unwrap();
-            let mut levels = vec![mesh.clone()];
-            for _ in 0..4 {
-                let next = subdivide(levels.last().unwrap(), Scheme::Loop, 1, &opts(beta)).unwrap().0;
-                levels.push(next);
-            }
-            let size = f64::from(scale(&mesh));
-            let mut worst = 0.0f64;
-            for k in 0..=4usize {
-                let limits = loop_limit_positions_with(&levels[k], beta);
-                let d = f64::from(1u32 << k);
-                for f in 0..mesh.ct.num_triangles() as u32 {
-                    for i in 0..=(1u32 << k) {
-                        for j in 0..=(1u32 << k) - i {
-                            let (u, v) = (f64::from(i) / d, f64::from(j) / d);
-                            let want = limits[vertex_at(&levels[..=k], f, u, v) as usize].as_dvec3();
-                            let got = ev.eval(f as usize, u, v).unwrap().position;
-                            worst = worst.max((got - want).length() / size);
-                        }
-                    }
-                }
-            }
+            let worst = dyadic_worst(&mesh, &opts(beta));
             // the reference is computed in f32
             assert!(worst < 2e-6, "{name} ({beta:?}): worst relative distance {worst:e}");
         }

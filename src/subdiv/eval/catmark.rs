@@ -29,12 +29,12 @@
 //! Near an extraordinary vertex the levels grow as log2 of 1 / distance
 //! (there is no power table for Catmull-Clark yet), bounded by the cap.
 
-use super::local::{MAX_LEVELS, apply_rows, find};
+use super::local::{Fans, MAX_LEVELS, apply_rows, fans};
 use super::patch::Jet;
 use super::{Affine, Sample, finish};
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
-use crate::mesh::sharpness::{INFINITE, Sharpness};
+use crate::mesh::sharpness::INFINITE;
 use crate::subdiv::Options;
 use crate::subdiv::refine::poly::with_boundary_corners;
 use crate::subdiv::tables::poly_plan::record_one_catmark_level;
@@ -149,8 +149,8 @@ struct Region {
 }
 
 /// The faces of `pt` at the vertices of face `face` or their neighbours,
-/// recentred on the face; a vertex whose faces here form two fans (on the
-/// rim) becomes two. `None` if the table cannot be built.
+/// recentred on the face, its rim vertices split by [`fans`]. `None` if the
+/// table cannot be built.
 fn extract(pt: &PolyTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u32) -> Option<Region> {
     let own: Vec<u32> = pt.face_corners(face).map(|c| pt.vtx(c)).collect();
     let mut near = own.clone();
@@ -173,29 +173,8 @@ fn extract(pt: &PolyTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u32)
         let i = local(pt.face(c))? as usize;
         Some(starts[i] + (c - pt.face_corners(faces[i]).start))
     };
-    let mut root: Vec<u32> = (0..global.len() as u32).collect();
-    for (lc, &c) in global.iter().enumerate() {
-        if let Some(j) = pt.swing(c).and_then(lc_of) {
-            let (a, b) = (find(&mut root, lc as u32), find(&mut root, j));
-            root[a as usize] = b;
-        }
-    }
-    let mut id = vec![u32::MAX; global.len()];
-    let (mut corners, mut verts) = (Vec::with_capacity(global.len()), Vec::new());
-    for (lc, &c) in global.iter().enumerate() {
-        let r = find(&mut root, lc as u32) as usize;
-        if id[r] == u32::MAX {
-            id[r] = verts.len() as u32;
-            verts.push(pt.vtx(c));
-        }
-        corners.push(id[r]);
-    }
+    let Fans { corners, verts, sharp } = fans(&global, |c| pt.vtx(c), |c| pt.swing(c).and_then(lc_of), pt.sharpness());
     let centre = own.iter().map(|&v| pos(v)).sum::<DVec3>() / own.len() as f64;
-    let sharp = pt.sharpness().and_then(|s| {
-        let edges = global.iter().enumerate().map(|(lc, &c)| (lc as u32, s.corner(c))).filter(|x| x.1 > 0.0).collect();
-        let vertices = verts.iter().enumerate().map(|(l, &g)| (l as u32, s.vertex(g))).filter(|x| x.1 > 0.0).collect();
-        Sharpness::from_lists(edges, vertices)
-    });
     let (table, _, kept) = PolyTable::build(verts.len(), &starts, &corners, None).ok()?;
     if kept.is_some() || table.v_table() != corners.as_slice() {
         return None;

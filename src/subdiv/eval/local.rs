@@ -91,7 +91,7 @@ struct Region {
 }
 
 /// The root of `x` in the union-find forest `root` (halving the path).
-pub(super) fn find(root: &mut [u32], mut x: u32) -> u32 {
+fn find(root: &mut [u32], mut x: u32) -> u32 {
     while root[x as usize] != x {
         root[x as usize] = root[root[x as usize] as usize];
         x = root[x as usize];
@@ -99,10 +99,54 @@ pub(super) fn find(root: &mut [u32], mut x: u32) -> u32 {
     x
 }
 
+/// A region's vertices: the local vertex of each of its corners, the
+/// global id of each local vertex, and the region's sharpness.
+pub(super) struct Fans {
+    pub(super) corners: Vec<u32>,
+    pub(super) verts: Vec<u32>,
+    pub(super) sharp: Option<Sharpness>,
+}
+
+/// The [`Fans`] of a region whose corners are `global` (corner ids of the
+/// whole table, `vtx` their vertices, `swing(c)` the region's corner after
+/// `c` around its vertex, if in the region): corners joined by swings share
+/// a local vertex, so a vertex whose faces here form two fans (on the rim
+/// only) becomes two and the region is a manifold table. The sharpness of
+/// an edge goes with the corner naming it, a vertex's with each copy.
+pub(super) fn fans(
+    global: &[u32],
+    vtx: impl Fn(u32) -> u32,
+    swing: impl Fn(u32) -> Option<u32>,
+    sharpness: Option<&Sharpness>,
+) -> Fans {
+    let mut root: Vec<u32> = (0..global.len() as u32).collect();
+    for (lc, &c) in global.iter().enumerate() {
+        if let Some(j) = swing(c) {
+            let (a, b) = (find(&mut root, lc as u32), find(&mut root, j));
+            root[a as usize] = b;
+        }
+    }
+    let mut id = vec![u32::MAX; global.len()];
+    let (mut corners, mut verts) = (Vec::with_capacity(global.len()), Vec::new());
+    for (lc, &c) in global.iter().enumerate() {
+        let r = find(&mut root, lc as u32) as usize;
+        if id[r] == u32::MAX {
+            id[r] = verts.len() as u32;
+            verts.push(vtx(c));
+        }
+        corners.push(id[r]);
+    }
+    let sharp = sharpness.and_then(|s| {
+        let edges = global.iter().enumerate().map(|(lc, &c)| (lc as u32, s.corner(c))).filter(|x| x.1 > 0.0).collect();
+        let vertices = verts.iter().enumerate().map(|(l, &g)| (l as u32, s.vertex(g))).filter(|x| x.1 > 0.0).collect();
+        Sharpness::from_lists(edges, vertices)
+    });
+    Fans { corners, verts, sharp }
+}
+
 /// The region around triangle `face` of `ct` (positions `pos`, relative to
-/// `origin`), recentred on the face. A vertex whose faces in the region
-/// form two fans (possible on the rim only) becomes two vertices, so the
-/// region is a manifold table. `None` if the table cannot be built.
+/// `origin`), recentred on the face, its rim vertices split by [`fans`].
+/// `None` if the table cannot be built.
 fn extract(ct: &CornerTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u32) -> Option<Region> {
     let mut near: Vec<u32> = Vec::with_capacity(32);
     for c in 3 * face..3 * face + 3 {
@@ -115,31 +159,10 @@ fn extract(ct: &CornerTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u3
     faces.sort_unstable();
     faces.dedup();
     let local = |t: u32| faces.binary_search(&t).ok().map(|i| i as u32);
-    let nc = 3 * faces.len() as u32;
-    let global = |lc: u32| 3 * faces[(lc / 3) as usize] + lc % 3;
-    let mut root: Vec<u32> = (0..nc).collect();
-    for lc in 0..nc {
-        if let Some((s, j)) = ct.s(global(lc)).and_then(|s| Some((s, local(s / 3)?))) {
-            let (a, b) = (find(&mut root, lc), find(&mut root, 3 * j + s % 3));
-            root[a as usize] = b;
-        }
-    }
-    let mut id = vec![u32::MAX; nc as usize];
-    let (mut tris, mut verts) = (Vec::with_capacity(nc as usize), Vec::new());
-    for lc in 0..nc {
-        let r = find(&mut root, lc) as usize;
-        if id[r] == u32::MAX {
-            id[r] = verts.len() as u32;
-            verts.push(ct.vtx(global(lc)));
-        }
-        tris.push(id[r]);
-    }
+    let global: Vec<u32> = faces.iter().flat_map(|&t| 3 * t..3 * t + 3).collect();
+    let swing = |c: u32| ct.s(c).and_then(|s| Some(3 * local(s / 3)? + s % 3));
+    let Fans { corners: tris, verts, sharp } = fans(&global, |c| ct.vtx(c), swing, ct.sharpness());
     let centre = (0..3).map(|i| pos(ct.vtx(3 * face + i))).sum::<DVec3>() / 3.0;
-    let sharp = ct.sharpness().and_then(|s| {
-        let corners = (0..nc).map(|lc| (lc, s.corner(global(lc)))).filter(|x| x.1 > 0.0).collect();
-        let vertices = verts.iter().enumerate().map(|(l, &g)| (l as u32, s.vertex(g))).filter(|x| x.1 > 0.0).collect();
-        Sharpness::from_lists(corners, vertices)
-    });
     let (table, _, remap) = CornerTable::build(verts.len(), &tris, None).ok()?;
     // every vertex is used and the triangles keep their order and corners
     if remap.is_some() || table.v_table() != tris.as_slice() {

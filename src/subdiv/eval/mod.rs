@@ -264,8 +264,9 @@ fn valence_two(f: usize) -> Error {
 }
 
 /// The limit of `mesh` at one point `(f, u, v)`, preparing only what that
-/// face needs (the tables of its corners' valences, no level 1 of the whole
-/// mesh): for one query on a large mesh, such as a pick. Every face goes
+/// face needs (Loop: the tables of its corners' valences, no level 1 of the
+/// whole mesh; Catmull-Clark: a copy of the control polygons): for one
+/// query on a large mesh, such as a pick. Every face goes
 /// the way [`Evaluator`] takes the faces at a sharp feature (local
 /// subdivision), so the result equals [`Evaluator::eval`]'s to rounding
 /// (the rules' weights are single precision).
