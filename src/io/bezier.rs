@@ -223,7 +223,8 @@ pub const BEZ_FORMAT: Format = Format {
     writer: None,
     written_as: &[],
     poly_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false },
+    faces_writer: None,
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
 };
 
 /// The `.bzc` row of [`super::FORMATS`]: a curve, not a mesh (the viewer
@@ -236,7 +237,8 @@ pub const BZC_FORMAT: Format = Format {
     writer: None,
     written_as: &[],
     poly_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false },
+    faces_writer: None,
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
 };
 
 /// Samples per patch side when a `.bez` file is opened as a mesh.

@@ -76,7 +76,8 @@ pub const FORMAT: Format = Format {
     writer: Some(|path, mesh, _| save(path, mesh)),
     written_as: &["ct"],
     poly_writer: Some(|path, mesh, _| save_poly(path, mesh)),
-    keeps: Keeps { uv: false, colors: false, materials: false },
+    faces_writer: None,
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: true },
 };
 
 /// Reads `.ct` text into a [`RawMesh`] with its stored opposite table and

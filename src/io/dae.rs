@@ -43,7 +43,8 @@ pub const FORMAT: Format = Format {
     writer: None,
     written_as: &[],
     poly_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false },
+    faces_writer: None,
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
 };
 
 /// Reads a COLLADA file.

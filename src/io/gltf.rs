@@ -41,7 +41,8 @@ pub const FORMAT: Format = Format {
     writer: Some(save),
     written_as: &["glb"],
     poly_writer: None,
-    keeps: Keeps { uv: true, colors: true, materials: false },
+    faces_writer: Some(save_faces),
+    keeps: Keeps { uv: true, colors: true, materials: false, creases: false },
 };
 
 /// Reads a `.gltf` or `.glb` file; buffers and images it names are found
@@ -425,18 +426,25 @@ fn points<'a>(a: &'a [Vec3], per_corner: Option<&[u32]>) -> Cow<'a, [u8]> {
 /// # Errors
 /// I/O errors naming `path`; a mesh too large for a `.glb` (4 GiB).
 pub fn save(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
-    let normals = mesh.vertex_normals();
-    let v = mesh.ct.v_table();
+    save_faces(path, &mesh.positions, mesh.ct.v_table(), attrs)
+}
+
+/// [`save`] of the triangles `v` (a V table) over the vertices `positions`.
+///
+/// # Errors
+/// As [`save`].
+pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Attributes) -> Result<()> {
+    let normals = crate::mesh::normals::face_vertex_normals(v, positions);
     let uv = attrs.uv.as_ref().filter(|u| u.len() == v.len());
-    let colors = attrs.colors.as_ref().filter(|c| c.len() == mesh.positions.len());
+    let colors = attrs.colors.as_ref().filter(|c| c.len() == positions.len());
     // with per-corner UVs every corner is its own vertex
     let per_corner = uv.map(|_| v);
-    let (lo, hi) = mesh.bounds();
+    let (lo, hi) = crate::mesh::bounds_of(positions);
     let minmax = format!(",\"min\":[{},{},{}],\"max\":[{},{},{}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
-    let n = if uv.is_some() { v.len() } else { mesh.positions.len() };
+    let n = if uv.is_some() { v.len() } else { positions.len() };
     let view = |name, bytes, count, ty, ctype, extra| View { name, bytes, count, ty, ctype, extra };
     let mut views = vec![
-        view(Some("POSITION"), points(&mesh.positions, per_corner), n, "VEC3", 5126, minmax),
+        view(Some("POSITION"), points(positions, per_corner), n, "VEC3", 5126, minmax),
         view(Some("NORMAL"), points(&normals, per_corner), n, "VEC3", 5126, String::new()),
     ];
     if let Some(uv) = uv {

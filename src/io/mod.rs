@@ -66,6 +66,9 @@ pub struct Format {
     /// Its writer of polygon meshes (`None`: polygons are written fanned
     /// into triangles).
     poly_writer: Option<PolyWriter>,
+    /// Its writer of faces alone, without adjacency or sharpness (`None`:
+    /// the format needs the corner table: `.ct`).
+    faces_writer: Option<FacesWriter>,
     /// What its writer keeps of a mesh's attributes.
     pub keeps: Keeps,
 }
@@ -76,6 +79,10 @@ type Writer = fn(&Path, &Mesh, &Attributes) -> Result<()>;
 /// A format's writer of polygon meshes (attributes per polygon corner and face).
 type PolyWriter = fn(&Path, &PolyMesh, &Attributes) -> Result<()>;
 
+/// A format's writer of faces alone: positions, a V table (three vertex ids
+/// a triangle) and attributes.
+type FacesWriter = fn(&Path, &[glam::Vec3], &[u32], &Attributes) -> Result<()>;
+
 /// What a format's writer keeps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Keeps {
@@ -85,6 +92,8 @@ pub struct Keeps {
     pub colors: bool,
     /// Material groups.
     pub materials: bool,
+    /// Sharp edges and vertices (creases and corners).
+    pub creases: bool,
 }
 
 impl std::fmt::Debug for Format {
@@ -413,6 +422,35 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     }
     match Format::for_output(path).and_then(|f| f.writer) {
         Some(write) => write(path, mesh, attrs),
+        None => Err(Error::UnknownFormat {
+            path: path.display().to_string(),
+            ext: ext(path),
+            direction: "output",
+            known: ".obj, .ply, .ct, .stl, .off or .glb",
+        }),
+    }
+}
+
+/// Whether [`save_faces`] writes `path`'s format, and writes in it all that
+/// [`save_with`] would write of a mesh (`sharp`: whether the mesh has sharp
+/// features, which only the formats that keep creases write): then a
+/// caller that writes a subdivision needs only its faces
+/// ([`crate::subdiv::subdivide_faces`]).
+pub fn writes_faces(path: &Path, sharp: bool) -> bool {
+    Format::for_output(path).is_some_and(|f| f.faces_writer.is_some() && !(sharp && f.keeps.creases))
+}
+
+/// Saves faces alone (positions, a V table and attributes) by extension:
+/// the bytes [`save_with`] writes for a mesh with these faces and no sharp
+/// features.
+///
+/// # Errors
+/// An extension whose format needs the corner table (`.ct`, see
+/// [`writes_faces`]), an unknown one, or an I/O error.
+pub fn save_faces(path: &Path, faces: &crate::mesh::Triangles, attrs: &Attributes) -> Result<()> {
+    match Format::for_output(path) {
+        Some(Format { faces_writer: Some(write), .. }) => write(path, &faces.positions, &faces.corners, attrs),
+        Some(f) => Err(Error::Usage(format!("{}: {} needs a corner table, not faces alone", path.display(), f.name))),
         None => Err(Error::UnknownFormat {
             path: path.display().to_string(),
             ext: ext(path),

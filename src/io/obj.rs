@@ -33,7 +33,8 @@ pub const FORMAT: Format = Format {
     writer: Some(save_with),
     written_as: &["obj"],
     poly_writer: Some(save_poly),
-    keeps: Keeps { uv: true, colors: true, materials: true },
+    faces_writer: Some(save_faces),
+    keeps: Keeps { uv: true, colors: true, materials: true, creases: true },
 };
 
 /// A corner without a texture coordinate.
@@ -520,15 +521,34 @@ fn is_small_whole(x: f32) -> bool {
 /// # Errors
 /// The first error of `sink`.
 pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
+    write_faces(&mesh.positions, mesh.ct.v_table(), &Attributes::default(), &tag_records(mesh), sink)
+}
+
+/// OBJ text of the triangles `v` (a V table) over the vertices `pos`, with
+/// their attributes and the tag records `tags` (see [`write_obj_with`]).
+///
+/// # Errors
+/// The first error of `sink`.
+fn write_faces(
+    pos: &[Vec3],
+    v: &[u32],
+    attrs: &Attributes,
+    tags: &[u8],
+    sink: &mut dyn FnMut(&[u8]) -> Result<()>,
+) -> Result<()> {
+    if !attrs.is_empty() {
+        let tri = |t: usize| 3 * t..3 * t + 3;
+        let faces = FaceSource { corners: v, count: v.len() / 3, face: &tri };
+        return write_records(pos, &faces, attrs, tags, sink);
+    }
     const ROWS: usize = 1 << 15;
-    let pos = &mesh.positions;
-    let header = format!("# subdiv: {} vertices, {} triangles\n", pos.len(), mesh.ct.num_triangles());
+    let header = format!("# subdiv: {} vertices, {} triangles\n", pos.len(), v.len() / 3);
     let vchunks: Vec<&[Vec3]> = pos.chunks(ROWS).collect();
-    let tchunks: Vec<&[u32]> = mesh.ct.v_table().chunks(3 * ROWS).collect();
+    let tchunks: Vec<&[u32]> = v.chunks(3 * ROWS).collect();
     let nv = vchunks.len();
     let text = |k: usize| if k < nv { vertex_text(vchunks[k]) } else { face_text(tchunks[k - nv]) };
     crate::io::write_formatted(&[header.as_bytes()], nv + tchunks.len(), text, sink)?;
-    sink(&tag_records(mesh))
+    sink(tags)
 }
 
 /// `v x y z` lines. Each line is put together in a small array and
@@ -617,12 +637,7 @@ pub(crate) struct FaceSource<'a> {
 /// # Errors
 /// The first error of `sink`.
 pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
-    if attrs.is_empty() {
-        return write_obj(mesh, sink);
-    }
-    let tri = |t: usize| 3 * t..3 * t + 3;
-    let faces = FaceSource { corners: mesh.ct.v_table(), count: mesh.ct.num_triangles(), face: &tri };
-    write_records(&mesh.positions, &faces, attrs, &tag_records(mesh), sink)
+    write_faces(&mesh.positions, mesh.ct.v_table(), attrs, &tag_records(mesh), sink)
 }
 
 /// [`write_obj_with`] of a polygon mesh: one `f` line per polygon (texture
@@ -759,6 +774,18 @@ pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, attrs: &Attrib
 pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     crate::io::atomic_write(path, |w| {
         write_obj_with(mesh, attrs, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
+    })
+}
+
+/// Saves the triangles `v` (a V table) over the vertices `positions` with
+/// their attributes as OBJ (atomically): [`save_with`] of a mesh with these
+/// faces and no sharp features.
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Attributes) -> Result<()> {
+    crate::io::atomic_write(path, |w| {
+        write_faces(positions, v, attrs, &[], &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
     })
 }
 

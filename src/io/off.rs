@@ -36,7 +36,8 @@ pub const FORMAT: Format = Format {
     writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
     written_as: &["off"],
     poly_writer: Some(|path, mesh, attrs| save_poly(path, mesh, attrs.colors.as_deref())),
-    keeps: Keeps { uv: false, colors: true, materials: false },
+    faces_writer: Some(|path, positions, corners, attrs| save_faces(path, positions, corners, attrs.colors.as_deref())),
+    keeps: Keeps { uv: false, colors: true, materials: false, creases: false },
 };
 
 /// What the header's keyword says each vertex line holds besides `x y z`
@@ -172,10 +173,18 @@ fn read(input: &Input) -> Result<RawMesh> {
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
-    let nt = mesh.ct.num_triangles();
-    let faces =
-        |first: usize| triple_lines(b"3 ", &mesh.ct.v_table()[3 * first..3 * (first + ROWS).min(nt)], Line::put_u32);
-    write_off(path, &mesh.positions, colors, nt, faces)
+    save_faces(path, &mesh.positions, mesh.ct.v_table(), colors)
+}
+
+/// [`save_with`] of the triangles `v` (a V table) over the vertices
+/// `positions`.
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], colors: Option<&[Vec3]>) -> Result<()> {
+    let nt = v.len() / 3;
+    let faces = |first: usize| triple_lines(b"3 ", &v[3 * first..3 * (first + ROWS).min(nt)], Line::put_u32);
+    write_off(path, positions, colors, nt, faces)
 }
 
 /// Saves a polygon mesh as OFF text (one `k a b c ...` line per face;

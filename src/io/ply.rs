@@ -131,7 +131,10 @@ pub const FORMAT: Format = Format {
     writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
     written_as: &["ply"],
     poly_writer: Some(|path, mesh, attrs| save_poly(path, mesh, attrs.colors.as_deref())),
-    keeps: Keeps { uv: false, colors: true, materials: false },
+    faces_writer: Some(|path, positions, corners, attrs| {
+        write(path, positions, attrs.colors.as_deref(), &Faces::Triangles(corners))
+    }),
+    keeps: Keeps { uv: false, colors: true, materials: false, creases: false },
 };
 
 /// The header: lines up to the first line that is `end_header` (a comment

@@ -25,7 +25,8 @@ pub const FORMAT: Format = Format {
     writer: Some(|path, mesh, _| save(path, mesh)),
     written_as: &["stl"],
     poly_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false },
+    faces_writer: Some(|path, positions, corners, _| save_faces(path, positions, corners)),
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
 };
 
 /// Whether `bytes` are a binary STL file (its size matches its triangle count).
@@ -143,7 +144,15 @@ fn parse_ascii(bytes: &[u8], file: &str) -> Result<RawMesh> {
 /// # Errors
 /// I/O errors naming `path`; a mesh of more than 2^32 - 1 triangles.
 pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
-    let nt = u32::try_from(mesh.ct.num_triangles())
+    save_faces(path, &mesh.positions, mesh.ct.v_table())
+}
+
+/// [`save`] of the triangles `v` (a V table) over the vertices `positions`.
+///
+/// # Errors
+/// As [`save`].
+pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32]) -> Result<()> {
+    let nt = u32::try_from(v.len() / 3)
         .map_err(|_| Error::Usage(format!("{}: too many triangles for STL", path.display())))?;
     let mut header = [b' '; 84];
     header[..20].copy_from_slice(b"binary STL by subdiv");
@@ -151,7 +160,6 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
     // 50 bytes a triangle: every piece's offset is known, so the pieces are
     // made and written in parallel (io::atomic_write_pieces)
     const ROWS: usize = 1 << 14;
-    let v = mesh.ct.v_table();
     let pieces = (nt as usize).div_ceil(ROWS);
     crate::io::atomic_write_pieces(path, 1 + pieces, |k| {
         if k == 0 {
@@ -159,7 +167,7 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
         }
         let first = (k - 1) * ROWS;
         let tris = &v[3 * first..3 * (first + ROWS).min(nt as usize)];
-        (84 + 50 * first as u64, std::borrow::Cow::Owned(facets(&mesh.positions, tris)))
+        (84 + 50 * first as u64, std::borrow::Cow::Owned(facets(positions, tris)))
     })
 }
 

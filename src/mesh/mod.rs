@@ -472,6 +472,31 @@ impl Iterator for Ring<'_> {
     }
 }
 
+/// A triangle mesh as its faces alone: positions and the V table (three
+/// vertex ids a triangle, counter-clockwise), without the adjacency of a
+/// [`CornerTable`]. What a subdivision gives when its caller only writes or
+/// copies the faces ([`crate::subdiv::subdivide_faces`]): the last level
+/// then skips its O, C and valence tables.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Triangles {
+    /// One position per vertex.
+    pub positions: Vec<Vec3>,
+    /// `V[c]`: the vertex of corner `c`, three corners a triangle.
+    pub corners: Vec<u32>,
+}
+
+impl Triangles {
+    /// The faces of `mesh` (copied).
+    pub fn of(mesh: &Mesh) -> Triangles {
+        Triangles { positions: mesh.positions.clone(), corners: mesh.ct.v_table().to_vec() }
+    }
+
+    /// Number of triangles.
+    pub fn num_triangles(&self) -> usize {
+        self.corners.len() / 3
+    }
+}
+
 /// A triangle mesh: connectivity plus one position per vertex.
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {

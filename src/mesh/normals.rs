@@ -30,10 +30,15 @@ pub fn face_normals_into(ct: &CornerTable, pos: &[Vec3], out: &mut [Vec3]) {
 /// zero area gets `Vec3::Z`. For a fixed topology evaluated many times,
 /// keep a [`VertexRings`] (or a [`VertexFaces`]).
 pub fn vertex_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
-    let tris = ct.v_table();
+    face_vertex_normals(ct.v_table(), pos)
+}
+
+/// [`vertex_normals`] of the triangles `tris` (a V table, three vertex
+/// ids a triangle) over the vertices `pos`: the faces alone, no adjacency.
+pub fn face_vertex_normals(tris: &[u32], pos: &[Vec3]) -> Vec<Vec3> {
     let threads = rayon::current_num_threads().clamp(1, 16).min(tris.len().div_ceil(3 << 16)).max(1);
     let per = tris.len().div_ceil(3 * threads) * 3;
-    let mut sums: Vec<Vec<Vec3>> = (0..threads).map(|_| crate::mem::zeroed(ct.num_vertices())).collect();
+    let mut sums: Vec<Vec<Vec3>> = (0..threads).map(|_| crate::mem::zeroed(pos.len())).collect();
     sums.par_iter_mut().enumerate().for_each(|(k, acc)| {
         for tri in tris[(k * per).min(tris.len())..((k + 1) * per).min(tris.len())].chunks_exact(3) {
             let (a, b, c) = (tri[0] as usize, tri[1] as usize, tri[2] as usize);
@@ -46,7 +51,7 @@ pub fn vertex_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
     });
     // `threads >= 1`: the first thread's sums, then the others' added
     let (first, rest) = sums.split_at(1);
-    let mut out: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
+    let mut out: Vec<Vec3> = crate::mem::zeroed(pos.len());
     out.par_iter_mut().zip(first[0].par_iter()).enumerate().with_min_len(8192).for_each(|(v, (o, s))| {
         let sum = rest.iter().fold(*s, |x, r| x + r[v]);
         *o = sum.try_normalize().map_or(Vec3::Z, Vec3::from);

@@ -223,8 +223,9 @@ fn corner_triangle(nt: usize, c: u32) -> u32 {
 ///
 /// Two passes: the numbering pass ([`number_edges_and_vertices`]: edge ids,
 /// and the new vertices' `C`, valence and boundary flag) and the writing
-/// pass ([`write_v_and_o`]: the new V and O, one old triangle at a time;
-/// then [`carry_old_vertices`]: the old vertices' `C` and valence).
+/// passes ([`write_v`] and [`write_o`], side by side: the new V and O, one
+/// old triangle at a time; then [`carry_old_vertices`]: the old vertices'
+/// `C` and valence).
 pub(crate) fn split_with_boundary(
     old: &CornerTable,
     old_boundary: Option<&[bool]>,
@@ -241,7 +242,7 @@ pub(crate) fn split_with_boundary(
     let t0 = std::time::Instant::now();
     let NewVertexTables { edges, mut vc, mut valence, boundary } = number_edges_and_vertices(old, old_boundary);
     let t1 = std::time::Instant::now();
-    let (v2, o2) = write_v_and_o(old, &edges.ids);
+    let (v2, o2) = rayon::join(|| write_v(old, &edges.ids), || write_o(old));
     carry_old_vertices(old, &mut vc, &mut valence);
     let times = (ms(t1 - t0), ms(t1.elapsed()));
     // sharp features are sparse: carried from the old table's, beside O
@@ -249,6 +250,22 @@ pub(crate) fn split_with_boundary(
     let generations = old.generations().cloned().unwrap_or_default().after_split(old.num_triangles());
     let ct = CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness).with_generations(Some(generations));
     ((ct, edges, boundary), times)
+}
+
+/// The new V table of a split and the old table's edge numbering, and
+/// nothing else: no O, C, valence, sharpness or generations. For the last
+/// level of a subdivision whose caller needs only its faces (writing a
+/// file): at bunny level 3 that leaves out 70 MB of the 150 the level
+/// writes. The V table is the one [`split`] makes.
+///
+/// # Panics
+/// As [`split`].
+pub(crate) fn split_faces(old: &CornerTable) -> (Vec<u32>, EdgeNumbering) {
+    let nc = old.num_corners() as u64;
+    assert!(4 * nc < u64::from(BORDER), "split: {nc} corners are too many for 32-bit ids after a split");
+    let edges = number_edges(old);
+    let v2 = write_v(old, &edges.ids);
+    (v2, edges)
 }
 
 /// What the numbering pass of a split produces: the old table's edge
@@ -310,80 +327,89 @@ fn carry_old_vertices(old: &CornerTable, vc: &mut [u32], valence: &mut [u32]) {
     valence[..nvu].copy_from_slice(old.valences());
 }
 
-/// The writing pass of a split: the new V and O tables, written in eight
-/// streams (V and O of the central triangles and of the three corner
-/// triangles), one old triangle at a time, from the old V and O and the
-/// edge ids `ids` of the numbering pass.
-fn write_v_and_o(old: &CornerTable, ids: &EdgeIds) -> (Vec<u32>, Vec<u32>) {
-    let nt = old.num_triangles();
-    let nc = 3 * nt;
+/// The new V table of a split, written in four streams (the central
+/// triangles and the three corner triangles), one old triangle at a time,
+/// from the old V and O and the edge ids `ids` of the numbering pass.
+fn write_v(old: &CornerTable, ids: &EdgeIds) -> Vec<u32> {
+    let nc = old.num_corners();
     let nv = old.num_vertices() as u32;
+    let mut v2: Vec<u32> = crate::mem::zeroed(4 * nc);
+    let old_v3: &[[u32; 3]] = bytemuck::cast_slice(old.v_table());
+    let old_o3: &[[u32; 3]] = bytemuck::cast_slice(old.o_table());
+    for_each_split_triangle(&mut v2, nc, |t, [b0, b1, b2, b3]| {
+        let c0 = 3 * t as u32;
+        let (vv, x) = (old_v3[t], old_o3[t]);
+        let ws = [nv + ids.edge(c0, x[0]), nv + ids.edge(c0 + 1, x[1]), nv + ids.edge(c0 + 2, x[2])];
+        // central triangle: the three edge vertices
+        *b0 = ws;
+        // corner triangle k: (V[c], W[p(c)], W[n(c)]) for c = c0 + k
+        *b1 = [vv[0], ws[2], ws[1]];
+        *b2 = [vv[1], ws[0], ws[2]];
+        *b3 = [vv[2], ws[1], ws[0]];
+    });
+    v2
+}
+
+/// The new O table of a split, in four streams like [`write_v`], from the
+/// old O alone (the formulas of the module docs).
+fn write_o(old: &CornerTable) -> Vec<u32> {
+    let nc = old.num_corners();
     // p(A(n(x))) and n(A(p(x))) for a corner x = 3u + j of the old table are
     // x + DN[j] and x + DP[j] (wrapping): A(n(x)) = 3nt((j+1)%3 + 1) + 3u.
-    let nt3 = 3 * nt as u32;
+    let nt3 = nc as u32;
     let dn: [u32; 3] = std::array::from_fn(|j| (nt3 * ((j as u32 + 1) % 3 + 1) + 2).wrapping_sub(j as u32));
     let dp: [u32; 3] = std::array::from_fn(|j| (nt3 * ((j as u32 + 2) % 3 + 1) + 1).wrapping_sub(j as u32));
     let across_n = |x: u32| if x == BORDER { BORDER } else { x.wrapping_add(dn[(x % 3) as usize]) };
     let across_p = |x: u32| if x == BORDER { BORDER } else { x.wrapping_add(dp[(x % 3) as usize]) };
-
-    let mut v2: Vec<u32> = crate::mem::zeroed(4 * nc);
     let mut o2: Vec<u32> = crate::mem::zeroed(4 * nc);
+    let old_o3: &[[u32; 3]] = bytemuck::cast_slice(old.o_table());
+    for_each_split_triangle(&mut o2, nc, |t, [q0, q1, q2, q3]| {
+        let c0 = 3 * t as u32;
+        let x = old_o3[t];
+        // O'[c] = A(c) for the central corners
+        *q0 = [nt3 + c0, 2 * nt3 + c0, 3 * nt3 + c0];
+        // corner triangle k: (c, p(A(n(O[n(c)]))), n(A(p(O[p(c)]))))
+        let (an, ap) = (x.map(across_n), x.map(across_p));
+        *q1 = [c0, an[1], ap[2]];
+        *q2 = [c0 + 1, an[2], ap[0]];
+        *q3 = [c0 + 2, an[0], ap[1]];
+    });
+    o2
+}
+
+/// Calls `each(t, [central, corner 1, corner 2, corner 3])` for every old
+/// triangle `t` of a split of `nc` old corners, in parallel chunks, with the
+/// four triangles of the new table `table` (`4 nc` entries) that `t`
+/// becomes: the four streams of the layout in the module docs.
+fn for_each_split_triangle(table: &mut [u32], nc: usize, each: impl Fn(usize, [&mut [u32; 3]; 4]) + Sync) {
     fn tri(s: &mut [u32]) -> &mut [[u32; 3]] {
         bytemuck::cast_slice_mut(s)
     }
-    let (b0, rest) = v2.split_at_mut(nc);
-    let (b1, rest) = rest.split_at_mut(nc);
-    let (b2, b3) = rest.split_at_mut(nc);
-    let (q0, rest) = o2.split_at_mut(nc);
-    let (q1, rest) = rest.split_at_mut(nc);
-    let (q2, q3) = rest.split_at_mut(nc);
-    let (b0, b1, b2, b3) = (tri(b0), tri(b1), tri(b2), tri(b3));
-    let (q0, q1, q2, q3) = (tri(q0), tri(q1), tri(q2), tri(q3));
-    let old_v3: &[[u32; 3]] = bytemuck::cast_slice(old.v_table());
-    let old_o3: &[[u32; 3]] = bytemuck::cast_slice(old.o_table());
+    let (s0, rest) = table.split_at_mut(nc);
+    let (s1, rest) = rest.split_at_mut(nc);
+    let (s2, s3) = rest.split_at_mut(nc);
     let g = CHUNK / 3;
-    b0.par_chunks_mut(g)
-        .zip(b1.par_chunks_mut(g))
-        .zip(b2.par_chunks_mut(g))
-        .zip(b3.par_chunks_mut(g))
-        .zip(q0.par_chunks_mut(g))
-        .zip(q1.par_chunks_mut(g))
-        .zip(q2.par_chunks_mut(g))
-        .zip(q3.par_chunks_mut(g))
+    tri(s0)
+        .par_chunks_mut(g)
+        .zip(tri(s1).par_chunks_mut(g))
+        .zip(tri(s2).par_chunks_mut(g))
+        .zip(tri(s3).par_chunks_mut(g))
         .enumerate()
-        .for_each(|(k, (((((((b0, b1), b2), b3), q0), q1), q2), q3))| {
-            let t0 = k * g;
-            let len = b0.len();
-            let (old_v3, old_o3) = (&old_v3[t0..t0 + len], &old_o3[t0..t0 + len]);
-            let (b1, b2, b3) = (&mut b1[..len], &mut b2[..len], &mut b3[..len]);
-            let (q0, q1, q2, q3) = (&mut q0[..len], &mut q1[..len], &mut q2[..len], &mut q3[..len]);
-            for t in 0..len {
-                let c0 = 3 * (t0 + t) as u32;
-                let vv = old_v3[t];
-                let x = old_o3[t];
-                let ws = [nv + ids.edge(c0, x[0]), nv + ids.edge(c0 + 1, x[1]), nv + ids.edge(c0 + 2, x[2])];
-                // central triangle: the three edge vertices
-                b0[t] = ws;
-                // corner triangle k: (V[c], W[p(c)], W[n(c)]) for c = c0 + k
-                b1[t] = [vv[0], ws[2], ws[1]];
-                b2[t] = [vv[1], ws[0], ws[2]];
-                b3[t] = [vv[2], ws[1], ws[0]];
-                // O'[c] = A(c) for the central corners
-                q0[t] = [nt3 + c0, 2 * nt3 + c0, 3 * nt3 + c0];
-                // corner triangle k: (c, p(A(n(O[n(c)]))), n(A(p(O[p(c)]))))
-                let (an, ap) = (x.map(across_n), x.map(across_p));
-                q1[t] = [c0, an[1], ap[2]];
-                q2[t] = [c0 + 1, an[2], ap[0]];
-                q3[t] = [c0 + 2, an[0], ap[1]];
+        .for_each(|(k, (((s0, s1), s2), s3))| {
+            let len = s0.len();
+            let (s1, s2, s3) = (&mut s1[..len], &mut s2[..len], &mut s3[..len]);
+            for (i, (((a, b), c), d)) in
+                s0.iter_mut().zip(s1.iter_mut()).zip(s2.iter_mut()).zip(s3.iter_mut()).enumerate()
+            {
+                each(k * g + i, [a, b, c, d]);
             }
         });
-    (v2, o2)
 }
 
 /// The edge generations after a split at generation `level`, from those of
 /// the old corners `og` (module docs): four streams, the central triangles'
 /// and the three corner triangles', one old triangle at a time, like
-/// [`write_v_and_o`]. For [`Generations::corners`]; the split itself only
+/// [`write_v`]. For [`Generations::corners`]; the split itself only
 /// records its triangle count.
 pub(crate) fn split_generations(og: &[u8], level: u8) -> Vec<u8> {
     let nc = og.len();

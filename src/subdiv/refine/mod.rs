@@ -13,7 +13,7 @@ use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Level, Rules, boundary_flags};
 use super::{RulesFn, Stats, ms};
 use crate::mesh::split::{self, EdgeIds};
-use crate::mesh::{CornerTable, Creasing, Mesh, n, p};
+use crate::mesh::{CornerTable, Creasing, Mesh, Triangles, n, p};
 use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -119,27 +119,49 @@ pub fn predict_faces(ct: &CornerTable, levels: u32) -> u64 {
 /// One level: split plus the scheme's points. `boundary` holds the input
 /// level's vertex boundary flags when the previous level produced them;
 /// the new level's are made only when another level follows (`last` false).
+/// With `faces_only` (for the last level of [`super::subdivide_faces`]) the
+/// split writes the new V table alone ([`split::split_faces`]).
 pub(crate) struct OneLevel<'a> {
     pub(crate) ct: Cow<'a, CornerTable>,
     pub(crate) positions: Cow<'a, [Vec3]>,
     pub(crate) boundary: Option<Vec<bool>>,
     pub(crate) last: bool,
+    pub(crate) faces_only: bool,
     pub(crate) creasing: Creasing,
     pub(crate) stats: &'a mut Stats,
 }
 
-impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
-    fn call<R: Rules>(self, r: &R) -> (Mesh, Option<Vec<bool>>) {
+/// What [`OneLevel`] makes: the next level with its table (and its vertex
+/// boundary flags when another level follows), or its faces alone.
+pub(crate) enum Refined {
+    Table(Mesh, Option<Vec<bool>>),
+    Faces(Triangles),
+}
+
+/// The split's part of [`Refined`].
+enum NewTable {
+    Full(CornerTable, Option<Vec<bool>>),
+    Faces(Vec<u32>),
+}
+
+impl RulesFn<Refined> for OneLevel<'_> {
+    fn call<R: Rules>(self, r: &R) -> Refined {
         let old: &CornerTable = &self.ct;
         let boundary = self.boundary.unwrap_or_else(|| boundary_flags(old));
         let t0 = Instant::now();
-        let ((ct, edges, next_boundary), (number_ms, _)) =
-            split::split_with_boundary(old, (!self.last).then_some(&boundary[..]), self.creasing);
+        let (table, edges) = if self.faces_only {
+            let (v, edges) = split::split_faces(old);
+            (NewTable::Faces(v), edges)
+        } else {
+            let ((ct, edges, next_boundary), (number_ms, _)) =
+                split::split_with_boundary(old, (!self.last).then_some(&boundary[..]), self.creasing);
+            self.stats.numbering_ms += number_ms;
+            (NewTable::Full(ct, next_boundary), edges)
+        };
         self.stats.split_ms += ms(t0.elapsed());
-        self.stats.numbering_ms += number_ms;
         let features = Features::of(old, self.creasing);
         let split::EdgeNumbering { owners, ids } = edges;
-        let mut positions: Vec<Vec3> = crate::mem::zeroed(ct.num_vertices());
+        let mut positions: Vec<Vec3> = crate::mem::zeroed(old.num_vertices() + owners.len());
         let (vpart, epart) = positions.split_at_mut(old.num_vertices());
         match features {
             None => {
@@ -151,7 +173,10 @@ impl RulesFn<(Mesh, Option<Vec<bool>>)> for OneLevel<'_> {
                 with_features(r, f, level, (&owners, &ids), (vpart, epart), self.stats);
             }
         }
-        (Mesh { ct, positions }, next_boundary)
+        match table {
+            NewTable::Full(ct, next_boundary) => Refined::Table(Mesh { ct, positions }, next_boundary),
+            NewTable::Faces(corners) => Refined::Faces(Triangles { positions, corners }),
+        }
     }
 }
 

@@ -1,0 +1,123 @@
+//! `subdivide_faces` (the last level without O, C or valence) gives the same
+//! bits as `subdivide`: positions and V table, for every triangle scheme,
+//! open and closed meshes, creases, corners, semi-sharp decay, both boundary
+//! options, any level count and any thread count; and `subdivide` writes
+//! the same file either way.
+
+mod common;
+use common::*;
+use subdiv::mesh::sharpness::{CornerTag, CreaseTag, Tags};
+use subdiv::mesh::{BoundaryInterpolation, Creasing};
+use subdiv::{LoopBeta, Mesh, Options, Scheme, subdivide, subdivide_faces};
+
+/// `mesh` with every edge of the first `k` triangles tagged `s` and its
+/// vertex 0 a corner of sharpness `corner`.
+fn creased(mut mesh: Mesh, k: u32, s: f32, corner: f32) -> Mesh {
+    let v = mesh.ct.v_table().to_vec();
+    let creases = (0..3 * k as usize)
+        .map(|c| CreaseTag { v0: v[c], v1: v[if c % 3 == 2 { c - 2 } else { c + 1 }], sharpness: s })
+        .collect();
+    let tags = Tags { creases, corners: vec![CornerTag { vertex: 0, sharpness: corner }] };
+    mesh.ct = mesh.ct.clone().with_tags(&tags).unwrap();
+    mesh
+}
+
+fn cases() -> Vec<(String, Mesh, Options)> {
+    let d = Options::default;
+    let corners = Options { boundary: BoundaryInterpolation::EdgeAndCorner, ..d() };
+    let chaikin = Options { creasing: Creasing::Chaikin, ..d() };
+    let warren = Options { loop_beta: LoopBeta::Warren, ..d() };
+    let open = grid(6, 5, |i, j| glam::Vec3::new(i + 0.3 * j, j, 0.1 * (i * j).sin()));
+    vec![
+        ("icosphere".into(), icosphere(2), d()),
+        ("icosphere, Warren".into(), icosphere(1), warren),
+        ("open grid".into(), open.clone(), d()),
+        ("open grid, corners".into(), open, corners),
+        ("hemisphere".into(), hemisphere(), d()),
+        ("disk fan".into(), disk_fan(9, 2), d()),
+        ("infinite creases".into(), creased(icosphere(1), 6, 10.0, 10.0), d()),
+        ("semi-sharp".into(), creased(icosphere(1), 5, 1.5, 0.7), d()),
+        ("semi-sharp, Chaikin".into(), creased(icosphere(1), 5, 2.3, 1.2), chaikin),
+        ("creased grid, corners".into(), creased(disk_fan(7, 2), 4, 10.0, 2.0), corners),
+    ]
+}
+
+const SCHEMES: [Scheme; 5] =
+    [Scheme::Loop, Scheme::Midpoint, Scheme::Butterfly, Scheme::ModifiedButterfly, Scheme::Jarek];
+
+fn assert_same_bits(name: &str, full: &Mesh, faces: &subdiv::mesh::Triangles) {
+    assert_eq!(full.ct.v_table(), &faces.corners[..], "{name}: V table");
+    assert_eq!(full.positions.len(), faces.positions.len(), "{name}: vertex count");
+    for (i, (a, b)) in full.positions.iter().zip(&faces.positions).enumerate() {
+        assert_eq!(a.to_array().map(f32::to_bits), b.to_array().map(f32::to_bits), "{name}: vertex {i}");
+    }
+}
+
+#[test]
+fn faces_only_equal_the_full_subdivision_bit_for_bit() {
+    for (name, mesh, opts) in cases() {
+        for scheme in SCHEMES {
+            for levels in 0..=3 {
+                let (full, st) = subdivide(&mesh, scheme, levels, &opts).unwrap();
+                let (faces, st_faces) = subdivide_faces(&mesh, scheme, levels, &opts).unwrap();
+                let what = format!("{name}, {scheme}, {levels} levels");
+                assert_same_bits(&what, &full, &faces);
+                assert_eq!(st.faces_per_level, st_faces.faces_per_level, "{what}");
+                assert_eq!(faces.num_triangles(), full.ct.num_triangles(), "{what}");
+            }
+        }
+    }
+}
+
+#[test]
+fn faces_only_equal_the_full_subdivision_on_any_thread_count() {
+    let mesh = creased(icosphere(4), 40, 1.7, 3.0);
+    let (full, _) = subdivide(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
+    for threads in [1, 3] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let (faces, _) = pool.install(|| subdivide_faces(&mesh, Scheme::Loop, 2, &Options::default())).unwrap();
+        assert_same_bits(&format!("icosphere on {threads} threads"), &full, &faces);
+    }
+}
+
+#[test]
+fn polygon_schemes_give_their_triangulated_faces() {
+    let mesh = icosphere(1);
+    for scheme in [Scheme::CatmullClark, Scheme::Bilinear] {
+        let (full, _) = subdivide(&mesh, scheme, 2, &Options::default()).unwrap();
+        let (faces, _) = subdivide_faces(&mesh, scheme, 2, &Options::default()).unwrap();
+        assert_same_bits(&format!("{scheme}"), &full, &faces);
+    }
+}
+
+#[test]
+fn faces_are_written_as_the_mesh_is() {
+    use subdiv::io;
+    use subdiv::mesh::attributes::Attributes;
+    let (full, _) = subdivide(&icosphere(2), Scheme::Loop, 2, &Options::default()).unwrap();
+    let (faces, _) = subdivide_faces(&icosphere(2), Scheme::Loop, 2, &Options::default()).unwrap();
+    let colors = Attributes { colors: Some(full.positions.iter().map(|p| p.abs()).collect()), ..Default::default() };
+    let uv = Attributes {
+        uv: Some(full.ct.v_table().iter().map(|&v| glam::Vec2::new(v as f32 * 1e-4, 0.5)).collect()),
+        ..Default::default()
+    };
+    let dir = scratch_dir("faces_only");
+    let mut checked = 0;
+    for ext in ["ply", "obj", "off", "stl", "glb"] {
+        assert!(io::writes_faces(std::path::Path::new(&format!("a.{ext}")), false), "{ext}");
+        for attrs in [Attributes::default(), colors.clone(), uv.clone()] {
+            let (a, b) = (dir.join(format!("mesh.{ext}")), dir.join(format!("faces.{ext}")));
+            io::save_with(&a, &full, &attrs).unwrap();
+            io::save_faces(&b, &faces, &attrs).unwrap();
+            assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "{ext}");
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 15);
+    // the formats that keep creases need the table for a creased mesh; .ct always
+    assert!(!io::writes_faces(std::path::Path::new("a.obj"), true));
+    assert!(io::writes_faces(std::path::Path::new("a.ply"), true));
+    assert!(!io::writes_faces(std::path::Path::new("a.ct"), false));
+    let err = io::save_faces(&dir.join("faces.ct"), &faces, &Attributes::default()).unwrap_err().to_string();
+    assert!(err.contains("faces.ct"), "{err}");
+}
