@@ -1,4 +1,5 @@
-//! Per-phase timing of the subdivision call, input loaded once:
+//! Per-phase timing of the subdivision call that `subdiv subdivide` makes
+//! (`subdivide_faces`: the last level without its adjacency), input loaded once:
 //! `cargo run --release --no-default-features --example phases -- MODEL LEVELS REPEATS [SCHEME...]`
 //! prints, per scheme, the minimum over the repeats of every phase (ms), which
 //! is what counts on a shared, noisy machine. Repeats after the first reuse
@@ -7,7 +8,7 @@
 //! process is `subdiv subdivide --stats`.
 
 use std::path::Path;
-use subdiv::{Options, Scheme, subdivide};
+use subdiv::{Options, Scheme, subdivide_faces};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -24,7 +25,7 @@ fn main() {
         let mut best = [f64::MAX; 8];
         for _ in 0..reps {
             let r0 = usage();
-            let (m, st) = subdivide(&mesh, s, levels, &Options::default()).unwrap();
+            let (m, st) = subdivide_faces(&mesh, s, levels, &Options::default()).unwrap();
             let r1 = usage();
             std::hint::black_box(m.positions.len());
             let cpu = [r1[0] - r0[0], r1[1] - r0[1], r1[2] - r0[2]];

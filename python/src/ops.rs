@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use subdiv::subdiv::rules::features::with_boundary_corners;
 use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_with};
 use subdiv::subdiv::tables::StencilPlan;
-use subdiv::{Mesh, Options, Scheme, subdivide, subdivide_poly};
+use subdiv::{Mesh, Options, Scheme, subdivide_faces, subdivide_poly};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
 /// flat corners and face offsets (int64), all C-contiguous.
@@ -112,9 +112,10 @@ fn refine(
 ) -> Result<Refined, Msg> {
     match c {
         Control::Tri(mesh) => {
-            let (fine, _) = subdivide(&mesh, scheme, levels, opts).map_err(msg)?;
-            check_output(remap, fine.positions.len(), fine.ct.num_corners())?;
-            let out = (remap.positions(&fine.positions, input), remap.ids(fine.ct.v_table()), 3);
+            // the faces alone: the last level skips its adjacency tables
+            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts).map_err(msg)?;
+            check_output(remap, fine.positions.len(), fine.corners.len())?;
+            let out = (remap.positions(&fine.positions, input), remap.ids(&fine.corners), 3);
             drop_later(fine);
             Ok(out)
         }
