@@ -45,3 +45,18 @@ fn same_result_for_any_thread_count() {
         }
     }
 }
+
+#[test]
+fn vertex_sums_split_over_threads_agree() {
+    // Loop's vertex points scatter the ring sums over threads only from
+    // 2^20 corners a level: level 3 of an icosphere of 81,920 faces reads
+    // 3.9 M corners
+    let m = icosphere(6);
+    let one = in_pool(1, &m, Scheme::Loop, 3);
+    for threads in [2, 3] {
+        let many = in_pool(threads, &m, Scheme::Loop, 3);
+        assert_eq!(one.ct.v_table(), many.ct.v_table());
+        let worst = one.positions.iter().zip(&many.positions).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+        assert!(worst <= 1e-6, "positions differ by {worst} with {threads} threads");
+    }
+}
