@@ -31,8 +31,8 @@ bunny="$models/stanford-bunny-compact.obj"
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
 ln -s /dev/null "$tmp/null.ply"
 fan="$tmp/fandisk40.obj"; quads="$tmp/spot_q70k.obj"
-"$bin" -q subdivide "$models/fandisk.obj" "$fan" --levels 0 --crease-angle 40
-"$bin" -q subdivide "$models/spot.obj" "$quads" -s catmull-clark --levels 2
+"$bin" -q subdivide "$models/fandisk.obj" "$fan" --levels 0 --crease-angle 40 >/dev/null
+"$bin" -q subdivide "$models/spot.obj" "$quads" -s catmull-clark --levels 2 >/dev/null
 field() { grep -o "$1=[0-9.]*" | head -1 | cut -d= -f2; }
 stats() { sort -g | awk '{a[NR]=$1} END {printf "min %7.1f  median %7.1f  max/min %.2f", a[1], a[int((NR+1)/2)], a[NR]/a[1]}'; }
 ours() { "$bin" "$@" --stats | field subdivide_ms; }
