@@ -56,7 +56,8 @@ fn vertex_sums_split_over_threads_agree() {
     for threads in [2, 3] {
         let many = in_pool(threads, &m, Scheme::Loop, 3);
         assert_eq!(one.ct.v_table(), many.ct.v_table());
-        let worst = one.positions.iter().zip(&many.positions).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+        let worst =
+            one.positions.iter().zip(&many.positions).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
         assert!(worst <= 1e-6, "positions differ by {worst} with {threads} threads");
     }
 }
