@@ -51,4 +51,4 @@ pub mod app;
 
 pub use error::{Error, MeshError, Result};
 pub use mesh::{BORDER, CornerTable, Mesh};
-pub use subdiv::{LoopBeta, Options, Scheme, Stats, subdivide, subdivide_faces, subdivide_poly};
+pub use subdiv::{LoopBeta, Options, Scheme, Stats, subdivide, subdivide_faces, subdivide_poly, subdivide_poly_faces};

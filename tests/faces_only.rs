@@ -45,7 +45,7 @@ fn cases() -> Vec<(String, Mesh, Options)> {
 const SCHEMES: [Scheme; 5] =
     [Scheme::Loop, Scheme::Midpoint, Scheme::Butterfly, Scheme::ModifiedButterfly, Scheme::Jarek];
 
-fn assert_same_bits(name: &str, full: &Mesh, faces: &subdiv::mesh::Triangles) {
+fn assert_same_bits(name: &str, full: &Mesh, faces: &subdiv::mesh::Faces) {
     assert_eq!(full.ct.v_table(), &faces.corners[..], "{name}: V table");
     assert_eq!(full.positions.len(), faces.positions.len(), "{name}: vertex count");
     for (i, (a, b)) in full.positions.iter().zip(&faces.positions).enumerate() {
@@ -63,7 +63,7 @@ fn faces_only_equal_the_full_subdivision_bit_for_bit() {
                 let what = format!("{name}, {scheme}, {levels} levels");
                 assert_same_bits(&what, &full, &faces);
                 assert_eq!(st.faces_per_level, st_faces.faces_per_level, "{what}");
-                assert_eq!(faces.num_triangles(), full.ct.num_triangles(), "{what}");
+                assert_eq!((faces.num_faces(), faces.sides), (full.ct.num_triangles(), 3), "{what}");
             }
         }
     }
@@ -120,4 +120,78 @@ fn faces_are_written_as_the_mesh_is() {
     assert!(!io::writes_faces(std::path::Path::new("a.ct"), false));
     let err = io::save_faces(&dir.join("faces.ct"), &faces, &Attributes::default()).unwrap_err().to_string();
     assert!(err.contains("faces.ct"), "{err}");
+}
+
+fn load_poly(name: &str) -> subdiv::mesh::poly::PolyMesh {
+    let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name);
+    subdiv::mesh::poly::PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap())
+}
+
+fn poly_cases() -> Vec<(&'static str, subdiv::mesh::poly::PolyMesh, Options)> {
+    let d = Options::default;
+    vec![
+        ("cube", load_poly("cube.obj"), d()),
+        ("cube_creases", load_poly("cube_creases.obj"), d()),
+        ("cube_creases chaikin", load_poly("cube_creases.obj"), Options { creasing: Creasing::Chaikin, ..d() }),
+        ("grid", load_poly("grid.obj"), d()),
+        ("grid corners", load_poly("grid.obj"), Options { boundary: BoundaryInterpolation::EdgeAndCorner, ..d() }),
+        ("ngons", load_poly("ngons.obj"), d()),
+    ]
+}
+
+#[test]
+fn quads_alone_equal_the_polygon_subdivision_bit_for_bit() {
+    use subdiv::{subdivide_poly, subdivide_poly_faces};
+    for (name, mesh, opts) in poly_cases() {
+        for scheme in [Scheme::CatmullClark, Scheme::Bilinear] {
+            for levels in 1..=3 {
+                let what = format!("{name}, {scheme}, {levels} levels");
+                let (full, st) = subdivide_poly(&mesh, scheme, levels, &opts).unwrap();
+                let (faces, st_faces) = subdivide_poly_faces(&mesh, scheme, levels, &opts).unwrap();
+                assert_eq!(faces.sides, 4, "{what}");
+                assert_eq!(full.pt.v_table(), &faces.corners[..], "{what}: corners");
+                let bits = |p: &[glam::Vec3]| p.iter().flat_map(|q| q.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+                assert_eq!(bits(&full.positions), bits(&faces.positions), "{what}: positions");
+                assert_eq!(st.faces_per_level, st_faces.faces_per_level, "{what}");
+            }
+        }
+        assert!(subdivide_poly_faces(&mesh, Scheme::CatmullClark, 0, &opts).is_err(), "{name}: no levels");
+        assert!(subdivide_poly_faces(&mesh, Scheme::Loop, 1, &opts).is_err(), "{name}: a triangle scheme");
+    }
+}
+
+#[test]
+fn quads_are_written_as_the_polygon_mesh_is() {
+    use subdiv::io;
+    use subdiv::mesh::attributes::{Attributes, Material, MaterialGroups};
+    let control = load_poly("ngons.obj");
+    let (full, _) = subdiv::subdivide_poly(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
+    let (faces, _) = subdiv::subdivide_poly_faces(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
+    let nf = full.pt.num_faces();
+    let colors = Attributes { colors: Some(full.positions.iter().map(|p| p.abs()).collect()), ..Default::default() };
+    let uv = Attributes {
+        uv: Some(full.pt.v_table().iter().map(|&v| glam::Vec2::new(v as f32 * 1e-3, 0.25)).collect()),
+        materials: Some(MaterialGroups {
+            face: (0..nf as u32).map(|f| f % 2).collect(),
+            list: vec![Material::named("a"), Material::named("b")],
+            libraries: vec![],
+        }),
+        ..Default::default()
+    };
+    let dir = scratch_dir("faces_only_quads");
+    for ext in ["ply", "obj", "off", "stl", "glb"] {
+        for attrs in [Attributes::default(), colors.clone(), uv.clone()] {
+            let (a, b) = (dir.join(format!("poly.{ext}")), dir.join(format!("quads.{ext}")));
+            io::save_poly(&a, &full, &attrs).unwrap();
+            io::save_faces(&b, &faces, &attrs).unwrap();
+            assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "{ext}");
+        }
+    }
+    // faces that are neither triangles nor quads, or name a missing vertex
+    let five = subdiv::mesh::Faces { sides: 5, ..faces.clone() };
+    assert!(io::save_faces(&dir.join("five.ply"), &five, &Attributes::default()).is_err());
+    let mut broken = faces.clone();
+    broken.corners[7] = broken.positions.len() as u32;
+    let err = io::save_faces(&dir.join("broken.stl"), &broken, &Attributes::default()).unwrap_err().to_string();
+    assert!(err.contains("corner 7"), "{err}");
 }

@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use subdiv::subdiv::rules::features::with_boundary_corners;
 use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_with};
 use subdiv::subdiv::tables::StencilPlan;
-use subdiv::{Mesh, Options, Scheme, subdivide_faces, subdivide_poly};
+use subdiv::{Mesh, Options, Scheme, subdivide_faces, subdivide_poly, subdivide_poly_faces};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
 /// flat corners and face offsets (int64), all C-contiguous.
@@ -116,6 +116,14 @@ fn refine(
             let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts).map_err(msg)?;
             check_output(remap, fine.positions.len(), fine.corners.len())?;
             let out = (remap.positions(&fine.positions, input), remap.ids(&fine.corners), 3);
+            drop_later(fine);
+            Ok(out)
+        }
+        Control::Poly(mesh) if levels > 0 => {
+            // the quads alone: the last level skips its adjacency tables
+            let (fine, _) = subdivide_poly_faces(&mesh, scheme, levels, opts).map_err(msg)?;
+            check_output(remap, fine.positions.len(), fine.corners.len())?;
+            let out = (remap.positions(&fine.positions, input), remap.ids(&fine.corners), 4);
             drop_later(fine);
             Ok(out)
         }

@@ -106,7 +106,7 @@ fn subdivide_triangles(
         let fine_attrs = fine_attrs(attrs)?;
         let t1 = Instant::now();
         io::save_faces(&a.output, &fine, &fine_attrs)?;
-        return Ok((fine.positions.len(), fine.num_triangles(), st, t1.elapsed().as_secs_f64() * 1e3));
+        return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(mesh, s.scheme, levels, &s.options())?;
     let fine_attrs = fine_attrs(attrs)?;
@@ -125,12 +125,21 @@ fn subdivide_polygons(
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
     let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
     let (control, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-    let (fine, st) = subdiv::subdivide_poly(&control, s.scheme, levels, &s.options())?;
-    let fine_attrs = if pattrs.is_empty() {
-        pattrs
-    } else {
-        subdiv::subdiv::tables::attributes::refine_poly(&control, &pattrs, s.scheme, levels, &s.options())?
+    let fine_attrs = |pattrs: Attributes| match pattrs.is_empty() {
+        true => Ok(pattrs),
+        false => subdiv::subdiv::tables::attributes::refine_poly(&control, &pattrs, s.scheme, levels, &s.options()),
     };
+    // as for the triangle schemes: the quads alone where the file keeps nothing else
+    let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
+    if levels > 0 && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
+        let (fine, st) = subdiv::subdivide_poly_faces(&control, s.scheme, levels, &s.options())?;
+        let fine_attrs = fine_attrs(pattrs)?;
+        let t1 = Instant::now();
+        io::save_faces(&a.output, &fine, &fine_attrs)?;
+        return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
+    }
+    let (fine, st) = subdiv::subdivide_poly(&control, s.scheme, levels, &s.options())?;
+    let fine_attrs = fine_attrs(pattrs)?;
     let t1 = Instant::now();
     io::save_poly(&a.output, &fine, &fine_attrs)?;
     Ok((fine.positions.len(), fine.pt.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3))

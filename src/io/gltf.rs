@@ -41,7 +41,7 @@ pub const FORMAT: Format = Format {
     writer: Some(save),
     written_as: &["glb"],
     poly_writer: None,
-    faces_writer: Some(save_faces),
+    faces_writer: Some(|path, positions, corners, _, attrs| save_faces(path, positions, corners, attrs)),
     keeps: Keeps { uv: true, colors: true, materials: false, creases: false },
 };
 

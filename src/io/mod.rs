@@ -79,9 +79,10 @@ type Writer = fn(&Path, &Mesh, &Attributes) -> Result<()>;
 /// A format's writer of polygon meshes (attributes per polygon corner and face).
 type PolyWriter = fn(&Path, &PolyMesh, &Attributes) -> Result<()>;
 
-/// A format's writer of faces alone: positions, a V table (three vertex ids
-/// a triangle) and attributes.
-type FacesWriter = fn(&Path, &[glam::Vec3], &[u32], &Attributes) -> Result<()>;
+/// A format's writer of faces alone: positions, the vertex of every corner,
+/// the corners per face (3 or 4; always 3 for a format without polygons)
+/// and attributes.
+type FacesWriter = fn(&Path, &[glam::Vec3], &[u32], usize, &Attributes) -> Result<()>;
 
 /// What a format's writer keeps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -440,16 +441,53 @@ pub fn writes_faces(path: &Path, sharp: bool) -> bool {
     Format::for_output(path).is_some_and(|f| f.faces_writer.is_some() && !(sharp && f.keeps.creases))
 }
 
-/// Saves faces alone (positions, a V table and attributes) by extension:
-/// the bytes [`save_with`] writes for a mesh with these faces and no sharp
-/// features.
+/// Saves faces alone (triangles or quads, with their attributes) by
+/// extension: the bytes [`save_with`] writes for a mesh with these
+/// triangles, or [`save_poly`] for a mesh with these quads, and no sharp
+/// features. A format without polygons gets the quads fanned into
+/// triangles, as [`save_poly`] does.
 ///
 /// # Errors
-/// An extension whose format needs the corner table (`.ct`, see
+/// Faces of other than 3 or 4 corners, a corner naming no vertex, an
+/// extension whose format needs the corner table (`.ct`, see
 /// [`writes_faces`]), an unknown one, or an I/O error.
-pub fn save_faces(path: &Path, faces: &crate::mesh::Triangles, attrs: &Attributes) -> Result<()> {
+pub fn save_faces(path: &Path, faces: &crate::mesh::Faces, attrs: &Attributes) -> Result<()> {
+    use rayon::prelude::*;
+    let (v, sides, nv) = (&faces.corners, faces.sides, faces.positions.len());
+    let bad = |msg: String| Err(Error::Usage(format!("{}: {msg}", path.display())));
+    if !(3..=4).contains(&sides) || v.len() % sides != 0 {
+        return bad(format!(
+            "{} corners in faces of {sides}: only triangles and quads are written from faces",
+            v.len()
+        ));
+    }
+    if let Some(c) = v.par_iter().position_any(|&x| x as usize >= nv) {
+        return bad(format!("corner {c} names vertex {}, beyond the {nv} vertices", v[c]));
+    }
     match Format::for_output(path) {
-        Some(Format { faces_writer: Some(write), .. }) => write(path, &faces.positions, &faces.corners, attrs),
+        Some(f @ Format { faces_writer: Some(write), .. }) if sides == 3 || f.poly_writer.is_some() => {
+            write(path, &faces.positions, v, sides, attrs)
+        }
+        Some(Format { faces_writer: Some(write), .. }) => {
+            // quads into a format without polygons: each fanned as save_poly does
+            let fan: Vec<u32> = (0..v.len() as u32 / 4)
+                .flat_map(|f| [4 * f, 4 * f + 1, 4 * f + 2, 4 * f, 4 * f + 2, 4 * f + 3])
+                .collect();
+            let tri_attrs = Attributes {
+                uv: attrs
+                    .uv
+                    .as_ref()
+                    .filter(|u| u.len() == v.len())
+                    .map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
+                colors: attrs.colors.clone(),
+                materials: attrs.materials.as_ref().map(|m| crate::mesh::attributes::MaterialGroups {
+                    face: (0..2 * m.face.len()).map(|t| m.face[t / 2]).collect(),
+                    ..m.clone()
+                }),
+            };
+            let tris: Vec<u32> = fan.iter().map(|&c| v[c as usize]).collect();
+            write(path, &faces.positions, &tris, 3, &tri_attrs)
+        }
         Some(f) => Err(Error::Usage(format!("{}: {} needs a corner table, not faces alone", path.display(), f.name))),
         None => Err(Error::UnknownFormat {
             path: path.display().to_string(),

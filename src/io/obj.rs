@@ -521,32 +521,33 @@ fn is_small_whole(x: f32) -> bool {
 /// # Errors
 /// The first error of `sink`.
 pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
-    write_faces(&mesh.positions, mesh.ct.v_table(), &Attributes::default(), &tag_records(mesh), sink)
+    write_faces((&mesh.positions, mesh.ct.v_table(), 3), &Attributes::default(), &tag_records(mesh), sink)
 }
 
-/// OBJ text of the triangles `v` (a V table) over the vertices `pos`, with
-/// their attributes and the tag records `tags` (see [`write_obj_with`]).
+/// OBJ text of the faces of `sides` corners each whose vertices are `v`
+/// over the vertices `pos`, with their attributes and the tag records
+/// `tags` (see [`write_obj_with`]).
 ///
 /// # Errors
 /// The first error of `sink`.
 fn write_faces(
-    pos: &[Vec3],
-    v: &[u32],
+    (pos, v, sides): (&[Vec3], &[u32], usize),
     attrs: &Attributes,
     tags: &[u8],
     sink: &mut dyn FnMut(&[u8]) -> Result<()>,
 ) -> Result<()> {
     if !attrs.is_empty() {
-        let tri = |t: usize| 3 * t..3 * t + 3;
-        let faces = FaceSource { corners: v, count: v.len() / 3, face: &tri };
+        let face = |f: usize| sides * f..sides * f + sides;
+        let faces = FaceSource { corners: v, count: v.len() / sides, face: &face };
         return write_records(pos, &faces, attrs, tags, sink);
     }
     const ROWS: usize = 1 << 15;
-    let header = format!("# subdiv: {} vertices, {} triangles\n", pos.len(), v.len() / 3);
+    let noun = if sides == 3 { "triangles" } else { "faces" };
+    let header = format!("# subdiv: {} vertices, {} {noun}\n", pos.len(), v.len() / sides);
     let vchunks: Vec<&[Vec3]> = pos.chunks(ROWS).collect();
-    let tchunks: Vec<&[u32]> = v.chunks(3 * ROWS).collect();
+    let tchunks: Vec<&[u32]> = v.chunks(sides * ROWS).collect();
     let nv = vchunks.len();
-    let text = |k: usize| if k < nv { vertex_text(vchunks[k]) } else { face_text(tchunks[k - nv]) };
+    let text = |k: usize| if k < nv { vertex_text(vchunks[k]) } else { face_text(tchunks[k - nv], sides) };
     crate::io::write_formatted(&[header.as_bytes()], nv + tchunks.len(), text, sink)?;
     sink(tags)
 }
@@ -588,9 +589,9 @@ fn put_f32(line: &mut Line, rb: &mut zmij::Buffer, x: f32) {
     }
 }
 
-/// `f a b c` lines (1-based) of V-table triples.
-fn face_text(ch: &[u32]) -> Vec<u8> {
-    text::triple_lines(b"f ", ch, |line, v| line.put_u32(v.wrapping_add(1)))
+/// `f a b c` lines (1-based) of rows of `sides` vertex ids.
+fn face_text(ch: &[u32], sides: usize) -> Vec<u8> {
+    text::row_lines(b"f ", ch, sides, |line, v| line.put_u32(v.wrapping_add(1)))
 }
 
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b
@@ -637,7 +638,7 @@ pub(crate) struct FaceSource<'a> {
 /// # Errors
 /// The first error of `sink`.
 pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
-    write_faces(&mesh.positions, mesh.ct.v_table(), attrs, &tag_records(mesh), sink)
+    write_faces((&mesh.positions, mesh.ct.v_table(), 3), attrs, &tag_records(mesh), sink)
 }
 
 /// [`write_obj_with`] of a polygon mesh: one `f` line per polygon (texture
@@ -777,15 +778,16 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     })
 }
 
-/// Saves the triangles `v` (a V table) over the vertices `positions` with
-/// their attributes as OBJ (atomically): [`save_with`] of a mesh with these
-/// faces and no sharp features.
+/// Saves the faces of `sides` corners each whose vertices are `v` over the
+/// vertices `positions`, with their attributes, as OBJ (atomically):
+/// [`save_with`] of a mesh with these triangles, or [`save_poly`] of a mesh
+/// with these quads, and no sharp features.
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Attributes) -> Result<()> {
+pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], sides: usize, attrs: &Attributes) -> Result<()> {
     crate::io::atomic_write(path, |w| {
-        write_faces(positions, v, attrs, &[], &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
+        write_faces((positions, v, sides), attrs, &[], &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
     })
 }
 
@@ -809,7 +811,7 @@ mod tests {
         let v: Vec<u32> = ids.iter().flat_map(|&a| [a, a / 3, a / 7]).collect();
         let expected: String =
             v.chunks_exact(3).map(|t| format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1)).collect();
-        assert_eq!(String::from_utf8(face_text(&v)).unwrap(), expected);
+        assert_eq!(String::from_utf8(face_text(&v, 3)).unwrap(), expected);
     }
 
     #[test]

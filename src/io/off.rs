@@ -11,7 +11,7 @@
 
 use super::atomic_write;
 use super::raw::{RawMesh, check_count};
-use super::text::{LONGEST, Line, triple_lines};
+use super::text::{LONGEST, Line};
 use super::{Format, Input, Keeps};
 use crate::mesh::Mesh;
 use crate::{Error, Result};
@@ -36,7 +36,9 @@ pub const FORMAT: Format = Format {
     writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
     written_as: &["off"],
     poly_writer: Some(|path, mesh, attrs| save_poly(path, mesh, attrs.colors.as_deref())),
-    faces_writer: Some(|path, positions, corners, attrs| save_faces(path, positions, corners, attrs.colors.as_deref())),
+    faces_writer: Some(|path, positions, corners, sides, attrs| {
+        save_faces(path, positions, (corners, sides), attrs.colors.as_deref())
+    }),
     keeps: Keeps { uv: false, colors: true, materials: false, creases: false },
 };
 
@@ -173,18 +175,26 @@ fn read(input: &Input) -> Result<RawMesh> {
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
-    save_faces(path, &mesh.positions, mesh.ct.v_table(), colors)
+    save_faces(path, &mesh.positions, (mesh.ct.v_table(), 3), colors)
 }
 
-/// [`save_with`] of the triangles `v` (a V table) over the vertices
-/// `positions`.
+/// [`save_with`] (or [`save_poly`]) of the faces of `sides` corners each
+/// (3 or 4) whose vertices are `v`, over the vertices `positions`.
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], colors: Option<&[Vec3]>) -> Result<()> {
-    let nt = v.len() / 3;
-    let faces = |first: usize| triple_lines(b"3 ", &v[3 * first..3 * (first + ROWS).min(nt)], Line::put_u32);
-    write_off(path, positions, colors, nt, faces)
+pub fn save_faces(path: &Path, positions: &[Vec3], (v, sides): (&[u32], usize), colors: Option<&[Vec3]>) -> Result<()> {
+    let nf = v.len() / sides;
+    let prefix = format!("{sides} ");
+    let faces = |first: usize| {
+        super::text::row_lines(
+            prefix.as_bytes(),
+            &v[sides * first..sides * (first + ROWS).min(nf)],
+            sides,
+            Line::put_u32,
+        )
+    };
+    write_off(path, positions, colors, nf, faces)
 }
 
 /// Saves a polygon mesh as OFF text (one `k a b c ...` line per face;

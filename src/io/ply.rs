@@ -131,8 +131,8 @@ pub const FORMAT: Format = Format {
     writer: Some(|path, mesh, attrs| save_with(path, mesh, attrs.colors.as_deref())),
     written_as: &["ply"],
     poly_writer: Some(|path, mesh, attrs| save_poly(path, mesh, attrs.colors.as_deref())),
-    faces_writer: Some(|path, positions, corners, attrs| {
-        write(path, positions, attrs.colors.as_deref(), &Faces::Triangles(corners))
+    faces_writer: Some(|path, positions, corners, sides, attrs| {
+        write(path, positions, attrs.colors.as_deref(), &Faces::Fixed(corners, sides))
     }),
     keeps: Keeps { uv: false, colors: true, materials: false, creases: false },
 };
@@ -422,7 +422,7 @@ fn read_faces(body: &mut Body, el: &Element, count: usize, input: &Input, raw: &
 /// # Errors
 /// I/O errors naming `path`.
 pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
-    write(path, &mesh.positions, colors, &Faces::Triangles(mesh.ct.v_table()))
+    write(path, &mesh.positions, colors, &Faces::Fixed(mesh.ct.v_table(), 3))
 }
 
 /// [`save_with`] of a polygon mesh: one list record per polygon.
@@ -450,14 +450,15 @@ pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option
 /// The faces [`write`] writes: triangles (13-byte records) or polygons
 /// (with the byte offset of every chunk of [`FACE_ROWS`] faces).
 enum Faces<'a> {
-    Triangles(&'a [u32]),
+    /// Faces of as many corners each (3: triangles).
+    Fixed(&'a [u32], usize),
     Polygons(&'a crate::mesh::poly::PolyTable, &'a [u64]),
 }
 
 impl Faces<'_> {
     fn count(&self) -> usize {
         match self {
-            Faces::Triangles(v) => v.len() / 3,
+            Faces::Fixed(v, k) => v.len() / k,
             Faces::Polygons(pt, _) => pt.num_faces(),
         }
     }
@@ -466,7 +467,7 @@ impl Faces<'_> {
         let first = k * FACE_ROWS;
         let last = (first + FACE_ROWS).min(self.count());
         match self {
-            Faces::Triangles(v) => (13 * first as u64, face_records(&v[3 * first..3 * last])),
+            &Faces::Fixed(v, k) => ((1 + 4 * k as u64) * first as u64, face_records(&v[k * first..k * last], k)),
             Faces::Polygons(pt, starts) => {
                 let mut out = Vec::new();
                 for f in first as u32..last as u32 {
@@ -535,15 +536,22 @@ const VERTEX_ROWS: usize = 1 << 16;
 /// Triangles per chunk of face records.
 const FACE_ROWS: usize = 1 << 16;
 
-/// Face records (`3 a b c`, 13 bytes) of V-table triples.
-fn face_records(v: &[u32]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(v.len() / 3 * 13);
-    for tri in v.chunks_exact(3) {
-        let mut rec = [3u8; 13];
-        for (k, &i) in tri.iter().enumerate() {
-            rec[1 + 4 * k..5 + 4 * k].copy_from_slice(&i.to_le_bytes());
+/// Face records (`k a b c ...`, `1 + 4 k` bytes: 13 for triangles) of
+/// rows of `k` vertex ids (`k` from 3 to 255).
+fn face_records(v: &[u32], k: usize) -> Vec<u8> {
+    let mut out = Vec::with_capacity(v.len() / k * (1 + 4 * k));
+    for face in v.chunks_exact(k) {
+        if k <= 4 {
+            // one fixed-size copy a record
+            let mut rec = [k as u8; 17];
+            for (j, &i) in face.iter().enumerate() {
+                rec[1 + 4 * j..5 + 4 * j].copy_from_slice(&i.to_le_bytes());
+            }
+            out.extend_from_slice(&rec[..1 + 4 * k]);
+        } else {
+            out.push(k as u8);
+            face.iter().for_each(|i| out.extend_from_slice(&i.to_le_bytes()));
         }
-        out.extend_from_slice(&rec);
     }
     out
 }

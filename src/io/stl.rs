@@ -25,7 +25,7 @@ pub const FORMAT: Format = Format {
     writer: Some(|path, mesh, _| save(path, mesh)),
     written_as: &["stl"],
     poly_writer: None,
-    faces_writer: Some(|path, positions, corners, _| save_faces(path, positions, corners)),
+    faces_writer: Some(|path, positions, corners, _, _| save_faces(path, positions, corners)),
     keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
 };
 

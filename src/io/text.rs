@@ -97,6 +97,28 @@ pub(crate) fn triple_lines(prefix: &[u8], ids: &[u32], put: impl Fn(&mut Line, u
     out
 }
 
+/// [`triple_lines`] of rows of `k` ids (`k` from 1 to 4: a prefix and five
+/// numbers of 10 digits fit a line).
+pub(crate) fn row_lines(prefix: &[u8], ids: &[u32], k: usize, put: impl Fn(&mut Line, u32)) -> Vec<u8> {
+    if k == 3 {
+        return triple_lines(prefix, ids, put);
+    }
+    let mut out = Vec::with_capacity(ids.len() / k * (LONGEST + 16) + 64);
+    let mut line: Line = Line::new(prefix);
+    for row in ids.chunks_exact(k) {
+        line.reset();
+        for (i, &id) in row.iter().enumerate() {
+            if i > 0 {
+                line.push(b' ');
+            }
+            put(&mut line, id);
+        }
+        line.push(b'\n');
+        line.append_to(&mut out);
+    }
+    out
+}
+
 /// Two decimal digits of every number below 100.
 const DIGIT_PAIRS: &[u8; 200] = b"\
 0001020304050607080910111213141516171819202122232425262728293031323334353637383940414243444546474849\

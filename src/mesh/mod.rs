@@ -472,28 +472,32 @@ impl Iterator for Ring<'_> {
     }
 }
 
-/// A triangle mesh as its faces alone: positions and the V table (three
-/// vertex ids a triangle, counter-clockwise), without the adjacency of a
-/// [`CornerTable`]. What a subdivision gives when its caller only writes or
-/// copies the faces ([`crate::subdiv::subdivide_faces`]): the last level
-/// then skips its O, C and valence tables.
+/// A mesh as its faces alone, every face with the same number of corners
+/// (`sides`: 3 for triangles, 4 for quads): positions and the vertex of
+/// every corner (counter-clockwise), without the adjacency of a
+/// [`CornerTable`] or a polygon table. What a subdivision gives when its
+/// caller only writes or copies the faces ([`crate::subdiv::subdivide_faces`],
+/// [`crate::subdiv::subdivide_poly_faces`]): the last level then skips its
+/// adjacency tables.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Triangles {
+pub struct Faces {
     /// One position per vertex.
     pub positions: Vec<Vec3>,
-    /// `V[c]`: the vertex of corner `c`, three corners a triangle.
+    /// The vertex of every corner, `sides` corners a face.
     pub corners: Vec<u32>,
+    /// Corners per face.
+    pub sides: usize,
 }
 
-impl Triangles {
-    /// The faces of `mesh` (copied).
-    pub fn of(mesh: &Mesh) -> Triangles {
-        Triangles { positions: mesh.positions.clone(), corners: mesh.ct.v_table().to_vec() }
+impl Faces {
+    /// The triangles of `mesh` (copied).
+    pub fn of(mesh: &Mesh) -> Faces {
+        Faces { positions: mesh.positions.clone(), corners: mesh.ct.v_table().to_vec(), sides: 3 }
     }
 
-    /// Number of triangles.
-    pub fn num_triangles(&self) -> usize {
-        self.corners.len() / 3
+    /// Number of faces.
+    pub fn num_faces(&self) -> usize {
+        self.corners.len() / self.sides.max(1)
     }
 }
 

@@ -13,7 +13,7 @@ use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Level, Rules, boundary_flags};
 use super::{RulesFn, Stats, ms};
 use crate::mesh::split::{self, EdgeIds};
-use crate::mesh::{CornerTable, Creasing, Mesh, Triangles, n, p};
+use crate::mesh::{CornerTable, Creasing, Faces, Mesh, n, p};
 use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -135,7 +135,7 @@ pub(crate) struct OneLevel<'a> {
 /// boundary flags when another level follows), or its faces alone.
 pub(crate) enum Refined {
     Table(Mesh, Option<Vec<bool>>),
-    Faces(Triangles),
+    Faces(Faces),
 }
 
 /// The split's part of [`Refined`].
@@ -175,7 +175,7 @@ impl RulesFn<Refined> for OneLevel<'_> {
         }
         match table {
             NewTable::Full(ct, next_boundary) => Refined::Table(Mesh { ct, positions }, next_boundary),
-            NewTable::Faces(corners) => Refined::Faces(Triangles { positions, corners }),
+            NewTable::Faces(corners) => Refined::Faces(Faces { positions, corners, sides: 3 }),
         }
     }
 }

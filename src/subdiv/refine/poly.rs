@@ -10,8 +10,10 @@
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules};
 use super::super::rules::features::Features;
 use super::super::{Stats, ms};
+use crate::mesh::Faces;
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
+use crate::mesh::split::EdgeNumbering;
 use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::{Error, Result};
 use glam::{Vec3, Vec3A};
@@ -20,10 +22,33 @@ use std::time::Instant;
 
 /// One level of `r` on `mesh`, timed into `stats`.
 pub(crate) fn level<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, stats: &mut Stats) -> PolyMesh {
-    let old = &mesh.pt;
     let t0 = Instant::now();
-    let (pt, edges) = split::split(old, creasing);
+    let (pt, edges) = split::split(&mesh.pt, creasing);
     stats.split_ms += ms(t0.elapsed());
+    let positions = points(r, mesh, &edges, creasing, stats);
+    PolyMesh { pt, positions }
+}
+
+/// [`level`] as faces alone (its quads, without twins, C or valences: the
+/// last level of [`crate::subdiv::subdivide_poly_faces`]).
+pub(crate) fn level_faces<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, stats: &mut Stats) -> Faces {
+    let t0 = Instant::now();
+    let (corners, edges) = split::split_faces(&mesh.pt);
+    stats.split_ms += ms(t0.elapsed());
+    let positions = points(r, mesh, &edges, creasing, stats);
+    Faces { positions, corners, sides: 4 }
+}
+
+/// The points of the level after `mesh`, whose edges the split numbered
+/// `edges`: vertex points, then edge points, then face points.
+fn points<R: PolyRules>(
+    r: &R,
+    mesh: &PolyMesh,
+    edges: &EdgeNumbering,
+    creasing: Creasing,
+    stats: &mut Stats,
+) -> Vec<Vec3> {
+    let old = &mesh.pt;
     let (nv, ne, nf) = (old.num_vertices(), edges.owners.len(), old.num_faces());
     let mut positions: Vec<Vec3> = crate::mem::zeroed(nv + ne + nf);
     let (vpart, rest) = positions.split_at_mut(nv);
@@ -42,7 +67,7 @@ pub(crate) fn level<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, st
         let slot = |c: u32| edges.ids.edge(c, old.twin_entry(c)) as usize;
         super::feature_points(&PolyOn { r, lv: &lv }, f, pos, Some(vpart), epart, slot);
     }
-    PolyMesh { pt, positions }
+    positions
 }
 
 /// Every face's point: the average of its vertices.
