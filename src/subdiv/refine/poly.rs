@@ -16,7 +16,7 @@ use crate::mesh::sharpness::Sharpness;
 use crate::mesh::split::EdgeNumbering;
 use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::{Error, Result};
-use glam::{Vec3, Vec3A};
+use glam::Vec3;
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -106,17 +106,24 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
     }
     let (nv, nc) = (pos.len(), pt.num_corners());
     let parts = rayon::current_num_threads().clamp(1, nc / (1 << 16) + 1);
-    let sums: Vec<Vec<Vec3A>> = (0..parts)
-        .into_par_iter()
-        .map(|k| {
-            let mut acc: Vec<Vec3A> = crate::mem::zeroed(nv);
-            for c in (k * nc / parts) as u32..((k + 1) * nc / parts) as u32 {
-                let far = pos[pt.vtx(pt.next(c)) as usize];
-                acc[pt.vtx(c) as usize] += Vec3A::from(far) + Vec3A::from(fp[pt.face(c) as usize]);
-            }
-            acc
-        })
-        .collect();
+    let scatter = |acc: &mut [Vec3], k: usize| {
+        for c in (k * nc / parts) as u32..((k + 1) * nc / parts) as u32 {
+            let far = pos[pt.vtx(pt.next(c)) as usize];
+            acc[pt.vtx(c) as usize] += far + fp[pt.face(c) as usize];
+        }
+    };
+    // the first part sums into `out` itself (no buffer of its own to fault
+    // in), the others into buffers of theirs
+    out.par_iter_mut().with_min_len(1 << 14).for_each(|q| *q = Vec3::ZERO);
+    let mut extra: Vec<Vec<Vec3>> = (1..parts).map(|_| crate::mem::zeroed(nv)).collect();
+    rayon::scope(|sc| {
+        sc.spawn(|_| scatter(out, 0));
+        for (k, acc) in extra.iter_mut().enumerate() {
+            let scatter = &scatter;
+            sc.spawn(move |_| scatter(acc, k + 1));
+        }
+    });
+    let extra = &extra;
     out.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, q)| {
         let p = pos[v];
         if pt.is_boundary_vertex(v as u32) {
@@ -125,8 +132,8 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
             return;
         }
         let n = pt.valences()[v] as f32;
-        let sum: Vec3A = sums.iter().map(|s| s[v]).sum();
-        *q = p * ((n - 2.0) / n) + Vec3::from(sum) / (n * n);
+        let sum = extra.iter().fold(*q, |s, e| s + e[v]);
+        *q = p * ((n - 2.0) / n) + sum / (n * n);
     });
 }
 
