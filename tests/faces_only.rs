@@ -195,3 +195,43 @@ fn quads_are_written_as_the_polygon_mesh_is() {
     let err = io::save_faces(&dir.join("broken.stl"), &broken, &Attributes::default()).unwrap_err().to_string();
     assert!(err.contains("corner 7"), "{err}");
 }
+
+/// A renumbering as a caller might ask for it: wider ids, the first `keep`
+/// vertices moved to the end of a longer list, the others shifted.
+fn renumber(j: u32, keep: u32) -> i64 {
+    if j < keep { 1_000_000 + i64::from(j) } else { i64::from(j - keep) }
+}
+
+#[test]
+fn ids_written_through_a_map_are_the_mapped_table() {
+    use subdiv::subdivide_faces_as;
+    for (name, mesh, opts) in cases() {
+        for scheme in [Scheme::Loop, Scheme::Butterfly, Scheme::CatmullClark] {
+            for levels in 0..=2 {
+                let what = format!("{name}, {scheme}, {levels} levels");
+                let (plain, _) = subdivide_faces(&mesh, scheme, levels, &opts).unwrap();
+                let (wide, _) = subdivide_faces_as(&mesh, scheme, levels, &opts, |j| renumber(j, 5)).unwrap();
+                let mapped: Vec<i64> = plain.corners.iter().map(|&j| renumber(j, 5)).collect();
+                assert_eq!(wide.corners, mapped, "{what}: corners");
+                assert_eq!(wide.positions, plain.positions, "{what}: positions");
+                assert_eq!(wide.sides, plain.sides, "{what}");
+            }
+        }
+    }
+}
+
+#[test]
+fn quad_ids_written_through_a_map_are_the_mapped_table() {
+    use subdiv::{subdivide_poly_faces, subdivide_poly_faces_as};
+    for (name, mesh, opts) in poly_cases() {
+        for levels in 1..=2 {
+            let what = format!("{name}, {levels} levels");
+            let (plain, _) = subdivide_poly_faces(&mesh, Scheme::CatmullClark, levels, &opts).unwrap();
+            let (wide, _) =
+                subdivide_poly_faces_as(&mesh, Scheme::CatmullClark, levels, &opts, |j| renumber(j, 3)).unwrap();
+            let mapped: Vec<i64> = plain.corners.iter().map(|&j| renumber(j, 3)).collect();
+            assert_eq!(wide.corners, mapped, "{what}: corners");
+            assert_eq!(wide.positions, plain.positions, "{what}: positions");
+        }
+    }
+}

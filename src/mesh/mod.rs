@@ -33,6 +33,7 @@ pub mod topology;
 
 pub use build::BuildReport;
 use glam::Vec3;
+use rayon::prelude::*;
 pub use repair::{RepairReport, repair};
 pub use sharpness::{BoundaryInterpolation, Creasing, Sharpness, Tags};
 
@@ -478,21 +479,36 @@ impl Iterator for Ring<'_> {
 /// [`CornerTable`] or a polygon table. What a subdivision gives when its
 /// caller only writes or copies the faces ([`crate::subdiv::subdivide_faces`],
 /// [`crate::subdiv::subdivide_poly_faces`]): the last level then skips its
-/// adjacency tables.
+/// adjacency tables. The vertex ids are the library's `u32` unless the
+/// caller asked for others ([`crate::subdiv::subdivide_faces_as`]).
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Faces {
+pub struct Faces<I = u32> {
     /// One position per vertex.
     pub positions: Vec<Vec3>,
     /// The vertex of every corner, `sides` corners a face.
-    pub corners: Vec<u32>,
+    pub corners: Vec<I>,
     /// Corners per face.
     pub sides: usize,
 }
 
+/// A vertex id as a faces-only subdivision can write it: the library's own
+/// `u32`, or whatever a caller maps it to (a wider integer, its own
+/// numbering) in the pass that writes the faces.
+pub trait VertexId: bytemuck::Zeroable + Copy + Send + Sync {}
+impl<T: bytemuck::Zeroable + Copy + Send + Sync> VertexId for T {}
+
 impl Faces {
     /// The triangles of `mesh` (copied).
     pub fn of(mesh: &Mesh) -> Faces {
-        Faces { positions: mesh.positions.clone(), corners: mesh.ct.v_table().to_vec(), sides: 3 }
+        Faces::of_mapped(mesh, |j| j)
+    }
+}
+
+impl<I: VertexId> Faces<I> {
+    /// The triangles of `mesh` (copied), every vertex id `j` as `id(j)`.
+    pub fn of_mapped(mesh: &Mesh, id: impl Fn(u32) -> I + Sync) -> Faces<I> {
+        let corners = mesh.ct.v_table().par_iter().with_min_len(1 << 14).map(|&j| id(j)).collect();
+        Faces { positions: mesh.positions.clone(), corners, sides: 3 }
     }
 
     /// Number of faces.

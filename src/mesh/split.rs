@@ -31,7 +31,7 @@
 //! `C'[v] = A(C[v])`; an edge vertex has valence 6 (interior) or 4 (border)
 //! and `C' = c` (interior) or `p(A(p(c)))` (border, the first corner of its fan).
 
-use super::{BORDER, CornerTable, Creasing, Mesh, n, owns_edge, p};
+use super::{BORDER, CornerTable, Creasing, Mesh, VertexId, n, owns_edge, p};
 use rayon::prelude::*;
 
 /// Corners per parallel work item: big enough to amortise scheduling, small
@@ -242,7 +242,7 @@ pub(crate) fn split_with_boundary(
     let t0 = std::time::Instant::now();
     let NewVertexTables { edges, mut vc, mut valence, boundary } = number_edges_and_vertices(old, old_boundary);
     let t1 = std::time::Instant::now();
-    let (v2, o2) = rayon::join(|| write_v(old, &edges.ids), || write_o(old));
+    let (v2, o2) = rayon::join(|| write_v(old, &edges.ids, &|j| j), || write_o(old));
     carry_old_vertices(old, &mut vc, &mut valence);
     let times = (ms(t1 - t0), ms(t1.elapsed()));
     // sharp features are sparse: carried from the old table's, beside O
@@ -260,11 +260,15 @@ pub(crate) fn split_with_boundary(
 ///
 /// # Panics
 /// As [`split`].
-pub(crate) fn split_faces(old: &CornerTable) -> (Vec<u32>, EdgeNumbering) {
+///
+/// Every vertex id goes through `id` as it is written, so that a caller
+/// wanting other ids (wider, or renumbered) gets them in the one pass that
+/// writes the table, without a `u32` table to convert afterwards.
+pub(crate) fn split_faces<I: VertexId, M: Fn(u32) -> I + Sync>(old: &CornerTable, id: &M) -> (Vec<I>, EdgeNumbering) {
     let nc = old.num_corners() as u64;
     assert!(4 * nc < u64::from(BORDER), "split: {nc} corners are too many for 32-bit ids after a split");
     let edges = number_edges(old);
-    let v2 = write_v(old, &edges.ids);
+    let v2 = write_v(old, &edges.ids, id);
     (v2, edges)
 }
 
@@ -329,17 +333,19 @@ fn carry_old_vertices(old: &CornerTable, vc: &mut [u32], valence: &mut [u32]) {
 
 /// The new V table of a split, written in four streams (the central
 /// triangles and the three corner triangles), one old triangle at a time,
-/// from the old V and O and the edge ids `ids` of the numbering pass.
-fn write_v(old: &CornerTable, ids: &EdgeIds) -> Vec<u32> {
+/// from the old V and O and the edge ids `ids` of the numbering pass, each
+/// vertex id `j` written as `id(j)`.
+fn write_v<I: VertexId, M: Fn(u32) -> I + Sync>(old: &CornerTable, ids: &EdgeIds, id: &M) -> Vec<I> {
     let nc = old.num_corners();
     let nv = old.num_vertices() as u32;
-    let mut v2: Vec<u32> = crate::mem::zeroed(4 * nc);
+    let mut v2: Vec<I> = crate::mem::zeroed(4 * nc);
     let old_v3: &[[u32; 3]] = bytemuck::cast_slice(old.v_table());
     let old_o3: &[[u32; 3]] = bytemuck::cast_slice(old.o_table());
     for_each_split_triangle(&mut v2, nc, |t, [b0, b1, b2, b3]| {
         let c0 = 3 * t as u32;
         let (vv, x) = (old_v3[t], old_o3[t]);
         let ws = [nv + ids.edge(c0, x[0]), nv + ids.edge(c0 + 1, x[1]), nv + ids.edge(c0 + 2, x[2])];
+        let (ws, vv) = (ws.map(id), vv.map(id));
         // central triangle: the three edge vertices
         *b0 = ws;
         // corner triangle k: (V[c], W[p(c)], W[n(c)]) for c = c0 + k
@@ -381,9 +387,11 @@ fn write_o(old: &CornerTable) -> Vec<u32> {
 /// triangle `t` of a split of `nc` old corners, in parallel chunks, with the
 /// four triangles of the new table `table` (`4 nc` entries) that `t`
 /// becomes: the four streams of the layout in the module docs.
-fn for_each_split_triangle(table: &mut [u32], nc: usize, each: impl Fn(usize, [&mut [u32; 3]; 4]) + Sync) {
-    fn tri(s: &mut [u32]) -> &mut [[u32; 3]] {
-        bytemuck::cast_slice_mut(s)
+fn for_each_split_triangle<T: Send>(table: &mut [T], nc: usize, each: impl Fn(usize, [&mut [T; 3]; 4]) + Sync) {
+    fn tri<T>(s: &mut [T]) -> &mut [[T; 3]] {
+        let (triples, rest) = s.as_chunks_mut::<3>();
+        debug_assert!(rest.is_empty(), "a table of whole triangles");
+        triples
     }
     let (s0, rest) = table.split_at_mut(nc);
     let (s1, rest) = rest.split_at_mut(nc);

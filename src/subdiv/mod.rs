@@ -28,7 +28,7 @@ use crate::Result;
 pub use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
 pub use crate::mesh::{BoundaryInterpolation, Creasing};
-use crate::mesh::{Faces, Mesh};
+use crate::mesh::{Faces, Mesh, VertexId};
 use refine::{OneLevel, Refined};
 pub use refine::{check_level_fits, check_levels_fit, default_memory_limit, predict_faces, predict_level_bytes};
 use rules::{Rules, butterfly, catmull_clark, features, jarek, loop_, midpoint, modified_butterfly};
@@ -235,7 +235,7 @@ pub fn subdivide_with_progress(
         let (fine, stats) = subdivide_poly_with_progress(&poly, scheme, levels, opts, progress)?;
         return Ok((fine.triangulated(), stats));
     }
-    let (fine, stats) = refine_levels(mesh, scheme, levels, opts, false, progress)?;
+    let (fine, stats) = refine_levels(mesh, scheme, levels, opts, None::<&fn(u32) -> u32>, progress)?;
     match fine {
         Refined::Table(m, _) => Ok((m, stats)),
         // refine_levels gives faces only when asked for them
@@ -252,29 +252,47 @@ pub fn subdivide_with_progress(
 /// # Errors
 /// As [`subdivide`].
 pub fn subdivide_faces(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Faces, Stats)> {
+    subdivide_faces_as(mesh, scheme, levels, opts, |j| j)
+}
+
+/// [`subdivide_faces`] with every vertex id `j` of the faces written as
+/// `id(j)`, in the pass that writes them: for a caller that wants other ids
+/// (wider integers, its own numbering) without converting a `u32` table
+/// afterwards, which at bunny level 3 would be 53 MB written, read and
+/// freed. The positions are those of [`subdivide_faces`], in its order.
+///
+/// # Errors
+/// As [`subdivide`].
+pub fn subdivide_faces_as<I: VertexId>(
+    mesh: &Mesh,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+    id: impl Fn(u32) -> I + Sync,
+) -> Result<(Faces<I>, Stats)> {
     if scheme.is_polygonal() {
         let (fine, stats) = subdivide(mesh, scheme, levels, opts)?;
-        return Ok((Faces::of(&fine), stats));
+        return Ok((Faces::of_mapped(&fine, id), stats));
     }
-    let (fine, stats) = refine_levels(mesh, scheme, levels, opts, true, |_, _| true)?;
+    let (fine, stats) = refine_levels(mesh, scheme, levels, opts, Some(&id), |_, _| true)?;
     Ok(match fine {
-        Refined::Table(m, _) => Faces::of(&m),
+        Refined::Table(m, _) => Faces::of_mapped(&m, id),
         Refined::Faces(t) => t,
     })
     .map(|t| (t, stats))
 }
 
-/// The levels of a triangle scheme, the last one as faces only when
-/// `faces_only` (and reached: `progress` may stop the work earlier, after a
-/// level with its table).
-fn refine_levels(
+/// The levels of a triangle scheme, the last one as faces only, its ids
+/// through `faces_only`, when that is given (and the last level reached:
+/// `progress` may stop the work earlier, after a level with its table).
+fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync>(
     mesh: &Mesh,
     scheme: Scheme,
     levels: u32,
     opts: &Options,
-    faces_only: bool,
+    faces_only: Option<&M>,
     mut progress: impl FnMut(u32, u32) -> bool,
-) -> Result<(Refined, Stats)> {
+) -> Result<(Refined<I>, Stats)> {
     let t0 = Instant::now();
     let limit = opts.max_memory.or_else(default_memory_limit);
     let mut stats = Stats::default();
@@ -296,7 +314,7 @@ fn refine_levels(
             positions,
             boundary: boundary_in,
             last,
-            faces_only: faces_only && last,
+            faces_only: faces_only.filter(|_| last),
             creasing,
             stats: &mut stats,
         };
@@ -381,6 +399,21 @@ pub fn subdivide_poly_with_progress(
 /// As [`subdivide_poly`]; [`crate::Error::Usage`] for no levels (the
 /// faces of a control mesh need not be quads).
 pub fn subdivide_poly_faces(mesh: &PolyMesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Faces, Stats)> {
+    subdivide_poly_faces_as(mesh, scheme, levels, opts, |j| j)
+}
+
+/// [`subdivide_poly_faces`] with every vertex id `j` of the quads written
+/// as `id(j)`, in the pass that writes them (see [`subdivide_faces_as`]).
+///
+/// # Errors
+/// As [`subdivide_poly_faces`].
+pub fn subdivide_poly_faces_as<I: VertexId>(
+    mesh: &PolyMesh,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+    id: impl Fn(u32) -> I + Sync,
+) -> Result<(Faces<I>, Stats)> {
     if levels == 0 {
         return Err(crate::Error::Usage("faces alone come from at least one level (quads after it)".into()));
     }
@@ -391,8 +424,10 @@ pub fn subdivide_poly_faces(mesh: &PolyMesh, scheme: Scheme, levels: u32, opts: 
     let (before, mut stats) = subdivide_poly(mesh, scheme, levels - 1, opts)?;
     let t0 = Instant::now();
     let fine = match scheme {
-        Scheme::Bilinear => refine::poly::level_faces(&catmull_clark::Bilinear, &before, opts.creasing, &mut stats),
-        _ => refine::poly::level_faces(&catmull_clark::CatmullClark, &before, opts.creasing, &mut stats),
+        Scheme::Bilinear => {
+            refine::poly::level_faces(&catmull_clark::Bilinear, &before, (opts.creasing, &id), &mut stats)
+        }
+        _ => refine::poly::level_faces(&catmull_clark::CatmullClark, &before, (opts.creasing, &id), &mut stats),
     };
     stats.faces_per_level.push(fine.num_faces());
     stats.total_ms += ms(t0.elapsed());

@@ -11,6 +11,7 @@
 //! face is a quad, drawn as two triangles.)
 
 use crate::mesh::CornerTable;
+use crate::mesh::poly::PolyTable;
 use crate::mesh::topology::{Topology, diagonals};
 use crate::{Result, Scheme};
 
@@ -38,6 +39,21 @@ impl ControlCounts {
             edges: ct.num_edges() as u64,
             triangles: ct.num_triangles() as u64,
             diagonals: diagonals(ct) as u64,
+        }
+    }
+
+    /// The counts of the polygon table `pt`, as those of its faces fanned
+    /// into triangles (a `k`-gon is `k - 2` triangles and `k - 3` hidden
+    /// diagonals).
+    pub fn of_poly(pt: &PolyTable) -> ControlCounts {
+        let (h, f) = (pt.num_corners() as u64, pt.num_faces() as u64);
+        // every face has at least three corners: h >= 3f
+        let diagonals = h.saturating_sub(3 * f);
+        ControlCounts {
+            vertices: pt.num_vertices() as u64,
+            edges: pt.num_edges() as u64 + diagonals,
+            triangles: h.saturating_sub(2 * f),
+            diagonals,
         }
     }
 
@@ -70,6 +86,31 @@ impl ControlCounts {
             (true, 0) => self.polygons(),
             (true, _) => self.polygon_corners().saturating_mul(grow),
         }
+    }
+
+    /// Vertices after `levels` levels of `scheme` (saturating): a triangle
+    /// level adds one per edge, a polygon level one per edge and face.
+    pub fn vertices_at(&self, scheme: Scheme, levels: u32) -> u64 {
+        let (mut v, mut e) = (self.vertices, self.edges);
+        if scheme.is_polygonal() {
+            let (mut h, mut f) = (self.polygon_corners(), self.polygons());
+            e = e.saturating_sub(self.diagonals);
+            for _ in 0..levels {
+                (v, e, f, h) = (
+                    v.saturating_add(e).saturating_add(f),
+                    e.saturating_mul(2).saturating_add(h),
+                    h,
+                    h.saturating_mul(4),
+                );
+            }
+        } else {
+            let mut t = self.triangles;
+            for _ in 0..levels {
+                (v, e, t) =
+                    (v.saturating_add(e), e.saturating_mul(2).saturating_add(t.saturating_mul(3)), t.saturating_mul(4));
+            }
+        }
+        v
     }
 
     /// Triangles drawn after `levels` levels of `scheme` (a quad is two).
@@ -111,9 +152,11 @@ mod tests {
         let (pm, _) = PolyMesh::from_faces(positions, &[0, 4, 9, 12], &[0, 1, 2, 3, 1, 4, 5, 6, 2, 2, 6, 7]).unwrap();
         let counts = ControlCounts::of(&pm.triangulated().ct);
         assert_eq!((counts.polygons(), counts.polygon_corners()), (3, 12));
+        assert_eq!(ControlCounts::of_poly(&pm.pt), counts, "the polygon table's counts are its fan's");
         for levels in 0..4 {
             let (fine, _) = subdivide_poly(&pm, Scheme::CatmullClark, levels, &Options::default()).unwrap();
             assert_eq!(counts.faces_at(Scheme::CatmullClark, levels), fine.pt.num_faces() as u64, "L{levels}");
+            assert_eq!(counts.vertices_at(Scheme::CatmullClark, levels), fine.pt.num_vertices() as u64, "L{levels}");
             let drawn = fine.triangulated();
             assert_eq!(counts.triangles_at(Scheme::Bilinear, levels), drawn.ct.num_triangles() as u64);
             let again = ControlCounts::of(&drawn.ct);
@@ -122,5 +165,20 @@ mod tests {
         assert!(counts.check(Scheme::CatmullClark, 3, Some(1 << 30)).is_ok());
         assert!(counts.check(Scheme::CatmullClark, 12, Some(1 << 30)).is_err());
         assert_eq!(counts.faces_at(Scheme::Loop, 2), 16 * counts.triangles);
+    }
+
+    /// A closed and an open triangle mesh refined by Loop: the predicted
+    /// vertex counts are the refined meshes' own.
+    #[test]
+    fn predicted_triangle_vertices_are_the_refined_counts() {
+        use crate::mesh::shapes::{grid, icosphere};
+        for mesh in [icosphere(1), grid(3)] {
+            let counts = ControlCounts::of(&mesh.ct);
+            for levels in 0..4 {
+                let (fine, _) = crate::subdiv::subdivide(&mesh, Scheme::Loop, levels, &Options::default()).unwrap();
+                assert_eq!(counts.vertices_at(Scheme::Loop, levels), fine.ct.num_vertices() as u64, "L{levels}");
+            }
+            assert_eq!(counts.vertices_at(Scheme::Loop, 40), u64::MAX, "saturates");
+        }
     }
 }

@@ -29,7 +29,7 @@
 
 use super::PolyTable;
 use crate::mesh::split::{CHUNK, EdgeIds, EdgeNumbering, number_edges_with};
-use crate::mesh::{BORDER, Creasing};
+use crate::mesh::{BORDER, Creasing, VertexId};
 use rayon::prelude::*;
 
 /// Splits every face of `old` into quads (see the module docs), the
@@ -46,7 +46,7 @@ pub fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) 
     let ids = EdgeIds::new(&old.t);
     let edges = number_edges_with(&old.t, ids, |_, _, _| {});
     let (nv, ne) = (old.num_vertices() as u32, edges.ids.count());
-    let (v, t) = rayon::join(|| write_v(old, &edges.ids, nv, ne), || write_t(old));
+    let (v, t) = rayon::join(|| write_v(old, (&edges.ids, nv, ne), &|j| j), || write_t(old));
     let (vc, valence) = write_c_and_valence(old, &edges.owners);
     let sharpness = old.sharpness().and_then(|s| split_sharpness(s, old, creasing));
     let pt = PolyTable { faces: None, v, t, vc, valence, sharpness: sharpness.map(Box::new), level: old.level + 1 };
@@ -59,14 +59,17 @@ pub fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) 
 /// level 3 of 70 k quads that leaves out 108 of the 220 MB the level
 /// writes. The V table is the one [`split`] makes.
 ///
+/// Every vertex id goes through `id` as it is written (see
+/// [`crate::mesh::split`]'s `split_faces`).
+///
 /// # Panics
 /// As [`split`].
-pub(crate) fn split_faces(old: &PolyTable) -> (Vec<u32>, EdgeNumbering) {
+pub(crate) fn split_faces<I: VertexId, M: Fn(u32) -> I + Sync>(old: &PolyTable, id: &M) -> (Vec<I>, EdgeNumbering) {
     let nc = old.num_corners();
     assert!(4 * nc as u64 + 4 < u64::from(BORDER), "quad split: {nc} corners are too many for 32-bit ids");
     let edges = number_edges_with(&old.t, EdgeIds::new(&old.t), |_, _, _| {});
     let (nv, ne) = (old.num_vertices() as u32, edges.ids.count());
-    (write_v(old, &edges.ids, nv, ne), edges)
+    (write_v(old, (&edges.ids, nv, ne), id), edges)
 }
 
 /// The new C and valences (see the module docs): old vertices, then edge
@@ -97,20 +100,26 @@ fn write_c_and_valence(old: &PolyTable, owners: &[u32]) -> (Vec<u32>, Vec<u32>) 
 /// The new V table (see the module docs), one old corner (four new
 /// corners) at a time, in parallel; an all-quad table a face (sixteen new
 /// corners) at a time, its four edge ids ranked once, each serving the
-/// corner it leaves and the one it enters.
-fn write_v(old: &PolyTable, ids: &EdgeIds, nv: u32, ne: u32) -> Vec<u32> {
-    let mut v: Vec<u32> = crate::mem::zeroed(4 * old.num_corners());
+/// corner it leaves and the one it enters. `ids` numbers the old table's
+/// `ne` edges, `nv` its vertices; every vertex id `j` is written as `id(j)`.
+fn write_v<I: VertexId, M: Fn(u32) -> I + Sync>(
+    old: &PolyTable,
+    (ids, nv, ne): (&EdgeIds, u32, u32),
+    id: &M,
+) -> Vec<I> {
+    let mut v: Vec<I> = crate::mem::zeroed(4 * old.num_corners());
     if old.is_quads() {
         const FACES: usize = CHUNK / 4;
         v.par_chunks_mut(16 * FACES).enumerate().for_each(|(k, vch)| {
             for (i, vf) in vch.chunks_exact_mut(16).enumerate() {
                 let f = (k * FACES + i) as u32;
                 let c0 = 4 * f;
-                let e: [u32; 4] =
-                    std::array::from_fn(|j| nv + ids.edge(c0 + j as u32, old.t[(c0 + j as u32) as usize]));
-                let fp = nv + ne + f;
+                let e: [I; 4] =
+                    std::array::from_fn(|j| id(nv + ids.edge(c0 + j as u32, old.t[(c0 + j as u32) as usize])));
+                let fp = id(nv + ne + f);
                 for j in 0..4 {
-                    vf[4 * j..4 * j + 4].copy_from_slice(&[old.v[(c0 + j as u32) as usize], e[j], fp, e[(j + 3) % 4]]);
+                    let q = [id(old.v[(c0 + j as u32) as usize]), e[j], fp, e[(j + 3) % 4]];
+                    vf[4 * j..4 * j + 4].copy_from_slice(&q);
                 }
             }
         });
@@ -121,7 +130,8 @@ fn write_v(old: &PolyTable, ids: &EdgeIds, nv: u32, ne: u32) -> Vec<u32> {
         let base = (k * CHUNK) as u32;
         for (i, vq) in vch.chunks_exact_mut(4).enumerate() {
             let c = base + i as u32;
-            vq.copy_from_slice(&[old.v[c as usize], nv + edge(c), nv + ne + old.face(c), nv + edge(old.prev(c))]);
+            let q = [old.v[c as usize], nv + edge(c), nv + ne + old.face(c), nv + edge(old.prev(c))];
+            vq.copy_from_slice(&q.map(id));
         }
     });
     v

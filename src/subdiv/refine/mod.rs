@@ -13,7 +13,7 @@ use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Level, Rules, boundary_flags};
 use super::{RulesFn, Stats, ms};
 use crate::mesh::split::{self, EdgeIds};
-use crate::mesh::{CornerTable, Creasing, Faces, Mesh, n, p};
+use crate::mesh::{CornerTable, Creasing, Faces, Mesh, VertexId, n, p};
 use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -119,38 +119,39 @@ pub fn predict_faces(ct: &CornerTable, levels: u32) -> u64 {
 /// One level: split plus the scheme's points. `boundary` holds the input
 /// level's vertex boundary flags when the previous level produced them;
 /// the new level's are made only when another level follows (`last` false).
-/// With `faces_only` (for the last level of [`super::subdivide_faces`]) the
-/// split writes the new V table alone ([`split::split_faces`]).
-pub(crate) struct OneLevel<'a> {
+/// With `faces_only` (for the last level of [`super::subdivide_faces_as`])
+/// the split writes the new V table alone ([`split::split_faces`]), every
+/// vertex id through that map.
+pub(crate) struct OneLevel<'a, M> {
     pub(crate) ct: Cow<'a, CornerTable>,
     pub(crate) positions: Cow<'a, [Vec3]>,
     pub(crate) boundary: Option<Vec<bool>>,
     pub(crate) last: bool,
-    pub(crate) faces_only: bool,
+    pub(crate) faces_only: Option<&'a M>,
     pub(crate) creasing: Creasing,
     pub(crate) stats: &'a mut Stats,
 }
 
 /// What [`OneLevel`] makes: the next level with its table (and its vertex
 /// boundary flags when another level follows), or its faces alone.
-pub(crate) enum Refined {
+pub(crate) enum Refined<I = u32> {
     Table(Mesh, Option<Vec<bool>>),
-    Faces(Faces),
+    Faces(Faces<I>),
 }
 
 /// The split's part of [`Refined`].
-enum NewTable {
+enum NewTable<I> {
     Full(CornerTable, Option<Vec<bool>>),
-    Faces(Vec<u32>),
+    Faces(Vec<I>),
 }
 
-impl RulesFn<Refined> for OneLevel<'_> {
-    fn call<R: Rules>(self, r: &R) -> Refined {
+impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M> {
+    fn call<R: Rules>(self, r: &R) -> Refined<I> {
         let old: &CornerTable = &self.ct;
         let boundary = self.boundary.unwrap_or_else(|| boundary_flags(old));
         let t0 = Instant::now();
-        let (table, edges) = if self.faces_only {
-            let (v, edges) = split::split_faces(old);
+        let (table, edges) = if let Some(id) = self.faces_only {
+            let (v, edges) = split::split_faces(old, id);
             (NewTable::Faces(v), edges)
         } else {
             let ((ct, edges, next_boundary), (number_ms, _)) =

@@ -10,11 +10,11 @@
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules};
 use super::super::rules::features::Features;
 use super::super::{Stats, ms};
-use crate::mesh::Faces;
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
 use crate::mesh::split::EdgeNumbering;
 use crate::mesh::{BoundaryInterpolation, Creasing};
+use crate::mesh::{Faces, VertexId};
 use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -30,10 +30,16 @@ pub(crate) fn level<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, st
 }
 
 /// [`level`] as faces alone (its quads, without twins, C or valences: the
-/// last level of [`crate::subdiv::subdivide_poly_faces`]).
-pub(crate) fn level_faces<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, stats: &mut Stats) -> Faces {
+/// last level of [`crate::subdiv::subdivide_poly_faces_as`]), every vertex
+/// id through `id`.
+pub(crate) fn level_faces<R: PolyRules, I: VertexId>(
+    r: &R,
+    mesh: &PolyMesh,
+    (creasing, id): (Creasing, &(impl Fn(u32) -> I + Sync)),
+    stats: &mut Stats,
+) -> Faces<I> {
     let t0 = Instant::now();
-    let (corners, edges) = split::split_faces(&mesh.pt);
+    let (corners, edges) = split::split_faces(&mesh.pt, id);
     stats.split_ms += ms(t0.elapsed());
     let positions = points(r, mesh, &edges, creasing, stats);
     Faces { positions, corners, sides: 4 }
