@@ -10,10 +10,11 @@ use numpy::{
 };
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
+use subdiv::subdiv::ControlCounts;
 use subdiv::subdiv::rules::features::with_boundary_corners;
 use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_with};
 use subdiv::subdiv::tables::StencilPlan;
-use subdiv::{Mesh, Options, Scheme, subdivide_faces, subdivide_poly, subdivide_poly_faces};
+use subdiv::{Mesh, Options, Scheme, subdivide_faces_as, subdivide_poly, subdivide_poly_faces_as};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
 /// flat corners and face offsets (int64), all C-contiguous.
@@ -111,26 +112,28 @@ fn refine(
     input: &[f64],
 ) -> Result<Refined, Msg> {
     match c {
+        // the faces alone: the last level skips its adjacency tables and
+        // writes the caller's int64 ids itself
         Control::Tri(mesh) => {
-            // the faces alone: the last level skips its adjacency tables
-            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts).map_err(msg)?;
-            check_output(remap, fine.positions.len(), fine.corners.len())?;
-            let out = (remap.positions(&fine.positions, input), remap.ids(&fine.corners), 3);
-            drop_later(fine);
-            Ok(out)
+            let counts = ControlCounts::of(&mesh.ct);
+            check_output(remap, counts.vertices_at(scheme, levels), 3 * counts.faces_at(scheme, levels))?;
+            let (fine, _) = subdivide_faces_as(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
+            let v = remap.positions(&fine.positions, input);
+            drop_later(fine.positions);
+            Ok((v, fine.corners, 3))
         }
         Control::Poly(mesh) if levels > 0 => {
-            // the quads alone: the last level skips its adjacency tables
-            let (fine, _) = subdivide_poly_faces(&mesh, scheme, levels, opts).map_err(msg)?;
-            check_output(remap, fine.positions.len(), fine.corners.len())?;
-            let out = (remap.positions(&fine.positions, input), remap.ids(&fine.corners), 4);
-            drop_later(fine);
-            Ok(out)
+            let counts = ControlCounts::of_poly(&mesh.pt);
+            check_output(remap, counts.vertices_at(scheme, levels), 4 * counts.faces_at(scheme, levels))?;
+            let (fine, _) = subdivide_poly_faces_as(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
+            let v = remap.positions(&fine.positions, input);
+            drop_later(fine.positions);
+            Ok((v, fine.corners, 4))
         }
         Control::Poly(mesh) => {
             let (fine, _) = subdivide_poly(&mesh, scheme, levels, opts).map_err(msg)?;
             let k = face_size(&fine.pt)?;
-            check_output(remap, fine.positions.len(), fine.pt.num_corners())?;
+            check_output(remap, fine.positions.len() as u64, fine.pt.num_corners() as u64)?;
             let out = (remap.positions(&fine.positions, input), remap.ids(fine.pt.v_table()), k);
             drop_later(fine);
             Ok(out)
@@ -144,9 +147,9 @@ fn refine(
 ///
 /// # Errors
 /// The bytes needed and available.
-pub fn check_output(remap: &Remap, points: usize, corners: usize) -> Result<(), Msg> {
-    let rows = (points + remap.n_input) as u64;
-    let bytes = rows.saturating_mul(24).saturating_add((corners as u64).saturating_mul(8));
+pub fn check_output(remap: &Remap, points: u64, corners: u64) -> Result<(), Msg> {
+    let rows = points.saturating_add(remap.n_input as u64);
+    let bytes = rows.saturating_mul(24).saturating_add(corners.saturating_mul(8));
     match subdiv::subdiv::default_memory_limit() {
         Some(limit) if bytes > limit => {
             Err(format!("the output arrays need {bytes} bytes, more than the {limit} bytes of memory available"))
