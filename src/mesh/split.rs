@@ -334,17 +334,29 @@ fn carry_old_vertices(old: &CornerTable, vc: &mut [u32], valence: &mut [u32]) {
 /// The new V table of a split, written in four streams (the central
 /// triangles and the three corner triangles), one old triangle at a time,
 /// from the old V and O and the edge ids `ids` of the numbering pass, each
-/// vertex id `j` written as `id(j)`.
+/// vertex id `j` written as `id(j)`. The corners are visited in order within
+/// a chunk, so an owner's edge id is a running count from the chunk's first
+/// rank; only the other corners look theirs up (a popcount each).
 fn write_v<I: VertexId, M: Fn(u32) -> I + Sync>(old: &CornerTable, ids: &EdgeIds, id: &M) -> Vec<I> {
     let nc = old.num_corners();
     let nv = old.num_vertices() as u32;
     let mut v2: Vec<I> = crate::mem::zeroed(4 * nc);
     let old_v3: &[[u32; 3]] = bytemuck::cast_slice(old.v_table());
     let old_o3: &[[u32; 3]] = bytemuck::cast_slice(old.o_table());
-    for_each_split_triangle(&mut v2, nc, |t, [b0, b1, b2, b3]| {
+    let init = |t: usize| ids.rank(3 * t as u32);
+    for_each_split_triangle_with(&mut v2, nc, init, |next, t, [b0, b1, b2, b3]| {
         let c0 = 3 * t as u32;
         let (vv, x) = (old_v3[t], old_o3[t]);
-        let ws = [nv + ids.edge(c0, x[0]), nv + ids.edge(c0 + 1, x[1]), nv + ids.edge(c0 + 2, x[2])];
+        // the owners before corner c0 + k: `next` counts them as they pass
+        let mut edge = |k: u32| {
+            if owns_edge(c0 + k, x[k as usize]) {
+                *next += 1;
+                *next - 1
+            } else {
+                ids.rank(x[k as usize])
+            }
+        };
+        let ws = [nv + edge(0), nv + edge(1), nv + edge(2)];
         let (ws, vv) = (ws.map(id), vv.map(id));
         // central triangle: the three edge vertices
         *b0 = ws;
@@ -388,6 +400,18 @@ fn write_o(old: &CornerTable) -> Vec<u32> {
 /// four triangles of the new table `table` (`4 nc` entries) that `t`
 /// becomes: the four streams of the layout in the module docs.
 fn for_each_split_triangle<T: Send>(table: &mut [T], nc: usize, each: impl Fn(usize, [&mut [T; 3]; 4]) + Sync) {
+    for_each_split_triangle_with(table, nc, |_| (), |_, t, four| each(t, four));
+}
+
+/// [`for_each_split_triangle`] with a state per parallel chunk, made by
+/// `init(t)` for its first old triangle `t` and passed to `each` for every
+/// triangle of the chunk, in order.
+fn for_each_split_triangle_with<T: Send, S>(
+    table: &mut [T],
+    nc: usize,
+    init: impl Fn(usize) -> S + Sync,
+    each: impl Fn(&mut S, usize, [&mut [T; 3]; 4]) + Sync,
+) {
     fn tri<T>(s: &mut [T]) -> &mut [[T; 3]] {
         let (triples, rest) = s.as_chunks_mut::<3>();
         debug_assert!(rest.is_empty(), "a table of whole triangles");
@@ -406,10 +430,11 @@ fn for_each_split_triangle<T: Send>(table: &mut [T], nc: usize, each: impl Fn(us
         .for_each(|(k, (((s0, s1), s2), s3))| {
             let len = s0.len();
             let (s1, s2, s3) = (&mut s1[..len], &mut s2[..len], &mut s3[..len]);
+            let mut state = init(k * g);
             for (i, (((a, b), c), d)) in
                 s0.iter_mut().zip(s1.iter_mut()).zip(s2.iter_mut()).zip(s3.iter_mut()).enumerate()
             {
-                each(k * g + i, [a, b, c, d]);
+                each(&mut state, k * g + i, [a, b, c, d]);
             }
         });
 }

@@ -29,7 +29,7 @@
 
 use super::PolyTable;
 use crate::mesh::split::{CHUNK, EdgeIds, EdgeNumbering, number_edges_with};
-use crate::mesh::{BORDER, Creasing, VertexId};
+use crate::mesh::{BORDER, Creasing, VertexId, owns_edge};
 use rayon::prelude::*;
 
 /// Splits every face of `old` into quads (see the module docs), the
@@ -111,11 +111,22 @@ fn write_v<I: VertexId, M: Fn(u32) -> I + Sync>(
     if old.is_quads() {
         const FACES: usize = CHUNK / 4;
         v.par_chunks_mut(16 * FACES).enumerate().for_each(|(k, vch)| {
+            // the corners come in order: an owner's edge id is a running
+            // count of the owners from the chunk's first rank on
+            let mut next = ids.rank((4 * k * FACES) as u32);
             for (i, vf) in vch.chunks_exact_mut(16).enumerate() {
                 let f = (k * FACES + i) as u32;
                 let c0 = 4 * f;
-                let e: [I; 4] =
-                    std::array::from_fn(|j| id(nv + ids.edge(c0 + j as u32, old.t[(c0 + j as u32) as usize])));
+                let e: [I; 4] = std::array::from_fn(|j| {
+                    let (c, x) = (c0 + j as u32, old.t[(c0 + j as u32) as usize]);
+                    let e = if owns_edge(c, x) {
+                        next += 1;
+                        next - 1
+                    } else {
+                        ids.rank(x)
+                    };
+                    id(nv + e)
+                });
                 let fp = id(nv + ne + f);
                 for j in 0..4 {
                     let q = [id(old.v[(c0 + j as u32) as usize]), e[j], fp, e[(j + 3) % 4]];
