@@ -10,6 +10,7 @@ use numpy::{
 };
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
+use subdiv::mesh::Faces;
 use subdiv::subdiv::ControlCounts;
 use subdiv::subdiv::rules::features::with_boundary_corners;
 use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_with};
@@ -115,20 +116,14 @@ fn refine(
         // the faces alone: the last level skips its adjacency tables and
         // writes the caller's int64 ids itself
         Control::Tri(mesh) => {
-            let counts = ControlCounts::of(&mesh.ct);
-            check_output(remap, counts.vertices_at(scheme, levels), 3 * counts.faces_at(scheme, levels))?;
+            check_predicted(remap, ControlCounts::of(&mesh.ct), (scheme, levels), 3)?;
             let (fine, _) = subdivide_faces_as(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
-            let v = remap.positions(&fine.positions, input);
-            drop_later(fine.positions);
-            Ok((v, fine.corners, 3))
+            Ok(hand_over(remap, fine, input))
         }
         Control::Poly(mesh) if levels > 0 => {
-            let counts = ControlCounts::of_poly(&mesh.pt);
-            check_output(remap, counts.vertices_at(scheme, levels), 4 * counts.faces_at(scheme, levels))?;
+            check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?;
             let (fine, _) = subdivide_poly_faces_as(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
-            let v = remap.positions(&fine.positions, input);
-            drop_later(fine.positions);
-            Ok((v, fine.corners, 4))
+            Ok(hand_over(remap, fine, input))
         }
         Control::Poly(mesh) => {
             let (fine, _) = subdivide_poly(&mesh, scheme, levels, opts).map_err(msg)?;
@@ -139,6 +134,27 @@ fn refine(
             Ok(out)
         }
     }
+}
+
+/// [`check_output`] for the arrays `levels` levels of `scheme` will make
+/// from a control mesh of `counts`, faces of `sides` corners, before the
+/// library allocates them.
+fn check_predicted(
+    remap: &Remap,
+    counts: ControlCounts,
+    (scheme, levels): (Scheme, u32),
+    sides: u64,
+) -> Result<(), Msg> {
+    let corners = counts.faces_at(scheme, levels).saturating_mul(sides);
+    check_output(remap, counts.vertices_at(scheme, levels), corners)
+}
+
+/// The faces `fine` as the caller gets them: flat float64 positions in its
+/// numbering, its int64 corners as they are, the face size.
+fn hand_over(remap: &Remap, fine: Faces<i64>, input: &[f64]) -> Refined {
+    let v = remap.positions(&fine.positions, input);
+    drop_later(fine.positions);
+    (v, fine.corners, fine.sides)
 }
 
 /// Refuses output arrays (float64 points, int64 corners) larger than the
