@@ -235,6 +235,7 @@ pub fn subdivide_with_progress(
         let (fine, stats) = subdivide_poly_with_progress(&poly, scheme, levels, opts, progress)?;
         return Ok((fine.triangulated(), stats));
     }
+    // every level with its table: no faces-only last level, so no id map
     let (fine, stats) = refine_levels(mesh, scheme, levels, opts, None::<&fn(u32) -> u32>, progress)?;
     match fine {
         Refined::Table(m, _) => Ok((m, stats)),
