@@ -102,6 +102,20 @@ impl EdgeIds {
     pub fn edge(&self, c: u32, x: u32) -> u32 {
         if owns_edge(c, x) { self.rank(c) } else { self.rank(x) }
     }
+
+    /// [`EdgeIds::edge`] for a pass that visits corners in increasing order
+    /// from some corner `s` on, `next` starting at `rank(s)`: an owner's id
+    /// is `next`, counted up as the owners pass, so only the other corners
+    /// pay a rank (a popcount).
+    #[inline(always)]
+    pub(crate) fn edge_in_order(&self, c: u32, x: u32, next: &mut u32) -> u32 {
+        if owns_edge(c, x) {
+            *next += 1;
+            *next - 1
+        } else {
+            self.rank(x)
+        }
+    }
 }
 
 /// A raw pointer that may be shared between threads which write disjoint
@@ -335,8 +349,7 @@ fn carry_old_vertices(old: &CornerTable, vc: &mut [u32], valence: &mut [u32]) {
 /// triangles and the three corner triangles), one old triangle at a time,
 /// from the old V and O and the edge ids `ids` of the numbering pass, each
 /// vertex id `j` written as `id(j)`. The corners are visited in order within
-/// a chunk, so an owner's edge id is a running count from the chunk's first
-/// rank; only the other corners look theirs up (a popcount each).
+/// a chunk ([`EdgeIds::edge_in_order`], from the chunk's first rank).
 fn write_v<I: VertexId, M: Fn(u32) -> I + Sync>(old: &CornerTable, ids: &EdgeIds, id: &M) -> Vec<I> {
     let nc = old.num_corners();
     let nv = old.num_vertices() as u32;
@@ -347,16 +360,7 @@ fn write_v<I: VertexId, M: Fn(u32) -> I + Sync>(old: &CornerTable, ids: &EdgeIds
     for_each_split_triangle_with(&mut v2, nc, init, |next, t, [b0, b1, b2, b3]| {
         let c0 = 3 * t as u32;
         let (vv, x) = (old_v3[t], old_o3[t]);
-        // the owners before corner c0 + k: `next` counts them as they pass
-        let mut edge = |k: u32| {
-            if owns_edge(c0 + k, x[k as usize]) {
-                *next += 1;
-                *next - 1
-            } else {
-                ids.rank(x[k as usize])
-            }
-        };
-        let ws = [nv + edge(0), nv + edge(1), nv + edge(2)];
+        let ws = std::array::from_fn(|k| nv + ids.edge_in_order(c0 + k as u32, x[k], next));
         let (ws, vv) = (ws.map(id), vv.map(id));
         // central triangle: the three edge vertices
         *b0 = ws;
@@ -503,26 +507,34 @@ fn ms(d: std::time::Duration) -> f64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::mesh::shapes;
+
+    /// The id of the edge opposite every corner of the table whose O (or
+    /// twin) table is `o`, numbered by hand: owners in corner order.
+    pub(crate) fn numbered_by_hand(o: &[u32]) -> Vec<u32> {
+        let mut w = vec![u32::MAX; o.len()];
+        let mut next = 0u32;
+        for (c, &x) in o.iter().enumerate() {
+            if owns_edge(c as u32, x) {
+                w[c] = next;
+                if x != BORDER {
+                    w[x as usize] = next;
+                }
+                next += 1;
+            }
+        }
+        w
+    }
 
     #[test]
     fn edge_ids_from_owner_bits_equal_a_numbering_by_hand() {
         // closed and open meshes, several 64-corner words and a partial last one
         for m in [shapes::icosphere(3), shapes::grid(9), shapes::icosphere(0)] {
             let o = m.ct.o_table();
-            let mut w = vec![u32::MAX; o.len()];
-            let mut next = 0u32;
-            for (c, &x) in o.iter().enumerate() {
-                if owns_edge(c as u32, x) {
-                    w[c] = next;
-                    if x != BORDER {
-                        w[x as usize] = next;
-                    }
-                    next += 1;
-                }
-            }
+            let w = numbered_by_hand(o);
+            let next = w.iter().filter(|&&e| e != u32::MAX).max().map_or(0, |&e| e + 1);
             let ids = EdgeIds::new(o);
             assert_eq!(ids.count(), next);
             assert_eq!(next as usize, m.ct.num_edges());
@@ -532,6 +544,31 @@ mod tests {
             let numbering = number_edges(&m.ct);
             for (e, &c) in numbering.owners.iter().enumerate() {
                 assert_eq!(w[c as usize], e as u32, "owner of edge {e}");
+            }
+        }
+    }
+
+    /// The split's edge vertices (written with ids counted as the owners
+    /// pass, from each parallel chunk's first rank) are the hand-numbered
+    /// edges, over several chunks, closed and open, in the full split and
+    /// the faces-only one.
+    #[test]
+    fn split_names_every_edge_vertex_by_its_hand_numbered_edge() {
+        for m in [shapes::icosphere(5), shapes::grid(110)] {
+            let (ct, o) = (&m.ct, m.ct.o_table());
+            assert!(ct.num_corners() > 3 * CHUNK, "several chunks");
+            let (nt, nv) = (ct.num_triangles(), ct.num_vertices() as u32);
+            let w = numbered_by_hand(o);
+            let (full, _) = split(ct);
+            let (faces, _) = split_faces(ct, &|j| j);
+            assert_eq!(full.v_table(), &faces[..]);
+            let v2 = full.v_table();
+            for c in 0..ct.num_corners() as u32 {
+                let a = corner_triangle(nt, c) as usize;
+                assert_eq!(v2[c as usize], nv + w[c as usize], "central corner {c}");
+                assert_eq!(v2[a], ct.vtx(c), "corner triangle of {c}");
+                assert_eq!(v2[a + 1], nv + w[p(c) as usize], "corner triangle of {c}, after");
+                assert_eq!(v2[a + 2], nv + w[n(c) as usize], "corner triangle of {c}, before");
             }
         }
     }

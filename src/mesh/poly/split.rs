@@ -29,7 +29,7 @@
 
 use super::PolyTable;
 use crate::mesh::split::{CHUNK, EdgeIds, EdgeNumbering, number_edges_with};
-use crate::mesh::{BORDER, Creasing, VertexId, owns_edge};
+use crate::mesh::{BORDER, Creasing, VertexId};
 use rayon::prelude::*;
 
 /// Splits every face of `old` into quads (see the module docs), the
@@ -111,21 +111,14 @@ fn write_v<I: VertexId, M: Fn(u32) -> I + Sync>(
     if old.is_quads() {
         const FACES: usize = CHUNK / 4;
         v.par_chunks_mut(16 * FACES).enumerate().for_each(|(k, vch)| {
-            // the corners come in order: an owner's edge id is a running
-            // count of the owners from the chunk's first rank on
+            // the corners come in order, from the chunk's first on
             let mut next = ids.rank((4 * k * FACES) as u32);
             for (i, vf) in vch.chunks_exact_mut(16).enumerate() {
                 let f = (k * FACES + i) as u32;
                 let c0 = 4 * f;
                 let e: [I; 4] = std::array::from_fn(|j| {
-                    let (c, x) = (c0 + j as u32, old.t[(c0 + j as u32) as usize]);
-                    let e = if owns_edge(c, x) {
-                        next += 1;
-                        next - 1
-                    } else {
-                        ids.rank(x)
-                    };
-                    id(nv + e)
+                    let c = c0 + j as u32;
+                    id(nv + ids.edge_in_order(c, old.t[c as usize], &mut next))
                 });
                 let fp = id(nv + ne + f);
                 for j in 0..4 {
@@ -278,5 +271,34 @@ mod tests {
             let (a, b) = two.edge_ends(c);
             assert!(a != b);
         }
+    }
+
+    /// The quad split's edge vertices (ids counted as the owners pass, from
+    /// each parallel chunk's first rank) are the hand-numbered edges, over
+    /// several chunks of an open grid of quads.
+    #[test]
+    fn quad_split_names_every_edge_vertex_by_its_hand_numbered_edge() {
+        let n = 120u32;
+        let id = |i: u32, j: u32| j * (n + 1) + i;
+        let mut corners = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                corners.extend([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+        let starts: Vec<u32> = (0..=n * n).map(|f| 4 * f).collect();
+        let (pt, _, _) = PolyTable::build(((n + 1) * (n + 1)) as usize, &starts, &corners, None).unwrap();
+        assert!(pt.is_quads() && pt.num_corners() > 3 * CHUNK, "the all-quad path, several chunks");
+        let w = crate::mesh::split::tests::numbered_by_hand(&pt.t);
+        let (nv, ne) = (pt.num_vertices() as u32, pt.num_edges() as u32);
+        let (v, edges) = split_faces(&pt, &|j| j);
+        assert_eq!(edges.ids.count(), ne);
+        for c in 0..pt.num_corners() as u32 {
+            let q = &v[4 * c as usize..4 * c as usize + 4];
+            let expected = [pt.vtx(c), nv + w[c as usize], nv + ne + pt.face(c), nv + w[pt.prev(c) as usize]];
+            assert_eq!(q, expected, "quad of corner {c}");
+        }
+        let (full, _) = split(&pt, Creasing::Uniform);
+        assert_eq!(full.v, v, "the full split's V");
     }
 }
