@@ -51,8 +51,8 @@ use crate::subdiv::{Options, Scheme};
 use crate::{Error, Result};
 use extraordinary::Extraordinary;
 use glam::DVec3;
-use level1::{Blocks, Level1, REGULAR};
-use patch::{BoxSpline, Jet};
+use level1::{BLOCK, Level1, REGULAR, Template};
+use patch::{BoxSpline, Jet, Poly};
 use rayon::prelude::*;
 
 /// The limit surface at one parameter point.
@@ -163,7 +163,7 @@ const STACK_POINTS: usize = 24;
 
 /// Evaluates the Loop limit surface of one control mesh at any point.
 pub struct Evaluator {
-    blocks: Blocks,
+    level1: Level1,
     /// How each control face is evaluated.
     path: Vec<Path>,
     /// Catmull-Clark: the control polygons (every other field is empty).
@@ -179,7 +179,7 @@ pub struct Evaluator {
 /// How a control face is evaluated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum Path {
-    /// Its level-1 block and the power tables.
+    /// Its level-1 children and the power tables.
     Smooth,
     /// Local subdivision (a boundary or sharp feature at a corner).
     Local,
@@ -239,11 +239,31 @@ fn check_point(faces: usize, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
     if f >= faces {
         return Err(Error::Usage(format!("face {f} out of range (the mesh has {faces} faces)")));
     }
-    if !(u >= 0.0 && v >= 0.0 && u + v <= 1.0 + EDGE_SLACK) {
+    if !in_triangle(u, v) {
         return Err(Error::Usage(format!("({u}, {v}) is not in the triangle (u, v >= 0, u + v <= 1)")));
     }
+    Ok(onto_triangle(u, v))
+}
+
+/// `u, v >= 0`, `u + v <= 1` with [`EDGE_SLACK`] (false for NaN).
+#[inline]
+fn in_triangle(u: f64, v: f64) -> bool {
+    u >= 0.0 && v >= 0.0 && u + v <= 1.0 + EDGE_SLACK
+}
+
+/// A point [`in_triangle`] scaled onto the edge when `u + v` is a hair
+/// over 1.
+#[inline]
+fn onto_triangle(u: f64, v: f64) -> (f64, f64) {
     let s = u + v;
-    Ok(if s > 1.0 { (u / s, v / s) } else { (u, v) })
+    if s > 1.0 { (u / s, v / s) } else { (u, v) }
+}
+
+/// `u` and `v` in `[0, 1]` with [`EDGE_SLACK`] (false for NaN).
+#[inline]
+fn in_square(u: f64, v: f64) -> bool {
+    let unit = 0.0..=1.0 + EDGE_SLACK;
+    unit.contains(&u) && unit.contains(&v)
 }
 
 /// [`check_point`] for a ptex face's unit square.
@@ -251,7 +271,7 @@ fn check_square(faces: usize, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
     if f >= faces {
         return Err(Error::Usage(format!("ptex face {f} out of range (the mesh has {faces})")));
     }
-    if !((0.0..=1.0 + EDGE_SLACK).contains(&u) && (0.0..=1.0 + EDGE_SLACK).contains(&v)) {
+    if !in_square(u, v) {
         return Err(Error::Usage(format!("({u}, {v}) is not in the unit square")));
     }
     Ok((u.min(1.0), v.min(1.0)))
@@ -317,7 +337,7 @@ impl Evaluator {
             let poly = catmark::Poly::new(&crate::mesh::poly::PolyMesh::from_mesh(mesh), opts);
             let faces = poly.num_faces();
             return Ok(Evaluator {
-                blocks: Blocks::default(),
+                level1: Level1::default(),
                 path: vec![Path::Local; faces],
                 poly: Some(Box::new(poly)),
                 base: None,
@@ -327,9 +347,8 @@ impl Evaluator {
             });
         }
         let path = face_paths(mesh);
-        let level1 = Level1::new(mesh, opts.loop_beta)?;
-        let not_smooth: Vec<bool> = path.iter().map(|&x| x != Path::Smooth).collect();
-        let blocks = Blocks::new(&level1, &not_smooth)?;
+        let mut level1 = Level1::new(mesh, opts.loop_beta)?;
+        level1.learn_templates(|f| path[f] == Path::Smooth);
         let base = path.contains(&Path::Local).then(|| local::Base::new(mesh, opts));
         let spline = BoxSpline::derive();
         let mut valences: Vec<Option<Extraordinary>> = Vec::new();
@@ -338,7 +357,7 @@ impl Evaluator {
         for v in 0..mesh.ct.num_vertices() as u32 {
             add_table(&mut valences, mesh.ct.valence(v), mesh.ct.is_boundary_vertex(v), opts, &spline);
         }
-        Ok(Evaluator { blocks, path, poly: None, base, spline, valences, faces: mesh.ct.num_triangles() })
+        Ok(Evaluator { level1, path, poly: None, base, spline, valences, faces: mesh.ct.num_triangles() })
     }
 
     /// The number of control faces (Loop: triangles; Catmull-Clark: ptex
@@ -395,8 +414,30 @@ impl Evaluator {
         Ok(uv)
     }
 
+    /// Whether [`Evaluator::check`] passes the point (without making its
+    /// error).
+    #[inline]
+    fn fits(&self, f: usize, u: f64, v: f64) -> bool {
+        if self.poly.is_some() {
+            return f < self.faces && in_square(u, v);
+        }
+        f < self.faces && in_triangle(u, v) && self.path[f] != Path::Refused
+    }
+
+    /// A point that [`Evaluator::fits`] as [`Evaluator::check`] passes it on.
+    #[inline]
+    fn onto_domain(&self, u: f64, v: f64) -> (f64, f64) {
+        if self.poly.is_some() { (u.min(1.0), v.min(1.0)) } else { onto_triangle(u, v) }
+    }
+
     /// A point [`Evaluator::check`] passed.
     fn eval_checked(&self, f: usize, u: f64, v: f64, second: bool) -> Sample {
+        self.eval_cached(f, u, v, second, None)
+    }
+
+    /// [`Evaluator::eval_checked`], taking the level-1 face's polynomial or
+    /// support from `cache` when it holds it (and leaving it there).
+    fn eval_cached<'a>(&'a self, f: usize, u: f64, v: f64, second: bool, cache: Option<&mut ChildCache<'a>>) -> Sample {
         if let Some(poly) = &self.poly {
             return poly.eval(f, (u, v), second);
         }
@@ -406,7 +447,21 @@ impl Evaluator {
         }
         let (k, map) = child_of((u, v), true);
         let face = 4 * f as u32 + k as u32;
-        let (corner, len) = self.blocks.shape(face);
+        let st = map.apply((u, v));
+        let mut one = Child::EMPTY;
+        let child = match cache {
+            Some(cache) => cache.get(self, f, k),
+            None => {
+                self.fill(face, &mut one);
+                &one
+            }
+        };
+        if child.corner == REGULAR {
+            let jet = child.poly.jet(st.0, st.1, second);
+            return finish(&jet, DVec3::ZERO, 1.0, map.j, 1.0, second);
+        }
+        let support = child.support();
+        let len = support.len();
         let mut stack = [DVec3::ZERO; 2 * STACK_POINTS];
         let mut heap = Vec::new();
         let buf: &mut [DVec3] = if 2 * len <= stack.len() {
@@ -415,15 +470,128 @@ impl Evaluator {
             heap.resize(2 * len, DVec3::ZERO);
             &mut heap
         };
-        self.blocks.support(face, buf);
         let (pts, tmp) = buf.split_at_mut(len);
-        let st = map.apply((u, v));
-        if corner == REGULAR {
-            let jet = patch::jet(&self.spline.basis, pts, st.0, st.1, second);
-            return finish(&jet, DVec3::ZERO, 1.0, map.j, 1.0, second);
-        }
+        pts.copy_from_slice(support);
         let table = self.valences[len - 6].as_ref().unwrap_or_else(|| unreachable!("tables of every valence"));
-        near_vertex(table, (pts, &mut tmp[..len]), st, (rotation(corner.into()), map), second)
+        near_vertex(table, (pts, &mut tmp[..len]), st, (rotation(child.corner.into()), map), second)
+    }
+
+    /// Makes `c` level-1 face `g`'s: its support walked on level 1, and
+    /// its polynomial when it is regular.
+    fn fill(&self, g: u32, c: &mut Child) {
+        let (corner, len) = self.level1.shape(g);
+        (c.g, c.corner, c.len) = (g, corner, len);
+        if len > STACK_POINTS {
+            c.big.resize(len, DVec3::ZERO);
+            self.level1.support(g, corner, &mut c.big);
+        } else {
+            self.level1.support(g, corner, &mut c.small[..len]);
+        }
+        self.fit(c);
+    }
+
+    /// [`Evaluator::fill`] with the support read from the block `block` of
+    /// `g`'s control face through the block's template entry
+    /// `(corner, places)`.
+    fn fill_from(&self, g: u32, c: &mut Child, block: &[DVec3], (corner, places): &(u8, Vec<u8>)) {
+        (c.g, c.corner, c.len) = (g, *corner, places.len());
+        // a template exists only for valences below TEMPLATE_VALENCE, so
+        // the support fits `small`
+        for (o, &i) in c.small.iter_mut().zip(places) {
+            *o = block[usize::from(i)];
+        }
+        self.fit(c);
+    }
+
+    /// The polynomial of `c` when it is regular.
+    fn fit(&self, c: &mut Child) {
+        if c.corner == REGULAR {
+            c.poly = patch::coefficients(&self.spline.basis, &c.small[..12]);
+        }
+    }
+}
+
+/// Points grouped by face: `sorted[rank[i]]` is point `i`, its `(u, v)`
+/// put on the domain's edge when a hair outside.
+struct Grouped {
+    sorted: Vec<(usize, (f64, f64))>,
+    rank: Vec<usize>,
+}
+
+/// What the points of one level-1 face share: its support (walk order
+/// from its extraordinary corner) and, when it is regular, its box spline.
+struct Child {
+    /// The level-1 face (`u32::MAX`: none yet).
+    g: u32,
+    corner: u8,
+    len: usize,
+    small: [DVec3; STACK_POINTS],
+    /// The support when it is longer than `small`.
+    big: Vec<DVec3>,
+    poly: Poly,
+}
+
+impl Child {
+    const EMPTY: Child = Child {
+        g: u32::MAX,
+        corner: REGULAR,
+        len: 0,
+        small: [DVec3::ZERO; STACK_POINTS],
+        big: Vec::new(),
+        poly: Poly([[0.0; 15]; 3]),
+    };
+
+    fn support(&self) -> &[DVec3] {
+        if self.len > STACK_POINTS { &self.big } else { &self.small[..self.len] }
+    }
+}
+
+/// The control face met last and its level-1 faces, one slot per child
+/// position: consecutive points of one control face share them.
+struct ChildCache<'a> {
+    /// The control face whose block `block` holds (`usize::MAX`: none).
+    face: usize,
+    /// The template of that block, if it has one.
+    template: Option<&'a Template>,
+    block: [DVec3; BLOCK],
+    slots: [Child; 4],
+}
+
+impl<'a> ChildCache<'a> {
+    fn new() -> ChildCache<'a> {
+        ChildCache {
+            face: usize::MAX,
+            template: None,
+            block: [DVec3::ZERO; BLOCK],
+            slots: [Child::EMPTY, Child::EMPTY, Child::EMPTY, Child::EMPTY],
+        }
+    }
+
+    /// Child `k` of control face `f`, made unless its slot holds it: read
+    /// from `f`'s block through its template where it has one (the block
+    /// gathered once per face), walked on level 1 otherwise.
+    #[inline]
+    fn get(&mut self, ev: &'a Evaluator, f: usize, k: usize) -> &Child {
+        let g = 4 * f as u32 + k as u32;
+        if self.slots[k].g == g {
+            return &self.slots[k];
+        }
+        if self.face != f {
+            self.face = f;
+            let mut ids = [0u32; BLOCK];
+            self.template = ev.level1.block(f as u32, &mut ids).and_then(|(key, len)| {
+                let template = ev.level1.template(key)?;
+                for (p, &v) in self.block.iter_mut().zip(&ids[..len]) {
+                    *p = ev.level1.point(v);
+                }
+                Some(template)
+            });
+        }
+        match self.template {
+            Some(t) => ev.fill_from(g, &mut self.slots[k], &self.block, &t.children[k]),
+            None => ev.fill(g, &mut self.slots[k]),
+        }
+        &self.slots[k]
     }
 }
 
@@ -468,8 +636,9 @@ impl Evaluator {
 
     /// [`Evaluator::eval_all`] kept small: each sample mapped by `keep` (say
     /// to the position and normal) as soon as it is made. The points are
-    /// evaluated grouped by face (a counting sort), so the points of one
-    /// face find its neighbourhood in the cache, and the kept values are put
+    /// evaluated grouped by face (a counting sort), so that the points of
+    /// one level-1 face share its support and, when it is regular, its
+    /// polynomial (made once, not per point), and the kept values are put
     /// back in the order of `points`.
     ///
     /// # Errors
@@ -480,44 +649,42 @@ impl Evaluator {
         second: bool,
         keep: impl Fn(&Sample) -> T + Sync,
     ) -> Result<Vec<T>> {
-        let mut checked = Vec::with_capacity(points.len());
-        for (i, &(f, u, v)) in points.iter().enumerate() {
-            let (u, v) = self.check(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1)))?;
-            checked.push((f, u, v));
-        }
-        let order = by_face(&checked, self.faces);
-        let sorted: Vec<T> = order
+        let Grouped { sorted, rank } = self.by_face(points)?;
+        let done: Vec<T> = sorted
             .par_iter()
             .with_min_len(256)
-            .map(|&i| {
-                let (f, u, v) = checked[i];
-                keep(&self.eval_checked(f, u, v, second))
+            .map_init(ChildCache::new, |cache, &(f, (u, v))| keep(&self.eval_cached(f, u, v, second, Some(cache))))
+            .collect();
+        Ok(rank.par_iter().map(|&r| done[r]).collect())
+    }
+
+    /// The points checked (the first bad one refused, naming it) and
+    /// grouped by face by a counting sort, and the rank of each point in
+    /// that order.
+    fn by_face(&self, points: &[(usize, f64, f64)]) -> Result<Grouped> {
+        if let Some(i) = points.par_iter().position_first(|&(f, u, v)| !self.fits(f, u, v)) {
+            let (f, u, v) = points[i];
+            self.check(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1)))?;
+        }
+        let mut start = vec![0usize; self.faces + 1];
+        for &(f, _, _) in points {
+            start[f + 1] += 1;
+        }
+        for k in 1..start.len() {
+            start[k] += start[k - 1];
+        }
+        let mut sorted = vec![(0, (0.0, 0.0)); points.len()];
+        let rank = points
+            .iter()
+            .map(|&(f, u, v)| {
+                let r = start[f];
+                start[f] += 1;
+                sorted[r] = (f, self.onto_domain(u, v));
+                r
             })
             .collect();
-        let mut out = vec![T::default(); points.len()];
-        for (&i, &x) in order.iter().zip(&sorted) {
-            out[i] = x;
-        }
-        Ok(out)
+        Ok(Grouped { sorted, rank })
     }
-}
-
-/// The indices of `points` grouped by face (a counting sort; every face is
-/// below `faces`).
-fn by_face(points: &[(usize, f64, f64)], faces: usize) -> Vec<usize> {
-    let mut start = vec![0usize; faces + 1];
-    for &(f, _, _) in points {
-        start[f + 1] += 1;
-    }
-    for k in 1..start.len() {
-        start[k] += start[k - 1];
-    }
-    let mut order = vec![0; points.len()];
-    for (i, &(f, _, _)) in points.iter().enumerate() {
-        order[start[f]] = i;
-        start[f] += 1;
-    }
-    order
 }
 
 /// The limit surface of `mesh` under `scheme` at each `(face, u, v)`.

@@ -189,11 +189,20 @@ fn monomial_jet(s: f64, t: f64, second: bool) -> [[f64; 15]; 6] {
 /// The patch whose support point `i` has the basis function with monomial
 /// coefficients `basis[15 i .. 15 i + 15]`, over the points `c`, at
 /// `(s, t)`; the second derivatives only when `second`.
-///
-/// The polynomial's coefficients are summed first, point by point into 15
-/// independent accumulators (no chain of dependent additions), then the
-/// monomials are applied.
 pub(crate) fn jet(basis: &[f64], c: &[DVec3], s: f64, t: f64, second: bool) -> Jet {
+    coefficients(basis, c).jet(s, t, second)
+}
+
+/// A patch as three polynomials (x, y, z) in the monomials of
+/// [`MONOMIALS`]: what [`jet`] needs of the support, so that the points of
+/// one patch can share it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Poly(pub(crate) [[f64; 15]; 3]);
+
+/// The polynomial of the patch with basis `basis` (as [`jet`]) over the
+/// points `c`, summed point by point into 15 independent accumulators (no
+/// chain of dependent additions).
+pub(crate) fn coefficients(basis: &[f64], c: &[DVec3]) -> Poly {
     let mut q = [[0.0f64; 15]; 3];
     for (row, p) in basis.chunks_exact(15).zip(c) {
         for m in 0..15 {
@@ -202,13 +211,22 @@ pub(crate) fn jet(basis: &[f64], c: &[DVec3], s: f64, t: f64, second: bool) -> J
             q[2][m] += row[m] * p.z;
         }
     }
-    let mj = monomial_jet(s, t, second);
-    let apply = |r: &[f64; 15]| -> DVec3 {
-        let d = |k: usize| q[k].iter().zip(r).map(|(a, b)| a * b).sum::<f64>();
-        DVec3::new(d(0), d(1), d(2))
-    };
-    let (dss, dst, dtt) = if second { (apply(&mj[3]), apply(&mj[4]), apply(&mj[5])) } else { Default::default() };
-    Jet { p: apply(&mj[0]), ds: apply(&mj[1]), dt: apply(&mj[2]), dss, dst, dtt }
+    Poly(q)
+}
+
+impl Poly {
+    /// The point and derivatives at `(s, t)`; the second derivatives only
+    /// when `second`.
+    pub(crate) fn jet(&self, s: f64, t: f64, second: bool) -> Jet {
+        let q = &self.0;
+        let mj = monomial_jet(s, t, second);
+        let apply = |r: &[f64; 15]| -> DVec3 {
+            let d = |k: usize| q[k].iter().zip(r).map(|(a, b)| a * b).sum::<f64>();
+            DVec3::new(d(0), d(1), d(2))
+        };
+        let (dss, dst, dtt) = if second { (apply(&mj[3]), apply(&mj[4]), apply(&mj[5])) } else { Default::default() };
+        Jet { p: apply(&mj[0]), ds: apply(&mj[1]), dt: apply(&mj[2]), dss, dst, dtt }
+    }
 }
 
 /// Solves `a x = b` (15 x 15, 12 right-hand sides) by Gaussian elimination
