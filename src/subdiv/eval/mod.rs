@@ -448,10 +448,11 @@ impl Evaluator {
         let (k, map) = child_of((u, v), true);
         let face = 4 * f as u32 + k as u32;
         let st = map.apply((u, v));
-        let mut one = Child::EMPTY;
+        let mut one;
         let child = match cache {
             Some(cache) => cache.get(self, f, k),
             None => {
+                one = Child::EMPTY;
                 self.fill(face, &mut one);
                 &one
             }
@@ -538,7 +539,7 @@ impl Child {
         len: 0,
         small: [DVec3::ZERO; STACK_POINTS],
         big: Vec::new(),
-        poly: Poly([[0.0; 15]; 3]),
+        poly: Poly([DVec3::ZERO; 15]),
     };
 
     fn support(&self) -> &[DVec3] {

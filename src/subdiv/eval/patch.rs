@@ -162,30 +162,6 @@ fn monomials(s: f64, t: f64) -> [f64; 15] {
     out
 }
 
-/// The monomials at `(s, t)` and their derivatives: rows value, `d/ds`,
-/// `d/dt` and, when `second`, `d2/ds2`, `d2/dsdt`, `d2/dt2`. Branch-free:
-/// the powers are stored from index 2 (`x^k` at `k + 2`, zeros below), so
-/// `i x^(i-1)` and `i (i-1) x^(i-2)` need no test for small `i`.
-fn monomial_jet(s: f64, t: f64, second: bool) -> [[f64; 15]; 6] {
-    let (s2, t2) = (s * s, t * t);
-    let sp = [0.0, 0.0, 1.0, s, s2, s2 * s, s2 * s2];
-    let tp = [0.0, 0.0, 1.0, t, t2, t2 * t, t2 * t2];
-    let mut out = [[0.0; 15]; 6];
-    for (m, &(i, j)) in MONOMIALS.iter().enumerate() {
-        let (i, j) = (usize::from(i), usize::from(j));
-        let (fi, fj) = (i as f64, j as f64);
-        out[0][m] = sp[i + 2] * tp[j + 2];
-        out[1][m] = fi * sp[i + 1] * tp[j + 2];
-        out[2][m] = fj * sp[i + 2] * tp[j + 1];
-        if second {
-            out[3][m] = fi * (fi - 1.0) * sp[i] * tp[j + 2];
-            out[4][m] = fi * fj * sp[i + 1] * tp[j + 1];
-            out[5][m] = fj * (fj - 1.0) * sp[i + 2] * tp[j];
-        }
-    }
-    out
-}
-
 /// The patch whose support point `i` has the basis function with monomial
 /// coefficients `basis[15 i .. 15 i + 15]`, over the points `c`, at
 /// `(s, t)`; the second derivatives only when `second`.
@@ -193,39 +169,87 @@ pub(crate) fn jet(basis: &[f64], c: &[DVec3], s: f64, t: f64, second: bool) -> J
     coefficients(basis, c).jet(s, t, second)
 }
 
-/// A patch as three polynomials (x, y, z) in the monomials of
+/// A patch as a polynomial with vector coefficients, one per monomial of
 /// [`MONOMIALS`]: what [`jet`] needs of the support, so that the points of
 /// one patch can share it.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Poly(pub(crate) [[f64; 15]; 3]);
+pub(crate) struct Poly(pub(crate) [DVec3; 15]);
 
 /// The polynomial of the patch with basis `basis` (as [`jet`]) over the
-/// points `c`, summed point by point into 15 independent accumulators (no
-/// chain of dependent additions).
+/// points `c`: each coefficient summed point by point, five monomials at a
+/// time so that the sums stay in registers.
 pub(crate) fn coefficients(basis: &[f64], c: &[DVec3]) -> Poly {
-    let mut q = [[0.0f64; 15]; 3];
-    for (row, p) in basis.chunks_exact(15).zip(c) {
-        for m in 0..15 {
-            q[0][m] += row[m] * p.x;
-            q[1][m] += row[m] * p.y;
-            q[2][m] += row[m] * p.z;
+    let mut q = [DVec3::ZERO; 15];
+    for m0 in [0, 5, 10] {
+        let mut acc = [DVec3::ZERO; 5];
+        for (row, &p) in basis.chunks_exact(15).zip(c) {
+            for (a, &w) in acc.iter_mut().zip(&row[m0..m0 + 5]) {
+                *a += p * w;
+            }
         }
+        q[m0..m0 + 5].copy_from_slice(&acc);
     }
     Poly(q)
 }
 
 impl Poly {
     /// The point and derivatives at `(s, t)`; the second derivatives only
-    /// when `second`.
+    /// when `second`. Each derivative sums only the monomials it does not
+    /// zero: `d/ds s^i t^j = i s^(i-1) t^j` (order as [`MONOMIALS`]).
+    #[inline]
     pub(crate) fn jet(&self, s: f64, t: f64, second: bool) -> Jet {
         let q = &self.0;
-        let mj = monomial_jet(s, t, second);
-        let apply = |r: &[f64; 15]| -> DVec3 {
-            let d = |k: usize| q[k].iter().zip(r).map(|(a, b)| a * b).sum::<f64>();
-            DVec3::new(d(0), d(1), d(2))
-        };
-        let (dss, dst, dtt) = if second { (apply(&mj[3]), apply(&mj[4]), apply(&mj[5])) } else { Default::default() };
-        Jet { p: apply(&mj[0]), ds: apply(&mj[1]), dt: apply(&mj[2]), dss, dst, dtt }
+        let (s2, t2, st) = (s * s, t * t, s * t);
+        let (s3, t3) = (s2 * s, t2 * t);
+        let sum = |terms: &[(usize, f64)]| terms.iter().fold(DVec3::ZERO, |acc, &(m, w)| acc + q[m] * w);
+        let p = q[0]
+            + sum(&[
+                (1, s),
+                (2, t),
+                (3, s2),
+                (4, st),
+                (5, t2),
+                (6, s3),
+                (7, s2 * t),
+                (8, s * t2),
+                (9, t3),
+                (10, s2 * s2),
+                (11, s3 * t),
+                (12, s2 * t2),
+                (13, s * t3),
+                (14, t2 * t2),
+            ]);
+        let ds = q[1]
+            + sum(&[
+                (3, 2.0 * s),
+                (4, t),
+                (6, 3.0 * s2),
+                (7, 2.0 * st),
+                (8, t2),
+                (10, 4.0 * s3),
+                (11, 3.0 * s2 * t),
+                (12, 2.0 * s * t2),
+                (13, t3),
+            ]);
+        let dt = q[2]
+            + sum(&[
+                (4, s),
+                (5, 2.0 * t),
+                (7, s2),
+                (8, 2.0 * st),
+                (9, 3.0 * t2),
+                (11, s3),
+                (12, 2.0 * s2 * t),
+                (13, 3.0 * s * t2),
+                (14, 4.0 * t3),
+            ]);
+        let mut jet = Jet { p, ds, dt, ..Jet::default() };
+        if second {
+            jet.dss = q[3] * 2.0 + sum(&[(6, 6.0 * s), (7, 2.0 * t), (10, 12.0 * s2), (11, 6.0 * st), (12, 2.0 * t2)]);
+            jet.dst = q[4] + sum(&[(7, 2.0 * s), (8, 2.0 * t), (11, 3.0 * s2), (12, 4.0 * st), (13, 3.0 * t2)]);
+            jet.dtt = q[5] * 2.0 + sum(&[(8, 2.0 * s), (9, 6.0 * t), (12, 2.0 * s2), (13, 6.0 * st), (14, 12.0 * t2)]);
+        }
+        jet
     }
 }
 
@@ -302,6 +326,30 @@ mod tests {
         let j = jet(&b.basis, &lattice_points(|x, _| x * x), 0.25, 0.4, true);
         // z = (u + v)^2: z_uu = z_uv = z_vv = 2
         assert!((j.dss.z - 2.0).abs() < 1e-12 && (j.dst.z - 2.0).abs() < 1e-12 && (j.dtt.z - 2.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_polynomial_jet_is_its_value_and_its_difference_quotients() {
+        // any coefficients: the value against the monomials summed directly,
+        // each derivative against central differences of the one below
+        let q = Poly(std::array::from_fn(|m| DVec3::new(m as f64 - 7.0, (m * m) as f64 * 0.1, 1.0 / (m as f64 + 1.0))));
+        let h = 1e-5;
+        for &(s, t) in &[(0.2, 0.3), (0.9, 0.05), (0.0, 0.0), (0.4, 0.6)] {
+            let j = q.jet(s, t, true);
+            let direct: DVec3 = q.0.iter().zip(monomials(s, t)).map(|(&c, w)| c * w).sum();
+            assert!((j.p - direct).length() < 1e-12, "value at ({s}, {t})");
+            let at = |s, t| q.jet(s, t, true);
+            let close = |a: DVec3, b: DVec3, what: &str| {
+                assert!((a - b).length() < 1e-6 * (1.0 + b.length()), "{what} at ({s}, {t}): {a} vs {b}")
+            };
+            close(j.ds, (at(s + h, t).p - at(s - h, t).p) / (2.0 * h), "ds");
+            close(j.dt, (at(s, t + h).p - at(s, t - h).p) / (2.0 * h), "dt");
+            close(j.dss, (at(s + h, t).ds - at(s - h, t).ds) / (2.0 * h), "dss");
+            close(j.dst, (at(s, t + h).ds - at(s, t - h).ds) / (2.0 * h), "dst");
+            close(j.dtt, (at(s, t + h).dt - at(s, t - h).dt) / (2.0 * h), "dtt");
+            let first = q.jet(s, t, false);
+            assert_eq!((first.p, first.ds, first.dt), (j.p, j.ds, j.dt));
+        }
     }
 
     #[test]
