@@ -37,6 +37,7 @@
 pub mod catmark;
 pub mod color;
 mod extraordinary;
+mod group;
 mod level1;
 mod local;
 mod patch;
@@ -51,9 +52,11 @@ use crate::subdiv::{Options, Scheme};
 use crate::{Error, Result};
 use extraordinary::Extraordinary;
 use glam::DVec3;
+use group::Grouped;
 use level1::{BLOCK, Level1, REGULAR, Template};
 use patch::{BoxSpline, Jet, Poly};
 use rayon::prelude::*;
+use std::sync::atomic::Ordering;
 
 /// The limit surface at one parameter point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -437,6 +440,7 @@ impl Evaluator {
 
     /// [`Evaluator::eval_checked`], taking the level-1 face's polynomial or
     /// support from `cache` when it holds it (and leaving it there).
+    #[inline]
     fn eval_cached<'a>(&'a self, f: usize, u: f64, v: f64, second: bool, cache: Option<&mut ChildCache<'a>>) -> Sample {
         if let Some(poly) = &self.poly {
             return poly.eval(f, (u, v), second);
@@ -461,6 +465,13 @@ impl Evaluator {
             let jet = child.poly.jet(st.0, st.1, second);
             return finish(&jet, DVec3::ZERO, 1.0, map.j, 1.0, second);
         }
+        self.near_corner(child, st, map, second)
+    }
+
+    /// [`Evaluator::eval_cached`] on a level-1 face `child` with an
+    /// extraordinary corner, at its `st` (`map` from the control face's).
+    #[inline(never)]
+    fn near_corner(&self, child: &Child, st: (f64, f64), map: Affine, second: bool) -> Sample {
         let support = child.support();
         let len = support.len();
         let mut stack = [DVec3::ZERO; 2 * STACK_POINTS];
@@ -510,13 +521,6 @@ impl Evaluator {
             c.poly = patch::coefficients(&self.spline.basis, &c.small[..12]);
         }
     }
-}
-
-/// Points grouped by face: `sorted[rank[i]]` is point `i`, its `(u, v)`
-/// put on the domain's edge when a hair outside.
-struct Grouped {
-    sorted: Vec<(usize, (f64, f64))>,
-    rank: Vec<usize>,
 }
 
 /// What the points of one level-1 face share: its support (walk order
@@ -656,35 +660,18 @@ impl Evaluator {
             .with_min_len(256)
             .map_init(ChildCache::new, |cache, &(f, (u, v))| keep(&self.eval_cached(f, u, v, second, Some(cache))))
             .collect();
-        Ok(rank.par_iter().map(|&r| done[r]).collect())
+        Ok(rank.par_iter().map(|r| done[r.load(Ordering::Relaxed)]).collect())
     }
 
     /// The points checked (the first bad one refused, naming it) and
-    /// grouped by face by a counting sort, and the rank of each point in
-    /// that order.
+    /// grouped by face (`group.rs`).
     fn by_face(&self, points: &[(usize, f64, f64)]) -> Result<Grouped> {
-        if let Some(i) = points.par_iter().position_first(|&(f, u, v)| !self.fits(f, u, v)) {
+        let fits = |&(f, u, v): &(usize, f64, f64)| self.fits(f, u, v);
+        group::by_face(points, self.faces, fits, |u, v| self.onto_domain(u, v)).map_err(|i| {
             let (f, u, v) = points[i];
-            self.check(f, u, v).map_err(|e| Error::Usage(format!("point {}: {e}", i + 1)))?;
-        }
-        let mut start = vec![0usize; self.faces + 1];
-        for &(f, _, _) in points {
-            start[f + 1] += 1;
-        }
-        for k in 1..start.len() {
-            start[k] += start[k - 1];
-        }
-        let mut sorted = vec![(0, (0.0, 0.0)); points.len()];
-        let rank = points
-            .iter()
-            .map(|&(f, u, v)| {
-                let r = start[f];
-                start[f] += 1;
-                sorted[r] = (f, self.onto_domain(u, v));
-                r
-            })
-            .collect();
-        Ok(Grouped { sorted, rank })
+            let why = self.check(f, u, v).err().map_or_else(|| "refused".to_string(), |e| e.to_string());
+            Error::Usage(format!("point {}: {why}", i + 1))
+        })
     }
 }
 
@@ -723,6 +710,7 @@ fn at_vertex(pts: &[DVec3], table: &Extraordinary, limit: DVec3) -> Sample {
 
 /// The sample from the patch jet `jet` of the surface `base + c R`, where
 /// the patch's `(s, t)` are `scale * J (u, v) + const`.
+#[inline]
 fn finish(jet: &Jet, base: DVec3, c: f64, j: [[f64; 2]; 2], scale: f64, second: bool) -> Sample {
     let normal = jet.ds.cross(jet.dt).normalize();
     // chain rule: P_u = c scale (R_s ds/du + R_t dt/du)
