@@ -488,9 +488,22 @@ impl Evaluator {
         near_vertex(table, (pts, &mut tmp[..len]), st, (rotation(child.corner.into()), map), second)
     }
 
-    /// Makes `c` level-1 face `g`'s: its support walked on level 1, and
-    /// its polynomial when it is regular.
+    /// Makes `c` level-1 face `g`'s: its support (read through its control
+    /// face's block template where there is one, walked on level 1
+    /// otherwise), and its polynomial when it is regular.
     fn fill(&self, g: u32, c: &mut Child) {
+        let mut ids = [0u32; BLOCK];
+        let block = self.level1.block(g / 4, &mut ids);
+        if let Some(t) = block.and_then(|(key, _)| self.level1.template(key)) {
+            let (corner, places) = &t.children[(g % 4) as usize];
+            (c.g, c.corner, c.len) = (g, *corner, places.len());
+            // a template exists only for valences below TEMPLATE_VALENCE, so
+            // the support fits `small`
+            for (o, &i) in c.small.iter_mut().zip(places) {
+                *o = self.level1.point(ids[usize::from(i)]);
+            }
+            return self.fit(c);
+        }
         let (corner, len) = self.level1.shape(g);
         (c.g, c.corner, c.len) = (g, corner, len);
         if len > STACK_POINTS {

@@ -10,7 +10,6 @@ use super::{Evaluator, Sample};
 use crate::mesh::{CornerTable, Mesh};
 use crate::subdiv::{Options, Scheme};
 use crate::{Error, Result};
-use rayon::prelude::*;
 
 /// The control face and `(u, v)` of every vertex of the level-`levels`
 /// table `fine` made from a control mesh of `control_faces` triangles.
@@ -58,8 +57,14 @@ pub fn vertex_params(control_faces: usize, fine: &CornerTable, levels: u32) -> R
 pub fn vertex_samples(control: &Mesh, fine: &Mesh, levels: u32, opts: &Options) -> Result<Vec<Sample>> {
     let ev = Evaluator::new(control, Scheme::Loop, opts)?;
     let params = vertex_params(control.ct.num_triangles(), &fine.ct, levels)?;
-    Ok(params
-        .par_iter()
-        .map(|&(f, u, v)| if ev.accepts(f) { ev.eval(f, u, v).unwrap_or(Sample::NAN) } else { Sample::NAN })
-        .collect())
+    // the batch call, which shares each child's patch between its points,
+    // on the accepted ones
+    let (kept, points): (Vec<usize>, Vec<(usize, f64, f64)>) =
+        params.iter().enumerate().filter(|(_, p)| ev.accepts(p.0)).map(|(i, &p)| (i, p)).unzip();
+    let samples = ev.eval_all(&points, true)?;
+    let mut out = vec![Sample::NAN; params.len()];
+    for (i, s) in kept.into_iter().zip(samples) {
+        out[i] = s;
+    }
+    Ok(out)
 }
