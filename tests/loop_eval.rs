@@ -471,3 +471,43 @@ fn one_point_at_a_time_equals_the_prepared_evaluator() {
         }
     }
 }
+
+#[test]
+fn grouped_evaluation_equals_one_point_at_a_time() {
+    // eval_map groups the points by face and shares each level-1 face's
+    // support and polynomial between them; eval builds them per point. An
+    // icosphere (valences 5 and 6) and the bundled critter (fanned quads:
+    // valences 3 to 9, smooth and local faces), many points per face, in
+    // random order, a few right at a corner
+    let critter = subdiv::bundled::load(std::path::Path::new("bundled:critter.obj")).unwrap();
+    for mesh in [icosphere(2), critter] {
+        let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+        let faces: Vec<usize> = (0..ev.num_faces()).filter(|&f| ev.accepts(f)).collect();
+        let mut rng = Rng(0x9e3779b97f4a7c15);
+        let mut next = || rng.unit();
+        let points: Vec<(usize, f64, f64)> = (0..10 * faces.len())
+            .map(|_| {
+                let f = faces[(next() * faces.len() as f64) as usize % faces.len()];
+                let (u, v) = (next(), next());
+                if u < 0.01 {
+                    (f, 0.0, 0.0)
+                } else if u + v > 1.0 {
+                    (f, 1.0 - u, 1.0 - v)
+                } else {
+                    (f, u, v)
+                }
+            })
+            .collect();
+        let bits = |a: DVec3| a.to_array().map(f64::to_bits);
+        for second in [false, true] {
+            let grouped = ev.eval_all(&points, second).unwrap();
+            for (i, (&(f, u, v), g)) in points.iter().zip(&grouped).enumerate() {
+                let one = if second { ev.eval(f, u, v) } else { ev.eval_first(f, u, v) }.unwrap();
+                let at = || format!("point {i} {:?}", points[i]);
+                assert_eq!((bits(g.position), bits(g.normal)), (bits(one.position), bits(one.normal)), "{}", at());
+                assert_eq!((bits(g.du), bits(g.dv)), (bits(one.du), bits(one.dv)), "{}", at());
+                assert_eq!(g.mean.to_bits(), one.mean.to_bits(), "{}", at());
+            }
+        }
+    }
+}

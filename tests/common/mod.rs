@@ -221,6 +221,13 @@ impl Rng {
     pub fn vec3(&mut self) -> Vec3 {
         Vec3::new(self.next_f32(), self.next_f32(), self.next_f32())
     }
+    /// A double in `[0, 1)` (53 random bits).
+    pub fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
 }
 
 // ---- raw triangle soups (possibly invalid) for the corpus and repair tests ----

@@ -28,7 +28,8 @@
 //! one; across the edge, with `o(3f + i) = 3g + j`, the next half of `i`
 //! faces the previous half of `j` (the edge runs the other way there).
 
-use crate::mesh::{BORDER, CornerTable, Mesh, n, p};
+use crate::mesh::split::EdgeIds;
+use crate::mesh::{BORDER, CornerTable, Mesh, n, owns_edge, p};
 use crate::subdiv::LoopBeta;
 use crate::{Error, Result};
 use glam::DVec3;
@@ -80,21 +81,12 @@ pub(crate) fn walk(ct: &impl Walk, c: u32, mut out: impl FnMut(u32)) {
     }
 }
 
-/// The edge id of every corner (the edge opposite it) and their count.
+/// The edge id of every corner (the edge opposite it), the project's
+/// numbering ([`EdgeIds`]), and their count.
 fn edge_ids(ct: &CornerTable) -> (Vec<u32>, u32) {
-    let nc = ct.num_corners() as u32;
-    let mut ids = vec![u32::MAX; nc as usize];
-    let mut ne = 0;
-    for c in 0..nc {
-        match ct.o(c) {
-            Some(x) if x < c => ids[c as usize] = ids[x as usize],
-            _ => {
-                ids[c as usize] = ne;
-                ne += 1;
-            }
-        }
-    }
-    (ids, ne)
+    let o = ct.o_table();
+    let ids = EdgeIds::new(o);
+    ((0..o.len() as u32).map(|c| ids.edge(c, o[c as usize])).collect(), ids.count())
 }
 
 fn vertex_points(ct: &CornerTable, pos: &[DVec3], beta: LoopBeta, out: &mut [DVec3]) {
@@ -130,6 +122,18 @@ pub(crate) const BLOCK: usize = 3 + 3 * (TEMPLATE_VALENCE as usize - 1);
 
 /// The number of block keys (valence triples).
 const KEYS: usize = (TEMPLATE_VALENCE * TEMPLATE_VALENCE * TEMPLATE_VALENCE) as usize;
+
+/// The block key of a face whose corners have the valences `n`, if they
+/// are all below [`TEMPLATE_VALENCE`].
+fn key(n: [u32; 3]) -> Option<usize> {
+    n.iter().try_fold(0, |key, &k| (k < TEMPLATE_VALENCE).then_some(key * TEMPLATE_VALENCE as usize + k as usize))
+}
+
+/// The corner a support walk of a level-1 face with extraordinary corner
+/// `corner` ([`REGULAR`] if none) starts from.
+pub(crate) fn walk_start(corner: u8) -> u32 {
+    if corner == REGULAR { 0 } else { u32::from(corner) }
+}
 
 /// The supports of the four children of a face, as places in its block
 /// ([`Level1::block`]), with each child's extraordinary corner
@@ -170,7 +174,8 @@ impl Level1 {
         let (ids, ne) = edge_ids(ct);
         let mut out = vec![DVec3::ZERO; nv + ne as usize];
         vertex_points(ct, &pos, beta, &mut out[..nv]);
-        for c in 0..ct.num_corners() as u32 {
+        // each edge once, at its owner corner
+        for c in (0..ct.num_corners() as u32).filter(|&c| owns_edge(c, ct.o_table()[c as usize])) {
             let (a, b) = (pos[ct.vtx(n(c)) as usize], pos[ct.vtx(p(c)) as usize]);
             out[nv + ids[c as usize] as usize] = match ct.o(c) {
                 Some(x) => (a + b) * 0.375 + (pos[ct.vtx(c) as usize] + pos[ct.vtx(x) as usize]) * 0.125,
@@ -218,9 +223,8 @@ impl Level1 {
     /// `corner` (as [`Level1::shape`] gives them) to `out`.
     #[inline]
     pub(crate) fn support(&self, g: u32, corner: u8, out: &mut [DVec3]) {
-        let start = if corner == REGULAR { 0 } else { u32::from(corner) };
         let mut k = 0;
-        walk(self, 3 * g + start, |v| {
+        walk(self, 3 * g + walk_start(corner), |v| {
             if let Some(o) = out.get_mut(k) {
                 *o = self.pos[v as usize];
             }
@@ -244,7 +248,7 @@ impl Level1 {
         }
         ids[..3].copy_from_slice(&v);
         let nv = self.valence.len() as u32;
-        let (mut len, mut key) = (3, 0);
+        let (mut len, mut valences) = (3, [0; 3]);
         for k in 0..3u32 {
             let c = c0 + k;
             let others = (v[((k + 1) % 3) as usize], v[((k + 2) % 3) as usize]);
@@ -270,9 +274,9 @@ impl Level1 {
             if met != 2 {
                 return None;
             }
-            key = key * TEMPLATE_VALENCE as usize + steps as usize;
+            valences[k as usize] = steps;
         }
-        Some((key, len))
+        Some((key(valences)?, len))
     }
 
     /// The template of block key `key`, if one was learnt.
@@ -294,10 +298,7 @@ impl Level1 {
                 continue;
             }
             // the key from the valences alone: most faces' is known
-            let known = (0..3).try_fold(0, |key, i| {
-                let k = self.valence[self.v[3 * f + i] as usize] as usize;
-                (k < TEMPLATE_VALENCE as usize).then_some(key * TEMPLATE_VALENCE as usize + k)
-            });
+            let known = key([0, 1, 2].map(|i| self.valence[self.v[3 * f + i] as usize]));
             if known.is_some_and(|key| templates[key].is_some()) {
                 continue;
             }
@@ -315,10 +316,9 @@ impl Level1 {
         for (k, child) in children.iter_mut().enumerate() {
             let g = 4 * f + k as u32;
             let (corner, _) = self.shape(g);
-            let start = if corner == REGULAR { 0 } else { u32::from(corner) };
             let mut places = Vec::new();
             let mut lost = false;
-            walk(self, 3 * g + start, |v| match ids.iter().position(|&x| x == v) {
+            walk(self, 3 * g + walk_start(corner), |v| match ids.iter().position(|&x| x == v) {
                 // a block holds at most BLOCK entries
                 Some(i) => places.push(i as u8),
                 None => lost = true,
@@ -411,9 +411,8 @@ mod tests {
                 for (k, (corner, places)) in template.children.iter().enumerate() {
                     let g = 4 * f + k as u32;
                     assert_eq!(*corner, l1.shape(g).0, "face {f} child {k}");
-                    let start = if *corner == REGULAR { 0 } else { u32::from(*corner) };
                     let mut walked = Vec::new();
-                    walk(&l1, 3 * g + start, |v| walked.push(v));
+                    walk(&l1, 3 * g + walk_start(*corner), |v| walked.push(v));
                     let read: Vec<u32> = places.iter().map(|&i| ids[..len][usize::from(i)]).collect();
                     assert_eq!(read, walked, "face {f} child {k}");
                 }

@@ -407,14 +407,13 @@ impl Evaluator {
     /// `(u, v)` if face `f` and the point are good, scaled onto the edge when
     /// `u + v` is a hair over 1.
     fn check(&self, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
-        if self.poly.is_some() {
-            return check_square(self.faces, f, u, v);
+        if self.fits(f, u, v) {
+            return Ok(self.onto_domain(u, v));
         }
-        let uv = check_point(self.faces, f, u, v)?;
-        if self.path[f] == Path::Refused {
-            return Err(valence_two(f));
-        }
-        Ok(uv)
+        // why it does not fit: the domain's own check, else the face
+        let domain =
+            if self.poly.is_some() { check_square(self.faces, f, u, v) } else { check_point(self.faces, f, u, v) };
+        Err(domain.err().unwrap_or_else(|| valence_two(f)))
     }
 
     /// Whether [`Evaluator::check`] passes the point (without making its
@@ -495,14 +494,8 @@ impl Evaluator {
         let mut ids = [0u32; BLOCK];
         let block = self.level1.block(g / 4, &mut ids);
         if let Some(t) = block.and_then(|(key, _)| self.level1.template(key)) {
-            let (corner, places) = &t.children[(g % 4) as usize];
-            (c.g, c.corner, c.len) = (g, *corner, places.len());
-            // a template exists only for valences below TEMPLATE_VALENCE, so
-            // the support fits `small`
-            for (o, &i) in c.small.iter_mut().zip(places) {
-                *o = self.level1.point(ids[usize::from(i)]);
-            }
-            return self.fit(c);
+            let at = |i: usize| self.level1.point(ids[i]);
+            return self.fill_from(g, c, at, &t.children[(g % 4) as usize]);
         }
         let (corner, len) = self.level1.shape(g);
         (c.g, c.corner, c.len) = (g, corner, len);
@@ -515,15 +508,16 @@ impl Evaluator {
         self.fit(c);
     }
 
-    /// [`Evaluator::fill`] with the support read from the block `block` of
-    /// `g`'s control face through the block's template entry
-    /// `(corner, places)`.
-    fn fill_from(&self, g: u32, c: &mut Child, block: &[DVec3], (corner, places): &(u8, Vec<u8>)) {
+    /// [`Evaluator::fill`] with the support read through the template
+    /// entry `(corner, places)` of `g`'s control face, `at(i)` the point
+    /// at place `i` of the face's block.
+    #[inline]
+    fn fill_from(&self, g: u32, c: &mut Child, at: impl Fn(usize) -> DVec3, (corner, places): &(u8, Vec<u8>)) {
         (c.g, c.corner, c.len) = (g, *corner, places.len());
         // a template exists only for valences below TEMPLATE_VALENCE, so
         // the support fits `small`
         for (o, &i) in c.small.iter_mut().zip(places) {
-            *o = block[usize::from(i)];
+            *o = at(usize::from(i));
         }
         self.fit(c);
     }
@@ -606,7 +600,7 @@ impl<'a> ChildCache<'a> {
             });
         }
         match self.template {
-            Some(t) => ev.fill_from(g, &mut self.slots[k], &self.block, &t.children[k]),
+            Some(t) => ev.fill_from(g, &mut self.slots[k], |i| self.block[i], &t.children[k]),
             None => ev.fill(g, &mut self.slots[k]),
         }
         &self.slots[k]
@@ -682,7 +676,7 @@ impl Evaluator {
         let fits = |&(f, u, v): &(usize, f64, f64)| self.fits(f, u, v);
         group::by_face(points, self.faces, fits, |u, v| self.onto_domain(u, v)).map_err(|i| {
             let (f, u, v) = points[i];
-            let why = self.check(f, u, v).err().map_or_else(|| "refused".to_string(), |e| e.to_string());
+            let why = self.check(f, u, v).err().map(|e| e.to_string()).unwrap_or_default();
             Error::Usage(format!("point {}: {why}", i + 1))
         })
     }
