@@ -4,7 +4,7 @@
 use super::args::{InputArgs, SchemeArgs};
 use std::path::PathBuf;
 use std::time::Instant;
-use subdiv::io::{Budget, atomic_write, resolve::Resolver};
+use subdiv::io::{Budget, resolve::Resolver, write_rows};
 use subdiv::subdiv::eval::{Evaluator, parse_points_in};
 use subdiv::{Error, Result};
 
@@ -83,22 +83,4 @@ pub fn eval(a: &EvalArgs) -> Result<()> {
     }
     println!("{} at {} points -> {}", a.input.display(), points.len(), a.output.display());
     Ok(())
-}
-
-/// One line per row, its numbers space-separated (each the shortest decimal
-/// that reads back to the same double).
-fn write_rows<const N: usize>(path: &std::path::Path, rows: &[[f64; N]]) -> Result<()> {
-    atomic_write(path, |w| {
-        let io = |e| Error::io(path, e);
-        for row in rows {
-            for (k, x) in row.iter().enumerate() {
-                if k > 0 {
-                    w.write_all(b" ").map_err(io)?;
-                }
-                write!(w, "{x}").map_err(io)?;
-            }
-            writeln!(w).map_err(io)?;
-        }
-        Ok(())
-    })
 }

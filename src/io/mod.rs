@@ -37,7 +37,7 @@ mod write;
 
 pub use limits::{Budget, LIMIT_NAMES, Limits};
 pub use raw::{BuildNotes, RawMesh, Topology};
-pub use write::atomic_write;
+pub use write::{atomic_write, write_rows};
 pub(crate) use write::{atomic_write_pieces, write_formatted};
 
 use crate::mesh::Mesh;

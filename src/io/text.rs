@@ -69,6 +69,13 @@ impl<const CAP: usize> Line<CAP> {
         self.at = put_u32(&mut self.bytes, self.at, x);
     }
 
+    /// Appends the line alone to `out` (a copy of its length), for a room
+    /// much longer than its usual lines.
+    #[inline(always)]
+    pub(crate) fn append_used_to(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.bytes[..self.at]);
+    }
+
     /// Appends the whole array to `out` (a fixed-size copy) and drops what
     /// lies past the line.
     #[inline(always)]
@@ -115,6 +122,31 @@ pub(crate) fn row_lines(prefix: &[u8], ids: &[u32], k: usize, put: impl Fn(&mut 
         }
         line.push(b'\n');
         line.append_to(&mut out);
+    }
+    out
+}
+
+/// One line per row of `rows` (at most 10 numbers a row), the numbers
+/// separated by spaces, each the shortest decimal that reads back as the
+/// same double (zmij; an exponent where that is shorter, as `1e-7`), NaN
+/// and the infinities as Rust writes them (`NaN`, `inf`, `-inf`).
+pub(crate) fn f64_lines<const N: usize>(rows: &[[f64; N]]) -> Vec<u8> {
+    // 24 characters at most a number (-2.2250738585072014e-308) and a space
+    const { assert!(N <= 10, "a line holds at most 10 numbers") };
+    let mut out = Vec::with_capacity(rows.len() * N * 20);
+    let mut rb = zmij::Buffer::new();
+    let mut line: Line<256> = Line::new(b"");
+    for row in rows {
+        line.reset();
+        for (k, &x) in row.iter().enumerate() {
+            if k > 0 {
+                line.push(b' ');
+            }
+            line.put(rb.format(x).as_bytes());
+        }
+        line.push(b'\n');
+        // a row of six is about 110 bytes of the 256
+        line.append_used_to(&mut out);
     }
     out
 }
@@ -202,4 +234,28 @@ fn put_into(one: &mut Line<16>, put: &impl Fn(&mut Line, u32), x: u32) {
     let mut wide: Line = Line::new(b"");
     put(&mut wide, x);
     one.put(&wide.bytes[..wide.at]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_of_doubles_read_back_bit_for_bit() {
+        let odd =
+            [0.0, -0.0, 1.0, -2.5, 1e-7, 5.697280448680703e-6, 0.1, 1.0 / 3.0, 1e22, f64::MAX, -f64::MIN_POSITIVE];
+        let mut rows: Vec<[f64; 8]> = odd.chunks(1).map(|x| [x[0]; 8]).collect();
+        rows.push([f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 5e-324, 0.5, 2.0, -1e-300, 123456789.125]);
+        let text = String::from_utf8(f64_lines(&rows)).unwrap();
+        let back: Vec<Vec<f64>> =
+            text.lines().map(|l| l.split(' ').map(|x| x.parse::<f64>().unwrap()).collect()).collect();
+        assert_eq!(back.len(), rows.len());
+        for (row, got) in rows.iter().zip(&back) {
+            assert_eq!(got.len(), 8);
+            for (x, y) in row.iter().zip(got) {
+                assert!(x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()), "{x} read back as {y}");
+            }
+        }
+        assert!(text.ends_with("123456789.125\n") && text.contains("NaN inf -inf"), "{text}");
+    }
 }

@@ -35,48 +35,90 @@ pub fn parse_points(text: &str, file: &str, faces: usize, max_points: usize) -> 
 /// # Errors
 /// As [`parse_points`].
 pub fn parse_points_in(text: &str, file: &str, domain: Domain, max_points: usize) -> Result<Vec<(usize, f64, f64)>> {
+    // pieces of about 1 MB parsed in parallel; a file with a bad line (or
+    // too many points) is parsed again line by line, to name the first
+    if let Some(points) = parse_pieces(text, domain, max_points) {
+        return Ok(points);
+    }
+    let mut out = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let err = |msg: String| Error::Parse { file: file.to_string(), line: i + 1, msg };
+        if !blank(line) && out.len() == max_points {
+            return Err(err(format!("more than {max_points} points (raise --limit vertices=N)")));
+        }
+        out.extend(point(line, domain).map_err(err)?);
+    }
+    Ok(out)
+}
+
+/// The points of `text` parsed in pieces in parallel, or `None` if a line
+/// is refused or there are more than `max_points`.
+fn parse_pieces(text: &str, domain: Domain, max_points: usize) -> Option<Vec<(usize, f64, f64)>> {
+    use rayon::prelude::*;
+    const PIECE: usize = 1 << 20;
+    let mut pieces = Vec::with_capacity(text.len() / PIECE + 1);
+    let mut rest = text;
+    while !rest.is_empty() {
+        // up to the end of the line that crosses PIECE bytes
+        let end = rest.as_bytes().iter().skip(PIECE).position(|&b| b == b'\n').map_or(rest.len(), |k| PIECE + k + 1);
+        let (piece, tail) = rest.split_at(end);
+        pieces.push(piece);
+        rest = tail;
+    }
+    let parsed: Vec<Vec<(usize, f64, f64)>> = pieces
+        .into_par_iter()
+        .map(|piece| {
+            let mut out = Vec::with_capacity(piece.len() / 24);
+            for line in piece.lines() {
+                if let Some(p) = point(line, domain).ok()? {
+                    out.push(p);
+                }
+            }
+            (out.len() <= max_points).then_some(out)
+        })
+        .collect::<Option<_>>()?;
+    (parsed.iter().map(Vec::len).sum::<usize>() <= max_points).then(|| parsed.concat())
+}
+
+/// Whether `line` holds no point: blank, or a `#` comment.
+fn blank(line: &str) -> bool {
+    let line = line.trim_start();
+    line.is_empty() || line.starts_with('#')
+}
+
+/// One line of a points file: `None` for a blank or `#` line, or why it is
+/// refused.
+fn point(line: &str, domain: Domain) -> std::result::Result<Option<(usize, f64, f64)>, String> {
     let (faces, what) = match domain {
         Domain::Triangles(n) => (n, "triangles"),
         Domain::Ptex(n) => (n, "ptex faces"),
     };
-    let mut out = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let err = |msg: String| Error::Parse { file: file.to_string(), line: i + 1, msg };
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        if out.len() == max_points {
-            return Err(err(format!("more than {max_points} points (raise --limit vertices=N)")));
-        }
-        let fields: Vec<&str> = line.split_whitespace().collect();
-        let [f, u, v] = fields[..] else {
-            return Err(err(format!("expected 'f u v', found {} fields", fields.len())));
-        };
-        let f: usize = f.parse().map_err(|_| err(format!("face '{f}' is not a non-negative integer")))?;
-        if f >= faces {
-            return Err(err(format!("face {f} out of range (the mesh has {faces} {what})")));
-        }
-        let num = |s: &str, name: &str| -> Result<f64> {
-            let x: f64 = s.parse().map_err(|_| err(format!("{name} '{s}' is not a number")))?;
-            if !x.is_finite() || x < 0.0 {
-                return Err(err(format!("{name} = {x}: must be finite and >= 0")));
-            }
-            Ok(x)
-        };
-        let (u, v) = (num(u, "u")?, num(v, "v")?);
-        match domain {
-            Domain::Triangles(_) if u + v > 1.0 + EDGE_SLACK => {
-                return Err(err(format!("u + v = {} > 1: the point is outside the triangle", u + v)));
-            }
-            Domain::Ptex(_) if u.max(v) > 1.0 + EDGE_SLACK => {
-                return Err(err(format!("({u}, {v}) is outside the unit square")));
-            }
-            _ => {}
-        }
-        out.push((f, u, v));
+    if blank(line) {
+        return Ok(None);
     }
-    Ok(out)
+    let mut fields = line.split_whitespace();
+    let (Some(f), Some(u), Some(v), None) = (fields.next(), fields.next(), fields.next(), fields.next()) else {
+        return Err(format!("expected 'f u v', found {} fields", line.split_whitespace().count()));
+    };
+    let f: usize = f.parse().map_err(|_| format!("face '{f}' is not a non-negative integer"))?;
+    if f >= faces {
+        return Err(format!("face {f} out of range (the mesh has {faces} {what})"));
+    }
+    let num = |s: &str, name: &str| -> std::result::Result<f64, String> {
+        let x: f64 = s.parse().map_err(|_| format!("{name} '{s}' is not a number"))?;
+        if !x.is_finite() || x < 0.0 {
+            return Err(format!("{name} = {x}: must be finite and >= 0"));
+        }
+        Ok(x)
+    };
+    let (u, v) = (num(u, "u")?, num(v, "v")?);
+    match domain {
+        Domain::Triangles(_) if u + v > 1.0 + EDGE_SLACK => {
+            Err(format!("u + v = {} > 1: the point is outside the triangle", u + v))
+        }
+        Domain::Ptex(_) if u.max(v) > 1.0 + EDGE_SLACK => Err(format!("({u}, {v}) is outside the unit square")),
+        _ => Ok(Some((f, u, v))),
+    }
 }
 
 #[cfg(test)]
@@ -102,5 +144,27 @@ mod tests {
         }
         assert!(parse_points("0 0.5 0.500000001", "p.txt", 4, 10).is_ok());
         assert!(parse_points("0 0 0\n0 0 0", "p.txt", 4, 1).unwrap_err().to_string().contains("more than 1"));
+    }
+
+    #[test]
+    fn a_file_of_many_pieces_parses_as_line_by_line_and_names_a_late_bad_line() {
+        // about 3 MB: several pieces parsed in parallel, a comment, a blank
+        // line and a CRLF line among them
+        let mut text = String::from("# f u v\n\n");
+        let mut want = Vec::new();
+        for i in 0..200_000usize {
+            let (f, u, v) = (i % 97, (i % 1000) as f64 / 2000.0, (i % 7) as f64 / 16.0);
+            text.push_str(&format!("{f} {u:?} {v:?}{}", if i % 10_000 == 5 { "\r\n" } else { "\n" }));
+            want.push((f, u, v));
+        }
+        assert!(text.len() > 2 << 20, "{}", text.len());
+        assert_eq!(parse_points(&text, "p.txt", 97, usize::MAX).unwrap(), want);
+        // the point count is checked over all the pieces
+        let e = parse_points(&text, "p.txt", 97, want.len() - 1).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("p.txt:{}: more than", want.len() + 2)), "{e}");
+        // a bad line in the last piece is named by its line in the file
+        let bad = format!("{text}5 0.1 0.1\n97 0.1 0.1\n");
+        let e = parse_points(&bad, "p.txt", 97, usize::MAX).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("p.txt:{}: face 97 out of range", want.len() + 4)), "{e}");
     }
 }
