@@ -152,6 +152,19 @@ pub fn flat_f64(points: &[Vec3]) -> Vec<f64> {
     out
 }
 
+/// Columns `a..b` of `rows`, flat (row by row), copied in parallel as
+/// [`flat_f64`] converts.
+pub fn columns<const N: usize>(rows: &[[f64; N]], a: usize, b: usize) -> Vec<f64> {
+    let k = b - a;
+    let mut out = subdiv::mem::zeroed::<f64>(rows.len() * k);
+    out.par_chunks_mut(k * CHUNK).zip(rows.par_chunks(CHUNK)).for_each(|(o, r)| {
+        for (o, r) in o.chunks_exact_mut(k).zip(r) {
+            o.copy_from_slice(&r[a..b]);
+        }
+    });
+    out
+}
+
 /// `ids` as int64, each through `f` (in parallel, as [`flat_f64`]).
 pub fn ids_i64(ids: &[u32], f: impl Fn(u32) -> i64 + Sync) -> Vec<i64> {
     let mut out = subdiv::mem::zeroed::<i64>(ids.len());

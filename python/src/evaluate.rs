@@ -1,7 +1,7 @@
 //! `evaluate`: the exact Loop limit surface at points `(face, u, v)`, the
 //! native half of `subdiv.evaluate` (the library's `subdiv eval`).
 
-use crate::arrays::f64_array;
+use crate::arrays::{columns, f64_array};
 use crate::guard::run;
 use crate::ops::{CreaseArgs, MeshArgs, control};
 use crate::options;
@@ -52,6 +52,7 @@ pub fn evaluate_arrays<'py>(
         })
         .map_err(|e| e.to_string())
     })?;
-    let column = |a: usize, b: usize| out.iter().flat_map(|r| r[a..b].to_vec()).collect::<Vec<f64>>();
-    Ok((f64_array(py, column(0, 3), 3)?, f64_array(py, column(3, 6), 3)?, f64_array(py, column(6, 8), 2)?))
+    let (p, n, hk) = (columns(&out, 0, 3), columns(&out, 3, 6), columns(&out, 6, 8));
+    drop(out);
+    Ok((f64_array(py, p, 3)?, f64_array(py, n, 3)?, f64_array(py, hk, 2)?))
 }
