@@ -71,12 +71,16 @@ fn faces_only_equal_the_full_subdivision_bit_for_bit() {
 
 #[test]
 fn faces_only_equal_the_full_subdivision_on_any_thread_count() {
-    let mesh = creased(icosphere(4), 40, 1.7, 3.0);
-    let (full, _) = subdivide(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
-    for threads in [1, 3] {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        let (faces, _) = pool.install(|| subdivide_faces(&mesh, Scheme::Loop, 2, &Options::default())).unwrap();
-        assert_same_bits(&format!("icosphere on {threads} threads"), &full, &faces);
+    // creased and smooth, the last split over several of its parallel
+    // chunks (61,440 corners before the last level, 16,384 a chunk)
+    for (name, mesh) in [("creased", creased(icosphere(4), 40, 1.7, 3.0)), ("smooth", icosphere(4))] {
+        let (full, _) = subdivide(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
+        assert!(full.ct.num_corners() / 4 > 3 * 16_384, "{name}: several chunks");
+        for threads in [1, 3] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let (faces, _) = pool.install(|| subdivide_faces(&mesh, Scheme::Loop, 2, &Options::default())).unwrap();
+            assert_same_bits(&format!("{name} icosphere on {threads} threads"), &full, &faces);
+        }
     }
 }
 
