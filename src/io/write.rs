@@ -58,8 +58,8 @@ pub(crate) fn write_formatted(
 /// Writes `rows` as text (atomically): one line per row, its numbers
 /// separated by spaces, each the shortest decimal that reads back as the
 /// same double (an exponent where that is shorter; `NaN`, `inf`, `-inf`),
-/// formatted in parallel and written in order ([`write_formatted`]). At
-/// most 10 numbers a row.
+/// formatted in parallel pieces and written in order. At most 10 numbers a
+/// row.
 ///
 /// # Errors
 /// I/O errors naming `path`.
