@@ -37,7 +37,7 @@ pub fn parse_points(text: &str, file: &str, faces: usize, max_points: usize) -> 
 pub fn parse_points_in(text: &str, file: &str, domain: Domain, max_points: usize) -> Result<Vec<(usize, f64, f64)>> {
     // pieces of about 1 MB parsed in parallel; a file with a bad line (or
     // too many points) is parsed again line by line, to name the first
-    if let Some(points) = parse_pieces(text, domain, max_points) {
+    if let Some(points) = parse_pieces(text, domain, max_points, (1 << 20, 16)) {
         return Ok(points);
     }
     let mut out = Vec::new();
@@ -51,33 +51,47 @@ pub fn parse_points_in(text: &str, file: &str, domain: Domain, max_points: usize
     Ok(out)
 }
 
-/// The points of `text` parsed in pieces in parallel, or `None` if a line
-/// is refused or there are more than `max_points`.
-fn parse_pieces(text: &str, domain: Domain, max_points: usize) -> Option<Vec<(usize, f64, f64)>> {
+/// The points of `text` parsed in pieces of about `piece` bytes in
+/// parallel, or `None` if a line is refused or there are more than
+/// `max_points`. The pieces go in batches of `batch`, the count checked
+/// after each, so no more than a batch's points are parsed past
+/// `max_points`.
+fn parse_pieces(
+    text: &str,
+    domain: Domain,
+    max_points: usize,
+    (piece, batch): (usize, usize),
+) -> Option<Vec<(usize, f64, f64)>> {
     use rayon::prelude::*;
-    const PIECE: usize = 1 << 20;
-    let mut pieces = Vec::with_capacity(text.len() / PIECE + 1);
+    let mut pieces = Vec::with_capacity(text.len() / piece + 1);
     let mut rest = text;
     while !rest.is_empty() {
-        // up to the end of the line that crosses PIECE bytes
-        let end = rest.as_bytes().iter().skip(PIECE).position(|&b| b == b'\n').map_or(rest.len(), |k| PIECE + k + 1);
-        let (piece, tail) = rest.split_at(end);
-        pieces.push(piece);
+        // up to the end of the line that crosses `piece` bytes
+        let end = rest.as_bytes().iter().skip(piece).position(|&b| b == b'\n').map_or(rest.len(), |k| piece + k + 1);
+        let (first, tail) = rest.split_at(end);
+        pieces.push(first);
         rest = tail;
     }
-    let parsed: Vec<Vec<(usize, f64, f64)>> = pieces
-        .into_par_iter()
-        .map(|piece| {
-            let mut out = Vec::with_capacity(piece.len() / 24);
-            for line in piece.lines() {
-                if let Some(p) = point(line, domain).ok()? {
-                    out.push(p);
+    let mut out = Vec::new();
+    for batch in pieces.chunks(batch.max(1)) {
+        let parsed: Vec<Vec<(usize, f64, f64)>> = batch
+            .par_iter()
+            .map(|piece| {
+                let mut out = Vec::with_capacity(piece.len() / 24);
+                for line in piece.lines() {
+                    out.extend(point(line, domain).ok()?);
                 }
+                Some(out)
+            })
+            .collect::<Option<_>>()?;
+        for points in parsed {
+            if out.len() + points.len() > max_points {
+                return None;
             }
-            (out.len() <= max_points).then_some(out)
-        })
-        .collect::<Option<_>>()?;
-    (parsed.iter().map(Vec::len).sum::<usize>() <= max_points).then(|| parsed.concat())
+            out.extend_from_slice(&points);
+        }
+    }
+    Some(out)
 }
 
 /// Whether `line` holds no point: blank, or a `#` comment.
@@ -166,5 +180,12 @@ mod tests {
         let bad = format!("{text}5 0.1 0.1\n97 0.1 0.1\n");
         let e = parse_points(&bad, "p.txt", 97, usize::MAX).unwrap_err().to_string();
         assert!(e.starts_with(&format!("p.txt:{}: face 97 out of range", want.len() + 4)), "{e}");
+        // small pieces in small batches: lines cut nowhere, the count
+        // stopped at the batch that passes it
+        let small = (40, 3);
+        let text: String = want[..500].iter().map(|(f, u, v)| format!("{f} {u:?} {v:?}\n")).collect();
+        assert_eq!(parse_pieces(&text, Domain::Triangles(97), 500, small).as_deref(), Some(&want[..500]));
+        assert!(parse_pieces(&text, Domain::Triangles(97), 499, small).is_none());
+        assert!(parse_pieces(&format!("{text}x"), Domain::Triangles(97), 600, small).is_none());
     }
 }
