@@ -1,35 +1,38 @@
-//! `evaluate`: the exact Loop limit surface at points `(face, u, v)`, the
-//! native half of `subdiv.evaluate` (the library's `subdiv eval`).
+//! `evaluate`: the exact Loop or Catmull-Clark limit surface at points
+//! `(face, u, v)`, the native half of `subdiv.evaluate` (the library's `subdiv eval`).
 
 use crate::arrays::{columns, f64_array};
+use crate::build::Control;
 use crate::guard::run;
-use crate::ops::{CreaseArgs, MeshArgs, control};
-use crate::options;
+use crate::ops::{CreaseArgs, MeshArgs, control, named};
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use subdiv::Scheme;
+use subdiv::subdiv::eval::Evaluator;
 
 /// Positions `(k, 3)`, unit normals `(k, 3)` and `(H, K)` per point `(k, 2)`
 /// (`(0, 2)` unless `curvature`).
 type Samples<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>);
 
-/// The exact Loop limit at control face `face[i]`, barycentric `uv[i]`.
+/// The exact limit at control face `face[i]`, parameters `uv[i]`: Loop
+/// on triangles (barycentric), Catmull-Clark on ptex faces (the unit
+/// square); `names` are the scheme, beta and boundary, `creases` as for
+/// `subdivide`.
 ///
 /// # Errors
 /// `SubdivError` for anything the library refuses: a face out of range or
-/// at an interior vertex of valence 2, a point outside its triangle, a mesh
-/// the library does not build.
+/// at an interior vertex of valence 2, a point outside its face, a scheme
+/// without an exact evaluation, a mesh the library does not build.
 #[pyfunction]
 pub fn evaluate_arrays<'py>(
     py: Python<'py>,
     mesh: MeshArgs<'py>,
+    creases: CreaseArgs<'py>,
+    names: (String, String, String),
     face: PyReadonlyArray1<'py, i64>,
     uv: PyReadonlyArray2<'py, f64>,
-    beta: String,
     curvature: bool,
 ) -> PyResult<Samples<'py>> {
-    let creases = CreaseArgs::empty(py);
     let s = mesh.slices(&creases)?;
     if uv.shape()[1] != 2 || uv.shape()[0] != face.len() {
         return Err(PyTypeError::new_err("uv must have shape (k, 2) with one row per face index"));
@@ -37,15 +40,17 @@ pub fn evaluate_arrays<'py>(
     let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
     let (face, uv) = (face.as_slice().map_err(bad)?, uv.as_slice().map_err(bad)?);
     let (p, n, hk) = run(py, None, || {
-        let opts = options::options(&beta, "edge")?;
-        let (c, _) = control(&s, Scheme::Loop, false)?;
-        let crate::build::Control::Tri(mesh) = c else { return Err("Loop built a polygon table (a bug)".into()) };
+        let (scheme, opts) = named(&names)?;
+        let ev = match control(&s, scheme, false)? {
+            (Control::Tri(mesh), _) => Evaluator::new(&mesh, scheme, &opts),
+            (Control::Poly(mesh), _) => Evaluator::new_poly(&mesh, scheme, &opts),
+        }
+        .map_err(|e| e.to_string())?;
         let mut points = Vec::with_capacity(face.len());
         for (i, (&f, w)) in face.iter().zip(uv.chunks_exact(2)).enumerate() {
             let f = usize::try_from(f).map_err(|_| format!("point {}: face {f} out of range", i + 1))?;
             points.push((f, w[0], w[1]));
         }
-        let ev = subdiv::subdiv::eval::Evaluator::new(&mesh, Scheme::Loop, &opts).map_err(|e| e.to_string())?;
         // only the columns asked for are kept (a million points: 48 or 64 MB)
         Ok(if curvature {
             let out = samples(&ev, &points, true, |a| a)?;
@@ -61,7 +66,7 @@ pub fn evaluate_arrays<'py>(
 /// Position, normal, `H` and `K` at every point, each kept as `keep` maps
 /// them.
 fn samples<T: Copy + Default + Send + Sync>(
-    ev: &subdiv::subdiv::eval::Evaluator,
+    ev: &Evaluator,
     points: &[(usize, f64, f64)],
     curvature: bool,
     keep: impl Fn([f64; 8]) -> T + Sync,

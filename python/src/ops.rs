@@ -70,7 +70,7 @@ pub fn control(s: &Slices<'_>, scheme: Scheme, repair: bool) -> Result<(Control,
 }
 
 /// The scheme and options named `(scheme, beta, boundary)`.
-fn named(names: &(String, String, String)) -> Result<(Scheme, Options), Msg> {
+pub fn named(names: &(String, String, String)) -> Result<(Scheme, Options), Msg> {
     Ok((options::scheme(&names.0)?, options::options(&names.1, &names.2)?))
 }
 

@@ -168,15 +168,21 @@ def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
     return _subdiv.limit_arrays((v, corners, starts), _checks.creases(creases), names)
 
 
-def evaluate(vertices, faces, face, uv, *, beta="loop", curvature=False):
-    """The exact Loop limit surface at points of the control triangles.
+def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary="edge", creases=None,
+             curvature=False):
+    """The exact limit surface at points of the control faces, as ``subdiv
+    eval`` computes it.
 
-    A point is a control triangle ``face[i]`` (its index in ``faces``) and
-    barycentric ``uv[i] = (u, v)``: the point ``(1-u-v) c0 + u c1 + v c2``
-    of the triangle's corners in the order ``faces`` lists them, as
-    ``subdiv eval`` reads them. Exact at any point (Stam's method, no
-    fixed-level approximation), borders included (local subdivision with
-    the boundary rules).
+    Loop (``scheme="loop"``, triangles): a point is a control triangle
+    ``face[i]`` (its index in ``faces``) and barycentric ``uv[i] = (u, v)``:
+    the point ``(1-u-v) c0 + u c1 + v c2`` of the triangle's corners in the
+    order ``faces`` lists them. Catmull-Clark (``scheme="catmull-clark"``,
+    polygons as ``subdivide`` takes them): ``face[i]`` is a ptex face (a
+    quad is one, an n-gon n, one per corner, in face order) and ``uv[i]``
+    lies in its unit square, corner 0 of a quad at (0, 0), 1 at (1, 0), 2
+    at (1, 1). Exact at any point (no fixed-level approximation), borders,
+    creases and corners included (``beta``, ``boundary`` and ``creases`` as
+    for :func:`subdivide`).
 
     Returns
     -------
@@ -185,6 +191,12 @@ def evaluate(vertices, faces, face, uv, *, beta="loop", curvature=False):
     H, K : float64 (k,), mean and Gaussian curvature, only with
         ``curvature=True`` (``H > 0`` on a convex surface with outward normals;
         NaN at an extraordinary vertex itself).
+
+    Raises
+    ------
+    SubdivError : a face out of range, a point outside its face, a scheme
+        without an exact evaluation (the interpolating ones, bilinear), a mesh
+        the library refuses.
 
     Examples
     --------
@@ -206,7 +218,8 @@ def evaluate(vertices, faces, face, uv, *, beta="loop", curvature=False):
     w = np.ascontiguousarray(np.atleast_2d(w), dtype=np.float64)
     if w.ndim != 2 or w.shape != (f.shape[0], 2):
         raise ValueError(f"uv must have shape ({f.shape[0]}, 2), got shape {w.shape}")
-    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), f, w, _checks.name(beta, "beta"), bool(curvature))
+    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.creases(creases),
+                                       _names(scheme, beta, boundary), f, w, bool(curvature))
     if curvature:
         return p, n, hk[:, 0].copy(), hk[:, 1].copy()
     return p, n

@@ -68,7 +68,10 @@ def evaluate(
     face: npt.ArrayLike,
     uv: npt.ArrayLike,
     *,
+    scheme: str = "loop",
     beta: str = "loop",
+    boundary: str = "edge",
+    creases: Creases = None,
     curvature: bool = False,
 ) -> (
     tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]

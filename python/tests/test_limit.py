@@ -118,3 +118,56 @@ def test_evaluate_is_the_exact_limit_at_corners_and_refuses_bad_points():
         subdiv.evaluate(V, F, [0.5], [[0.1, 0.1]])
     with pytest.raises(ValueError):
         subdiv.evaluate(V, F, [0, 1], [[0.1, 0.1]])
+
+
+def bspline(t):
+    """The uniform cubic B-spline basis at t in [0, 1]."""
+    return np.array([(1 - t) ** 3, 3 * t**3 - 6 * t**2 + 4, -3 * t**3 + 3 * t**2 + 3 * t + 1, t**3]) / 6
+
+
+def height_grid():
+    """A 5 x 5 grid of vertices (4 x 4 quads), heights in eighths (exact in
+    float32); quad (i, j) lists (i, j), (i+1, j), (i+1, j+1), (i, j+1)."""
+    rng = np.random.default_rng(7)
+    z = rng.integers(-8, 9, size=(5, 5)) / 8
+    V = np.array([[i, j, z[i, j]] for j in range(5) for i in range(5)], float)
+    idx = lambda i, j: j * 5 + i  # noqa: E731
+    F = np.array([[idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)] for j in range(4) for i in range(4)])
+    return V, F, idx
+
+
+def test_catmull_clark_evaluation_is_the_bicubic_patch_and_follows_creases():
+    V, F, idx = height_grid()
+    P = V.reshape(5, 5, 3).transpose(1, 0, 2)  # P[i, j] = vertex (i, j)
+    # an interior quad (1, 1) is the bicubic B-spline patch of its 4 x 4 points
+    face, uv = 1 * 4 + 1, (0.3, 0.7)
+    want = np.einsum("k,l,klc->c", bspline(uv[0]), bspline(uv[1]), P[0:4, 0:4])
+    got, n = subdiv.evaluate(V, F, [face], [uv], scheme="catmull-clark")
+    np.testing.assert_allclose(got[0], want, atol=1e-9)
+    assert abs(np.linalg.norm(n[0]) - 1) < 1e-12
+    # an infinitely sharp crease along row j = 2: on its edges the surface is
+    # the cubic B-spline curve of the row's points
+    edges = np.array([[idx(i, 2), idx(i + 1, 2)] for i in range(4)])
+    creases = (edges, np.full(4, 10.0))
+    for u in (0.0, 0.25, 0.6):
+        # quad (1, 2) starts at vertex (1, 2): its edge v = 0 runs along the row
+        got, _ = subdiv.evaluate(V, F, [2 * 4 + 1], [[u, 0.0]], scheme="catmull-clark", creases=creases)
+        np.testing.assert_allclose(got[0], bspline(u) @ P[0:4, 2], atol=1e-9)
+        smooth, _ = subdiv.evaluate(V, F, [2 * 4 + 1], [[u, 0.0]], scheme="catmull-clark")
+        assert not np.allclose(smooth[0], got[0], atol=1e-6), "the crease changes the surface"
+    # the corner of the open grid stays put only with edge-and-corner
+    corner, _ = subdiv.evaluate(V, F, [0], [[0.0, 0.0]], scheme="catmull-clark", boundary="edge-and-corner")
+    np.testing.assert_allclose(corner[0], V[0], atol=1e-9)
+    edge, _ = subdiv.evaluate(V, F, [0], [[0.0, 0.0]], scheme="catmull-clark")
+    assert not np.allclose(edge[0], V[0], atol=1e-6)
+    # unit-square points, not barycentric ones; polygons for Loop and
+    # schemes without an exact evaluation refused by name
+    subdiv.evaluate(V, F, [5], [[0.9, 0.9]], scheme="catmull-clark")
+    with pytest.raises(subdiv.SubdivError, match="unit square"):
+        subdiv.evaluate(V, F, [5], [[1.2, 0.1]], scheme="catmull-clark")
+    with pytest.raises(subdiv.SubdivError, match="triangles"):
+        subdiv.evaluate(V, F, [5], [[0.2, 0.1]])
+    for scheme in ("bilinear", "butterfly"):
+        faces = F if scheme == "bilinear" else np.array([[0, 1, 6], [0, 6, 5]])
+        with pytest.raises(subdiv.SubdivError, match=scheme):
+            subdiv.evaluate(V, faces, [0], [[0.2, 0.1]], scheme=scheme)

@@ -337,17 +337,7 @@ impl Evaluator {
     pub fn new(mesh: &Mesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
         check_scheme(scheme)?;
         if scheme == Scheme::CatmullClark {
-            let poly = catmark::Poly::new(&crate::mesh::poly::PolyMesh::from_mesh(mesh), opts);
-            let faces = poly.num_faces();
-            return Ok(Evaluator {
-                level1: Level1::default(),
-                path: vec![Path::Local; faces],
-                poly: Some(Box::new(poly)),
-                base: None,
-                spline: BoxSpline::derive(),
-                valences: Vec::new(),
-                faces,
-            });
+            return Evaluator::new_poly(&crate::mesh::poly::PolyMesh::from_mesh(mesh), scheme, opts);
         }
         let path = face_paths(mesh);
         let mut level1 = Level1::new(mesh, opts.loop_beta)?;
@@ -361,6 +351,29 @@ impl Evaluator {
             add_table(&mut valences, mesh.ct.valence(v), mesh.ct.is_boundary_vertex(v), opts, &spline);
         }
         Ok(Evaluator { level1, path, poly: None, base, spline, valences, faces: mesh.ct.num_triangles() })
+    }
+
+    /// [`Evaluator::new`] for a polygon mesh: Catmull-Clark, points on its
+    /// ptex faces ([`catmark::ptex_faces`]).
+    ///
+    /// # Errors
+    /// [`Error::Usage`] naming a scheme other than Catmull-Clark.
+    pub fn new_poly(mesh: &crate::mesh::poly::PolyMesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
+        check_scheme(scheme)?;
+        if scheme != Scheme::CatmullClark {
+            return Err(Error::Usage(format!("the {scheme} limit surface is evaluated on triangles, not polygons")));
+        }
+        let poly = catmark::Poly::new(mesh, opts);
+        let faces = poly.num_faces();
+        Ok(Evaluator {
+            level1: Level1::default(),
+            path: vec![Path::Local; faces],
+            poly: Some(Box::new(poly)),
+            base: None,
+            spline: BoxSpline::derive(),
+            valences: Vec::new(),
+            faces,
+        })
     }
 
     /// The number of control faces (Loop: triangles; Catmull-Clark: ptex
