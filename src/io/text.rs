@@ -244,7 +244,7 @@ mod tests {
     fn rows_of_doubles_read_back_bit_for_bit() {
         let odd =
             [0.0, -0.0, 1.0, -2.5, 1e-7, 5.697280448680703e-6, 0.1, 1.0 / 3.0, 1e22, f64::MAX, -f64::MIN_POSITIVE];
-        let mut rows: Vec<[f64; 8]> = odd.chunks(1).map(|x| [x[0]; 8]).collect();
+        let mut rows: Vec<[f64; 8]> = odd.iter().map(|&x| [x; 8]).collect();
         rows.push([f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 5e-324, 0.5, 2.0, -1e-300, 123456789.125]);
         let text = String::from_utf8(f64_lines(&rows)).unwrap();
         let back: Vec<Vec<f64>> =
