@@ -52,28 +52,14 @@ pub fn evaluate_arrays<'py>(
             points.push((f, w[0], w[1]));
         }
         // only the columns asked for are kept (a million points: 48 or 64 MB)
+        let err = |e: subdiv::Error| e.to_string();
         Ok(if curvature {
-            let out = samples(&ev, &points, true, |a| a)?;
+            let out = ev.eval_rows::<8>(&points, true).map_err(err)?;
             (columns(&out, 0, 3), columns(&out, 3, 6), columns(&out, 6, 8))
         } else {
-            let out = samples(&ev, &points, false, |a| [a[0], a[1], a[2], a[3], a[4], a[5]])?;
+            let out = ev.eval_rows::<6>(&points, false).map_err(err)?;
             (columns(&out, 0, 3), columns(&out, 3, 6), Vec::new())
         })
     })?;
     Ok((f64_array(py, p, 3)?, f64_array(py, n, 3)?, f64_array(py, hk, 2)?))
-}
-
-/// Position, normal, `H` and `K` at every point, each kept as `keep` maps
-/// them.
-fn samples<T: Copy + Default + Send + Sync>(
-    ev: &Evaluator,
-    points: &[(usize, f64, f64)],
-    curvature: bool,
-    keep: impl Fn([f64; 8]) -> T + Sync,
-) -> Result<Vec<T>, String> {
-    ev.eval_map(points, curvature, |s| {
-        let (p, n) = (s.position, s.normal);
-        keep([p.x, p.y, p.z, n.x, n.y, n.z, s.mean, s.gaussian])
-    })
-    .map_err(|e| e.to_string())
 }

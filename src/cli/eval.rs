@@ -2,8 +2,8 @@
 //! parameter points.
 
 use super::args::{InputArgs, SchemeArgs};
-use std::path::PathBuf;
-use std::time::Instant;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
 use subdiv::io::{Budget, resolve::Resolver, write_rows};
 use subdiv::subdiv::eval::{Evaluator, parse_points_in};
 use subdiv::{Error, Result};
@@ -53,24 +53,11 @@ pub fn eval(a: &EvalArgs) -> Result<()> {
     let prepared = start.elapsed();
     // every point is checked before any is evaluated
     let points = parse_points_in(&text, &shown, ev.domain(), usize::try_from(max_points).unwrap_or(usize::MAX))?;
-    let start = Instant::now();
     // only what is written is kept (a million points: 48 or 64 MB)
     let evaluated = if a.curvature {
-        let samples = ev.eval_map(&points, true, |s| {
-            let (p, n) = (s.position, s.normal);
-            [p.x, p.y, p.z, n.x, n.y, n.z, s.mean, s.gaussian]
-        })?;
-        let evaluated = start.elapsed();
-        write_rows(&a.output, &samples)?;
-        evaluated
+        eval_and_write::<8>(&ev, &points, &a.output)?
     } else {
-        let samples = ev.eval_map(&points, false, |s| {
-            let (p, n) = (s.position, s.normal);
-            [p.x, p.y, p.z, n.x, n.y, n.z]
-        })?;
-        let evaluated = start.elapsed();
-        write_rows(&a.output, &samples)?;
-        evaluated
+        eval_and_write::<6>(&ev, &points, &a.output)?
     };
     if a.stats {
         eprintln!(
@@ -83,4 +70,14 @@ pub fn eval(a: &EvalArgs) -> Result<()> {
     }
     println!("{} at {} points -> {}", a.input.display(), points.len(), a.output.display());
     Ok(())
+}
+
+/// The first `N` columns of every point's row (with the curvatures when
+/// `N` is 8) written to `out`; returns the time of the evaluation alone.
+fn eval_and_write<const N: usize>(ev: &Evaluator, points: &[(usize, f64, f64)], out: &Path) -> Result<Duration> {
+    let start = Instant::now();
+    let rows = ev.eval_rows::<N>(points, N > 6)?;
+    let evaluated = start.elapsed();
+    write_rows(out, &rows)?;
+    Ok(evaluated)
 }

@@ -212,21 +212,22 @@ pub fn all_meshes() -> Vec<(String, Mesh)> {
 /// Tiny deterministic PRNG (xorshift) for reproducible random tests.
 pub struct Rng(pub u64);
 impl Rng {
-    pub fn next_f32(&mut self) -> f32 {
+    /// The next state (xorshift64).
+    pub fn next_u64(&mut self) -> u64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
         self.0 ^= self.0 << 17;
-        ((self.0 >> 40) as f32) / ((1u64 << 24) as f32) * 2.0 - 1.0
+        self.0
+    }
+    pub fn next_f32(&mut self) -> f32 {
+        ((self.next_u64() >> 40) as f32) / ((1u64 << 24) as f32) * 2.0 - 1.0
     }
     pub fn vec3(&mut self) -> Vec3 {
         Vec3::new(self.next_f32(), self.next_f32(), self.next_f32())
     }
     /// A double in `[0, 1)` (53 random bits).
     pub fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
     }
 }
 

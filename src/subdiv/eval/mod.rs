@@ -98,6 +98,13 @@ impl Default for Sample {
 }
 
 impl Sample {
+    /// Position, unit normal, mean and Gaussian curvature: a line of
+    /// `subdiv eval --curvature` (without it, the first six).
+    pub fn row(&self) -> [f64; 8] {
+        let (p, n) = (self.position, self.normal);
+        [p.x, p.y, p.z, n.x, n.y, n.z, self.mean, self.gaussian]
+    }
+
     /// Every field NaN.
     pub const NAN: Sample = Sample {
         position: DVec3::NAN,
@@ -668,7 +675,7 @@ impl Evaluator {
     ///
     /// # Errors
     /// As [`Evaluator::eval_all`].
-    pub fn eval_map<T: Copy + Default + Send + Sync>(
+    pub fn eval_map<T: Copy + Send + Sync>(
         &self,
         points: &[(usize, f64, f64)],
         second: bool,
@@ -681,6 +688,20 @@ impl Evaluator {
             .map_init(ChildCache::new, |cache, &(f, (u, v))| keep(&self.eval_cached(f, u, v, second, Some(cache))))
             .collect();
         Ok(rank.par_iter().map(|r| done[r.load(Ordering::Relaxed)]).collect())
+    }
+
+    /// The first `N` columns of [`Sample::row`] at every point (six:
+    /// position and normal; eight: with the curvatures, when `second`), as
+    /// [`Evaluator::eval_map`] keeps them: the rows `subdiv eval` writes.
+    ///
+    /// # Errors
+    /// As [`Evaluator::eval_all`].
+    pub fn eval_rows<const N: usize>(&self, points: &[(usize, f64, f64)], second: bool) -> Result<Vec<[f64; N]>> {
+        const { assert!(N <= 8, "a row has eight columns") };
+        self.eval_map(points, second, |s| {
+            let row = s.row();
+            std::array::from_fn(|k| row[k])
+        })
     }
 
     /// The points checked (the first bad one refused, naming it) and
