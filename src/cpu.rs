@@ -56,3 +56,21 @@ macro_rules! multiversion {
     };
 }
 pub(crate) use multiversion;
+
+/// Asks the CPU to bring `slice[i]` into its caches (nothing when `i` is out
+/// of bounds, or on other architectures): for passes that gather from large
+/// arrays in an order they know a few iterations ahead, so that the misses
+/// of many iterations overlap instead of each stalling its own.
+#[inline(always)]
+pub(crate) fn prefetch<T>(slice: &[T], i: usize) {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(x) = slice.get(i) {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        // SAFETY: SSE, which `_mm_prefetch` needs, is part of the x86_64
+        // baseline; a prefetch reads nothing into the program and cannot
+        // fault, and the address is an element of the slice besides.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(x).cast()) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (slice, i);
+}

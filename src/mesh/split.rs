@@ -118,6 +118,86 @@ impl EdgeIds {
     }
 }
 
+impl EdgeIds {
+    /// `out` (one element per edge) cut into one piece per [`CHUNK`] of
+    /// corners: the pieces of the edges those corners own, in order.
+    fn carve<'a, T>(&self, mut out: &'a mut [T]) -> Vec<&'a mut [T]> {
+        const WORDS: usize = CHUNK / 64;
+        let chunks = self.owns.len().div_ceil(WORDS);
+        let mut pieces = Vec::with_capacity(chunks);
+        for k in 0..chunks {
+            let (first, end) = (self.before[k * WORDS], self.before[((k + 1) * WORDS).min(self.owns.len())]);
+            let (a, b) = std::mem::take(&mut out).split_at_mut((end - first) as usize);
+            pieces.push(a);
+            out = b;
+        }
+        pieces
+    }
+
+    /// Appends the owner corners among corners `CHUNK k ..` to `list`, in
+    /// order, from their bits.
+    fn list_owners(&self, k: usize, list: &mut Vec<u32>) {
+        const WORDS: usize = CHUNK / 64;
+        let words = &self.owns[k * WORDS..((k + 1) * WORDS).min(self.owns.len())];
+        for (i, &w) in words.iter().enumerate() {
+            let base = 64 * (k * WORDS + i) as u32;
+            let mut bits = w;
+            while bits != 0 {
+                list.push(base + bits.trailing_zeros());
+                bits &= bits - 1;
+            }
+        }
+    }
+}
+
+/// The owner corners of a table's edges, in edge-id order: a list (what
+/// [`number_edges`] makes), or read off the owner bits piece by piece, for
+/// a level that made no list (the last level of a subdivision that keeps
+/// only its faces: at bunny level 3 the list is 6.7 MB written, faulted in
+/// and read once).
+#[derive(Clone, Copy, Debug)]
+pub enum Owners<'a> {
+    /// `list[e]` owns edge `e`.
+    List(&'a [u32]),
+    /// The owner bits: the `e`-th owner corner owns edge `e`.
+    Bits(&'a EdgeIds),
+}
+
+impl Owners<'_> {
+    /// Number of edges.
+    pub fn len(&self) -> usize {
+        match self {
+            Owners::List(list) => list.len(),
+            Owners::Bits(ids) => ids.count() as usize,
+        }
+    }
+
+    /// Whether there are no edges.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Calls `each(out, owners)` in parallel on consecutive pieces of `out`
+    /// (one element per edge) and of the owners: `out[i]` is the element of
+    /// the edge that `owners[i]` owns. A piece has at most [`CHUNK`] owners.
+    ///
+    /// # Panics
+    /// If `out` does not have one element per edge.
+    pub fn par_pieces<T: Send>(&self, out: &mut [T], each: impl Fn(&mut [T], &[u32]) + Sync) {
+        assert_eq!(out.len(), self.len(), "one element per edge");
+        match *self {
+            Owners::List(list) => {
+                out.par_chunks_mut(CHUNK / 4).zip(list.par_chunks(CHUNK / 4)).for_each(|(o, c)| each(o, c));
+            }
+            Owners::Bits(ids) => ids.carve(out).into_par_iter().enumerate().for_each(|(k, piece)| {
+                let mut list = Vec::with_capacity(piece.len());
+                ids.list_owners(k, &mut list);
+                each(piece, &list);
+            }),
+        }
+    }
+}
+
 /// A raw pointer that may be shared between threads which write disjoint
 /// elements.
 #[derive(Clone, Copy)]
@@ -165,17 +245,10 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
 /// a corner, or [`BORDER`].
 pub(crate) fn number_edges_with(o_table: &[u32], ids: EdgeIds, each: impl Fn(u32, u32, u32) + Sync) -> EdgeNumbering {
     let mut owners: Vec<u32> = crate::mem::zeroed(ids.count() as usize);
-    // carve `owners` into one slice per chunk
-    let mut slices = Vec::with_capacity(o_table.len().div_ceil(CHUNK));
-    let mut rest: &mut [u32] = &mut owners;
-    for k in 0..o_table.len().div_ceil(CHUNK) {
-        let (first, end) = (ids.rank((k * CHUNK) as u32), ids.rank((((k + 1) * CHUNK).min(o_table.len())) as u32));
-        let (a, b) = rest.split_at_mut((end - first) as usize);
-        slices.push((first, a));
-        rest = b;
-    }
-    o_table.par_chunks(CHUNK).zip(slices).enumerate().for_each(|(k, (och, (first, own)))| {
+    let slices = ids.carve(&mut owners);
+    o_table.par_chunks(CHUNK).zip(slices).enumerate().for_each(|(k, (och, own))| {
         let base = (k * CHUNK) as u32;
+        let first = ids.rank(base);
         let mut e = 0usize;
         for (i, &x) in och.iter().enumerate() {
             let c = base + i as u32;
@@ -266,11 +339,12 @@ pub(crate) fn split_with_boundary(
     ((ct, edges, boundary), times)
 }
 
-/// The new V table of a split and the old table's edge numbering, and
-/// nothing else: no O, C, valence, sharpness or generations. For the last
+/// The new V table of a split and the old table's edge ids, and nothing
+/// else: no O, C, valence, sharpness or generations, and no list of the
+/// edges' owners ([`Owners::Bits`] reads them off the ids). For the last
 /// level of a subdivision whose caller needs only its faces (writing a
-/// file): at bunny level 3 that leaves out 70 MB of the 150 the level
-/// writes. The V table is the one [`split`] makes.
+/// file): at bunny level 3 that leaves out 77 MB of the 157 the level
+/// wrote. The V table is the one [`split`] makes.
 ///
 /// # Panics
 /// As [`split`].
@@ -278,12 +352,12 @@ pub(crate) fn split_with_boundary(
 /// Every vertex id goes through `id` as it is written, so that a caller
 /// wanting other ids (wider, or renumbered) gets them in the one pass that
 /// writes the table, without a `u32` table to convert afterwards.
-pub(crate) fn split_faces<I: VertexId, M: Fn(u32) -> I + Sync>(old: &CornerTable, id: &M) -> (Vec<I>, EdgeNumbering) {
+pub(crate) fn split_faces<I: VertexId, M: Fn(u32) -> I + Sync>(old: &CornerTable, id: &M) -> (Vec<I>, EdgeIds) {
     let nc = old.num_corners() as u64;
     assert!(4 * nc < u64::from(BORDER), "split: {nc} corners are too many for 32-bit ids after a split");
-    let edges = number_edges(old);
-    let v2 = write_v(old, &edges.ids, id);
-    (v2, edges)
+    let ids = EdgeIds::new(old.o_table());
+    let v2 = write_v(old, &ids, id);
+    (v2, ids)
 }
 
 /// What the numbering pass of a split produces: the old table's edge
@@ -546,6 +620,38 @@ pub(crate) mod tests {
                 assert_eq!(w[c as usize], e as u32, "owner of edge {e}");
             }
         }
+    }
+
+    /// The owners read off the bits, piece by piece, are the listed ones in
+    /// the same order, and every piece of `out` is the part of the edges its
+    /// owners own: over several chunks, a partial last word and chunk,
+    /// closed and open meshes, and with no edges at all.
+    #[test]
+    fn owners_from_bits_are_the_listed_owners_piece_by_piece() {
+        let meshes = [shapes::icosphere(5), shapes::grid(110), shapes::icosphere(0)];
+        assert!(!meshes[1].ct.num_corners().is_multiple_of(64) && meshes[1].ct.num_corners() > 4 * CHUNK);
+        for m in meshes {
+            let listed = number_edges(&m.ct);
+            let bits = EdgeIds::new(m.ct.o_table());
+            for owners in [Owners::List(&listed.owners), Owners::Bits(&bits)] {
+                assert_eq!(owners.len(), listed.owners.len());
+                // each element learns its owner; pieces must line up with it
+                let mut out = vec![u32::MAX; owners.len()];
+                let pieces = std::sync::atomic::AtomicUsize::new(0);
+                owners.par_pieces(&mut out, |o, cs| {
+                    assert_eq!(o.len(), cs.len());
+                    assert!(cs.len() <= CHUNK);
+                    o.copy_from_slice(cs);
+                    pieces.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                });
+                assert_eq!(out, listed.owners, "{owners:?}");
+                assert!(listed.owners.len() < CHUNK || pieces.into_inner() > 1, "several pieces");
+            }
+        }
+        let none = EdgeIds::new(&[]);
+        let mut out: Vec<u32> = Vec::new();
+        Owners::Bits(&none).par_pieces(&mut out, |_, cs| assert!(cs.is_empty()));
+        assert!(Owners::Bits(&none).is_empty());
     }
 
     /// The split's edge vertices (written with ids counted as the owners

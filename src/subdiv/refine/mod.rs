@@ -12,7 +12,7 @@ use super::rules::crease::{Blend, OnLevel, edge_stencil, vertex_stencil};
 use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Level, Rules, boundary_flags};
 use super::{RulesFn, Stats, ms};
-use crate::mesh::split::{self, EdgeIds};
+use crate::mesh::split::{self, EdgeIds, Owners};
 use crate::mesh::{CornerTable, Creasing, Faces, Mesh, VertexId, n, p};
 use crate::{Error, Result};
 use glam::Vec3;
@@ -150,28 +150,29 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M
         let old: &CornerTable = &self.ct;
         let boundary = self.boundary.unwrap_or_else(|| boundary_flags(old));
         let t0 = Instant::now();
-        let (table, edges) = if let Some(id) = self.faces_only {
-            let (v, edges) = split::split_faces(old, id);
-            (NewTable::Faces(v), edges)
+        // the faces alone come without a list of owners (Owners::Bits)
+        let (table, list, ids) = if let Some(id) = self.faces_only {
+            let (v, ids) = split::split_faces(old, id);
+            (NewTable::Faces(v), None, ids)
         } else {
             let ((ct, edges, next_boundary), (number_ms, _)) =
                 split::split_with_boundary(old, (!self.last).then_some(&boundary[..]), self.creasing);
             self.stats.numbering_ms += number_ms;
-            (NewTable::Full(ct, next_boundary), edges)
+            (NewTable::Full(ct, next_boundary), Some(edges.owners), edges.ids)
         };
         self.stats.split_ms += ms(t0.elapsed());
         let features = Features::of(old, self.creasing);
-        let split::EdgeNumbering { owners, ids } = edges;
+        let owners = list.as_deref().map_or(Owners::Bits(&ids), Owners::List);
         let mut positions: Vec<Vec3> = crate::mem::zeroed(old.num_vertices() + owners.len());
         let (vpart, epart) = positions.split_at_mut(old.num_vertices());
         match features {
             None => {
                 let lv = Level::with_boundary(old, boundary);
-                points(r, &lv, &owners, &self.positions, vpart, epart, self.stats);
+                points(r, &lv, owners, &self.positions, vpart, epart, self.stats);
             }
             Some(f) => {
                 let level = (self.ct, self.positions, boundary);
-                with_features(r, f, level, (&owners, &ids), (vpart, epart), self.stats);
+                with_features(r, f, level, (owners, &ids), (vpart, epart), self.stats);
             }
         }
         match table {
@@ -185,14 +186,14 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M
 fn points<R: Rules>(
     r: &R,
     lv: &Level,
-    owners: &[u32],
+    owners: Owners,
     pos: &[Vec3],
     vpart: &mut [Vec3],
     epart: &mut [Vec3],
     stats: &mut Stats,
 ) {
     let t0 = Instant::now();
-    r.vertex_points(lv, pos, vpart);
+    r.vertex_points(lv, pos, vpart, epart);
     let t1 = Instant::now();
     r.edge_points(lv, owners, pos, vpart, epart);
     stats.vertex_ms += ms(t1 - t0);
@@ -210,7 +211,7 @@ fn with_features<R: Rules>(
     r: &R,
     mut f: Features,
     level: (Cow<'_, CornerTable>, Cow<'_, [Vec3]>, Vec<bool>),
-    edges: (&[u32], &EdgeIds),
+    edges: (Owners, &EdgeIds),
     out: (&mut [Vec3], &mut [Vec3]),
     stats: &mut Stats,
 ) {

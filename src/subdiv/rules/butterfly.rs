@@ -17,9 +17,9 @@
 //! substitution by the opposite wing (docs/schemes.md §4.5).
 
 use super::{Accumulate, Level, Rules, Sink, four_point};
+use crate::mesh::split::Owners;
 use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
-use rayon::prelude::*;
 
 /// Classic butterfly rules.
 pub struct Butterfly;
@@ -77,17 +77,19 @@ impl Rules for Butterfly {
     /// Direct evaluation: interior edges with four interior outer edges (all
     /// but a thin band along the boundary) through `eight_point_interior`,
     /// the rest through the emitted stencils.
-    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
-        epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
-            let o_raw = lv.o_table()[c as usize];
-            *q = match (o_raw != BORDER).then(|| eight_point_interior(lv, pos, c, o_raw)).flatten() {
-                Some(e) => e,
-                None => {
-                    let mut acc = Accumulate::new(pos);
-                    self.edge(lv, c, &mut acc);
-                    acc.sum
-                }
-            };
+    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
+        owners.par_pieces(epart, |qs, cs| {
+            for (q, &c) in qs.iter_mut().zip(cs) {
+                let o_raw = lv.o_table()[c as usize];
+                *q = match (o_raw != BORDER).then(|| eight_point_interior(lv, pos, c, o_raw)).flatten() {
+                    Some(e) => e,
+                    None => {
+                        let mut acc = Accumulate::new(pos);
+                        self.edge(lv, c, &mut acc);
+                        acc.sum
+                    }
+                };
+            }
         });
     }
 

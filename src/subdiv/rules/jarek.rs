@@ -17,6 +17,7 @@
 
 use super::crease;
 use super::{Accumulate, Level, Rules, Sink, ring_sums_map};
+use crate::mesh::split::Owners;
 use crate::mesh::{n, p};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -89,9 +90,9 @@ impl Rules for Jarek {
     /// Direct evaluation: every `d_v` once per level (from the ring sums),
     /// then `v' = v + d_v` and `e = (a + b)/2 - (d_a + d_b)/2`, instead of
     /// walking both endpoint rings again for every edge.
-    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3]) {
+    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3], scratch: &mut [Vec3]) {
         // vpart holds d_v until edge_points has used it
-        ring_sums_map(lv, pos, vpart, |v, sum| {
+        ring_sums_map(lv, pos, vpart, scratch, |v, sum| {
             let k = if lv.boundary[v] { 2.0 } else { lv.valences()[v] as f32 };
             (sum / k - pos[v]) * 0.125
         });
@@ -108,13 +109,13 @@ impl Rules for Jarek {
 
     /// The edge points from the displacements `d_v` that
     /// [`Rules::vertex_points`] left in `vpart`, then `v' = v + d_v`.
-    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
+    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
         let d: &[Vec3] = vpart;
         // chunks with a plain inner loop: the loop body is this function's
         // own code, so its inlining does not depend on where rustc places
         // rayon's per-item glue (a per-item closure cost 6% more
         // instructions after unrelated changes elsewhere in the crate)
-        epart.par_chunks_mut(4096).zip(owners.par_chunks(4096)).for_each(|(qs, cs)| {
+        owners.par_pieces(epart, |qs, cs| {
             for (q, &c) in qs.iter_mut().zip(cs) {
                 let (a, b) = (lv.vtx(n(c)) as usize, lv.vtx(p(c)) as usize);
                 *q = (pos[a] + pos[b]) * 0.5 - (d[a] + d[b]) * 0.5;

@@ -120,8 +120,8 @@ impl Rules for Loop {
     /// Direct evaluation: vertex points from the lane-interleaved ring sums
     /// (`(1 - k beta) v + beta S`, boundary `3/4 v + 1/8 S`), edge points from
     /// the emitted stencils.
-    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3]) {
-        ring_sums_map(lv, pos, vpart, |v, sum| {
+    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3], scratch: &mut [Vec3]) {
+        ring_sums_map(lv, pos, vpart, scratch, |v, sum| {
             if lv.boundary[v] {
                 pos[v] * 0.75 + sum * 0.125
             } else {

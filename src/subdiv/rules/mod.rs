@@ -25,6 +25,7 @@ pub mod loop_;
 pub mod midpoint;
 pub mod modified_butterfly;
 
+use crate::mesh::split::Owners;
 use crate::mesh::{BORDER, CornerTable, n, p};
 use features::Features;
 use glam::Vec3;
@@ -163,7 +164,11 @@ pub trait Rules: Sync {
     /// stencil (or copies, when vertices do not move); a scheme may
     /// override it with a faster equivalent (the stencil-plan tests check
     /// the two agree).
-    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3]) {
+    ///
+    /// `scratch` is memory the pass may use as it likes (the level's edge
+    /// part, which [`Rules::edge_points`] writes afterwards).
+    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3], scratch: &mut [Vec3]) {
+        let _ = scratch;
         if Self::MOVES_VERTICES {
             vpart.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
                 let mut acc = Accumulate::new(pos);
@@ -180,20 +185,39 @@ pub trait Rules: Sync {
     /// left it: a scheme whose edge rule needs an intermediate of the
     /// vertex pass (Jarek's displacements) may leave it there and finish
     /// the vertex points here. The default sums each emitted stencil.
-    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
+    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
         let _ = vpart;
         stencil_edge_points(self, lv, owners, pos, epart);
     }
 }
 
 /// Every edge point through the emitted stencils.
-pub fn stencil_edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: &[u32], pos: &[Vec3], out: &mut [Vec3]) {
-    out.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
-        let mut acc = Accumulate::new(pos);
-        r.edge(lv, c, &mut acc);
-        *q = acc.sum;
+///
+/// The owners come in increasing order, so `V`, `O` and the owner's own
+/// corners are read almost in sequence; the vertex across the edge,
+/// `V[O[c]]`, is not, and at the last levels the stencil waits for its
+/// cache miss. It is prefetched [`AHEAD`] edges before it is needed, so
+/// that the misses of many edges overlap: bunny Loop level 3, the edge
+/// points of all levels on one thread, warm (`examples/phases`), 21-22 ms
+/// without against 13.3-13.9 with (8 edges ahead gave 15-16, 24 to 96 the
+/// same as 32; prefetching the four positions as well made it slower).
+pub fn stencil_edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: Owners, pos: &[Vec3], out: &mut [Vec3]) {
+    let (vt, ot) = (lv.v_table(), lv.o_table());
+    owners.par_pieces(out, |out, own| {
+        for (i, (q, &c)) in out.iter_mut().zip(own).enumerate() {
+            if let Some(&ahead) = own.get(i + AHEAD) {
+                // a border corner's O is BORDER, out of bounds: no prefetch
+                crate::cpu::prefetch(vt, ot[ahead as usize] as usize);
+            }
+            let mut acc = Accumulate::new(pos);
+            r.edge(lv, c, &mut acc);
+            *q = acc.sum;
+        }
     });
 }
+
+/// How many edges ahead [`stencil_edge_points`] prefetches.
+const AHEAD: usize = 32;
 
 /// For every vertex: the sum of its neighbours' positions (interior) or of
 /// its two boundary neighbours (boundary vertex).
@@ -206,14 +230,23 @@ pub fn stencil_edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: &[u32],
 /// range of corners; the accumulators are then added, and boundary vertices
 /// are replaced by the sum of their two boundary neighbours.
 pub fn ring_sums(lv: &Level, pos: &[Vec3], out: &mut [Vec3]) {
-    ring_sums_map(lv, pos, out, |_, s| s);
+    ring_sums_map(lv, pos, out, &mut [], |_, s| s);
 }
 
 /// [`ring_sums`], then `out[v] = f(v, sum)`, in the same pass that adds the
 /// per-thread accumulators and fixes boundary vertices (one pass over the
-/// vertices instead of three).
-pub fn ring_sums_map(lv: &Level, pos: &[Vec3], out: &mut [Vec3], f: impl Fn(usize, Vec3) -> Vec3 + Sync) {
-    let (vt, nc) = (lv.ct.v_table(), lv.ct.num_corners());
+/// vertices instead of three). The accumulators of the threads after the
+/// first are taken from `scratch` as far as it holds them (its contents are
+/// overwritten), so that a level's edge part, written afterwards, serves as
+/// memory already faulted in; the rest are allocated.
+pub fn ring_sums_map(
+    lv: &Level,
+    pos: &[Vec3],
+    out: &mut [Vec3],
+    scratch: &mut [Vec3],
+    f: impl Fn(usize, Vec3) -> Vec3 + Sync,
+) {
+    let (vt, nc, nv) = (lv.ct.v_table(), lv.ct.num_corners(), out.len());
     // a thread takes at least 2^20 corners: below that its accumulator's
     // fresh pages and the merge cost more than it saves (fandisk's level 3,
     // 620 k corners scattered: 3.0-3.6 ms on two threads, 1.5-2.0 on one)
@@ -230,20 +263,28 @@ pub fn ring_sums_map(lv: &Level, pos: &[Vec3], out: &mut [Vec3], f: impl Fn(usiz
     };
     // in parallel: the first touch of fresh pages is part of the cost
     out.par_iter_mut().with_min_len(1 << 14).for_each(|q| *q = Vec3::ZERO);
-    let mut extra: Vec<Vec<Vec3>> = Vec::new();
+    let from_scratch = scratch.len().checked_div(nv).map_or(0, |k| k.min(threads - 1));
+    let mut allocated: Vec<Vec<Vec3>> = (from_scratch + 1..threads).map(|_| crate::mem::zeroed(nv)).collect();
+    let mut extra: Vec<&mut [Vec3]> = scratch.chunks_exact_mut(nv.max(1)).take(from_scratch).collect();
+    extra.extend(allocated.iter_mut().map(|a| &mut a[..]));
     if threads == 1 {
         scatter(out, 0..nc);
     } else {
-        extra = (1..threads).map(|_| crate::mem::zeroed(out.len())).collect();
         rayon::scope(|sc| {
             sc.spawn(|_| scatter(out, 0..per.min(nc)));
             for (k, acc) in extra.iter_mut().enumerate() {
                 let r = ((k + 1) * per).min(nc)..((k + 2) * per).min(nc);
                 let scatter = &scatter;
-                sc.spawn(move |_| scatter(acc, r));
+                sc.spawn(move |_| {
+                    if k < from_scratch {
+                        acc.fill(Vec3::ZERO);
+                    }
+                    scatter(acc, r)
+                });
             }
         });
     }
+    let extra: Vec<&[Vec3]> = extra.into_iter().map(|a| &*a).collect();
     let extra = &extra;
     out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, q)| {
         let mut sum = *q;
@@ -288,4 +329,39 @@ pub fn ring_from(ct: &CornerTable, x: u32) -> impl Iterator<Item = u32> + '_ {
         c = ct.s(cur).filter(|&y| y != x);
         Some(ct.vtx(n(cur)))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::shapes;
+
+    /// The ring sums are the same whether a thread's accumulator comes from
+    /// `scratch`, is allocated, or both (scratch too small for all), and
+    /// whatever was in `scratch`; to 1e-6 of one thread's (the partial sums
+    /// are added in another order).
+    #[test]
+    fn ring_sums_take_accumulators_from_scratch_or_allocate_them() {
+        // 3.9 M corners: three threads get 2^20 corners or more each
+        let m = shapes::icosphere(8);
+        let lv = Level::new(&m.ct);
+        let nv = m.positions.len();
+        let sums = |threads: usize, scratch_len: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let mut out = vec![Vec3::NAN; nv];
+            let mut scratch = vec![Vec3::splat(7.0); scratch_len];
+            pool.install(|| ring_sums_map(&lv, &m.positions, &mut out, &mut scratch, |_, s| s));
+            out
+        };
+        let one = sums(1, 0);
+        for (threads, scratch_len) in [(3, 0), (3, nv), (3, 2 * nv + 5), (2, 3 * nv)] {
+            let many = sums(threads, scratch_len);
+            let worst = one.iter().zip(&many).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+            assert!(worst <= 1e-6, "{threads} threads, scratch {scratch_len}: off by {worst}");
+        }
+        // every neighbour counted once: the sum of a valence-6 vertex's ring
+        // over 6 is a point near the unit sphere
+        let v = (0..nv).find(|&v| m.ct.valences()[v] == 6).unwrap();
+        assert!(((one[v] / 6.0).length() - 1.0).abs() < 1e-3);
+    }
 }

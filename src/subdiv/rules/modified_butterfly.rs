@@ -40,6 +40,7 @@
 
 use super::butterfly::{eight_point, eight_point_interior, outer};
 use super::{Accumulate, Level, Rules, Sink, four_point};
+use crate::mesh::split::Owners;
 use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -263,35 +264,37 @@ impl Rules for ModifiedButterfly {
     /// load per endpoint; edges at extraordinary vertices read the rings
     /// walked once per level; everything else (boundary, tension) goes
     /// through [`Rules::edge`].
-    fn edge_points(&self, lv: &Level, owners: &[u32], pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
+    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
         let rings = EvRings::new(lv, self.ev.len());
         let fast_regular = self.w == 0.0;
-        epart.par_iter_mut().zip(owners.par_iter()).with_min_len(2048).for_each(|(q, &c)| {
-            let mut acc = Accumulate::new(pos);
-            let o_raw = lv.o_table()[c as usize];
-            if o_raw == BORDER {
-                self.edge_cold(lv, c, &mut acc);
-            } else {
-                let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
-                let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
-                if k1 == REGULAR && k2 == REGULAR && fast_regular {
-                    // both ends interior: every outer edge is interior too
-                    match eight_point_interior(lv, pos, c, o_raw) {
-                        Some(e) => acc.sum = e,
-                        None => eight_point(lv, c, o_raw, &mut acc),
-                    }
-                } else if k1 == RING && k2 == RING {
-                    self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
-                    self.ev_ring(&rings, a2, n(o_raw), 0.5, &mut acc);
-                } else if k1 == RING && k2 < SLOW {
-                    self.ev_ring(&rings, a1, n(c), 1.0, &mut acc);
-                } else if k2 == RING && k1 < SLOW {
-                    self.ev_ring(&rings, a2, n(o_raw), 1.0, &mut acc);
-                } else {
+        owners.par_pieces(epart, |qs, cs| {
+            for (q, &c) in qs.iter_mut().zip(cs) {
+                let mut acc = Accumulate::new(pos);
+                let o_raw = lv.o_table()[c as usize];
+                if o_raw == BORDER {
                     self.edge_cold(lv, c, &mut acc);
+                } else {
+                    let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
+                    let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
+                    if k1 == REGULAR && k2 == REGULAR && fast_regular {
+                        // both ends interior: every outer edge is interior too
+                        match eight_point_interior(lv, pos, c, o_raw) {
+                            Some(e) => acc.sum = e,
+                            None => eight_point(lv, c, o_raw, &mut acc),
+                        }
+                    } else if k1 == RING && k2 == RING {
+                        self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
+                        self.ev_ring(&rings, a2, n(o_raw), 0.5, &mut acc);
+                    } else if k1 == RING && k2 < SLOW {
+                        self.ev_ring(&rings, a1, n(c), 1.0, &mut acc);
+                    } else if k2 == RING && k1 < SLOW {
+                        self.ev_ring(&rings, a2, n(o_raw), 1.0, &mut acc);
+                    } else {
+                        self.edge_cold(lv, c, &mut acc);
+                    }
                 }
+                *q = acc.sum;
             }
-            *q = acc.sum;
         });
     }
 
