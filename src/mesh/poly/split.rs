@@ -53,23 +53,24 @@ pub fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) 
     (pt, edges)
 }
 
-/// The new V table of the quad split and the old table's edge numbering,
-/// and nothing else: no twins, C, valences or sharpness. For the last level
-/// of a subdivision whose caller needs only its faces (writing a file): at
-/// level 3 of 70 k quads that leaves out 108 of the 220 MB the level
-/// writes. The V table is the one [`split`] makes.
+/// The new V table of the quad split and the old table's edge ids, and
+/// nothing else: no twins, C, valences or sharpness, and no list of the
+/// edges' owners ([`crate::mesh::split::Owners::Bits`] reads them off the
+/// ids). For the last level of a subdivision whose caller needs only its
+/// faces (writing a file): at level 3 of 70 k quads that leaves out 117 of
+/// the 229 MB the level wrote. The V table is the one [`split`] makes.
 ///
 /// Every vertex id goes through `id` as it is written (see
 /// [`crate::mesh::split`]'s `split_faces`).
 ///
 /// # Panics
 /// As [`split`].
-pub(crate) fn split_faces<I: VertexId, M: Fn(u32) -> I + Sync>(old: &PolyTable, id: &M) -> (Vec<I>, EdgeNumbering) {
+pub(crate) fn split_faces<I: VertexId, M: Fn(u32) -> I + Sync>(old: &PolyTable, id: &M) -> (Vec<I>, EdgeIds) {
     let nc = old.num_corners();
     assert!(4 * nc as u64 + 4 < u64::from(BORDER), "quad split: {nc} corners are too many for 32-bit ids");
-    let edges = number_edges_with(&old.t, EdgeIds::new(&old.t), |_, _, _| {});
-    let (nv, ne) = (old.num_vertices() as u32, edges.ids.count());
-    (write_v(old, (&edges.ids, nv, ne), id), edges)
+    let ids = EdgeIds::new(&old.t);
+    let (nv, ne) = (old.num_vertices() as u32, ids.count());
+    (write_v(old, (&ids, nv, ne), id), ids)
 }
 
 /// The new C and valences (see the module docs): old vertices, then edge

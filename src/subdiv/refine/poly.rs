@@ -7,12 +7,13 @@
 //! their blended stencils. New vertex ids: old vertices keep theirs, edge
 //! `e` is `nv + e`, face `f` is `nv + ne + f`.
 
+use super::super::rules::Accumulators;
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules};
 use super::super::rules::features::Features;
 use super::super::{Stats, ms};
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
-use crate::mesh::split::EdgeNumbering;
+use crate::mesh::split::{EdgeIds, Owners};
 use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::mesh::{Faces, VertexId};
 use crate::{Error, Result};
@@ -25,7 +26,7 @@ pub(crate) fn level<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, st
     let t0 = Instant::now();
     let (pt, edges) = split::split(&mesh.pt, creasing);
     stats.split_ms += ms(t0.elapsed());
-    let positions = points(r, mesh, &edges, creasing, stats);
+    let positions = points(r, mesh, (Owners::List(&edges.owners), &edges.ids), creasing, stats);
     PolyMesh { pt, positions }
 }
 
@@ -39,23 +40,25 @@ pub(crate) fn level_faces<R: PolyRules, I: VertexId>(
     stats: &mut Stats,
 ) -> Faces<I> {
     let t0 = Instant::now();
-    let (corners, edges) = split::split_faces(&mesh.pt, id);
+    let (corners, ids) = split::split_faces(&mesh.pt, id);
     stats.split_ms += ms(t0.elapsed());
-    let positions = points(r, mesh, &edges, creasing, stats);
+    let positions = points(r, mesh, (Owners::Bits(&ids), &ids), creasing, stats);
     Faces { positions, corners, sides: 4 }
 }
 
 /// The points of the level after `mesh`, whose edges the split numbered
-/// `edges`: vertex points, then edge points, then face points.
+/// (`owners` in edge order, `ids` per corner): face points, then vertex
+/// points (the edge part, not yet written, serving as their scratch
+/// memory), then edge points.
 fn points<R: PolyRules>(
     r: &R,
     mesh: &PolyMesh,
-    edges: &EdgeNumbering,
+    (owners, ids): (Owners, &EdgeIds),
     creasing: Creasing,
     stats: &mut Stats,
 ) -> Vec<Vec3> {
     let old = &mesh.pt;
-    let (nv, ne, nf) = (old.num_vertices(), edges.owners.len(), old.num_faces());
+    let (nv, ne, nf) = (old.num_vertices(), owners.len(), old.num_faces());
     let mut positions: Vec<Vec3> = crate::mem::zeroed(nv + ne + nf);
     let (vpart, rest) = positions.split_at_mut(nv);
     let (epart, fpart) = rest.split_at_mut(ne);
@@ -64,13 +67,14 @@ fn points<R: PolyRules>(
     let lv = PolyLevel { pt: old, features: features.as_ref() };
     let t1 = Instant::now();
     face_points(old, pos, fpart);
-    edge_points::<R>(&lv, &edges.owners, pos, fpart, epart);
     let t2 = Instant::now();
-    vertex_points::<R>(&lv, pos, fpart, vpart);
-    stats.edge_ms += ms(t2 - t1);
-    stats.vertex_ms += ms(t2.elapsed());
+    vertex_points::<R>(&lv, pos, fpart, vpart, epart);
+    let t3 = Instant::now();
+    edge_points::<R>(&lv, owners, pos, fpart, epart);
+    stats.edge_ms += ms(t2 - t1) + ms(t3.elapsed());
+    stats.vertex_ms += ms(t3 - t2);
     if let Some(f) = &features {
-        let slot = |c: u32| edges.ids.edge(c, old.twin_entry(c)) as usize;
+        let slot = |c: u32| ids.edge(c, old.twin_entry(c)) as usize;
         super::feature_points(&PolyOn { r, lv: &lv }, f, pos, Some(vpart), epart, slot);
     }
     positions
@@ -86,14 +90,16 @@ fn face_points(pt: &PolyTable, pos: &[Vec3], out: &mut [Vec3]) {
 }
 
 /// Every edge's point, in owner order, from the face points `fp`.
-fn edge_points<R: PolyRules>(lv: &PolyLevel, owners: &[u32], pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
+fn edge_points<R: PolyRules>(lv: &PolyLevel, owners: Owners, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
     let pt = lv.pt;
-    out.par_iter_mut().zip(owners.par_iter()).with_min_len(4096).for_each(|(q, &c)| {
-        let (a, b) = (pos[pt.vtx(c) as usize], pos[pt.vtx(pt.next(c)) as usize]);
-        *q = match pt.twin(c) {
-            Some(t) if R::SMOOTH => (a + b + fp[pt.face(c) as usize] + fp[pt.face(t) as usize]) * 0.25,
-            _ => (a + b) * 0.5,
-        };
+    owners.par_pieces(out, |out, own| {
+        for (q, &c) in out.iter_mut().zip(own) {
+            let (a, b) = (pos[pt.vtx(c) as usize], pos[pt.vtx(pt.next(c)) as usize]);
+            *q = match pt.twin(c) {
+                Some(t) if R::SMOOTH => (a + b + fp[pt.face(c) as usize] + fp[pt.face(t) as usize]) * 0.25,
+                _ => (a + b) * 0.5,
+            };
+        }
     });
 }
 
@@ -103,8 +109,9 @@ fn edge_points<R: PolyRules>(lv: &PolyLevel, owners: &[u32], pos: &[Vec3], fp: &
 /// `V[c]`: each edge leaving a vertex and each face at it has exactly one
 /// such corner), which reads the tables as streams instead of walking every
 /// fan through the twins; each thread sums its range of corners into a
-/// buffer of its own, and the buffers are added per vertex.
-fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
+/// buffer of its own (taken from `scratch` as far as it holds them), and
+/// the buffers are added per vertex.
+fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3], scratch: &mut [Vec3]) {
     let pt = lv.pt;
     if !R::SMOOTH {
         out.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &p)| *q = p);
@@ -121,15 +128,15 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
     // the first part sums into `out` itself (no buffer of its own to fault
     // in), the others into buffers of theirs
     out.par_iter_mut().with_min_len(1 << 14).for_each(|q| *q = Vec3::ZERO);
-    let mut extra: Vec<Vec<Vec3>> = (1..parts).map(|_| crate::mem::zeroed(nv)).collect();
+    let mut extra = Accumulators::new(nv, parts - 1, scratch);
     rayon::scope(|sc| {
         sc.spawn(|_| scatter(out, 0));
-        for (k, acc) in extra.iter_mut().enumerate() {
+        for (k, acc) in extra.parts().enumerate() {
             let scatter = &scatter;
-            sc.spawn(move |_| scatter(acc, k + 1));
+            sc.spawn(move |_| scatter(acc.zeroed(), k + 1));
         }
     });
-    let extra = &extra;
+    let extra = &extra.sums();
     out.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, q)| {
         let p = pos[v];
         if pt.is_boundary_vertex(v as u32) {

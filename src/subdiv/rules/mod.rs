@@ -263,29 +263,20 @@ pub fn ring_sums_map(
     };
     // in parallel: the first touch of fresh pages is part of the cost
     out.par_iter_mut().with_min_len(1 << 14).for_each(|q| *q = Vec3::ZERO);
-    let from_scratch = scratch.len().checked_div(nv).map_or(0, |k| k.min(threads - 1));
-    let mut allocated: Vec<Vec<Vec3>> = (from_scratch + 1..threads).map(|_| crate::mem::zeroed(nv)).collect();
-    let mut extra: Vec<&mut [Vec3]> = scratch.chunks_exact_mut(nv.max(1)).take(from_scratch).collect();
-    extra.extend(allocated.iter_mut().map(|a| &mut a[..]));
+    let mut extra = Accumulators::new(nv, threads - 1, scratch);
     if threads == 1 {
         scatter(out, 0..nc);
     } else {
         rayon::scope(|sc| {
             sc.spawn(|_| scatter(out, 0..per.min(nc)));
-            for (k, acc) in extra.iter_mut().enumerate() {
+            for (k, acc) in extra.parts().enumerate() {
                 let r = ((k + 1) * per).min(nc)..((k + 2) * per).min(nc);
                 let scatter = &scatter;
-                sc.spawn(move |_| {
-                    if k < from_scratch {
-                        acc.fill(Vec3::ZERO);
-                    }
-                    scatter(acc, r)
-                });
+                sc.spawn(move |_| scatter(acc.zeroed(), r));
             }
         });
     }
-    let extra: Vec<&[Vec3]> = extra.into_iter().map(|a| &*a).collect();
-    let extra = &extra;
+    let extra = &extra.sums();
     out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, q)| {
         let mut sum = *q;
         for e in extra {
@@ -298,6 +289,54 @@ pub fn ring_sums_map(
         }
         *q = f(v, sum);
     });
+}
+
+/// The accumulators of a scatter pass's threads after the first (which
+/// sums into the output itself), `n` points each: taken from `scratch` as
+/// far as it holds them (memory a level has already faulted in and writes
+/// only later, such as its edge part), the rest allocated. At bunny Loop
+/// level 3 on two threads that is 6.7 MB of fresh pages fewer.
+pub(crate) struct Accumulators<'a> {
+    borrowed: Vec<&'a mut [Vec3]>,
+    owned: Vec<Vec<Vec3>>,
+}
+
+/// One accumulator of [`Accumulators`], zeroed by the thread that uses it.
+pub(crate) struct Part<'b> {
+    acc: &'b mut [Vec3],
+    dirty: bool,
+}
+
+impl<'b> Part<'b> {
+    /// The accumulator, all zero (a borrowed one is cleared here, on the
+    /// thread that then fills it).
+    pub(crate) fn zeroed(self) -> &'b mut [Vec3] {
+        if self.dirty {
+            self.acc.fill(Vec3::ZERO);
+        }
+        self.acc
+    }
+}
+
+impl<'a> Accumulators<'a> {
+    /// `count` accumulators of `n` points.
+    pub(crate) fn new(n: usize, count: usize, scratch: &'a mut [Vec3]) -> Self {
+        let from_scratch = scratch.len().checked_div(n).map_or(0, |k| k.min(count));
+        let borrowed = scratch.chunks_exact_mut(n.max(1)).take(from_scratch).collect();
+        let owned = (from_scratch..count).map(|_| crate::mem::zeroed(n)).collect();
+        Accumulators { borrowed, owned }
+    }
+
+    /// Every accumulator, in order.
+    pub(crate) fn parts(&mut self) -> impl Iterator<Item = Part<'_>> {
+        let borrowed = self.borrowed.iter_mut().map(|a| Part { acc: &mut a[..], dirty: true });
+        borrowed.chain(self.owned.iter_mut().map(|a| Part { acc: &mut a[..], dirty: false }))
+    }
+
+    /// Every accumulator, in the order of [`Accumulators::parts`], to read.
+    pub(crate) fn sums(&self) -> Vec<&[Vec3]> {
+        self.borrowed.iter().map(|a| &a[..]).chain(self.owned.iter().map(|a| &a[..])).collect()
+    }
 }
 
 /// The 4-point curve rule along the boundary for the border edge opposite
