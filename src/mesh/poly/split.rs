@@ -292,8 +292,8 @@ mod tests {
         assert!(pt.is_quads() && pt.num_corners() > 3 * CHUNK, "the all-quad path, several chunks");
         let w = crate::mesh::split::tests::numbered_by_hand(&pt.t);
         let (nv, ne) = (pt.num_vertices() as u32, pt.num_edges() as u32);
-        let (v, edges) = split_faces(&pt, &|j| j);
-        assert_eq!(edges.ids.count(), ne);
+        let (v, ids) = split_faces(&pt, &|j| j);
+        assert_eq!(ids.count(), ne);
         for c in 0..pt.num_corners() as u32 {
             let q = &v[4 * c as usize..4 * c as usize + 4];
             let expected = [pt.vtx(c), nv + w[c as usize], nv + ne + pt.face(c), nv + w[pt.prev(c) as usize]];
