@@ -64,28 +64,37 @@ fn vertex_sums_split_over_threads_agree() {
 
 #[test]
 fn catmull_clark_is_the_same_on_any_thread_count() {
-    // a wavy 120 x 120 quad grid: level 2 reads 230 k corners, which the
-    // vertex points scatter over up to 4 parts
+    // a wavy 120 x 120 grid of quads, and the same grid cut into triangles
+    // (the first level's polygon path): level 2 reads 230 k corners (the
+    // triangles' level 0 already 86 k), which the vertex points scatter over
+    // up to 4 parts
     let n = 120u32;
     let positions: Vec<Vec3> = (0..=n)
         .flat_map(|j| (0..=n).map(move |i| Vec3::new(i as f32, j as f32, (0.3 * (i * j) as f32).sin()) / n as f32))
         .collect();
     let at = |i: u32, j: u32| j * (n + 1) + i;
-    let corners: Vec<u32> = (0..n)
+    let quads: Vec<u32> = (0..n)
         .flat_map(|j| (0..n).flat_map(move |i| [at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]))
         .collect();
-    let starts: Vec<u32> = (0..=n * n).map(|f| 4 * f).collect();
-    let (m, _) = subdiv::mesh::poly::PolyMesh::from_faces(positions, &starts, &corners).unwrap();
-    let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| subdiv::subdivide_poly(&m, Scheme::CatmullClark, 2, &Options::default()).unwrap().0)
-    };
-    let one = run(1);
-    for threads in [2, 3] {
-        let many = run(threads);
-        assert_eq!(one.pt.v_table(), many.pt.v_table(), "{threads} threads");
-        let worst =
-            one.positions.iter().zip(&many.positions).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
-        assert!(worst <= 1e-6, "positions differ by {worst} with {threads} threads");
+    let triangles: Vec<u32> = quads.chunks(4).flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]]).collect();
+    for (corners, k) in [(quads, 4), (triangles, 3)] {
+        let starts: Vec<u32> = (0..=corners.len() as u32 / k).map(|f| k * f).collect();
+        let (m, _) = subdiv::mesh::poly::PolyMesh::from_faces(positions.clone(), &starts, &corners).unwrap();
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| subdiv::subdivide_poly(&m, Scheme::CatmullClark, 2, &Options::default()).unwrap().0)
+        };
+        let one = run(1);
+        for threads in [2, 3] {
+            let many = run(threads);
+            assert_eq!(one.pt.v_table(), many.pt.v_table(), "faces of {k}, {threads} threads");
+            let worst = one
+                .positions
+                .iter()
+                .zip(&many.positions)
+                .map(|(a, b)| (*a - *b).abs().max_element())
+                .fold(0.0, f32::max);
+            assert!(worst <= 1e-6, "faces of {k}: positions differ by {worst} with {threads} threads");
+        }
     }
 }
