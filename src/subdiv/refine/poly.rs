@@ -169,11 +169,13 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
         }
     };
     // the first part sums into `out` itself (no buffer of its own to fault
-    // in), the others into buffers of theirs
-    out.par_iter_mut().with_min_len(1 << 14).for_each(|q| *q = Vec3::ZERO);
+    // in), the others into buffers of theirs; each clears its own first
     let mut extra = Accumulators::new(nv, parts - 1, scratch);
     rayon::scope(|sc| {
-        sc.spawn(|_| scatter(out, 0));
+        sc.spawn(|_| {
+            out.fill(Vec3::ZERO);
+            scatter(out, 0)
+        });
         for (k, acc) in extra.parts().enumerate() {
             let scatter = &scatter;
             sc.spawn(move |_| scatter(acc.zeroed(), k + 1));

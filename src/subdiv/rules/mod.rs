@@ -261,14 +261,17 @@ pub fn ring_sums_map(
             acc[c] += pa;
         }
     };
-    // in parallel: the first touch of fresh pages is part of the cost
-    out.par_iter_mut().with_min_len(1 << 14).for_each(|q| *q = Vec3::ZERO);
     let mut extra = Accumulators::new(nv, threads - 1, scratch);
     if threads == 1 {
+        out.fill(Vec3::ZERO);
         scatter(out, 0..nc);
     } else {
+        // each thread clears the accumulator it then fills
         rayon::scope(|sc| {
-            sc.spawn(|_| scatter(out, 0..per.min(nc)));
+            sc.spawn(|_| {
+                out.fill(Vec3::ZERO);
+                scatter(out, 0..per.min(nc))
+            });
             for (k, acc) in extra.parts().enumerate() {
                 let r = ((k + 1) * per).min(nc)..((k + 2) * per).min(nc);
                 let scatter = &scatter;
