@@ -153,16 +153,17 @@ impl EdgeIds {
         pieces
     }
 
-    /// Appends the owner corners among corners `CHUNK k ..` to `list`, in
-    /// order, from their bits.
-    fn list_owners(&self, k: usize, list: &mut Vec<u32>) {
+    /// Calls `f` with every owner corner among corners `CHUNK k ..`, in
+    /// order, read off their bits (a loop per owner, without a branch per
+    /// corner on whether it owns its edge).
+    fn for_each_owner(&self, k: usize, mut f: impl FnMut(u32)) {
         const WORDS: usize = CHUNK / 64;
         let words = &self.owns[k * WORDS..((k + 1) * WORDS).min(self.owns.len())];
         for (i, &w) in words.iter().enumerate() {
             let base = 64 * (k * WORDS + i) as u32;
             let mut bits = w;
             while bits != 0 {
-                list.push(base + bits.trailing_zeros());
+                f(base + bits.trailing_zeros());
                 bits &= bits - 1;
             }
         }
@@ -210,7 +211,7 @@ impl Owners<'_> {
             }
             Owners::Bits(ids) => ids.carve(out).into_par_iter().enumerate().for_each(|(k, piece)| {
                 let mut list = Vec::with_capacity(piece.len());
-                ids.list_owners(k, &mut list);
+                ids.for_each_owner(k, |c| list.push(c));
                 each(piece, &list);
             }),
         }
@@ -265,18 +266,14 @@ pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
 pub(crate) fn number_edges_with(o_table: &[u32], ids: EdgeIds, each: impl Fn(u32, u32, u32) + Sync) -> EdgeNumbering {
     let mut owners: Vec<u32> = crate::mem::zeroed(ids.count() as usize);
     let slices = ids.carve(&mut owners);
-    o_table.par_chunks(CHUNK).zip(slices).enumerate().for_each(|(k, (och, own))| {
-        let base = (k * CHUNK) as u32;
-        let first = ids.rank(base);
+    slices.into_par_iter().enumerate().for_each(|(k, own)| {
+        let first = ids.rank((k * CHUNK) as u32);
         let mut e = 0usize;
-        for (i, &x) in och.iter().enumerate() {
-            let c = base + i as u32;
-            if owns_edge(c, x) {
-                own[e] = c;
-                each(first + e as u32, c, x);
-                e += 1;
-            }
-        }
+        ids.for_each_owner(k, |c| {
+            own[e] = c;
+            each(first + e as u32, c, o_table[c as usize]);
+            e += 1;
+        });
     });
     EdgeNumbering { owners, ids }
 }
