@@ -16,6 +16,11 @@ fn in_pool(threads: usize, m: &Mesh, s: Scheme, levels: u32) -> Mesh {
     pool.install(|| subdivide(m, s, levels, &Options::default()).unwrap().0)
 }
 
+/// The largest coordinate difference between two lists of points.
+fn worst(a: &[Vec3], b: &[Vec3]) -> f32 {
+    a.iter().zip(b).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max)
+}
+
 #[test]
 fn same_result_for_any_thread_count() {
     // 20,480 and 2 x 110 x 110 = 24,200 faces: level 2 reads ~250k corners
@@ -34,12 +39,7 @@ fn same_result_for_any_thread_count() {
                 assert_eq!(one.ct.c_table(), many.ct.c_table(), "C differs: {what}");
                 assert_eq!(one.ct.valences(), many.ct.valences(), "valences differ: {what}");
                 assert_eq!(one.positions.len(), many.positions.len(), "{what}");
-                let worst = one
-                    .positions
-                    .iter()
-                    .zip(&many.positions)
-                    .map(|(a, b)| (*a - *b).abs().max_element())
-                    .fold(0.0, f32::max);
+                let worst = worst(&one.positions, &many.positions);
                 assert!(worst <= 1e-6, "positions differ by {worst}: {what}");
             }
         }
@@ -56,8 +56,7 @@ fn vertex_sums_split_over_threads_agree() {
     for threads in [2, 3] {
         let many = in_pool(threads, &m, Scheme::Loop, 3);
         assert_eq!(one.ct.v_table(), many.ct.v_table());
-        let worst =
-            one.positions.iter().zip(&many.positions).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+        let worst = worst(&one.positions, &many.positions);
         assert!(worst <= 1e-6, "positions differ by {worst} with {threads} threads");
     }
 }
@@ -88,12 +87,7 @@ fn catmull_clark_is_the_same_on_any_thread_count() {
         for threads in [2, 3] {
             let many = run(threads);
             assert_eq!(one.pt.v_table(), many.pt.v_table(), "faces of {k}, {threads} threads");
-            let worst = one
-                .positions
-                .iter()
-                .zip(&many.positions)
-                .map(|(a, b)| (*a - *b).abs().max_element())
-                .fold(0.0, f32::max);
+            let worst = worst(&one.positions, &many.positions);
             assert!(worst <= 1e-6, "faces of {k}: positions differ by {worst} with {threads} threads");
         }
     }

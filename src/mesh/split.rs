@@ -199,7 +199,7 @@ impl Owners<'_> {
 
     /// Calls `each(out, owners)` in parallel on consecutive pieces of `out`
     /// (one element per edge) and of the owners: `out[i]` is the element of
-    /// the edge that `owners[i]` owns. A piece has at most [`CHUNK`] owners.
+    /// the edge that `owners[i]` owns. A piece has at most 16,384 owners.
     ///
     /// # Panics
     /// If `out` does not have one element per edge.

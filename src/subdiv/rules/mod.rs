@@ -196,7 +196,7 @@ pub trait Rules: Sync {
 /// The owners come in increasing order, so `V`, `O` and the owner's own
 /// corners are read almost in sequence; the vertex across the edge,
 /// `V[O[c]]`, is not, and at the last levels the stencil waits for its
-/// cache miss. It is prefetched [`AHEAD`] edges before it is needed, so
+/// cache miss. It is prefetched 32 edges before it is needed, so
 /// that the misses of many edges overlap: bunny Loop level 3, the edge
 /// points of all levels on one thread, warm (`examples/phases`), 21-22 ms
 /// without against 13.3-13.9 with (8 edges ahead gave 15-16, 24 to 96 the
