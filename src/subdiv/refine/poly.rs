@@ -7,9 +7,9 @@
 //! their blended stencils. New vertex ids: old vertices keep theirs, edge
 //! `e` is `nv + e`, face `f` is `nv + ne + f`.
 
-use super::super::rules::Accumulators;
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules};
 use super::super::rules::features::Features;
+use super::super::rules::scatter_parts;
 use super::super::{Stats, ms};
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
@@ -144,7 +144,7 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
         out.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &p)| *q = p);
         return;
     }
-    let (nv, nc) = (pos.len(), pt.num_corners());
+    let nc = pt.num_corners();
     let parts = rayon::current_num_threads().clamp(1, nc / (1 << 16) + 1);
     // an all-quad table is cut at whole quads and scattered a quad at a
     // time, next and face by arithmetic (the same sums in the same order:
@@ -168,20 +168,7 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
             acc[pt.vtx(c) as usize] += far + fp[pt.face(c) as usize];
         }
     };
-    // the first part sums into `out` itself (no buffer of its own to fault
-    // in), the others into buffers of theirs; each clears its own first
-    let mut extra = Accumulators::new(nv, parts - 1, scratch);
-    rayon::scope(|sc| {
-        sc.spawn(|_| {
-            out.fill(Vec3::ZERO);
-            scatter(out, 0)
-        });
-        for (k, acc) in extra.parts().enumerate() {
-            let scatter = &scatter;
-            sc.spawn(move |_| scatter(acc.zeroed(), k + 1));
-        }
-    });
-    let extra = &extra.sums();
+    let extra = &scatter_parts(out, parts, scratch, scatter);
     out.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, q)| {
         let p = pos[v];
         if pt.is_boundary_vertex(v as u32) {

@@ -30,6 +30,7 @@ use crate::mesh::{BORDER, CornerTable, n, p};
 use features::Features;
 use glam::Vec3;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// One level's topology plus per-vertex facts that rules ask for often. It
 /// dereferences to the [`CornerTable`], so rules call the table's operators
@@ -246,14 +247,14 @@ pub fn ring_sums_map(
     scratch: &mut [Vec3],
     f: impl Fn(usize, Vec3) -> Vec3 + Sync,
 ) {
-    let (vt, nc, nv) = (lv.ct.v_table(), lv.ct.num_corners(), out.len());
+    let (vt, nc) = (lv.ct.v_table(), lv.ct.num_corners());
     // a thread takes at least 2^20 corners: below that its accumulator's
     // fresh pages and the merge cost more than it saves (fandisk's level 3,
     // 620 k corners scattered: 3.0-3.6 ms on two threads, 1.5-2.0 on one)
     let threads = rayon::current_num_threads().clamp(1, 16).min(nc.div_ceil(1 << 20)).max(1);
     let per = nc.div_ceil(threads).div_ceil(3) * 3;
-    let scatter = |acc: &mut [Vec3], range: std::ops::Range<usize>| {
-        for tri in vt[range].chunks_exact(3) {
+    let scatter = |acc: &mut [Vec3], k: usize| {
+        for tri in vt[(k * per).min(nc)..((k + 1) * per).min(nc)].chunks_exact(3) {
             let (a, b, c) = (tri[0] as usize, tri[1] as usize, tri[2] as usize);
             let (pa, pb, pc) = (pos[a], pos[b], pos[c]);
             acc[a] += pb;
@@ -261,25 +262,7 @@ pub fn ring_sums_map(
             acc[c] += pa;
         }
     };
-    let mut extra = Accumulators::new(nv, threads - 1, scratch);
-    if threads == 1 {
-        out.fill(Vec3::ZERO);
-        scatter(out, 0..nc);
-    } else {
-        // each thread clears the accumulator it then fills
-        rayon::scope(|sc| {
-            sc.spawn(|_| {
-                out.fill(Vec3::ZERO);
-                scatter(out, 0..per.min(nc))
-            });
-            for (k, acc) in extra.parts().enumerate() {
-                let r = ((k + 1) * per).min(nc)..((k + 2) * per).min(nc);
-                let scatter = &scatter;
-                sc.spawn(move |_| scatter(acc.zeroed(), r));
-            }
-        });
-    }
-    let extra = &extra.sums();
+    let extra = &scatter_parts(out, threads, scratch, scatter);
     out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, q)| {
         let mut sum = *q;
         for e in extra {
@@ -294,52 +277,43 @@ pub fn ring_sums_map(
     });
 }
 
-/// The accumulators of a scatter pass's threads after the first (which
-/// sums into the output itself), `n` points each: taken from `scratch` as
-/// far as it holds them (memory a level has already faulted in and writes
-/// only later, such as its edge part), the rest allocated. At bunny Loop
-/// level 3 on two threads that is 6.7 MB of fresh pages fewer.
-pub(crate) struct Accumulators<'a> {
-    borrowed: Vec<&'a mut [Vec3]>,
-    owned: Vec<Vec<Vec3>>,
-}
-
-/// One accumulator of [`Accumulators`], zeroed by the thread that uses it.
-pub(crate) struct Part<'b> {
-    acc: &'b mut [Vec3],
-    dirty: bool,
-}
-
-impl<'b> Part<'b> {
-    /// The accumulator, all zero (a borrowed one is cleared here, on the
-    /// thread that then fills it).
-    pub(crate) fn zeroed(self) -> &'b mut [Vec3] {
-        if self.dirty {
-            self.acc.fill(Vec3::ZERO);
+/// Runs a scatter pass in `parts` parts, in parallel: `scatter(acc, k)` sums
+/// part `k` into `acc`. Part 0 sums into `out` itself; each later part into
+/// an accumulator of `out.len()` points, taken from `scratch` as far as it
+/// holds them (memory a level has already faulted in and writes only later,
+/// such as its edge part: at bunny Loop level 3 on two threads 6.7 MB of
+/// fresh pages fewer), the rest allocated. Every accumulator, `out` too, is
+/// cleared by the thread that then fills it. Returns the later parts'
+/// accumulators, in order, for the caller to add per point.
+pub(crate) fn scatter_parts<'s>(
+    out: &mut [Vec3],
+    parts: usize,
+    scratch: &'s mut [Vec3],
+    scatter: impl Fn(&mut [Vec3], usize) + Sync,
+) -> Vec<Cow<'s, [Vec3]>> {
+    let (n, later) = (out.len(), parts.saturating_sub(1));
+    let from_scratch = scratch.len().checked_div(n).map_or(0, |k| k.min(later));
+    let mut borrowed: Vec<&'s mut [Vec3]> = scratch.chunks_exact_mut(n.max(1)).take(from_scratch).collect();
+    let mut owned: Vec<Vec<Vec3>> = (from_scratch..later).map(|_| crate::mem::zeroed(n)).collect();
+    let scatter = &scatter;
+    rayon::scope(|sc| {
+        sc.spawn(move |_| {
+            out.fill(Vec3::ZERO);
+            scatter(out, 0);
+        });
+        for (k, acc) in borrowed.iter_mut().enumerate() {
+            sc.spawn(move |_| {
+                acc.fill(Vec3::ZERO);
+                scatter(acc, k + 1);
+            });
         }
-        self.acc
-    }
-}
-
-impl<'a> Accumulators<'a> {
-    /// `count` accumulators of `n` points.
-    pub(crate) fn new(n: usize, count: usize, scratch: &'a mut [Vec3]) -> Self {
-        let from_scratch = scratch.len().checked_div(n).map_or(0, |k| k.min(count));
-        let borrowed = scratch.chunks_exact_mut(n.max(1)).take(from_scratch).collect();
-        let owned = (from_scratch..count).map(|_| crate::mem::zeroed(n)).collect();
-        Accumulators { borrowed, owned }
-    }
-
-    /// Every accumulator, in order.
-    pub(crate) fn parts(&mut self) -> impl Iterator<Item = Part<'_>> {
-        let borrowed = self.borrowed.iter_mut().map(|a| Part { acc: &mut a[..], dirty: true });
-        borrowed.chain(self.owned.iter_mut().map(|a| Part { acc: &mut a[..], dirty: false }))
-    }
-
-    /// Every accumulator, in the order of [`Accumulators::parts`], to read.
-    pub(crate) fn sums(&self) -> Vec<&[Vec3]> {
-        self.borrowed.iter().map(|a| &a[..]).chain(self.owned.iter().map(|a| &a[..])).collect()
-    }
+        // fresh zero pages: nothing to clear
+        for (k, acc) in owned.iter_mut().enumerate() {
+            sc.spawn(move |_| scatter(acc, from_scratch + k + 1));
+        }
+    });
+    let borrowed = borrowed.into_iter().map(|a| -> Cow<'s, [Vec3]> { Cow::Borrowed(a) });
+    borrowed.chain(owned.into_iter().map(Cow::Owned)).collect()
 }
 
 /// The 4-point curve rule along the boundary for the border edge opposite

@@ -240,6 +240,39 @@ impl ModifiedButterfly {
 }
 
 impl ModifiedButterfly {
+    /// The point on the edge owned by `c`, [`Rules::edge_points`]'s body:
+    /// regular interior edges (most of them) take the 8-point rule after
+    /// one class load per endpoint; edges at extraordinary vertices read
+    /// the rings walked once per level; everything else (boundary, tension)
+    /// goes through [`Rules::edge`].
+    fn edge_point(&self, lv: &Level, rings: &EvRings, pos: &[Vec3], c: u32) -> Vec3 {
+        let mut acc = Accumulate::new(pos);
+        let o_raw = lv.o_table()[c as usize];
+        if o_raw == BORDER {
+            self.edge_cold(lv, c, &mut acc);
+            return acc.sum;
+        }
+        let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
+        let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
+        if k1 == REGULAR && k2 == REGULAR && self.w == 0.0 {
+            // both ends interior: every outer edge is interior too
+            match eight_point_interior(lv, pos, c, o_raw) {
+                Some(e) => acc.sum = e,
+                None => eight_point(lv, c, o_raw, &mut acc),
+            }
+        } else if k1 == RING && k2 == RING {
+            self.ev_ring(rings, a1, n(c), 0.5, &mut acc);
+            self.ev_ring(rings, a2, n(o_raw), 0.5, &mut acc);
+        } else if k1 == RING && k2 < SLOW {
+            self.ev_ring(rings, a1, n(c), 1.0, &mut acc);
+        } else if k2 == RING && k1 < SLOW {
+            self.ev_ring(rings, a2, n(o_raw), 1.0, &mut acc);
+        } else {
+            self.edge_cold(lv, c, &mut acc);
+        }
+        acc.sum
+    }
+
     /// [`Rules::edge`] out of line: the rare cases stay out of the hot loop.
     #[inline(never)]
     fn edge_cold(&self, lv: &Level, c: u32, acc: &mut Accumulate) {
@@ -259,41 +292,13 @@ impl Rules for ModifiedButterfly {
         }
     }
 
-    /// Direct evaluation, the same stencils as [`Rules::edge`]: regular
-    /// interior edges (most of them) take the 8-point rule after one class
-    /// load per endpoint; edges at extraordinary vertices read the rings
-    /// walked once per level; everything else (boundary, tension) goes
-    /// through [`Rules::edge`].
+    /// Direct evaluation, the same stencils as [`Rules::edge`]: one
+    /// `edge_point` per edge.
     fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
         let rings = EvRings::new(lv, self.ev.len());
-        let fast_regular = self.w == 0.0;
         owners.par_pieces(epart, |qs, cs| {
             for (q, &c) in qs.iter_mut().zip(cs) {
-                let mut acc = Accumulate::new(pos);
-                let o_raw = lv.o_table()[c as usize];
-                if o_raw == BORDER {
-                    self.edge_cold(lv, c, &mut acc);
-                } else {
-                    let (a1, a2) = (lv.vtx(n(c)), lv.vtx(p(c)));
-                    let (k1, k2) = (rings.class[a1 as usize], rings.class[a2 as usize]);
-                    if k1 == REGULAR && k2 == REGULAR && fast_regular {
-                        // both ends interior: every outer edge is interior too
-                        match eight_point_interior(lv, pos, c, o_raw) {
-                            Some(e) => acc.sum = e,
-                            None => eight_point(lv, c, o_raw, &mut acc),
-                        }
-                    } else if k1 == RING && k2 == RING {
-                        self.ev_ring(&rings, a1, n(c), 0.5, &mut acc);
-                        self.ev_ring(&rings, a2, n(o_raw), 0.5, &mut acc);
-                    } else if k1 == RING && k2 < SLOW {
-                        self.ev_ring(&rings, a1, n(c), 1.0, &mut acc);
-                    } else if k2 == RING && k1 < SLOW {
-                        self.ev_ring(&rings, a2, n(o_raw), 1.0, &mut acc);
-                    } else {
-                        self.edge_cold(lv, c, &mut acc);
-                    }
-                }
-                *q = acc.sum;
+                *q = self.edge_point(lv, &rings, pos, c);
             }
         });
     }
