@@ -31,7 +31,11 @@ fn osd_faces(path: &std::path::Path) -> usize {
 
 #[test]
 fn catmull_clark_equals_opensubdiv() {
-    let cases: [(&str, &str, Creasing, BoundaryInterpolation, &[u32]); 7] = [
+    // thresholds: every comparison of Sdc::Crease at its boundary
+    // (scripts/threshold-fixtures.py)
+    let cases: [(&str, &str, Creasing, BoundaryInterpolation, &[u32]); 9] = [
+        ("thresholds", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[1, 2, 3]),
+        ("thresholds", "chaikin", Creasing::Chaikin, BoundaryInterpolation::EdgeOnly, &[1, 2, 3]),
         ("cube", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[1, 2, 3]),
         ("ngons", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[1, 2]),
         ("grid", "uniform", Creasing::Uniform, BoundaryInterpolation::EdgeOnly, &[2]),

@@ -28,7 +28,10 @@ fn sub(m: &Mesh, s: Scheme, levels: u32, o: &Options) -> Mesh {
 
 #[test]
 fn loop_with_tags_equals_opensubdiv() {
-    let cases: [(&str, &[&str], u32); 5] = [
+    // thresholds: every comparison of Sdc::Crease at its boundary (s < 1,
+    // s <= 1, s = 10, Chaikin's child dart past s = 1; scripts/threshold-fixtures.py)
+    let cases: [(&str, &[&str], u32); 6] = [
+        ("thresholds", &["uniform", "chaikin"], 3),
         ("cube_sharp", &["uniform"], 3),
         ("tet_semi", &["uniform", "chaikin"], 3),
         ("ico_crease", &["uniform", "chaikin"], 2),

@@ -326,7 +326,9 @@ impl Sharpness {
     fn semi_sharp_sums<T: EdgeTable + ?Sized>(&self, ct: &T) -> Vec<(u32, f32, u32)> {
         let mut ends: Vec<(u32, f32)> = Vec::new();
         for &(c, s) in &self.corners {
-            if s < INFINITE && super::owns_edge(c, ct.twin_entry(c)) {
+            // a border edge is infinitely sharp whatever its tag says
+            let twin = ct.twin_entry(c);
+            if s < INFINITE && twin != BORDER && super::owns_edge(c, twin) {
                 let (a, b) = ct.edge_ends(c);
                 ends.push((a, s));
                 ends.push((b, s));

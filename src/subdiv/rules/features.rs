@@ -18,9 +18,10 @@
 //!                 w * parent mask + (1 - w) * child mask, w the mean
 //!                 sharpness of the features that become smooth, <= 1
 //!                 (ComputeFractionalWeightAtVertex)
-//! edge point      s = 0: the smooth mask; s >= 1 (or, with Chaikin, both
-//!                 halves staying sharp): the crease mask; else
-//!                 s * crease mask + (1 - s) * smooth mask
+//! edge point      s = 0: the smooth mask; both halves staying sharp after
+//!                 the split: the crease mask; else
+//!                 s * crease mask + (1 - s) * smooth mask (s > 1 only
+//!                 with Chaikin: see `edge_weight`)
 //! ```
 //!
 //! Everything is sparse: only the vertices on sharp edges (and tagged ones)
@@ -82,8 +83,9 @@ pub struct VertexFeature {
 pub struct EdgeFeature {
     /// Its owner corner.
     pub owner: u32,
-    /// Weight of the crease mask (1: a crease at this level; below 1 the
-    /// rest goes to the smooth mask).
+    /// Weight of the crease mask (1: a crease at this level; otherwise
+    /// `1 - weight` goes to the smooth mask, negative past 1: see
+    /// `edge_weight`).
     pub weight: f32,
 }
 
@@ -196,10 +198,10 @@ impl Features {
         self.edges.binary_search_by_key(&c, |e| e.owner).ok().map(|i| self.edges[i].weight)
     }
 
-    /// The corners of the edges that are creases at this level (weight 1,
-    /// not border): where the level is cut for [`super::Rules::CUT_AT_CREASES`].
+    /// The corners of the edges that are creases at this level (weight
+    /// exactly 1, not border): where the level is cut for [`super::Rules::CUT_AT_CREASES`].
     pub fn cut_corners(&self, ct: &CornerTable) -> Vec<u32> {
-        self.edges.iter().filter(|e| e.weight >= 1.0 && ct.o_entry(e.owner) != BORDER).map(|e| e.owner).collect()
+        self.edges.iter().filter(|e| e.weight == 1.0 && ct.o_entry(e.owner) != BORDER).map(|e| e.owner).collect()
     }
 
     /// The neighbour of `v` that continues the crease through `v` beyond
@@ -274,13 +276,19 @@ fn classify_vertex<T: EdgeTable>(ct: &T, decay: &EdgeDecay, v: u32, sv: f32, inc
 
 /// Weight of the crease mask for the sharp edge owned by `c`
 /// (`ComputeEdgeVertexMask`).
+///
+/// OpenSubdiv asks the rule of the edge's child vertex: a crease when both
+/// halves stay sharp after the split (weight 1), else (a dart or smooth
+/// child) the parent's crease mask blended with the smooth one by the
+/// edge's sharpness `s`, unclamped. Under uniform decay both halves stay
+/// sharp exactly when `s > 1`, so the weight is `min(s, 1)`; under Chaikin
+/// an edge of `s > 1` whose half decays to 0 at a vertex with softer edges
+/// gets `s` itself, past 1 (`Refinement::reclassifySemisharpVertices`
+/// makes its child a dart; `PrimvarRefiner` passes that rule on).
 fn edge_weight<T: EdgeTable>(ct: &T, decay: &EdgeDecay, c: u32) -> f32 {
     let s = ct.edge_sharpness(c);
-    if s >= 1.0 {
-        return 1.0;
-    }
     let (a, b) = ct.edge_ends(c);
-    if !decay.is_uniform() && decay.at(s, a) > 0.0 && decay.at(s, b) > 0.0 {
+    if s >= INFINITE || (decay.at(s, a) > 0.0 && decay.at(s, b) > 0.0) {
         return 1.0;
     }
     s
