@@ -8,7 +8,7 @@ its results:
 An open 6x6 grid whose crease paths meet at every threshold Sdc::Crease compares
 against: edges of sharpness 0.1, 0.5, 0.7, 1 (the s <= 1 / s < 1 boundary, and
 Chaikin's 3/4 s + 1/4 avg - 1 around it), 1.2, 2.5, 9.5 and 10 (infinite), corners
-of 0.5 and 1. tests/fixtures/catmark/thresholds.obj holds it as quads (Catmull-Clark),
+of 0.5 and 1, a semi-sharp tag on a border edge. tests/fixtures/catmark/thresholds.obj holds it as quads (Catmull-Clark),
 tests/fixtures/creases/thresholds.obj as triangles (Loop). Each gets
 thresholds.{uniform,chaikin}.L{1,2,3}.osd.txt: "# faces N", then the last level's
 "v x y z" lines as `osd_opts IN LEVELS OUT --scheme S --creasing C` wrote them
@@ -36,6 +36,9 @@ def grid(quads):
     tags += [(vid(i, 2), vid(i + 1, 2), s) for i, s in enumerate([2.5, 1, 2.5, 1, 0.5])]
     tags += [(vid(3, j), vid(3, j + 1), s) for j, s in enumerate([1, 1, 2.5, 1, 0.7])]
     tags += [(vid(i, 4), vid(i + 1, 4), s) for i, s in enumerate([10, 9.5, 1.2, 0.1])]
+    # a semi-sharp tag on a border edge (infinitely sharp whatever it says) beside a
+    # semi-sharp interior edge: Chaikin's average at their vertex leaves the border out
+    tags += [(vid(0, 0), vid(1, 0), 0.5), (vid(1, 0), vid(1, 1), 1.5)]
     out += [f"t crease 2/1/0 {a} {b} {s}" for a, b, s in tags]
     out += [f"t corner 1/1/0 {vid(1, 1)} 1", f"t corner 1/1/0 {vid(4, 1)} 0.5"]
     return "\n".join(out) + "\n"
