@@ -179,3 +179,81 @@ fn bad_points_are_refused() {
     let e = Evaluator::new(&poly.triangulated(), Scheme::Bilinear, &Options::default()).err().expect("refused");
     assert!(e.to_string().contains("bilinear"), "{e}");
 }
+
+/// `text` (an OBJ) with every face listed from its corner `r` (mod its size).
+fn rotated_faces(text: &str, r: usize) -> String {
+    let mut out = String::new();
+    for line in text.lines() {
+        match line.strip_prefix("f ") {
+            Some(rest) => {
+                let ids: Vec<&str> = rest.split_whitespace().collect();
+                let k = r % ids.len();
+                out.push_str(&format!("f {} {}\n", ids[k..].join(" "), ids[..k].join(" ")));
+            }
+            None => out.push_str(&format!("{line}\n")),
+        }
+    }
+    out
+}
+
+/// `(u, v)` of a quad's ptex face listed from corner `r` of the first
+/// listing, in the first listing's parameters (corner `i` of the new one
+/// is corner `i + r` of the old: `(0,0) -> corner r`).
+fn unrotate(r: usize, (mut u, mut v): (f64, f64)) -> (f64, f64) {
+    for _ in 0..r % 4 {
+        (u, v) = (1.0 - v, u);
+    }
+    (u, v)
+}
+
+#[test]
+fn ptex_parameters_follow_the_files_corner_order() {
+    let fixtures = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark");
+    let params = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.3, 0.1), (0.8, 0.45)];
+    for name in ["cube.obj", "ngons.obj", "grid.obj"] {
+        let text = std::fs::read_to_string(fixtures.join(name)).unwrap();
+        let first = common::mesh_of(text.as_bytes(), name).unwrap();
+        let ptex = ptex_faces(&PolyMesh::from_mesh(&first).pt);
+        let reference = Evaluator::new(&first, Scheme::CatmullClark, &Options::default()).unwrap();
+        // corner 0 of every quad as the file lists it is its ptex (0, 0):
+        // the limit there is nearer that control vertex than the others'
+        let faces: Vec<Vec<usize>> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("f "))
+            .map(|l| l.split_whitespace().map(|t| t.parse::<usize>().unwrap() - 1).collect())
+            .collect();
+        let mut next_ptex = 0;
+        for face in &faces {
+            if face.len() == 4 {
+                let at = reference.eval(next_ptex, 0.0, 0.0).unwrap().position.as_vec3();
+                let d = |i: usize| (first.positions[face[i]] - at).length();
+                assert!((1..4).all(|i| d(0) < d(i)), "{name} ptex {next_ptex}: (0, 0) is not at its first corner");
+            }
+            next_ptex += if face.len() == 4 { 1 } else { face.len() };
+        }
+        // the same faces listed from every other corner: the same surface,
+        // its parameters turned with the listing
+        for r in 1..6 {
+            let mesh = common::mesh_of(rotated_faces(&text, r).as_bytes(), name).unwrap();
+            let ev = Evaluator::new(&mesh, Scheme::CatmullClark, &Options::default()).unwrap();
+            assert_eq!(ev.num_faces(), ptex.len());
+            for (p, &(f, k)) in ptex.iter().enumerate() {
+                let n = faces[f as usize].len();
+                for &uv in &params {
+                    let (q, (u, v)) = if n == 4 {
+                        (p, unrotate(r, uv))
+                    } else {
+                        // ptex k of the new listing is corner k + r of the old
+                        let k_old = (k as usize + r) % n;
+                        (p - k as usize + k_old, uv)
+                    };
+                    let (a, b) = (ev.eval(p, uv.0, uv.1).unwrap(), reference.eval(q, u, v).unwrap());
+                    assert!(
+                        (a.position - b.position).length() < 1e-9 && a.normal.dot(b.normal) > 1.0 - 1e-9,
+                        "{name} listed from corner {r}: ptex {p} at {uv:?} is not the first listing's ptex {q} at ({u}, {v})"
+                    );
+                }
+            }
+        }
+    }
+}

@@ -259,7 +259,11 @@ fn recover_faces(ct: &CornerTable) -> (Vec<u32>, Vec<u32>, Vec<u32>) {
         // start -> (end, triangle corner): a polygon visits a vertex once,
         // and the group is sorted by start vertex
         let next = |v: u32| group.binary_search_by_key(&v, |e| e.1).ok().map(|i| &group[i]);
-        let (mut v, first) = (group[0].1, group[0].1);
+        // the polygon starts where the file's face did: a face is fanned
+        // from its first corner, so that is corner 0 of its first triangle
+        // (the component's root, its smallest id)
+        let first = Some(ct.vtx(3 * group[0].0)).filter(|&v| next(v).is_some()).unwrap_or(group[0].1);
+        let mut v = first;
         while let Some(&(_, _, end, x)) = next(v) {
             corners.push(v);
             of_corner.push(x);
