@@ -11,7 +11,7 @@ use std::path::PathBuf;
 use subdiv::mesh::poly::PolyMesh;
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
 use subdiv::subdiv::eval::Evaluator;
-use subdiv::subdiv::eval::catmark::ptex_faces;
+use subdiv::subdiv::eval::catmark::{QUAD, ptex_faces};
 use subdiv::subdiv::rules::catmark_limit::frames_at;
 use subdiv::{Mesh, Options, Scheme, subdivide_poly};
 
@@ -252,6 +252,59 @@ fn ptex_parameters_follow_the_files_corner_order() {
                         (a.position - b.position).length() < 1e-9 && a.normal.dot(b.normal) > 1.0 - 1e-9,
                         "{name} listed from corner {r}: ptex {p} at {uv:?} is not the first listing's ptex {q} at ({u}, {v})"
                     );
+                }
+            }
+        }
+    }
+}
+
+/// OpenSubdiv's limit normals (`tan1 x tan2`) at the control vertices of
+/// a limit fixture of level 1 (scripts/osd-fvar-limit-fixtures.py), found
+/// by their level-1 positions (a control vertex keeps its id).
+fn osd_normals(poly: &PolyMesh, opts: &Options, fixture: &str) -> Vec<DVec3> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(fixture);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("l "))
+        .map(|l| l.split_whitespace().map(|t| t.parse().unwrap()).collect())
+        .collect();
+    let (fine, _) = subdivide_poly(poly, Scheme::CatmullClark, 1, opts).unwrap();
+    (0..poly.positions.len())
+        .map(|v| {
+            let p = fine.positions[v].as_dvec3();
+            let r = rows.iter().find(|r| (DVec3::new(r[0], r[1], r[2]) - p).abs().max_element() < 1e-5).unwrap();
+            let (t1, t2) = (DVec3::new(r[6], r[7], r[8]), DVec3::new(r[9], r[10], r[11]));
+            t1.cross(t2).normalize()
+        })
+        .collect()
+}
+
+#[test]
+fn every_corner_of_an_open_or_creased_mesh_has_a_finite_limit_normal() {
+    let truth = [("grid", "grid.limit.uniform.L1.osd.txt"), ("grid corners", "grid.limit.corners.L1.osd.txt")];
+    for (name, poly, opts) in cases() {
+        let ev = Evaluator::new(&poly.triangulated(), Scheme::CatmullClark, &opts).unwrap();
+        let osd = truth.iter().find(|t| t.0 == name).map(|t| osd_normals(&poly, &opts, t.1));
+        let ptex = ptex_faces(&poly.pt);
+        let size = size(&poly);
+        for (p, &(f, k)) in ptex.iter().enumerate() {
+            let corners: Vec<u32> = poly.pt.face_corners(f).collect();
+            for (i, (u, v)) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)].into_iter().enumerate() {
+                let s = ev.eval(p, u, v).unwrap();
+                assert!(s.position.is_finite() && s.normal.is_finite(), "{name} ptex {p} ({u}, {v}): {s:?}");
+                assert!((s.normal.length() - 1.0).abs() < 1e-12, "{name} ptex {p} ({u}, {v}): not a unit normal");
+                let near = ev.eval(p, u + 1e-7 * (0.5 - u), v + 1e-7 * (0.5 - v)).unwrap();
+                assert!((near.position - s.position).length() < 1e-5 * size, "{name} ptex {p} ({u}, {v}): position");
+                // on the open grids, at every control vertex: OpenSubdiv's
+                // limit normal (its tangent masks)
+                let vertex = match k {
+                    QUAD => Some(corners[i]),
+                    _ => (i == 0).then_some(corners[k as usize]),
+                };
+                if let (Some(osd), Some(c)) = (&osd, vertex) {
+                    let want = osd[poly.pt.vtx(c) as usize];
+                    assert!(s.normal.dot(want) > 1.0 - 1e-9, "{name} ptex {p} ({u}, {v}): {} against {want}", s.normal);
                 }
             }
         }

@@ -511,3 +511,62 @@ fn grouped_evaluation_equals_one_point_at_a_time() {
         }
     }
 }
+
+/// The faces of a perturbed level-2 icosphere above `z = -0.35`: an open
+/// cap whose border has vertices of one to five faces.
+fn icosphere_cap(seed: u64) -> Mesh {
+    let s = icosphere(2);
+    let mut rng = Rng(seed);
+    let pos: Vec<Vec3> = s.positions.iter().map(|&p| p + (rng.vec3() - Vec3::splat(0.5)) * 0.2).collect();
+    let tris: Vec<u32> =
+        s.ct.v_table()
+            .chunks_exact(3)
+            .filter(|t| t.iter().all(|&v| pos[v as usize].z > -0.35))
+            .flatten()
+            .copied()
+            .collect();
+    Mesh::from_triangles(pos, &tris).unwrap()
+}
+
+/// Whether the limit surface has one tangent plane at vertex `v` seen
+/// from its faces: not at an infinitely sharp vertex (a cone), a dart or
+/// a corner of three or more infinitely sharp edges, nor at a border
+/// vertex of more than six faces (the rules are not C1 there).
+fn has_tangent_plane(mesh: &Mesh, v: u32) -> bool {
+    let ct = &mesh.ct;
+    let infinite = subdiv::mesh::sharpness::INFINITE;
+    let sharp_vertex = ct.sharpness().is_some_and(|s| s.vertex(v) >= infinite);
+    let fan: Vec<u32> = ct.fan(v).collect();
+    let sharp_edges = fan.iter().filter(|&&c| ct.edge_sharpness(subdiv::mesh::p(c)) >= infinite).count()
+        + usize::from(ct.is_boundary_vertex(v));
+    !sharp_vertex && (sharp_edges == 0 || sharp_edges == 2) && !(ct.is_boundary_vertex(v) && fan.len() > 6)
+}
+
+#[test]
+fn every_corner_of_an_open_or_creased_mesh_has_a_finite_limit_normal() {
+    let mut meshes = featured_meshes();
+    for seed in 1..4 {
+        meshes.push((format!("icosphere cap {seed}"), icosphere_cap(seed), Options::default()));
+    }
+    for (name, mesh, opts) in meshes {
+        let ev = Evaluator::new(&mesh, Scheme::Loop, &opts).unwrap();
+        let size = f64::from(scale(&mesh));
+        for f in 0..mesh.ct.num_triangles() {
+            for (i, (u, v)) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
+                let s = ev.eval(f, u, v).unwrap();
+                assert!(s.position.is_finite() && s.normal.is_finite(), "{name} face {f} corner {i}: {s:?}");
+                assert!((s.normal.length() - 1.0).abs() < 1e-12, "{name} face {f} corner {i}: not a unit normal");
+                // inside the face, towards its centre: the same point and,
+                // where the surface has a tangent plane, the same normal
+                let (nu, nv) = (u + 1e-7 * (1.0 / 3.0 - u), v + 1e-7 * (1.0 / 3.0 - v));
+                let near = ev.eval(f, nu, nv).unwrap();
+                let vert = mesh.ct.vtx(3 * f as u32 + i as u32);
+                assert!((near.position - s.position).length() < 1e-5 * size, "{name} face {f} corner {i}: position");
+                if has_tangent_plane(&mesh, vert) {
+                    let dot = near.normal.dot(s.normal);
+                    assert!(dot > 1.0 - 1e-6, "{name} face {f} corner {i} (vertex {vert}): normals {dot}");
+                }
+            }
+        }
+    }
+}

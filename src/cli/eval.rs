@@ -27,7 +27,9 @@ pub struct EvalArgs {
     #[command(flatten)]
     scheme: SchemeArgs,
     /// Also write the mean and Gaussian curvature (H > 0 on a convex
-    /// surface with outward normals; NaN at an extraordinary vertex itself).
+    /// surface with outward normals; NaN at an extraordinary or sharp vertex
+    /// itself, where the surface has none). Positions and normals are always
+    /// finite.
     #[arg(long)]
     curvature: bool,
     /// Print the times of preparing and evaluating on stderr.

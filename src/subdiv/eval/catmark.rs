@@ -21,9 +21,14 @@
 //!          missing beyond a sharp edge extrapolated as 2 b - i along its
 //!          row or column (OpenSubdiv's regular boundary and corner
 //!          patches, `far/patchBasis.cpp`, `adjustBSplineBoundaryWeights`)
+//! vertex   the point at a corner of F (or nearer than the levels left
+//!          could tell apart) whose vertex is a border, crease or corner
+//!          vertex, on an all-quad level with no semi-sharp feature left:
+//!          the vertex's limit masks (`sector.rs`)
 //! cap      after MAX_LEVELS the point is within 2^-60 of the quad's size
 //!          from an extraordinary or irregular vertex: the position is the
-//!          quad's, the normal its diagonals', derivatives and curvature NaN
+//!          quad's, the normal its diagonals' (the control face's where
+//!          that degenerates), derivatives and curvature NaN
 //! ```
 //!
 //! Near an extraordinary vertex the levels grow as log2 of 1 / distance
@@ -31,6 +36,7 @@
 
 use super::local::{Fans, MAX_LEVELS, apply_rows, fans};
 use super::patch::Jet;
+use super::sector::{at_corner, finite_normal, stationary, vertex_limit};
 use super::{Affine, Sample, finish};
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
@@ -41,7 +47,7 @@ use crate::subdiv::tables::poly_plan::record_one_catmark_level;
 use glam::DVec3;
 
 /// Ptex faces: `(face, corner)`, the corner [`QUAD`] for a quad.
-pub(crate) const QUAD: u32 = u32::MAX;
+pub const QUAD: u32 = u32::MAX;
 
 /// The control polygons as the local subdivision reads them.
 pub(crate) struct Poly {
@@ -98,8 +104,10 @@ impl Poly {
             let Some(next) = extract(&fine, |x| pos[x as usize], region.origin, child) else { return Sample::NAN };
             region = next;
         }
-        for _ in 0..MAX_LEVELS {
-            if let Some(sample) = try_patch(&region.pt, &region.pos, (region.face, region.origin), (st, jac), second) {
+        for level in 0..MAX_LEVELS {
+            if let Some(sample) = try_patch(&region.pt, &region.pos, (region.face, region.origin), (st, jac), second)
+                .or_else(|| at_sharp_vertex(&region, st, level))
+            {
                 return sample;
             }
             let (fine, pos) = subdivide(&region, &self.opts);
@@ -121,9 +129,27 @@ impl Poly {
             + corners[1] * (s * (1.0 - t))
             + corners[2] * (s * t)
             + corners[3] * ((1.0 - s) * t);
-        let normal = (corners[2] - corners[0]).cross(corners[3] - corners[1]).normalize();
-        Sample { position, normal, ..Sample::NAN }
+        let normal = (corners[2] - corners[0]).cross(corners[3] - corners[1]).try_normalize().unwrap_or(DVec3::NAN);
+        let control: Vec<DVec3> = self.pt.face_corners(f).map(|c| self.pos[self.pt.vtx(c) as usize]).collect();
+        let k = control.len();
+        let fallback = (0..k).map(|i| control[i].cross(control[(i + 1) % k])).sum::<DVec3>();
+        Sample { position, normal: finite_normal(normal, [fallback]), ..Sample::NAN }
     }
+}
+
+/// The sample at a corner of the region's quad when the point `st` is
+/// within reach of it (nearer than the levels left to the cap could tell
+/// apart) and its vertex is on a sharp feature that [`vertex_limit`]
+/// evaluates, on an all-quad level whose features are all infinitely sharp.
+fn at_sharp_vertex(region: &Region, (s, t): (f64, f64), level: u32) -> Option<Sample> {
+    if !region.pt.is_quads() || !stationary(region.pt.sharpness()) {
+        return None;
+    }
+    let reach = 0.5f64.powi((MAX_LEVELS - level) as i32);
+    let i = at_corner(&[s.max(t), (1.0 - s).max(t), (1.0 - s).max(1.0 - t), s.max(1.0 - t)], reach)?;
+    let c = region.pt.face_corners(region.face).start + i as u32;
+    let (position, normal) = vertex_limit(&region.pt, |x| region.pos[x as usize], c)?;
+    Some(Sample { position: region.origin + position, normal, ..Sample::NAN })
 }
 
 /// The quadrant of a quad holding `(u, v)`: its corner `k` (whose child

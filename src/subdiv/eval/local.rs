@@ -21,10 +21,15 @@
 //!          2. one vertex is a smooth extraordinary vertex and the other two
 //!             are smooth with valence 6: the power table of its valence
 //!             (`extraordinary.rs`), however close the point is;
-//!          3. otherwise another level; after MAX_LEVELS the point is
+//!          3. the point is at a corner of F (or nearer to it than the
+//!             levels left could tell apart) whose vertex is a border,
+//!             crease or corner vertex, and no semi-sharp feature is left
+//!             in the region: the vertex's limit masks (`sector.rs`);
+//!          4. otherwise another level; after MAX_LEVELS the point is
 //!             within 2^-60 of the face's size from an irregular vertex on
-//!             a sharp feature: its position is the face's (closer to the
-//!             limit than a double resolves), its normal the face's, the
+//!             a sharp feature (a dart, a cone): its position is the face's
+//!             (closer to the limit than a double resolves), its normal the
+//!             face's (the control face's where that degenerates), the
 //!             derivatives and curvature NaN.
 //! ```
 //!
@@ -39,6 +44,7 @@
 use super::extraordinary::Extraordinary;
 use super::level1::walk;
 use super::patch::{self, BoxSpline, SUPPORT};
+use super::sector::{at_corner, finite_normal, stationary, vertex_limit};
 use super::{Affine, Sample, finish, near_vertex, rotation};
 use crate::mesh::sharpness::{INFINITE, Sharpness};
 use crate::mesh::{CornerTable, Mesh, n, p};
@@ -370,7 +376,7 @@ pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), sec
     let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
     // a face already regular needs no region
     let at = At { ct: &base.ct, pos: control, origin: DVec3::ZERO, face: f };
-    if let Some(sample) = try_patch(&at, st, jac, tables, second) {
+    if let Some(sample) = try_patch(&at, st, jac, tables, second).or_else(|| at_sharp_vertex(&at, st, 0)) {
         return sample;
     }
     let Some(mut region) = extract(&base.ct, control, DVec3::ZERO, f) else { return Sample::NAN };
@@ -378,7 +384,7 @@ pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), sec
         if level > 0 {
             let at =
                 At { ct: &region.ct, pos: |v: u32| region.pos[v as usize], origin: region.origin, face: region.face };
-            if let Some(sample) = try_patch(&at, st, jac, tables, second) {
+            if let Some(sample) = try_patch(&at, st, jac, tables, second).or_else(|| at_sharp_vertex(&at, st, level)) {
                 return sample;
             }
         }
@@ -399,7 +405,24 @@ pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), sec
     let corner = |i: u32| region.pos[region.ct.vtx(3 * region.face + i) as usize];
     let (a, b, c) = (corner(0), corner(1), corner(2));
     let position = region.origin + a * (1.0 - st.0 - st.1) + b * st.0 + c * st.1;
-    Sample { position, normal: (b - a).cross(c - a).normalize(), ..Sample::NAN }
+    let control_face = [0, 1, 2].map(|i| control(base.ct.vtx(3 * f + i)));
+    let normal = (b - a).cross(c - a).try_normalize().unwrap_or(DVec3::NAN);
+    let fallback = (control_face[1] - control_face[0]).cross(control_face[2] - control_face[0]);
+    Sample { position, normal: finite_normal(normal, [fallback]), ..Sample::NAN }
+}
+
+/// The sample at a corner of `at`'s face when the point `st` is within
+/// reach of it (nearer than the levels left to the cap could tell apart)
+/// and its vertex is on a sharp feature that [`vertex_limit`] evaluates,
+/// on a level whose features are all infinitely sharp.
+fn at_sharp_vertex<P: Fn(u32) -> DVec3>(at: &At<P>, (s, t): (f64, f64), level: u32) -> Option<Sample> {
+    if !stationary(at.ct.sharpness()) {
+        return None;
+    }
+    let reach = 0.5f64.powi((MAX_LEVELS - level) as i32);
+    let i = at_corner(&[s + t, 1.0 - s, 1.0 - t], reach)?;
+    let (position, normal) = vertex_limit(at.ct, &at.pos, 3 * at.face + i as u32)?;
+    Some(Sample { position: at.origin + position, normal, ..Sample::NAN })
 }
 
 #[cfg(test)]

@@ -42,6 +42,7 @@ mod level1;
 mod local;
 mod patch;
 mod points;
+mod sector;
 mod vertices;
 
 pub use points::{Domain, EDGE_SLACK, parse_points, parse_points_in};

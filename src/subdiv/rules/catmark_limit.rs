@@ -233,7 +233,7 @@ impl Ring {
                 let ia = self.e.iter().position(|&x| x == a);
                 let ib = self.e.iter().position(|&x| x == b);
                 match (ia, ib) {
-                    (Some(ia), Some(ib)) => crease(v, &e, &f, ia.min(ib), ia.max(ib)),
+                    (Some(ia), Some(ib)) => crease_frame(v, &e, &f, ia.min(ib), ia.max(ib)),
                     _ => corner(v, &e),
                 }
             }
@@ -343,7 +343,7 @@ pub fn smooth_tangent_weights(n: usize) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// The crease masks for the crease through edges `a < b`.
-fn crease(v: DVec3, e: &[DVec3], f: &[DVec3], a: usize, b: usize) -> (DVec3, DVec3, DVec3) {
+pub(crate) fn crease_frame(v: DVec3, e: &[DVec3], f: &[DVec3], a: usize, b: usize) -> (DVec3, DVec3, DVec3) {
     let position = v * (2.0 / 3.0) + (e[a] + e[b]) * (1.0 / 6.0);
     let tan1 = (e[a] - e[b]) * 0.5;
     let (wv, we, wf) = crease_across_weights(b - a);
