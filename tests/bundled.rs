@@ -131,11 +131,19 @@ mod installed {
             if !needs_repair {
                 assert!(info.contains("manifold:        yes"), "{name}: {info}");
             }
-            // a description that gives the triangle count tells the truth
-            if let Some(k) = m.what.split(" triangles").next().and_then(|s| s.rsplit(' ').next()?.parse::<usize>().ok())
-            {
-                assert_eq!(faces, k, "{name}: described as {k} triangles");
+            // a description that gives the triangle or quad count tells the truth
+            for kind in [" triangles", " quads"] {
+                let count = m.what.split(kind).next().and_then(|s| s.rsplit(' ').next()?.parse::<usize>().ok());
+                if let Some(k) = count.filter(|_| m.what.contains(kind)) {
+                    assert_eq!(faces, k, "{name}: described as {k}{kind}");
+                }
             }
+            // the triangles Loop refines: the faces, or their fans for a file of polygons
+            let mut json_args = args.clone();
+            json_args.push("--json");
+            let v: serde_json::Value = serde_json::from_str(&bin.ok(&json_args)).unwrap();
+            let triangles = v.get("triangulated").unwrap_or(&v)["faces"].as_u64().unwrap() as usize;
+            assert_eq!(v["faces"].as_u64(), Some(faces as u64), "{name}: {v}");
             // and it subdivides from memory, the output written where we run
             let out = format!("{}-1.obj", m.file_name.replace('.', "_"));
             let mut args = vec!["subdivide", &name, &out, "-n", "1"];
@@ -144,7 +152,7 @@ mod installed {
             }
             bin.ok(&args);
             let fine = subdiv::io::load(&bin.dir.join(&out)).unwrap();
-            assert_eq!(fine.ct.num_triangles(), 4 * faces, "{name}");
+            assert_eq!(fine.ct.num_triangles(), 4 * triangles, "{name}");
         }
         let o = bin.run(&["info", "bundled:no-such.obj"]);
         let err = String::from_utf8_lossy(&o.stderr);

@@ -525,3 +525,141 @@ fn isolines_take_a_count_from_1_to_50_on_a_curvature_colouring_only() {
     let help = bin().args(["render", "--help"]).output().unwrap();
     assert!(String::from_utf8_lossy(&help.stdout).contains("--isolines <N>"));
 }
+
+/// The help text of `option` in `subdiv CMD --help` (on the option's line,
+/// or the paragraph under it in the long form).
+fn option_help(cmd: &str, option: &str) -> String {
+    let o = bin().args([cmd, "--help"]).output().unwrap();
+    let help = String::from_utf8(o.stdout).unwrap();
+    let mut lines = help.lines().skip_while(|l| !l.trim_start().starts_with(option));
+    let first = lines.next().unwrap_or_else(|| panic!("{cmd} --help has no {option}:\n{help}"));
+    let rest = first.trim_start()[option.len()..].trim();
+    if !rest.is_empty() {
+        return rest.to_string();
+    }
+    lines.take_while(|l| !l.trim().is_empty()).collect::<Vec<_>>().join(" ")
+}
+
+/// The single-word values a help text lists: its items (split at commas,
+/// colons, semicolons, full stops and "or") once the parenthesised remarks
+/// and clap's `[default: ...]` are dropped.
+fn listed_values(help: &str) -> Vec<String> {
+    let mut bare = String::new();
+    let mut depth = 0;
+    for c in help.chars() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            _ if depth == 0 => bare.push(c),
+            _ => {}
+        }
+    }
+    bare.split([',', ':', ';', '.'])
+        .flat_map(|item| item.split(" or "))
+        .map(str::trim)
+        .filter(|w| !w.is_empty() && w.chars().all(|c| c.is_ascii_lowercase() || c == '-'))
+        .map(str::to_string)
+        .collect()
+}
+
+#[cfg(feature = "viewer")]
+#[test]
+fn the_help_of_color_lists_every_colouring_it_takes() {
+    use subdiv::app::display::Coloring;
+    for cmd in ["render", "view"] {
+        let help = option_help(cmd, "--color <COLOR>");
+        let values = listed_values(&help);
+        assert!(values.iter().any(|v| v == "auto"), "{cmd}: {help}");
+        let mut named = Vec::new();
+        for v in values.iter().filter(|v| *v != "auto") {
+            let c: Coloring = v.parse().unwrap_or_else(|e| panic!("{cmd} --color lists {v}: {e}"));
+            named.push(c);
+        }
+        for c in Coloring::ALL {
+            assert!(named.contains(&c), "{cmd} --help leaves out the colouring {c:?} ({}): {help}", c.name());
+        }
+        for curvature in ["mean-curvature", "gaussian-curvature", "min-curvature", "max-curvature"] {
+            assert!(values.iter().any(|v| v == curvature), "{cmd}: {help}");
+        }
+    }
+}
+
+#[test]
+fn the_help_of_scheme_and_limit_lists_every_name() {
+    for cmd in ["view", "subdivide", "render", "animate", "eval"] {
+        let values = listed_values(&option_help(cmd, "-s, --scheme <SCHEME>"));
+        for s in subdiv::Scheme::ALL {
+            assert!(values.iter().any(|v| v == s.name()), "{cmd} --scheme leaves out {s}: {values:?}");
+        }
+        for v in &values {
+            assert!(v.parse::<subdiv::Scheme>().is_ok(), "{cmd} --scheme lists {v}");
+        }
+    }
+    let values = listed_values(&option_help("info", "--limit <NAME=VALUE>"));
+    for (name, _) in subdiv::io::LIMIT_NAMES {
+        assert!(values.iter().any(|v| v == name), "--limit leaves out {name}: {values:?}");
+    }
+}
+
+/// The faces, distinct undirected edges and valence histogram (vertex
+/// count by number of edges) of the OBJ text `obj`, read here directly.
+fn obj_polygon_counts(obj: &str) -> (usize, usize, std::collections::BTreeMap<usize, usize>) {
+    use std::collections::{BTreeMap, BTreeSet};
+    let mut faces = 0;
+    let mut edges = BTreeSet::new();
+    for line in obj.lines() {
+        let Some(rest) = line.strip_prefix("f ") else { continue };
+        faces += 1;
+        let ids: Vec<u32> = rest.split_whitespace().map(|t| t.split('/').next().unwrap().parse().unwrap()).collect();
+        for (k, &a) in ids.iter().enumerate() {
+            let b = ids[(k + 1) % ids.len()];
+            edges.insert((a.min(b), a.max(b)));
+        }
+    }
+    let mut degree: BTreeMap<u32, usize> = BTreeMap::new();
+    for &(a, b) in &edges {
+        *degree.entry(a).or_default() += 1;
+        *degree.entry(b).or_default() += 1;
+    }
+    let mut valence = BTreeMap::new();
+    for &d in degree.values() {
+        *valence.entry(d).or_insert(0) += 1;
+    }
+    (faces, edges.len(), valence)
+}
+
+#[test]
+fn info_counts_the_files_own_polygons_first() {
+    let obj = std::fs::read_to_string(model_path("critter.obj")).unwrap();
+    let (faces, edges, valence) = obj_polygon_counts(&obj);
+    assert_eq!(faces, 172, "the critter is 172 quads");
+    assert!(obj.lines().filter(|l| l.starts_with("f ")).all(|l| l.split_whitespace().count() == 5), "all quads");
+    let o = bin().args(["info", "bundled:critter.obj"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = String::from_utf8(o.stdout).unwrap();
+    let hist: Vec<String> = valence.iter().map(|(k, c)| format!("{k}:{c}")).collect();
+    assert!(s.contains(&format!("\nedges:           {edges}\n")), "{s}");
+    assert!(s.contains("\nfaces:           172 (by corners 4:172"), "{s}");
+    assert!(s.contains(&format!("\nvalence:         {}\n", hist.join(" "))), "{s}");
+    // the fan's edges (a diagonal more per quad) are not what info gives
+    assert!(!s.contains(&(edges + faces).to_string()), "{s}");
+    // --json: the file's own counts on top, the fan's under `triangulated`
+    let o = bin().args(["info", "--json", "bundled:critter.obj"]).output().unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("info --json is JSON");
+    assert_eq!((v["faces"].as_u64(), v["edges"].as_u64()), (Some(172), Some(edges as u64)), "{v}");
+    for (k, &n) in &valence {
+        assert_eq!(v["valence"][k.to_string()].as_u64(), Some(n as u64), "valence {k}: {v}");
+    }
+    assert_eq!(v["valence"].as_object().unwrap().len(), valence.len(), "{v}");
+    let t = &v["triangulated"];
+    assert_eq!((t["faces"].as_u64(), t["edges"].as_u64()), (Some(344), Some((edges + faces) as u64)), "{v}");
+    // a file of triangles has no `triangulated`, and its counts are its own
+    let o = bin().args(["info", "--json", "bundled:torus.obj"]).output().unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v.get("triangulated").is_none() && v["faces"].as_u64() == Some(1024), "{v}");
+    // one-face corners are the polygons': a 3x4 quad grid has four
+    let grid = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark/grid.obj");
+    let o = bin().args(["info", grid.to_str().unwrap(), "--boundary", "edge-and-corner"]).output().unwrap();
+    let s = String::from_utf8(o.stdout).unwrap();
+    assert!(s.contains("4 sharp vertices; 4 corners"), "{s}");
+}

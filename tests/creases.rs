@@ -1,4 +1,4 @@
-//! Sharp features (creases.md): Loop against OpenSubdiv 3.5's own output,
+//! Sharp features (docs/sharp-features.md): Loop against OpenSubdiv 3.5's own output,
 //! and the mathematics every scheme must keep with creases.
 mod common;
 
@@ -142,7 +142,7 @@ fn torus_with_loop(sharpness: f32) -> (Mesh, Vec<u32>) {
 #[test]
 fn a_loop_crease_is_the_cubic_b_spline_of_its_polygon() {
     // Loop: crease vertices 1/8, 3/4, 1/8 of their crease neighbours, crease
-    // edges 1/2, 1/2 (creases.md 3): check against the polygon directly
+    // edges 1/2, 1/2 (docs/sharp-features.md §6.1): check against the polygon directly
     let (m, ring) = torus_with_loop(INFINITE);
     let fine = sub(&m, Scheme::Loop, 1, &Options::default());
     let neighbours = |v: u32| -> Vec<u32> { m.ct.ring(v).filter(|q| ring.contains(q)).collect() };
@@ -429,13 +429,26 @@ fn the_crease_angle_finds_the_cube_edges_and_info_counts_them() {
     assert_eq!(s.sharp_edges, 6);
     assert_eq!(s.infinite_edges, 1);
     assert!(s.darts >= 2 && s.crease_vertices >= 2, "{s:?}");
-    // edge-and-corner makes the open grid's four corners sharp
+    // edge-and-corner makes the open grid's corners of one triangle sharp
+    // (two; the other two have two triangles each)
     let grid = load("grid_open.obj");
     let (a, b) = (
         subdiv::subdiv::rules::features::summary(&grid.ct, BoundaryInterpolation::EdgeOnly),
         subdiv::subdiv::rules::features::summary(&grid.ct, BoundaryInterpolation::EdgeAndCorner),
     );
     assert_eq!(b.sharp_vertices, a.sharp_vertices + 2, "{a:?} {b:?}");
+    // on polygons, the corners of one polygon: all four of a quad grid's,
+    // though its fan gives two of them two triangles
+    let quads =
+        subdiv::io::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark/grid.obj")).unwrap();
+    let pt = subdiv::mesh::poly::PolyTable::from_corner_table(&quads.ct);
+    let (a, b) = (
+        subdiv::subdiv::rules::features::poly_summary(&pt, BoundaryInterpolation::EdgeOnly),
+        subdiv::subdiv::rules::features::poly_summary(&pt, BoundaryInterpolation::EdgeAndCorner),
+    );
+    assert_eq!((b.sharp_vertices, b.corners), (a.sharp_vertices + 4, a.corners + 4), "{a:?} {b:?}");
+    let fan = subdiv::subdiv::rules::features::summary(&quads.ct, BoundaryInterpolation::EdgeAndCorner);
+    assert_eq!(fan.sharp_vertices, 2, "{fan:?}");
 }
 
 #[test]

@@ -7,6 +7,7 @@
 use std::path::Path;
 use subdiv::io::{Limits, Loaded, ReadOptions, Topology};
 use subdiv::mesh::attributes::Attributes;
+use subdiv::subdiv::eval::color::CurvatureKind;
 use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
 
 /// How a mesh is read.
@@ -24,12 +25,18 @@ pub struct InputArgs {
 /// The reading budget.
 #[derive(clap::Args, Clone, Default)]
 pub struct LimitArgs {
-    /// Set a reading limit, NAME=VALUE (repeatable; sizes take K, M, G):
-    /// file-bytes, total-bytes, vertices, faces, face-size, materials,
-    /// libraries, texture-pixels, node-visits, message-chars. The defaults
-    /// scale with the free memory.
-    #[arg(long = "limit", value_name = "NAME=VALUE", value_parser = parse_limit)]
+    // the help lists subdiv::io::LIMIT_NAMES, the names parse_limit takes
+    #[arg(long = "limit", value_name = "NAME=VALUE", value_parser = parse_limit, help = limit_help())]
     pub limit: Vec<(String, u64)>,
+}
+
+/// The help of `--limit`: every name [`parse_limit`] takes.
+fn limit_help() -> String {
+    let names: Vec<&str> = subdiv::io::LIMIT_NAMES.iter().map(|(n, _)| *n).collect();
+    format!(
+        "Set a reading limit, NAME=VALUE (repeatable; sizes take K, M, G): {}. The defaults scale with the free memory",
+        names.join(", ")
+    )
 }
 
 impl LimitArgs {
@@ -118,8 +125,8 @@ impl SubdivArgs {
 /// A scheme and its options.
 #[derive(clap::Args, Clone, Default)]
 pub struct SchemeArgs {
-    /// Scheme: midpoint, loop, butterfly, modified-butterfly, jarek (triangles); catmull-clark (catmark), bilinear (polygons).
-    #[arg(long, short, default_value = "loop")]
+    // the help lists Scheme::TRIANGLE and Scheme::POLYGON by their names
+    #[arg(long, short, default_value = "loop", help = scheme_help())]
     pub scheme: Scheme,
     /// Use Warren's beta for Loop instead of Loop's.
     #[arg(long)]
@@ -135,6 +142,16 @@ pub struct SchemeArgs {
     pub uv: subdiv::subdiv::UvInterpolation,
     #[command(flatten)]
     pub features: FeatureArgs,
+}
+
+/// The help of `--scheme`: every scheme by its command-line name.
+fn scheme_help() -> String {
+    let names = |schemes: &[Scheme]| schemes.iter().map(|s| s.name()).collect::<Vec<_>>().join(", ");
+    format!(
+        "Scheme: {} (triangles); {} (polygons; catmark is catmull-clark)",
+        names(&Scheme::TRIANGLE),
+        names(&Scheme::POLYGON)
+    )
 }
 
 impl SchemeArgs {
@@ -202,12 +219,8 @@ pub fn parse_angle(s: &str) -> std::result::Result<f32, String> {
 /// How a drawing command colours the surface.
 #[derive(clap::Args, Clone)]
 pub struct ColorArgs {
-    /// Colouring: auto (the OBJ's MTL materials when it has usemtl groups,
-    /// else none), none, shells (the level that made each vertex),
-    /// displacement (from the control mesh), file (the file's vertex
-    /// colours), checker (a checker through the file's texture coordinates)
-    /// or material (Kd and map_Kd of the MTL per group, through the refined UVs).
-    #[arg(long, default_value = "auto")]
+    // the help lists COLORINGS and the curvatures by CurvatureKind::name
+    #[arg(long, default_value = "auto", help = color_help())]
     pub color: String,
     /// Draw isolines (contour lines) over a curvature colouring: the zero
     /// level (wider, darker) and N levels on each side, evenly spaced
@@ -217,6 +230,38 @@ pub struct ColorArgs {
     // line of error like every other refusal of the command
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub isolines: Option<String>,
+}
+
+/// The colourings `--color` takes besides the curvatures, each with what it
+/// draws (the viewer's `Coloring` parses them; `auto` is decided by the
+/// model). A unit test below checks that these and [`CURVATURES`] parse and
+/// name every `Coloring`.
+const COLORINGS: [(&str, &str); 7] = [
+    ("auto", "the OBJ's MTL materials when it has usemtl groups, else none"),
+    ("none", ""),
+    ("shells", "the level that made each vertex"),
+    ("displacement", "from the control mesh"),
+    ("file", "the file's vertex colours"),
+    ("checker", "a checker through the file's texture coordinates"),
+    ("material", "Kd and map_Kd of the MTL per group, through the refined UVs"),
+];
+
+/// The curvature colourings, named by [`CurvatureKind::name`].
+const CURVATURES: [CurvatureKind; 4] =
+    [CurvatureKind::Mean, CurvatureKind::Gaussian, CurvatureKind::Min, CurvatureKind::Max];
+
+/// The help of `--color`: every colouring it takes.
+fn color_help() -> String {
+    let plain: Vec<String> = COLORINGS
+        .iter()
+        .map(|(name, what)| if what.is_empty() { name.to_string() } else { format!("{name} ({what})") })
+        .collect();
+    let curvatures: Vec<&str> = CURVATURES.iter().map(|k| k.name()).collect();
+    format!(
+        "Colouring: {}, or a curvature of the exact Loop limit at each drawn vertex (with -s loop): {}",
+        plain.join(", "),
+        curvatures.join(", ")
+    )
 }
 
 impl ColorArgs {
@@ -248,6 +293,7 @@ impl ColorArgs {
 }
 
 /// An isoline count, 1..=50 (`--isolines`).
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
 pub fn parse_isolines(s: &str) -> std::result::Result<u8, String> {
     let most = subdiv::subdiv::eval::color::MAX_ISOLINES;
     let bad = || format!("--isolines '{s}': expected a count of levels per side from 1 to {most}");
@@ -291,8 +337,21 @@ pub fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
 
 #[cfg(all(test, feature = "viewer"))]
 mod tests {
-    use super::ColorArgs;
+    use super::{COLORINGS, CURVATURES, ColorArgs};
     use subdiv::app::display::Coloring;
+
+    #[test]
+    fn the_help_of_color_names_every_coloring() {
+        let mut named = Vec::new();
+        for name in COLORINGS.iter().map(|(n, _)| *n).filter(|&n| n != "auto").chain(CURVATURES.map(|k| k.name())) {
+            let c: Coloring = name.parse().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(!named.contains(&c), "{name}: {c:?} named twice");
+            named.push(c);
+        }
+        for c in Coloring::ALL {
+            assert!(named.contains(&c), "--color's help leaves out {c:?} ({})", c.name());
+        }
+    }
 
     #[test]
     fn color_none_is_asked_for_and_auto_is_not() {

@@ -6,8 +6,11 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use subdiv::io::{ReadOptions, Topology};
-use subdiv::mesh::topology::topology;
-use subdiv::{Error, MeshError, Result, bundled};
+use subdiv::mesh::BoundaryInterpolation;
+use subdiv::mesh::poly::{PolyMesh, PolyTable};
+use subdiv::mesh::topology::{Topology as MeshTopology, topology};
+use subdiv::subdiv::rules::features::{self, Summary};
+use subdiv::{Error, Mesh, MeshError, Result, bundled};
 
 /// `subdiv info` arguments.
 #[derive(clap::Args)]
@@ -25,7 +28,9 @@ pub struct InfoArgs {
     features: SharpArgs,
 }
 
-/// `subdiv info --json` of a mesh.
+/// `subdiv info --json` of a mesh. `edges`, `faces` and `valence` are the
+/// file's own (polygons as the file has them); a file with polygons adds
+/// the triangles the triangle schemes refine as `triangulated`.
 #[derive(Serialize)]
 struct MeshInfo {
     file: String,
@@ -53,6 +58,57 @@ struct MeshInfo {
     #[serde(flatten)]
     sharp: SharpInfo,
     valence: BTreeMap<usize, usize>,
+    /// The fanned triangles, when the file has polygons.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    triangulated: Option<Counts>,
+}
+
+/// Edges, faces and the valence histogram (valence -> vertices) of a mesh.
+#[derive(Serialize)]
+struct Counts {
+    edges: usize,
+    faces: usize,
+    valence: BTreeMap<usize, usize>,
+}
+
+impl Counts {
+    /// The counts of a polygon table.
+    fn polygons(pt: &PolyTable) -> Counts {
+        Counts {
+            edges: pt.num_edges(),
+            faces: pt.num_faces(),
+            valence: histogram(pt.valences().iter().map(|&k| k as usize)),
+        }
+    }
+
+    /// The counts of the triangle table itself.
+    fn triangles(t: &MeshTopology) -> Counts {
+        let valence = t.valence_histogram.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
+        Counts { edges: t.edges, faces: t.faces, valence }
+    }
+}
+
+/// The counts `info` gives of `mesh` (whose topology is `t`): its own
+/// edges, faces and valences, the fan's when it stands for polygons, and
+/// its sharp features. Euler characteristic, genus, borders and components
+/// are the same for the polygons and their fans; edges, faces, valences and
+/// one-face corners are the polygons'.
+fn own_counts(mesh: &Mesh, t: &MeshTopology, boundary: BoundaryInterpolation) -> (Counts, Option<Counts>, Summary) {
+    if !PolyMesh::is_polygonal(mesh) {
+        return (Counts::triangles(t), None, features::summary(&mesh.ct, boundary));
+    }
+    // the triangles joined back across the hidden diagonals (PolyMesh::from_mesh)
+    let pt = PolyTable::from_corner_table(&mesh.ct);
+    (Counts::polygons(&pt), Some(Counts::triangles(t)), features::poly_summary(&pt, boundary))
+}
+
+/// How many of `values` are each value.
+fn histogram(values: impl Iterator<Item = usize>) -> BTreeMap<usize, usize> {
+    let mut h = BTreeMap::new();
+    for k in values {
+        *h.entry(k).or_insert(0) += 1;
+    }
+    h
 }
 
 /// The sharp-feature counts of [`MeshInfo`] (flattened into it).
@@ -148,18 +204,16 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     let face_sizes: BTreeMap<usize, usize> =
         notes.face_sizes.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
     let mesh = a.features.apply(mesh);
-    let sharp = subdiv::subdiv::rules::features::summary(&mesh.ct, a.features.boundary);
     let (nm_edges, nm_vertices) =
         report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));
     let t = topology(&mesh.ct);
-    let valence: BTreeMap<usize, usize> =
-        t.valence_histogram.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
+    let (own, triangulated, sharp) = own_counts(&mesh, &t, a.features.boundary);
     if a.json {
         return print_json(&MeshInfo {
             file: input.display().to_string(),
             vertices: t.vertices,
-            edges: t.edges,
-            faces: t.faces,
+            edges: own.edges,
+            faces: own.faces,
             closed: t.is_closed(),
             boundary_loops: t.boundary_loops,
             border_edges: t.border_edges,
@@ -182,16 +236,20 @@ pub fn info(a: &InfoArgs) -> Result<()> {
                 darts: sharp.darts,
                 crease_vertices: sharp.crease_vertices,
             },
-            valence,
+            valence: own.valence,
+            triangulated,
         });
     }
     println!("file:            {}", input.display());
     println!("format:          {}", loaded.format.name);
     println!("vertices:        {} ({records} records, {dropped} unreferenced dropped)", t.vertices);
-    println!("edges:           {}", t.edges);
-    println!("faces:           {}", t.faces);
-    if notes.fanned > 0 {
-        print_polygons(&mesh, &t, &face_sizes, (notes.faces, notes.fanned));
+    println!("edges:           {}", own.edges);
+    if triangulated.is_some() {
+        let sizes: Vec<String> =
+            face_sizes.iter().map(|(k, c)| format!("{k}{}:{c}", if *k == 8 { "+" } else { "" })).collect();
+        println!("faces:           {} (by corners {}; fanned for the triangle schemes)", own.faces, sizes.join(" "));
+    } else {
+        println!("faces:           {}", own.faces);
     }
     println!("closed:          {}", if t.is_closed() { "yes" } else { "no" });
     println!("boundary loops:  {} ({} border edges)", t.boundary_loops, t.border_edges);
@@ -208,7 +266,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         sharp.darts,
         sharp.crease_vertices
     );
-    let hist: Vec<String> = valence.iter().map(|(k, c)| format!("{k}:{c}")).collect();
+    let hist: Vec<String> = own.valence.iter().map(|(k, c)| format!("{k}:{c}")).collect();
     println!("valence:         {}", hist.join(" "));
     let (lo, hi) = mesh.bounds();
     println!("bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
@@ -216,36 +274,6 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         print!("{r}");
     }
     Ok(())
-}
-
-/// The lines of `info` about the polygons a mesh was read as: the file's
-/// faces by size, and the polygon mesh's edges and valences (what the
-/// polygon schemes refine), beside the triangles' above.
-fn print_polygons(
-    mesh: &subdiv::Mesh,
-    t: &subdiv::mesh::topology::Topology,
-    face_sizes: &BTreeMap<usize, usize>,
-    (faces, fanned): (usize, usize),
-) {
-    let sizes: Vec<String> =
-        face_sizes.iter().map(|(k, c)| format!("{k}{}:{c}", if *k == 8 { "+" } else { "" })).collect();
-    println!(
-        "file faces:      {faces} ({}); {fanned} polygons fanned into triangles for the triangle schemes",
-        sizes.join(" ")
-    );
-    let pt = subdiv::mesh::poly::PolyTable::from_corner_table(&mesh.ct);
-    let mut valence = BTreeMap::new();
-    for &k in pt.valences() {
-        *valence.entry(k).or_insert(0usize) += 1;
-    }
-    let hist: Vec<String> = valence.iter().map(|(k, c)| format!("{k}:{c}")).collect();
-    println!(
-        "polygons:        {} faces, {} edges (the triangles' less {} diagonals), valence {}",
-        pt.num_faces(),
-        t.edges - t.diagonals,
-        t.diagonals,
-        hist.join(" ")
-    );
 }
 
 /// The manifold line of `info`, with the offending ids when there are any.

@@ -33,6 +33,7 @@
 //! that reaches it.
 
 use crate::mesh::edges::EdgeTable;
+use crate::mesh::poly::PolyTable;
 use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
 use crate::mesh::{BORDER, CornerTable, Creasing, owns_edge};
 use rayon::prelude::*;
@@ -299,16 +300,22 @@ fn edge_weight<T: EdgeTable>(ct: &T, decay: &EdgeDecay, c: u32) -> f32 {
 /// single face becomes an infinitely sharp corner (OpenSubdiv's
 /// `TopologyRefinerFactory` does the same before refining); otherwise `ct`.
 pub fn with_boundary_corners(ct: &CornerTable, boundary: BoundaryInterpolation) -> Cow<'_, CornerTable> {
-    if boundary == BoundaryInterpolation::EdgeOnly {
-        return Cow::Borrowed(ct);
-    }
-    let corners: Vec<u32> =
-        (0..ct.num_vertices() as u32).filter(|&v| ct.valence(v) == 2 && ct.is_boundary_vertex(v)).collect();
+    let corners = boundary_corners(ct, boundary);
     if corners.is_empty() {
         return Cow::Borrowed(ct);
     }
     let sharp = Sharpness::with_corners(ct.sharpness().cloned(), &corners);
     Cow::Owned(ct.clone().with_sharpness(sharp))
+}
+
+/// The vertices `boundary` makes corners: with
+/// [`BoundaryInterpolation::EdgeAndCorner`] the boundary vertices with a
+/// single face (two edges, in either table), else none.
+fn boundary_corners<T: EdgeTable>(t: &T, boundary: BoundaryInterpolation) -> Vec<u32> {
+    if boundary == BoundaryInterpolation::EdgeOnly {
+        return Vec::new();
+    }
+    (0..t.num_vertices() as u32).filter(|&v| t.valence(v) == 2 && t.is_boundary_vertex(v)).collect()
 }
 
 /// What `subdiv info` reports of a table's sharp features.
@@ -330,18 +337,35 @@ pub struct Summary {
     pub crease_vertices: usize,
 }
 
-/// Counts the sharp features of `ct` (with `boundary`'s corners).
+/// Counts the sharp features of `ct` (with `boundary`'s corners), as the
+/// triangle schemes see them.
 pub fn summary(ct: &CornerTable, boundary: BoundaryInterpolation) -> Summary {
-    let ct = with_boundary_corners(ct, boundary);
-    let Some(sharp) = ct.sharpness() else { return Summary::default() };
-    let owned = |&&(c, _): &&(u32, f32)| owns_edge(c, ct.o_entry(c)) && ct.o_entry(c) != BORDER;
+    count(&*with_boundary_corners(ct, boundary))
+}
+
+/// Counts the sharp features of the polygon table `pt` (with `boundary`'s
+/// corners), as the polygon schemes see them: `boundary` pins the
+/// vertices of one polygon, where a fan may give a corner two triangles.
+pub fn poly_summary(pt: &PolyTable, boundary: BoundaryInterpolation) -> Summary {
+    let corners = boundary_corners(pt, boundary);
+    if corners.is_empty() {
+        return count(pt);
+    }
+    let sharp = Sharpness::with_corners(pt.sharpness().cloned(), &corners);
+    count(&pt.clone().with_sharpness(sharp))
+}
+
+/// The counts of [`summary`] and [`poly_summary`], corners already applied.
+fn count<T: EdgeTable>(t: &T) -> Summary {
+    let Some(sharp) = t.sharpness() else { return Summary::default() };
+    let owned = |&&(c, _): &&(u32, f32)| owns_edge(c, t.twin_entry(c)) && t.twin_entry(c) != BORDER;
     let mut s = Summary {
         sharp_edges: sharp.sharp_corners().iter().filter(owned).count(),
         infinite_edges: sharp.sharp_corners().iter().filter(owned).filter(|&&(_, x)| x >= INFINITE).count(),
         sharp_vertices: sharp.sharp_vertices().len(),
         ..Summary::default()
     };
-    if let Some(f) = Features::of(&*ct, Creasing::Uniform) {
+    if let Some(f) = Features::of(t, Creasing::Uniform) {
         for v in f.vertices() {
             match v.rule {
                 Rule::Corner => s.corners += 1,
