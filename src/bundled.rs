@@ -85,17 +85,16 @@ pub fn from_arg(arg: &Path) -> Option<&'static Model> {
 }
 
 /// The bytes a model argument names: a bundled model (`bundled:NAME`, from
-/// memory) or a file (read within the default budget).
+/// memory) or a file (through [`io::read_file`], within `limits`).
 ///
 /// # Errors
-/// I/O errors naming the file; an unknown `bundled:` name; over the budget.
-pub fn bytes(arg: &Path) -> Result<std::borrow::Cow<'static, [u8]>> {
+/// As [`io::read_file`]; an unknown `bundled:` name.
+pub fn bytes(arg: &Path, limits: &io::Limits) -> Result<std::borrow::Cow<'static, [u8]>> {
     if let Some(m) = from_arg(arg) {
         return Ok(std::borrow::Cow::Borrowed(m.bytes));
     }
     check_prefix(arg)?;
-    let budget = io::Budget::new(io::Limits::default());
-    io::resolve::read_model(arg, &budget, &arg.display().to_string()).map(std::borrow::Cow::Owned)
+    io::read_file(arg, limits).map(std::borrow::Cow::Owned)
 }
 
 /// An unknown `bundled:` name is an error listing the known ones.
@@ -130,13 +129,13 @@ pub fn load(arg: &Path) -> Result<Mesh> {
     read(arg, &ReadOptions::default()).map(|l| l.mesh)
 }
 
-/// Loads the `.bzc` curve a model argument names.
+/// Loads the `.bzc` curve a model argument names (a file within `limits`).
 ///
 /// # Errors
 /// As [`bytes`] and [`io::bezier::parse_bzc`].
-pub fn load_curve(arg: &Path) -> Result<Vec<glam::Vec2>> {
+pub fn load_curve(arg: &Path, limits: &io::Limits) -> Result<Vec<glam::Vec2>> {
     let file = arg.display().to_string();
-    io::bezier::parse_bzc(io::text(&bytes(arg)?, &file)?, &file)
+    io::bezier::parse_bzc(io::text(&bytes(arg, limits)?, &file)?, &file)
 }
 
 /// The text of the bundled `.paths` for models called `stem`.
@@ -158,13 +157,13 @@ pub enum PathsSource {
 }
 
 impl PathsSource {
-    /// Reads and parses the paths.
+    /// Reads (a file within `limits`) and parses the paths.
     ///
     /// # Errors
-    /// I/O and parse errors naming the file.
-    pub fn load(&self) -> Result<Paths> {
+    /// Read and parse errors naming the file.
+    pub fn load(&self, limits: &io::Limits) -> Result<Paths> {
         match self {
-            PathsSource::File(p) => Paths::load(p),
+            PathsSource::File(p) => Paths::load(p, limits),
             PathsSource::Bundled(stem) => {
                 Paths::parse(paths_text(stem).unwrap_or_default(), &format!("{PREFIX}{stem}.paths"))
             }
@@ -203,7 +202,7 @@ pub fn paths_for(model: &Path) -> Option<PathsSource> {
 pub fn tetrahedron() -> Result<(Mesh, Paths)> {
     let model = model("tetrahedron.obj").ok_or_else(|| crate::Error::Internal("no bundled tetrahedron".into()))?;
     let mesh = model.read(&ReadOptions::default())?.mesh;
-    let paths = PathsSource::Bundled("tetrahedron").load()?;
+    let paths = PathsSource::Bundled("tetrahedron").load(&io::Limits::default())?;
     paths.check_model(&mesh, "bundled:tetrahedron.paths")?;
     Ok((mesh, paths))
 }

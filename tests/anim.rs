@@ -7,7 +7,8 @@ use subdiv::anim::{Animation, Paths, Tweak};
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn tet_paths() -> Paths {
-    Paths::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap()
+    Paths::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths"), &Default::default())
+        .unwrap()
 }
 
 #[test]

@@ -17,7 +17,11 @@ use subdiv::render::{Camera, GpuMesh, Look, Offscreen};
 use subdiv::{Mesh, Options, Scheme};
 
 fn tetrahedron() -> (Mesh, Paths) {
-    let paths = Paths::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
+    let paths = Paths::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths"),
+        &Default::default(),
+    )
+    .unwrap();
     (bundled("tetrahedron.obj"), paths)
 }
 

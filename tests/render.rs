@@ -153,8 +153,11 @@ fn animation_frames_update_in_place_and_move() {
     use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
     let Some(mut off) = offscreen(128, 128) else { return };
     let control = bundled("tetrahedron.obj");
-    let paths =
-        Paths::load(&std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths")).unwrap();
+    let paths = Paths::load(
+        &std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("paths/tetrahedron.paths"),
+        &Default::default(),
+    )
+    .unwrap();
     let mut anim = Animation::new(&control, &paths, Tweak::Jarek, 2, Scheme::Loop, 3, &Options::default()).unwrap();
     let (topo, p, n) = anim.evaluate_with_topology(0);
     let mut g = subdiv::render::GpuMesh::new(&off.gpu.device, topo, p, n).unwrap();

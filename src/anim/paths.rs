@@ -10,7 +10,7 @@
 //! the header before allocating; [`Paths::check_model`] checks the vertex
 //! count against the model.
 
-use crate::io::atomic_write;
+use crate::io::{Limits, atomic_write};
 use crate::{Error, Mesh, Result};
 use glam::Vec3;
 use std::io::Write;
@@ -93,12 +93,13 @@ impl Paths {
         Ok(Paths { keys_per_vertex: k, keys })
     }
 
-    /// Loads a `.paths` file.
+    /// Loads a `.paths` file through the reading pipeline
+    /// ([`crate::io::read_text_file`]): a regular file within `limits`.
     ///
     /// # Errors
-    /// See [`Paths::parse`].
-    pub fn load(path: &Path) -> Result<Paths> {
-        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    /// As [`crate::io::read_file`] and [`Paths::parse`].
+    pub fn load(path: &Path, limits: &Limits) -> Result<Paths> {
+        let text = crate::io::read_text_file(path, limits)?;
         Self::parse(&text, &path.display().to_string())
     }
 

@@ -374,7 +374,7 @@ impl Jobs {
 
 /// A `.bzc` file as a curve with the default view of its construction.
 fn load_curve(path: &std::path::Path) -> Result<Curve> {
-    bundled::load_curve(path).map(|control| Curve {
+    bundled::load_curve(path, &crate::io::Limits::default()).map(|control| Curve {
         name: path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
         control,
         segments: 64,
@@ -406,7 +406,7 @@ pub(crate) fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened>
     let mesh = loaded.mesh;
     let paths = match bundled::paths_for(path) {
         Some(p) => {
-            let paths = p.load()?;
+            let paths = p.load(&opts.limits)?;
             // A .paths for another vertex count is ignored (a generated one is used).
             paths.check_model(&mesh, &p.describe()).ok().map(|_| paths)
         }

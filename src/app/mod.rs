@@ -151,7 +151,7 @@ fn open_initial(viewer: &mut Viewer, opts: &ViewOptions) -> Result<()> {
     }
     if let Some(p) = &opts.paths {
         let doc = &mut viewer.doc;
-        let paths = crate::anim::paths::Paths::load(p)?;
+        let paths = crate::anim::paths::Paths::load(p, &crate::io::Limits::default())?;
         paths.check_model(&doc.model.control.mesh, &p.display().to_string())?;
         doc.anim.paths = paths;
         doc.anim.paths_source = p.display().to_string();

@@ -131,7 +131,7 @@ fn model(a: &AnimateArgs) -> Result<(Mesh, Attributes, Option<Paths>)> {
     let (mesh, attrs) = (loaded.mesh, loaded.attributes);
     let beside = match bundled::paths_for(m) {
         Some(src) => {
-            let paths = src.load()?;
+            let paths = src.load(&a.from.limits.limits()?)?;
             paths.check_model(&mesh, &src.describe())?;
             Some(paths)
         }
@@ -149,7 +149,7 @@ fn animation_of(a: &AnimateArgs) -> Result<(Mesh, Attributes, Paths, Animation)>
     let mesh = s.features.apply(mesh);
     let paths = match (&a.paths, default_paths) {
         (Some(p), _) => {
-            let paths = Paths::load(p)?;
+            let paths = Paths::load(p, &a.from.limits.limits()?)?;
             paths.check_model(&mesh, &p.display().to_string())?;
             paths
         }

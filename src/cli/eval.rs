@@ -4,9 +4,9 @@
 use super::args::{InputArgs, SchemeArgs};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
-use subdiv::io::{Budget, resolve::Resolver, write_rows};
+use subdiv::Result;
+use subdiv::io::write_rows;
 use subdiv::subdiv::eval::{Evaluator, parse_points_in};
-use subdiv::{Error, Result};
 
 /// `subdiv eval` arguments.
 #[derive(clap::Args)]
@@ -42,14 +42,8 @@ pub fn eval(a: &EvalArgs) -> Result<()> {
     let mesh = a.scheme.features.apply(a.from.load(&a.input)?);
     let limits = a.from.limits.limits()?;
     let max_points = limits.get("vertices").unwrap_or(u64::MAX);
-    let budget = Budget::new(limits);
     let shown = a.points.display().to_string();
-    let bytes = Resolver::new(&shown, None, &budget).read(&a.points, None, "points")?;
-    let text = String::from_utf8(bytes).map_err(|e| Error::Parse {
-        file: shown.clone(),
-        line: 1,
-        msg: format!("not UTF-8 text: {e}"),
-    })?;
+    let text = subdiv::io::read_text_file(&a.points, &limits)?;
     let start = Instant::now();
     let ev = Evaluator::new(&mesh, a.scheme.scheme, &a.scheme.options())?;
     let prepared = start.elapsed();

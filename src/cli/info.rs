@@ -162,8 +162,8 @@ fn is_curve(input: &Path) -> bool {
 
 /// `subdiv info` of a `.bzc` Bezier curve: control points, degree, ends,
 /// the point at t = 1/2 and the polyline length.
-fn curve_info(input: &Path, json: bool) -> Result<()> {
-    let control = bundled::load_curve(input)?;
+fn curve_info(input: &Path, limits: &subdiv::io::Limits, json: bool) -> Result<()> {
+    let control = bundled::load_curve(input, limits)?;
     let at = |t: f32| subdiv::io::bezier::de_casteljau(&control, t).unwrap_or_default();
     let (first, mid, last) = (at(0.0), at(0.5), at(1.0));
     let length: f32 =
@@ -186,7 +186,7 @@ fn curve_info(input: &Path, json: bool) -> Result<()> {
 pub fn info(a: &InfoArgs) -> Result<()> {
     let input = a.input.as_path();
     if is_curve(input) {
-        return curve_info(input, a.json);
+        return curve_info(input, &a.from.limits.limits()?, a.json);
     }
     let read = |topology| {
         let opts = ReadOptions { topology, attributes: false, ..a.from.options(false)? };

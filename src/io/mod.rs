@@ -381,6 +381,29 @@ pub fn load(path: &Path) -> Result<Mesh> {
     read(Source::File(path), &ReadOptions::default()).map(|l| l.mesh)
 }
 
+/// The bytes of a file the user names besides a model (key paths, a
+/// curve, evaluation points), read as models are: a regular file only,
+/// opened without blocking, within `limits` (`file-bytes`).
+///
+/// # Errors
+/// One line naming the file: not a regular file (a device, a pipe or a
+/// folder), an I/O error, or over the budget.
+pub fn read_file(path: &Path, limits: &Limits) -> Result<Vec<u8>> {
+    let budget = Budget::new(*limits);
+    resolve::read_model(path, &budget, &path.display().to_string())
+}
+
+/// [`read_file`] as text; invalid UTF-8 is a parse error at its line.
+///
+/// # Errors
+/// As [`read_file`] and [`text`].
+pub fn read_text_file(path: &Path, limits: &Limits) -> Result<String> {
+    let bytes = read_file(path, limits)?;
+    text(&bytes, &path.display().to_string())?;
+    // valid UTF-8, checked above
+    Ok(String::from_utf8(bytes).unwrap_or_default())
+}
+
 /// The bytes of `file` as text; invalid UTF-8 is a parse error at its line.
 ///
 /// # Errors

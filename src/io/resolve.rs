@@ -1,5 +1,7 @@
-//! The one place where a file that a model names is found and read: MTL
-//! libraries and their textures, glTF buffers and images, COLLADA images.
+//! The one place where a file is found and read: the files the user names
+//! (models, key paths, curves, evaluation points: [`super::read_file`]) and
+//! those a model names (MTL libraries and their textures, glTF buffers and
+//! images, COLLADA images).
 //!
 //! - Only regular files are read: a device (`/dev/zero`), a FIFO, a socket
 //!   or a folder is refused. Files are opened without blocking (a FIFO with
@@ -206,29 +208,19 @@ pub(crate) fn read_regular(
     Ok(bytes)
 }
 
-/// Reads the model the user named: a regular file as it is, anything else
-/// (standard input, a pipe, a device) as a stream; either way no more than
-/// the budget allows (a stream longer than `file-bytes` is refused when the
-/// limit is reached, never read to its end).
+/// Reads a file the user named (a model, key paths, a curve, evaluation
+/// points): the same rules as the files a model names, a regular file only
+/// (a device, a FIFO, a socket or a folder is refused without blocking),
+/// its length taken from the budget before anything is read.
 ///
 /// # Errors
-/// I/O errors naming the file, or over the budget.
+/// Not a regular file, an I/O error or over the budget, one line naming
+/// the file.
 pub(crate) fn read_model(path: &Path, budget: &Budget, file: &str) -> Result<Vec<u8>> {
-    let f = std::fs::File::open(path).map_err(|e| crate::Error::io(path, e))?;
-    let meta = f.metadata().map_err(|e| crate::Error::io(path, e))?;
-    if meta.is_dir() {
-        return Err(format_err(file, "file", "is a folder, not a model"));
+    if std::fs::metadata(path).is_ok_and(|m| m.is_dir()) {
+        return Err(format_err(file, "file", "is a folder, not a file to read"));
     }
-    let limit = budget.limits().file_bytes;
-    if meta.is_file() {
-        budget.take_bytes(meta.len(), file, "file")?;
-    }
-    let mut bytes = Vec::with_capacity(if meta.is_file() { meta.len() as usize } else { 1 << 16 });
-    f.take(limit.saturating_add(1)).read_to_end(&mut bytes).map_err(|e| crate::Error::io(path, e))?;
-    if !meta.is_file() {
-        budget.take_bytes(bytes.len() as u64, file, "file")?;
-    }
-    Ok(bytes)
+    read_regular(path, None, budget, file, "file")
 }
 
 #[cfg(test)]

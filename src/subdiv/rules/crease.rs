@@ -102,7 +102,8 @@ pub fn vertex_stencil<B: Blend, S: Sink>(b: &B, v: u32, s: &mut S) {
 #[inline]
 pub fn edge_stencil<B: Blend, S: Sink>(b: &B, c: u32, s: &mut S) {
     match b.features().and_then(|f| f.edge(c)) {
-        Some(w) if w == 1.0 => b.crease_edge(c, s),
+        // a crease at this level
+        Some(w) if (w - 1.0).abs() < f32::EPSILON / 2.0 => b.crease_edge(c, s),
         // 0 < w < 1, or w > 1 (Chaikin, a child dart: features::edge_weight)
         Some(w) => {
             b.crease_edge(c, &mut Scaled { sink: s, scale: w });
