@@ -364,3 +364,41 @@ fn isophotes_are_rings_around_the_view_direction() {
     // concentric bands: as many changes across as down, and several of them
     assert!(row >= 6 && row.abs_diff(column) <= 2, "row {row} column {column}");
 }
+
+/// The box of the pixels that are not background: `(x0, y0, x1, y1)`.
+fn object_box(img: &RgbaImage) -> (u32, u32, u32, u32) {
+    let (mut b, (w, h)) = ((u32::MAX, u32::MAX, 0, 0), img.dimensions());
+    for y in 0..h {
+        for x in 0..w {
+            if !is_background(img, x, y) {
+                b = (b.0.min(x), b.1.min(y), b.2.max(x), b.3.max(y));
+            }
+        }
+    }
+    b
+}
+
+/// The fit centres the model's pixels and fits both its width and its
+/// height, at any size and aspect, in perspective and orthographically.
+#[test]
+fn the_fit_centres_the_model_at_every_size() {
+    for (w, h) in [(700, 768), (640, 400), (240, 600), (800, 200)] {
+        let Some(mut off) = offscreen(w, h) else { return };
+        for name in ["torus.obj", "tetrahedron.obj", "critter.obj"] {
+            let (_, mesh) = fine(name, Scheme::Loop, 2);
+            for ortho in [false, true] {
+                let img = render(&mut off, &mesh, None, Shading::Phong.look(), ortho);
+                let (x0, y0, x1, y1) = object_box(&img);
+                let what = format!("{name} {w}x{h} ortho {ortho}: pixels {x0}..{x1} x {y0}..{y1}");
+                assert!(x0 > 0 && y0 > 0 && x1 < w - 1 && y1 < h - 1, "{what}: cut by an edge");
+                // centred to a pixel or two (the rasterised silhouette)
+                let (cx, cy) = (f64::from(x0 + x1) / 2.0, f64::from(y0 + y1) / 2.0);
+                let (ex, ey) = (cx - f64::from(w - 1) / 2.0, cy - f64::from(h - 1) / 2.0);
+                assert!(ex.abs() <= 2.5 && ey.abs() <= 2.5, "{what}: off centre by ({ex}, {ey})");
+                // the tighter side filled to about 90%
+                let fill = (f64::from(x1 - x0 + 1) / f64::from(w)).max(f64::from(y1 - y0 + 1) / f64::from(h));
+                assert!(fill > 0.85 && fill < 0.93, "{what}: fills {fill}");
+            }
+        }
+    }
+}

@@ -425,12 +425,61 @@ fn a_new_model_is_framed_and_an_edit_keeps_the_view() {
     v.apply(Command::Open(common::model_path("cube.obj")));
     settle(&mut v);
     frame(&ctx, &mut v, vec![]);
-    let (lo, hi) = v.doc.model.result.shown.mesh.bounds();
-    assert_eq!(v.view.camera.target, 0.5 * (lo + hi), "a new model is framed");
     let mut framed = zoomed;
-    framed.fit(lo, hi, crate::app::view::viewport_aspect(v.view.scene_rect, false));
-    assert_eq!(v.view.camera.distance, framed.distance);
+    let aspect = crate::app::view::viewport_aspect(v.view.scene_rect, false);
+    framed.fit_points(&v.doc.model.result.shown.mesh.positions, aspect);
+    assert_eq!(v.view.camera, framed, "a new model is framed");
     assert_ne!(v.view.camera.distance, zoomed.distance);
+}
+
+/// Fit (and the first view of a model) centres the model in the 3D area
+/// beside the panel and fills the tighter of its width and height, at any
+/// window size and aspect, in perspective and orthographically.
+#[test]
+fn fit_centres_the_model_beside_the_panel_at_every_window_size() {
+    use crate::render::camera::FIT_FILL;
+    let sizes = [(1024.0, 768.0), (1280.0, 800.0), (700.0, 1000.0), (480.0, 900.0), (1800.0, 500.0)];
+    for model in ["bundled:torus.obj", "bundled:tetrahedron.obj", "bundled:critter.obj"] {
+        for (w, h) in sizes {
+            for orthographic in [false, true] {
+                let ctx = egui::Context::default();
+                let mut v = Viewer::new();
+                v.apply(Command::Open(model.into()));
+                settle(&mut v);
+                v.apply(Command::SetOrthographic(orthographic));
+                frame_sized(&ctx, &mut v, egui::vec2(w, h), vec![]);
+                v.apply(Command::Orbit(glam::Vec2::new(37.0, -12.0)));
+                frame_sized(&ctx, &mut v, egui::vec2(w, h), vec![key(egui::Key::F)]);
+                let rect = v.view.scene_rect;
+                let what = format!("{model} in {w}x{h}, orthographic {orthographic}");
+                assert!(rect.left() > 100.0 && (rect.right() - w).abs() < 1.0, "{what}: the area beside the panel");
+                let aspect = crate::app::view::viewport_aspect(rect, false);
+                let (mut lo, mut hi) = (glam::Vec2::splat(f32::MAX), glam::Vec2::splat(f32::MIN));
+                for &p in &v.doc.model.result.shown.mesh.positions {
+                    let q = v.view.camera.project(p, aspect).truncate();
+                    (lo, hi) = (lo.min(q), hi.max(q));
+                }
+                assert!(
+                    lo.min_element() >= -FIT_FILL - 1e-3 && hi.max_element() <= FIT_FILL + 1e-3,
+                    "{what}: {lo} {hi}"
+                );
+                assert!((lo + hi).abs().max_element() < 5e-3, "{what}: not centred: {lo} {hi}");
+                assert!(((hi - lo) / 2.0).max_element() > FIT_FILL - 5e-3, "{what}: too small: {lo} {hi}");
+            }
+        }
+    }
+}
+
+#[test]
+fn the_first_window_fits_the_screen() {
+    use crate::app::window::initial_size;
+    assert_eq!(initial_size(None), (1280.0, 800.0));
+    assert_eq!(initial_size(Some((1920.0, 1080.0))), (1280.0, 800.0));
+    for (mw, mh) in [(1024.0, 768.0), (800.0, 600.0), (1280.0, 800.0), (1366.0, 768.0), (640.0, 1136.0)] {
+        let (w, h) = initial_size(Some((mw, mh)));
+        assert!(w <= mw && h <= mh, "{w}x{h} on a {mw}x{mh} screen");
+        assert!((w / h - 1.6).abs() < 0.01 || w == 320.0 || h == 240.0, "{w}x{h} keeps the aspect");
+    }
 }
 
 #[test]

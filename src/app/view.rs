@@ -109,8 +109,8 @@ impl View {
             None => {
                 self.fit_curve = false;
                 if self.fit {
-                    let (lo, hi) = doc.model.result.shown.mesh.bounds();
-                    self.camera.fit(lo, hi, viewport_aspect(rect, doc.display.side_by_side));
+                    let points = &doc.model.result.shown.mesh.positions;
+                    self.camera.fit_points(points, viewport_aspect(rect, doc.display.side_by_side));
                     self.fit = false;
                 }
             }

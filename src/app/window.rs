@@ -111,10 +111,26 @@ pub(crate) struct Win {
     pub(crate) repaint_after: Option<Duration>,
 }
 
+/// The window's first size in points: 1280 x 800, or within 90% of the
+/// monitor's `(width, height)` in points where that is smaller, keeping
+/// the aspect (a 1024 x 768 screen gets 921 x 576, never a window that
+/// runs off it).
+pub(crate) fn initial_size(monitor: Option<(f64, f64)>) -> (f64, f64) {
+    let (w, h) = (1280.0, 800.0);
+    let Some((mw, mh)) = monitor.filter(|&(mw, mh)| mw > 0.0 && mh > 0.0) else { return (w, h) };
+    let k = (0.9 * mw / w).min(0.9 * mh / h).min(1.0);
+    ((w * k).round().max(320.0), (h * k).round().max(240.0))
+}
+
 fn open_window(event_loop: &ActiveEventLoop) -> Result<Arc<Window>> {
+    let monitor = event_loop.primary_monitor().or_else(|| event_loop.available_monitors().next()).map(|m| {
+        let (size, scale) = (m.size(), m.scale_factor().max(0.1));
+        (f64::from(size.width) / scale, f64::from(size.height) / scale)
+    });
+    let (w, h) = initial_size(monitor);
     let attrs = Window::default_attributes()
         .with_title("subdiv")
-        .with_inner_size(winit::dpi::LogicalSize::new(1280.0, 800.0))
+        .with_inner_size(winit::dpi::LogicalSize::new(w, h))
         .with_min_inner_size(winit::dpi::LogicalSize::new(320.0, 240.0));
     let window = event_loop.create_window(attrs).map_err(|e| Error::Gpu(format!("cannot open a window: {e}")))?;
     Ok(Arc::new(window))

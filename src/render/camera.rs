@@ -9,6 +9,17 @@ use glam::{Mat4, Vec2, Vec3};
 /// Largest pitch magnitude, so the view never flips over the pole.
 const MAX_PITCH: f32 = 1.55;
 
+/// The share of the view's width or height (the tighter of the two) that
+/// [`Camera::fit_points`] gives the model.
+pub const FIT_FILL: f32 = 0.9;
+
+/// The bounds of the finite points, `None` if there are none.
+fn finite_bounds(points: &[Vec3]) -> Option<(Vec3, Vec3)> {
+    let mut it = points.iter().copied().filter(|p| p.is_finite());
+    let first = it.next()?;
+    Some(it.fold((first, first), |(lo, hi), p| (lo.min(p), hi.max(p))))
+}
+
 /// Orbit camera around a target point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
@@ -43,10 +54,19 @@ impl Default for Camera {
 }
 
 impl Camera {
-    /// A camera looking at the bounds `(lo, hi)` from the default direction.
+    /// A camera looking at the bounds `(lo, hi)` from the default direction
+    /// (see [`Camera::fit`]).
     pub fn framing(lo: Vec3, hi: Vec3, aspect: f32) -> Camera {
         let mut c = Camera::default();
         c.fit(lo, hi, aspect);
+        c
+    }
+
+    /// A camera looking at `points` from the default direction,
+    /// orthographic or not (see [`Camera::fit_points`]).
+    pub fn framing_points(points: &[Vec3], aspect: f32, orthographic: bool) -> Camera {
+        let mut c = Camera { orthographic, ..Camera::default() };
+        c.fit_points(points, aspect);
         c
     }
 
@@ -112,18 +132,88 @@ impl Camera {
         (near, (far - near).normalize_or_zero())
     }
 
-    /// Centres the bounds `(lo, hi)` and moves back until their bounding sphere
-    /// fits the view, keeping the direction.
+    /// [`Camera::fit_points`] on the eight corners of the box `(lo, hi)`
+    /// (a box that is empty or not finite stands for `[-1, 1]^3`).
     pub fn fit(&mut self, lo: Vec3, hi: Vec3, aspect: f32) {
         let (lo, hi) =
             if lo.is_finite() && hi.is_finite() && lo.cmple(hi).all() { (lo, hi) } else { (-Vec3::ONE, Vec3::ONE) };
+        let corners: [Vec3; 8] = std::array::from_fn(|i| {
+            Vec3::new(
+                if i & 1 == 0 { lo.x } else { hi.x },
+                if i & 2 == 0 { lo.y } else { hi.y },
+                if i & 4 == 0 { lo.z } else { hi.z },
+            )
+        });
+        self.fit_points(&corners, aspect);
+    }
+
+    /// Keeps the direction and moves the camera so the projection of
+    /// `points` is centred in a viewport of the given aspect and fills
+    /// [`FIT_FILL`] of it in the tighter of its width and height, in
+    /// perspective or orthographically as the camera is. The centring is a
+    /// few steps of a fixed point (a sideways move shifts near points more
+    /// than far ones in perspective), each exact orthographically; the last
+    /// step only moves back, so every point is inside. Non-finite points
+    /// are skipped; none left frames `[-1, 1]^3`.
+    pub fn fit_points(&mut self, points: &[Vec3], aspect: f32) {
+        let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
+        let (lo, hi) = finite_bounds(points).unwrap_or((-Vec3::ONE, Vec3::ONE));
         self.target = 0.5 * (lo + hi);
         self.radius = (0.5 * (hi - lo).length()).max(1e-4);
-        let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
-        let half = (0.5 * self.fovy).tan();
-        // The tighter of the vertical and horizontal half-angles.
-        let half_min = half.min(half * aspect).atan();
-        self.distance = 1.08 * self.radius / half_min.sin();
+        let t = (0.5 * self.fovy).tan();
+        let (sx, sy) = (t * aspect * FIT_FILL, t * FIT_FILL);
+        for _ in 0..32 {
+            let d = self.fit_distance(points, (sx, sy));
+            self.distance = d;
+            let (right, up) = self.right_up();
+            let Some((x, y)) = self.projected_centre(points, d) else { return };
+            if x.abs().max(y.abs()) <= 1e-6 * self.radius {
+                break;
+            }
+            self.target += right * x + up * y;
+        }
+        self.distance = self.fit_distance(points, (sx, sy));
+    }
+
+    /// The map to the camera's frame about the target: `(x, y, z)`
+    /// across the view and towards the eye.
+    fn in_frame(&self) -> impl Fn(Vec3) -> (f32, f32, f32) + use<> {
+        let ((right, up), back, target) = (self.right_up(), self.back(), self.target);
+        move |p| {
+            let q = p - target;
+            (q.dot(right), q.dot(up), q.dot(back))
+        }
+    }
+
+    /// The least distance from the target at which every finite point
+    /// projects within `(sx, sy)` times the view's half-width and
+    /// half-height and lies in front of the eye.
+    fn fit_distance(&self, points: &[Vec3], (sx, sy): (f32, f32)) -> f32 {
+        let frame = self.in_frame();
+        points.iter().filter(|p| p.is_finite()).fold(1e-4 * self.radius, |d, &p| {
+            let (x, y, z) = frame(p);
+            let across = (x.abs() / sx).max(y.abs() / sy);
+            let need = if self.orthographic { across } else { (z + across).max(z + 1e-3 * self.radius) };
+            d.max(need)
+        })
+    }
+
+    /// The centre of the projection of the finite points at distance `d`,
+    /// as an offset across the view at the target's depth; `None` if no
+    /// point is finite.
+    fn projected_centre(&self, points: &[Vec3], d: f32) -> Option<(f32, f32)> {
+        let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
+        let frame = self.in_frame();
+        for &p in points.iter().filter(|p| p.is_finite()) {
+            let (x, y, z) = frame(p);
+            let k = if self.orthographic { 1.0 } else { d / (d - z) };
+            let q = Vec2::new(x, y) * k;
+            (lo, hi) = (lo.min(q), hi.max(q));
+        }
+        (lo.x <= hi.x).then(|| {
+            let c = 0.5 * (lo + hi);
+            (c.x, c.y)
+        })
     }
 
     /// Orbits by a mouse motion in pixels.
@@ -161,24 +251,76 @@ impl Camera {
 mod tests {
     use super::*;
 
+    /// The extents of `points` in normalised device coordinates.
+    fn ndc_extents(c: &Camera, points: &[Vec3], aspect: f32) -> (Vec2, Vec2) {
+        let mut lo = Vec2::splat(f32::MAX);
+        let mut hi = Vec2::splat(f32::MIN);
+        for &p in points {
+            let q = c.project(p, aspect);
+            assert!(q.z > 0.0 && q.z < 1.0, "{p} -> {q}: outside the depth range");
+            (lo, hi) = (lo.min(q.truncate()), hi.max(q.truncate()));
+        }
+        (lo, hi)
+    }
+
     #[test]
-    fn fit_puts_every_corner_inside_the_view() {
-        let (lo, hi) = (Vec3::new(-1.0, 2.0, 5.0), Vec3::new(3.0, 2.5, 9.0));
-        for aspect in [0.5, 1.0, 2.0] {
-            for yaw in [0.0f32, 1.0, 2.5] {
-                let mut c = Camera { yaw, ..Camera::default() };
-                c.fit(lo, hi, aspect);
-                for i in 0..8 {
-                    let p = Vec3::new(
-                        if i & 1 == 0 { lo.x } else { hi.x },
-                        if i & 2 == 0 { lo.y } else { hi.y },
-                        if i & 4 == 0 { lo.z } else { hi.z },
-                    );
-                    let q = c.project(p, aspect);
-                    assert!(q.x.abs() < 1.0 && q.y.abs() < 1.0 && q.z > 0.0 && q.z < 1.0, "{p} -> {q}");
+    fn fit_centres_the_points_and_fills_the_tighter_side() {
+        let mut rng = 0x2545f4914f6cdd1du64;
+        let mut next = || {
+            rng ^= rng << 13;
+            rng ^= rng >> 7;
+            rng ^= rng << 17;
+            (rng >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let blob: Vec<Vec3> =
+            (0..500).map(|_| Vec3::new(next() * 4.0 - 1.0, next() * 0.5 + 2.0, next() * 3.0 + 5.0)).collect();
+        let tetra = vec![
+            Vec3::new(1.0, 1.0, 1.0),
+            Vec3::new(1.0, -1.0, -1.0),
+            Vec3::new(-1.0, 1.0, -1.0),
+            Vec3::new(-1.0, -1.0, 1.0),
+        ];
+        for points in [&blob, &tetra] {
+            // wide, square, narrow and tall, a phone's portrait
+            for aspect in [2.5, 1.33, 1.0, 0.5, 0.3] {
+                for yaw in [0.0f32, 1.0, 2.5] {
+                    for orthographic in [false, true] {
+                        let mut c = Camera { yaw, orthographic, ..Camera::default() };
+                        c.fit_points(points, aspect);
+                        let (lo, hi) = ndc_extents(&c, points, aspect);
+                        let what = format!("aspect {aspect} yaw {yaw} ortho {orthographic}: {lo} .. {hi}");
+                        assert!(lo.min_element() >= -FIT_FILL - 1e-4 && hi.max_element() <= FIT_FILL + 1e-4, "{what}");
+                        assert!((lo + hi).abs().max_element() < 2e-3, "{what}: not centred");
+                        let fill = ((hi - lo) / 2.0).max_element();
+                        assert!(fill > FIT_FILL - 2e-3, "{what}: fills {fill}");
+                    }
                 }
             }
         }
+    }
+
+    #[test]
+    fn fit_puts_every_corner_of_a_box_inside_the_view() {
+        let (lo, hi) = (Vec3::new(-1.0, 2.0, 5.0), Vec3::new(3.0, 2.5, 9.0));
+        for aspect in [0.5, 1.0, 2.0] {
+            let mut c = Camera::default();
+            c.fit(lo, hi, aspect);
+            let corners: Vec<Vec3> = (0..8)
+                .map(|i| {
+                    Vec3::new(
+                        if i & 1 == 0 { lo.x } else { hi.x },
+                        if i & 2 == 0 { lo.y } else { hi.y },
+                        if i & 4 == 0 { lo.z } else { hi.z },
+                    )
+                })
+                .collect();
+            let (a, b) = ndc_extents(&c, &corners, aspect);
+            assert!(a.min_element() > -1.0 && b.max_element() < 1.0, "{a} {b}");
+        }
+        // nothing finite: the unit box
+        let mut c = Camera::default();
+        c.fit_points(&[Vec3::NAN], 1.0);
+        assert!(c.view().is_finite() && c.distance > 0.0);
     }
 
     #[test]

@@ -251,13 +251,11 @@ impl Shot {
     }
 }
 
-/// The camera an offscreen render uses: the default direction, fitted to the
-/// bounds of `frame` (the control mesh, so every level is framed alike).
+/// The camera an offscreen render uses: the default direction, fitted to
+/// the vertices of `frame` (the control mesh, so every level is framed
+/// alike; a limit surface lies inside its control mesh's hull).
 pub fn default_camera(frame: &Mesh, opts: &RenderOptions) -> Camera {
-    let (lo, hi) = frame.bounds();
-    let mut cam = Camera::framing(lo, hi, opts.width as f32 / opts.height.max(1) as f32);
-    cam.orthographic = opts.orthographic;
-    cam
+    Camera::framing_points(&frame.positions, opts.width as f32 / opts.height.max(1) as f32, opts.orthographic)
 }
 
 /// Renders `mesh` (with `control`'s edges overlaid when given) to an image.
