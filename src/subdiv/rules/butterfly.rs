@@ -28,7 +28,7 @@ pub struct Butterfly;
 /// edge is a border edge, `w` times the ghost `v(n(x)) + v(p(x)) - v(x)`
 /// (the corner's own triangle reflected as a parallelogram).
 #[inline(always)]
-pub(crate) fn outer<S: Sink>(ct: &CornerTable, x: u32, w: f32, s: &mut S) {
+pub(crate) fn outer<S: Sink>(ct: &CornerTable, x: u32, w: f64, s: &mut S) {
     match ct.o(x) {
         Some(y) => s.add(ct.vtx(y), w),
         None => {

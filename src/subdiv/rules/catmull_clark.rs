@@ -56,9 +56,9 @@ impl PolyLevel<'_> {
 
 /// Emits `scale` times face `f`'s point (the average of its vertices).
 #[inline]
-pub fn face_point<S: Sink>(pt: &PolyTable, f: u32, scale: f32, s: &mut S) {
+pub fn face_point<S: Sink>(pt: &PolyTable, f: u32, scale: f64, s: &mut S) {
     let r = pt.face_corners(f);
-    let w = scale / (r.end - r.start) as f32;
+    let w = scale / f64::from(r.end - r.start);
     for c in r {
         s.add(pt.vtx(c), w);
     }
@@ -109,7 +109,7 @@ impl PolyRules for CatmullClark {
             crease_vertex(v, a, b, s);
             return;
         }
-        let n = pt.valences()[v as usize] as f32;
+        let n = f64::from(pt.valences()[v as usize]);
         let w = 1.0 / (n * n);
         s.add(v, (n - 2.0) / n);
         for c in pt.fan(v) {

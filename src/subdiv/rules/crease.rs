@@ -12,12 +12,12 @@ pub struct Scaled<'s, S: Sink> {
     /// The sink weights go to.
     pub sink: &'s mut S,
     /// The factor.
-    pub scale: f32,
+    pub scale: f64,
 }
 
 impl<S: Sink> Sink for Scaled<'_, S> {
     #[inline(always)]
-    fn add(&mut self, v: u32, w: f32) {
+    fn add(&mut self, v: u32, w: f64) {
         self.sink.add(v, w * self.scale);
     }
 }
@@ -71,7 +71,7 @@ impl<R: Rules> Blend for OnLevel<'_, R> {
 }
 
 /// Emits `scale` times the mask `m` of vertex `v`.
-fn emit_mask<B: Blend, S: Sink>(b: &B, v: u32, m: Mask, scale: f32, s: &mut S) {
+fn emit_mask<B: Blend, S: Sink>(b: &B, v: u32, m: Mask, scale: f64, s: &mut S) {
     let mut sc = Scaled { sink: s, scale };
     match m {
         Mask::Smooth => b.smooth_vertex(v, &mut sc),
@@ -89,8 +89,9 @@ pub fn vertex_stencil<B: Blend, S: Sink>(b: &B, v: u32, s: &mut S) {
             if f.parent == f.child || f.weight >= 1.0 {
                 emit_mask(b, v, f.parent, 1.0, s);
             } else {
-                emit_mask(b, v, f.parent, f.weight, s);
-                emit_mask(b, v, f.child, 1.0 - f.weight, s);
+                let w = f64::from(f.weight);
+                emit_mask(b, v, f.parent, w, s);
+                emit_mask(b, v, f.child, 1.0 - w, s);
             }
         }
         _ => b.smooth_vertex(v, s),
@@ -106,6 +107,7 @@ pub fn edge_stencil<B: Blend, S: Sink>(b: &B, c: u32, s: &mut S) {
         Some(w) if (w - 1.0).abs() < f32::EPSILON / 2.0 => b.crease_edge(c, s),
         // 0 < w < 1, or w > 1 (Chaikin, a child dart: features::edge_weight)
         Some(w) => {
+            let w = f64::from(w);
             b.crease_edge(c, &mut Scaled { sink: s, scale: w });
             b.smooth_edge(c, &mut Scaled { sink: s, scale: 1.0 - w });
         }
@@ -160,7 +162,7 @@ pub struct Unsplit<'s, S: Sink> {
 
 impl<S: Sink> Sink for Unsplit<'_, S> {
     #[inline(always)]
-    fn add(&mut self, v: u32, w: f32) {
+    fn add(&mut self, v: u32, w: f64) {
         let v = if v < self.nv { v } else { self.copies[(v - self.nv) as usize] };
         self.sink.add(v, w);
     }

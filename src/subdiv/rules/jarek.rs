@@ -32,7 +32,7 @@ impl Jarek {
     /// `1/8 ((a + b)/2 - v)`, blends in transitions), so that the edge rule
     /// `e = (a + b)/2 - (d_a + d_b)/2` follows whatever rule each end gets.
     #[inline(always)]
-    fn displacement<S: Sink>(ct: &Level, v: u32, scale: f32, s: &mut S) {
+    fn displacement<S: Sink>(ct: &Level, v: u32, scale: f64, s: &mut S) {
         if let Some(f) = ct.features
             && f.vertex(v).is_some()
         {
@@ -45,13 +45,13 @@ impl Jarek {
 
     /// `scale * d_v` with the smooth rule (the boundary rule on the border).
     #[inline(always)]
-    fn smooth_displacement<S: Sink>(ct: &Level, v: u32, scale: f32, s: &mut S) {
+    fn smooth_displacement<S: Sink>(ct: &Level, v: u32, scale: f64, s: &mut S) {
         s.add(v, -scale / 8.0);
         if let Some((q1, q2)) = ct.boundary_neighbours(v) {
             s.add(q1, scale / 16.0);
             s.add(q2, scale / 16.0);
         } else {
-            let w = scale / (8.0 * ct.valences()[v as usize] as f32);
+            let w = scale / (8.0 * f64::from(ct.valences()[v as usize]));
             for c in ct.fan(v) {
                 s.add(ct.vtx(n(c)), w);
             }

@@ -58,20 +58,26 @@ impl LoopBeta {
     }
 }
 
-/// Loop rules with a precomputed beta table.
+/// Loop rules with a precomputed table of the vertex rule's weights.
 pub struct Loop {
-    betas: Vec<f32>,
+    /// `(1 - k beta, beta)` by valence `k`, in f64.
+    weights: Vec<(f64, f64)>,
     kind: LoopBeta,
 }
 
 impl Loop {
     /// Loop rules with the given beta.
     pub fn new(kind: LoopBeta) -> Self {
-        Loop { betas: (0..64).map(|k| kind.beta(k) as f32).collect(), kind }
+        Loop { weights: (0..64).map(|k| Self::weights_of(kind, k)).collect(), kind }
     }
+    fn weights_of(kind: LoopBeta, k: u32) -> (f64, f64) {
+        let beta = kind.beta(k);
+        (1.0 - f64::from(k) * beta, beta)
+    }
+    /// The interior vertex rule's `(centre, neighbour)` weights at valence `k`.
     #[inline(always)]
-    fn beta(&self, k: u32) -> f32 {
-        self.betas.get(k as usize).copied().unwrap_or_else(|| self.kind.beta(k) as f32)
+    fn weights(&self, k: u32) -> (f64, f64) {
+        self.weights.get(k as usize).copied().unwrap_or_else(|| Self::weights_of(self.kind, k))
     }
 }
 
@@ -100,9 +106,8 @@ impl Rules for Loop {
             s.add(q1, 0.125);
             s.add(q2, 0.125);
         } else {
-            let k = ct.valences()[v as usize];
-            let beta = self.beta(k);
-            s.add(v, 1.0 - k as f32 * beta);
+            let (centre, beta) = self.weights(ct.valences()[v as usize]);
+            s.add(v, centre);
             for c in ct.fan(v) {
                 s.add(ct.vtx(n(c)), beta);
             }
@@ -125,9 +130,9 @@ impl Rules for Loop {
             if lv.boundary[v] {
                 pos[v] * 0.75 + sum * 0.125
             } else {
-                let k = lv.valences()[v];
-                let beta = self.beta(k);
-                pos[v] * (1.0 - k as f32 * beta) + sum * beta
+                // the weights as a sink of f32 points rounds them
+                let (centre, beta) = self.weights(lv.valences()[v]);
+                pos[v] * centre as f32 + sum * beta as f32
             }
         });
     }

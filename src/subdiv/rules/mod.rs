@@ -82,8 +82,11 @@ impl std::ops::Deref for Level<'_> {
 
 /// Receives the weights of one stencil.
 pub trait Sink {
-    /// Adds `w` times old vertex `v`.
-    fn add(&mut self, v: u32, w: f32);
+    /// Adds `w` times old vertex `v`. Rules compute their weights in f64;
+    /// a sink of single-precision values rounds each weight to f32 as it
+    /// takes it (so a fast pass that rounds the same weights alike gives
+    /// the same sums), a double-precision one keeps it.
+    fn add(&mut self, v: u32, w: f64);
 }
 
 /// Sums weighted old positions.
@@ -104,25 +107,56 @@ impl<'a> Accumulate<'a> {
 
 impl Sink for Accumulate<'_> {
     #[inline(always)]
-    fn add(&mut self, v: u32, w: f32) {
-        self.sum += self.pos[v as usize] * w;
+    fn add(&mut self, v: u32, w: f64) {
+        self.sum += self.pos[v as usize] * w as f32;
     }
 }
 
-/// Records a stencil as (index, weight) pairs.
+/// Records a stencil as (index, weight) pairs, the weights rounded to f32
+/// (the stencil plans' precision) or kept in f64 (`Record<f64>`).
 #[derive(Default)]
-pub struct Record {
+pub struct Record<W = f32> {
     /// Vertex ids.
     pub idx: Vec<u32>,
     /// Weights.
-    pub w: Vec<f32>,
+    pub w: Vec<W>,
 }
 
-impl Sink for Record {
+/// A weight type a [`Record`] stores.
+pub trait Weight: Copy + Send + Sync + 'static {
+    /// `w` in this type (rounded for f32).
+    fn of(w: f64) -> Self;
+    /// This weight in f64.
+    fn wide(self) -> f64;
+}
+
+impl Weight for f32 {
+    #[inline(always)]
+    fn of(w: f64) -> f32 {
+        w as f32
+    }
+    #[inline(always)]
+    fn wide(self) -> f64 {
+        f64::from(self)
+    }
+}
+
+impl Weight for f64 {
+    #[inline(always)]
+    fn of(w: f64) -> f64 {
+        w
+    }
+    #[inline(always)]
+    fn wide(self) -> f64 {
+        self
+    }
+}
+
+impl<W: Weight> Sink for Record<W> {
     #[inline]
-    fn add(&mut self, v: u32, w: f32) {
+    fn add(&mut self, v: u32, w: f64) {
         self.idx.push(v);
-        self.w.push(w);
+        self.w.push(W::of(w));
     }
 }
 

@@ -49,7 +49,7 @@ use rayon::prelude::*;
 pub struct ModifiedButterfly {
     w: f32,
     /// `ev[k]` = the `k` weights `s_j` for valence `k` (k < 64).
-    ev: Vec<Vec<f32>>,
+    ev: Vec<Vec<f64>>,
 }
 
 /// Zorin's extraordinary weights `s_j` for valence `k` (hard-coded tables for
@@ -84,21 +84,21 @@ pub fn ev_weights(k: u32) -> Vec<f64> {
 impl ModifiedButterfly {
     /// Rules with tension `w` (0 = Zorin's default).
     pub fn new(w: f32) -> Self {
-        ModifiedButterfly { w, ev: (0..64).map(|k| ev_weights(k).into_iter().map(|x| x as f32).collect()).collect() }
+        ModifiedButterfly { w, ev: (0..64).map(ev_weights).collect() }
     }
 
     /// EV stencil around interior vertex `v(x)`, starting at neighbour `v(n(x))`,
     /// scaled by `scale`.
     #[inline]
-    fn ev_rule<S: Sink>(&self, ct: &CornerTable, x: u32, scale: f32, s: &mut S) {
+    fn ev_rule<S: Sink>(&self, ct: &CornerTable, x: u32, scale: f64, s: &mut S) {
         let v = ct.vtx(x);
         let k = ct.valences()[v as usize];
         s.add(v, 0.75 * scale);
         let owned;
-        let ws: &[f32] = match self.ev.get(k as usize) {
+        let ws: &[f64] = match self.ev.get(k as usize) {
             Some(w) => w,
             None => {
-                owned = ev_weights(k).into_iter().map(|x| x as f32).collect::<Vec<_>>();
+                owned = ev_weights(k);
                 &owned
             }
         };
@@ -224,7 +224,7 @@ impl ModifiedButterfly {
     /// `v`, starting at the neighbour across corner `x` (a corner of
     /// `v` in the triangle of the edge).
     #[inline(never)]
-    fn ev_ring(&self, r: &EvRings, v: u32, x: u32, scale: f32, acc: &mut Accumulate) {
+    fn ev_ring(&self, r: &EvRings, v: u32, x: u32, scale: f64, acc: &mut Accumulate) {
         let i = r.evs.binary_search(&v).expect("a RING vertex is listed");
         let (a, b) = (r.start[i] as usize, r.start[i + 1] as usize);
         let (cs, vs) = (&r.corners[a..b], &r.verts[a..b]);
@@ -321,7 +321,7 @@ impl Rules for ModifiedButterfly {
             (true, false) => self.ev_rule(ct, n(c), 1.0, s),
             (false, true) => self.ev_rule(ct, n(o), 1.0, s),
             (false, false) if !bd1 && !bd2 => {
-                let w = self.w;
+                let w = f64::from(self.w);
                 if w == 0.0 {
                     return eight_point(ct, c, o, s);
                 }
