@@ -268,9 +268,16 @@ fn crease_angles_outside_0_to_180_are_refused_by_every_command() {
 #[test]
 fn options_that_would_change_nothing_are_refused() {
     // info counts the control mesh's features and refines nothing: how
-    // semi-sharp creases decay per level has no meaning there
-    let e = clap_refuses(&["info", "bundled:cube.obj", "--creasing", "chaikin"]);
-    assert!(e.contains("unexpected argument '--creasing'"), "{e}");
+    // semi-sharp creases decay per level, the scheme and the levels have a
+    // meaning only for --stencil
+    for opt in [&["--creasing", "chaikin"][..], &["--levels", "2"], &["-s", "catmull-clark"], &["--warren"]] {
+        let args: Vec<&str> = ["info", "bundled:cube.obj"].iter().chain(opt).copied().collect();
+        let e = run_fail(&args);
+        assert!(e.contains(opt[0]) && e.contains("applies to --stencil"), "{e}");
+        let with: Vec<&str> = args.iter().copied().chain(["--stencil", "0"]).collect();
+        let o = bin().args(&with).output().unwrap();
+        assert!(o.status.success(), "{with:?}: {}", String::from_utf8_lossy(&o.stderr));
+    }
     let o = bin().args(["info", "bundled:cube.obj", "--boundary", "edge-and-corner"]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // repair always repairs
@@ -662,4 +669,44 @@ fn info_counts_the_files_own_polygons_first() {
     let o = bin().args(["info", grid.to_str().unwrap(), "--boundary", "edge-and-corner"]).output().unwrap();
     let s = String::from_utf8(o.stdout).unwrap();
     assert!(s.contains("4 sharp vertices; 4 corners"), "{s}");
+}
+
+#[test]
+fn info_prints_the_corner_operators_and_a_stencil_as_json() {
+    let json = |args: &[&str]| -> serde_json::Value {
+        let o = bin().args(args).output().unwrap();
+        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    // a triangle file: corner c is corner c % 3 of the file's triangle c / 3
+    let obj = write("corner-open.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+    let f = obj.to_str().unwrap();
+    let v = json(&["info", f, "--corner", "4", "--json"]);
+    let keys = ["corner", "triangle", "vertex", "n", "p", "o", "l", "r", "s", "u"];
+    assert_eq!(v.as_object().unwrap().keys().collect::<Vec<_>>().len(), keys.len(), "{v}");
+    for k in keys {
+        assert!(v.get(k).is_some(), "{k} missing: {v}");
+    }
+    // triangle 1 is (1, 3, 4) in the file: corner 4 is its second, vertex 3 (0-based 2)
+    assert_eq!((v["triangle"].as_u64(), v["vertex"].as_u64()), (Some(1), Some(2)), "{v}");
+    assert_eq!((v["n"].as_u64(), v["p"].as_u64()), (Some(5), Some(3)), "{v}");
+    // corner 4 faces the border edge (4, 1): o is null; its n faces the diagonal
+    assert!(v["o"].is_null() && v["r"].is_null(), "{v}");
+    assert_eq!(v["l"].as_u64(), Some(1), "{v}");
+    let text = bin().args(["info", f, "--corner", "4"]).output().unwrap();
+    assert!(String::from_utf8_lossy(&text.stdout).contains("s = n(o(n))"));
+    let e = run_fail(&["info", f, "--corner", "6"]);
+    assert!(e.contains("corner 6 out of range") && e.contains("6 corners"), "{e}");
+    // a file of polygons: the polygon table's operators, the file's corners
+    let v = json(&["info", "bundled:critter.obj", "--corner", "5", "--json"]);
+    assert_eq!((v["face"].as_u64(), v["next"].as_u64(), v["prev"].as_u64()), (Some(1), Some(6), Some(4)), "{v}");
+    // a stencil: weights summing to one, the rules by level
+    let v = json(&["info", "bundled:cube.obj", "--stencil", "30", "--levels", "2", "--json"]);
+    assert_eq!((v["vertex"].as_u64(), v["level"].as_u64(), v["scheme"].as_str()), (Some(30), Some(2), Some("loop")));
+    let total: f64 = v["weights"].as_array().unwrap().iter().map(|p| p[1].as_f64().unwrap()).sum();
+    assert!((total - 1.0).abs() < 1e-12, "{v}");
+    assert_eq!(v["position"].as_array().unwrap().len(), 3);
+    assert_eq!(v["rules"][0]["level"].as_u64(), Some(2), "{v}");
+    let v = json(&["info", "bundled:critter.obj", "--stencil", "0", "-n", "1", "-s", "catmull-clark", "--json"]);
+    assert!(v["rules"][1]["rule"].as_str().unwrap().contains("vertex point"), "{v}");
 }

@@ -1,6 +1,6 @@
 //! `subdiv info` (meshes and `.bzc` curves) and `subdiv models`.
 
-use super::args::{InputArgs, SharpArgs};
+use super::args::{InputArgs, SubdivArgs};
 use super::print_json;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -23,9 +23,20 @@ pub struct InfoArgs {
     /// `--repair`: always analyse and describe the repaired mesh, even when the input is valid.
     #[command(flatten)]
     from: InputArgs,
-    /// The sharp features counted (no `--creasing`: info refines nothing).
+    /// The sharp features counted (`--crease-angle`, `--boundary`); the
+    /// scheme, its options and `--levels` are those of `--stencil`.
     #[command(flatten)]
-    features: SharpArgs,
+    sub: SubdivArgs,
+    /// Print Rossignac's corner operators at corner C (n, p, o, l, r, s, u;
+    /// corner C % 3 of triangle C / 3), or the polygon table's (next, prev,
+    /// twin, swing) for a file of polygons, corners in the file's order.
+    #[arg(long, value_name = "C", conflicts_with = "stencil")]
+    corner: Option<u32>,
+    /// Print the weights of vertex V of level --levels (numbered as
+    /// `subdivide` writes that level) over the control vertices, exact, and
+    /// the rule that made it at each level.
+    #[arg(long, value_name = "V")]
+    stencil: Option<u32>,
 }
 
 /// `subdiv info --json` of a mesh. `edges`, `faces` and `valence` are the
@@ -182,9 +193,30 @@ fn curve_info(input: &Path, limits: &subdiv::io::Limits, json: bool) -> Result<(
     Ok(())
 }
 
+/// The subdivision options given to `info` without `--stencil`, where they
+/// would change nothing (info alone counts the control mesh).
+fn unused_subdivision_option(a: &InfoArgs) -> Option<&'static str> {
+    let s = &a.sub.scheme;
+    let given = [
+        ("--scheme", s.scheme != subdiv::Scheme::Loop),
+        ("--levels", a.sub.levels.is_some()),
+        ("--warren", s.warren),
+        ("--tension", s.tension != 0.0),
+        ("--max-memory", s.max_memory.is_some()),
+        ("--uv", s.uv != Default::default()),
+        ("--creasing", s.features.creasing != Default::default()),
+    ];
+    given.into_iter().find(|g| g.1).map(|g| g.0)
+}
+
 /// `subdiv info`.
 pub fn info(a: &InfoArgs) -> Result<()> {
     let input = a.input.as_path();
+    if let Some(name) = unused_subdivision_option(a).filter(|_| a.stencil.is_none()) {
+        return Err(Error::Usage(format!(
+            "{name} applies to --stencil: info alone counts the control mesh and refines nothing"
+        )));
+    }
     if is_curve(input) {
         return curve_info(input, &a.from.limits.limits()?, a.json);
     }
@@ -203,11 +235,17 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     let dropped = report.as_ref().map_or(notes.unreferenced, |r| r.unreferenced_vertices.count);
     let face_sizes: BTreeMap<usize, usize> =
         notes.face_sizes.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
-    let mesh = a.features.apply(mesh);
+    let mesh = a.sub.scheme.features.apply(mesh);
+    if let Some(c) = a.corner {
+        return super::inspect::corner(input, &mesh, c, a.json);
+    }
+    if let Some(v) = a.stencil {
+        return super::inspect::stencil_of(&mesh, &a.sub, v, a.json);
+    }
     let (nm_edges, nm_vertices) =
         report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));
     let t = topology(&mesh.ct);
-    let (own, triangulated, sharp) = own_counts(&mesh, &t, a.features.boundary);
+    let (own, triangulated, sharp) = own_counts(&mesh, &t, a.sub.scheme.features.sharp.boundary);
     if a.json {
         return print_json(&MeshInfo {
             file: input.display().to_string(),

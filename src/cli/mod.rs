@@ -11,6 +11,7 @@ pub mod args;
 mod draw;
 mod eval;
 mod info;
+mod inspect;
 pub mod logging;
 mod mesh_ops;
 pub mod progress;

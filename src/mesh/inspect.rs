@@ -95,6 +95,85 @@ pub fn colors_of(values: &[f32]) -> Vec<[f32; 3]> {
     values.iter().map(|&x| colormap(x * scale)).collect()
 }
 
+/// Rossignac's operators at corner `c` of a triangle table (`src/mesh`'s
+/// definitions: `n`, `p` next and previous in the triangle, `o` across the
+/// opposite edge, `l = o(n)`, `r = o(p)`, `s = n(o(n))` the swing, `u =
+/// p(o(p))` the unswing); `None` across a border.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CornerOps {
+    /// The corner.
+    pub corner: u32,
+    /// Its triangle, `c / 3`.
+    pub triangle: u32,
+    /// Its vertex.
+    pub vertex: u32,
+    /// The next corner of the triangle.
+    pub n: u32,
+    /// The previous corner of the triangle.
+    pub p: u32,
+    /// The opposite corner.
+    pub o: Option<u32>,
+    /// The left neighbour `o(n)`.
+    pub l: Option<u32>,
+    /// The right neighbour `o(p)`.
+    pub r: Option<u32>,
+    /// The swing `n(o(n))`.
+    pub s: Option<u32>,
+    /// The unswing `p(o(p))`.
+    pub u: Option<u32>,
+}
+
+/// The operators at corner `c` of `ct`, `None` for a corner out of range.
+pub fn corner_ops(ct: &CornerTable, c: u32) -> Option<CornerOps> {
+    ((c as usize) < ct.num_corners()).then(|| CornerOps {
+        corner: c,
+        triangle: c / 3,
+        vertex: ct.vtx(c),
+        n: super::n(c),
+        p: super::p(c),
+        o: ct.o(c),
+        l: ct.l(c),
+        r: ct.r(c),
+        s: ct.s(c),
+        u: ct.u(c),
+    })
+}
+
+/// The polygon table's operators at corner `c`: its face, vertex, the
+/// next and previous corners of the face, the twin (the corner across the
+/// edge leaving `c`, at its other end) and the swing (the next corner around
+/// the vertex, across the edge entering `c`); `None` across a border.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PolyCornerOps {
+    /// The corner.
+    pub corner: u32,
+    /// Its face.
+    pub face: u32,
+    /// Its vertex.
+    pub vertex: u32,
+    /// The next corner of the face.
+    pub next: u32,
+    /// The previous corner of the face.
+    pub prev: u32,
+    /// The twin.
+    pub twin: Option<u32>,
+    /// The swing.
+    pub swing: Option<u32>,
+}
+
+/// The operators at corner `c` of `pt`, `None` for a corner out of range.
+pub fn poly_corner_ops(pt: &super::poly::PolyTable, c: u32) -> Option<PolyCornerOps> {
+    ((c as usize) < pt.num_corners()).then(|| PolyCornerOps {
+        corner: c,
+        face: pt.face(c),
+        vertex: pt.vtx(c),
+        next: pt.next(c),
+        prev: pt.prev(c),
+        twin: pt.twin(c),
+        swing: pt.swing(c),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -22,6 +22,7 @@ pub mod pick;
 pub mod refine;
 pub mod rules;
 pub mod sizes;
+pub mod stencil;
 pub mod tables;
 
 use crate::Result;

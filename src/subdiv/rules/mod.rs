@@ -114,12 +114,17 @@ impl Sink for Accumulate<'_> {
 
 /// Records a stencil as (index, weight) pairs, the weights rounded to f32
 /// (the stencil plans' precision) or kept in f64 (`Record<f64>`).
-#[derive(Default)]
 pub struct Record<W = f32> {
     /// Vertex ids.
     pub idx: Vec<u32>,
     /// Weights.
     pub w: Vec<W>,
+}
+
+impl<W> Default for Record<W> {
+    fn default() -> Self {
+        Record { idx: Vec::new(), w: Vec::new() }
+    }
 }
 
 /// A weight type a [`Record`] stores.

@@ -17,7 +17,7 @@ use crate::mesh::split;
 use crate::mesh::{CornerTable, Creasing};
 use crate::subdiv::rules::crease::{OnLevel, Unsplit, edge_stencil, vertex_stencil};
 use crate::subdiv::rules::features::{Features, with_boundary_corners};
-use crate::subdiv::rules::{Level, Record, Rules};
+use crate::subdiv::rules::{Level, Record, Rules, Weight};
 use crate::subdiv::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
@@ -65,16 +65,26 @@ impl PlanScratch {
     }
 }
 
-struct RecordLevel<'a> {
+struct RecordLevel<'a, W> {
     /// The level, owned: it may be cut open along its creases.
     ct: CornerTable,
     owners: &'a [u32],
     creasing: Creasing,
+    weight: std::marker::PhantomData<W>,
+    /// Record only the rows of these new vertices, in this order (none of
+    /// them an old vertex an interpolating scheme copies): the stencils of
+    /// a few vertices without the whole level.
+    only: Option<&'a [u32]>,
 }
 
-pub(super) fn record_rows(rows: usize, f: impl Fn(usize, &mut Record) + Sync) -> (Vec<u32>, Vec<u32>, Vec<f32>) {
+/// The CSR table of `rows` rows, row `i` recorded by `f` (in parallel, in
+/// pieces, concatenated in order).
+pub(super) fn record_rows<W: Weight>(
+    rows: usize,
+    f: impl Fn(usize, &mut Record<W>) + Sync,
+) -> (Vec<u32>, Vec<u32>, Vec<W>) {
     const ROWS: usize = 4096;
-    let parts: Vec<(Vec<u32>, Record)> = (0..rows.div_ceil(ROWS))
+    let parts: Vec<(Vec<u32>, Record<W>)> = (0..rows.div_ceil(ROWS))
         .into_par_iter()
         .map(|k| {
             let mut rec = Record::default();
@@ -100,8 +110,8 @@ pub(super) fn record_rows(rows: usize, f: impl Fn(usize, &mut Record) + Sync) ->
     (offsets, indices, weights)
 }
 
-impl RulesFn<LevelPlan> for RecordLevel<'_> {
-    fn call<R: Rules>(self, r: &R) -> LevelPlan {
+impl<W: Weight> RulesFn<LevelPlan<W>> for RecordLevel<'_, W> {
+    fn call<R: Rules>(self, r: &R) -> LevelPlan<W> {
         let mut table = self.ct;
         let nv = table.num_vertices();
         let ne = self.owners.len();
@@ -115,7 +125,7 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
         let lv = Level::new(&table).with_features(f.as_ref());
         let copies: &[u32] = f.as_ref().map_or(&[], |f| f.copies());
         let (on, owners) = (OnLevel { r, lv: &lv }, self.owners);
-        let row = |i: usize, rec: &mut Record| {
+        let row = |i: usize, rec: &mut Record<W>| {
             let mut s = Unsplit { sink: rec, nv: nv as u32, copies };
             if R::MOVES_VERTICES && i < nv {
                 vertex_stencil(&on, i as u32, &mut s);
@@ -124,8 +134,14 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
                 edge_stencil(&on, owners[e], &mut s);
             }
         };
-        let rows = if R::MOVES_VERTICES { nv + ne } else { ne };
-        let (offsets, indices, weights) = record_rows(rows, row);
+        let (offsets, indices, weights) = match self.only {
+            // row i is new vertex i (moving schemes) or edge point i
+            Some(ids) => {
+                let first = if R::MOVES_VERTICES { 0 } else { nv };
+                record_rows(ids.len(), |k, rec| row(ids[k] as usize - first, rec))
+            }
+            None => record_rows(if R::MOVES_VERTICES { nv + ne } else { ne }, row),
+        };
         LevelPlan { n_in: nv, copy_vertices: !R::MOVES_VERTICES, offsets, indices, weights }
     }
 }
@@ -136,8 +152,35 @@ impl RulesFn<LevelPlan> for RecordLevel<'_> {
 /// the one-shot subdivision runs.
 pub(crate) fn record_one_level(ct: &CornerTable, scheme: Scheme, opts: &Options) -> (LevelPlan, CornerTable) {
     let (next, edges) = split::split_with(ct, opts.creasing);
-    let record = RecordLevel { ct: ct.clone(), owners: &edges.owners, creasing: opts.creasing };
-    (with_rules(scheme, opts, record), next)
+    (record_level(ct, &edges.owners, scheme, opts), next)
+}
+
+/// The rows of one level of triangle `scheme` on `ct` (its boundary
+/// corners already applied), `owners` the owner corners of its edges in
+/// the split's order, weights of type `W`.
+pub(crate) fn record_level<W: Weight>(
+    ct: &CornerTable,
+    owners: &[u32],
+    scheme: Scheme,
+    opts: &Options,
+) -> LevelPlan<W> {
+    let weight = std::marker::PhantomData;
+    let record = RecordLevel { ct: ct.clone(), owners, creasing: opts.creasing, weight, only: None };
+    with_rules(scheme, opts, record)
+}
+
+/// The rows of the new vertices `ids` alone of one level of triangle
+/// `scheme` on `ct` (as [`record_level`]), row `k` that of `ids[k]`; an
+/// interpolating scheme's copied old vertices must not be among them.
+pub(crate) fn record_rows_of<W: Weight>(
+    ct: &CornerTable,
+    owners: &[u32],
+    (scheme, opts): (Scheme, &Options),
+    ids: &[u32],
+) -> LevelPlan<W> {
+    let weight = std::marker::PhantomData;
+    let record = RecordLevel { ct: ct.clone(), owners, creasing: opts.creasing, weight, only: Some(ids) };
+    with_rules(scheme, opts, record)
 }
 
 impl StencilPlan {
@@ -162,7 +205,8 @@ impl StencilPlan {
         let mut plans = Vec::with_capacity(levels as usize);
         for _ in 1..=levels {
             let (next, edges) = split::split_with(&cur, opts.creasing);
-            let record = RecordLevel { ct: cur, owners: &edges.owners, creasing: opts.creasing };
+            let weight = std::marker::PhantomData;
+            let record = RecordLevel { ct: cur, owners: &edges.owners, creasing: opts.creasing, weight, only: None };
             plans.push(with_rules(scheme, opts, record));
             cur = next;
         }

@@ -12,10 +12,10 @@ use crate::Result;
 use crate::mesh::poly::{PolyTable, split};
 use crate::mesh::{CornerTable, Creasing};
 use crate::subdiv::refine::poly::{check_levels_fit, with_boundary_corners};
-use crate::subdiv::rules::Record;
 use crate::subdiv::rules::catmull_clark::{Bilinear, CatmullClark, PolyLevel, PolyOn, PolyRules, face_point};
 use crate::subdiv::rules::crease::{edge_stencil, vertex_stencil};
 use crate::subdiv::rules::features::Features;
+use crate::subdiv::rules::{Record, Weight};
 use crate::subdiv::{Options, Scheme};
 
 /// The levels of polygon scheme `scheme` recorded on the polygons `ct`
@@ -36,11 +36,7 @@ pub(super) fn record(
     let mut cur = with_boundary_corners(&control, opts.boundary).unwrap_or(control);
     let mut plans = Vec::with_capacity(levels as usize);
     for _ in 1..=levels {
-        let plan = match scheme {
-            Scheme::Bilinear => record_level(&Bilinear, &cur, opts.creasing),
-            _ => record_level(&CatmullClark, &cur, opts.creasing),
-        };
-        plans.push(plan);
+        plans.push(record_poly_level(&cur, scheme, opts.creasing, None));
         cur = split::split(&cur, opts.creasing).0;
     }
     Ok((plans, cur))
@@ -50,20 +46,39 @@ pub(super) fn record(
 /// already applied) and the split table it makes: the local subdivision of
 /// exact evaluation runs the very rules the refinement runs.
 pub(crate) fn record_one_catmark_level(pt: &PolyTable, creasing: Creasing) -> (LevelPlan, PolyTable) {
-    (record_level(&CatmullClark, pt, creasing), split::split(pt, creasing).0)
+    (record_level(&CatmullClark, pt, creasing, None), split::split(pt, creasing).0)
+}
+
+/// The rows of one level of polygon `scheme` on `pt` (its boundary corners
+/// already applied), weights of type `W`.
+pub(crate) fn record_poly_level<W: Weight + std::ops::AddAssign>(
+    pt: &PolyTable,
+    scheme: Scheme,
+    creasing: Creasing,
+    only: Option<&[u32]>,
+) -> LevelPlan<W> {
+    match scheme {
+        Scheme::Bilinear => record_level(&Bilinear, pt, creasing, only),
+        _ => record_level(&CatmullClark, pt, creasing, only),
+    }
 }
 
 /// One level's rows: a vertex row per old vertex (omitted where `R` keeps
 /// the old vertices: bilinear), an edge row per edge in owner order, a face
 /// row per face.
-fn record_level<R: PolyRules>(r: &R, pt: &PolyTable, creasing: Creasing) -> LevelPlan {
+fn record_level<R: PolyRules, W: Weight + std::ops::AddAssign>(
+    r: &R,
+    pt: &PolyTable,
+    creasing: Creasing,
+    only: Option<&[u32]>,
+) -> LevelPlan<W> {
     let features = if R::SMOOTH { Features::of(pt, creasing) } else { None };
     let lv = PolyLevel { pt, features: features.as_ref() };
     let on = PolyOn { r, lv: &lv };
     let owners: Vec<u32> = pt.edge_owners().collect();
     let (nv, ne) = (pt.num_vertices(), owners.len());
     let first = if R::SMOOTH { 0 } else { nv };
-    let row = |i: usize, rec: &mut Record| {
+    let row = |i: usize, rec: &mut Record<W>| {
         let start = rec.idx.len();
         let i = first + i;
         if i < nv {
@@ -75,15 +90,18 @@ fn record_level<R: PolyRules>(r: &R, pt: &PolyTable, creasing: Creasing) -> Leve
         }
         merge_tail(rec, start);
     };
-    let rows = nv + ne + pt.num_faces() - first;
-    let (offsets, indices, weights) = super::plan::record_rows(rows, row);
+    let (offsets, indices, weights) = match only {
+        // row i is new vertex first + i
+        Some(ids) => super::plan::record_rows(ids.len(), |k, rec| row(ids[k] as usize - first, rec)),
+        None => super::plan::record_rows(nv + ne + pt.num_faces() - first, row),
+    };
     LevelPlan { n_in: nv, copy_vertices: !R::SMOOTH, offsets, indices, weights }
 }
 
 /// Folds the entries of `rec` from `start` on that name the same vertex into
 /// the first of them (weights summed in the order they were emitted), keeping
 /// the order of first appearance.
-fn merge_tail(rec: &mut Record, start: usize) {
+fn merge_tail<W: Weight + std::ops::AddAssign>(rec: &mut Record<W>, start: usize) {
     let mut end = start;
     for k in start..rec.idx.len() {
         let (v, w) = (rec.idx[k], rec.w[k]);

@@ -3,6 +3,7 @@
 //! The plan ([`super::StencilPlan`]) is a list of these; the packed form
 //! ([`super::packed`]) is built from them.
 
+use crate::subdiv::rules::Weight;
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
@@ -40,9 +41,10 @@ impl Point for Vec3A {
     }
 }
 
-/// One level's stencils.
+/// One level's stencils, their weights in f32 (the plans that animate) or
+/// f64 (exact stencils).
 #[derive(Clone, Debug, Default)]
-pub struct LevelPlan {
+pub struct LevelPlan<W = f32> {
     /// Vertices of the coarser level.
     pub n_in: usize,
     /// Old vertices are copied unchanged (interpolating schemes): their rows
@@ -53,16 +55,16 @@ pub struct LevelPlan {
     /// Source vertex ids.
     pub indices: Vec<u32>,
     /// Weights.
-    pub weights: Vec<f32>,
+    pub weights: Vec<W>,
 }
 
-impl LevelPlan {
+impl<W: Weight> LevelPlan<W> {
     /// This level reading its input through `old`: input `j` of the rows
     /// becomes input `old[j]`. The copied old vertices of an interpolating
     /// level become rows of one entry (weight 1), since the copy is now a
     /// gather. For a level recorded on a relabelled table and fed the
     /// table's vertices in their old order.
-    pub(crate) fn reading_through(self, old: &[u32]) -> LevelPlan {
+    pub(crate) fn reading_through(self, old: &[u32]) -> LevelPlan<W> {
         let map = |j: &u32| old[*j as usize];
         if !self.copy_vertices {
             return LevelPlan { indices: self.indices.iter().map(map).collect(), ..self };
@@ -70,7 +72,7 @@ impl LevelPlan {
         let n = self.n_in as u32;
         let offsets = (0..n).chain(self.offsets.iter().map(|&x| x + n)).collect();
         let indices = old[..self.n_in].iter().copied().chain(self.indices.iter().map(map)).collect();
-        let weights = std::iter::repeat_n(1.0, self.n_in).chain(self.weights.iter().copied()).collect();
+        let weights = std::iter::repeat_n(W::of(1.0), self.n_in).chain(self.weights.iter().copied()).collect();
         LevelPlan { n_in: self.n_in, copy_vertices: false, offsets, indices, weights }
     }
 
@@ -79,6 +81,17 @@ impl LevelPlan {
         self.offsets.len() - 1 + if self.copy_vertices { self.n_in } else { 0 }
     }
 
+    /// The row of new vertex `i`: its sources and weights (a copied old
+    /// vertex of an interpolating level: itself with weight 1, returned as
+    /// `None`).
+    pub fn row(&self, i: usize) -> Option<(&[u32], &[W])> {
+        let r = if self.copy_vertices { i.checked_sub(self.n_in)? } else { i };
+        let (a, b) = (*self.offsets.get(r)? as usize, *self.offsets.get(r + 1)? as usize);
+        Some((&self.indices[a..b], &self.weights[a..b]))
+    }
+}
+
+impl LevelPlan {
     /// Applies this level: `out` gets `n_out()` positions.
     pub fn apply<I: Point, O: Point>(&self, input: &[I], out: &mut [O]) {
         let rows = if self.copy_vertices {
