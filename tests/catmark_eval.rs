@@ -310,3 +310,46 @@ fn every_corner_of_an_open_or_creased_mesh_has_a_finite_limit_normal() {
         }
     }
 }
+
+/// The exact limit at every vertex of a Catmull-Clark level (what the
+/// curvature colours evaluate: `eval::poly_vertex_params` follows the quad
+/// split's layout to each vertex's ptex face and `(u, v)`) is the limit of
+/// that vertex: the limit masks of the level (refined on where a semi-sharp
+/// feature is left), on quads and n-gons, closed, open and creased. The
+/// level is the triangulated one `subdivide` gives, as `render` draws it,
+/// and the same when made in two steps, as the viewer makes a level
+/// through its proxy.
+#[test]
+fn every_vertex_of_a_level_is_evaluated_at_its_own_limit() {
+    use subdiv::subdiv::eval::{poly_vertex_params, vertex_samples};
+    use subdiv::subdiv::rules::catmark_limit::limit_frames;
+    for (name, poly, opts) in cases() {
+        let mesh: Mesh = poly.triangulated();
+        let size = size(&poly);
+        for levels in 0..=3 {
+            let fine = subdiv::subdivide(&mesh, Scheme::CatmullClark, levels, &opts).unwrap().0;
+            if levels >= 2 {
+                let one = subdiv::subdivide(&mesh, Scheme::CatmullClark, 1, &opts).unwrap().0;
+                let two_steps = subdiv::subdivide(&one, Scheme::CatmullClark, levels - 1, &opts).unwrap().0;
+                assert_eq!(two_steps.ct.v_table(), fine.ct.v_table(), "{name} L{levels}: the same quads in two steps");
+            }
+            let params = poly_vertex_params(&poly.pt, &fine.ct, levels).unwrap();
+            assert!(params.iter().all(|&(p, u, v)| p < ptex_faces(&poly.pt).len()
+                && (0.0..=1.0).contains(&u)
+                && (0.0..=1.0).contains(&v)));
+            let samples = vertex_samples(&mesh, &fine, Scheme::CatmullClark, levels, &opts).unwrap();
+            let level = subdivide_poly(&poly, Scheme::CatmullClark, levels, &opts).unwrap().0;
+            let limits = limit_frames(&level, &opts).unwrap();
+            assert_eq!((samples.len(), limits.len()), (fine.positions.len(), fine.positions.len()));
+            let mut worst = 0.0f64;
+            for (s, l) in samples.iter().zip(&limits) {
+                worst = worst.max((s.position - l.position.as_dvec3()).length() / size);
+            }
+            // the level and its masks are computed in f32
+            assert!(worst < 2e-6, "{name} L{levels}: worst relative distance {worst:e}");
+        }
+        // a table that is not such a level is refused
+        let other = subdiv::subdivide(&mesh, Scheme::CatmullClark, 2, &opts).unwrap().0;
+        assert!(poly_vertex_params(&poly.pt, &other.ct, 1).is_err(), "{name}");
+    }
+}

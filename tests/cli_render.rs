@@ -257,7 +257,7 @@ fn curvature_colours_a_torus_red_outside_blue_inside_with_a_colour_bar() {
     let top = img.get_pixel(x, img.height() / 5 + 4).0;
     let bottom = img.get_pixel(x, img.height() * 4 / 5 - 4).0;
     assert!(top[0] > top[2] + 60 && bottom[2] > bottom[0] + 60, "bar {top:?} {bottom:?}");
-    // a scheme whose curvature is not the Loop limit's is refused by name
+    // a scheme without an exact limit is refused, naming those with one
     let r = run(&[&args[..], &["-s", "butterfly"]].concat()).unwrap();
     assert!(!r.status.success() && String::from_utf8_lossy(&r.stderr).contains("loop"));
 }
@@ -347,4 +347,77 @@ fn isolines_trace_the_zero_of_gaussian_curvature_between_red_and_blue() {
     assert!(traced * 10 >= boundary.len() * 9, "{traced} of {} boundary pixels by a line", boundary.len());
     // and the zero line is there only: the plain colouring's boundary is not dark
     assert!(!boundary.iter().any(|&p| near(p, &lines_off, 3)));
+}
+
+/// Pixels off the colour bar (the right 80 columns) tinted red and blue.
+fn hues(img: &image::RgbaImage) -> (usize, usize) {
+    let (mut red, mut blue) = (0, 0);
+    for (x, _, p) in img.enumerate_pixels() {
+        if x + 80 >= img.width() || p.0[3] < 255 {
+            continue;
+        }
+        let [r, g, b, _] = p.0.map(i32::from);
+        red += usize::from(r > b + 30 && r > g + 25);
+        blue += usize::from(b > r + 30 && b > g + 10);
+    }
+    (red, blue)
+}
+
+#[test]
+fn catmull_clark_curvature_colours_the_critter_over_a_range_the_bar_states() {
+    let critter = model_path("critter.obj");
+    let render = |name: &str, extra: &[&str]| {
+        let out = tmp(name);
+        let args = ["render", critter.to_str().unwrap(), out.to_str().unwrap(), "-s", "catmull-clark", "-n", "3"];
+        let r = run(&[&args[..], &["--size", "480x360", "--transparent"], extra].concat())?;
+        let err = String::from_utf8_lossy(&r.stderr).into_owned();
+        Some((r.status.success(), err, out))
+    };
+    let Some((ok, err, auto)) = render("critter-cc-mean.png", &["--color", "mean-curvature"]) else { return };
+    assert!(ok, "{err}");
+    let auto = image::open(auto).unwrap().to_rgba8();
+    // the body coloured: the mean curvature is positive on most of the
+    // critter (red); its Gaussian curvature has both signs' hues, red on the
+    // snout and the paws, blue where the legs, neck and tail meet the body
+    let (red, _) = hues(&auto);
+    let (ok, err, gaussian) = render("critter-cc-gaussian.png", &["--color", "gaussian-curvature"]).unwrap();
+    assert!(ok, "{err}");
+    let (k_red, k_blue) = hues(&image::open(gaussian).unwrap().to_rgba8());
+    eprintln!("default range: mean {red} red pixels; Gaussian {k_red} red, {k_blue} blue");
+    assert!(red > 3000 && k_red > 300 && k_blue > 1000, "mean: red {red}; Gaussian: red {k_red}, blue {k_blue}");
+    // a range set by hand changes the picture: twice as wide, paler
+    let (ok, err, wide) = render("critter-cc-wide.png", &["--color", "mean-curvature", "--range", "8"]).unwrap();
+    assert!(ok, "{err}");
+    let wide = image::open(wide).unwrap().to_rgba8();
+    let (red_wide, _) = hues(&wide);
+    assert!(red_wide * 2 < red, "--range 8: {red_wide} red pixels, {red} by default");
+    // the caption above the bar says which range: it differs between the two
+    let w = auto.width();
+    let caption = |img: &image::RgbaImage| -> Vec<(u32, u32)> {
+        // the bar's ink, exactly
+        let ink = |x: u32, y: u32| img.get_pixel(x, y).0 == [235, 235, 235, 255];
+        (40..72).flat_map(|y| (w - 240..w).map(move |x| (x, y))).filter(|&(x, y)| ink(x, y)).collect()
+    };
+    let (said_auto, said_set) = (caption(&auto), caption(&wide));
+    assert!(said_auto.len() > 100 && said_set.len() > 50, "{} {}", said_auto.len(), said_set.len());
+    assert_ne!(said_auto, said_set, "the caption states the range");
+    // bad ranges and a range without a curvature: one line each
+    for (extra, says) in [
+        (&["--color", "mean-curvature", "--range", "-1"][..], "--range '-1'"),
+        (&["--color", "mean-curvature", "--range", "0"], "--range '0'"),
+        (&["--color", "mean-curvature", "--range", "NaN"], "--range 'NaN'"),
+        (&["--color", "shells", "--range", "2"], "--range sets the span of a curvature"),
+    ] {
+        let (ok, err, _) = render("critter-bad.png", extra).unwrap();
+        assert!(!ok && err.contains(says) && err.trim().lines().count() == 1, "{extra:?}: {err}");
+    }
+    // schemes without curvature colours: refused, naming those with them
+    for scheme in ["bilinear", "butterfly"] {
+        let out = tmp("critter-refused.png");
+        let args = ["render", critter.to_str().unwrap(), out.to_str().unwrap(), "-s", scheme, "-n", "1"];
+        let r = run(&[&args[..], &["--color", "gaussian-curvature"]].concat()).unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert!(!r.status.success() && err.contains("loop and catmull-clark") && err.contains(scheme), "{err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+    }
 }

@@ -429,7 +429,8 @@ fn every_refined_vertex_gets_the_limit_of_its_own_position() {
     let mesh = bipyramid(5, 17);
     for levels in 0..=3 {
         let fine = subdivide(&mesh, Scheme::Loop, levels, &Options::default()).unwrap().0;
-        let samples = subdiv::subdiv::eval::vertex_samples(&mesh, &fine, levels, &Options::default()).unwrap();
+        let samples =
+            subdiv::subdiv::eval::vertex_samples(&mesh, &fine, Scheme::Loop, levels, &Options::default()).unwrap();
         let limits = loop_limit_positions_with(&fine, LoopBeta::Loop);
         for (s, l) in samples.iter().zip(&limits) {
             assert!((s.position - l.as_dvec3()).length() < 1e-5, "level {levels}");

@@ -77,7 +77,7 @@ fn any_point_of_a_flat_face_comes_back_with_its_parameters() {
 /// principal curvature times the square of the longest edge): how far the
 /// level's surface lies from the limit at the same parameters.
 fn level_to_limit(control: &Mesh, drawn: &Mesh, level: u32) -> f64 {
-    let samples = vertex_samples(control, drawn, level, &Options::default()).expect("evaluates");
+    let samples = vertex_samples(control, drawn, Scheme::Loop, level, &Options::default()).expect("evaluates");
     let mut vertex = 0.0f64;
     let mut curvature = 0.0f64;
     for (s, p) in samples.iter().zip(&drawn.positions) {

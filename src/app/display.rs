@@ -6,7 +6,7 @@
 //! from the subdivision output.
 
 use crate::render::{Look, Stripes, Surface, WireEdges};
-use crate::subdiv::eval::color::CurvatureKind;
+use crate::subdiv::eval::color::{CurvatureKind, HalfWidth};
 
 /// Which normals shade the result.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -51,8 +51,9 @@ pub enum Coloring {
     /// The OBJ's MTL materials per group: `Kd` times `map_Kd` through the
     /// refined texture coordinates (see [`crate::render::materials`]).
     Material,
-    /// A curvature of the exact Loop limit surface at each drawn vertex,
-    /// on a diverging map (see [`crate::subdiv::eval::color`]).
+    /// A curvature of the exact limit surface (Loop's or Catmull-Clark's)
+    /// at each drawn vertex, on a diverging map (see
+    /// [`crate::subdiv::eval::color`]).
     Curvature(CurvatureKind),
 }
 
@@ -169,6 +170,9 @@ pub(crate) struct Display {
     pub(crate) stripes: Stripes,
     /// Isolines over the curvature colours.
     pub(crate) isolines: Isolines,
+    /// The half-width of the curvature colours' range, set by hand (`None`:
+    /// the default percentile, [`crate::subdiv::eval::color::auto_range`]).
+    pub(crate) range: Option<HalfWidth>,
 }
 
 impl Display {
@@ -192,6 +196,7 @@ impl Display {
             wire_edges: WireEdges::All,
             stripes: Stripes::default(),
             isolines: Isolines::default(),
+            range: None,
         }
     }
 
@@ -230,7 +235,9 @@ impl Display {
     /// Whether going from `self` to `next` changes the shown result (its
     /// points, normals or colours), not only how it is drawn.
     pub(crate) fn reshades_result(&self, next: &Display) -> bool {
-        (self.normal_mode, self.snap_limit, self.coloring) != (next.normal_mode, next.snap_limit, next.coloring)
+        let range = matches!(next.coloring, Coloring::Curvature(_)) && self.range != next.range;
+        range
+            || (self.normal_mode, self.snap_limit, self.coloring) != (next.normal_mode, next.snap_limit, next.coloring)
     }
 
     /// The next face fill of the S key; hiding the faces turns the wireframe on.

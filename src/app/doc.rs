@@ -52,9 +52,9 @@ pub(crate) enum Problem {
     /// Exporting the animation failed (or was cancelled).
     #[error("export: {0}")]
     Export(Error),
-    /// The displacement colouring failed.
-    #[error("displacement: {0}")]
-    Displacement(Error),
+    /// A colouring failed (the displacement, a curvature's evaluation).
+    #[error("colouring: {0}")]
+    Coloring(Error),
     /// The picked edge cannot be flipped.
     #[error("flip: {0}")]
     Flip(EditError),
@@ -67,7 +67,7 @@ impl Problem {
     /// The error behind it (a refused flip is a usage error).
     pub(crate) fn into_error(self) -> Error {
         match self {
-            Problem::Open(e) | Problem::Animation(e) | Problem::Export(e) | Problem::Displacement(e) => e,
+            Problem::Open(e) | Problem::Animation(e) | Problem::Export(e) | Problem::Coloring(e) => e,
             Problem::Other(e) => e,
             flip @ Problem::Flip(_) => Error::Usage(flip.to_string()),
         }
@@ -292,9 +292,15 @@ impl Doc {
 
     /// Rebuilds the shown result from the subdivision output and the display
     /// options (limit snapping, normals, colours).
+    /// A curvature colouring on a scheme without one shows the result
+    /// uncoloured, saying why on the status line (a notice, not an error).
     pub(crate) fn reshade(&mut self) {
         if let Some(e) = self.model.reshade(&self.display) {
-            self.fail(Problem::Displacement(e));
+            let curvature = matches!(self.display.coloring, super::display::Coloring::Curvature(_));
+            match crate::subdiv::eval::color::check_scheme(self.model.made.scheme) {
+                Err(refusal) if curvature => self.status.notice = Some(refusal.to_string()),
+                _ => self.fail(Problem::Coloring(e)),
+            }
         }
         // the drawn surface changed: the picked point is picked again
         self.repick();

@@ -87,6 +87,9 @@ pub struct ViewOptions {
     /// Start with this many isolines per side of zero over a curvature
     /// colouring (`None`: off).
     pub isolines: Option<u8>,
+    /// The half-width of the curvature colours' range (`None`: the default
+    /// percentile, see [`crate::subdiv::eval::color`]).
+    pub range: Option<crate::subdiv::eval::color::HalfWidth>,
     /// Tag the edges sharper than this dihedral angle (degrees) on opening.
     pub crease_angle: Option<f32>,
     /// Start with the control mesh (the cage) shown.
@@ -293,6 +296,7 @@ impl App {
         if let Some(count) = opts.isolines {
             doc.display.isolines = display::Isolines { on: true, count };
         }
+        doc.display.range = opts.range;
         doc.reshade();
         if doc.request.level > 0 {
             doc.request_subdivision();

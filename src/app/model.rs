@@ -141,8 +141,12 @@ pub(crate) struct Shaded {
     /// each over `color_max`, NaN where not evaluated, coloured per pixel
     /// on the diverging map (where the isolines are drawn).
     pub(crate) values: Option<Vec<f32>>,
-    /// Largest value behind the colours (levels, or a distance), for the legend.
+    /// Largest value behind the colours (levels, or a distance), for the
+    /// legend; a curvature colouring's half-width.
     pub(crate) color_max: f32,
+    /// A curvature colouring's range: its half-width and whether it was
+    /// set by hand, for the colour bar.
+    pub(crate) scale: Option<crate::subdiv::eval::color::Scale>,
 }
 
 /// What a colouring gives each vertex of the result: colours or values
@@ -152,12 +156,29 @@ struct Painted {
     colors: Option<Vec<Vec3>>,
     values: Option<Vec<f32>>,
     max: f32,
+    scale: Option<crate::subdiv::eval::color::Scale>,
 }
 
 impl Painted {
     fn colors(colors: Option<Vec<Vec3>>, max: f32) -> Painted {
-        Painted { colors, values: None, max }
+        Painted { colors, values: None, max, scale: None }
     }
+}
+
+/// The curvature last evaluated at the vertices of the result, with what
+/// it depends on: a new range (or snapping, or normals) colours the same
+/// values again without evaluating the limit anew.
+pub(crate) struct Curvatures {
+    /// The subdivision output they were evaluated for (compared by identity).
+    raw: Arc<Mesh>,
+    /// The control mesh's version.
+    control: u64,
+    /// The scheme, level and options of the output.
+    made: (Scheme, u32, crate::Options),
+    /// Which curvature.
+    kind: crate::subdiv::eval::color::CurvatureKind,
+    /// One per vertex of `raw`.
+    values: Arc<Vec<f64>>,
 }
 
 /// Vertex colours and corner texture coordinates: of the control mesh (from
@@ -198,6 +219,8 @@ pub(crate) struct Model {
     pub(crate) probe: Option<super::probe::Probe>,
     /// A Bezier curve shown instead of the mesh.
     pub(crate) curve: Versioned<Option<Curve>>,
+    /// The last curvature colouring's values (see [`Curvatures`]).
+    pub(crate) curvatures: Option<Curvatures>,
 }
 
 impl Model {
@@ -212,11 +235,12 @@ impl Model {
             raw: shown.clone(),
             made: Made::default(),
             proxy: None,
-            result: Versioned::new(Shaded { shown, colors: None, values: None, color_max: 0.0 }),
+            result: Versioned::new(Shaded { shown, colors: None, values: None, color_max: 0.0, scale: None }),
             attrs: Attrs::default(),
             picked: Versioned::new(None),
             probe: None,
             curve: Versioned::new(None),
+            curvatures: None,
         }
     }
 
@@ -230,11 +254,11 @@ impl Model {
             Some(_) => Shown { mesh: snapped(&self.raw, display, &self.made), ..self.raw.clone() },
             None => snapped_and_normals(&self.raw, display, &self.made),
         };
-        let (painted, error) = match result_colors(self, &shown.mesh, display.coloring) {
+        let (painted, error) = match result_colors(self, &shown.mesh, display) {
             Ok(p) => (p, None),
             Err(e) => (Painted::default(), Some(e)),
         };
-        let Painted { mut colors, mut values, max: color_max } = painted;
+        let Painted { mut colors, mut values, max: color_max, scale } = painted;
         let shown = match &creased {
             Some(cr) => {
                 (colors, values) = (colors.map(|c| cr.extend(&c)), values.map(|v| cr.extend(&v)));
@@ -242,8 +266,29 @@ impl Model {
             }
             None => shown,
         };
-        self.result.set(Shaded { shown, colors, values, color_max });
+        self.result.set(Shaded { shown, colors, values, color_max, scale });
         error
+    }
+
+    /// The curvature `kind` of the exact limit at every vertex of the
+    /// subdivision output, evaluated once for the output (see
+    /// [`Curvatures`]).
+    ///
+    /// # Errors
+    /// A scheme without curvature colours, or the evaluation's errors.
+    fn curvatures(&mut self, kind: crate::subdiv::eval::color::CurvatureKind) -> crate::Result<Arc<Vec<f64>>> {
+        use crate::subdiv::eval::color::vertex_curvatures;
+        let made = (self.made.scheme, self.made.level, self.made.opts);
+        let control = self.control.version();
+        if let Some(c) = &self.curvatures
+            && Arc::ptr_eq(&c.raw, &self.raw.mesh)
+            && (c.control, c.made, c.kind) == (control, made, kind)
+        {
+            return Ok(c.values.clone());
+        }
+        let values = Arc::new(vertex_curvatures(&self.control.mesh, &self.raw.mesh, (made.0, made.1, &made.2), kind)?);
+        self.curvatures = Some(Curvatures { raw: self.raw.mesh.clone(), control, made, kind, values: values.clone() });
+        Ok(values)
     }
 
     /// The vertex ids of the picked edge.
@@ -335,15 +380,16 @@ fn creased_view(raw: &Shown, shown: &Shown, cr: &Creased, display: &Display, mad
 }
 
 /// The per-vertex colours (or values) of `mesh` (the shown result of
-/// `model`) for a colouring, and the largest value behind them (for
-/// curvature, the half-width of the symmetric range).
-fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Result<Painted> {
+/// `model`) for the display's colouring, and the largest value behind them
+/// (for curvature, the half-width of the symmetric range, the display's
+/// or the default).
+fn result_colors(model: &mut Model, mesh: &Mesh, display: &Display) -> crate::Result<Painted> {
     use crate::mesh::inspect::colormap;
     use crate::subdiv::inspect::{creation_levels, displacement};
     let nv = mesh.positions.len();
     let (level, scheme) = (model.made.level, model.made.scheme);
     let ramp = |t: &[f32]| t.iter().map(|&t| Vec3::from(colormap(t))).collect::<Vec<_>>();
-    Ok(match coloring {
+    Ok(match display.coloring {
         Coloring::None | Coloring::Checker | Coloring::Material => Painted::default(),
         Coloring::Shells => {
             let lv = creation_levels(&model.control.mesh, scheme, level, nv);
@@ -358,16 +404,15 @@ fn result_colors(model: &Model, mesh: &Mesh, coloring: Coloring) -> crate::Resul
             Painted::colors(Some(ramp(&t)), max)
         }
         Coloring::Curvature(kind) => {
-            use crate::subdiv::eval::{color, vertex_samples};
-            if scheme != Scheme::Loop {
-                return Err(crate::Error::Usage(format!(
-                    "curvature colours show the exact Loop limit surface; the result is {scheme}"
-                )));
+            use crate::subdiv::eval::color::{Scale, normalized};
+            let values = model.curvatures(kind)?;
+            let scale = Scale::choose(display.range, &values, &mesh.ct, &mesh.positions);
+            Painted {
+                colors: None,
+                values: Some(normalized(&values, scale.half)),
+                max: scale.half as f32,
+                scale: Some(scale),
             }
-            let samples = vertex_samples(&model.control.mesh, mesh, level, &model.made.opts)?;
-            let values: Vec<f64> = samples.iter().map(|s| kind.of(s)).collect();
-            let range = color::symmetric_range(&values, color::PERCENTILE);
-            Painted { colors: None, values: Some(color::normalized(&values, range)), max: range as f32 }
         }
     })
 }

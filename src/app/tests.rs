@@ -939,3 +939,63 @@ fn isolines_live_in_the_display_and_only_change_the_look() {
     }
     assert!(darker > 200 && lighter == 0, "{darker} pixels darkened by isolines, {lighter} lightened");
 }
+
+#[test]
+fn catmull_clark_colours_by_curvature_over_a_range_the_display_sets() {
+    use crate::app::display::Coloring;
+    use crate::app::panel::range_field;
+    use crate::subdiv::eval::color::{CurvatureKind, HalfWidth};
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path("critter.obj")));
+    settle(&mut v);
+    subdivide(&mut v, Scheme::CatmullClark, 2);
+    settle(&mut v);
+    assert_eq!(v.doc.model.made.scheme, Scheme::CatmullClark);
+    // (the notice of the quads kept for Catmull-Clark)
+    v.apply(Command::DismissNotice);
+    set_display(&mut v, |d| d.coloring = Coloring::Curvature(CurvatureKind::Mean));
+    settle(&mut v);
+    let status = (error_text(&v), v.doc.status.notice.clone());
+    assert_eq!(status, (None, None), "coloured without an error or a notice");
+    let result = &v.doc.model.result;
+    let auto = result.values.clone().expect("Catmull-Clark's curvature, coloured per pixel");
+    assert_eq!(auto.len(), result.shown.mesh.positions.len());
+    let scale = result.scale.expect("the range in use");
+    assert!(!scale.set && scale.half > 0.0 && scale.describe().contains("auto"), "{scale:?}");
+    // the default range colours most of the critter visibly, both signs
+    let tinted = auto.iter().filter(|t| t.abs() >= 0.25).count();
+    assert!(tinted * 3 > auto.len(), "{tinted} of {} vertices tinted", auto.len());
+    assert!(auto.iter().any(|&t| t > 0.5) && auto.iter().any(|&t| t < -0.25), "convex and saddle regions");
+    // the panel's field: empty or auto is the default, else a number above 0
+    assert_eq!(range_field(" "), Ok(None));
+    assert_eq!(range_field("auto"), Ok(None));
+    let wide = range_field("2.5e1").unwrap().expect("a range");
+    assert_eq!(wide, HalfWidth::new(25.0).unwrap());
+    for bad in ["0", "-3", "NaN", "wide"] {
+        assert!(range_field(bad).is_err_and(|e| e.contains("above 0")), "{bad}");
+    }
+    // a range set through the display colours the same curvature over it
+    let set = HalfWidth::new(2.0 * scale.half).unwrap();
+    set_display(&mut v, |d| d.range = Some(set));
+    let result = &v.doc.model.result;
+    let halved = result.values.clone().expect("still coloured");
+    assert_eq!(result.scale.map(|s| (s.half, s.set)), Some((set.get(), true)));
+    assert!(result.scale.unwrap().describe().ends_with("(set)"));
+    for (a, b) in auto.iter().zip(&halved) {
+        assert!(a.is_nan() && b.is_nan() || (a / 2.0 - b).abs() < 1e-5, "{a} over a range twice as wide: {b}");
+    }
+    set_display(&mut v, |d| d.range = None);
+    assert_eq!(v.doc.model.result.scale, Some(scale), "back to the default");
+    // the panel draws the curvature's bar and field
+    let ctx = egui::Context::default();
+    frame(&ctx, &mut v, vec![]);
+    // a scheme without an exact limit: the result uncoloured, the reason on
+    // the status line, no error
+    subdivide(&mut v, Scheme::Bilinear, 2);
+    settle(&mut v);
+    assert!(v.doc.model.result.values.is_none());
+    let notice = v.doc.status.notice.clone().expect("why there are no curvature colours");
+    assert!(notice.contains("loop and catmull-clark") && notice.contains("bilinear"), "{notice}");
+    assert!(v.doc.status.error.is_none(), "{:?}", error_text(&v));
+    frame(&ctx, &mut v, vec![]);
+}

@@ -230,6 +230,13 @@ pub struct ColorArgs {
     // line of error like every other refusal of the command
     #[arg(long, value_name = "N", allow_hyphen_values = true)]
     pub isolines: Option<String>,
+    /// With a curvature colouring: the colours span [-R, R] (beyond, they
+    /// saturate). Default: R is the 90th percentile of |curvature| by area,
+    /// so 90% of the surface lies inside the range. The colour bar says
+    /// which.
+    // a string checked by `range`, as --isolines
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
+    pub range: Option<String>,
 }
 
 /// The colourings `--color` takes besides the curvatures, each with what it
@@ -258,8 +265,9 @@ fn color_help() -> String {
         .collect();
     let curvatures: Vec<&str> = CURVATURES.iter().map(|k| k.name()).collect();
     format!(
-        "Colouring: {}, or a curvature of the exact Loop limit at each drawn vertex (with -s loop): {}",
+        "Colouring: {}, or a curvature of the exact limit at each drawn vertex (with -s {}): {}",
         plain.join(", "),
+        subdiv::subdiv::eval::color::SCHEMES.map(|s| s.name()).join(" or -s "),
         curvatures.join(", ")
     )
 }
@@ -290,6 +298,30 @@ impl ColorArgs {
             )),
         }
     }
+
+    /// The half-width of the curvature colours asked for (`None`: the
+    /// default percentile), refused unless `coloring` is a curvature.
+    #[cfg(feature = "viewer")]
+    pub fn range(
+        &self,
+        coloring: Option<subdiv::app::display::Coloring>,
+    ) -> Result<Option<subdiv::subdiv::eval::color::HalfWidth>> {
+        use subdiv::app::display::Coloring;
+        let r = self.range.as_deref().map(parse_range).transpose().map_err(subdiv::Error::Usage)?;
+        match (r, coloring) {
+            (Some(_), Some(Coloring::Curvature(_))) | (None, _) => Ok(r),
+            (Some(_), _) => Err(subdiv::Error::Usage(
+                "--range sets the span of a curvature's colours: add --color mean-curvature (or gaussian-, min-, max-curvature)"
+                    .into(),
+            )),
+        }
+    }
+}
+
+/// A half-width of the curvature colours (`--range`): a number above 0.
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub fn parse_range(s: &str) -> std::result::Result<subdiv::subdiv::eval::color::HalfWidth, String> {
+    s.parse().map_err(|_| format!("--range '{s}': expected the half-width of the colour range, a number above 0"))
 }
 
 /// An isoline count, 1..=50 (`--isolines`).
@@ -303,7 +335,7 @@ pub fn parse_isolines(s: &str) -> std::result::Result<u8, String> {
 
 impl Default for ColorArgs {
     fn default() -> Self {
-        ColorArgs { color: "auto".into(), isolines: None }
+        ColorArgs { color: "auto".into(), isolines: None, range: None }
     }
 }
 
@@ -355,7 +387,7 @@ mod tests {
 
     #[test]
     fn color_none_is_asked_for_and_auto_is_not() {
-        let asked = |c: &str| ColorArgs { color: c.into(), isolines: None }.asked();
+        let asked = |c: &str| ColorArgs { color: c.into(), ..ColorArgs::default() }.asked();
         assert_eq!(asked("none").unwrap(), Some(Coloring::None));
         assert_eq!(asked("auto").unwrap(), None);
         assert_eq!(asked("material").unwrap(), Some(Coloring::Material));

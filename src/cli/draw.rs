@@ -218,6 +218,7 @@ mod gpu {
     use subdiv::mesh::attributes::Attributes;
     use subdiv::mesh::inspect::colormap;
     use subdiv::render::Paint;
+    use subdiv::subdiv::eval::color::{self, HalfWidth};
     use subdiv::subdiv::inspect::{creation_levels, displacement};
     use subdiv::{Error, Mesh, Result, Scheme};
 
@@ -231,16 +232,22 @@ mod gpu {
         ramp(lv.iter().map(|&l| f32::from(l) / levels.max(1) as f32))
     }
 
+    /// What a curvature colouring's bar says: the curvature and the range in use.
+    struct Legend {
+        kind: subdiv::subdiv::eval::color::CurvatureKind,
+        scale: subdiv::subdiv::eval::color::Scale,
+    }
+
     /// The paint of a colouring for `fine`, `levels` levels of `scheme`
-    /// over `control` (a curvature's with `isolines` per side of zero), and
-    /// the half-width of a curvature's colour range.
+    /// over `control` (a curvature's with `isolines` per side of zero, over
+    /// the range `range` or the default), and a curvature's legend.
     fn paint(
-        (coloring, isolines): (Coloring, u8),
+        (coloring, isolines, range): (Coloring, u8, Option<HalfWidth>),
         control: &Mesh,
         fine: &Mesh,
         attrs: &Attributes,
         (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
-    ) -> Result<(Paint, Option<f64>)> {
+    ) -> Result<(Paint, Option<Legend>)> {
         let refined = |a: Attributes| subdiv::subdiv::tables::attributes::refine(&control.ct, &a, scheme, levels, opts);
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         let paint = match coloring {
@@ -268,17 +275,11 @@ mod gpu {
                 Paint::Materials { groups, uv: a.uv }
             }
             Coloring::Curvature(kind) => {
-                use subdiv::subdiv::eval::{color, vertex_samples};
-                if scheme != Scheme::Loop {
-                    return Err(Error::Usage(format!(
-                        "--color {}: the exact curvature is the Loop limit's; use -s loop",
-                        kind.name()
-                    )));
-                }
-                let samples = vertex_samples(control, fine, levels, opts)?;
-                let values: Vec<f64> = samples.iter().map(|s| kind.of(s)).collect();
-                let range = color::symmetric_range(&values, color::PERCENTILE);
-                return Ok((Paint::Values { t: color::normalized(&values, range), isolines }, Some(range)));
+                color::check_scheme(scheme).map_err(|e| Error::Usage(format!("--color {}: {e}", kind.name())))?;
+                let values = color::vertex_curvatures(control, fine, (scheme, levels, opts), kind)?;
+                let scale = color::Scale::choose(range, &values, &fine.ct, &fine.positions);
+                let t = color::normalized(&values, scale.half);
+                return Ok((Paint::Values { t, isolines }, Some(Legend { kind, scale })));
             }
         };
         Ok((paint, None))
@@ -291,13 +292,15 @@ mod gpu {
         let levels = a.sub.levels_or(0);
         let asked = a.color.asked()?;
         let isolines = a.color.isolines(asked)?.unwrap_or(0);
+        let range = a.color.range(asked)?;
         // textures decoded: the materials are drawn
         let loaded = a.from.read(&a.input, true)?;
         let (mesh, attrs) = (loaded.mesh, loaded.attributes);
         let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
-        let (paint, range) = paint((coloring, isolines), &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
+        let (paint, legend) =
+            paint((coloring, isolines, range), &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
         let (width, height) = a.size;
         let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
         let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
@@ -305,8 +308,8 @@ mod gpu {
         let opts =
             subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot, stripes };
         let mut img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
-        if let Some(range) = range {
-            subdiv::render::colorbar::draw(&mut img, range, isolines);
+        if let Some(Legend { kind, scale }) = legend {
+            subdiv::render::colorbar::draw(&mut img, scale.half, isolines, &[kind.words().into(), scale.describe()]);
         }
         subdiv::render::save_png(&img, &a.output)
     }

@@ -62,6 +62,7 @@ pub fn view(a: ViewArgs) -> Result<()> {
         // auto: the viewer shows a model's materials when it has them; none stays none
         coloring,
         isolines: a.color.isolines(coloring)?,
+        range: a.color.range(coloring)?,
         crease_angle: s.features.sharp.crease_angle,
         control: a.control,
     })

@@ -19,6 +19,9 @@ mod stats;
 mod subdivision;
 mod tools;
 
+#[cfg(test)]
+pub(crate) use tools::range_field;
+
 use super::command::Command;
 use super::display::Display;
 use super::doc::Doc;
@@ -50,6 +53,10 @@ pub(crate) struct PanelState {
     pub(crate) crease_angle: f32,
     /// Where "Save control" writes.
     pub(crate) save_path: String,
+    /// The curvature range field as typed (empty: auto).
+    pub(crate) range_text: String,
+    /// Why the range field's entry was refused.
+    pub(crate) range_error: Option<String>,
 }
 
 impl PanelState {
@@ -64,6 +71,8 @@ impl PanelState {
             smooth_steps: 10,
             crease_angle: 40.0,
             save_path: "control.obj".into(),
+            range_text: String::new(),
+            range_error: None,
         }
     }
 }

@@ -22,13 +22,24 @@ pub(crate) fn tools_section(
     ui.checkbox(&mut display.snap_limit, "Snap to limit positions").on_hover_text(
         "move every vertex to its limit point: on the Catmull-Clark surface for Catmull-Clark, else on Loop's",
     );
+    // the curvature colourings exist for the schemes with an exact limit
+    let refusal = crate::subdiv::eval::color::check_scheme(doc.model.made.scheme).err();
     egui::ComboBox::from_label("Colour").selected_text(display.coloring.name()).show_ui(ui, |ui| {
         for c in Coloring::ALL {
-            ui.selectable_value(&mut display.coloring, c, c.name());
+            match (&refusal, c) {
+                (Some(why), Coloring::Curvature(_)) => {
+                    let item = ui.add_enabled_ui(false, |ui| ui.selectable_value(&mut display.coloring, c, c.name()));
+                    item.inner.on_disabled_hover_text(why.to_string());
+                }
+                _ => {
+                    ui.selectable_value(&mut display.coloring, c, c.name());
+                }
+            }
         }
     });
     if let Coloring::Curvature(_) = display.coloring {
         isolines_control(ui, display);
+        range_control(ui, panel, display);
     }
     coloring_legend(ui, doc, display);
     let mut out = Vec::new();
@@ -69,12 +80,59 @@ fn isolines_control(ui: &mut egui::Ui, display: &mut Display) {
     });
 }
 
+/// The half-width of the curvature colours' range: a number, or empty for
+/// the default percentile. Taken when the field loses focus (Enter); a bad
+/// entry is shown beside it and changes nothing.
+fn range_control(ui: &mut egui::Ui, panel: &mut PanelState, display: &mut Display) {
+    let id = ui.make_persistent_id("curvature range");
+    if !ui.memory(|m| m.has_focus(id)) && panel.range_error.is_none() {
+        // show what is in use (set by --range, or by an earlier entry)
+        panel.range_text = display.range.map(|r| r.to_string()).unwrap_or_default();
+    }
+    ui.horizontal(|ui| {
+        ui.label("Range ±");
+        let field = egui::TextEdit::singleline(&mut panel.range_text).id(id).hint_text("auto").desired_width(70.0);
+        let response = ui.add(field).on_hover_text(format!(
+            "the colours span [-R, R]; empty: auto, the {}th percentile of |curvature| by area",
+            crate::subdiv::eval::color::PERCENTILE
+        ));
+        if response.lost_focus() {
+            match range_field(&panel.range_text) {
+                Ok(r) => {
+                    display.range = r;
+                    panel.range_error = None;
+                }
+                Err(e) => panel.range_error = Some(e),
+            }
+        }
+    });
+    if let Some(e) = &panel.range_error {
+        ui.label(RichText::new(e).small().color(egui::Color32::from_rgb(220, 90, 80)));
+    }
+}
+
+/// What the range field holds: empty (or `auto`) for the default
+/// percentile, else a half-width above 0.
+pub(crate) fn range_field(text: &str) -> Result<Option<crate::subdiv::eval::color::HalfWidth>, String> {
+    match text.trim() {
+        "" | "auto" => Ok(None),
+        t => t.parse().map(Some),
+    }
+}
+
 /// What the colours mean, or why there are none.
 fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, display: &Display) {
     let m = &doc.model;
     let coloring = display.coloring;
-    if let Coloring::Curvature(_) = coloring {
-        curvature_bar(ui, m.result.color_max, display.look().isolines);
+    if let Coloring::Curvature(kind) = coloring {
+        match (&m.result.values, m.result.scale) {
+            (Some(_), Some(scale)) => curvature_bar(ui, (kind, scale), m.made.scheme, display.look().isolines),
+            _ => {
+                let why = crate::subdiv::eval::color::check_scheme(m.made.scheme).err();
+                let text = why.map_or_else(|| "no curvature: the colouring failed".into(), |e| e.to_string());
+                ui.label(RichText::new(text).small());
+            }
+        }
         return;
     }
     let text = match coloring {
@@ -101,9 +159,16 @@ fn coloring_legend(ui: &mut egui::Ui, doc: &Doc, display: &Display) {
 
 /// The curvature colours' bar: the diverging map from `-range` (blue)
 /// through 0 (white) to `range` (red), with its numbers and a tick at each
-/// of `isolines` levels per side (none for 0).
-fn curvature_bar(ui: &mut egui::Ui, range: f32, isolines: u8) {
-    use crate::subdiv::eval::color::diverging;
+/// of `isolines` levels per side (none for 0), under a caption saying the
+/// curvature and the range in use (set, or the default percentile).
+fn curvature_bar(
+    ui: &mut egui::Ui,
+    (kind, scale): (crate::subdiv::eval::color::CurvatureKind, crate::subdiv::eval::color::Scale),
+    scheme: crate::Scheme,
+    isolines: u8,
+) {
+    use crate::subdiv::eval::color::{diverging, short};
+    ui.label(RichText::new(format!("{}, {}", kind.words(), scale.describe())).small());
     let (rect, _) = ui.allocate_exact_size(egui::vec2(ui.available_width().min(220.0), 12.0), egui::Sense::hover());
     let steps = 48;
     for i in 0..steps {
@@ -125,14 +190,15 @@ fn curvature_bar(ui: &mut egui::Ui, range: f32, isolines: u8) {
         ui.painter().line_segment([egui::pos2(x, top), egui::pos2(x, rect.bottom())], stroke);
     }
     ui.horizontal(|ui| {
-        ui.label(RichText::new(format!("{:.3e}", -range)).small());
+        ui.label(RichText::new(short(-scale.half)).small());
         ui.add_space(60.0);
         ui.label(RichText::new("0").small());
         ui.add_space(60.0);
-        ui.label(RichText::new(format!("{range:.3e}")).small());
+        ui.label(RichText::new(short(scale.half)).small());
     });
+    let limit = if scheme == crate::Scheme::CatmullClark { "Catmull-Clark" } else { "Loop" };
     ui.label(
-        RichText::new("exact Loop limit at each drawn vertex; range clamped at the 2nd and 98th percentiles; grey: no curvature (at an extraordinary vertex itself)")
+        RichText::new(format!("exact {limit} limit at each drawn vertex; beyond the range the colours saturate; grey: no curvature (at an extraordinary vertex itself)"))
             .small(),
     );
 }

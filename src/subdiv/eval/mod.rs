@@ -46,7 +46,7 @@ mod sector;
 mod vertices;
 
 pub use points::{Domain, EDGE_SLACK, parse_points, parse_points_in};
-pub use vertices::{vertex_params, vertex_samples};
+pub use vertices::{poly_vertex_params, vertex_params, vertex_samples};
 
 use crate::mesh::{Mesh, n, p};
 use crate::subdiv::{Options, Scheme};
