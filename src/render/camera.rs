@@ -13,6 +13,53 @@ const MAX_PITCH: f32 = 1.55;
 /// [`Camera::fit_points`] gives the model.
 pub const FIT_FILL: f32 = 0.9;
 
+/// The eye `(ex, ey, ez)` seeing the points `q` (camera frame) centred
+/// with half-angle tangents `s` in perspective ([`Camera::fit_points`]).
+fn perspective_eye(q: &[Vec3], s: Vec2) -> (f32, f32, f32) {
+    // the planes' touching lines along one axis: (offset, eye depth)
+    let touch = |a: &dyn Fn(&Vec3) -> f32, s: f32| {
+        let hi = q.iter().map(|p| a(p) + s * p.z).fold(f32::MIN, f32::max);
+        let lo = q.iter().map(|p| a(p) - s * p.z).fold(f32::MAX, f32::min);
+        (0.5 * (hi + lo), (hi - lo) / (2.0 * s))
+    };
+    let (ex, ezx) = touch(&|p| p.x, s.x);
+    let (ey, ezy) = touch(&|p| p.y, s.y);
+    if ezx >= ezy { (ex, centred(q, ezx, |p| p.y), ezx) } else { (centred(q, ezy, |p| p.x), ey, ezy) }
+}
+
+/// The offset along `a` that centres the perspective projections
+/// `(a(p) - e) / (ez - p.z)` of the points `q` from eye depth `ez`, by
+/// bisection (their largest plus their smallest falls as `e` grows).
+fn centred(q: &[Vec3], ez: f32, a: impl Fn(&Vec3) -> f32) -> f32 {
+    let balance = |e: f32| {
+        let (mut lo, mut hi) = (f32::MAX, f32::MIN);
+        for p in q {
+            let v = (a(p) - e) / (ez - p.z).max(f32::MIN_POSITIVE);
+            (lo, hi) = (lo.min(v), hi.max(v));
+        }
+        lo + hi
+    };
+    let span = q.iter().map(|p| a(p).abs()).fold(0.0f32, f32::max) + 1.0;
+    let (mut a0, mut b0) = (-span, span);
+    for _ in 0..60 {
+        let m = 0.5 * (a0 + b0);
+        if balance(m) > 0.0 {
+            a0 = m;
+        } else {
+            b0 = m;
+        }
+    }
+    0.5 * (a0 + b0)
+}
+
+/// The eye seeing the points `q` centred orthographically, its depth the
+/// distance whose view half-extents `s * ez` hold them.
+fn ortho_eye(q: &[Vec3], s: Vec2) -> (f32, f32, f32) {
+    let (lo, hi) = q.iter().fold((Vec3::MAX, Vec3::MIN), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let half = 0.5 * (hi - lo);
+    (0.5 * (hi.x + lo.x), 0.5 * (hi.y + lo.y), (half.x / s.x).max(half.y / s.y))
+}
+
 /// The bounds of the finite points, `None` if there are none.
 fn finite_bounds(points: &[Vec3]) -> Option<(Vec3, Vec3)> {
     let mut it = points.iter().copied().filter(|p| p.is_finite());
@@ -150,29 +197,35 @@ impl Camera {
     /// Keeps the direction and moves the camera so the projection of
     /// `points` is centred in a viewport of the given aspect and fills
     /// [`FIT_FILL`] of it in the tighter of its width and height, in
-    /// perspective or orthographically as the camera is. The centring is a
-    /// few steps of a fixed point (a sideways move shifts near points more
-    /// than far ones in perspective), each exact orthographically; the last
-    /// step only moves back, so every point is inside. Non-finite points
+    /// perspective or orthographically as the camera is. Non-finite points
     /// are skipped; none left frames `[-1, 1]^3`.
+    ///
+    /// In the camera's frame about the points' box centre (`x`, `y` across
+    /// the view, `z` towards the eye), an eye at `(ex, ey, ez)` sees point
+    /// `i` within the half-angle tangent `s` across `x` when
+    /// `|x_i - ex| <= s (ez - z_i)`: the two planes touch the points when
+    /// `ex + s ez = max (x_i + s z_i)` and `ex - s ez = min (x_i - s z_i)`,
+    /// which gives `ex` and `ez` in closed form. The tighter axis (the
+    /// larger `ez`) is so fitted; the other is then centred by bisection on
+    /// its offset (its extreme projections are monotone in it).
+    /// Orthographically the extents are the points' own.
     pub fn fit_points(&mut self, points: &[Vec3], aspect: f32) {
         let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
         let (lo, hi) = finite_bounds(points).unwrap_or((-Vec3::ONE, Vec3::ONE));
-        self.target = 0.5 * (lo + hi);
+        let centre = 0.5 * (lo + hi);
+        self.target = centre;
         self.radius = (0.5 * (hi - lo).length()).max(1e-4);
         let t = (0.5 * self.fovy).tan();
-        let (sx, sy) = (t * aspect * FIT_FILL, t * FIT_FILL);
-        for _ in 0..32 {
-            let d = self.fit_distance(points, (sx, sy));
-            self.distance = d;
-            let (right, up) = self.right_up();
-            let Some((x, y)) = self.projected_centre(points, d) else { return };
-            if x.abs().max(y.abs()) <= 1e-6 * self.radius {
-                break;
-            }
-            self.target += right * x + up * y;
-        }
-        self.distance = self.fit_distance(points, (sx, sy));
+        let s = Vec2::new(t * aspect * FIT_FILL, t * FIT_FILL);
+        let frame = self.in_frame();
+        let q: Vec<Vec3> = points.iter().filter(|p| p.is_finite()).map(|&p| frame(p).into()).collect();
+        let q = if q.is_empty() { vec![lo - centre, hi - centre] } else { q };
+        let (ex, ey, ez) = if self.orthographic { ortho_eye(&q, s) } else { perspective_eye(&q, s) };
+        let zmax = q.iter().fold(f32::MIN, |m, p| m.max(p.z));
+        let ez = if self.orthographic { ez } else { ez.max(zmax + 1e-3 * self.radius) };
+        let (right, up) = self.right_up();
+        self.target = centre + right * ex + up * ey;
+        self.distance = ez.max(1e-4 * self.radius);
     }
 
     /// The map to the camera's frame about the target: `(x, y, z)`
@@ -183,37 +236,6 @@ impl Camera {
             let q = p - target;
             (q.dot(right), q.dot(up), q.dot(back))
         }
-    }
-
-    /// The least distance from the target at which every finite point
-    /// projects within `(sx, sy)` times the view's half-width and
-    /// half-height and lies in front of the eye.
-    fn fit_distance(&self, points: &[Vec3], (sx, sy): (f32, f32)) -> f32 {
-        let frame = self.in_frame();
-        points.iter().filter(|p| p.is_finite()).fold(1e-4 * self.radius, |d, &p| {
-            let (x, y, z) = frame(p);
-            let across = (x.abs() / sx).max(y.abs() / sy);
-            let need = if self.orthographic { across } else { (z + across).max(z + 1e-3 * self.radius) };
-            d.max(need)
-        })
-    }
-
-    /// The centre of the projection of the finite points at distance `d`,
-    /// as an offset across the view at the target's depth; `None` if no
-    /// point is finite.
-    fn projected_centre(&self, points: &[Vec3], d: f32) -> Option<(f32, f32)> {
-        let (mut lo, mut hi) = (Vec2::splat(f32::MAX), Vec2::splat(f32::MIN));
-        let frame = self.in_frame();
-        for &p in points.iter().filter(|p| p.is_finite()) {
-            let (x, y, z) = frame(p);
-            let k = if self.orthographic { 1.0 } else { d / (d - z) };
-            let q = Vec2::new(x, y) * k;
-            (lo, hi) = (lo.min(q), hi.max(q));
-        }
-        (lo.x <= hi.x).then(|| {
-            let c = 0.5 * (lo + hi);
-            (c.x, c.y)
-        })
     }
 
     /// Orbits by a mouse motion in pixels.
