@@ -89,7 +89,9 @@ fn the_wire_is_clearly_visible_at_level_0() {
             renders(&mut off, &control, &control, &[Shading::Phong.look(), wire(WireEdges::All)]).try_into().unwrap();
         let changed = changed_share(&phong, &wired, 30.0);
         eprintln!("{name} L0: {:.1}% of the object changes by more than 30", 100.0 * changed);
-        assert!(changed > 0.01, "{name}: the level-0 wire changes {:.2}% of the object", 100.0 * changed);
+        // the fit fills 90% of the view, so the object has about twice the
+        // pixels of the bounding-sphere fit this bound was set with
+        assert!(changed > 0.008, "{name}: the level-0 wire changes {:.2}% of the object", 100.0 * changed);
     }
 }
 
