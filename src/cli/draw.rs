@@ -37,6 +37,24 @@ pub struct RenderArgs {
     control: bool,
     #[command(flatten)]
     look: RenderLook,
+    #[command(flatten)]
+    inspect: RenderInspect,
+}
+
+/// The inspector's overlays of `render` (docs/viewer.md, Inspect).
+#[derive(clap::Args)]
+#[cfg_attr(not(feature = "viewer"), allow(dead_code))]
+pub struct RenderInspect {
+    /// Draw the operators of corner C of the level drawn as labelled arrows:
+    /// n p o l r s u of the triangle table, or next prev twin swing of the
+    /// quad table for catmull-clark and bilinear.
+    #[arg(long, value_name = "C", conflicts_with = "stencil")]
+    corner: Option<u32>,
+    /// Draw the stencil of vertex V of the level drawn on the control mesh:
+    /// each control vertex a disc sized by its weight's magnitude, coloured
+    /// by its sign, with the weight beside it; the rules in the caption.
+    #[arg(long, value_name = "V")]
+    stencil: Option<u32>,
 }
 
 /// The wireframe and picture options of `render`.
@@ -212,14 +230,19 @@ pub use gpu::{animate, render};
 #[cfg(feature = "viewer")]
 mod gpu {
     use super::super::progress;
-    use super::{AnimateArgs, RenderArgs, animate_stats, animation_of};
+    use super::{AnimateArgs, RenderArgs, RenderInspect, animate_stats, animation_of};
     use glam::Vec3;
     use subdiv::app::display::Coloring;
     use subdiv::mesh::attributes::Attributes;
     use subdiv::mesh::inspect::colormap;
+    use subdiv::mesh::inspect::{corner_ops, poly_corner_ops};
+    use subdiv::mesh::poly::PolyMesh;
     use subdiv::render::Paint;
+    use subdiv::render::inspect;
+    use subdiv::render::overlay::{self, Overlay, Viewport};
     use subdiv::subdiv::eval::color::{self, HalfWidth};
     use subdiv::subdiv::inspect::{creation_levels, displacement};
+    use subdiv::subdiv::stencil::stencil;
     use subdiv::{Error, Mesh, Result, Scheme};
 
     fn ramp(t: impl Iterator<Item = f32>) -> Vec<Vec3> {
@@ -307,11 +330,48 @@ mod gpu {
         let stripes = subdiv::render::Stripes { count: a.look.stripes, angle: a.look.stripe_angle };
         let opts =
             subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot, stripes };
-        let mut img = subdiv::render::render_image_painted(&fine, a.control.then_some(&mesh), &opts, &paint)?;
+        let overlay = inspect_overlay(&a.inspect, &mesh, &fine, (s.scheme, levels, &s.options()))?;
+        // a stencil is drawn on the cage: the control mesh is shown with it
+        let control = (a.control || a.inspect.stencil.is_some()).then_some(&mesh);
+        let mut img = subdiv::render::render_image_painted(&fine, control, &opts, &paint)?;
         if let Some(Legend { kind, scale }) = legend {
             subdiv::render::colorbar::draw(&mut img, scale.half, isolines, &[kind.words().into(), scale.describe()]);
         }
+        if let Some(overlay) = overlay {
+            let camera = subdiv::render::default_camera(control.unwrap_or(&fine), &opts);
+            let k = opts.shot.scale as f32;
+            let vp = Viewport::image(img.width(), img.height(), k);
+            overlay::paint(&mut img, &overlay::project(&overlay, &camera, &vp, 10.0), k);
+        }
         subdiv::render::save_png(&img, &a.output)
+    }
+
+    /// The overlay of `--corner` or `--stencil` on `fine`, level `levels` of
+    /// `scheme` over `control`; a corner or vertex out of range is refused.
+    fn inspect_overlay(
+        a: &RenderInspect,
+        control: &Mesh,
+        fine: &Mesh,
+        (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
+    ) -> Result<Option<Overlay>> {
+        let shown = format!("level {levels} of {scheme}");
+        if let Some(v) = a.stencil {
+            let st = stencil(control, scheme, levels, opts, v)?;
+            return Ok(Some(inspect::stencil_overlay(&control.positions, &st, fine.positions[v as usize])));
+        }
+        let Some(c) = a.corner else { return Ok(None) };
+        let out_of_range = |n: usize| Error::Usage(format!("corner {c} out of range: {shown} has {n} corners"));
+        let mut overlay = if scheme.is_polygonal() {
+            let pm = PolyMesh::from_mesh(fine);
+            let x = poly_corner_ops(&pm.pt, c).ok_or_else(|| out_of_range(pm.pt.num_corners()))?;
+            inspect::poly_corner_overlay(&pm.pt, &fine.positions, &x)
+        } else {
+            let x = corner_ops(&fine.ct, c).ok_or_else(|| out_of_range(fine.ct.num_corners()))?;
+            inspect::triangle_corner_overlay(fine.ct.v_table(), &fine.positions, &x)
+        };
+        let table = if scheme.is_polygonal() { "quad table" } else { "triangle table" };
+        overlay.caption.insert(0, format!("{shown}, the {table}"));
+        Ok(Some(overlay))
     }
 
     /// `subdiv animate --stats --eval gpu`: every frame through the compute passes.

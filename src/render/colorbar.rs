@@ -2,14 +2,15 @@
 //! from `-range` (bottom, blue) to `range` (top, red) at the right edge,
 //! with its three numbers and a caption above it (what is coloured, the
 //! range and where it came from) in a small built-in pixel font (digits,
-//! capitals and `. - + e ± % ( ) : , /`), so a PNG says what its colours
-//! mean without a font file.
+//! capitals and `. - + e ± % ( ) : , / = [ ] ' ^ _ # ;`), so a PNG says
+//! what its colours mean without a font file; the inspector's overlays
+//! ([`super::overlay`]) write their labels with it too.
 
 use crate::subdiv::eval::color::{diverging, short};
 use image::{Rgba, RgbaImage};
 
 /// 3 x 5 glyphs, one row per entry, bit 2 = left column.
-fn glyph(c: char) -> [u8; 5] {
+pub(crate) fn glyph(c: char) -> [u8; 5] {
     match c {
         '0' => [7, 5, 5, 5, 7],
         '1' => [2, 6, 2, 2, 7],
@@ -32,6 +33,14 @@ fn glyph(c: char) -> [u8; 5] {
         ':' => [0, 2, 0, 2, 0],
         ',' => [0, 0, 0, 2, 4],
         '/' => [1, 1, 2, 4, 4],
+        '=' => [0, 7, 0, 7, 0],
+        '[' => [3, 2, 2, 2, 3],
+        ']' => [6, 2, 2, 2, 6],
+        '\'' => [2, 2, 0, 0, 0],
+        '^' => [2, 5, 0, 0, 0],
+        '_' => [0, 0, 0, 0, 7],
+        '#' => [5, 7, 5, 7, 5],
+        ';' => [0, 2, 0, 2, 4],
         'A'..='Z' => letter(c),
         _ => [0; 5],
     }
@@ -79,8 +88,14 @@ fn srgb8(x: f32) -> u8 {
 /// pixels per font pixel, in `ink`.
 fn text(img: &mut RgbaImage, text: &str, (right, top): (i64, i64), scale: i64, ink: Rgba<u8>) {
     let width = text.chars().count() as i64 * 4 * scale;
+    text_from(img, text, (right - width, top), scale, ink);
+}
+
+/// Writes `text` with its top-left corner at `(left, top)`, `scale` pixels
+/// per font pixel, in `ink` (4 `scale` pixels a character, 5 `scale` tall).
+pub(crate) fn text_from(img: &mut RgbaImage, text: &str, (left, top): (i64, i64), scale: i64, ink: Rgba<u8>) {
     for (i, c) in text.chars().enumerate() {
-        let x0 = right - width + i as i64 * 4 * scale;
+        let x0 = left + i as i64 * 4 * scale;
         for (row, bits) in glyph(c).iter().enumerate() {
             for col in 0..3 {
                 if bits >> (2 - col) & 1 == 1 {
