@@ -134,6 +134,8 @@ pub(crate) enum Command {
     Finished(Box<Finished>),
     /// What the GPU mirror found uploading the last frame.
     Gpu(Box<GpuReport>),
+    /// The Inspect mode: on or off, its sub-mode, a pick, a step.
+    Inspect(super::inspect::Action),
 }
 
 /// What the GPU mirror's sync found that the document should know: the
@@ -226,6 +228,7 @@ impl Viewer {
             Command::DismissError => doc.status.error = None,
             Command::DismissNotice => doc.status.notice = None,
             Command::Finished(finished) => self.finished(*finished),
+            Command::Inspect(action) => doc.inspect(action),
             camera => self.apply_camera(camera),
         }
         if self.doc.model.control.version() != control && self.doc.model.original.is_none() {

@@ -101,6 +101,8 @@ pub(crate) struct Doc {
     pub(crate) status: Status,
     /// Repair meshes when opening them (split non-manifold elements, orient, drop degenerate faces).
     pub(crate) repair_on_open: bool,
+    /// The Inspect mode: picked corner, stencil, split.
+    pub(crate) inspect: super::inspect::Inspect,
 }
 
 fn builtin_tetrahedron() -> (Mesh, Paths) {
@@ -132,6 +134,7 @@ impl Doc {
             },
             status: Status::default(),
             repair_on_open: false,
+            inspect: Default::default(),
         }
     }
 
@@ -465,6 +468,7 @@ impl Doc {
                 self.status.notice = Some(format!("wrote {n} frames to {}", out.display()));
             }
             Finished::Exported(Err(e)) => self.fail(Problem::Export(e)),
+            Finished::Inspected { shown, result } => self.adopt_inspected(shown, result),
         }
     }
 
@@ -481,6 +485,18 @@ impl Doc {
                 self.status.failed = matches!(e, Error::Mesh { .. }).then_some(path);
                 self.fail(Problem::Open(e));
             }
+        }
+    }
+
+    /// An inspector pick's answer: a stencil shows the cage it is drawn
+    /// on; an error is the inspector's message, not the model's.
+    fn adopt_inspected(&mut self, shown: Arc<Mesh>, result: crate::Result<super::inspect::Found>) {
+        match result {
+            Ok(found) => {
+                self.display.control |= matches!(found, super::inspect::Found::Stencil(_));
+                self.inspect.adopt(shown, found);
+            }
+            Err(e) => self.inspect.message = Some(e.to_string()),
         }
     }
 

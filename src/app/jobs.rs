@@ -55,6 +55,8 @@ pub(crate) struct Slots {
     pub(crate) building: Option<Busy>,
     /// Running export.
     pub(crate) exporting: Option<Busy>,
+    /// Running inspector pick.
+    pub(crate) inspecting: Option<Busy>,
 }
 
 /// A loaded model.
@@ -108,6 +110,13 @@ pub(crate) enum Finished {
     Animated(Result<Animation>),
     /// An export finished: frames written and where.
     Exported(Result<(usize, PathBuf)>),
+    /// An inspector pick was answered, for the output it was made on.
+    Inspected {
+        /// That output.
+        shown: Arc<Mesh>,
+        /// What was found.
+        result: Result<super::inspect::Found>,
+    },
 }
 
 /// The inputs of a subdivision.
@@ -155,6 +164,7 @@ enum Kind {
     Subdivide,
     Animate,
     Export,
+    Inspect,
 }
 
 struct Message {
@@ -189,6 +199,7 @@ pub(crate) struct Jobs {
     load_ticket: Arc<AtomicU64>,
     subdivide_ticket: Arc<AtomicU64>,
     animate_ticket: Arc<AtomicU64>,
+    inspect_ticket: Arc<AtomicU64>,
     export_cancel: Arc<AtomicU64>,
     /// What is running.
     pub(crate) busy: Slots,
@@ -211,6 +222,7 @@ impl Jobs {
             load_ticket: Default::default(),
             subdivide_ticket: Default::default(),
             animate_ticket: Default::default(),
+            inspect_ticket: Default::default(),
             export_cancel: Default::default(),
             busy: Slots::default(),
             workers: Default::default(),
@@ -220,7 +232,11 @@ impl Jobs {
     /// Whether any task is running.
     pub(crate) fn busy(&self) -> bool {
         let b = &self.busy;
-        b.loading.is_some() || b.subdividing.is_some() || b.building.is_some() || b.exporting.is_some()
+        b.loading.is_some()
+            || b.subdividing.is_some()
+            || b.building.is_some()
+            || b.exporting.is_some()
+            || b.inspecting.is_some()
     }
 
     fn ticket(&self, kind: Kind) -> Option<&Arc<AtomicU64>> {
@@ -228,6 +244,7 @@ impl Jobs {
             Kind::Load => Some(&self.load_ticket),
             Kind::Subdivide => Some(&self.subdivide_ticket),
             Kind::Animate => Some(&self.animate_ticket),
+            Kind::Inspect => Some(&self.inspect_ticket),
             Kind::Export => None,
         }
     }
@@ -243,6 +260,7 @@ impl Jobs {
             Kind::Subdivide => &mut self.busy.subdividing,
             Kind::Animate => &mut self.busy.building,
             Kind::Export => &mut self.busy.exporting,
+            Kind::Inspect => &mut self.busy.inspecting,
         }
     }
 
@@ -363,6 +381,16 @@ impl Jobs {
                 .map(|n| (n, out))
             });
             Some(Finished::Exported(result))
+        });
+    }
+
+    /// Answers an inspector pick on a worker (superseding a running one).
+    pub(crate) fn inspect(&mut self, job: super::inspect::InspectJob) {
+        let ticket = self.next_ticket(Kind::Inspect);
+        self.busy.inspecting = Some(Busy::new("inspecting".into(), 1));
+        self.spawn(Kind::Inspect, ticket, move || {
+            let result = job.run();
+            Some(Finished::Inspected { shown: job.shown, result })
         });
     }
 

@@ -31,6 +31,7 @@ pub(crate) mod command;
 pub mod display;
 pub(crate) mod doc;
 mod gpu_scene;
+pub(crate) mod inspect;
 pub(crate) mod jobs;
 pub(crate) mod model;
 pub(crate) mod panel;
@@ -40,6 +41,8 @@ pub(crate) mod view;
 pub(crate) mod viewer;
 mod window;
 
+#[cfg(test)]
+mod inspect_tests;
 #[cfg(test)]
 mod tests;
 

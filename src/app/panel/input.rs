@@ -1,8 +1,11 @@
 //! The 3D area's mouse and keyboard: camera motion, picking, the keys of
-//! [`super::HELP`].
+//! [`super::HELP`]. While Inspect is on a click picks for it, `Esc` leaves
+//! it, and in its Corners mode the letters `n p o l r s u` walk the picked
+//! corner instead of their usual toggles.
 
 use crate::app::command::Command;
 use crate::app::display::Display;
+use crate::app::inspect::{Action, Inspect, Mode};
 use crate::app::probe::ray_at;
 use crate::app::view::{View, cursor_ndc, viewport_aspect};
 use egui::{Key, PointerButton, Sense};
@@ -10,8 +13,14 @@ use glam::Vec2;
 
 /// Drags orbit or pan, the wheel zooms to the cursor, a double click fits, a
 /// click picks a point of the surface (a control edge when edge picking is
-/// on); then the keys.
-pub(crate) fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, view: &View, display: &mut Display) -> Vec<Command> {
+/// on, the inspector's corner, vertex or face while Inspect is on); then
+/// the keys.
+pub(crate) fn scene_input(
+    ui: &mut egui::Ui,
+    rect: egui::Rect,
+    (view, inspect): (&View, &Inspect),
+    display: &mut Display,
+) -> Vec<Command> {
     let mut out = Vec::new();
     let resp = ui.allocate_rect(rect, Sense::click_and_drag());
     let shift = ui.input(|i| i.modifiers.shift);
@@ -31,7 +40,9 @@ pub(crate) fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, view: &View, disp
         && let Some(pos) = resp.interact_pointer_pos()
     {
         let ray = ray_at(&view.camera, rect, display.side_by_side, pos);
-        out.push(if display.pick {
+        out.push(if inspect.on {
+            Command::Inspect(Action::Pick(ray))
+        } else if display.pick {
             Command::Pick { origin: ray.origin, dir: ray.dir }
         } else {
             Command::PickSurface(ray)
@@ -45,14 +56,42 @@ pub(crate) fn scene_input(ui: &mut egui::Ui, rect: egui::Rect, view: &View, disp
         }
     }
     if !ui.ctx().egui_wants_keyboard_input() {
-        out.extend(keys(ui, view, display));
+        out.extend(inspect_keys(ui, inspect));
+        let walking = inspect.on && inspect.mode == Mode::Corners;
+        out.extend(keys(ui, view, display, walking).into_iter().filter(|c| {
+            // Esc leaves Inspect rather than clearing the picked point
+            !(inspect.on && matches!(c, Command::ClearSurfacePick))
+        }));
     }
     out
 }
 
-/// The keys: display toggles edit the draft `display`, the rest are commands.
-fn keys(ui: &egui::Ui, view: &View, display: &mut Display) -> Vec<Command> {
+/// The operator keys of the Corners mode.
+const WALK: [(Key, char); 7] =
+    [(Key::N, 'n'), (Key::P, 'p'), (Key::O, 'o'), (Key::L, 'l'), (Key::R, 'r'), (Key::S, 's'), (Key::U, 'u')];
+
+/// `Q` toggles Inspect; while it is on `Esc` leaves it and, in its Corners
+/// mode, `n p o l r s u` walk the picked corner.
+fn inspect_keys(ui: &egui::Ui, inspect: &Inspect) -> Vec<Command> {
     let pressed = |k: Key| ui.input(|i| i.key_pressed(k));
+    let mut out = Vec::new();
+    if pressed(Key::Q) {
+        out.push(Command::Inspect(Action::Toggle));
+    }
+    if inspect.on && pressed(Key::Escape) {
+        out.push(Command::Inspect(Action::Leave));
+    }
+    if inspect.on && inspect.mode == Mode::Corners {
+        out.extend(WALK.iter().filter(|(k, _)| pressed(*k)).map(|&(_, c)| Command::Inspect(Action::Walk(c))));
+    }
+    out
+}
+
+/// The keys: display toggles edit the draft `display`, the rest are
+/// commands; with `walking` (Inspect's Corners mode) the operator letters
+/// are left to [`inspect_keys`].
+fn keys(ui: &egui::Ui, view: &View, display: &mut Display, walking: bool) -> Vec<Command> {
+    let pressed = |k: Key| ui.input(|i| i.key_pressed(k)) && !(walking && WALK.iter().any(|w| w.0 == k));
     let toggles: [(Key, &mut bool); 5] = [
         (Key::W, &mut display.wireframe),
         (Key::C, &mut display.control),

@@ -12,6 +12,7 @@ mod animation;
 mod browser;
 mod creases;
 mod input;
+mod inspect;
 mod model;
 mod overlay;
 mod probe;
@@ -19,6 +20,8 @@ mod stats;
 mod subdivision;
 mod tools;
 
+#[cfg(test)]
+pub(crate) use inspect::stencil_text;
 #[cfg(test)]
 pub(crate) use tools::range_field;
 
@@ -32,7 +35,7 @@ use std::path::PathBuf;
 
 /// Keyboard help shown at the bottom of the panel.
 pub(crate) const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor, \
-click pick a point, double click fit. Keys: Esc clear the pick, W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
+click pick a point, double click fit. Keys: Q inspect (corners, stencils, splits), Esc clear the pick, W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
 B side by side, T turntable, Space play/pause, Left/Right step frame, P screenshot.";
 
 /// The panel's own widget state.
@@ -111,6 +114,11 @@ pub(crate) fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelS
             section(ui, "Display", true, |ui| out.extend(display_section(ui, doc, view, &mut display)));
             section(ui, "Animation", false, |ui| out.extend(animation::animation_section(ui, doc, panel, &display)));
             section(ui, "Picked point", true, |ui| out.extend(probe::probe_section(ui, doc)));
+            // open whenever Inspect is on, so that Q shows what it picks
+            egui::CollapsingHeader::new(RichText::new("Inspect").strong())
+                .default_open(false)
+                .open(doc.inspect.on.then_some(true))
+                .show(ui, |ui| out.extend(inspect::inspect_section(ui, doc)));
             section(ui, "Surface and tools", false, |ui| {
                 out.extend(tools::tools_section(ui, doc, panel, &mut display));
             });
@@ -123,7 +131,7 @@ pub(crate) fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelS
         });
     });
     let rect = ui.available_rect_before_wrap();
-    out.extend(input::scene_input(ui, rect, view, &mut display));
+    out.extend(input::scene_input(ui, rect, (view, &doc.inspect), &mut display));
     overlay::overlay(ui, rect, doc, view, &display);
     out.extend(browser::file_browser(ui.ctx(), panel));
     if display != doc.display {

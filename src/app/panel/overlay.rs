@@ -21,6 +21,7 @@ pub(crate) fn overlay(ui: &mut egui::Ui, rect: egui::Rect, doc: &Doc, view: &Vie
         painter.text(corner, egui::Align2::LEFT_TOP, label(doc), font.clone(), weak);
     }
     marker(&painter, rect, doc, view, display);
+    inspect_marks(&painter, rect, doc, view, display);
     let busy = &doc.jobs.busy;
     if let Some(b) = busy.subdividing.as_ref().or(busy.loading.as_ref()).or(busy.building.as_ref()) {
         let secs = b.since.elapsed().as_secs_f32();
@@ -98,4 +99,53 @@ fn marker(painter: &egui::Painter, rect: egui::Rect, doc: &Doc, view: &View, dis
     }
     painter.circle_stroke(at, 6.0, egui::Stroke::new(3.0, Color32::from_black_alpha(160)));
     painter.circle_stroke(at, 6.0, egui::Stroke::new(1.5, accent));
+}
+
+/// The inspector's marks (render/inspect.rs, the same as `subdiv render
+/// --corner/--stencil` draws) over the result's viewport, its caption under
+/// the viewport's label.
+fn inspect_marks(painter: &egui::Painter, rect: egui::Rect, doc: &Doc, view: &View, display: &Display) {
+    use crate::render::overlay::{Anchor, Prim, Viewport, project};
+    let Some(overlay) = doc.inspect_overlay() else { return };
+    let mut vp = rect;
+    if display.side_by_side {
+        vp.set_width(rect.width() / 2.0);
+        vp = vp.translate(egui::vec2(vp.width(), 0.0));
+    }
+    let viewport = Viewport {
+        min: glam::Vec2::new(vp.left(), vp.top()),
+        size: glam::Vec2::new(vp.width(), vp.height()),
+        scale: 1.0,
+    };
+    let pos = |p: glam::Vec2| egui::pos2(p.x, p.y);
+    let color = |c: [u8; 4]| Color32::from_rgba_unmultiplied(c[0], c[1], c[2], c[3]);
+    let font = egui::FontId::proportional(13.0);
+    for prim in project(&overlay, &view.camera, &viewport, 28.0) {
+        match prim {
+            Prim::Line { a, b, width, color: c } => {
+                painter.line_segment([pos(a), pos(b)], egui::Stroke::new(width, color(c)));
+            }
+            Prim::Triangle { p, color: c } => {
+                painter.add(egui::Shape::convex_polygon(p.map(pos).to_vec(), color(c), egui::Stroke::NONE));
+            }
+            Prim::Circle { c, r, color: k } => {
+                painter.circle_filled(pos(c), r, color(k));
+            }
+            Prim::CircleStroke { c, r, width, color: k } => {
+                painter.circle_stroke(pos(c), r, egui::Stroke::new(width, color(k)));
+            }
+            Prim::Text { at, anchor, text, color: c } => {
+                let align = match anchor {
+                    Anchor::LeftCenter => egui::Align2::LEFT_CENTER,
+                    Anchor::RightCenter => egui::Align2::RIGHT_CENTER,
+                    Anchor::Center => egui::Align2::CENTER_CENTER,
+                    Anchor::LeftTop => egui::Align2::LEFT_TOP,
+                };
+                let galley = painter.layout_no_wrap(text, font.clone(), color(c));
+                let r = align.anchor_size(pos(at), galley.size());
+                painter.rect_filled(r.expand(2.0), 3.0, Color32::from_black_alpha(170));
+                painter.galley(r.min, galley, color(c));
+            }
+        }
+    }
 }
