@@ -3,7 +3,7 @@
 //! operators and of a refined vertex's stencil (drawn by [`super::overlay`]).
 //!
 //! ```text
-//! corner     the picked corner a white dot at its corner point, each operator
+//! corner     the picked corner's face outlined, the corner a white dot at its corner point, each operator
 //!            an arrow to its target's corner point, labelled `o 27`; a corner
 //!            point lies inside its face near its vertex: v + 0.45 (centroid - v)
 //!            (0.7 v + 0.15 of the other two in a triangle)
@@ -77,24 +77,36 @@ pub fn poly_corner_rows(x: &PolyCornerOps) -> Vec<(&'static str, Option<u32>)> {
 /// positions) as arrows.
 pub fn triangle_corner_overlay(v_table: &[u32], positions: &[Vec3], x: &CornerOps) -> Overlay {
     let title = format!("corner {} of triangle {} (vertex {})", x.corner, x.triangle, x.vertex);
-    corner_overlay(x.corner, title, &corner_rows(x), |c| triangle_corner_point(v_table, positions, c))
+    let face: Vec<Vec3> = (0..3).map(|i| positions[v_table[(3 * x.triangle + i) as usize] as usize]).collect();
+    corner_overlay((x.corner, &face), title, &corner_rows(x), |c| triangle_corner_point(v_table, positions, c))
 }
 
 /// The operators of corner `x` of a polygon table as arrows.
 pub fn poly_corner_overlay(pt: &PolyTable, positions: &[Vec3], x: &PolyCornerOps) -> Overlay {
     let title = format!("corner {} of face {} (vertex {})", x.corner, x.face, x.vertex);
-    corner_overlay(x.corner, title, &poly_corner_rows(x), |c| polygon_corner_point(pt, positions, c))
+    let face: Vec<Vec3> = pt.face_corners(x.face).map(|c| positions[pt.vtx(c) as usize]).collect();
+    corner_overlay((x.corner, &face), title, &poly_corner_rows(x), |c| polygon_corner_point(pt, positions, c))
 }
 
-fn corner_overlay(corner: u32, title: String, rows: &[(&str, Option<u32>)], at: impl Fn(u32) -> Vec3) -> Overlay {
+/// The picked corner's face outlined, its dot, an arrow per operator.
+fn corner_overlay(
+    (corner, face): (u32, &[Vec3]),
+    title: String,
+    rows: &[(&str, Option<u32>)],
+    at: impl Fn(u32) -> Vec3,
+) -> Overlay {
     let from = at(corner);
-    let mut marks: Vec<Mark> = rows
-        .iter()
-        .filter_map(|&(name, target)| {
-            let t = target?;
-            Some(Mark::Arrow { from, to: at(t), color: op_color(name), label: format!("{name} {t}") })
-        })
-        .collect();
+    let outline = (0..face.len()).map(|i| Mark::Segment {
+        a: face[i],
+        b: face[(i + 1) % face.len()],
+        color: [255, 255, 255, 150],
+        width: 1.5,
+    });
+    let mut marks: Vec<Mark> = outline.collect();
+    marks.extend(rows.iter().filter_map(|&(name, target)| {
+        let t = target?;
+        Some(Mark::Arrow { from, to: at(t), color: op_color(name), label: format!("{name} {t}") })
+    }));
     marks.push(Mark::Disc { at: from, radius: 5.0, color: PICKED, label: Some(format!("c {corner}")) });
     let border: Vec<&str> = rows.iter().filter(|r| r.1.is_none()).map(|r| r.0).collect();
     let mut caption = vec![title];

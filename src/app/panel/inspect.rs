@@ -100,15 +100,16 @@ fn corner_view(ui: &mut egui::Ui, c: &PickedCorner) -> Vec<Command> {
         None => return out,
     };
     ui.label(RichText::new(head).strong());
-    egui::Grid::new("inspect-corner").num_columns(3).striped(true).show(ui, |ui| {
+    egui::Grid::new("inspect-corner").num_columns(2).striped(true).show(ui, |ui| {
         for (name, target) in c.rows() {
             let walk = ui.add_enabled(target.is_some(), egui::Button::new(RichText::new(name).monospace()));
             if walk.on_hover_text(format!("walk to {name}(c) (key {})", key_of(name))).clicked() {
                 out.push(Command::Inspect(Action::Walk(key_of(name))));
             }
+            // the value in its arrow's colour
             let [r, g, b, _] = crate::render::inspect::op_color(name);
-            ui.label(RichText::new("→").color(Color32::from_rgb(r, g, b)));
-            ui.label(RichText::new(target.map_or_else(|| "border".into(), |t| t.to_string())).monospace());
+            let value = target.map_or_else(|| "border".into(), |t| t.to_string());
+            ui.label(RichText::new(value).monospace().color(Color32::from_rgb(r, g, b)));
             ui.end_row();
         }
     });
@@ -188,7 +189,8 @@ pub(crate) fn split_text(s: &SplitView) -> String {
 /// child corner entries.
 fn split_view(ui: &mut egui::Ui, s: &SplitView) {
     let (child, parent) = s.face_words();
-    let head = format!("{child} {} of level {} ← {parent} {} of level {}", s.picked, s.level, s.parent, s.level - 1);
+    let head =
+        format!("{child} {} of level {}, a child of {parent} {} of level {}", s.picked, s.level, s.parent, s.level - 1);
     ui.label(RichText::new(head).strong());
     ui.label(format!("parent corners c: {:?}; children: {:?}", s.parent_corners, s.children));
     for (v, rule) in &s.new_vertices {
@@ -201,23 +203,24 @@ fn split_view(ui: &mut egui::Ui, s: &SplitView) {
     if s.all_agree() {
         ui.label(RichText::new(format!("all {} entries agree", s.rows.len())).color(Color32::from_rgb(110, 210, 120)));
     }
-    egui::ScrollArea::horizontal().id_salt("inspect-split").show(ui, |ui| {
-        egui::Grid::new("inspect-split-rows").num_columns(4).striped(true).show(ui, |ui| {
-            for r in &s.rows {
-                let id = |x: Option<u32>| x.map_or_else(|| "border".into(), |c| c.to_string());
-                ui.label(RichText::new(r.corner.to_string()).monospace());
-                ui.label(RichText::new(format!("{}\n{}", r.formula, r.worked)).monospace().small());
-                ui.label(RichText::new(format!("= {}", id(r.derived))).monospace());
-                let (mark, color) = if r.derived == r.table {
-                    ("✔", Color32::from_rgb(110, 210, 120))
-                } else {
-                    ("✘", Color32::from_rgb(240, 90, 80))
-                };
-                ui.label(RichText::new(format!("table {} {mark}", id(r.table))).monospace().color(color));
-                ui.end_row();
-            }
+    // two lines a child corner: the formula, then its numbers and the table's entry
+    let id = |x: Option<u32>| x.map_or_else(|| "border".into(), |c| c.to_string());
+    for (k, r) in s.rows.iter().enumerate() {
+        if k % 4 == 0 {
+            ui.separator();
+            ui.label(RichText::new(format!("c = {}", s.parent_corners[k / 4])).strong());
+        }
+        ui.label(RichText::new(format!("{}: {}", r.corner, r.formula)).monospace());
+        let (verdict, color) = if r.derived == r.table {
+            ("agrees", Color32::from_rgb(110, 210, 120))
+        } else {
+            ("DIFFERS", Color32::from_rgb(240, 90, 80))
+        };
+        ui.horizontal_wrapped(|ui| {
+            ui.label(RichText::new(format!("  {} = {}", r.worked, id(r.derived))).monospace().weak());
+            ui.label(RichText::new(format!("table {} {verdict}", id(r.table))).monospace().color(color));
         });
-    });
+    }
     if ui.button("Copy").on_hover_text("the split's facts and table as plain text").clicked() {
         ui.ctx().copy_text(split_text(s));
     }
