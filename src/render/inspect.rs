@@ -11,6 +11,7 @@
 //!            colour by sign (the diverging map: red positive, blue negative),
 //!            its weight beside it (a dyadic fraction when it is one); the
 //!            refined vertex a ring; the caption names the rule of each level
+//!            (without its weights: `rule_short`)
 //! ```
 //! The facts come from the library ([`crate::mesh::inspect::corner_ops`],
 //! [`crate::mesh::inspect::poly_corner_ops`], [`crate::subdiv::stencil`]);
@@ -175,15 +176,12 @@ pub fn stencil_overlay(control: &[Vec3], st: &Stencil, at: Vec3) -> Overlay {
     marks.push(Mark::Ring { at, radius: 9.0, color: ACCENT });
     marks.push(Mark::Disc { at, radius: 3.0, color: ACCENT, label: Some(format!("v{}", st.vertex)) });
     let sum: f64 = st.weights.iter().map(|w| w.1).sum();
-    let mut caption = vec![format!(
-        "vertex {} of {} level {}: {} control vertices, weights sum {}",
-        st.vertex,
-        st.scheme,
-        st.level,
-        st.weights.len(),
-        weight_text(sum)
-    )];
-    caption.extend(st.rules.iter().map(|(l, r)| format!("level {l}: {r}")));
+    let mut caption = vec![
+        format!("vertex {} of {} level {}", st.vertex, st.scheme, st.level),
+        format!("{} control vertices, weights sum {}", st.weights.len(), weight_text(sum)),
+    ];
+    // the rules by name (their weights are the panel's and `info --stencil`'s)
+    caption.extend(st.rules.iter().map(|(l, r)| format!("level {l}: {}", rule_short(r))));
     Overlay { marks, caption }
 }
 

@@ -183,15 +183,21 @@ impl Viewport {
     }
 }
 
-/// The marks of `overlay` as 2D primitives in `vp` (those at points that
-/// cannot be seen are left out), then its caption at the top left, below
-/// `caption_top` points (the window's label is above it). A label goes
+/// The caption of `overlay` at the top left, below `caption_top` points
+/// (the window's label is above it), then its marks as 2D primitives in
+/// `vp` (those at points that cannot be seen are left out). A label goes
 /// where it overlaps no label placed before it and no disc, when one of a
 /// few places beside its mark is free, else where it overlaps least.
 pub fn project(overlay: &Overlay, camera: &Camera, vp: &Viewport, caption_top: f32) -> Vec<Prim> {
     let (mut shapes, mut labels) = (Vec::new(), Labels::new(vp));
     let k = vp.scale;
     let at = |p: Vec3| vp.to_screen(camera, p);
+    // the caption first: the marks are drawn over it, their labels beside it
+    for (i, text) in overlay.caption.iter().enumerate() {
+        let at = vp.min + Vec2::new(10.0 * k, (caption_top + i as f32 * 14.0) * k);
+        labels.taken.push(labels.boxed(at, Anchor::LeftTop, text));
+        shapes.push(Prim::Text { at, anchor: Anchor::LeftTop, text: text.clone(), color: [235, 235, 235, 255] });
+    }
     for m in &overlay.marks {
         if let Mark::Disc { at: p, radius, .. } = m
             && let Some(c) = at(*p)
@@ -236,11 +242,6 @@ pub fn project(overlay: &Overlay, camera: &Camera, vp: &Viewport, caption_top: f
                 }
             }
         }
-    }
-    let line = 14.0 * k;
-    for (i, text) in overlay.caption.iter().enumerate() {
-        let at = vp.min + Vec2::new(10.0 * k, caption_top * k + i as f32 * line);
-        shapes.push(Prim::Text { at, anchor: Anchor::LeftTop, text: text.clone(), color: [235, 235, 235, 255] });
     }
     shapes.extend(labels.placed);
     shapes
