@@ -195,7 +195,7 @@ pub struct SharpArgs {
     /// Make every edge whose two faces' normals differ by more than DEG degrees (0 to 180) infinitely sharp.
     #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true)]
     pub crease_angle: Option<f32>,
-    /// Boundary interpolation: edge (boundary edges sharp) or edge-and-corner (also one-face corners).
+    /// Boundary interpolation: edge (boundary edges sharp), edge-and-corner (also one-face corners) or none (the faces at the border left out, their vertices still shaping the rest).
     #[arg(long, default_value = "edge")]
     pub boundary: subdiv::mesh::BoundaryInterpolation,
 }

@@ -66,6 +66,8 @@ struct MeshInfo {
     face_sizes: BTreeMap<usize, usize>,
     /// Polygons fanned into triangles for the triangle schemes.
     polygons_fanned: usize,
+    /// Faces tagged as holes (`t hole`): left out of the surface.
+    holes: usize,
     #[serde(flatten)]
     sharp: SharpInfo,
     valence: BTreeMap<usize, usize>,
@@ -80,6 +82,9 @@ struct Counts {
     edges: usize,
     faces: usize,
     valence: BTreeMap<usize, usize>,
+    /// Faces tagged as holes.
+    #[serde(skip)]
+    holes: usize,
 }
 
 impl Counts {
@@ -89,13 +94,14 @@ impl Counts {
             edges: pt.num_edges(),
             faces: pt.num_faces(),
             valence: histogram(pt.valences().iter().map(|&k| k as usize)),
+            holes: pt.holes().len(),
         }
     }
 
     /// The counts of the triangle table itself.
-    fn triangles(t: &MeshTopology) -> Counts {
+    fn triangles(t: &MeshTopology, holes: usize) -> Counts {
         let valence = t.valence_histogram.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
-        Counts { edges: t.edges, faces: t.faces, valence }
+        Counts { edges: t.edges, faces: t.faces, valence, holes }
     }
 }
 
@@ -106,11 +112,11 @@ impl Counts {
 /// one-face corners are the polygons'.
 fn own_counts(mesh: &Mesh, t: &MeshTopology, boundary: BoundaryInterpolation) -> (Counts, Option<Counts>, Summary) {
     if !PolyMesh::is_polygonal(mesh) {
-        return (Counts::triangles(t), None, features::summary(&mesh.ct, boundary));
+        return (Counts::triangles(t, mesh.ct.holes().len()), None, features::summary(&mesh.ct, boundary));
     }
     // the triangles joined back across the hidden diagonals (PolyMesh::from_mesh)
     let pt = PolyTable::from_corner_table(&mesh.ct);
-    (Counts::polygons(&pt), Some(Counts::triangles(t)), features::poly_summary(&pt, boundary))
+    (Counts::polygons(&pt), Some(Counts::triangles(t, mesh.ct.holes().len())), features::poly_summary(&pt, boundary))
 }
 
 /// How many of `values` are each value.
@@ -266,6 +272,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             file_faces: notes.faces,
             face_sizes,
             polygons_fanned: notes.fanned,
+            holes: own.holes,
             sharp: SharpInfo {
                 sharp_edges: sharp.sharp_edges,
                 infinitely_sharp_edges: sharp.infinite_edges,
@@ -288,6 +295,9 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         println!("faces:           {} (by corners {}; fanned for the triangle schemes)", own.faces, sizes.join(" "));
     } else {
         println!("faces:           {}", own.faces);
+    }
+    if own.holes > 0 {
+        println!("holes:           {} (faces tagged as holes: left out of the surface)", own.holes);
     }
     println!("closed:          {}", if t.is_closed() { "yes" } else { "no" });
     println!("boundary loops:  {} ({} border edges)", t.boundary_loops, t.border_edges);

@@ -101,7 +101,9 @@ fn subdivide_triangles(
     };
     // OBJ writes the sharp features of the result, the boundary's corners too
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
-    if levels > 0 && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
+    // a mesh with holes goes the whole way: its attributes follow the faces left out
+    let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
+    if levels > 0 && !holes && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme, levels, &s.options())?;
         let fine_attrs = fine_attrs(attrs)?;
         let t1 = Instant::now();
@@ -112,7 +114,8 @@ fn subdivide_triangles(
     let fine_attrs = fine_attrs(attrs)?;
     let t1 = Instant::now();
     io::save_with(&a.output, &fine, &fine_attrs)?;
-    Ok((fine.positions.len(), fine.ct.num_triangles(), st, t1.elapsed().as_secs_f64() * 1e3))
+    let written = fine.ct.num_triangles() - if levels > 0 { fine.ct.holes().len() } else { 0 };
+    Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
 
 /// A polygon scheme's subdivision, straight on the polygons (the faces of
@@ -131,7 +134,8 @@ fn subdivide_polygons(
     };
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
-    if levels > 0 && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
+    let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
+    if levels > 0 && !holes && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_poly_faces(&control, s.scheme, levels, &s.options())?;
         let fine_attrs = fine_attrs(pattrs)?;
         let t1 = Instant::now();
@@ -142,7 +146,8 @@ fn subdivide_polygons(
     let fine_attrs = fine_attrs(pattrs)?;
     let t1 = Instant::now();
     io::save_poly(&a.output, &fine, &fine_attrs)?;
-    Ok((fine.positions.len(), fine.pt.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3))
+    let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
+    Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
 
 /// What `subdivide` prints: `--stats`, `--json` or a line.

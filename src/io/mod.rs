@@ -438,6 +438,13 @@ pub fn keeps_attributes(path: &Path) -> bool {
 /// # Errors
 /// As [`save`].
 pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+    // a refined level's holes are not written; a control mesh keeps them as
+    // tags where the format holds them (OBJ's `t hole`), else they go too
+    let control = mesh.ct.generations().is_none_or(|g| g.level() == 0);
+    let keeps_holes = control && Format::for_output(path).is_some_and(|f| f.extensions.contains(&"obj"));
+    if !mesh.ct.holes().is_empty() && !keeps_holes {
+        return save_without_holes(path, mesh, attrs);
+    }
     if let Some(write) = Format::for_output(path).and_then(|f| f.poly_writer)
         && PolyMesh::is_polygonal(mesh)
     {
@@ -453,6 +460,39 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
             known: ".obj, .ply, .ct, .stl, .off or .glb",
         }),
     }
+}
+
+/// [`save_with`] of a mesh with holes, the holes left out (every vertex
+/// kept, as OpenSubdiv writes them): its quads when it stands for quads,
+/// else its triangles, through [`save_faces`] (`.ct`, which needs a corner
+/// table, gets the whole table).
+fn save_without_holes(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+    if Format::for_output(path).is_some_and(|f| f.faces_writer.is_none()) {
+        let whole = Mesh { ct: mesh.ct.clone().with_holes(Vec::new()), positions: mesh.positions.clone() };
+        return save_with(path, &whole, attrs);
+    }
+    let keep_corners = |sides: usize, hole: &dyn Fn(u32) -> bool, n: usize| -> Vec<usize> {
+        (0..n as u32).filter(|&f| !hole(f)).flat_map(|f| (0..sides).map(move |k| sides * f as usize + k)).collect()
+    };
+    let (pm, pattrs) = PolyMesh::from_mesh_with_attributes(mesh, attrs);
+    let (positions, v, sides, kept_faces, corners, a) = if PolyMesh::is_polygonal(mesh) && pm.pt.is_quads() {
+        let keep = keep_corners(4, &|f| pm.pt.is_hole(f), pm.pt.num_faces());
+        (&pm.positions, pm.pt.v_table(), 4, pm.pt.num_faces(), keep, &pattrs)
+    } else {
+        let keep = keep_corners(3, &|t| mesh.ct.is_hole(t), mesh.ct.num_triangles());
+        (&mesh.positions, mesh.ct.v_table(), 3, mesh.ct.num_triangles(), keep, attrs)
+    };
+    let kept: Vec<u32> = corners.iter().map(|&c| v[c]).collect();
+    let attrs = Attributes {
+        uv: a.uv.as_ref().filter(|u| u.len() == v.len()).map(|u| corners.iter().map(|&c| u[c]).collect()),
+        colors: a.colors.clone(),
+        materials: a.materials.as_ref().filter(|m| m.face.len() == kept_faces).map(|m| {
+            let face = corners.chunks_exact(sides).map(|f| m.face[f[0] / sides]).collect();
+            crate::mesh::attributes::MaterialGroups { face, ..m.clone() }
+        }),
+    };
+    let faces = crate::mesh::Faces { positions: positions.clone(), corners: kept, sides };
+    save_faces(path, &faces, &attrs)
 }
 
 /// Whether [`save_faces`] writes `path`'s format, and writes in it all that
@@ -528,6 +568,26 @@ pub fn save_faces(path: &Path, faces: &crate::mesh::Faces, attrs: &Attributes) -
 /// # Errors
 /// An unknown extension or an I/O error.
 pub fn save_poly(path: &Path, mesh: &PolyMesh, attrs: &Attributes) -> Result<()> {
+    if !mesh.pt.holes().is_empty() {
+        // through the mesh of its triangles, which leaves the holes out (or
+        // keeps them as tags) as save_with does
+        let fan = mesh.pt.fan_corners();
+        let tri_attrs = Attributes {
+            uv: attrs
+                .uv
+                .as_ref()
+                .filter(|u| u.len() == mesh.pt.num_corners())
+                .map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
+            colors: attrs.colors.clone(),
+            materials: attrs.materials.as_ref().filter(|m| m.face.len() == mesh.pt.num_faces()).map(|m| {
+                crate::mesh::attributes::MaterialGroups {
+                    face: fan.chunks_exact(3).map(|t| m.face[mesh.pt.face(t[0]) as usize]).collect(),
+                    ..m.clone()
+                }
+            }),
+        };
+        return save_with(path, &mesh.triangulated(), &tri_attrs);
+    }
     match Format::for_output(path) {
         Some(Format { poly_writer: Some(write), .. }) => write(path, mesh, attrs),
         Some(_) => {

@@ -200,14 +200,40 @@ fn over(file: &str, ln: usize, limit: &'static str, value: u64, max: u64) -> Err
     Error::OverBudget { file: file.to_string(), element: format!("line {ln}"), limit, value, max }
 }
 
+/// `t hole N/0/0 f1 .. fN`: the 0-based ids of faces that are holes.
+fn parse_hole<'a>(
+    toks: &mut impl Iterator<Item = &'a str>,
+    counts: &str,
+    file: &str,
+    ln: usize,
+    raw: &mut RawMesh,
+) -> Result<()> {
+    let n = counts.split('/').next().and_then(|x| x.parse::<usize>().ok());
+    let Some(n) = n.filter(|&n| n > 0) else {
+        return Err(parse_err(file, ln, format!("hole tag: '{counts}' is not a count like 1/0/0")));
+    };
+    let ids: Option<Vec<u32>> = toks.take(n).map(|t| t.parse().ok()).collect();
+    match ids.filter(|v| v.len() == n) {
+        Some(ids) => {
+            raw.holes.extend(ids.into_iter().map(|f| (f, ln as u32)));
+            Ok(())
+        }
+        None => Err(parse_err(file, ln, format!("hole tag: needs {n} face ids (0-based)"))),
+    }
+}
+
 /// Parses a tag record (OpenSubdiv's `t name nint/nfloat/nstring ints
 /// floats strings`): `t crease 2/1/0 v0 v1 s` (also a chain `t crease
 /// k/1/0 v0 .. vk-1 s`, or one sharpness per edge), `t corner 1/1/0 v s`
-/// (also several vertices); vertex ids are 0-based. Other tags (such as
-/// `interpolateboundary`) are read and ignored.
+/// (also several vertices), `t hole N/0/0 f1 .. fN` (faces); ids are
+/// 0-based. Other tags (such as `interpolateboundary`) are read and
+/// ignored.
 fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize, raw: &mut RawMesh) -> Result<()> {
     let name = toks.next().unwrap_or("");
     let counts = toks.next().unwrap_or("");
+    if name == "hole" {
+        return parse_hole(toks, counts, file, ln, raw);
+    }
     if name != "crease" && name != "corner" {
         return Ok(());
     }
@@ -597,7 +623,18 @@ fn face_text(ch: &[u32], sides: usize) -> Vec<u8> {
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b
 /// s` and `t corner 1/1/0 v s`, 0-based ids), so a file round-trips.
 pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
-    mesh.ct.sharpness().map_or_else(Vec::new, |s| tag_lines(&s.to_tags(&mesh.ct)))
+    let mut out = mesh.ct.sharpness().map_or_else(Vec::new, |s| tag_lines(&s.to_tags(&mesh.ct)));
+    out.extend(hole_lines(mesh.ct.holes()));
+    out
+}
+
+/// `t hole N/0/0 f1 .. fN` (0-based face ids) for the faces `holes`.
+fn hole_lines(holes: &[u32]) -> Vec<u8> {
+    if holes.is_empty() {
+        return Vec::new();
+    }
+    let ids: Vec<String> = holes.iter().map(u32::to_string).collect();
+    format!("t hole {}/0/0 {}\n", holes.len(), ids.join(" ")).into_bytes()
 }
 
 /// OBJ tag records of `tags`.
@@ -757,7 +794,9 @@ fn write_records(
 
 /// The sharpness of a polygon table as OBJ tag records.
 fn poly_tag_records(pt: &crate::mesh::poly::PolyTable) -> Vec<u8> {
-    pt.sharpness().map_or_else(Vec::new, |s| tag_lines(&s.to_tags(pt)))
+    let mut out = pt.sharpness().map_or_else(Vec::new, |s| tag_lines(&s.to_tags(pt)));
+    out.extend(hole_lines(pt.holes()));
+    out
 }
 
 /// Saves a polygon mesh with its attributes as OBJ (atomically).

@@ -36,6 +36,9 @@ pub struct RawMesh {
     pub libraries: Vec<String>,
     /// Sharpness tags (vertex ids of this list).
     pub tags: Tags,
+    /// The faces that are holes (OpenSubdiv's `t hole`: 0-based ids of this
+    /// list's faces), with the line of each tag.
+    pub holes: Vec<(u32, u32)>,
     /// An opposite table stored in the file (`.ct`), one entry per corner of
     /// an all-triangle mesh, [`BORDER`] for none: it must be the table the
     /// faces define.
@@ -221,6 +224,11 @@ impl RawMesh {
         if !self.tags.is_empty() {
             let Mesh { ct, positions } = mesh;
             mesh = Mesh { ct: apply_tags(ct, &self.tags, &used, &locate)?, positions };
+        }
+        if !self.holes.is_empty() {
+            let Mesh { ct, positions } = mesh;
+            let holes = hole_triangles(&self.holes, notes.faces, tri_face.as_deref(), file)?;
+            mesh = Mesh { ct: ct.with_holes(holes), positions };
         }
         if !attributes {
             return Ok((mesh, Attributes::default(), notes));
@@ -424,6 +432,25 @@ fn check_twins(starts: &[u32], corners: &[u32], nv: usize, stored: &[u32], at: &
     let msg = format!("stored twin {}, but the faces give {}", show(stored.get(c)), show(pt.t_table().get(c)));
     let line = at.sources.opposite_lines.get(pt.face(c as u32) as usize).map(|&l| l as usize);
     Err(Error::Mesh { file, line, source: MeshError::BadTwinTable { corner: c, msg } })
+}
+
+/// The triangles of the faces tagged as holes (`(face, line)`, faces of the
+/// file, `faces` of them; `tri_face` the face of every triangle when
+/// polygons were fanned).
+///
+/// # Errors
+/// [`Error::Parse`] at the tag's line for a face out of range.
+fn hole_triangles(holes: &[(u32, u32)], faces: usize, tri_face: Option<&[u32]>, file: &str) -> Result<Vec<u32>> {
+    if let Some(&(f, line)) = holes.iter().find(|h| h.0 as usize >= faces) {
+        let msg = format!("hole tag: face {f} out of range (the file has {faces} faces; ids are 0-based)");
+        return Err(Error::Parse { file: file.to_string(), line: line as usize, msg });
+    }
+    let mut is_hole = vec![false; faces];
+    holes.iter().for_each(|&(f, _)| is_hole[f as usize] = true);
+    Ok(match tri_face {
+        Some(of) => (0..of.len() as u32).filter(|&t| is_hole[of[t as usize] as usize]).collect(),
+        None => holes.iter().map(|h| h.0).collect(),
+    })
 }
 
 /// `ct` with the sharpness of `tags`, whose vertex ids are records of the

@@ -142,8 +142,15 @@ impl CornerTable {
     /// every fan to fill C and the valences, and checks that every vertex
     /// has exactly one fan.
     pub(crate) fn with_fans(v: Vec<u32>, o: Vec<u32>, nv: usize) -> Result<CornerTable, MeshError> {
-        let mut ct =
-            CornerTable { v, o, vc: vec![BORDER; nv], valence: vec![0u32; nv], sharpness: None, generations: None };
+        let mut ct = CornerTable {
+            v,
+            o,
+            vc: vec![BORDER; nv],
+            valence: vec![0u32; nv],
+            sharpness: None,
+            holes: None,
+            generations: None,
+        };
         let mut visited = vec![false; ct.v.len()];
         for c0 in 0..ct.v.len() as u32 {
             if visited[c0 as usize] {

@@ -32,7 +32,26 @@ pub fn sharp_corner_pairs(ct: &CornerTable) -> Vec<u32> {
 /// diagonals inside polygons ([`Generations::HIDDEN`]).
 fn drawn_edges(ct: &CornerTable) -> impl Iterator<Item = u32> + '_ {
     let hidden = ct.generations().is_some();
-    ct.edge_owners().filter(move |&c| !hidden || ct.edge_generation(c) != Generations::HIDDEN)
+    // an edge of holes alone is no edge of the surface
+    let of_holes = move |c: u32| ct.is_hole(c / 3) && ct.o(c).is_none_or(|x| ct.is_hole(x / 3));
+    ct.edge_owners()
+        .filter(move |&c| !hidden || ct.edge_generation(c) != Generations::HIDDEN)
+        .filter(move |&c| ct.holes().is_empty() || !of_holes(c))
+}
+
+/// The V table as drawn: a hole's triangles collapsed to a point (the same
+/// vertex three times, which rasterises to nothing), so every triangle
+/// keeps its place for the buffers indexed by triangle.
+pub fn drawn_triangles(ct: &CornerTable) -> std::borrow::Cow<'_, [u32]> {
+    if ct.holes().is_empty() {
+        return std::borrow::Cow::Borrowed(ct.v_table());
+    }
+    let mut v = ct.v_table().to_vec();
+    for &t in ct.holes() {
+        let t = 3 * t as usize;
+        (v[t + 1], v[t + 2]) = (v[t], v[t]);
+    }
+    std::borrow::Cow::Owned(v)
 }
 
 /// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]),

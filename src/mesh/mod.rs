@@ -120,6 +120,10 @@ pub struct CornerTable {
     valence: Vec<u32>,
     /// Sharp edges and vertices, when there are any.
     sharpness: Option<Box<Sharpness>>,
+    /// The triangles that are holes (OpenSubdiv's hole tags: left out of
+    /// the surface, their vertices still shaping their neighbours), sorted;
+    /// `None` when there are none.
+    holes: Option<Box<[u32]>>,
     /// Edge generations, when the table comes from splits (`None`: a
     /// control table, every edge of generation 0).
     generations: Option<Box<Generations>>,
@@ -267,7 +271,38 @@ impl CornerTable {
     }
     /// The tables, for the crate's own constructors and edits.
     pub(crate) fn from_parts(v: Vec<u32>, o: Vec<u32>, vc: Vec<u32>, valence: Vec<u32>) -> CornerTable {
-        CornerTable { v, o, vc, valence, sharpness: None, generations: None }
+        CornerTable { v, o, vc, valence, sharpness: None, holes: None, generations: None }
+    }
+    /// The triangles that are holes, sorted (empty: none). A hole is not
+    /// part of the surface (not drawn, not written, not picked) but its
+    /// vertices and edges are the table's like any other, so the rules
+    /// around it are those of a closed mesh; its children after a split are
+    /// holes too.
+    #[inline]
+    pub fn holes(&self) -> &[u32] {
+        self.holes.as_deref().unwrap_or(&[])
+    }
+    /// Whether triangle `t` is a hole.
+    #[inline]
+    pub fn is_hole(&self, t: u32) -> bool {
+        self.holes.as_deref().is_some_and(|h| h.binary_search(&t).is_ok())
+    }
+    /// This table with the triangles `holes` (ids in range, any order) as
+    /// its holes, replacing any it had.
+    pub fn with_holes(mut self, mut holes: Vec<u32>) -> CornerTable {
+        holes.retain(|&t| (t as usize) < self.num_triangles());
+        holes.sort_unstable();
+        holes.dedup();
+        self.holes = (!holes.is_empty()).then(|| holes.into_boxed_slice());
+        self
+    }
+    /// The holes after a 1-to-4 split of this table: the central child of
+    /// triangle `t` keeps its id, the corner children are `nt (j + 1) + t`.
+    pub(crate) fn split_holes(&self) -> Vec<u32> {
+        let nt = self.num_triangles() as u32;
+        let mut out: Vec<u32> = (0..4).flat_map(|j| self.holes().iter().map(move |&t| j * nt + t)).collect();
+        out.sort_unstable();
+        out
     }
     /// Sharp edges and vertices (`None`: every edge but the border is
     /// smooth, every vertex smooth).
@@ -505,10 +540,36 @@ impl Faces {
 }
 
 impl<I: VertexId> Faces<I> {
-    /// The triangles of `mesh` (copied), every vertex id `j` as `id(j)`.
+    /// The triangles of `mesh` (copied), every vertex id `j` as `id(j)`;
+    /// its holes left out (every vertex kept, as OpenSubdiv writes them).
     pub fn of_mapped(mesh: &Mesh, id: impl Fn(u32) -> I + Sync) -> Faces<I> {
-        let corners = mesh.ct.v_table().par_iter().with_min_len(1 << 14).map(|&j| id(j)).collect();
+        let v = mesh.ct.v_table();
+        let corners = if mesh.ct.holes().is_empty() {
+            v.par_iter().with_min_len(1 << 14).map(|&j| id(j)).collect()
+        } else {
+            let kept = (0..mesh.ct.num_triangles() as u32).filter(|&t| !mesh.ct.is_hole(t));
+            kept.flat_map(|t| v[3 * t as usize..3 * t as usize + 3].iter().map(|&j| id(j))).collect()
+        };
         Faces { positions: mesh.positions.clone(), corners, sides: 3 }
+    }
+
+    /// These faces without those listed in `holes` (sorted face ids).
+    pub(crate) fn without(mut self, holes: &[u32]) -> Faces<I> {
+        if holes.is_empty() {
+            return self;
+        }
+        let s = self.sides;
+        let mut k = 0;
+        let mut out = Vec::with_capacity(self.corners.len() - s * holes.len());
+        for (f, face) in self.corners.chunks_exact(s).enumerate() {
+            if holes.get(k) == Some(&(f as u32)) {
+                k += 1;
+                continue;
+            }
+            out.extend_from_slice(face);
+        }
+        self.corners = out;
+        self
     }
 
     /// Number of faces.

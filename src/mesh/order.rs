@@ -110,7 +110,7 @@ impl CornerTable {
     /// This table with faces and vertices renumbered by `r` (made for this
     /// table): old face `r.old_face(i)` is face `i` with its corners in the
     /// same rotation, old vertex `v` is vertex `r.new_vertex(v)`. Sharp
-    /// features are carried; edge generations are not (the result is a
+    /// features and holes are carried; edge generations are not (the result is a
     /// control table).
     ///
     /// # Panics
@@ -151,7 +151,11 @@ impl CornerTable {
             }
             super::Generations::explicit(new, g.level())
         });
-        CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness).with_generations(generations)
+        let holes = self.holes().iter().map(|&t| new_face[t as usize]).collect();
+        CornerTable::from_parts(v2, o2, vc, valence)
+            .with_sharpness(sharpness)
+            .with_holes(holes)
+            .with_generations(generations)
     }
 }
 

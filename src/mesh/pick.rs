@@ -71,6 +71,10 @@ pub fn nearest_hit(mesh: &Mesh, origin: Vec3, dir: Vec3) -> Option<Hit> {
         .filter_map(|(k, chunk)| {
             let mut best: Option<(f32, u32, f32, f32)> = None;
             for (i, tri) in chunk.chunks_exact(3).enumerate() {
+                // a hole is no part of the surface
+                if mesh.ct.is_hole((k * HIT_CHUNK + i) as u32) {
+                    continue;
+                }
                 let corners = [pos[tri[0] as usize], pos[tri[1] as usize], pos[tri[2] as usize]];
                 if let Some((t, u, v)) = ray_triangle_uv(origin, dir, corners)
                     && best.is_none_or(|b| t < b.0)

@@ -74,6 +74,11 @@ pub enum BoundaryInterpolation {
     /// Boundary vertices with one face are infinitely sharp corners too
     /// (`VTX_BOUNDARY_EDGE_AND_CORNER`).
     EdgeAndCorner,
+    /// No boundary interpolation (`VTX_BOUNDARY_NONE`): the faces at a
+    /// boundary vertex whose border edges are not all tagged infinitely
+    /// sharp are holes, left out of the surface; their vertices still
+    /// shape the interior.
+    None,
 }
 
 impl std::str::FromStr for BoundaryInterpolation {
@@ -82,7 +87,8 @@ impl std::str::FromStr for BoundaryInterpolation {
         match s.to_ascii_lowercase().as_str() {
             "edge" | "edge-only" => Ok(BoundaryInterpolation::EdgeOnly),
             "edge-and-corner" | "corner" | "corners" => Ok(BoundaryInterpolation::EdgeAndCorner),
-            _ => Err(format!("unknown boundary interpolation '{s}' (expected edge or edge-and-corner)")),
+            "none" => Ok(BoundaryInterpolation::None),
+            _ => Err(format!("unknown boundary interpolation '{s}' (expected edge, edge-and-corner or none)")),
         }
     }
 }

@@ -351,7 +351,10 @@ pub(crate) fn split_with_boundary(
     // sharp features are sparse: carried from the old table's, beside O
     let sharpness = old.sharpness().and_then(|s| s.split(old, creasing));
     let generations = old.generations().cloned().unwrap_or_default().after_split(old.num_triangles());
-    let ct = CornerTable::from_parts(v2, o2, vc, valence).with_sharpness(sharpness).with_generations(Some(generations));
+    let ct = CornerTable::from_parts(v2, o2, vc, valence)
+        .with_sharpness(sharpness)
+        .with_holes(old.split_holes())
+        .with_generations(Some(generations));
     ((ct, edges, boundary), times)
 }
 

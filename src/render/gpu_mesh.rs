@@ -130,7 +130,12 @@ impl GpuMesh {
         Ok(GpuMesh {
             positions: buffer(device, "positions", bytemuck::cast_slice(positions), vertex),
             normals: buffer(device, "normals", bytemuck::cast_slice(normals), vertex),
-            triangles: buffer(device, "triangles", bytemuck::cast_slice(ct.v_table()), INDEX_STORAGE),
+            triangles: buffer(
+                device,
+                "triangles",
+                bytemuck::cast_slice(&crate::mesh::draw::drawn_triangles(ct)),
+                INDEX_STORAGE,
+            ),
             edges: buffer(device, "edges", bytemuck::cast_slice(&edges), wgpu::BufferUsages::INDEX),
             vertex_count: positions.len(),
             triangle_indices: ct.v_table().len() as u32,
@@ -157,8 +162,9 @@ impl GpuMesh {
         normals: &[Vec3],
         corner_attr: &[Vec3],
     ) -> Result<GpuMesh> {
-        let pos: Vec<Vec3> = ct.v_table().iter().map(|&v| positions[v as usize]).collect();
-        let nrm: Vec<Vec3> = ct.v_table().iter().map(|&v| normals[v as usize]).collect();
+        let drawn = crate::mesh::draw::drawn_triangles(ct);
+        let pos: Vec<Vec3> = drawn.iter().map(|&v| positions[v as usize]).collect();
+        let nrm: Vec<Vec3> = drawn.iter().map(|&v| normals[v as usize]).collect();
         let identity: Vec<u32> = (0..ct.v_table().len() as u32).collect();
         // the same edges, between the corners' own GPU vertices
         let edges = edge_corner_pairs(ct);

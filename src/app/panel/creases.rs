@@ -71,12 +71,20 @@ fn options(ui: &mut egui::Ui, doc: &Doc) -> Option<Command> {
             .selected_text(match req.opts.boundary {
                 BoundaryInterpolation::EdgeOnly => "boundary: edges",
                 BoundaryInterpolation::EdgeAndCorner => "boundary: edges and corners",
+                BoundaryInterpolation::None => "boundary: none (border faces left out)",
             })
             .show_ui(ui, |ui| {
                 changed |=
                     ui.selectable_value(&mut req.opts.boundary, BoundaryInterpolation::EdgeOnly, "edges").changed();
                 changed |= ui
                     .selectable_value(&mut req.opts.boundary, BoundaryInterpolation::EdgeAndCorner, "edges and corners")
+                    .changed();
+                changed |= ui
+                    .selectable_value(
+                        &mut req.opts.boundary,
+                        BoundaryInterpolation::None,
+                        "none (border faces left out)",
+                    )
                     .changed();
             });
         egui::ComboBox::from_id_salt("creasing")

@@ -52,6 +52,8 @@ pub struct PolyTable {
     valence: Vec<u32>,
     /// Sharp edges (by the corners naming them) and vertices.
     sharpness: Option<Box<Sharpness>>,
+    /// The faces that are holes, sorted (see [`crate::CornerTable::holes`]).
+    holes: Option<Box<[u32]>>,
     /// How many splits made it (the edge generations follow).
     level: u32,
 }
@@ -211,6 +213,26 @@ impl PolyTable {
     /// This table with `sharpness`, made for it.
     pub(crate) fn with_sharpness(mut self, sharpness: Option<Sharpness>) -> PolyTable {
         self.sharpness = sharpness.map(Box::new);
+        self
+    }
+    /// The faces that are holes, sorted (empty: none; see
+    /// [`crate::CornerTable::holes`]).
+    #[inline]
+    pub fn holes(&self) -> &[u32] {
+        self.holes.as_deref().unwrap_or(&[])
+    }
+    /// Whether face `f` is a hole.
+    #[inline]
+    pub fn is_hole(&self, f: u32) -> bool {
+        self.holes.as_deref().is_some_and(|h| h.binary_search(&f).is_ok())
+    }
+    /// This table with the faces `holes` (ids in range, any order) as its
+    /// holes, replacing any it had.
+    pub fn with_holes(mut self, mut holes: Vec<u32>) -> PolyTable {
+        holes.retain(|&f| (f as usize) < self.num_faces());
+        holes.sort_unstable();
+        holes.dedup();
+        self.holes = (!holes.is_empty()).then(|| holes.into_boxed_slice());
         self
     }
     /// How many splits made this table (0: a control table).

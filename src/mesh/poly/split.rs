@@ -49,7 +49,19 @@ pub fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) 
     let (v, t) = rayon::join(|| write_v(old, (&edges.ids, nv, ne), &|j| j), || write_t(old));
     let (vc, valence) = write_c_and_valence(old, &edges.owners);
     let sharpness = old.sharpness().and_then(|s| split_sharpness(s, old, creasing));
-    let pt = PolyTable { faces: None, v, t, vc, valence, sharpness: sharpness.map(Box::new), level: old.level + 1 };
+    let pt = PolyTable {
+        faces: None,
+        v,
+        t,
+        vc,
+        valence,
+        sharpness: sharpness.map(Box::new),
+        holes: None,
+        level: old.level + 1,
+    };
+    // the children of face f are the quads of its corners
+    let holes = old.holes().iter().flat_map(|&f| old.face_corners(f)).collect();
+    let pt = pt.with_holes(holes);
     (pt, edges)
 }
 

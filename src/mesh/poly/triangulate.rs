@@ -107,7 +107,15 @@ impl PolyTable {
             let corners = s.sharp_corners().iter().map(|&(c, x)| (self.triangle_corner(c), x)).collect();
             Sharpness::from_lists(corners, s.sharp_vertices().to_vec())
         });
-        ct.with_sharpness(sharpness).with_generations(Some(Generations::explicit(g, self.level().min(30) as u8)))
+        // a hole's triangles are holes
+        let holes = self.holes().iter().flat_map(|&f| {
+            let t0 = self.first_triangle(f);
+            t0..t0 + self.face_size(f) - 2
+        });
+        let holes = holes.collect();
+        ct.with_sharpness(sharpness)
+            .with_holes(holes)
+            .with_generations(Some(Generations::explicit(g, self.level().min(30) as u8)))
     }
 }
 
@@ -190,10 +198,16 @@ impl PolyTable {
     /// corner naming its edge.
     fn joined(ct: &CornerTable) -> (PolyTable, Vec<u32>) {
         let (starts, corners, of_corner) = recover_faces(ct);
+        // a polygon whose triangles are holes is a hole
+        let holes: Vec<u32> = (0..starts.len().saturating_sub(1))
+            .filter(|&f| ct.is_hole(of_corner[starts[f] as usize] / 3))
+            .map(|f| f as u32)
+            .collect();
         // the faces are those of a valid table, re-joined: a valid polygon table
         let (pt, _, kept) = PolyTable::build(ct.num_vertices(), &starts, &corners, None)
             .expect("the faces of a valid triangle table, joined across diagonals, are a valid polygon table");
         debug_assert!(kept.is_none());
+        let pt = pt.with_holes(holes);
         let pt = match ct.sharpness() {
             None => pt,
             Some(s) => {

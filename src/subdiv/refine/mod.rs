@@ -161,6 +161,7 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M
             (NewTable::Full(ct, next_boundary), Some(edges.owners), edges.ids)
         };
         self.stats.split_ms += ms(t0.elapsed());
+        let holes = if matches!(table, NewTable::Faces(_)) { old.split_holes() } else { Vec::new() };
         let features = Features::of(old, self.creasing);
         let owners = list.as_deref().map_or(Owners::Bits(&ids), Owners::List);
         let mut positions: Vec<Vec3> = crate::mem::zeroed(old.num_vertices() + owners.len());
@@ -177,7 +178,8 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M
         }
         match table {
             NewTable::Full(ct, next_boundary) => Refined::Table(Mesh { ct, positions }, next_boundary),
-            NewTable::Faces(corners) => Refined::Faces(Faces { positions, corners, sides: 3 }),
+            // the holes' children are left out of the faces
+            NewTable::Faces(corners) => Refined::Faces(Faces { positions, corners, sides: 3 }.without(&holes)),
         }
     }
 }

@@ -43,7 +43,10 @@ pub(crate) fn level_faces<R: PolyRules, I: VertexId>(
     let (corners, ids) = split::split_faces(&mesh.pt, id);
     stats.split_ms += ms(t0.elapsed());
     let positions = points(r, mesh, (Owners::Bits(&ids), &ids), creasing, stats);
-    Faces { positions, corners, sides: 4 }
+    // the quads of a hole's corners are left out
+    let mut holes: Vec<u32> = mesh.pt.holes().iter().flat_map(|&f| mesh.pt.face_corners(f)).collect();
+    holes.sort_unstable();
+    Faces { positions, corners, sides: 4 }.without(&holes)
 }
 
 /// The points of the level after `mesh`, whose edges the split numbered
@@ -182,10 +185,36 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
     });
 }
 
+/// `pt` with the holes [`BoundaryInterpolation::None`] adds: the faces at a
+/// boundary vertex with a border edge not tagged infinitely sharp (as
+/// OpenSubdiv does before it sharpens the border); `None` when there are
+/// none.
+fn boundary_holes(pt: &PolyTable) -> Option<PolyTable> {
+    let tagged = |c: u32| pt.sharpness().map_or(0.0, |s| s.corner(c));
+    let mut holes: Vec<u32> = pt.holes().to_vec();
+    let before = holes.len();
+    for v in 0..pt.num_vertices() as u32 {
+        // the border edges at v: leaving its first corner, entering its last
+        let first = pt.corner_of(v);
+        if pt.twin(first).is_some() {
+            continue;
+        }
+        let last = pt.fan(v).last().unwrap_or(first);
+        if tagged(first) < crate::mesh::sharpness::INFINITE || tagged(pt.prev(last)) < crate::mesh::sharpness::INFINITE
+        {
+            holes.extend(pt.fan(v).map(|c| pt.face(c)));
+        }
+    }
+    (holes.len() > before).then(|| pt.clone().with_holes(holes))
+}
+
 /// The table the schemes see for the control level with `boundary`: with
 /// [`BoundaryInterpolation::EdgeAndCorner`] every boundary vertex with a
 /// single face is an infinitely sharp corner (as OpenSubdiv does).
 pub(crate) fn with_boundary_corners(pt: &PolyTable, boundary: BoundaryInterpolation) -> Option<PolyTable> {
+    if boundary == BoundaryInterpolation::None {
+        return boundary_holes(pt);
+    }
     if boundary == BoundaryInterpolation::EdgeOnly {
         return None;
     }

@@ -35,7 +35,7 @@
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::PolyTable;
 use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
-use crate::mesh::{BORDER, CornerTable, Creasing, owns_edge};
+use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -300,6 +300,14 @@ fn edge_weight<T: EdgeTable>(ct: &T, decay: &EdgeDecay, c: u32) -> f32 {
 /// single face becomes an infinitely sharp corner (OpenSubdiv's
 /// `TopologyRefinerFactory` does the same before refining); otherwise `ct`.
 pub fn with_boundary_corners(ct: &CornerTable, boundary: BoundaryInterpolation) -> Cow<'_, CornerTable> {
+    if boundary == BoundaryInterpolation::None {
+        let holes = boundary_holes(ct);
+        if holes.is_empty() {
+            return Cow::Borrowed(ct);
+        }
+        let all = ct.holes().iter().copied().chain(holes).collect();
+        return Cow::Owned(ct.clone().with_holes(all));
+    }
     let corners = boundary_corners(ct, boundary);
     if corners.is_empty() {
         return Cow::Borrowed(ct);
@@ -308,11 +316,32 @@ pub fn with_boundary_corners(ct: &CornerTable, boundary: BoundaryInterpolation) 
     Cow::Owned(ct.clone().with_sharpness(sharp))
 }
 
+/// The triangles [`BoundaryInterpolation::None`] leaves out: those at a
+/// boundary vertex with a border edge not tagged infinitely sharp
+/// (OpenSubdiv's `TopologyRefinerFactory`, before it sharpens the border).
+fn boundary_holes(ct: &CornerTable) -> Vec<u32> {
+    let tagged = |c: u32| ct.sharpness().map_or(0.0, |s| s.corner(c));
+    let mut out = Vec::new();
+    for v in 0..ct.num_vertices() as u32 {
+        if !ct.is_boundary_vertex(v) {
+            continue;
+        }
+        // the border edges at v: the first corner's leading edge, the last
+        // corner's trailing one
+        let first = ct.corner_of(v);
+        let last = ct.fan(v).last().unwrap_or(first);
+        if tagged(p(first)) < INFINITE || tagged(n(last)) < INFINITE {
+            out.extend(ct.fan(v).map(|c| c / 3));
+        }
+    }
+    out
+}
+
 /// The vertices `boundary` makes corners: with
 /// [`BoundaryInterpolation::EdgeAndCorner`] the boundary vertices with a
 /// single face (two edges, in either table), else none.
 fn boundary_corners<T: EdgeTable>(t: &T, boundary: BoundaryInterpolation) -> Vec<u32> {
-    if boundary == BoundaryInterpolation::EdgeOnly {
+    if boundary != BoundaryInterpolation::EdgeAndCorner {
         return Vec::new();
     }
     (0..t.num_vertices() as u32).filter(|&v| t.valence(v) == 2 && t.is_boundary_vertex(v)).collect()
