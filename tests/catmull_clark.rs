@@ -253,3 +253,33 @@ fn a_repair_with_nothing_to_mend_keeps_the_polygons() {
         assert_eq!((pm.pt.num_faces(), pm.pt.is_quads()), (172, true), "{topology:?}");
     }
 }
+
+/// OpenSubdiv's two rules for triangles in a Catmull-Clark mesh
+/// (`Sdc::Options::TriangleSubdivision`), quads and triangles mixed, a
+/// semi-sharp crease among them (scripts/triangle-fixtures.py).
+#[test]
+fn both_triangle_rules_equal_opensubdiv() {
+    use subdiv::subdiv::TriangleSubdivision;
+    let control = load("tri_quads.obj");
+    let mut outs = Vec::new();
+    for (rule, name) in [(TriangleSubdivision::Catmark, "catmark"), (TriangleSubdivision::Smooth, "smooth")] {
+        for n in [1, 2] {
+            let o = Options { triangles: rule, ..Options::default() };
+            let (fine, _) = subdivide_poly(&control, Scheme::CatmullClark, n, &o).unwrap();
+            let path = fixture(&format!("tri_quads.{name}.L{n}.osd.txt"));
+            let what = format!("tri_quads {name} L{n}");
+            assert_eq!(fine.pt.num_faces(), osd_faces(&path), "{what}: faces");
+            assert_same_points(&fine.positions, &read_points(&path), 1e-5, &what);
+            // the plan records the same rule
+            let plan =
+                subdiv::subdiv::tables::StencilPlan::build(&control.triangulated().ct, Scheme::CatmullClark, n, &o)
+                    .unwrap();
+            let mut out = Vec::new();
+            plan.apply(&control.positions, &mut subdiv::subdiv::tables::PlanScratch::for_plan(&plan), &mut out);
+            let worst = out.iter().zip(&fine.positions).map(|(a, b)| a.distance(*b)).fold(0.0f32, f32::max);
+            assert!(worst < 1e-5, "{what}: the plan is {worst} away");
+            outs.push(fine.positions);
+        }
+    }
+    assert_ne!(outs[0], outs[2], "the smooth rule moves the points of the triangles' edges");
+}

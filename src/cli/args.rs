@@ -140,6 +140,9 @@ pub struct SchemeArgs {
     /// Texture coordinates through Catmull-Clark: smooth (the scheme on the UV charts, corners kept) or linear.
     #[arg(long, default_value = "smooth")]
     pub uv: subdiv::subdiv::UvInterpolation,
+    /// Triangles in Catmull-Clark meshes: catmark (Catmull-Clark's own rules) or smooth (OpenSubdiv's smooth triangle rule, TRI_SUB_SMOOTH).
+    #[arg(long, default_value = "catmark")]
+    pub triangles: subdiv::subdiv::TriangleSubdivision,
     #[command(flatten)]
     pub features: FeatureArgs,
 }
@@ -164,6 +167,7 @@ impl SchemeArgs {
             creasing: self.features.creasing,
             boundary: self.features.sharp.boundary,
             uv: self.uv,
+            triangles: self.triangles,
         }
     }
 }

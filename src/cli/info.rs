@@ -210,6 +210,7 @@ fn unused_subdivision_option(a: &InfoArgs) -> Option<&'static str> {
         ("--tension", s.tension != 0.0),
         ("--max-memory", s.max_memory.is_some()),
         ("--uv", s.uv != Default::default()),
+        ("--triangles", s.triangles != Default::default()),
         ("--creasing", s.features.creasing != Default::default()),
     ];
     given.into_iter().find(|g| g.1).map(|g| g.0)

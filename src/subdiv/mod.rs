@@ -36,6 +36,7 @@ use rules::{Rules, butterfly, catmull_clark, features, jarek, loop_, midpoint, m
 use std::borrow::Cow;
 use std::time::Instant;
 
+pub use catmull_clark::TriangleSubdivision;
 pub use loop_::LoopBeta;
 pub use sizes::ControlCounts;
 
@@ -138,6 +139,8 @@ pub struct Options {
     pub boundary: BoundaryInterpolation,
     /// How the polygon schemes refine texture coordinates.
     pub uv: UvInterpolation,
+    /// How Catmull-Clark refines triangles.
+    pub triangles: TriangleSubdivision,
 }
 
 impl Default for Options {
@@ -149,6 +152,7 @@ impl Default for Options {
             creasing: Creasing::Uniform,
             boundary: BoundaryInterpolation::EdgeOnly,
             uv: UvInterpolation::Smooth,
+            triangles: TriangleSubdivision::Catmark,
         }
     }
 }
@@ -378,7 +382,7 @@ pub fn subdivide_poly_with_progress(
         let from = cur.as_ref().or(base.as_ref()).unwrap_or(mesh);
         let next = match scheme {
             Scheme::Bilinear => refine::poly::level(&catmull_clark::Bilinear, from, opts.creasing, &mut stats),
-            _ => refine::poly::level(&catmull_clark::CatmullClark, from, opts.creasing, &mut stats),
+            _ => refine::poly::level(&catmull_clark::CatmullClark::new(opts), from, opts.creasing, &mut stats),
         };
         stats.faces_per_level.push(next.pt.num_faces());
         cur = Some(next);
@@ -429,7 +433,10 @@ pub fn subdivide_poly_faces_as<I: VertexId>(
         Scheme::Bilinear => {
             refine::poly::level_faces(&catmull_clark::Bilinear, &before, (opts.creasing, &id), &mut stats)
         }
-        _ => refine::poly::level_faces(&catmull_clark::CatmullClark, &before, (opts.creasing, &id), &mut stats),
+        _ => {
+            let r = catmull_clark::CatmullClark::new(opts);
+            refine::poly::level_faces(&r, &before, (opts.creasing, &id), &mut stats)
+        }
     };
     stats.faces_per_level.push(fine.num_faces());
     stats.total_ms += ms(t0.elapsed());

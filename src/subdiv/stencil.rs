@@ -133,7 +133,7 @@ fn step_down(w: &BTreeMap<u32, f64>, t: &LevelTable, scheme: Scheme, opts: &Opti
     let ids: Vec<u32> = w.keys().copied().filter(|&v| !copied(t, scheme, v)).collect();
     let plan: LevelPlan<f64> = match t {
         LevelTable::Triangles(ct, owners) => record_rows_of(ct, owners, (scheme, opts), &ids),
-        LevelTable::Polygons(pt) => record_poly_level(pt, scheme, opts.creasing, Some(&ids)),
+        LevelTable::Polygons(pt) => record_poly_level(pt, scheme, opts, Some(&ids)),
     };
     let mut out: BTreeMap<u32, f64> = BTreeMap::new();
     let mut k = 0;

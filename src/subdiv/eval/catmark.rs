@@ -215,7 +215,7 @@ fn extract(pt: &PolyTable, pos: impl Fn(u32) -> DVec3, origin: DVec3, face: u32)
 
 /// One Catmull-Clark level of `r` in f64.
 fn subdivide(r: &Region, opts: &Options) -> (PolyTable, Vec<DVec3>) {
-    let (plan, fine) = record_one_catmark_level(&r.pt, opts.creasing);
+    let (plan, fine) = record_one_catmark_level(&r.pt, opts);
     (fine, apply_rows(&plan, &r.pos))
 }
 

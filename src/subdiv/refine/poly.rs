@@ -7,7 +7,7 @@
 //! their blended stencils. New vertex ids: old vertices keep theirs, edge
 //! `e` is `nv + e`, face `f` is `nv + ne + f`.
 
-use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules};
+use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules, smooth_triangle_edge};
 use super::super::rules::features::Features;
 use super::super::rules::scatter_parts;
 use super::super::{Stats, ms};
@@ -73,7 +73,7 @@ fn points<R: PolyRules>(
     let t2 = Instant::now();
     vertex_points::<R>(&lv, pos, fpart, vpart, epart);
     let t3 = Instant::now();
-    edge_points::<R>(&lv, owners, pos, fpart, epart);
+    edge_points(r, &lv, owners, pos, fpart, epart);
     stats.edge_ms += ms(t2 - t1) + ms(t3.elapsed());
     stats.vertex_ms += ms(t3 - t2);
     if let Some(f) = &features {
@@ -112,8 +112,10 @@ fn face_points(pt: &PolyTable, pos: &[Vec3], out: &mut [Vec3]) {
 const AHEAD: usize = 32;
 
 /// Every edge's point, in owner order, from the face points `fp`.
-fn edge_points<R: PolyRules>(lv: &PolyLevel, owners: Owners, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
+fn edge_points<R: PolyRules>(r: &R, lv: &PolyLevel, owners: Owners, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
     let pt = lv.pt;
+    // the smooth triangle rule: only a control level has triangles
+    let triangles = r.smooth_triangles() && !pt.is_quads();
     owners.par_pieces(out, |out, own| {
         for (i, (q, &c)) in out.iter_mut().zip(own).enumerate() {
             // the face across the edge is far in memory: its point is
@@ -126,7 +128,15 @@ fn edge_points<R: PolyRules>(lv: &PolyLevel, owners: Owners, pos: &[Vec3], fp: &
             }
             let (a, b) = (pos[pt.vtx(c) as usize], pos[pt.vtx(pt.next(c)) as usize]);
             *q = match pt.twin(c) {
-                Some(t) if R::SMOOTH => (a + b + fp[pt.face(c) as usize] + fp[pt.face(t) as usize]) * 0.25,
+                Some(t) if R::SMOOTH => {
+                    let (f0, f1) = (pt.face(c), pt.face(t));
+                    let tri = triangles.then(|| smooth_triangle_edge(pt.face_size(f0), pt.face_size(f1))).flatten();
+                    match tri {
+                        // the weights as a sink of f32 points rounds them
+                        Some((we, wf)) => (a + b) * we as f32 + (fp[f0 as usize] + fp[f1 as usize]) * wf as f32,
+                        None => (a + b + fp[f0 as usize] + fp[f1 as usize]) * 0.25,
+                    }
+                }
                 _ => (a + b) * 0.5,
             };
         }

@@ -74,16 +74,80 @@ pub trait PolyRules: Sync {
     fn edge<S: Sink>(&self, lv: &PolyLevel, c: u32, s: &mut S);
     /// The scheme's smooth (and border) mask of vertex `v`'s new position.
     fn vertex<S: Sink>(&self, lv: &PolyLevel, v: u32, s: &mut S);
+    /// Whether interior edges of triangles take OpenSubdiv's smooth
+    /// triangle rule ([`TriangleSubdivision::Smooth`]).
+    fn smooth_triangles(&self) -> bool {
+        false
+    }
 }
 
-/// Catmull-Clark's masks.
-pub struct CatmullClark;
+/// Catmull-Clark's masks, with OpenSubdiv's smooth triangle rule when
+/// asked (`TRI_SUB_SMOOTH`: below).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CatmullClark {
+    /// The edge rule of OpenSubdiv's `TRI_SUB_SMOOTH` on the edges of
+    /// triangles.
+    pub smooth_triangles: bool,
+}
+
+impl CatmullClark {
+    /// The rules `opts` ask for.
+    pub fn new(opts: &crate::subdiv::Options) -> CatmullClark {
+        CatmullClark { smooth_triangles: opts.triangles == TriangleSubdivision::Smooth }
+    }
+}
+
+/// How Catmull-Clark refines the triangles of a mesh (OpenSubdiv's
+/// `Sdc::Options::TriangleSubdivision`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TriangleSubdivision {
+    /// Catmull-Clark's own rules (`TRI_SUB_CATMARK`).
+    #[default]
+    Catmark,
+    /// OpenSubdiv's smooth triangle rule (`TRI_SUB_SMOOTH`, from Hbr): an
+    /// interior edge of a triangle takes its face points with weight
+    /// `w = (w0 + w1) / 2` each, `w_i` 0.47 for a triangle and 1/4 for
+    /// another face, and its ends `(1 - 2 w) / 2` each (`catmarkScheme.h`,
+    /// `assignSmoothMaskForEdge`).
+    Smooth,
+}
+
+impl std::str::FromStr for TriangleSubdivision {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "catmark" | "catmull-clark" => Ok(TriangleSubdivision::Catmark),
+            "smooth" => Ok(TriangleSubdivision::Smooth),
+            _ => Err(format!("unknown triangle subdivision '{s}' (expected catmark or smooth)")),
+        }
+    }
+}
+
+/// The weight of a face point in the smooth triangle rule, by the face's
+/// corner count (OpenSubdiv's `CATMARK_SMOOTH_TRI_EDGE_WEIGHT`).
+fn smooth_triangle_weight(corners: u32) -> f64 {
+    if corners == 3 { 0.47 } else { 0.25 }
+}
+
+/// The `(end, face point)` weights of the smooth triangle rule on an edge
+/// between faces of `k0` and `k1` corners, `None` when neither is a
+/// triangle (the ordinary rule).
+pub(crate) fn smooth_triangle_edge(k0: u32, k1: u32) -> Option<(f64, f64)> {
+    if k0 != 3 && k1 != 3 {
+        return None;
+    }
+    let f = 0.5 * (smooth_triangle_weight(k0) + smooth_triangle_weight(k1));
+    Some((0.5 * (1.0 - 2.0 * f), f))
+}
 
 /// Bilinear masks.
 pub struct Bilinear;
 
 impl PolyRules for CatmullClark {
     const SMOOTH: bool = true;
+    fn smooth_triangles(&self) -> bool {
+        self.smooth_triangles
+    }
     #[inline]
     fn edge<S: Sink>(&self, lv: &PolyLevel, c: u32, s: &mut S) {
         let pt = lv.pt;
@@ -94,10 +158,16 @@ impl PolyRules for CatmullClark {
                 s.add(b, 0.5);
             }
             Some(t) => {
-                s.add(a, 0.25);
-                s.add(b, 0.25);
-                face_point(pt, pt.face(c), 0.25, s);
-                face_point(pt, pt.face(t), 0.25, s);
+                let (f0, f1) = (pt.face(c), pt.face(t));
+                let (we, wf) = self
+                    .smooth_triangles
+                    .then(|| smooth_triangle_edge(pt.face_size(f0), pt.face_size(f1)))
+                    .flatten()
+                    .unwrap_or((0.25, 0.25));
+                s.add(a, we);
+                s.add(b, we);
+                face_point(pt, f0, wf, s);
+                face_point(pt, f1, wf, s);
             }
         }
     }

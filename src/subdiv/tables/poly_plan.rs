@@ -36,7 +36,7 @@ pub(super) fn record(
     let mut cur = with_boundary_corners(&control, opts.boundary).unwrap_or(control);
     let mut plans = Vec::with_capacity(levels as usize);
     for _ in 1..=levels {
-        plans.push(record_poly_level(&cur, scheme, opts.creasing, None));
+        plans.push(record_poly_level(&cur, scheme, opts, None));
         cur = split::split(&cur, opts.creasing).0;
     }
     Ok((plans, cur))
@@ -45,8 +45,9 @@ pub(super) fn record(
 /// One Catmull-Clark level recorded on `pt` as it is (its boundary corners
 /// already applied) and the split table it makes: the local subdivision of
 /// exact evaluation runs the very rules the refinement runs.
-pub(crate) fn record_one_catmark_level(pt: &PolyTable, creasing: Creasing) -> (LevelPlan, PolyTable) {
-    (record_level(&CatmullClark, pt, creasing, None), split::split(pt, creasing).0)
+pub(crate) fn record_one_catmark_level(pt: &PolyTable, opts: &Options) -> (LevelPlan, PolyTable) {
+    let r = CatmullClark::new(opts);
+    (record_level(&r, pt, opts.creasing, None), split::split(pt, opts.creasing).0)
 }
 
 /// The rows of one level of polygon `scheme` on `pt` (its boundary corners
@@ -54,12 +55,12 @@ pub(crate) fn record_one_catmark_level(pt: &PolyTable, creasing: Creasing) -> (L
 pub(crate) fn record_poly_level<W: Weight + std::ops::AddAssign>(
     pt: &PolyTable,
     scheme: Scheme,
-    creasing: Creasing,
+    opts: &Options,
     only: Option<&[u32]>,
 ) -> LevelPlan<W> {
     match scheme {
-        Scheme::Bilinear => record_level(&Bilinear, pt, creasing, only),
-        _ => record_level(&CatmullClark, pt, creasing, only),
+        Scheme::Bilinear => record_level(&Bilinear, pt, opts.creasing, only),
+        _ => record_level(&CatmullClark::new(opts), pt, opts.creasing, only),
     }
 }
 
