@@ -103,6 +103,9 @@ pub(crate) fn triangle_split(
         old = split_with(&old, opts.creasing).0;
     }
     let nt = old.num_triangles() as u32;
+    if child.num_triangles() != 4 * nt as usize {
+        return Err(not_the_split(child.num_triangles(), 4 * nt as usize));
+    }
     let t = if x < nt { x } else { x % nt };
     let cs = [3 * t, 3 * t + 1, 3 * t + 2];
     let w = cs.map(|c| child.vtx(c));
@@ -136,6 +139,14 @@ fn check(level: u32, x: u32, faces: usize) -> Result<()> {
         return Err(Error::Usage(format!("face {x} out of range: the level has {faces}")));
     }
     Ok(())
+}
+
+/// Why a level is not the split of the one below (a subdivision that left
+/// faces out has another numbering).
+fn not_the_split(faces: usize, split: usize) -> Error {
+    Error::Usage(format!(
+        "the level shown has {faces} faces, not the {split} of the split of the level below: no split to show"
+    ))
 }
 
 /// The rule that made each vertex of `ids` at its level.
@@ -198,8 +209,8 @@ pub(crate) fn quad_split(
     for _ in 1..level {
         old = poly_split::split(&old, opts.creasing).0;
     }
-    if x as usize >= old.num_corners() {
-        return Err(Error::Usage(format!("quad {x} has no parent corner: the levels do not match")));
+    if child.num_faces() != old.num_corners() {
+        return Err(not_the_split(child.num_faces(), old.num_corners()));
     }
     let f = old.face(x);
     let cs: Vec<u32> = old.face_corners(f).collect();
