@@ -137,8 +137,8 @@ pub struct SchemeArgs {
     /// Refuse levels predicted to need more than this (e.g. 2G, 500M; default: 80% of available memory).
     #[arg(long, value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
-    /// Texture coordinates through Catmull-Clark: smooth (the scheme on the UV charts, corners kept) or linear.
-    #[arg(long, default_value = "smooth")]
+    /// Texture coordinates through Catmull-Clark and Loop (OpenSubdiv's face-varying interpolation): none (the scheme on the UV charts, nothing kept), corners-only (their one-face corners kept), corners-plus1 (and junctions of three or more charts), corners-plus2 (and darts and the other side of a chart corner), boundaries (linear along the charts' borders) or all (bilinear in every face); smooth and linear name corners-only and all.
+    #[arg(long = "fvar", visible_alias = "uv", value_name = "MODE", default_value = "corners-only")]
     pub uv: subdiv::subdiv::UvInterpolation,
     /// Triangles in Catmull-Clark meshes: catmark (Catmull-Clark's own rules) or smooth (OpenSubdiv's smooth triangle rule, TRI_SUB_SMOOTH).
     #[arg(long, default_value = "catmark")]

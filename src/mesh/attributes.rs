@@ -36,15 +36,58 @@ pub enum UvInterpolation {
     /// Blender's "Keep Corners"): textures stay smooth across faces.
     #[default]
     Smooth,
+    /// The scheme's rules everywhere, the charts' corners smooth too
+    /// (`FVAR_LINEAR_NONE`).
+    None,
+    /// As [`UvInterpolation::Smooth`], and every value where three or more
+    /// charts meet kept too (`FVAR_LINEAR_CORNERS_PLUS1`).
+    CornersPlus1,
+    /// As [`UvInterpolation::CornersPlus1`], and darts and the other value
+    /// of a vertex where a chart has a corner kept too
+    /// (`FVAR_LINEAR_CORNERS_PLUS2`).
+    CornersPlus2,
+    /// Linear along the charts' borders, smooth inside
+    /// (`FVAR_LINEAR_BOUNDARIES`).
+    Boundaries,
+}
+
+impl UvInterpolation {
+    /// Every mode, in OpenSubdiv's order (`FVarLinearInterpolation`).
+    pub const ALL: [UvInterpolation; 6] = [
+        UvInterpolation::None,
+        UvInterpolation::Smooth,
+        UvInterpolation::CornersPlus1,
+        UvInterpolation::CornersPlus2,
+        UvInterpolation::Boundaries,
+        UvInterpolation::Linear,
+    ];
+
+    /// Its command-line name (OpenSubdiv's, in kebab case).
+    pub fn name(self) -> &'static str {
+        match self {
+            UvInterpolation::None => "none",
+            UvInterpolation::Smooth => "corners-only",
+            UvInterpolation::CornersPlus1 => "corners-plus1",
+            UvInterpolation::CornersPlus2 => "corners-plus2",
+            UvInterpolation::Boundaries => "boundaries",
+            UvInterpolation::Linear => "all",
+        }
+    }
 }
 
 impl std::str::FromStr for UvInterpolation {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
         match s.to_ascii_lowercase().as_str() {
-            "linear" | "linear-all" => Ok(UvInterpolation::Linear),
-            "smooth" | "corners" | "keep-corners" => Ok(UvInterpolation::Smooth),
-            _ => Err(format!("unknown UV interpolation '{s}' (expected linear or smooth)")),
+            "all" | "linear" | "linear-all" => Ok(UvInterpolation::Linear),
+            "corners-only" | "smooth" | "corners" | "keep-corners" => Ok(UvInterpolation::Smooth),
+            "none" => Ok(UvInterpolation::None),
+            "corners-plus1" => Ok(UvInterpolation::CornersPlus1),
+            "corners-plus2" => Ok(UvInterpolation::CornersPlus2),
+            "boundaries" => Ok(UvInterpolation::Boundaries),
+            _ => Err(format!(
+                "unknown face-varying interpolation '{s}' (expected none, corners-only, corners-plus1, corners-plus2, boundaries or all; smooth and linear for corners-only and all)"
+            )),
         }
     }
 }

@@ -33,12 +33,18 @@ pub(crate) fn subdivision_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Comman
             }
         }
         Scheme::CatmullClark => {
-            let mut smooth = req.opts.uv == UvInterpolation::Smooth;
-            let hint = "texture coordinates refined on their UV charts, corners kept (else bilinear in each face)";
-            if ui.checkbox(&mut smooth, "Smooth texture coordinates").on_hover_text(hint).changed() {
-                req.opts.uv = if smooth { UvInterpolation::Smooth } else { UvInterpolation::Linear };
-                changed = true;
-            }
+            let hint = "how texture coordinates are refined (OpenSubdiv's face-varying interpolation): \
+                        the scheme on their UV charts, which of the charts' corners, junctions and borders \
+                        stay fixed, or bilinear in every face (all)";
+            egui::ComboBox::from_label("UVs")
+                .selected_text(req.opts.uv.name())
+                .show_ui(ui, |ui| {
+                    for mode in UvInterpolation::ALL {
+                        changed |= ui.selectable_value(&mut req.opts.uv, mode, mode.name()).changed();
+                    }
+                })
+                .response
+                .on_hover_text(hint);
         }
         Scheme::ModifiedButterfly => {
             let slider = ui.add(egui::Slider::new(&mut req.opts.tension, -0.05..=0.1).text("tension w"));

@@ -6,11 +6,12 @@
 //!   an affine function of position stays that function wherever the scheme
 //!   reproduces it), then clamped to [0, 1] since the interpolating schemes'
 //!   negative weights can overshoot.
-//! * **Texture coordinates** are refined linearly inside each triangle by
-//!   the triangle schemes ([`refine_corner_uvs`]); the polygon schemes take
-//!   them per polygon corner, smooth on the UV charts
-//!   ([`super::face_varying`], the default) or bilinear in each face
-//!   ([`split_poly_uvs`]), as [`crate::Options::uv`] says.
+//! * **Texture coordinates** are refined by Catmull-Clark and Loop on their
+//!   UV charts ([`super::face_varying`]: OpenSubdiv's face-varying
+//!   interpolation, every mode of [`crate::Options::uv`] but `all`), per
+//!   polygon corner for the polygon schemes; linearly in each face with
+//!   `all` ([`split_poly_uvs`]) and by the other triangle schemes
+//!   ([`refine_corner_uvs`]).
 //! * **Materials**: each child face keeps its parent's.
 
 use super::plan::{PlanScratch, StencilPlan};
@@ -48,8 +49,14 @@ pub fn refine(ct: &CornerTable, attrs: &Attributes, scheme: Scheme, levels: u32,
     if scheme.is_polygonal() {
         return refine_through_polygons(ct, attrs, scheme, levels, opts);
     }
+    let smooth = match &attrs.uv {
+        Some(uv) if scheme == Scheme::Loop && opts.uv != UvInterpolation::Linear && uv.len() == ct.num_corners() => {
+            super::face_varying::smooth_triangle_uvs(ct, uv, levels, opts)?
+        }
+        _ => None,
+    };
     Ok(Attributes {
-        uv: attrs.uv.as_ref().map(|uv| refine_corner_uvs(uv, levels)),
+        uv: smooth.or_else(|| attrs.uv.as_ref().map(|uv| refine_corner_uvs(uv, levels))),
         colors: attrs.colors.as_ref().map(|c| refine_colors(ct, c, scheme, levels, opts)).transpose()?,
         materials: attrs.materials.as_ref().map(|m| crate::mesh::attributes::MaterialGroups {
             face: crate::mesh::attributes::refine_face_ids(&m.face, levels),
@@ -140,7 +147,7 @@ pub fn refine_poly(
     let mut pt = mesh.pt.clone();
     let mut uv = attrs.uv.clone().filter(|u| u.len() == pt.num_corners());
     let smooth = match &uv {
-        Some(u) if opts.uv == UvInterpolation::Smooth && scheme == Scheme::CatmullClark => {
+        Some(u) if opts.uv != UvInterpolation::Linear && scheme == Scheme::CatmullClark => {
             super::face_varying::smooth_uvs(&pt, u, scheme, levels, opts)?
         }
         _ => None,

@@ -17,6 +17,7 @@
 
 use crate::Result;
 use crate::mesh::BoundaryInterpolation;
+use crate::mesh::CornerTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::Sharpness;
 use crate::subdiv::{Options, Scheme, subdivide_poly};
@@ -37,16 +38,41 @@ pub fn smooth_uvs(
     levels: u32,
     opts: &Options,
 ) -> Result<Option<Vec<Vec2>>> {
-    let Some(charts) = charts(pt, uv) else { return Ok(None) };
+    let Some(charts) = charts(pt, uv, opts) else { return Ok(None) };
     let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..*opts };
     let (fine, _) = subdivide_poly(&charts, scheme, levels, &opts)?;
     let out = (0..fine.pt.num_corners() as u32).map(|c| fine.positions[fine.pt.vtx(c) as usize].truncate()).collect();
     Ok(Some(out))
 }
 
+/// Texture coordinates per triangle corner of `ct` (one per corner) after
+/// `levels` levels of Loop on the UV charts, as [`smooth_uvs`] for the
+/// polygon schemes: the triangles taken as polygons of three corners (the
+/// same corners), their charts refined by Loop, whose split numbers the
+/// children of a triangle alike in both tables.
+///
+/// # Errors
+/// A level that does not fit in memory.
+pub fn smooth_triangle_uvs(ct: &CornerTable, uv: &[Vec2], levels: u32, opts: &Options) -> Result<Option<Vec<Vec2>>> {
+    // a table with hidden diagonals stands for polygons: not the triangles'
+    let plain = crate::mesh::CornerTable::from_parts(
+        ct.v_table().to_vec(),
+        ct.o_table().to_vec(),
+        ct.c_table().to_vec(),
+        ct.valences().to_vec(),
+    )
+    .with_sharpness(ct.sharpness().cloned());
+    let pt = PolyTable::from_corner_table(&plain);
+    let Some(charts) = charts(&pt, uv, opts) else { return Ok(None) };
+    let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..*opts };
+    let mesh = crate::Mesh { ct: charts.pt.triangulated(), positions: charts.positions };
+    let (fine, _) = crate::subdiv::subdivide(&mesh, Scheme::Loop, levels, &opts)?;
+    Ok(Some(fine.ct.v_table().iter().map(|&v| fine.positions[v as usize].truncate()).collect()))
+}
+
 /// The UV charts of `pt` as a polygon mesh (positions `(u, v, 0)`), with
 /// the sharpness described in the module docs.
-fn charts(pt: &PolyTable, uv: &[Vec2]) -> Option<PolyMesh> {
+fn charts(pt: &PolyTable, uv: &[Vec2], opts: &Options) -> Option<PolyMesh> {
     if uv.len() != pt.num_corners() {
         return None;
     }
@@ -69,9 +95,7 @@ fn charts(pt: &PolyTable, uv: &[Vec2]) -> Option<PolyMesh> {
     if kept.is_some() || table.v_table() != corners.as_slice() {
         return None;
     }
-    // values whose chart has one face at their vertex: corners, on the mesh
-    // boundary too whatever the vertex boundary option (as OpenSubdiv)
-    let corner_values: Vec<u32> = (0..positions.len() as u32).filter(|&u| table.fan(u).count() == 1).collect();
+    let corner_values = fixed_values(pt, &table, &vertex_of, opts);
     let inherited = pt.sharpness().and_then(|s| {
         let edges = s.sharp_corners().iter().copied().filter(|&(c, _)| table.twin(c).is_some()).collect();
         let values = (0..positions.len() as u32)
@@ -82,4 +106,72 @@ fn charts(pt: &PolyTable, uv: &[Vec2]) -> Option<PolyMesh> {
     });
     let sharpness = Sharpness::with_corners(inherited, &corner_values);
     Some(PolyMesh { pt: table.with_sharpness(sharpness), positions })
+}
+
+/// The values (vertices of the chart table `table`, `vertex_of` their mesh
+/// vertices) that stay where they are as `opts.uv` says: OpenSubdiv's
+/// sharpening of face-varying values (`vtr/fvarLevel.cpp`,
+/// `completeTopologyFromFaceValues`), for a manifold mesh:
+///
+/// ```text
+/// mismatch   a vertex with a seam (more than one value, or one value on
+///            a chart border inside the mesh: a dart), or on the mesh
+///            border with linear boundaries, or a one-face border vertex
+///            when corners are sharp and the vertex boundary option does
+///            not already make it a corner
+/// all sharp  linear boundaries, an infinitely sharp vertex, three or more
+///            values with corners-plus1/plus2, a dart with
+///            corners-plus2/boundaries; with corners-plus1/plus2 and two
+///            values: an infinitely sharp edge inside either span, or (plus2)
+///            a span of one face
+/// sharp      all sharp, an infinitely sharp edge inside the value's span,
+///            or a span of one face unless the mode is none
+/// ```
+///
+/// A vertex without a mismatch keeps the vertex's own rule: its values
+/// follow the mesh's sharpness, which the chart table inherits, and a
+/// one-face corner the vertex boundary option sharpens.
+fn fixed_values(pt: &PolyTable, table: &PolyTable, vertex_of: &[u32], opts: &Options) -> Vec<u32> {
+    use crate::mesh::attributes::UvInterpolation as U;
+    let mode = opts.uv;
+    let linear_boundaries = matches!(mode, U::Boundaries | U::Linear);
+    let dependent = matches!(mode, U::CornersPlus1 | U::CornersPlus2);
+    let plus2 = mode == U::CornersPlus2;
+    let corners_sharp = mode != U::None;
+    let sharpen_darts = plus2 || linear_boundaries;
+    let geometric_corners = opts.boundary == BoundaryInterpolation::EdgeAndCorner;
+    let inf = crate::mesh::sharpness::INFINITE;
+    let mut values_of: Vec<Vec<u32>> = vec![Vec::new(); pt.num_vertices()];
+    for (u, &v) in vertex_of.iter().enumerate() {
+        values_of[v as usize].push(u as u32);
+    }
+    // the span of a value: its faces, and the infinitely sharp mesh edges inside it
+    let size = |u: u32| table.fan(u).count();
+    let sharp_inside = |u: u32| {
+        table.fan(u).filter(|&x| table.twin(x).is_some() && pt.sharpness().is_some_and(|s| s.corner(x) >= inf)).count()
+    };
+    let mut out = Vec::new();
+    for (v, values) in values_of.iter().enumerate() {
+        let v = v as u32;
+        let (boundary, faces) = (pt.is_boundary_vertex(v), pt.fan(v).count());
+        let n = values.len();
+        let seam = n > 1 || (n == 1 && table.is_boundary_vertex(values[0]) && !boundary);
+        let v_inf = pt.sharpness().is_some_and(|s| s.vertex(v) >= inf) || (geometric_corners && boundary && faces == 1);
+        let mismatch =
+            seam || (boundary && linear_boundaries) || (boundary && faces == 1 && corners_sharp && !geometric_corners);
+        if !mismatch {
+            // the vertex's own rule: a corner the boundary option makes
+            if v_inf {
+                out.extend_from_slice(values);
+            }
+            continue;
+        }
+        let mut all = linear_boundaries || v_inf || (dependent && n > 2) || (sharpen_darts && n == 1 && !boundary);
+        if !all && dependent && n == 2 {
+            all = sharp_inside(values[0]) > 0 || sharp_inside(values[1]) > 0;
+            all |= plus2 && (size(values[0]) == 1 || size(values[1]) == 1);
+        }
+        out.extend(values.iter().copied().filter(|&u| all || sharp_inside(u) > 0 || (size(u) == 1 && corners_sharp)));
+    }
+    out
 }
