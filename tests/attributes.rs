@@ -51,8 +51,12 @@ fn colours_use_the_scheme_weights_and_reproduce_affine_fields() {
     let (lo, hi) = mesh.bounds();
     let field =
         |q: Vec3| Vec3::splat(0.2) + 0.6 * (q - lo) / (hi - lo).max(Vec3::splat(1e-6)) * Vec3::new(1.0, 0.5, 0.25);
-    let attrs =
-        Attributes { uv: None, materials: None, colors: Some(mesh.positions.iter().map(|&q| field(q)).collect()) };
+    let attrs = Attributes {
+        uv: None,
+        materials: None,
+        options: Default::default(),
+        colors: Some(mesh.positions.iter().map(|&q| field(q)).collect()),
+    };
     for scheme in [Scheme::Loop, Scheme::Midpoint, Scheme::Jarek] {
         let (fine, _) = subdivide(&mesh, scheme, 2, &Options::default()).unwrap();
         let out = refine(&mesh.ct, &attrs, scheme, 2, &Options::default()).unwrap();
@@ -66,6 +70,7 @@ fn colours_use_the_scheme_weights_and_reproduce_affine_fields() {
     let spiky = Attributes {
         uv: None,
         materials: None,
+        options: Default::default(),
         colors: Some((0..mesh.positions.len()).map(|i| if i % 2 == 0 { Vec3::ONE } else { Vec3::ZERO }).collect()),
     };
     let out = refine(&mesh.ct, &spiky, Scheme::Butterfly, 1, &Options::default()).unwrap().colors.unwrap();

@@ -52,7 +52,8 @@ fn attributes_survive_the_formats_that_keep_them() {
     let (mesh, attrs) = load_with_attributes(&model_path("cube_uv.obj"));
     let uv = attrs.uv.clone().expect("cube_uv.obj has texture coordinates");
     let colors: Vec<Vec3> = mesh.positions.iter().map(|p| (*p * 0.5 + 0.25).clamp(Vec3::ZERO, Vec3::ONE)).collect();
-    let attrs = Attributes { uv: Some(uv.clone()), colors: Some(colors.clone()), materials: None };
+    let attrs =
+        Attributes { uv: Some(uv.clone()), colors: Some(colors.clone()), materials: None, options: Default::default() };
     for (ext, keeps_uv, tol) in
         [("obj", true, 1e-6), ("glb", true, 0.0), ("ply", false, 0.5 / 255.0), ("off", false, 0.0)]
     {

@@ -12,6 +12,7 @@ use super::jobs::{AnimationJob, Finished, Jobs, Opened, Subdivided, SubdivisionJ
 use super::model::{Curve, Made, Model, Shown};
 use crate::anim::paths::Paths;
 use crate::mesh::edit::EditError;
+use crate::mesh::options::ShapeOptions;
 use crate::mesh::sharpness::{CreaseTag, INFINITE, Tags};
 use crate::render::export::{ExportStyle, ExportTarget};
 use crate::subdiv::{ControlCounts, default_memory_limit};
@@ -103,6 +104,9 @@ pub(crate) struct Doc {
     pub(crate) repair_on_open: bool,
     /// The Inspect mode: picked corner, stencil, split.
     pub(crate) inspect: super::inspect::Inspect,
+    /// The shape options the command line gave, which a file's option
+    /// tags do not replace (see [`Doc::adopt_file_options`]).
+    pub(crate) pinned: ShapeOptions,
 }
 
 fn builtin_tetrahedron() -> (Mesh, Paths) {
@@ -135,7 +139,20 @@ impl Doc {
             status: Status::default(),
             repair_on_open: false,
             inspect: Default::default(),
+            pinned: ShapeOptions::default(),
         }
+    }
+
+    /// A model's option tags: each one the file states becomes the asked
+    /// subdivision's (the panel shows it) unless the command line pinned
+    /// it; what the file leaves unsaid stays as it was.
+    pub(crate) fn adopt_file_options(&mut self, file: ShapeOptions) {
+        let o = file.overridden_by(self.pinned);
+        let opts = &mut self.request.opts;
+        opts.boundary = o.boundary.unwrap_or(opts.boundary);
+        opts.uv = o.fvar.unwrap_or(opts.uv);
+        opts.triangles = o.triangles.unwrap_or(opts.triangles);
+        opts.creasing = o.creasing.unwrap_or(opts.creasing);
     }
 
     /// Whether any task is running.
@@ -477,6 +494,7 @@ impl Doc {
             Ok(o) => {
                 self.status.failed = None;
                 self.status.notice = o.report;
+                self.adopt_file_options(o.attrs.options);
                 self.model.attrs.file = o.attrs;
                 self.adopt(o.path, o.mesh, o.paths);
             }

@@ -69,6 +69,10 @@ pub struct ViewOptions {
     pub scheme: Scheme,
     /// Scheme options (Loop's or Warren's beta, tension, memory limit).
     pub opts: crate::Options,
+    /// Which of `opts`' shape options (boundary, face-varying, triangles,
+    /// creasing) the command line gave: a file's option tags do not
+    /// replace those.
+    pub flags: crate::mesh::options::ShapeOptions,
     /// Initial level.
     pub level: u32,
     /// Start with the wireframe on.
@@ -278,6 +282,7 @@ impl App {
         let doc = &mut viewer.doc;
         doc.request.scheme = opts.scheme;
         doc.request.opts = opts.opts;
+        doc.pinned = opts.flags;
         if let Some(limit) = opts.opts.max_memory {
             doc.request.limit = Some(limit);
         }

@@ -999,3 +999,26 @@ fn catmull_clark_colours_by_curvature_over_a_range_the_display_sets() {
     assert!(v.doc.status.error.is_none(), "{:?}", error_text(&v));
     frame(&ctx, &mut v, vec![]);
 }
+
+#[test]
+fn a_files_option_tags_become_the_asked_options_unless_the_command_line_gave_them() {
+    use crate::mesh::{BoundaryInterpolation, Creasing, attributes::UvInterpolation};
+    let tagged = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark/tagged.obj");
+    let mut v = Viewer::new();
+    v.doc.request.scheme = Scheme::CatmullClark;
+    v.doc.request.level = 1;
+    // the command line gave --creasing uniform
+    v.doc.pinned.creasing = Some(Creasing::Uniform);
+    v.apply(Command::Open(tagged.clone()));
+    settle(&mut v);
+    assert!(v.doc.status.error.is_none(), "{:?}", error_text(&v));
+    let opts = v.doc.model.made.opts;
+    assert_eq!(opts.boundary, BoundaryInterpolation::EdgeAndCorner, "the file's interpolateboundary");
+    assert_eq!(opts.uv, UvInterpolation::Boundaries, "the file's facevaryinginterpolateboundary");
+    assert_eq!(opts.triangles, crate::subdiv::TriangleSubdivision::Smooth, "the file's smoothtriangles");
+    assert_eq!(opts.creasing, Creasing::Uniform, "the flag over the file's creasemethod");
+    // a file without tags leaves the options as they are
+    v.apply(Command::Open(common::model_path("cube.obj")));
+    settle(&mut v);
+    assert_eq!(v.doc.model.made.opts.boundary, BoundaryInterpolation::EdgeAndCorner);
+}

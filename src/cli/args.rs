@@ -7,6 +7,7 @@
 use std::path::Path;
 use subdiv::io::{Limits, Loaded, ReadOptions, Topology};
 use subdiv::mesh::attributes::Attributes;
+use subdiv::mesh::options::ShapeOptions;
 use subdiv::subdiv::eval::color::CurvatureKind;
 use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
 
@@ -138,11 +139,12 @@ pub struct SchemeArgs {
     #[arg(long, value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
     /// Texture coordinates through Catmull-Clark and Loop (OpenSubdiv's face-varying interpolation): none (the scheme on the UV charts, nothing kept), corners-only (their one-face corners kept), corners-plus1 (and junctions of three or more charts), corners-plus2 (and darts and the other side of a chart corner), boundaries (linear along the charts' borders) or all (bilinear in every face); smooth and linear name corners-only and all.
-    #[arg(long = "fvar", visible_alias = "uv", value_name = "MODE", default_value = "corners-only")]
-    pub uv: subdiv::subdiv::UvInterpolation,
-    /// Triangles in Catmull-Clark meshes: catmark (Catmull-Clark's own rules) or smooth (OpenSubdiv's smooth triangle rule, TRI_SUB_SMOOTH).
-    #[arg(long, default_value = "catmark")]
-    pub triangles: subdiv::subdiv::TriangleSubdivision,
+    /// Default: the file's `t facevaryinginterpolateboundary` tag, else corners-only.
+    #[arg(long = "fvar", visible_alias = "uv", value_name = "MODE")]
+    pub uv: Option<subdiv::subdiv::UvInterpolation>,
+    /// Triangles in Catmull-Clark meshes: catmark (Catmull-Clark's own rules) or smooth (OpenSubdiv's smooth triangle rule, TRI_SUB_SMOOTH). Default: the file's `t smoothtriangles` tag, else catmark.
+    #[arg(long, value_name = "RULE")]
+    pub triangles: Option<subdiv::subdiv::TriangleSubdivision>,
     #[command(flatten)]
     pub features: FeatureArgs,
 }
@@ -164,11 +166,28 @@ impl SchemeArgs {
             loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
             tension: self.tension,
             max_memory: self.max_memory,
-            creasing: self.features.creasing,
-            boundary: self.features.sharp.boundary,
-            uv: self.uv,
-            triangles: self.triangles,
+            creasing: self.features.creasing.unwrap_or_default(),
+            boundary: self.features.sharp.boundary.unwrap_or_default(),
+            uv: self.uv.unwrap_or_default(),
+            triangles: self.triangles.unwrap_or_default(),
         }
+    }
+
+    /// The shape options these flags state (`None` where a flag is absent).
+    pub fn shape(&self) -> ShapeOptions {
+        ShapeOptions {
+            boundary: self.features.sharp.boundary,
+            fvar: self.uv,
+            triangles: self.triangles,
+            creasing: self.features.creasing,
+        }
+    }
+
+    /// These arguments with the options a file states where no flag does
+    /// (flags override the file's tags).
+    pub fn over(&self, file: ShapeOptions) -> SchemeArgs {
+        let o = file.overridden_by(self.shape());
+        SchemeArgs { uv: o.fvar, triangles: o.triangles, features: self.features.over(file), ..self.clone() }
     }
 }
 
@@ -179,15 +198,24 @@ impl SchemeArgs {
 pub struct FeatureArgs {
     #[command(flatten)]
     pub sharp: SharpArgs,
-    /// How semi-sharp creases decay: uniform (s - 1 per level) or chaikin.
-    #[arg(long, default_value = "uniform")]
-    pub creasing: subdiv::mesh::Creasing,
+    /// How semi-sharp creases decay: uniform (s - 1 per level) or chaikin. Default: the file's `t creasemethod` tag, else uniform.
+    #[arg(long, value_name = "METHOD")]
+    pub creasing: Option<subdiv::mesh::Creasing>,
 }
 
 impl FeatureArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
     pub fn apply(&self, mesh: Mesh) -> Mesh {
         self.sharp.apply(mesh)
+    }
+
+    /// These arguments with the boundary and creasing a file states where
+    /// no flag does.
+    pub fn over(&self, file: ShapeOptions) -> FeatureArgs {
+        let mut f = self.clone();
+        f.sharp.boundary = self.sharp.boundary.or(file.boundary);
+        f.creasing = self.creasing.or(file.creasing);
+        f
     }
 }
 
@@ -199,9 +227,9 @@ pub struct SharpArgs {
     /// Make every edge whose two faces' normals differ by more than DEG degrees (0 to 180) infinitely sharp.
     #[arg(long, value_name = "DEG", value_parser = parse_angle, allow_hyphen_values = true)]
     pub crease_angle: Option<f32>,
-    /// Boundary interpolation: edge (boundary edges sharp), edge-and-corner (also one-face corners) or none (the faces at the border left out, their vertices still shaping the rest).
-    #[arg(long, default_value = "edge")]
-    pub boundary: subdiv::mesh::BoundaryInterpolation,
+    /// Boundary interpolation: edge (boundary edges sharp), edge-and-corner (also one-face corners) or none (the faces at the border left out, their vertices still shaping the rest). Default: the file's `t interpolateboundary` tag, else edge.
+    #[arg(long, value_name = "MODE")]
+    pub boundary: Option<subdiv::mesh::BoundaryInterpolation>,
 }
 
 impl SharpArgs {

@@ -162,8 +162,9 @@ fn model(a: &AnimateArgs) -> Result<(Mesh, Attributes, Option<Paths>)> {
 /// recorded animation of `subdiv animate`.
 fn animation_of(a: &AnimateArgs) -> Result<(Mesh, Attributes, Paths, Animation)> {
     let tweak: Tweak = a.tweak.parse().map_err(Error::Usage)?;
-    let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
+    let level = a.sub.levels_or(5);
     let (mesh, attrs, default_paths) = model(a)?;
+    let s = &a.sub.scheme.over(attrs.options);
     let mesh = s.features.apply(mesh);
     let paths = match (&a.paths, default_paths) {
         (Some(p), _) => {
@@ -311,7 +312,6 @@ mod gpu {
     /// `subdiv render`.
     pub fn render(a: &RenderArgs) -> Result<()> {
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
-        let s = &a.sub.scheme;
         let levels = a.sub.levels_or(0);
         let asked = a.color.asked()?;
         let isolines = a.color.isolines(asked)?.unwrap_or(0);
@@ -319,6 +319,7 @@ mod gpu {
         // textures decoded: the materials are drawn
         let loaded = a.from.read(&a.input, true)?;
         let (mesh, attrs) = (loaded.mesh, loaded.attributes);
+        let s = &a.sub.scheme.over(attrs.options);
         let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
         let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;

@@ -39,13 +39,15 @@ pub struct EvalArgs {
 
 /// `subdiv eval`.
 pub fn eval(a: &EvalArgs) -> Result<()> {
-    let mesh = a.scheme.features.apply(a.from.load(&a.input)?);
+    let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+    let scheme = a.scheme.over(attrs.options);
+    let mesh = scheme.features.apply(mesh);
     let limits = a.from.limits.limits()?;
     let max_points = limits.get("vertices").unwrap_or(u64::MAX);
     let shown = a.points.display().to_string();
     let text = subdiv::io::read_text_file(&a.points, &limits)?;
     let start = Instant::now();
-    let ev = Evaluator::new(&mesh, a.scheme.scheme, &a.scheme.options())?;
+    let ev = Evaluator::new(&mesh, scheme.scheme, &scheme.options())?;
     let prepared = start.elapsed();
     // every point is checked before any is evaluated
     let points = parse_points_in(&text, &shown, ev.domain(), usize::try_from(max_points).unwrap_or(usize::MAX))?;

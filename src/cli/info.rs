@@ -209,9 +209,9 @@ fn unused_subdivision_option(a: &InfoArgs) -> Option<&'static str> {
         ("--warren", s.warren),
         ("--tension", s.tension != 0.0),
         ("--max-memory", s.max_memory.is_some()),
-        ("--uv", s.uv != Default::default()),
-        ("--triangles", s.triangles != Default::default()),
-        ("--creasing", s.features.creasing != Default::default()),
+        ("--uv", s.uv.is_some()),
+        ("--triangles", s.triangles.is_some()),
+        ("--creasing", s.features.creasing.is_some()),
     ];
     given.into_iter().find(|g| g.1).map(|g| g.0)
 }
@@ -242,17 +242,18 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     let dropped = report.as_ref().map_or(notes.unreferenced, |r| r.unreferenced_vertices.count);
     let face_sizes: BTreeMap<usize, usize> =
         notes.face_sizes.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
-    let mesh = a.sub.scheme.features.apply(mesh);
+    let sub = SubdivArgs { scheme: a.sub.scheme.over(loaded.attributes.options), ..a.sub.clone() };
+    let mesh = sub.scheme.features.apply(mesh);
     if let Some(c) = a.corner {
         return super::inspect::corner(input, &mesh, c, a.json);
     }
     if let Some(v) = a.stencil {
-        return super::inspect::stencil_of(&mesh, &a.sub, v, a.json);
+        return super::inspect::stencil_of(&mesh, &sub, v, a.json);
     }
     let (nm_edges, nm_vertices) =
         report.as_ref().map_or((0, 0), |r| (r.non_manifold_edges.count, r.non_manifold_vertices.count));
     let t = topology(&mesh.ct);
-    let (own, triangulated, sharp) = own_counts(&mesh, &t, a.sub.scheme.features.sharp.boundary);
+    let (own, triangulated, sharp) = own_counts(&mesh, &t, sub.scheme.features.sharp.boundary.unwrap_or_default());
     if a.json {
         return print_json(&MeshInfo {
             file: input.display().to_string(),

@@ -1,6 +1,6 @@
 //! The commands that read a mesh and write one: subdivide, smooth, limit, repair.
 
-use super::args::{InputArgs, LimitArgs, SubdivArgs};
+use super::args::{InputArgs, LimitArgs, SchemeArgs, SubdivArgs};
 use super::{logging, print_json, progress};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -51,9 +51,17 @@ const BIG_FACES: u64 = 1 << 20;
 
 /// `subdiv subdivide`.
 pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
-    let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
+    let levels = a.sub.levels_or(1);
     let t0 = Instant::now();
-    let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+    let (mesh, mut attrs) = a.from.load_with_attributes(&a.input)?;
+    // the file's option tags where no flag is given; the output states the
+    // options it was made with (a refined level's border faces are not
+    // holes any more: boundary none is the control mesh's)
+    let s = &a.sub.scheme.over(attrs.options);
+    attrs.options = s.shape();
+    if levels > 0 && attrs.options.boundary == Some(subdiv::mesh::BoundaryInterpolation::None) {
+        attrs.options.boundary = None;
+    }
     let mesh = s.features.apply(mesh);
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
@@ -64,12 +72,12 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
         if logging::warnings_shown() {
             eprintln!("subdiv: note: {} keeps no texture coordinates or colours", a.output.display());
         }
-        Default::default()
+        Attributes { options: attrs.options, ..Default::default() }
     };
     let (vertices, out_faces, st, save_ms) = if s.scheme.is_polygonal() {
-        subdivide_polygons(a, &mesh, &attrs)?
+        subdivide_polygons(a, s, &mesh, &attrs)?
     } else {
-        subdivide_triangles(a, &mesh, attrs)?
+        subdivide_triangles(a, s, &mesh, attrs)?
     };
     if let Some(pb) = spin {
         pb.finish_and_clear();
@@ -90,10 +98,11 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
 /// takes the mesh.
 fn subdivide_triangles(
     a: &SubdivideArgs,
+    s: &SchemeArgs,
     mesh: &Mesh,
     attrs: Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
+    let levels = a.sub.levels_or(1);
     // Texture coordinates and colours ride along (see subdiv::attributes).
     let fine_attrs = |attrs: Attributes| match attrs.is_empty() {
         true => Ok(attrs),
@@ -123,10 +132,11 @@ fn subdivide_triangles(
 /// output's vertices, faces, the stats and the milliseconds of the save.
 fn subdivide_polygons(
     a: &SubdivideArgs,
+    s: &SchemeArgs,
     mesh: &Mesh,
     attrs: &subdiv::mesh::attributes::Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
+    let levels = a.sub.levels_or(1);
     let (control, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
     let fine_attrs = |pattrs: Attributes| match pattrs.is_empty() {
         true => Ok(pattrs),
@@ -279,7 +289,9 @@ pub struct LimitCmdArgs {
 
 /// `subdiv limit`.
 pub fn limit(a: &LimitCmdArgs) -> Result<()> {
-    let mesh = a.features.apply(a.from.load(&a.input)?);
+    let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+    let features = a.features.over(attrs.options);
+    let mesh = features.apply(mesh);
     match a.scheme {
         subdiv::Scheme::Loop => {
             let positions = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh);
@@ -287,8 +299,8 @@ pub fn limit(a: &LimitCmdArgs) -> Result<()> {
         }
         subdiv::Scheme::CatmullClark => {
             let opts = subdiv::Options {
-                creasing: a.features.creasing,
-                boundary: a.features.sharp.boundary,
+                creasing: features.creasing.unwrap_or_default(),
+                boundary: features.sharp.boundary.unwrap_or_default(),
                 ..Default::default()
             };
             let mut poly = subdiv::mesh::poly::PolyMesh::from_mesh(&mesh);

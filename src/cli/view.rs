@@ -51,6 +51,7 @@ pub fn view(a: ViewArgs) -> Result<()> {
         model: a.model,
         scheme: s.scheme,
         opts: s.options(),
+        flags: s.shape(),
         level: a.sub.levels_or(0),
         wireframe: a.wireframe,
         frames: a.frames,

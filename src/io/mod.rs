@@ -486,6 +486,7 @@ fn save_without_holes(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()
     let attrs = Attributes {
         uv: a.uv.as_ref().filter(|u| u.len() == v.len()).map(|u| corners.iter().map(|&c| u[c]).collect()),
         colors: a.colors.clone(),
+        options: a.options,
         materials: a.materials.as_ref().filter(|m| m.face.len() == kept_faces).map(|m| {
             let face = corners.chunks_exact(sides).map(|f| m.face[f[0] / sides]).collect();
             crate::mesh::attributes::MaterialGroups { face, ..m.clone() }
@@ -543,6 +544,7 @@ pub fn save_faces(path: &Path, faces: &crate::mesh::Faces, attrs: &Attributes) -
                     .filter(|u| u.len() == v.len())
                     .map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
                 colors: attrs.colors.clone(),
+                options: attrs.options,
                 materials: attrs.materials.as_ref().map(|m| crate::mesh::attributes::MaterialGroups {
                     face: (0..2 * m.face.len()).map(|t| m.face[t / 2]).collect(),
                     ..m.clone()
@@ -579,6 +581,7 @@ pub fn save_poly(path: &Path, mesh: &PolyMesh, attrs: &Attributes) -> Result<()>
                 .filter(|u| u.len() == mesh.pt.num_corners())
                 .map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
             colors: attrs.colors.clone(),
+            options: attrs.options,
             materials: attrs.materials.as_ref().filter(|m| m.face.len() == mesh.pt.num_faces()).map(|m| {
                 crate::mesh::attributes::MaterialGroups {
                     face: fan.chunks_exact(3).map(|t| m.face[mesh.pt.face(t[0]) as usize]).collect(),
@@ -595,6 +598,7 @@ pub fn save_poly(path: &Path, mesh: &PolyMesh, attrs: &Attributes) -> Result<()>
             let tri_attrs = Attributes {
                 uv: attrs.uv.as_ref().map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
                 colors: attrs.colors.clone(),
+                options: attrs.options,
                 materials: attrs.materials.as_ref().map(|m| crate::mesh::attributes::MaterialGroups {
                     face: fan.chunks_exact(3).map(|t| m.face[mesh.pt.face(t[0]) as usize]).collect(),
                     ..m.clone()

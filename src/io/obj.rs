@@ -18,6 +18,8 @@ use super::text::{self, Line};
 use super::{Format, Input, Keeps, atomic_write};
 use crate::mesh::Mesh;
 use crate::mesh::attributes::{Attributes, Material};
+use crate::mesh::options::{ShapeOptions, TriangleSubdivision};
+use crate::mesh::sharpness::Creasing;
 use crate::mesh::sharpness::{CornerTag, CreaseTag};
 use crate::{Error, MeshError, Result};
 use glam::{Vec2, Vec3};
@@ -222,17 +224,65 @@ fn parse_hole<'a>(
     }
 }
 
+/// The tags that state a subdivision option (see [`ShapeOptions`]).
+const OPTION_TAGS: [&str; 4] =
+    ["interpolateboundary", "facevaryinginterpolateboundary", "smoothtriangles", "creasemethod"];
+
+/// An option tag: `t interpolateboundary 1/0/0 k` (0 none, 1
+/// edge-and-corner, 2 edge), `t facevaryinginterpolateboundary 1/0/0 k` (0
+/// none .. 5 all), `t smoothtriangles 0/0/1 catmark|smooth`, `t
+/// creasemethod 0/0/1 normal|chaikin` (OpenSubdiv's regression shapes).
+fn parse_option<'a>(
+    name: &str,
+    toks: &mut impl Iterator<Item = &'a str>,
+    counts: &str,
+    at: Loc,
+    options: &mut ShapeOptions,
+) -> Result<()> {
+    let value = toks.next().unwrap_or("");
+    let bad = |want: &str| parse_err(at.file, at.ln, format!("{name} tag: '{counts} {value}' is not {want}"));
+    let int = |max: u32| value.parse::<u32>().ok().filter(|&k| k <= max);
+    match name {
+        "interpolateboundary" => {
+            let k = int(2).filter(|_| counts == "1/0/0").ok_or_else(|| bad("1/0/0 and 0, 1 or 2"))?;
+            options.boundary = ShapeOptions::boundary_of(k);
+        }
+        "facevaryinginterpolateboundary" => {
+            let k = int(5).filter(|_| counts == "1/0/0").ok_or_else(|| bad("1/0/0 and 0 to 5"))?;
+            options.fvar = ShapeOptions::fvar_of(k);
+        }
+        "smoothtriangles" => {
+            options.triangles = Some(match (counts, value) {
+                ("0/0/1", "catmark") => TriangleSubdivision::Catmark,
+                ("0/0/1", "smooth") => TriangleSubdivision::Smooth,
+                _ => return Err(bad("0/0/1 and catmark or smooth")),
+            })
+        }
+        _ => {
+            options.creasing = Some(match (counts, value) {
+                ("0/0/1", "normal") => Creasing::Uniform,
+                ("0/0/1", "chaikin") => Creasing::Chaikin,
+                _ => return Err(bad("0/0/1 and normal or chaikin")),
+            })
+        }
+    }
+    Ok(())
+}
+
 /// Parses a tag record (OpenSubdiv's `t name nint/nfloat/nstring ints
 /// floats strings`): `t crease 2/1/0 v0 v1 s` (also a chain `t crease
 /// k/1/0 v0 .. vk-1 s`, or one sharpness per edge), `t corner 1/1/0 v s`
 /// (also several vertices), `t hole N/0/0 f1 .. fN` (faces); ids are
-/// 0-based. Other tags (such as `interpolateboundary`) are read and
+/// 0-based; the options of [`OPTION_TAGS`]. Other tags are read and
 /// ignored.
 fn parse_tag<'a>(toks: &mut impl Iterator<Item = &'a str>, file: &str, ln: usize, raw: &mut RawMesh) -> Result<()> {
     let name = toks.next().unwrap_or("");
     let counts = toks.next().unwrap_or("");
     if name == "hole" {
         return parse_hole(toks, counts, file, ln, raw);
+    }
+    if OPTION_TAGS.contains(&name) {
+        return parse_option(name, toks, counts, Loc { file, ln }, &mut raw.options);
     }
     if name != "crease" && name != "corner" {
         return Ok(());
@@ -562,6 +612,7 @@ fn write_faces(
     tags: &[u8],
     sink: &mut dyn FnMut(&[u8]) -> Result<()>,
 ) -> Result<()> {
+    let tags = &[option_lines(attrs.options), tags.to_vec()].concat();
     if !attrs.is_empty() {
         let face = |f: usize| sides * f..sides * f + sides;
         let faces = FaceSource { corners: v, count: v.len() / sides, face: &face };
@@ -628,6 +679,26 @@ pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
     out
 }
 
+/// The option tags (see [`parse_option`]) of the options that are not the
+/// defaults.
+fn option_lines(options: ShapeOptions) -> Vec<u8> {
+    let o = options.not_default();
+    let mut out = String::new();
+    if let Some(b) = o.boundary {
+        out += &format!("t interpolateboundary 1/0/0 {}\n", ShapeOptions::boundary_code(b));
+    }
+    if let Some(m) = o.fvar {
+        out += &format!("t facevaryinginterpolateboundary 1/0/0 {}\n", ShapeOptions::fvar_code(m));
+    }
+    if o.triangles.is_some() {
+        out += "t smoothtriangles 0/0/1 smooth\n";
+    }
+    if o.creasing.is_some() {
+        out += "t creasemethod 0/0/1 chaikin\n";
+    }
+    out.into_bytes()
+}
+
 /// `t hole N/0/0 f1 .. fN` (0-based face ids) for the faces `holes`.
 fn hole_lines(holes: &[u32]) -> Vec<u8> {
     if holes.is_empty() {
@@ -689,7 +760,7 @@ pub fn write_poly(
     sink: &mut dyn FnMut(&[u8]) -> Result<()>,
 ) -> Result<()> {
     let pt = &mesh.pt;
-    let tags = poly_tag_records(pt);
+    let tags = [option_lines(attrs.options), poly_tag_records(pt)].concat();
     if attrs.is_empty() {
         const ROWS: usize = 1 << 15;
         let pos = &mesh.positions;

@@ -39,6 +39,8 @@ pub struct RawMesh {
     /// The faces that are holes (OpenSubdiv's `t hole`: 0-based ids of this
     /// list's faces), with the line of each tag.
     pub holes: Vec<(u32, u32)>,
+    /// The subdivision options the file states (OBJ's shape tags).
+    pub options: crate::mesh::options::ShapeOptions,
     /// An opposite table stored in the file (`.ct`), one entry per corner of
     /// an all-triangle mesh, [`BORDER`] for none: it must be the table the
     /// faces define.
@@ -198,7 +200,7 @@ impl RawMesh {
             report.id_base = self.sources.id_base;
             notes.vertex_records = report.vertices_in;
             notes.repair = Some(report);
-            return Ok((mesh, Attributes::default(), notes));
+            return Ok((mesh, Attributes { options: self.options, ..Default::default() }, notes));
         }
         let nrec = self.positions.len();
         let used = used_vertices(nrec, &triangles);
@@ -231,7 +233,7 @@ impl RawMesh {
             mesh = Mesh { ct: ct.with_holes(holes), positions };
         }
         if !attributes {
-            return Ok((mesh, Attributes::default(), notes));
+            return Ok((mesh, Attributes { options: self.options, ..Default::default() }, notes));
         }
         let colors = self
             .colors
@@ -249,7 +251,7 @@ impl RawMesh {
             }
             MaterialGroups { face, list, libraries: self.libraries }
         });
-        Ok((mesh, Attributes { uv, colors, materials }, notes))
+        Ok((mesh, Attributes { uv, colors, materials, options: self.options }, notes))
     }
 
     /// The counts [`RawMesh::build`] reports before it builds anything.

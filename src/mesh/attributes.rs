@@ -101,10 +101,14 @@ pub struct Attributes {
     pub colors: Option<Vec<Vec3>>,
     /// Material groups: which material each triangle uses.
     pub materials: Option<MaterialGroups>,
+    /// The subdivision options the file states (OBJ's shape tags), which
+    /// writers that hold them write back where they are not the defaults.
+    pub options: crate::mesh::options::ShapeOptions,
 }
 
 impl Attributes {
-    /// Whether there is anything to carry.
+    /// Whether there is anything to carry per vertex, corner or face (the
+    /// options are not carried: they describe the whole mesh).
     pub fn is_empty(&self) -> bool {
         self.uv.is_none() && self.colors.is_none() && self.materials.is_none()
     }

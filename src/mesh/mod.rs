@@ -21,6 +21,7 @@ pub mod edit;
 pub mod inspect;
 pub mod lineage;
 pub mod normals;
+pub mod options;
 pub mod order;
 pub mod pick;
 pub mod poly;

@@ -170,7 +170,7 @@ impl PolyMesh {
                 .collect();
             MaterialGroups { face, ..m.clone() }
         });
-        (pm, Attributes { uv, colors: attrs.colors.clone(), materials })
+        (pm, Attributes { uv, colors: attrs.colors.clone(), materials, options: attrs.options })
     }
 
     /// The polygons of `mesh` and, for every polygon corner, the triangle

@@ -31,6 +31,7 @@
 use super::Sink;
 use super::crease::Blend;
 use super::features::Features;
+pub use crate::mesh::options::TriangleSubdivision;
 use crate::mesh::poly::PolyTable;
 
 /// One polygon level as the masks see it.
@@ -94,32 +95,6 @@ impl CatmullClark {
     /// The rules `opts` ask for.
     pub fn new(opts: &crate::subdiv::Options) -> CatmullClark {
         CatmullClark { smooth_triangles: opts.triangles == TriangleSubdivision::Smooth }
-    }
-}
-
-/// How Catmull-Clark refines the triangles of a mesh (OpenSubdiv's
-/// `Sdc::Options::TriangleSubdivision`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum TriangleSubdivision {
-    /// Catmull-Clark's own rules (`TRI_SUB_CATMARK`).
-    #[default]
-    Catmark,
-    /// OpenSubdiv's smooth triangle rule (`TRI_SUB_SMOOTH`, from Hbr): an
-    /// interior edge of a triangle takes its face points with weight
-    /// `w = (w0 + w1) / 2` each, `w_i` 0.47 for a triangle and 1/4 for
-    /// another face, and its ends `(1 - 2 w) / 2` each (`catmarkScheme.h`,
-    /// `assignSmoothMaskForEdge`).
-    Smooth,
-}
-
-impl std::str::FromStr for TriangleSubdivision {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s.to_ascii_lowercase().as_str() {
-            "catmark" | "catmull-clark" => Ok(TriangleSubdivision::Catmark),
-            "smooth" => Ok(TriangleSubdivision::Smooth),
-            _ => Err(format!("unknown triangle subdivision '{s}' (expected catmark or smooth)")),
-        }
     }
 }
 

@@ -62,6 +62,7 @@ pub fn refine(ct: &CornerTable, attrs: &Attributes, scheme: Scheme, levels: u32,
             face: crate::mesh::attributes::refine_face_ids(&m.face, levels),
             ..m.clone()
         }),
+        options: attrs.options,
     })
 }
 
@@ -91,6 +92,7 @@ fn refine_through_polygons(
             face: fan.chunks_exact(3).map(|t| m.face[pt.face(t[0]) as usize]).collect(),
             ..m
         }),
+        options: fine.options,
     })
 }
 
@@ -165,5 +167,5 @@ pub fn refine_poly(
         .as_ref()
         .zip(face)
         .map(|(m, face)| crate::mesh::attributes::MaterialGroups { face, ..m.clone() });
-    Ok(Attributes { uv: smooth.or(uv), colors, materials })
+    Ok(Attributes { uv: smooth.or(uv), colors, materials, options: attrs.options })
 }
