@@ -82,6 +82,7 @@ fn the_options_are_written_back_unless_they_are_the_defaults() {
         fvar: Some(UvInterpolation::Boundaries),
         triangles: Some(TriangleSubdivision::Smooth),
         creasing: Some(Creasing::Chaikin),
+        scheme: None,
     };
     assert_eq!(file, stated);
     // a level-0 round trip keeps every tag

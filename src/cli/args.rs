@@ -7,7 +7,7 @@
 use std::path::Path;
 use subdiv::io::{Limits, Loaded, ReadOptions, Topology};
 use subdiv::mesh::attributes::Attributes;
-use subdiv::mesh::options::ShapeOptions;
+use subdiv::mesh::options::{FileScheme, ShapeOptions};
 use subdiv::subdiv::eval::color::CurvatureKind;
 use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
 
@@ -147,6 +147,9 @@ pub struct SchemeArgs {
     pub triangles: Option<subdiv::subdiv::TriangleSubdivision>,
     #[command(flatten)]
     pub features: FeatureArgs,
+    /// The scheme the file states, when it chose `scheme` (see `over`).
+    #[arg(skip)]
+    pub file_scheme: Option<FileScheme>,
 }
 
 /// The help of `--scheme`: every scheme by its command-line name.
@@ -180,14 +183,41 @@ impl SchemeArgs {
             fvar: self.uv,
             triangles: self.triangles,
             creasing: self.features.creasing,
+            scheme: Some(self.file_scheme.filter(|_| self.scheme == Scheme::Bilinear).unwrap_or(match self.scheme {
+                Scheme::CatmullClark => FileScheme::CatmullClark,
+                Scheme::Bilinear => FileScheme::Bilinear,
+                Scheme::Loop => FileScheme::Loop,
+                // the refined triangles are the surface: USD has no other scheme
+                _ => FileScheme::None,
+            })),
         }
     }
 
     /// These arguments with the options a file states where no flag does
     /// (flags override the file's tags).
+    /// A file's scheme (USD's `subdivisionScheme`) applies where `--scheme`
+    /// is left at its default (`none` as bilinear: the polygons are the surface).
     pub fn over(&self, file: ShapeOptions) -> SchemeArgs {
-        let o = file.overridden_by(self.shape());
-        SchemeArgs { uv: o.fvar, triangles: o.triangles, features: self.features.over(file), ..self.clone() }
+        let o = file.overridden_by(ShapeOptions { scheme: None, ..self.shape() });
+        let (scheme, file_scheme) = match file.scheme {
+            Some(f) if self.scheme == Scheme::Loop => (
+                match f {
+                    FileScheme::CatmullClark => Scheme::CatmullClark,
+                    FileScheme::Loop => Scheme::Loop,
+                    FileScheme::Bilinear | FileScheme::None => Scheme::Bilinear,
+                },
+                Some(f),
+            ),
+            _ => (self.scheme, None),
+        };
+        SchemeArgs {
+            scheme,
+            file_scheme,
+            uv: o.fvar,
+            triangles: o.triangles,
+            features: self.features.over(file),
+            ..self.clone()
+        }
     }
 }
 

@@ -33,6 +33,7 @@ pub mod resolve;
 pub mod stl;
 mod text;
 pub mod texture;
+pub mod usd;
 mod write;
 
 pub use limits::{Budget, LIMIT_NAMES, Limits};
@@ -117,6 +118,7 @@ pub static FORMATS: &[Format] = &[
     dae::FORMAT,
     stl::FORMAT,
     off::FORMAT,
+    usd::FORMAT,
     ct::FORMAT,
     bezier::BEZ_FORMAT,
     bezier::BZC_FORMAT,
@@ -441,7 +443,9 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     // a refined level's holes are not written; a control mesh keeps them as
     // tags where the format holds them (OBJ's `t hole`), else they go too
     let control = mesh.ct.generations().is_none_or(|g| g.level() == 0);
-    let keeps_holes = control && Format::for_output(path).is_some_and(|f| f.extensions.contains(&"obj"));
+    // (USD's holeIndices keep them at every level)
+    let keeps_holes = Format::for_output(path)
+        .is_some_and(|f| (control && f.extensions.contains(&"obj")) || f.extensions.contains(&"usda"));
     if !mesh.ct.holes().is_empty() && !keeps_holes {
         return save_without_holes(path, mesh, attrs);
     }
@@ -610,7 +614,7 @@ pub fn save_poly(path: &Path, mesh: &PolyMesh, attrs: &Attributes) -> Result<()>
     }
 }
 
-fn ext(path: &Path) -> String {
+pub(crate) fn ext(path: &Path) -> String {
     path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase()
 }
 

@@ -106,6 +106,11 @@ impl<'a> Resolver<'a> {
         read_regular(path, declared, self.budget, self.file, &at)
     }
 
+    /// The model's folder (`None` for a model read from memory).
+    pub fn folder(&self) -> Option<&Path> {
+        self.folder.as_deref()
+    }
+
     /// The budget references are read against.
     pub fn budget(&self) -> &Budget {
         self.budget

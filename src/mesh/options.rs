@@ -32,6 +32,39 @@ impl std::str::FromStr for TriangleSubdivision {
     }
 }
 
+/// The subdivision scheme a file states (USD's `subdivisionScheme`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum FileScheme {
+    /// `catmullClark` (USD's default).
+    #[default]
+    CatmullClark,
+    /// `loop`.
+    Loop,
+    /// `bilinear`.
+    Bilinear,
+    /// `none`: the polygons are the surface (no subdivision).
+    None,
+}
+
+impl FileScheme {
+    /// USD's token for it.
+    pub fn token(self) -> &'static str {
+        match self {
+            FileScheme::CatmullClark => "catmullClark",
+            FileScheme::Loop => "loop",
+            FileScheme::Bilinear => "bilinear",
+            FileScheme::None => "none",
+        }
+    }
+
+    /// The scheme USD's token names.
+    pub fn of_token(t: &str) -> Option<FileScheme> {
+        [FileScheme::CatmullClark, FileScheme::Loop, FileScheme::Bilinear, FileScheme::None]
+            .into_iter()
+            .find(|s| s.token() == t)
+    }
+}
+
 /// The options a file states, each `None` where it says nothing (the
 /// command's flag, or the default, then decides).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -47,6 +80,8 @@ pub struct ShapeOptions {
     pub triangles: Option<TriangleSubdivision>,
     /// `t creasemethod 0/0/1 normal|chaikin`.
     pub creasing: Option<Creasing>,
+    /// The subdivision scheme (USD's `subdivisionScheme`; OBJ states none).
+    pub scheme: Option<FileScheme>,
 }
 
 impl ShapeOptions {
@@ -63,6 +98,7 @@ impl ShapeOptions {
             fvar: over.fvar.or(self.fvar),
             triangles: over.triangles.or(self.triangles),
             creasing: over.creasing.or(self.creasing),
+            scheme: over.scheme.or(self.scheme),
         }
     }
 
@@ -77,6 +113,7 @@ impl ShapeOptions {
             fvar: keep(self.fvar),
             triangles: keep(self.triangles),
             creasing: keep(self.creasing),
+            scheme: self.scheme,
         }
     }
 
