@@ -123,7 +123,9 @@ fn layer(faces: &Faces, attrs: &Attributes) -> anyhow::Result<sdf::Data> {
         define(&mut data, &path, "Mesh")?;
         if k == 0 {
             let top = name.trim_start_matches('/').split('/').next().unwrap_or("Mesh").to_string();
-            data.spec_mut(&root).map(|s| s.add(FieldKey::DefaultPrim, Value::Token(top.into())));
+            if let Some(s) = data.spec_mut(&root) {
+                s.add(FieldKey::DefaultPrim, Value::Token(top.into()));
+            }
         }
         mesh(&mut data, &path, faces, fs, attrs)?;
     }
