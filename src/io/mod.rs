@@ -461,7 +461,7 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
             path: path.display().to_string(),
             ext: ext(path),
             direction: "output",
-            known: ".obj, .ply, .ct, .stl, .off or .glb",
+            known: ".obj, .ply, .ct, .stl, .off, .glb, .usda, .usdc or .usdz",
         }),
     }
 }
@@ -562,7 +562,7 @@ pub fn save_faces(path: &Path, faces: &crate::mesh::Faces, attrs: &Attributes) -
             path: path.display().to_string(),
             ext: ext(path),
             direction: "output",
-            known: ".obj, .ply, .ct, .stl, .off or .glb",
+            known: ".obj, .ply, .ct, .stl, .off, .glb, .usda, .usdc or .usdz",
         }),
     }
 }
