@@ -39,7 +39,7 @@ use std::time::Instant;
 
 pub use catmull_clark::TriangleSubdivision;
 pub use loop_::LoopBeta;
-pub use precise::{subdivide_f64, subdivide_poly_f64};
+pub use precise::{PlanF64, plan_f64, subdivide_f64, subdivide_poly_f64};
 pub use sizes::ControlCounts;
 
 /// A subdivision scheme.

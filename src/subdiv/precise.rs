@@ -100,3 +100,25 @@ pub(crate) fn apply_level(lv: &LevelPlan<f64>, input: &[DVec3]) -> Vec<DVec3> {
     out.par_extend(sums);
     out
 }
+
+/// Every level of `scheme` on the topology `ct` recorded with f64
+/// weights (rows coarse to fine, as [`StencilPlan::build`] records them in
+/// f32), the finest triangles and, for a polygon scheme, the finest
+/// polygons: what a caller composes into an exact subdivision matrix.
+pub struct PlanF64 {
+    /// The levels, coarse to fine.
+    pub levels: Vec<LevelPlan<f64>>,
+    /// The finest level's triangles.
+    pub ct: crate::CornerTable,
+    /// The finest level's polygons (polygon schemes).
+    pub poly: Option<crate::mesh::poly::PolyTable>,
+}
+
+/// Records [`PlanF64`].
+///
+/// # Errors
+/// A level that does not fit in memory ([`Error::TooLarge`]).
+pub fn plan_f64(ct: &crate::CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<PlanF64> {
+    let (levels, ct, poly) = StencilPlan::record::<f64>(ct, scheme, levels, opts)?;
+    Ok(PlanF64 { levels, ct, poly })
+}
