@@ -142,14 +142,32 @@ const CHUNK: usize = 1 << 16;
 /// `points` as flat float64 `x y z` values (converted in parallel into
 /// memory from the library's allocator, pre-faulted: the output of a
 /// large subdivision is tens of megabytes of fresh pages).
-pub fn flat_f64(points: &[Vec3]) -> Vec<f64> {
+pub fn flat_f64<P: Point>(points: &[P]) -> Vec<f64> {
     let mut out = subdiv::mem::zeroed::<f64>(points.len() * 3);
     out.par_chunks_mut(3 * CHUNK).zip(points.par_chunks(CHUNK)).for_each(|(o, p)| {
         for (o, p) in o.chunks_exact_mut(3).zip(p) {
-            o.copy_from_slice(&[f64::from(p.x), f64::from(p.y), f64::from(p.z)]);
+            o.copy_from_slice(&p.xyz());
         }
     });
     out
+}
+
+/// A refined point handed to Python: computed in f32 or in f64.
+pub trait Point: Copy + Send + Sync {
+    /// The coordinates in f64 (exact).
+    fn xyz(self) -> [f64; 3];
+}
+
+impl Point for Vec3 {
+    fn xyz(self) -> [f64; 3] {
+        self.as_dvec3().to_array()
+    }
+}
+
+impl Point for glam::DVec3 {
+    fn xyz(self) -> [f64; 3] {
+        self.to_array()
+    }
 }
 
 /// Columns `a..b` of `rows`, flat (row by row), copied in parallel as

@@ -52,17 +52,29 @@ impl Remap {
     }
     /// The refined positions `fine` as flat rows in the caller's numbering,
     /// the vertices no face uses carried from `input` (flat) unchanged.
-    pub fn positions(&self, fine: &[Vec3], input: &[f64]) -> Vec<f64> {
+    pub fn positions<P: crate::arrays::Point>(&self, fine: &[P], input: &[f64]) -> Vec<f64> {
         let Some(kept) = &self.kept else { return flat_f64(fine) };
         let nk = kept.len();
         let mut out = Vec::with_capacity(3 * (self.n_input + fine.len().saturating_sub(nk)));
         out.extend_from_slice(&input[..3 * self.n_input]);
         for (j, &i) in kept.iter().enumerate() {
-            let p = fine[j];
-            out[3 * i as usize..3 * i as usize + 3].copy_from_slice(&[f64::from(p.x), f64::from(p.y), f64::from(p.z)]);
+            out[3 * i as usize..3 * i as usize + 3].copy_from_slice(&fine[j].xyz());
         }
         out.extend(flat_f64(&fine[nk.min(fine.len())..]));
         out
+    }
+    /// The control positions in f64 as the library numbers them: the
+    /// caller's rows `input` (flat) of the kept vertices, or, after a
+    /// repair (which renumbers), the repaired mesh's own `positions`.
+    pub fn control_f64(&self, input: &[f64], positions: &[Vec3], repaired: bool) -> Vec<glam::DVec3> {
+        if repaired {
+            return positions.iter().map(|p| p.as_dvec3()).collect();
+        }
+        let row = |i: usize| glam::DVec3::from_slice(&input[3 * i..3 * i + 3]);
+        match &self.kept {
+            Some(k) => k.iter().map(|&i| row(i as usize)).collect(),
+            None => (0..positions.len()).map(row).collect(),
+        }
     }
     /// The caller's id to the library's (`None`: a vertex no face uses).
     fn inverse(&self) -> impl Fn(u32) -> Option<u32> + '_ {

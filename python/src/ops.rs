@@ -12,9 +12,9 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use subdiv::mesh::Faces;
 use subdiv::subdiv::ControlCounts;
+use subdiv::subdiv::PlanF64;
 use subdiv::subdiv::rules::features::with_boundary_corners;
 use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_with};
-use subdiv::subdiv::tables::StencilPlan;
 use subdiv::{Mesh, Options, Scheme, subdivide_faces_as, subdivide_poly, subdivide_poly_faces_as};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
@@ -91,14 +91,19 @@ pub fn subdivide_arrays<'py>(
     creases: CreaseArgs<'py>,
     names: (String, String, String),
     levels: u32,
-    repair: bool,
+    flags: (bool, bool),
     threads: Option<usize>,
 ) -> PyResult<Pair<'py, i64>> {
+    // repair the mesh; compute in f64 (float64 in) or f32
+    let (repair, precise) = flags;
     let s = mesh.slices(&creases)?;
     let (v, f, k) = run(py, threads, || {
         let (scheme, opts) = named(&names)?;
         let (c, remap) = control(&s, scheme, repair)?;
-        refine(c, &remap, scheme, levels, &opts, s.vertices)
+        match precise {
+            true => refine_f64(c, &remap, (scheme, levels, &opts), s.vertices, repair),
+            false => refine(c, &remap, scheme, levels, &opts, s.vertices),
+        }
     })?;
     Ok((f64_array(py, v, 3)?, i64_array(py, f, k)?))
 }
@@ -132,6 +137,32 @@ fn refine(
             let out = (remap.positions(&fine.positions, input), remap.ids(fine.pt.v_table()), k);
             drop_later(fine);
             Ok(out)
+        }
+    }
+}
+
+/// [`refine`] in double precision: the caller's float64 rows refined by
+/// the same rules' f64 weights ([`subdiv::subdivide_f64`]).
+fn refine_f64(
+    c: Control,
+    remap: &Remap,
+    (scheme, levels, opts): (Scheme, u32, &Options),
+    input: &[f64],
+    repaired: bool,
+) -> Result<Refined, Msg> {
+    match c {
+        Control::Tri(mesh) => {
+            check_predicted(remap, ControlCounts::of(&mesh.ct), (scheme, levels), 3)?;
+            let control = remap.control_f64(input, &mesh.positions, repaired);
+            let (fine, pos) = subdiv::subdivide_f64(&mesh, &control, scheme, levels, opts).map_err(msg)?;
+            Ok((remap.positions(&pos, input), remap.ids(fine.ct.v_table()), 3))
+        }
+        Control::Poly(mesh) => {
+            check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?;
+            let control = remap.control_f64(input, &mesh.positions, repaired);
+            let (fine, pos) = subdiv::subdivide_poly_f64(&mesh, &control, scheme, levels, opts).map_err(msg)?;
+            let k = face_size(&fine.pt)?;
+            Ok((remap.positions(&pos, input), remap.ids(fine.pt.v_table()), k))
         }
     }
 }
@@ -193,7 +224,7 @@ fn face_size(pt: &subdiv::mesh::poly::PolyTable) -> Result<usize, Msg> {
 }
 
 /// One level of a stencil plan: `(n_in, copies_vertices, offsets, indices, weights)`.
-type PyLevel<'py> = (usize, bool, Bound<'py, PyArray1<u32>>, Bound<'py, PyArray1<u32>>, Bound<'py, PyArray1<f32>>);
+type PyLevel<'py> = (usize, bool, Bound<'py, PyArray1<u32>>, Bound<'py, PyArray1<u32>>, Bound<'py, PyArray1<f64>>);
 
 /// Bytes a vertex of `subdiv.matrix`'s control mesh may cost before the
 /// plan (positions, renumbering, the matrix's identity rows).
@@ -247,20 +278,22 @@ pub fn plan_levels<'py>(
     Ok((lv, i64_array(py, faces, k)?, remap.kept.map(|k| k.into_pyarray(py)), remap.n_input))
 }
 
-/// The stencil plan of `c` and its finest faces (caller's numbering, face size).
+/// The stencil plan of `c` in f64 (the rules' own weights, so a row sums
+/// to one within rounding of f64) and its finest faces (caller's
+/// numbering, face size).
 fn plan_of(
     c: &Control,
     remap: &Remap,
     scheme: Scheme,
     levels: u32,
     opts: &Options,
-) -> Result<(StencilPlan, Vec<i64>, usize), Msg> {
+) -> Result<(PlanF64, Vec<i64>, usize), Msg> {
     let ct = match c {
         Control::Tri(m) => m.ct.clone(),
         Control::Poly(m) => m.pt.triangulated(),
     };
-    let plan = StencilPlan::build(&ct, scheme, levels, opts).map_err(msg)?;
-    let (faces, k) = match (c, plan.polygons()) {
+    let plan = subdiv::subdiv::plan_f64(&ct, scheme, levels, opts).map_err(msg)?;
+    let (faces, k) = match (c, plan.poly.as_ref()) {
         (Control::Poly(m), _) if levels == 0 => (remap.ids(m.pt.v_table()), face_size(&m.pt)?),
         (Control::Poly(_), Some(pt)) => (remap.ids(pt.v_table()), 4),
         (Control::Poly(_), None) => return Err("a polygon plan without polygons (a bug)".into()),

@@ -97,20 +97,23 @@ def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary
     >>> V2[3:].tolist()  # one point per edge, the edge opposite corner 0 first
     [[0.5, 0.5, 0.0], [0.0, 0.5, 0.0], [0.5, 0.0, 0.0]]
     """
-    v = _checks.vertices(vertices)
+    v, single = _checks.vertices(vertices), _checks.is_float32(vertices)
     corners, starts = _checks.faces(faces)
     mesh = (v, corners, starts)
-    return _subdiv.subdivide_arrays(mesh, _checks.creases(creases), _names(scheme, beta, boundary),
-                                    _checks.levels(levels), bool(repair), _checks.threads(threads))
+    v2, f2 = _subdiv.subdivide_arrays(mesh, _checks.creases(creases), _names(scheme, beta, boundary),
+                                      _checks.levels(levels), (bool(repair), not single), _checks.threads(threads))
+    # float32 in: computed in float32, handed back as float32 (exactly)
+    return (v2.astype(np.float32) if single else v2), f2
 
 
 def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boundary="edge", creases=None,
            return_faces=False):
     """The subdivision matrix ``S`` (scipy.sparse.csr_matrix, (n2, n)):
     ``S @ V`` equals ``subdivide(V, faces, levels, scheme, ...)[0]`` for
-    any ``V`` of ``n`` rows (to single precision: the library computes in
-    float32), on the same faces ``F2``. It is composed from the library's
-    stencil plan, level by level.
+    any float64 ``V`` of ``n`` rows (to double precision: the weights are the
+    rules' own, in float64, and each row sums to 1 within 1e-15), on the
+    same faces ``F2``. It is composed from the library's stencil plan, level
+    by level.
 
     Parameters
     ----------

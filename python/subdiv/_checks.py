@@ -29,6 +29,12 @@ def vertices(v) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
+def is_float32(v) -> bool:
+    """Whether `v` holds float32 (computed and returned in float32; every
+    other dtype is computed in float64)."""
+    return getattr(v, "dtype", None) == np.float32
+
+
 def _int_array(a: np.ndarray, what: str) -> np.ndarray:
     """An integer array as int64, refusing floats (never truncated) and
     unsigned values past int64."""

@@ -129,12 +129,12 @@ def test_a_panic_becomes_subdiv_error(threads):
 def test_the_native_module_checks_what_it_is_given():
     # a direct caller of the private module, past the Python layer's checks
     code = PRELUDE + RUNNER.replace("{body}", "    subdiv._subdiv.subdivide_arrays((np.zeros((6, 2)), np.arange(3), np.array([0, 3])), "
-                                    "(np.zeros(0, np.int64), np.zeros(0)), ('loop', 'loop', 'edge'), 1, False, None)")
+                                    "(np.zeros(0, np.int64), np.zeros(0)), ('loop', 'loop', 'edge'), 1, (False, True), None)")
     r = run_python(code)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "RAISED TypeError | vertices must have shape (n, 3)" in r.stdout, r.stdout
     code = PRELUDE + RUNNER.replace("{body}", "    subdiv._subdiv.subdivide_arrays((TV, np.array([0, 1, 2]), np.array([0, 7])), "
-                                    "(np.zeros(0, np.int64), np.zeros(0)), ('loop', 'loop', 'edge'), 1, False, None)")
+                                    "(np.zeros(0, np.int64), np.zeros(0)), ('loop', 'loop', 'edge'), 1, (False, True), None)")
     r = run_python(code)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "RAISED SubdivError | face offsets" in r.stdout, r.stdout

@@ -473,3 +473,13 @@ mod angle_tests {
         }
     }
 }
+
+/// The precision of a computation: `--precision f32|f64`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum Precision {
+    /// Single precision.
+    #[default]
+    F32,
+    /// Double precision.
+    F64,
+}

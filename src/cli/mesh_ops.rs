@@ -1,6 +1,6 @@
 //! The commands that read a mesh and write one: subdivide, smooth, limit, repair.
 
-use super::args::{InputArgs, LimitArgs, SchemeArgs, SubdivArgs};
+use super::args::{InputArgs, LimitArgs, Precision, SchemeArgs, SubdivArgs};
 use super::{logging, print_json, progress};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -25,6 +25,11 @@ pub struct SubdivideArgs {
     /// Print the result summary as JSON.
     #[arg(long)]
     json: bool,
+    /// Compute in f32 (the default: fast, what the GPU draws) or f64 (from
+    /// the file's own digits; written as OBJ's shortest f64 digits or PLY's
+    /// double properties).
+    #[arg(long, default_value = "f32")]
+    precision: Precision,
 }
 
 /// `subdiv subdivide --json`: one object.
@@ -53,7 +58,8 @@ const BIG_FACES: u64 = 1 << 20;
 pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let levels = a.sub.levels_or(1);
     let t0 = Instant::now();
-    let (mesh, mut attrs) = a.from.load_with_attributes(&a.input)?;
+    let loaded = a.from.read(&a.input, false)?;
+    let (mesh, mut attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
     // the file's option tags where no flag is given; the output states the
     // options it was made with (a refined level's border faces are not
     // holes any more: boundary none is the control mesh's)
@@ -74,7 +80,9 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
         }
         Attributes { options: attrs.options, ..Default::default() }
     };
-    let (vertices, out_faces, st, save_ms) = if s.scheme.is_polygonal() {
+    let (vertices, out_faces, st, save_ms) = if a.precision == Precision::F64 {
+        subdivide_precise(a, s, &mesh, precise, &attrs)?
+    } else if s.scheme.is_polygonal() {
         subdivide_polygons(a, s, &mesh, &attrs)?
     } else {
         subdivide_triangles(a, s, &mesh, attrs)?
@@ -158,6 +166,45 @@ fn subdivide_polygons(
     io::save_poly(&a.output, &fine, &fine_attrs)?;
     let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
+}
+
+/// `--precision f64`: the levels computed in double precision from the
+/// file's own digits (OBJ's text, PLY's doubles; after `--repair`, or from
+/// a format of f32, the f32 positions), written in double precision (OBJ's
+/// shortest f64 digits, PLY's `double` properties): the output's vertices,
+/// faces, the stats and the milliseconds of the save.
+fn subdivide_precise(
+    a: &SubdivideArgs,
+    s: &SchemeArgs,
+    mesh: &Mesh,
+    precise: Option<Vec<glam::DVec3>>,
+    attrs: &Attributes,
+) -> Result<(usize, usize, subdiv::Stats, f64)> {
+    let (levels, opts) = (a.sub.levels_or(1), s.options());
+    let control = precise.unwrap_or_else(|| mesh.positions.iter().map(|p| p.as_dvec3()).collect());
+    let t0 = Instant::now();
+    // a control mesh keeps its holes as tags (OBJ); a refined level leaves them out
+    let keep_holes = levels == 0;
+    let refine = subdiv::subdiv::tables::attributes::refine_poly;
+    let (vertices, faces, write): (usize, usize, Box<dyn FnOnce() -> Result<()>>) = if s.scheme.is_polygonal() {
+        let (pm, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
+        let (fine, pos) = subdiv::subdivide_poly_f64(&pm, &control, s.scheme, levels, &opts)?;
+        let fa = if pattrs.is_empty() { pattrs } else { refine(&pm, &pattrs, s.scheme, levels, &opts)? };
+        let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
+        (pos.len(), faces, Box::new(move || io::save_poly_f64(&a.output, &fine, &pos, &fa, keep_holes)))
+    } else {
+        let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme, levels, &opts)?;
+        let fa = match attrs.is_empty() {
+            true => attrs.clone(),
+            false => subdiv::subdiv::tables::attributes::refine(&mesh.ct, attrs, s.scheme, levels, &opts)?,
+        };
+        let faces = fine.ct.num_triangles() - if keep_holes { 0 } else { fine.ct.holes().len() };
+        (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
+    };
+    let st = subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, ..Default::default() };
+    let t1 = Instant::now();
+    write()?;
+    Ok((vertices, faces, st, t1.elapsed().as_secs_f64() * 1e3))
 }
 
 /// What `subdivide` prints: `--stats`, `--json` or a line.

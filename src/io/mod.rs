@@ -28,6 +28,7 @@ mod mtl;
 pub mod obj;
 pub mod off;
 pub mod ply;
+mod precise;
 pub mod raw;
 pub mod resolve;
 pub mod stl;
@@ -37,6 +38,7 @@ pub mod usd;
 mod write;
 
 pub use limits::{Budget, LIMIT_NAMES, Limits};
+pub use precise::{save_f64, save_poly_f64};
 pub use raw::{BuildNotes, RawMesh, Topology};
 pub use write::{atomic_write, write_rows};
 pub(crate) use write::{atomic_write_pieces, write_formatted};
@@ -313,6 +315,10 @@ pub struct Loaded {
     pub notes: BuildNotes,
     /// Warnings, one line each, also sent to the log.
     pub warnings: Vec<String>,
+    /// The positions in f64 where the file holds more than f32 (OBJ's text,
+    /// PLY's `double` properties) and no repair renumbered them; `None`:
+    /// `mesh.positions` are what the file holds.
+    pub precise: Option<Vec<glam::DVec3>>,
 }
 
 /// Reads a mesh from `source` as `opts` say: the one way in. The stages
@@ -325,11 +331,12 @@ pub struct Loaded {
 /// [`Error::NotAMesh`] for a `.bzc` curve.
 pub fn read(source: Source, opts: &ReadOptions) -> Result<Loaded> {
     let Raw { raw, format, file, warnings } = read_raw(source, opts)?;
+    let precise = raw.kept_precise(opts.topology);
     let (mesh, attributes, notes) = raw.build(&file, opts.topology, opts.attributes)?;
     for w in &warnings {
         log::warn!("{w}");
     }
-    Ok(Loaded { mesh, attributes, format, notes, warnings })
+    Ok(Loaded { mesh, attributes, format, notes, warnings, precise })
 }
 
 /// What [`read_raw`] gives back: the polygons as read, before the build.

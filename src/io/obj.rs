@@ -71,13 +71,13 @@ struct Parsed {
 }
 
 /// The next `N` tokens as numbers; `what` names the record in errors.
-fn floats<'a, const N: usize>(
+fn floats<'a, const N: usize, F: std::str::FromStr + Copy + Default>(
     toks: &mut impl Iterator<Item = &'a str>,
     file: &str,
     ln: usize,
     what: &str,
-) -> Result<[f32; N]> {
-    let mut out = [0f32; N];
+) -> Result<[F; N]> {
+    let mut out = [F::default(); N];
     for (i, slot) in out.iter_mut().enumerate() {
         let t = toks.next().ok_or_else(|| parse_err(file, ln, format!("{what} has {i} values, expected {N}")))?;
         *slot = t.parse().map_err(|_| parse_err(file, ln, format!("{what} '{t}' is not a number")))?;
@@ -383,8 +383,11 @@ fn vertex_record<'a>(p: &mut Parsed, mut toks: impl Iterator<Item = &'a str>, at
     if p.raw.positions.len() >= p.max.0 {
         return Err(over(file, ln, "vertices", p.raw.positions.len() as u64 + 1, p.max.0 as u64));
     }
-    let xyz: [f32; 3] = floats(&mut toks, file, ln, "vertex")?;
-    if xyz.iter().any(|x| !x.is_finite()) {
+    // read in f64 (kept for double precision), drawn in f32; a decimal
+    // exactly halfway between two f32 values (ten or more digits) may
+    // round to the other one of the two
+    let xyz: [f64; 3] = floats(&mut toks, file, ln, "vertex")?;
+    if xyz.iter().any(|x| !(*x as f32).is_finite()) {
         return Err(Error::Mesh {
             file: file.into(),
             line: Some(ln),
@@ -403,7 +406,9 @@ fn vertex_record<'a>(p: &mut Parsed, mut toks: impl Iterator<Item = &'a str>, at
             p.colors.push(Vec3::from_array(rgb).clamp(Vec3::ZERO, Vec3::ONE));
         }
     }
-    p.raw.positions.push(Vec3::from_array(xyz));
+    let precise = glam::DVec3::from_array(xyz);
+    p.raw.positions.push(precise.as_vec3());
+    p.raw.precise.push(precise);
     p.raw.sources.vertex_lines.push(ln as u32);
     Ok(())
 }
@@ -681,7 +686,7 @@ pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
 
 /// The option tags (see [`parse_option`]) of the options that are not the
 /// defaults.
-fn option_lines(options: ShapeOptions) -> Vec<u8> {
+pub(crate) fn option_lines(options: ShapeOptions) -> Vec<u8> {
     let o = options.not_default();
     let mut out = String::new();
     if let Some(b) = o.boundary {
@@ -700,7 +705,7 @@ fn option_lines(options: ShapeOptions) -> Vec<u8> {
 }
 
 /// `t hole N/0/0 f1 .. fN` (0-based face ids) for the faces `holes`.
-fn hole_lines(holes: &[u32]) -> Vec<u8> {
+pub(crate) fn hole_lines(holes: &[u32]) -> Vec<u8> {
     if holes.is_empty() {
         return Vec::new();
     }
@@ -709,7 +714,7 @@ fn hole_lines(holes: &[u32]) -> Vec<u8> {
 }
 
 /// OBJ tag records of `tags`.
-fn tag_lines(tags: &crate::mesh::sharpness::Tags) -> Vec<u8> {
+pub(crate) fn tag_lines(tags: &crate::mesh::sharpness::Tags) -> Vec<u8> {
     let mut out = Vec::new();
     let mut rb = zmij::Buffer::new();
     for t in &tags.creases {

@@ -348,6 +348,8 @@ fn read_vertices(
         _ => None,
     };
     raw.positions.reserve_exact(count);
+    // double properties are kept in f64 as well (for double precision)
+    let doubles = [x, y, z].iter().any(|&k| el.props[k].ty == Ty::F64);
     let mut colors = rgb.map(|_| Vec::with_capacity(count));
     let mut uvs = uv.map(|_| Vec::with_capacity(count));
     let mut vals = vec![0.0f64; el.props.len()];
@@ -361,6 +363,9 @@ fn read_vertices(
             return Err(format_err(file, format!("vertex {r}"), "non-finite coordinate"));
         }
         raw.positions.push(p);
+        if doubles {
+            raw.precise.push(glam::DVec3::new(vals[x], vals[y], vals[z]));
+        }
         if let (Some(c), Some([ri, gi, bi]), Some(s)) = (&mut colors, rgb, scale) {
             c.push((Vec3::new(vals[ri] as f32, vals[gi] as f32, vals[bi] as f32) / s).clamp(Vec3::ZERO, Vec3::ONE));
         }

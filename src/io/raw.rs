@@ -41,6 +41,10 @@ pub struct RawMesh {
     pub holes: Vec<(u32, u32)>,
     /// The subdivision options the file states (OBJ's shape tags).
     pub options: crate::mesh::options::ShapeOptions,
+    /// The positions at the precision the file holds them, where that is
+    /// more than f32 (OBJ's text, PLY's `double` properties): one per
+    /// vertex record, or empty (then `positions` are what the file holds).
+    pub precise: Vec<glam::DVec3>,
     /// An opposite table stored in the file (`.ct`), one entry per corner of
     /// an all-triangle mesh, [`BORDER`] for none: it must be the table the
     /// faces define.
@@ -171,6 +175,23 @@ impl RawMesh {
             }
         }
         out
+    }
+
+    /// The file's positions in f64 for the vertices [`RawMesh::build`]
+    /// keeps (the referenced ones, in order), when the file holds more than
+    /// f32 and the build does not repair (a repair renumbers): what a
+    /// computation in double precision starts from.
+    pub fn kept_precise(&self, topology: Topology) -> Option<Vec<glam::DVec3>> {
+        if topology != Topology::Refuse || self.precise.len() != self.positions.len() {
+            return None;
+        }
+        let mut used = vec![false; self.positions.len()];
+        for &v in &self.corners {
+            if let Some(u) = used.get_mut(v as usize) {
+                *u = true;
+            }
+        }
+        Some(self.precise.iter().zip(&used).filter(|(_, u)| **u).map(|(p, _)| *p).collect())
     }
 
     /// Validates (or repairs, or analyses, as `topology` says) into a

@@ -19,6 +19,7 @@
 pub mod eval;
 pub mod inspect;
 pub mod pick;
+mod precise;
 pub mod refine;
 pub mod rules;
 pub mod sizes;
@@ -38,6 +39,7 @@ use std::time::Instant;
 
 pub use catmull_clark::TriangleSubdivision;
 pub use loop_::LoopBeta;
+pub use precise::{PlanF64, plan_f64, subdivide_f64, subdivide_poly_f64};
 pub use sizes::ControlCounts;
 
 /// A subdivision scheme.

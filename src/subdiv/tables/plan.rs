@@ -44,7 +44,9 @@ pub struct StencilPlan {
 
 /// Recorded levels, the finest topology, and its polygons for a polygon
 /// scheme.
-type Recorded = (Vec<LevelPlan>, CornerTable, Option<crate::mesh::poly::PolyTable>);
+/// Recorded levels (weights `W`), the finest triangles and, for a polygon
+/// scheme, the finest polygons.
+pub(crate) type Recorded<W = f32> = (Vec<LevelPlan<W>>, CornerTable, Option<crate::mesh::poly::PolyTable>);
 
 /// Reusable buffers for [`StencilPlan::apply`]: the intermediate levels,
 /// 16 bytes a point (see [`Point`]).
@@ -193,8 +195,14 @@ impl StencilPlan {
         Ok(Self::packed(scheme, plans, (fine, poly), None))
     }
 
-    /// The levels recorded on `ct`, and the finest topology.
-    fn record(ct: &CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<Recorded> {
+    /// The levels recorded on `ct` with weights `W`, and the finest
+    /// topology.
+    pub(crate) fn record<W: Weight + std::ops::AddAssign>(
+        ct: &CornerTable,
+        scheme: Scheme,
+        levels: u32,
+        opts: &Options,
+    ) -> Result<Recorded<W>> {
         if scheme.is_polygonal() {
             let (plans, poly) = super::poly_plan::record(ct, scheme, levels, opts)?;
             return Ok((plans, poly.triangulated(), Some(poly)));

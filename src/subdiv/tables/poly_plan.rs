@@ -24,12 +24,12 @@ use crate::subdiv::{Options, Scheme};
 ///
 /// # Errors
 /// [`crate::Error::TooLarge`] when a level would not fit in memory.
-pub(super) fn record(
+pub(super) fn record<W: Weight + std::ops::AddAssign>(
     ct: &CornerTable,
     scheme: Scheme,
     levels: u32,
     opts: &Options,
-) -> Result<(Vec<LevelPlan>, PolyTable)> {
+) -> Result<(Vec<LevelPlan<W>>, PolyTable)> {
     let control = PolyTable::from_corner_table(ct);
     let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
     check_levels_fit(&control, 0, levels, limit)?;

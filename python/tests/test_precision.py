@@ -1,0 +1,49 @@
+"""Precision is the caller's: float64 in is computed and returned in float64,
+float32 in in float32; the subdivision matrix's weights are float64."""
+
+import numpy as np
+import subdiv
+
+
+def bipyramid(c):
+    """A closed bipyramid over a pentagon, centred a distance c out."""
+    a = 2 * np.pi * np.arange(5) / 5
+    ring = np.stack([0.7 * np.cos(a) + 0.01 * np.arange(5), 0.7 * np.sin(a), 0.0123456789 * np.arange(5)], axis=1)
+    v = np.vstack([ring, [[0.01, -0.02, 1.1], [0.0, 0.03, -0.9]]]) + c
+    f = [[k, (k + 1) % 5, 5] for k in range(5)] + [[(k + 1) % 5, k, 6] for k in range(5)]
+    return v, np.array(f)
+
+
+def test_float64_is_kept_and_interpolating_schemes_keep_the_input_bit_for_bit():
+    v, f = bipyramid(1e6)
+    for scheme in ("midpoint", "butterfly", "modified-butterfly"):
+        v2, _ = subdiv.subdivide(v, f, 2, scheme)
+        assert v2.dtype == np.float64
+        assert np.array_equal(v2[: len(v)], v), scheme
+    # an edge point of midpoint is the float64 average of its ends
+    v1, _ = subdiv.subdivide(v, f, 1, "midpoint")
+    mids = {tuple(x) for x in v1[len(v):]}
+    assert tuple((v[0] + v[1]) / 2) in mids
+
+
+def test_far_from_the_origin_float64_equals_the_float64_matrix():
+    v, f = bipyramid(1e6)
+    s = subdiv.matrix(f, 2, "loop")
+    assert s.dtype == np.float64
+    assert np.abs(np.asarray(s.sum(axis=1)).ravel() - 1).max() < 1e-15
+    v2, _ = subdiv.subdivide(v, f, 2, "loop")
+    # the same weights applied two ways in float64: rounding apart only
+    assert np.abs(v2 - s @ v).max() < 1e-9
+    # float32 cannot: its spacing out here is 0.06
+    v32, _ = subdiv.subdivide(v.astype(np.float32), f, 2, "loop")
+    assert v32.dtype == np.float32
+    assert np.abs(v32.astype(np.float64) - s @ v).max() > 1e-3
+
+
+def test_float32_is_computed_and_returned_in_float32():
+    v, f = bipyramid(0.0)
+    v32, f32 = subdiv.subdivide(v.astype(np.float32), f, 2, "catmull-clark")
+    v64, f64 = subdiv.subdivide(v, f, 2, "catmull-clark")
+    assert v32.dtype == np.float32 and v64.dtype == np.float64
+    assert np.array_equal(f32, f64)
+    assert np.abs(v32 - v64).max() < 1e-5

@@ -1,0 +1,124 @@
+//! Double precision, the caller's choice (`--precision f64`, Python's
+//! float64 arrays): each level's rows recorded with f64 weights from the
+//! very rules every other path runs (the rules emit their weights in f64,
+//! [`crate::subdiv::rules::Sink::add`]; [`StencilPlan`]'s recording keeps
+//! them as they are), then applied to f64 points. The topology is the
+//! plan's, the one [`crate::subdivide`] and [`crate::subdivide_poly`] make
+//! (same vertex and face ids); an interpolating scheme's old vertices are
+//! copied, bit for bit. One core, not a second copy of the rules: the f32
+//! paths and this one differ only in the type of the weights and points.
+
+use super::tables::{LevelPlan, StencilPlan};
+use super::{Options, Scheme};
+use crate::mesh::poly::PolyMesh;
+use crate::{Error, Mesh, Result};
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// `levels` levels of triangle `scheme` (or a polygon scheme on the
+/// polygons the mesh stands for, as [`crate::subdivide`] takes them) of
+/// `mesh`'s topology with the control positions `control` in f64: the
+/// refined mesh (its `positions` the f64 ones rounded to f32, for drawing)
+/// and the refined positions in f64.
+///
+/// # Errors
+/// `control` not one position per vertex of `mesh`; a level that does not
+/// fit in memory ([`Error::TooLarge`]).
+pub fn subdivide_f64(
+    mesh: &Mesh,
+    control: &[DVec3],
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<(Mesh, Vec<DVec3>)> {
+    check_count(control.len(), mesh.positions.len())?;
+    let (plans, ct, _) = StencilPlan::record::<f64>(&mesh.ct, scheme, levels, opts)?;
+    let positions = apply_levels(&plans, control);
+    let rounded = positions.iter().map(|p| p.as_vec3()).collect();
+    Ok((Mesh { ct, positions: rounded }, positions))
+}
+
+/// [`subdivide_f64`] of a polygon mesh under a polygon scheme
+/// (Catmull-Clark, bilinear): the refined polygons as
+/// [`crate::subdivide_poly`] makes them, and their positions in f64.
+///
+/// # Errors
+/// As [`subdivide_f64`]; a triangle scheme.
+pub fn subdivide_poly_f64(
+    mesh: &PolyMesh,
+    control: &[DVec3],
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<(PolyMesh, Vec<DVec3>)> {
+    if !scheme.is_polygonal() {
+        return Err(Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
+    }
+    check_count(control.len(), mesh.positions.len())?;
+    let (plans, _, poly) = StencilPlan::record::<f64>(&mesh.pt.triangulated(), scheme, levels, opts)?;
+    let positions = apply_levels(&plans, control);
+    let pt = match poly {
+        Some(pt) => pt,
+        // no level: the table as it came (record joins the fans back)
+        None => mesh.pt.clone(),
+    };
+    let rounded = positions.iter().map(|p| p.as_vec3()).collect();
+    Ok((PolyMesh { pt, positions: rounded }, positions))
+}
+
+fn check_count(got: usize, vertices: usize) -> Result<()> {
+    if got == vertices {
+        return Ok(());
+    }
+    Err(Error::Usage(format!("{got} double-precision positions for a mesh of {vertices} vertices")))
+}
+
+/// The levels `plans` applied in turn to `control`.
+fn apply_levels(plans: &[LevelPlan<f64>], control: &[DVec3]) -> Vec<DVec3> {
+    let mut cur = control.to_vec();
+    for lv in plans {
+        cur = apply_level(lv, &cur);
+    }
+    cur
+}
+
+/// One level on f64 points: an interpolating level's old vertices copied,
+/// then every row's weighted sum (in the order the rules emitted it).
+pub(crate) fn apply_level(lv: &LevelPlan<f64>, input: &[DVec3]) -> Vec<DVec3> {
+    let rows = lv.offsets.len().saturating_sub(1);
+    let kept = if lv.copy_vertices { lv.n_in } else { 0 };
+    let mut out = Vec::with_capacity(kept + rows);
+    out.extend_from_slice(&input[..kept]);
+    let sums = (0..rows).into_par_iter().with_min_len(4096).map(|i| {
+        let (a, b) = (lv.offsets[i] as usize, lv.offsets[i + 1] as usize);
+        let mut sum = DVec3::ZERO;
+        for (&j, &w) in lv.indices[a..b].iter().zip(&lv.weights[a..b]) {
+            sum += input[j as usize] * w;
+        }
+        sum
+    });
+    out.par_extend(sums);
+    out
+}
+
+/// Every level of `scheme` on the topology `ct` recorded with f64
+/// weights (rows coarse to fine, as [`StencilPlan::build`] records them in
+/// f32), the finest triangles and, for a polygon scheme, the finest
+/// polygons: what a caller composes into an exact subdivision matrix.
+pub struct PlanF64 {
+    /// The levels, coarse to fine.
+    pub levels: Vec<LevelPlan<f64>>,
+    /// The finest level's triangles.
+    pub ct: crate::CornerTable,
+    /// The finest level's polygons (polygon schemes).
+    pub poly: Option<crate::mesh::poly::PolyTable>,
+}
+
+/// Records [`PlanF64`].
+///
+/// # Errors
+/// A level that does not fit in memory ([`Error::TooLarge`]).
+pub fn plan_f64(ct: &crate::CornerTable, scheme: Scheme, levels: u32, opts: &Options) -> Result<PlanF64> {
+    let (levels, ct, poly) = StencilPlan::record::<f64>(ct, scheme, levels, opts)?;
+    Ok(PlanF64 { levels, ct, poly })
+}
