@@ -152,6 +152,10 @@ fn a_refined_stage_keeps_its_prims_scheme_and_decayed_creases() {
     assert_eq!(s, [1.0, 1.0, 1.0, 1.0, 10.0, 10.0]);
     // the hole's four children
     assert_eq!(back.holes.len(), 4);
+    // an explicit --scheme, even the default's name, overrides the stage's
+    let looped = subdivide(&fixture("stage.usda"), "loop.L1.obj", &["-n", "1", "-s", "loop"]);
+    let text = std::fs::read_to_string(looped).unwrap();
+    assert!(text.lines().filter(|l| l.starts_with("f ")).all(|l| l.split_whitespace().count() == 4), "triangles");
 }
 
 /// `subdiv info FILE ARGS`'s error line.

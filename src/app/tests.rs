@@ -568,7 +568,7 @@ fn every_mesh_format_opens_in_the_viewer_with_its_colours() {
         settle(&mut v);
         assert!(v.doc.status.error.is_none(), "{ext}: {:?}", error_text(&v));
         assert_eq!(v.doc.model.control.topo.faces, 12, "{ext}");
-        let keeps = matches!(ext, "obj" | "glb" | "ply" | "off");
+        let keeps = matches!(ext, "obj" | "glb" | "ply" | "off" | "usda" | "usdc" | "usdz");
         assert_eq!(v.doc.model.attrs.file.colors.is_some(), keeps, "{ext}: colours");
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -1003,7 +1003,11 @@ fn catmull_clark_colours_by_curvature_over_a_range_the_display_sets() {
 #[test]
 fn a_files_option_tags_become_the_asked_options_unless_the_command_line_gave_them() {
     use crate::mesh::{BoundaryInterpolation, Creasing, attributes::UvInterpolation};
-    let tagged = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark/tagged.obj");
+    let tagged = common::scratch_dir("viewer-tags").join("tagged.obj");
+    let quads = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6\nf 2 6 3\n";
+    let tags = "t interpolateboundary 1/0/0 1\nt facevaryinginterpolateboundary 1/0/0 4\n\
+                t smoothtriangles 0/0/1 smooth\nt creasemethod 0/0/1 chaikin\n";
+    std::fs::write(&tagged, format!("{quads}{tags}")).unwrap();
     let mut v = Viewer::new();
     v.doc.request.scheme = Scheme::CatmullClark;
     v.doc.request.level = 1;

@@ -127,8 +127,11 @@ impl SubdivArgs {
 #[derive(clap::Args, Clone, Default)]
 pub struct SchemeArgs {
     // the help lists Scheme::TRIANGLE and Scheme::POLYGON by their names
-    #[arg(long, short, default_value = "loop", help = scheme_help())]
-    pub scheme: Scheme,
+    #[arg(long = "scheme", short = 's', value_name = "SCHEME", help = scheme_help())]
+    pub scheme_flag: Option<Scheme>,
+    /// The scheme a file states, where no flag chose one (see `over`).
+    #[arg(skip)]
+    pub file_choice: Option<Scheme>,
     /// Use Warren's beta for Loop instead of Loop's.
     #[arg(long)]
     pub warren: bool,
@@ -163,6 +166,12 @@ fn scheme_help() -> String {
 }
 
 impl SchemeArgs {
+    /// The scheme: `--scheme`, else the file's (after [`SchemeArgs::over`]),
+    /// else Loop.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme_flag.or(self.file_choice).unwrap_or(Scheme::Loop)
+    }
+
     /// The library's options for these arguments.
     pub fn options(&self) -> Options {
         Options {
@@ -183,13 +192,15 @@ impl SchemeArgs {
             fvar: self.uv,
             triangles: self.triangles,
             creasing: self.features.creasing,
-            scheme: Some(self.file_scheme.filter(|_| self.scheme == Scheme::Bilinear).unwrap_or(match self.scheme {
-                Scheme::CatmullClark => FileScheme::CatmullClark,
-                Scheme::Bilinear => FileScheme::Bilinear,
-                Scheme::Loop => FileScheme::Loop,
-                // the refined triangles are the surface: USD has no other scheme
-                _ => FileScheme::None,
-            })),
+            scheme: Some(self.file_scheme.filter(|_| self.scheme() == Scheme::Bilinear).unwrap_or(
+                match self.scheme() {
+                    Scheme::CatmullClark => FileScheme::CatmullClark,
+                    Scheme::Bilinear => FileScheme::Bilinear,
+                    Scheme::Loop => FileScheme::Loop,
+                    // the refined triangles are the surface: USD has no other scheme
+                    _ => FileScheme::None,
+                },
+            )),
         }
     }
 
@@ -199,19 +210,19 @@ impl SchemeArgs {
     /// is left at its default (`none` as bilinear: the polygons are the surface).
     pub fn over(&self, file: ShapeOptions) -> SchemeArgs {
         let o = file.overridden_by(ShapeOptions { scheme: None, ..self.shape() });
-        let (scheme, file_scheme) = match file.scheme {
-            Some(f) if self.scheme == Scheme::Loop => (
-                match f {
+        let (file_choice, file_scheme) = match file.scheme {
+            Some(f) if self.scheme_flag.is_none() => (
+                Some(match f {
                     FileScheme::CatmullClark => Scheme::CatmullClark,
                     FileScheme::Loop => Scheme::Loop,
                     FileScheme::Bilinear | FileScheme::None => Scheme::Bilinear,
-                },
+                }),
                 Some(f),
             ),
-            _ => (self.scheme, None),
+            _ => (None, None),
         };
         SchemeArgs {
-            scheme,
+            file_choice,
             file_scheme,
             uv: o.fvar,
             triangles: o.triangles,

@@ -175,7 +175,7 @@ fn animation_of(a: &AnimateArgs) -> Result<(Mesh, Attributes, Paths, Animation)>
         (None, Some(paths)) => paths,
         (None, None) => Paths::generated(&mesh, 4),
     };
-    let anim = Animation::new(&mesh, &paths, tweak, a.refine, s.scheme, level, &s.options())?;
+    let anim = Animation::new(&mesh, &paths, tweak, a.refine, s.scheme(), level, &s.options())?;
     Ok((mesh, attrs, paths, anim))
 }
 
@@ -322,16 +322,16 @@ mod gpu {
         let s = &a.sub.scheme.over(attrs.options);
         let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
-        let (fine, _) = subdiv::subdivide(&mesh, s.scheme, levels, &s.options())?;
+        let (fine, _) = subdiv::subdivide(&mesh, s.scheme(), levels, &s.options())?;
         let (paint, legend) =
-            paint((coloring, isolines, range), &mesh, &fine, &attrs, (s.scheme, levels, &s.options()))?;
+            paint((coloring, isolines, range), &mesh, &fine, &attrs, (s.scheme(), levels, &s.options()))?;
         let (width, height) = a.size;
         let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
         let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
         let stripes = subdiv::render::Stripes { count: a.look.stripes, angle: a.look.stripe_angle };
         let opts =
             subdiv::render::RenderOptions { shading, width, height, orthographic: a.ortho, wire_edges, shot, stripes };
-        let overlay = inspect_overlay(&a.inspect, &mesh, &fine, (s.scheme, levels, &s.options()))?;
+        let overlay = inspect_overlay(&a.inspect, &mesh, &fine, (s.scheme(), levels, &s.options()))?;
         // a stencil is drawn on the cage: the control mesh is shown with it
         let control = (a.control || a.inspect.stencil.is_some()).then_some(&mesh);
         let mut img = subdiv::render::render_image_painted(&fine, control, &opts, &paint)?;
@@ -408,10 +408,10 @@ mod gpu {
         let nv = anim.topology().num_vertices();
         let colors = match coloring {
             Coloring::None => None,
-            Coloring::Shells => Some(shells(&mesh, s.scheme, level, nv)),
+            Coloring::Shells => Some(shells(&mesh, s.scheme(), level, nv)),
             Coloring::File => {
                 let only = Attributes { colors: attrs.colors, ..Default::default() };
-                let r = subdiv::subdiv::tables::attributes::refine(&mesh.ct, &only, s.scheme, level, &s.options())?;
+                let r = subdiv::subdiv::tables::attributes::refine(&mesh.ct, &only, s.scheme(), level, &s.options())?;
                 Some(r.colors.ok_or_else(|| Error::Usage("--color file: the model has no colors".into()))?)
             }
             other => return Err(Error::Usage(format!("animate --color {}: use none, shells or file", other.name()))),

@@ -47,7 +47,7 @@ pub fn eval(a: &EvalArgs) -> Result<()> {
     let shown = a.points.display().to_string();
     let text = subdiv::io::read_text_file(&a.points, &limits)?;
     let start = Instant::now();
-    let ev = Evaluator::new(&mesh, scheme.scheme, &scheme.options())?;
+    let ev = Evaluator::new(&mesh, scheme.scheme(), &scheme.options())?;
     let prepared = start.elapsed();
     // every point is checked before any is evaluated
     let points = parse_points_in(&text, &shown, ev.domain(), usize::try_from(max_points).unwrap_or(usize::MAX))?;

@@ -204,7 +204,7 @@ fn curve_info(input: &Path, limits: &subdiv::io::Limits, json: bool) -> Result<(
 fn unused_subdivision_option(a: &InfoArgs) -> Option<&'static str> {
     let s = &a.sub.scheme;
     let given = [
-        ("--scheme", s.scheme != subdiv::Scheme::Loop),
+        ("--scheme", s.scheme_flag.is_some()),
         ("--levels", a.sub.levels.is_some()),
         ("--warren", s.warren),
         ("--tension", s.tension != 0.0),

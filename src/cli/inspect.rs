@@ -93,7 +93,7 @@ pub fn corner(input: &Path, mesh: &Mesh, c: u32, json: bool) -> Result<()> {
 pub fn stencil_of(mesh: &Mesh, sub: &SubdivArgs, v: u32, json: bool) -> Result<()> {
     let s = &sub.scheme;
     let levels = sub.levels_or(1);
-    let st = stencil(mesh, s.scheme, levels, &s.options(), v)?;
+    let st = stencil(mesh, s.scheme(), levels, &s.options(), v)?;
     let total: f64 = st.weights.iter().map(|w| w.1).sum();
     if json {
         return print_json(&StencilJson {
@@ -109,7 +109,7 @@ pub fn stencil_of(mesh: &Mesh, sub: &SubdivArgs, v: u32, json: bool) -> Result<(
         "vertex {} of level {} of {}: {} control vertices, weights summing to {total}",
         v,
         levels,
-        s.scheme,
+        s.scheme(),
         st.weights.len()
     );
     println!("position: {} {} {}", st.position.x, st.position.y, st.position.z);

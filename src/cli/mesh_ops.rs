@@ -82,7 +82,7 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
     };
     let (vertices, out_faces, st, save_ms) = if a.precision == Precision::F64 {
         subdivide_precise(a, s, &mesh, precise, &attrs)?
-    } else if s.scheme.is_polygonal() {
+    } else if s.scheme().is_polygonal() {
         subdivide_polygons(a, s, &mesh, &attrs)?
     } else {
         subdivide_triangles(a, s, &mesh, attrs)?
@@ -94,7 +94,7 @@ pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
         true => subdiv::mesh::poly::PolyMesh::from_mesh(&mesh).pt.num_faces(),
         false => mesh.ct.num_triangles(),
     };
-    report(a, (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
+    report((a, s), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
 }
 
 /// A triangle scheme's subdivision, written: the output's vertices, faces,
@@ -114,20 +114,20 @@ fn subdivide_triangles(
     // Texture coordinates and colours ride along (see subdiv::attributes).
     let fine_attrs = |attrs: Attributes| match attrs.is_empty() {
         true => Ok(attrs),
-        false => subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, s.scheme, levels, &s.options()),
+        false => subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, s.scheme(), levels, &s.options()),
     };
     // OBJ writes the sharp features of the result, the boundary's corners too
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     // a mesh with holes goes the whole way: its attributes follow the faces left out
     let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
-        let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme, levels, &s.options())?;
+        let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options())?;
         let fine_attrs = fine_attrs(attrs)?;
         let t1 = Instant::now();
         io::save_faces(&a.output, &fine, &fine_attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
-    let (fine, st) = subdiv::subdivide(mesh, s.scheme, levels, &s.options())?;
+    let (fine, st) = subdiv::subdivide(mesh, s.scheme(), levels, &s.options())?;
     let fine_attrs = fine_attrs(attrs)?;
     let t1 = Instant::now();
     io::save_with(&a.output, &fine, &fine_attrs)?;
@@ -148,19 +148,19 @@ fn subdivide_polygons(
     let (control, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
     let fine_attrs = |pattrs: Attributes| match pattrs.is_empty() {
         true => Ok(pattrs),
-        false => subdiv::subdiv::tables::attributes::refine_poly(&control, &pattrs, s.scheme, levels, &s.options()),
+        false => subdiv::subdiv::tables::attributes::refine_poly(&control, &pattrs, s.scheme(), levels, &s.options()),
     };
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
-        let (fine, st) = subdiv::subdivide_poly_faces(&control, s.scheme, levels, &s.options())?;
+        let (fine, st) = subdiv::subdivide_poly_faces(&control, s.scheme(), levels, &s.options())?;
         let fine_attrs = fine_attrs(pattrs)?;
         let t1 = Instant::now();
         io::save_faces(&a.output, &fine, &fine_attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
-    let (fine, st) = subdiv::subdivide_poly(&control, s.scheme, levels, &s.options())?;
+    let (fine, st) = subdiv::subdivide_poly(&control, s.scheme(), levels, &s.options())?;
     let fine_attrs = fine_attrs(pattrs)?;
     let t1 = Instant::now();
     io::save_poly(&a.output, &fine, &fine_attrs)?;
@@ -186,17 +186,17 @@ fn subdivide_precise(
     // a control mesh keeps its holes as tags (OBJ); a refined level leaves them out
     let keep_holes = levels == 0;
     let refine = subdiv::subdiv::tables::attributes::refine_poly;
-    let (vertices, faces, write): (usize, usize, Box<dyn FnOnce() -> Result<()>>) = if s.scheme.is_polygonal() {
+    let (vertices, faces, write): (usize, usize, Box<dyn FnOnce() -> Result<()>>) = if s.scheme().is_polygonal() {
         let (pm, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-        let (fine, pos) = subdiv::subdivide_poly_f64(&pm, &control, s.scheme, levels, &opts)?;
-        let fa = if pattrs.is_empty() { pattrs } else { refine(&pm, &pattrs, s.scheme, levels, &opts)? };
+        let (fine, pos) = subdiv::subdivide_poly_f64(&pm, &control, s.scheme(), levels, &opts)?;
+        let fa = if pattrs.is_empty() { pattrs } else { refine(&pm, &pattrs, s.scheme(), levels, &opts)? };
         let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
         (pos.len(), faces, Box::new(move || io::save_poly_f64(&a.output, &fine, &pos, &fa, keep_holes)))
     } else {
-        let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme, levels, &opts)?;
+        let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
         let fa = match attrs.is_empty() {
             true => attrs.clone(),
-            false => subdiv::subdiv::tables::attributes::refine(&mesh.ct, attrs, s.scheme, levels, &opts)?,
+            false => subdiv::subdiv::tables::attributes::refine(&mesh.ct, attrs, s.scheme(), levels, &opts)?,
         };
         let faces = fine.ct.num_triangles() - if keep_holes { 0 } else { fine.ct.holes().len() };
         (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
@@ -209,13 +209,13 @@ fn subdivide_precise(
 
 /// What `subdivide` prints: `--stats`, `--json` or a line.
 fn report(
-    a: &SubdivideArgs,
+    (a, s): (&SubdivideArgs, &SchemeArgs),
     (in_vertices, in_faces): (usize, usize),
     (vertices, faces): (usize, usize),
     st: &subdiv::Stats,
     (load_ms, save_ms): (f64, f64),
 ) -> Result<()> {
-    let (s, levels) = (&a.sub.scheme, a.sub.levels_or(1));
+    let levels = a.sub.levels_or(1);
     if a.stats {
         println!("subdivide_ms={:.3}", st.total_ms);
         println!(
@@ -232,7 +232,7 @@ fn report(
         print_json(&Summary {
             input: &input,
             output: &output,
-            scheme: s.scheme.to_string(),
+            scheme: s.scheme().to_string(),
             levels,
             input_vertices: in_vertices,
             input_faces: in_faces,
@@ -251,7 +251,7 @@ fn report(
             a.input.display(),
             a.output.display(),
             levels,
-            s.scheme,
+            s.scheme(),
             vertices,
             faces
         );

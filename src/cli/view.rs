@@ -49,7 +49,7 @@ pub fn view(a: ViewArgs) -> Result<()> {
     let coloring = a.color.asked()?;
     subdiv::app::run(subdiv::app::ViewOptions {
         model: a.model,
-        scheme: s.scheme,
+        scheme: s.scheme(),
         opts: s.options(),
         flags: s.shape(),
         level: a.sub.levels_or(0),
