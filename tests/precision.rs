@@ -227,3 +227,57 @@ fn subdivide_with_double_precision_writes_obj_and_ply_that_read_back_to_the_same
     let single = obj_points(&String::from_utf8(run("s.obj", "f32")).unwrap());
     assert!(worst(&single, &expected) > 1e-3, "f32 output as exact as f64's?");
 }
+
+/// A planar grid of `n` x `n` vertices, an affine image of the integer
+/// lattice a million units out: triangles (two per cell) or quads.
+fn affine_grid(n: usize, quads: bool) -> (Vec<DVec3>, Vec<u32>) {
+    let c = DVec3::splat(1e6) + DVec3::new(0.123_456_789, -0.987_654_321, 0.5);
+    let (a, b) = (DVec3::new(0.7, -0.2, 0.13), DVec3::new(0.31, 0.9, 0.05));
+    let v = (0..n * n).map(|k| c + a * (k % n) as f64 + b * (k / n) as f64).collect();
+    let id = |i: usize, j: usize| (j * n + i) as u32;
+    let mut f = Vec::new();
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let (p, q, r, s) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            f.extend(if quads { vec![p, q, r, s] } else { vec![p, q, r, p, r, s] });
+        }
+    }
+    (v, f)
+}
+
+#[test]
+fn exact_evaluation_of_double_control_points_is_exact_to_1e_12_relative() {
+    // on regular patches an affine control net's limit is the same affine
+    // map (linear precision), so the exact value is known in closed form
+    let (v, tris) = affine_grid(9, false);
+    let mesh = Mesh::from_triangles(v.iter().map(|p| p.as_vec3()).collect(), &tris).unwrap();
+    let ev = subdiv::subdiv::eval::Evaluator::new_f64(&mesh, &v, Scheme::Loop, &Options::default()).unwrap();
+    let single = subdiv::subdiv::eval::Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+    let interior =
+        |t: usize| tris[3 * t..3 * t + 3].iter().all(|&x| (2..7).contains(&(x % 9)) && (2..7).contains(&(x / 9)));
+    let (mut worst64, mut worst32) = (0.0f64, 0.0f64);
+    for t in (0..tris.len() / 3).filter(|&t| interior(t)) {
+        let [a, b, c] = [0, 1, 2].map(|k| v[tris[3 * t + k] as usize]);
+        for (u, w) in [(0.2, 0.3), (1.0 / 3.0, 1.0 / 3.0), (0.05, 0.9)] {
+            let exact = a * (1.0 - u - w) + b * u + c * w;
+            worst64 = worst64.max(ev.eval(t, u, w).unwrap().position.distance(exact) / exact.length());
+            worst32 = worst32.max(single.eval(t, u, w).unwrap().position.distance(exact) / exact.length());
+        }
+    }
+    assert!(worst64 < 1e-12, "Loop from f64 control points: {worst64:e} relative");
+    assert!(worst32 > 1e-9, "f32 control points as exact? {worst32:e}");
+    // Catmull-Clark: bilinear in each regular quad of an affine net
+    let (v, quads) = affine_grid(9, true);
+    let starts: Vec<u32> = (0..=quads.len() as u32 / 4).map(|f| 4 * f).collect();
+    let poly = subdiv::mesh::poly::PolyMesh::from_faces(v.iter().map(|p| p.as_vec3()).collect(), &starts, &quads);
+    let mesh = poly.unwrap().0.triangulated();
+    let ev = subdiv::subdiv::eval::Evaluator::new_f64(&mesh, &v, Scheme::CatmullClark, &Options::default()).unwrap();
+    let mut worst = 0.0f64;
+    for f in (0..quads.len() / 4).filter(|&f| (2..6).contains(&(f % 8)) && (2..6).contains(&(f / 8))) {
+        let [a, b, c] = [0, 1, 2].map(|k| v[quads[4 * f + k] as usize]);
+        let (u, w) = (0.3, 0.7);
+        let exact = a + (b - a) * u + (c - b) * w;
+        worst = worst.max(ev.eval(f, u, w).unwrap().position.distance(exact) / exact.length());
+    }
+    assert!(worst < 1e-12, "Catmull-Clark from f64 control points: {worst:e} relative");
+}

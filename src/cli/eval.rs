@@ -1,7 +1,7 @@
 //! `subdiv eval`: the exact Loop or Catmull-Clark limit surface at given
 //! parameter points.
 
-use super::args::{InputArgs, SchemeArgs};
+use super::args::{InputArgs, Precision, SchemeArgs};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use subdiv::Result;
@@ -35,19 +35,28 @@ pub struct EvalArgs {
     /// Print the times of preparing and evaluating on stderr.
     #[arg(long)]
     stats: bool,
+    /// The control points' precision: f64 (the default: the file's own
+    /// digits, OBJ's text or PLY's doubles) or f32 (rounded as the viewer
+    /// draws them). The evaluation is in f64 either way.
+    #[arg(long, default_value = "f64")]
+    precision: Precision,
 }
 
 /// `subdiv eval`.
 pub fn eval(a: &EvalArgs) -> Result<()> {
-    let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
-    let scheme = a.scheme.over(attrs.options);
-    let mesh = scheme.features.apply(mesh);
+    let loaded = a.from.read(&a.input, false)?;
+    let scheme = a.scheme.over(loaded.attributes.options);
+    let mesh = scheme.features.apply(loaded.mesh);
+    let control: Vec<glam::DVec3> = match (a.precision, loaded.precise) {
+        (Precision::F64, Some(p)) => p,
+        _ => mesh.positions.iter().map(|p| p.as_dvec3()).collect(),
+    };
     let limits = a.from.limits.limits()?;
     let max_points = limits.get("vertices").unwrap_or(u64::MAX);
     let shown = a.points.display().to_string();
     let text = subdiv::io::read_text_file(&a.points, &limits)?;
     let start = Instant::now();
-    let ev = Evaluator::new(&mesh, scheme.scheme(), &scheme.options())?;
+    let ev = Evaluator::new_f64(&mesh, &control, scheme.scheme(), &scheme.options())?;
     let prepared = start.elapsed();
     // every point is checked before any is evaluated
     let points = parse_points_in(&text, &shown, ev.domain(), usize::try_from(max_points).unwrap_or(usize::MAX))?;

@@ -71,11 +71,12 @@ pub fn ptex_faces(pt: &PolyTable) -> Vec<(u32, u32)> {
 }
 
 impl Poly {
-    /// `mesh` with its boundary corners tagged as `opts` asks.
-    pub(crate) fn new(mesh: &PolyMesh, opts: &Options) -> Poly {
+    /// `mesh` with its boundary corners tagged as `opts` asks, the control
+    /// positions `pos` (f64, one per vertex).
+    pub(crate) fn new(mesh: &PolyMesh, pos: Vec<DVec3>, opts: &Options) -> Poly {
         let pt = with_boundary_corners(&mesh.pt, opts.boundary).unwrap_or_else(|| mesh.pt.clone());
         let ptex = ptex_faces(&pt);
-        Poly { pt, pos: mesh.positions.iter().map(|p| p.as_dvec3()).collect(), opts: *opts, ptex }
+        Poly { pt, pos, opts: *opts, ptex }
     }
 
     /// Ptex faces.

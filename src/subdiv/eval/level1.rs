@@ -160,20 +160,20 @@ pub(crate) struct Level1 {
 }
 
 impl Level1 {
-    /// Level 1 of `mesh` under Loop's rules with `beta`.
+    /// Level 1 of `mesh` under Loop's rules with `beta`, from the control
+    /// positions `pos` (one per vertex, in f64).
     ///
     /// # Errors
     /// [`Error::Usage`] when level 1 has more than `u32::MAX` corners.
-    pub(crate) fn new(mesh: &Mesh, beta: LoopBeta) -> Result<Level1> {
+    pub(crate) fn new(mesh: &Mesh, pos: &[DVec3], beta: LoopBeta) -> Result<Level1> {
         let ct = &mesh.ct;
         if ct.num_corners().checked_mul(4).is_none_or(|x| x > u32::MAX as usize) {
             return Err(Error::Usage("the mesh is too large to evaluate (level 1 over 2^32 corners)".into()));
         }
         let nv = ct.num_vertices();
-        let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
         let (ids, ne) = edge_ids(ct);
         let mut out = vec![DVec3::ZERO; nv + ne as usize];
-        vertex_points(ct, &pos, beta, &mut out[..nv]);
+        vertex_points(ct, pos, beta, &mut out[..nv]);
         // each edge once, at its owner corner
         for c in (0..ct.num_corners() as u32).filter(|&c| owns_edge(c, ct.o_table()[c as usize])) {
             let (a, b) = (pos[ct.vtx(n(c)) as usize], pos[ct.vtx(p(c)) as usize]);
@@ -373,6 +373,10 @@ mod tests {
     use crate::mesh::shapes;
     use glam::Vec3;
 
+    fn wide(mesh: &Mesh) -> Vec<DVec3> {
+        mesh.positions.iter().map(|p| p.as_dvec3()).collect()
+    }
+
     /// Level 1's table built the general way: the layout's triangles handed
     /// to the corner-table builder, which matches edges by their vertices.
     fn built(mesh: &Mesh) -> CornerTable {
@@ -401,7 +405,7 @@ mod tests {
     fn every_face_reads_through_its_template_what_a_walk_finds() {
         let critter = crate::bundled::load(std::path::Path::new("bundled:critter.obj")).expect("bundled");
         for mesh in [shapes::icosphere(2), shapes::grid(5), tetrahedron(), shapes::icosahedron(), critter] {
-            let mut l1 = Level1::new(&mesh, LoopBeta::Loop).expect("small");
+            let mut l1 = Level1::new(&mesh, &wide(&mesh), LoopBeta::Loop).expect("small");
             l1.learn_templates(|_| true);
             let mut used = 0;
             let mut ids = [0u32; BLOCK];
@@ -425,7 +429,7 @@ mod tests {
     #[test]
     fn the_level_1_read_off_the_control_table_is_the_one_built_from_its_triangles() {
         for mesh in [shapes::icosphere(2), shapes::grid(5), tetrahedron(), shapes::icosahedron()] {
-            let l1 = Level1::new(&mesh, LoopBeta::Loop).expect("small");
+            let l1 = Level1::new(&mesh, &wide(&mesh), LoopBeta::Loop).expect("small");
             let want = built(&mesh);
             assert_eq!(want.num_corners(), 4 * mesh.ct.num_corners());
             for c in 0..want.num_corners() as u32 {

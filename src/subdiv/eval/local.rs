@@ -52,7 +52,7 @@ use crate::subdiv::rules::features::with_boundary_corners;
 use crate::subdiv::tables::plan::record_one_level;
 use crate::subdiv::tables::rows::LevelPlan;
 use crate::subdiv::{Options, Scheme};
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use std::borrow::Cow;
 
 /// Levels of local subdivision before rule 3's last resort (module docs).
@@ -61,24 +61,25 @@ pub(crate) const MAX_LEVELS: u32 = 60;
 /// The control mesh as the local subdivision reads it.
 pub(crate) struct Base<'a> {
     ct: Cow<'a, CornerTable>,
-    pos: Cow<'a, [Vec3]>,
+    pos: Cow<'a, [DVec3]>,
     opts: Options,
 }
 
 impl Base<'static> {
-    /// `mesh` with its boundary corners tagged as `opts` asks, copied.
-    pub(crate) fn new(mesh: &Mesh, opts: &Options) -> Base<'static> {
+    /// `mesh`'s table with its boundary corners tagged as `opts` asks, and
+    /// the control positions `pos` (f64), copied.
+    pub(crate) fn new(mesh: &Mesh, pos: &[DVec3], opts: &Options) -> Base<'static> {
         let ct = with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
-        Base { ct: Cow::Owned(ct), pos: Cow::Owned(mesh.positions.clone()), opts: *opts }
+        Base { ct: Cow::Owned(ct), pos: Cow::Owned(pos.to_vec()), opts: *opts }
     }
 }
 
 impl<'a> Base<'a> {
-    /// `mesh` with its boundary corners tagged as `opts` asks, borrowed
-    /// where no corner is tagged.
-    pub(crate) fn borrowed(mesh: &'a Mesh, opts: &Options) -> Base<'a> {
+    /// `mesh`'s table with its boundary corners tagged as `opts` asks,
+    /// borrowed where no corner is tagged, and the positions `pos`.
+    pub(crate) fn borrowed(mesh: &'a Mesh, pos: &'a [DVec3], opts: &Options) -> Base<'a> {
         let ct = with_boundary_corners(&mesh.ct, opts.boundary);
-        Base { ct, pos: Cow::Borrowed(&mesh.positions), opts: *opts }
+        Base { ct, pos: Cow::Borrowed(pos), opts: *opts }
     }
 }
 
@@ -372,7 +373,7 @@ fn try_patch<P: Fn(u32) -> DVec3>(
 /// The limit surface at `(u, v)` of control face `f` (checked by the
 /// caller) by local subdivision.
 pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), second: bool) -> Sample {
-    let control = |v: u32| base.pos[v as usize].as_dvec3();
+    let control = |v: u32| base.pos[v as usize];
     let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
     // a face already regular needs no region
     let at = At { ct: &base.ct, pos: control, origin: DVec3::ZERO, face: f };

@@ -320,7 +320,8 @@ pub fn evaluate_one(mesh: &Mesh, scheme: Scheme, opts: &Options, (f, u, v): (usi
     for x in corners {
         add_table(&mut valences, ct.valence(x), ct.is_boundary_vertex(x), opts, &spline);
     }
-    let base = local::Base::borrowed(mesh, opts);
+    let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+    let base = local::Base::borrowed(mesh, &pos, opts);
     let tables = local::Tables { spline: &spline, valences: &valences };
     Ok(local::eval(&base, &tables, f as u32, (u, v), true))
 }
@@ -343,14 +344,30 @@ impl Evaluator {
     /// # Errors
     /// [`Error::Usage`] naming a scheme without an exact evaluation.
     pub fn new(mesh: &Mesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
+        let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        Evaluator::new_f64(mesh, &pos, scheme, opts)
+    }
+
+    /// [`Evaluator::new`] with the control positions in f64 (`control`, one
+    /// per vertex of `mesh`; `mesh.positions` are not read): double
+    /// precision from the caller's own digits, where `new` starts from f32.
+    ///
+    /// # Errors
+    /// As [`Evaluator::new`]; `control` not one position per vertex.
+    pub fn new_f64(mesh: &Mesh, control: &[DVec3], scheme: Scheme, opts: &Options) -> Result<Evaluator> {
         check_scheme(scheme)?;
+        if control.len() != mesh.positions.len() {
+            let n = mesh.positions.len();
+            return Err(Error::Usage(format!("{} control positions for a mesh of {n} vertices", control.len())));
+        }
         if scheme == Scheme::CatmullClark {
-            return Evaluator::new_poly(&crate::mesh::poly::PolyMesh::from_mesh(mesh), scheme, opts);
+            let poly = crate::mesh::poly::PolyMesh::from_mesh(mesh);
+            return Ok(Evaluator::of_poly(catmark::Poly::new(&poly, control.to_vec(), opts)));
         }
         let path = face_paths(mesh);
-        let mut level1 = Level1::new(mesh, opts.loop_beta)?;
+        let mut level1 = Level1::new(mesh, control, opts.loop_beta)?;
         level1.learn_templates(|f| path[f] == Path::Smooth);
-        let base = path.contains(&Path::Local).then(|| local::Base::new(mesh, opts));
+        let base = path.contains(&Path::Local).then(|| local::Base::new(mesh, control, opts));
         let spline = BoxSpline::derive();
         let mut valences: Vec<Option<Extraordinary>> = Vec::new();
         // every smooth extraordinary vertex of any level is a control vertex
@@ -371,9 +388,14 @@ impl Evaluator {
         if scheme != Scheme::CatmullClark {
             return Err(Error::Usage(format!("the {scheme} limit surface is evaluated on triangles, not polygons")));
         }
-        let poly = catmark::Poly::new(mesh, opts);
+        let pos = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        Ok(Evaluator::of_poly(catmark::Poly::new(mesh, pos, opts)))
+    }
+
+    /// The evaluator of Catmull-Clark's polygons `poly`.
+    fn of_poly(poly: catmark::Poly) -> Evaluator {
         let faces = poly.num_faces();
-        Ok(Evaluator {
+        Evaluator {
             level1: Level1::default(),
             path: vec![Path::Local; faces],
             poly: Some(Box::new(poly)),
@@ -381,7 +403,7 @@ impl Evaluator {
             spline: BoxSpline::derive(),
             valences: Vec::new(),
             faces,
-        })
+        }
     }
 
     /// The number of control faces (Loop: triangles; Catmull-Clark: ptex
