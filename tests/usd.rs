@@ -222,3 +222,30 @@ fn a_stage_read_from_memory_follows_no_reference() {
     let e = subdiv::io::read(src, &ReadOptions::default()).unwrap_err().to_string();
     assert!(e.contains("mem.usda") && e.contains("other.usda"), "{e}");
 }
+
+/// The start of section `name` in the crate file `bytes` (its table of
+/// contents: a count, then 16-byte names with a start and a size each).
+fn section(bytes: &[u8], name: &str) -> usize {
+    let u64_at = |at: usize| u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) as usize;
+    let toc = u64_at(16);
+    (0..u64_at(toc))
+        .map(|k| toc + 8 + 32 * k)
+        .find(|&e| bytes[e..e + 16].split(|&b| b == 0).next() == Some(name.as_bytes()))
+        .map(|e| u64_at(e + 16))
+        .unwrap()
+}
+
+#[test]
+fn a_crate_file_claiming_more_elements_than_it_can_hold_is_refused_before_allocating() {
+    let dir = common::scratch_dir("usd-counts");
+    let good = std::fs::read(fixture("stage.usdc")).unwrap();
+    for (name, at) in [("TOKENS", 0), ("SPECS", 0), ("PATHS", 8)] {
+        let mut bytes = good.clone();
+        let start = section(&bytes, name) + at;
+        bytes[start..start + 8].copy_from_slice(&(1u64 << 40).to_le_bytes());
+        let path = dir.join(format!("{name}.usdc"));
+        std::fs::write(&path, &bytes).unwrap();
+        let err = refused(&path, &[]);
+        assert!(err.contains(&format!("{name}.usdc")) && err.contains("more than the file's size"), "{name}: {err}");
+    }
+}

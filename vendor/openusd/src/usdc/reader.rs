@@ -50,7 +50,17 @@ pub struct CrateFile<R> {
     pub paths: Vec<sdf::Path>,
     // All specs.
     pub specs: Vec<Spec>,
+    /// subdiv's fix: the largest count of elements the file may claim
+    /// (see [`MAX_EXPANSION`]), so a lying count is refused before it is
+    /// allocated.
+    max_count: usize,
 }
+
+/// subdiv's fix: how many elements a byte of a crate file may stand for. An
+/// uncompressed element takes at least a byte; integer coding with LZ4
+/// packs a run of equal values much tighter, and no mesh file is nothing
+/// but such runs.
+const MAX_EXPANSION: u64 = 64;
 
 impl<R> CrateFile<R> {
     /// Returns file's version extracted from bootstrap header.
@@ -61,8 +71,25 @@ impl<R> CrateFile<R> {
 }
 
 impl<R: io::Read + io::Seek> CrateFile<R> {
+    /// subdiv's fix: the next count of the file, refused past `max_count`.
+    fn count(&mut self) -> Result<usize> {
+        let n = self.reader.read_count()?;
+        self.bounded(n)
+    }
+
+    /// subdiv's fix: `n` if the file's size can hold that many elements.
+    fn bounded(&self, n: usize) -> Result<usize> {
+        if n > self.max_count {
+            anyhow::bail!("a count of {n} elements, more than the file's size can hold");
+        }
+        Ok(n)
+    }
+
     /// Read structural sections of a crate file.
     pub fn open(mut reader: R) -> Result<Self> {
+        let len = reader.seek(io::SeekFrom::End(0))?;
+        reader.seek(io::SeekFrom::Start(0))?;
+        let max_count = usize::try_from(len.saturating_mul(MAX_EXPANSION).saturating_add(1024)).unwrap_or(usize::MAX);
         let bootstrap = Self::read_header(&mut reader)?;
 
         let mut file = CrateFile {
@@ -75,6 +102,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
             fieldsets: Vec::new(),
             paths: Vec::new(),
             specs: Vec::new(),
+            max_count,
         };
 
         file.read_sections().context("Unable to read sections")?;
@@ -163,7 +191,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
     fn read_sections(&mut self) -> Result<()> {
         self.set_position(self.bootstrap.toc_offset)?;
 
-        let count = self.reader.read_count()?;
+        let count = self.count()?;
         ensure!(count > 0, "Crate file has no sections");
         ensure!(count < 64, "Suspiciously large number of sections: {count}");
 
@@ -182,12 +210,12 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         let file_ver = self.version();
 
         // Read the number of tokens.
-        let count = self.reader.read_count()?;
+        let count = self.count()?;
 
         self.tokens = if file_ver < version(0, 4, 0) {
             todo!("Support TOKENS reader for < 0.4.0 files");
         } else {
-            let uncompressed_size = self.reader.read_count()?;
+            let uncompressed_size = self.count()?;
             let mut buffer = self.read_compressed(uncompressed_size)?;
 
             ensure!(
@@ -239,7 +267,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
 
         self.set_position(section.start)?;
 
-        let count = self.reader.read_count()?;
+        let count = self.count()?;
         ensure!(
             count < 128 * 1024 * 1024,
             "Suspiciously large number of strings: {count}"
@@ -265,7 +293,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         self.fields = if file_ver < version(0, 4, 0) {
             todo!("Support FIELDS reader before < 0.4.0")
         } else {
-            let field_count = self.reader.read_count()?;
+            let field_count = self.count()?;
 
             // Compressed fields in 0.4.0.
             let indices = self.read_encoded_ints(field_count)?;
@@ -299,7 +327,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         self.fieldsets = if file_ver < version(0, 4, 0) {
             todo!("Support FIELDSETS reader for < 0.4.0 files");
         } else {
-            let count = self.reader.read_count()?;
+            let count = self.count()?;
 
             let decoded = self.read_encoded_ints::<u32>(count)?;
 
@@ -333,7 +361,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
             todo!("Support PATHS reader for < 0.4.0 files");
         } else {
             // Read # of paths.
-            let path_count = self.reader.read_count()?;
+            let path_count = self.count()?;
             self.paths = vec![sdf::Path::default(); path_count];
 
             self.read_compressed_paths()?;
@@ -345,7 +373,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
     /// Read compressed paths.
     fn read_compressed_paths(&mut self) -> Result<()> {
         // Read number of encoded paths.
-        let count: usize = self.reader.read_count()?;
+        let count: usize = self.count()?;
 
         // Read compressed data.
 
@@ -454,7 +482,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         } else {
             // Version 0.4.0 specs are compressed
 
-            let spec_count = self.reader.read_count()?;
+            let spec_count = self.count()?;
 
             let path_indexes = self.read_encoded_ints::<u32>(spec_count)?;
             let fieldset_indexes = self.read_encoded_ints::<u32>(spec_count)?;
@@ -546,7 +574,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
     /// - `estimated_size`: Size enough to hold uncompressed data.
     fn read_compressed<T: Default + NoUninit + AnyBitPattern>(&mut self, estimated_count: usize) -> Result<Vec<T>> {
         // Read data to memory.
-        let compressed_size = self.reader.read_count()?;
+        let compressed_size = self.count()?;
         let mut input = vec![0_u8; compressed_size];
         self.reader.read_exact(&mut input)?;
 
@@ -628,6 +656,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
         } else {
             self.reader.read_pod::<u64>()? as usize
         };
+        let count = self.bounded(count)?;
 
         if count < Self::MIN_COMPRESSED_ARRAY_SIZE {
             compressed = false;
@@ -675,6 +704,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
                 // Lookup table and indexes
                 b't' => {
                     let lut_size = self.reader.read_pod::<u32>()? as usize;
+                    let lut_size = self.bounded(lut_size)?;
                     let lut: Vec<T> = self.reader.read_vec(lut_size)?;
 
                     let indexes: Vec<u32> = self.read_encoded_ints(count)?;
@@ -744,7 +774,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
     /// Reads a count-prefixed vector of `u32` indices and maps each through
     /// `lookup` to produce the element value.
     fn read_indexed_vec<T>(&mut self, lookup: impl Fn(&Self, usize) -> T) -> Result<Vec<T>> {
-        let count = self.reader.read_count()?;
+        let count = self.count()?;
         let indices = self.reader.read_vec::<u32>(count)?;
 
         Ok(indices.into_iter().map(|index| lookup(self, index as usize)).collect())
@@ -764,7 +794,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
 
     /// Reads a count-prefixed vector of POD values.
     fn read_pod_vec<T: Default + NoUninit + AnyBitPattern>(&mut self) -> Result<Vec<T>> {
-        let count = self.reader.read_count()?;
+        let count = self.count()?;
         self.reader.read_vec(count)
     }
 
@@ -839,7 +869,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
     /// depth (a guard or an explicit stack), as `build_compressed_paths` does
     /// for wide path trees.
     fn read_custom_data(&mut self) -> Result<HashMap<String, Value>> {
-        let mut count = self.reader.read_count()?;
+        let mut count = self.count()?;
         let mut dict = HashMap::default();
 
         while count > 0 {
@@ -1287,7 +1317,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
 
                 self.set_position(value.payload())?;
 
-                let count = self.reader.read_count()?;
+                let count = self.count()?;
                 let vec = self.reader.read_vec(count)?;
 
                 sdf::Value::LayerOffsetVec(vec)
@@ -1326,7 +1356,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
 
                 self.set_position(value.payload())?;
 
-                let count = self.reader.read_count()?;
+                let count = self.count()?;
                 let mut map = HashMap::with_capacity(count);
 
                 for _ in 0..count {
@@ -1367,7 +1397,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
 
                 self.apply_recursive_offset()?;
 
-                let count = self.reader.read_count()?;
+                let count = self.count()?;
                 ensure!(count == times.len(), "Invalid time samples count");
 
                 let value_reps = self.reader.read_vec::<ValueRep>(count)?;
@@ -1430,7 +1460,7 @@ impl<R: io::Read + io::Seek> CrateFile<R> {
             Type::Relocates => {
                 ensure!(!value.is_inlined());
                 self.set_position(value.payload())?;
-                let count = self.reader.read_count()?;
+                let count = self.count()?;
                 let mut pairs = Vec::with_capacity(count);
                 for _ in 0..count {
                     let src_idx: u32 = self.reader.read_pod()?;
