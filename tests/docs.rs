@@ -168,7 +168,9 @@ fn missing_in(doc: &Path, text: &str, markdown: bool) -> Vec<String> {
 }
 
 /// Every file under `dir` (relative to the repository) whose name ends
-/// with `ext`, skipping build outputs and hidden folders.
+/// with `ext`, skipping build outputs, hidden folders and the vendored
+/// crates (`vendor/NAME/`: another project's docs; `vendor/README.md` is
+/// ours).
 fn files_under(dir: &str, ext: &str) -> Vec<PathBuf> {
     fn walk(root: &Path, rel: &Path, ext: &str, out: &mut Vec<PathBuf>) {
         let Ok(entries) = std::fs::read_dir(root.join(rel)) else { return };
@@ -177,7 +179,8 @@ fn files_under(dir: &str, ext: &str) -> Vec<PathBuf> {
             let path = rel.join(&name);
             let Ok(kind) = e.file_type() else { continue };
             if kind.is_dir() {
-                if !name.starts_with('.') && !SKIPPED_DIRS.contains(&name.as_str()) {
+                let vendored = rel == Path::new("vendor");
+                if !name.starts_with('.') && !SKIPPED_DIRS.contains(&name.as_str()) && !vendored {
                     walk(root, &path, ext, out);
                 }
             } else if name.ends_with(ext) {

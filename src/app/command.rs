@@ -73,6 +73,9 @@ pub(crate) enum Command {
     FlipPicked,
     /// Split the picked edge at its midpoint.
     SplitPicked,
+    /// Punch a hole at the face of the picked edge (its polygon, for a
+    /// file of polygons), or fill it if it is one.
+    ToggleHolePicked,
     /// Play or pause (starting the animation mode when it is off).
     TogglePlay,
     /// Pause and step this many frames.
@@ -205,6 +208,7 @@ impl Viewer {
             Command::SaveControl(path) => doc.save_control(&path),
             Command::FlipPicked => doc.flip_picked(),
             Command::SplitPicked => doc.split_picked(),
+            Command::ToggleHolePicked => doc.toggle_hole_picked(),
             Command::TogglePlay => self.toggle_play(),
             Command::Step(frames) => self.step(frames),
             Command::StopAnimation => {

@@ -109,6 +109,26 @@ pub(crate) struct Doc {
     pub(crate) pinned: ShapeOptions,
 }
 
+/// The triangles of the polygon triangle `t` belongs to: `t` and those
+/// across hidden diagonals (a fanned polygon's), transitively.
+fn polygon_of(ct: &crate::CornerTable, t: u32) -> Vec<u32> {
+    let hidden = |c: u32| ct.generations().is_some_and(|g| g.corner(c) == crate::mesh::Generations::HIDDEN);
+    let mut face = vec![t];
+    let mut k = 0;
+    while k < face.len() {
+        let f = face[k];
+        for c in 3 * f..3 * f + 3 {
+            if let Some(o) = ct.o(c).filter(|_| hidden(c))
+                && !face.contains(&(o / 3))
+            {
+                face.push(o / 3);
+            }
+        }
+        k += 1;
+    }
+    face
+}
+
 fn builtin_tetrahedron() -> (Mesh, Paths) {
     // Both are compiled in and parsed by bundled's unit test; a failure here
     // is a build error in disguise.
@@ -447,6 +467,31 @@ impl Doc {
             Ok(()) => self.replace_control(m),
             Err(e) => self.fail(Problem::Flip(e)),
         }
+    }
+
+    /// Fills the hole beside the picked edge (a hole is not drawn, so the
+    /// edge is picked on the face across it), or punches one at the face of
+    /// the picked edge: every triangle of its polygon (joined across the
+    /// hidden diagonals of a fanned polygon) stops being a hole, or becomes
+    /// one. A hole's vertices keep shaping the rest, as OpenSubdiv's do.
+    pub(crate) fn toggle_hole_picked(&mut self) {
+        let Some(c) = *self.model.picked else { return };
+        let ct = &self.model.control.mesh.ct;
+        if c as usize >= ct.num_corners() {
+            return;
+        }
+        let mut holes: Vec<u32> = ct.holes().to_vec();
+        match self.model.hole_beside_pick() {
+            Some(t) => {
+                let face = polygon_of(ct, t);
+                holes.retain(|t| !face.contains(t));
+            }
+            None => holes.extend(polygon_of(ct, c / 3)),
+        }
+        let mesh = &self.model.control.mesh;
+        let picked = *self.model.picked;
+        self.replace_control(Mesh { ct: mesh.ct.clone().with_holes(holes), positions: mesh.positions.clone() });
+        self.model.picked.set(picked);
     }
 
     /// Splits the picked edge of the control mesh at its midpoint.

@@ -298,6 +298,21 @@ impl Model {
         ((c as usize) < ct.num_corners())
             .then(|| (ct.v_table()[crate::mesh::n(c) as usize], ct.v_table()[crate::mesh::p(c) as usize]))
     }
+
+    /// Whether the face of the picked edge or the one across it is a hole.
+    pub(crate) fn picked_face_is_hole(&self) -> bool {
+        self.hole_beside_pick().is_some()
+    }
+
+    /// The hole at the picked edge: its own triangle, or the one across it.
+    pub(crate) fn hole_beside_pick(&self) -> Option<u32> {
+        let c = (*self.picked)?;
+        let ct = &self.control.mesh.ct;
+        if c as usize >= ct.num_corners() {
+            return None;
+        }
+        [Some(c), ct.o(c)].into_iter().flatten().map(|x| x / 3).find(|&t| ct.is_hole(t))
+    }
 }
 
 /// `raw` with its points moved to the limit when asked, and the normals of

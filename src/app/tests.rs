@@ -1026,3 +1026,33 @@ fn a_files_option_tags_become_the_asked_options_unless_the_command_line_gave_the
     settle(&mut v);
     assert_eq!(v.doc.model.made.opts.boundary, BoundaryInterpolation::EdgeAndCorner);
 }
+
+#[test]
+fn a_picked_face_is_punched_as_a_hole_and_filled_again() {
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path("critter.obj")));
+    settle(&mut v);
+    let critter = v.doc.model.control.mesh.clone();
+    let faces = v.doc.model.control.topo.faces;
+    // a ray straight down onto triangle 0 (half of the file's first quad)
+    let t0: Vec<Vec3> = critter.ct.v_table()[..3].iter().map(|&i| critter.positions[i as usize]).collect();
+    let normal = (t0[1] - t0[0]).cross(t0[2] - t0[0]).normalize();
+    let centroid = (t0[0] + t0[1] + t0[2]) / 3.0;
+    v.apply(Command::Pick { origin: centroid + normal * 1e-3, dir: -normal });
+    let c = (*v.doc.model.picked).expect("the ray hits the face");
+    v.apply(Command::ToggleHolePicked);
+    let ct = &v.doc.model.control.mesh.ct;
+    // the top quad's two triangles (a fanned quad: joined across the diagonal)
+    assert_eq!(ct.holes().len(), 2, "{:?}", ct.holes());
+    assert!(ct.is_hole(c / 3));
+    assert_eq!(v.doc.model.control.topo.faces, faces, "a hole stays in the table");
+    // saved with its tag, the hole comes back as it went
+    let path = common::scratch_dir("viewer-holes").join("holed.obj");
+    v.apply(Command::SaveControl(path.clone()));
+    // (written as the file's quads: one polygon, face 0)
+    assert!(std::fs::read_to_string(&path).unwrap().contains("t hole 1/0/0 0\n"));
+    assert_eq!(crate::io::load(&path).unwrap().ct.holes(), v.doc.model.control.mesh.ct.holes());
+    v.apply(Command::ToggleHolePicked);
+    assert!(v.doc.model.control.mesh.ct.holes().is_empty(), "filled again");
+    assert_eq!(v.doc.model.control.mesh.positions, critter.positions);
+}

@@ -62,6 +62,12 @@ pub(crate) fn tools_section(
             if ui.button("Split").clicked() {
                 out.push(Command::SplitPicked);
             }
+            let hole = doc.model.picked_face_is_hole();
+            let label = if hole { "Fill hole" } else { "Punch hole" };
+            let tip = "the face of the edge leaves the surface (its vertices still shape the rest), or comes back";
+            if ui.button(label).on_hover_text(tip).clicked() {
+                out.push(Command::ToggleHolePicked);
+            }
         });
     }
     out
