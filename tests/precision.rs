@@ -226,6 +226,22 @@ fn subdivide_with_double_precision_writes_obj_and_ply_that_read_back_to_the_same
     // the default, f32, is not
     let single = obj_points(&String::from_utf8(run("s.obj", "f32")).unwrap());
     assert!(worst(&single, &expected) > 1e-3, "f32 output as exact as f64's?");
+    // Catmull-Clark's quads, through the polygon writer
+    let path = dir.join("cc.obj");
+    let st = std::process::Command::new(env!("CARGO_BIN_EXE_subdiv"))
+        .args(["subdivide", input.to_str().unwrap(), path.to_str().unwrap(), "-s", "catmull-clark", "-n", "1"])
+        .args(["--precision", "f64"])
+        .output()
+        .unwrap();
+    assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let poly = subdiv::mesh::poly::PolyMesh::from_mesh(&mesh_of(&v, &f));
+    let (fine, quads) = subdiv::subdivide_poly_f64(&poly, &v, Scheme::CatmullClark, 1, &Options::default()).unwrap();
+    assert_eq!(obj_points(&text), quads, "Catmull-Clark's OBJ");
+    assert_eq!(
+        text.lines().filter(|l| l.starts_with("f ") && l.split_whitespace().count() == 5).count(),
+        fine.pt.num_faces()
+    );
 }
 
 /// A planar grid of `n` x `n` vertices, an affine image of the integer

@@ -21,8 +21,11 @@ use std::path::Path;
 /// A position count other than the vertex count, another format, or an
 /// I/O error naming `path`.
 pub fn save_f64(path: &Path, mesh: &Mesh, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
-    let (pm, pattrs) = PolyMesh::from_mesh_with_attributes(mesh, attrs);
-    save_poly_f64(path, &pm, positions, &pattrs, keep_holes)
+    if PolyMesh::is_polygonal(mesh) {
+        let (pm, pattrs) = PolyMesh::from_mesh_with_attributes(mesh, attrs);
+        return save_poly_f64(path, &pm, positions, &pattrs, keep_holes);
+    }
+    save_table(path, &mesh.ct, positions, attrs, keep_holes)
 }
 
 /// [`save_f64`] of a polygon mesh (texture coordinates per polygon corner).
@@ -36,20 +39,85 @@ pub fn save_poly_f64(
     attrs: &Attributes,
     keep_holes: bool,
 ) -> Result<()> {
-    let usage = |msg: String| Err(Error::Usage(format!("{}: {msg}", path.display())));
-    if positions.len() != mesh.pt.num_vertices() {
-        return usage(format!("{} positions for {} vertices", positions.len(), mesh.pt.num_vertices()));
+    save_table(path, &mesh.pt, positions, attrs, keep_holes)
+}
+
+/// The faces of a triangle or a polygon table, as the writers read them.
+trait Table {
+    fn num_vertices(&self) -> usize;
+    fn num_faces(&self) -> usize;
+    /// The corners of face `f` (texture coordinates are per corner).
+    fn corners(&self, f: u32) -> std::ops::Range<u32>;
+    fn vtx(&self, c: u32) -> u32;
+    fn is_hole(&self, f: u32) -> bool;
+    fn holes(&self) -> &[u32];
+    fn tags(&self) -> Option<crate::mesh::Tags>;
+}
+
+impl Table for crate::CornerTable {
+    fn num_vertices(&self) -> usize {
+        crate::CornerTable::num_vertices(self)
     }
-    if let Some(f) = (0..mesh.pt.num_faces() as u32).find(|&f| mesh.pt.face_size(f) > 255) {
-        return usage(format!("face {f} has {} corners, more than a PLY uchar count holds", mesh.pt.face_size(f)));
+    fn num_faces(&self) -> usize {
+        self.num_triangles()
+    }
+    fn corners(&self, f: u32) -> std::ops::Range<u32> {
+        3 * f..3 * f + 3
+    }
+    fn vtx(&self, c: u32) -> u32 {
+        crate::CornerTable::vtx(self, c)
+    }
+    fn is_hole(&self, f: u32) -> bool {
+        crate::CornerTable::is_hole(self, f)
+    }
+    fn holes(&self) -> &[u32] {
+        crate::CornerTable::holes(self)
+    }
+    fn tags(&self) -> Option<crate::mesh::Tags> {
+        self.sharpness().map(|s| s.to_tags(self))
+    }
+}
+
+impl Table for PolyTable {
+    fn num_vertices(&self) -> usize {
+        PolyTable::num_vertices(self)
+    }
+    fn num_faces(&self) -> usize {
+        PolyTable::num_faces(self)
+    }
+    fn corners(&self, f: u32) -> std::ops::Range<u32> {
+        self.face_corners(f)
+    }
+    fn vtx(&self, c: u32) -> u32 {
+        PolyTable::vtx(self, c)
+    }
+    fn is_hole(&self, f: u32) -> bool {
+        PolyTable::is_hole(self, f)
+    }
+    fn holes(&self) -> &[u32] {
+        PolyTable::holes(self)
+    }
+    fn tags(&self) -> Option<crate::mesh::Tags> {
+        self.sharpness().map(|s| s.to_tags(self))
+    }
+}
+
+/// [`save_poly_f64`] of either table.
+fn save_table(path: &Path, t: &dyn Table, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
+    let usage = |msg: String| Err(Error::Usage(format!("{}: {msg}", path.display())));
+    if positions.len() != t.num_vertices() {
+        return usage(format!("{} positions for {} vertices", positions.len(), t.num_vertices()));
+    }
+    if let Some(f) = (0..t.num_faces() as u32).find(|&f| t.corners(f).len() > 255) {
+        return usage(format!("face {f} has {} corners, more than a PLY uchar count holds", t.corners(f).len()));
     }
     let format = Format::for_output(path).map(|f| f.name);
     let is = |ext: &str| Format::for_output(path).is_some_and(|f| f.extensions.contains(&ext));
     if is("obj") {
-        let text = obj_text(mesh, positions, attrs, keep_holes);
+        let text = obj_text(t, positions, attrs, keep_holes);
         atomic_write(path, |w| w.write_all(&text).map_err(|e| Error::io(path, e)))
     } else if is("ply") {
-        let bytes = ply_bytes(&mesh.pt, positions, attrs.colors.as_deref().filter(|c| c.len() == positions.len()));
+        let bytes = ply_bytes(t, positions, attrs.colors.as_deref().filter(|c| c.len() == positions.len()));
         atomic_write(path, |w| w.write_all(&bytes).map_err(|e| Error::io(path, e)))
     } else {
         usage(format!("{} holds no double precision: write .obj or .ply", format.unwrap_or("this format")))
@@ -57,15 +125,15 @@ pub fn save_poly_f64(
 }
 
 /// The faces written: every face but the holes, unless they are kept.
-fn written_faces(pt: &PolyTable, keep_holes: bool) -> impl Iterator<Item = u32> + '_ {
-    (0..pt.num_faces() as u32).filter(move |&f| keep_holes || !pt.is_hole(f))
+fn written_faces(t: &dyn Table, keep_holes: bool) -> impl Iterator<Item = u32> + '_ {
+    (0..t.num_faces() as u32).filter(move |&f| keep_holes || !t.is_hole(f))
 }
 
 /// The OBJ text: `v` records in f64's shortest digits, `vt` per written
 /// corner, `f` records, then the tags.
-fn obj_text(mesh: &PolyMesh, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Vec<u8> {
-    let pt = &mesh.pt;
-    let mut out = Vec::with_capacity(positions.len() * 64 + pt.num_corners() * 12);
+fn obj_text(pt: &dyn Table, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Vec<u8> {
+    let corners = (0..pt.num_faces() as u32).map(|f| pt.corners(f).len()).sum::<usize>();
+    let mut out = Vec::with_capacity(positions.len() * 64 + corners * 12);
     let faces: Vec<u32> = written_faces(pt, keep_holes).collect();
     out.extend(format!("# subdiv (f64): {} vertices, {} faces\n", positions.len(), faces.len()).bytes());
     let mut rb = zmij::Buffer::new();
@@ -78,10 +146,10 @@ fn obj_text(mesh: &PolyMesh, positions: &[DVec3], attrs: &Attributes, keep_holes
         p.to_array().into_iter().for_each(|x| put(&mut out, x));
         out.push(b'\n');
     }
-    let uv = attrs.uv.as_ref().filter(|u| u.len() == pt.num_corners());
+    let uv = attrs.uv.as_ref().filter(|u| u.len() == corners);
     if let Some(uv) = uv {
         for &f in &faces {
-            for c in pt.face_corners(f) {
+            for c in pt.corners(f) {
                 out.extend_from_slice(b"vt");
                 put(&mut out, f64::from(uv[c as usize].x));
                 put(&mut out, f64::from(uv[c as usize].y));
@@ -92,7 +160,7 @@ fn obj_text(mesh: &PolyMesh, positions: &[DVec3], attrs: &Attributes, keep_holes
     let mut vt = 0usize;
     for &f in &faces {
         out.push(b'f');
-        for c in pt.face_corners(f) {
+        for c in pt.corners(f) {
             out.extend(format!(" {}", pt.vtx(c) + 1).bytes());
             if uv.is_some() {
                 vt += 1;
@@ -102,8 +170,8 @@ fn obj_text(mesh: &PolyMesh, positions: &[DVec3], attrs: &Attributes, keep_holes
         out.push(b'\n');
     }
     out.extend(super::obj::option_lines(attrs.options));
-    if let Some(s) = pt.sharpness() {
-        out.extend(super::obj::tag_lines(&s.to_tags(pt)));
+    if let Some(tags) = pt.tags() {
+        out.extend(super::obj::tag_lines(&tags));
     }
     if keep_holes {
         out.extend(super::obj::hole_lines(pt.holes()));
@@ -112,7 +180,7 @@ fn obj_text(mesh: &PolyMesh, positions: &[DVec3], attrs: &Attributes, keep_holes
 }
 
 /// Binary little-endian PLY with `double` x, y, z (and `uchar` colours).
-fn ply_bytes(pt: &PolyTable, positions: &[DVec3], colors: Option<&[glam::Vec3]>) -> Vec<u8> {
+fn ply_bytes(pt: &dyn Table, positions: &[DVec3], colors: Option<&[glam::Vec3]>) -> Vec<u8> {
     let faces: Vec<u32> = written_faces(pt, false).collect();
     let rgb = if colors.is_some() { "property uchar red\nproperty uchar green\nproperty uchar blue\n" } else { "" };
     let mut out = format!(
@@ -121,6 +189,7 @@ fn ply_bytes(pt: &PolyTable, positions: &[DVec3], colors: Option<&[glam::Vec3]>)
         faces.len()
     )
     .into_bytes();
+    out.reserve(positions.len() * 27 + faces.iter().map(|&f| 1 + 4 * pt.corners(f).len()).sum::<usize>());
     for (i, p) in positions.iter().enumerate() {
         p.to_array().iter().for_each(|x| out.extend_from_slice(&x.to_le_bytes()));
         if let Some(c) = colors {
@@ -128,7 +197,7 @@ fn ply_bytes(pt: &PolyTable, positions: &[DVec3], colors: Option<&[glam::Vec3]>)
         }
     }
     for f in faces {
-        let r = pt.face_corners(f);
+        let r = pt.corners(f);
         // at most 255 corners (checked by the caller)
         out.push(r.len() as u8);
         r.for_each(|c| out.extend_from_slice(&(pt.vtx(c) as i32).to_le_bytes()));
