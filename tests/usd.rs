@@ -32,18 +32,7 @@ fn subdivide(input: &Path, out: &str, args: &[&str]) -> PathBuf {
     path
 }
 
-/// Every face corner of an OBJ text as (position, texture coordinate).
-fn corners(text: &str) -> Vec<([f64; 3], [f64; 2])> {
-    let num = |l: &str| -> Vec<f64> { l.split_whitespace().map(|x| x.parse().unwrap()).collect() };
-    let v: Vec<Vec<f64>> = text.lines().filter_map(|l| l.strip_prefix("v ")).map(num).collect();
-    let t: Vec<Vec<f64>> = text.lines().filter_map(|l| l.strip_prefix("vt ")).map(num).collect();
-    let corner = |c: &str| {
-        let mut ids = c.split('/').map(|x| x.parse::<usize>().unwrap() - 1);
-        let (a, b) = (ids.next().unwrap(), ids.next().unwrap());
-        ([v[a][0], v[a][1], v[a][2]], [t[b][0], t[b][1]])
-    };
-    text.lines().filter_map(|l| l.strip_prefix("f ")).flat_map(|l| l.split_whitespace().map(corner)).collect()
-}
+use common::obj_corners as corners;
 
 /// The worst distance from a corner of `a` to the nearest corner of `b`
 /// (position and texture coordinate together).

@@ -39,6 +39,20 @@ pub struct InfoArgs {
     stencil: Option<u32>,
 }
 
+/// What `info --json` says of the file's records (flattened into
+/// [`MeshInfo`]).
+#[derive(Serialize)]
+struct FileRecords {
+    /// The format read.
+    format: &'static str,
+    /// Faces in the file, before polygons are fanned.
+    file_faces: usize,
+    /// Faces of the file by corner count (8 stands for 8 or more).
+    face_sizes: BTreeMap<usize, usize>,
+    /// Polygons fanned into triangles for the triangle schemes.
+    polygons_fanned: usize,
+}
+
 /// `subdiv info --json` of a mesh. `edges`, `faces` and `valence` are the
 /// file's own (polygons as the file has them); a file with polygons adds
 /// the triangles the triangle schemes refine as `triangulated`.
@@ -58,14 +72,8 @@ struct MeshInfo {
     non_manifold_edges: usize,
     non_manifold_vertices: usize,
     repaired: bool,
-    /// The format read.
-    format: &'static str,
-    /// Faces in the file, before polygons are fanned.
-    file_faces: usize,
-    /// Faces of the file by corner count (8 stands for 8 or more).
-    face_sizes: BTreeMap<usize, usize>,
-    /// Polygons fanned into triangles for the triangle schemes.
-    polygons_fanned: usize,
+    #[serde(flatten)]
+    records: FileRecords,
     /// Faces tagged as holes (`t hole`): left out of the surface.
     holes: usize,
     #[serde(flatten)]
@@ -216,6 +224,20 @@ fn unused_subdivision_option(a: &InfoArgs) -> Option<&'static str> {
     given.into_iter().find(|g| g.1).map(|g| g.0)
 }
 
+/// The mesh `info` describes: as the file has it, or, when its topology
+/// is invalid (or with `--repair`), analysed and repaired.
+fn load(a: &InfoArgs, input: &Path) -> Result<subdiv::io::Loaded> {
+    let read = |topology| {
+        let opts = ReadOptions { topology, attributes: false, ..a.from.options(false)? };
+        bundled::read(input, &opts)
+    };
+    match if a.from.repair { None } else { Some(read(Topology::Refuse)) } {
+        Some(Ok(l)) => Ok(l),
+        Some(Err(e)) if !is_topology_error(&e) => Err(e),
+        _ => read(Topology::Analyze),
+    }
+}
+
 /// `subdiv info`.
 pub fn info(a: &InfoArgs) -> Result<()> {
     let input = a.input.as_path();
@@ -227,16 +249,7 @@ pub fn info(a: &InfoArgs) -> Result<()> {
     if is_curve(input) {
         return curve_info(input, &a.from.limits.limits()?, a.json);
     }
-    let read = |topology| {
-        let opts = ReadOptions { topology, attributes: false, ..a.from.options(false)? };
-        bundled::read(input, &opts)
-    };
-    let loaded = match if a.from.repair { None } else { Some(read(Topology::Refuse)) } {
-        Some(Ok(l)) => l,
-        Some(Err(e)) if !is_topology_error(&e) => return Err(e),
-        // invalid topology (or --repair): analyse and describe the repaired mesh
-        _ => read(Topology::Analyze)?,
-    };
+    let loaded = load(a, input)?;
     let notes = loaded.notes;
     let (mesh, records, report) = (loaded.mesh, notes.vertex_records, notes.repair.clone());
     let dropped = report.as_ref().map_or(notes.unreferenced, |r| r.unreferenced_vertices.count);
@@ -270,19 +283,14 @@ pub fn info(a: &InfoArgs) -> Result<()> {
             non_manifold_edges: nm_edges,
             non_manifold_vertices: nm_vertices,
             repaired: report.is_some(),
-            format: loaded.format.name,
-            file_faces: notes.faces,
-            face_sizes,
-            polygons_fanned: notes.fanned,
-            holes: own.holes,
-            sharp: SharpInfo {
-                sharp_edges: sharp.sharp_edges,
-                infinitely_sharp_edges: sharp.infinite_edges,
-                sharp_vertices: sharp.sharp_vertices,
-                corners: sharp.corners,
-                darts: sharp.darts,
-                crease_vertices: sharp.crease_vertices,
+            records: FileRecords {
+                format: loaded.format.name,
+                file_faces: notes.faces,
+                face_sizes,
+                polygons_fanned: notes.fanned,
             },
+            holes: own.holes,
+            sharp: SharpInfo::of(&sharp),
             valence: own.valence,
             triangulated,
         });
@@ -324,6 +332,20 @@ pub fn info(a: &InfoArgs) -> Result<()> {
         print!("{r}");
     }
     Ok(())
+}
+
+impl SharpInfo {
+    /// The counts of `s`.
+    fn of(s: &Summary) -> SharpInfo {
+        SharpInfo {
+            sharp_edges: s.sharp_edges,
+            infinitely_sharp_edges: s.infinite_edges,
+            sharp_vertices: s.sharp_vertices,
+            corners: s.corners,
+            darts: s.darts,
+            crease_vertices: s.crease_vertices,
+        }
+    }
 }
 
 /// The manifold line of `info`, with the offending ids when there are any.

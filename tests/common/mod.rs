@@ -473,3 +473,17 @@ pub fn assert_same_points(ours: &[Vec3], theirs: &[Vec3], tol: f32, what: &str) 
     }
     eprintln!("{what}: {} points, worst distance {worst:.2e}", ours.len());
 }
+
+/// Every face corner of an OBJ text as (position, texture coordinate), in
+/// f64 (faces written `f v/vt ...`).
+pub fn obj_corners(text: &str) -> Vec<([f64; 3], [f64; 2])> {
+    let num = |l: &str| -> Vec<f64> { l.split_whitespace().map(|x| x.parse().unwrap()).collect() };
+    let v: Vec<Vec<f64>> = text.lines().filter_map(|l| l.strip_prefix("v ")).map(num).collect();
+    let t: Vec<Vec<f64>> = text.lines().filter_map(|l| l.strip_prefix("vt ")).map(num).collect();
+    let corner = |c: &str| {
+        let mut ids = c.split('/').map(|x| x.parse::<usize>().unwrap() - 1);
+        let (a, b) = (ids.next().unwrap(), ids.next().unwrap());
+        ([v[a][0], v[a][1], v[a][2]], [t[b][0], t[b][1]])
+    };
+    text.lines().filter_map(|l| l.strip_prefix("f ")).flat_map(|l| l.split_whitespace().map(corner)).collect()
+}
