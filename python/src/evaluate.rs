@@ -31,8 +31,10 @@ pub fn evaluate_arrays<'py>(
     names: (String, String, String),
     face: PyReadonlyArray1<'py, i64>,
     uv: PyReadonlyArray2<'py, f64>,
-    curvature: bool,
+    flags: (bool, bool),
 ) -> PyResult<Samples<'py>> {
+    // second derivatives asked; float64 control points taken as given
+    let (curvature, precise) = flags;
     let s = mesh.slices(&creases)?;
     if uv.shape()[1] != 2 || uv.shape()[0] != face.len() {
         return Err(PyTypeError::new_err("uv must have shape (k, 2) with one row per face index"));
@@ -41,11 +43,15 @@ pub fn evaluate_arrays<'py>(
     let (face, uv) = (face.as_slice().map_err(bad)?, uv.as_slice().map_err(bad)?);
     let (p, n, hk) = run(py, None, || {
         let (scheme, opts) = named(&names)?;
-        let ev = match control(&s, scheme, false)? {
-            (Control::Tri(mesh), _) => Evaluator::new(&mesh, scheme, &opts),
-            (Control::Poly(mesh), _) => Evaluator::new_poly(&mesh, scheme, &opts),
-        }
-        .map_err(|e| e.to_string())?;
+        // float64 vertices: the control points as the caller gave them;
+        // float32: as the library rounds them
+        let (c, remap) = control(&s, scheme, false)?;
+        let mesh = match c {
+            Control::Tri(mesh) => mesh,
+            Control::Poly(mesh) => mesh.triangulated(),
+        };
+        let points64 = remap.control_f64(s.vertices(), &mesh.positions, !precise);
+        let ev = Evaluator::new_f64(&mesh, &points64, scheme, &opts).map_err(|e| e.to_string())?;
         let mut points = Vec::with_capacity(face.len());
         for (i, (&f, w)) in face.iter().zip(uv.chunks_exact(2)).enumerate() {
             let f = usize::try_from(f).map_err(|_| format!("point {}: face {f} out of range", i + 1))?;

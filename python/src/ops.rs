@@ -39,6 +39,13 @@ pub struct Slices<'a> {
     crease_sharpness: &'a [f64],
 }
 
+impl Slices<'_> {
+    /// The vertices, flat `(x, y, z)` rows as the caller passed them.
+    pub fn vertices(&self) -> &[f64] {
+        self.vertices
+    }
+}
+
 impl<'py> MeshArgs<'py> {
     /// The arrays' data, with the creases `c`.
     ///

@@ -189,9 +189,10 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
 
     Returns
     -------
-    P : float64 (k, 3), limit positions.
-    N : float64 (k, 3), unit normals (on the side the winding makes the front).
-    H, K : float64 (k,), mean and Gaussian curvature, only with
+    P : (k, 3), limit positions, in the vertices' dtype: float64 control
+        points are evaluated as given (in float64), float32 ones as float32.
+    N : (k, 3), unit normals (on the side the winding makes the front).
+    H, K : (k,), mean and Gaussian curvature, only with
         ``curvature=True`` (``H > 0`` on a convex surface with outward normals;
         NaN at an extraordinary vertex itself).
 
@@ -221,10 +222,15 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
     w = np.ascontiguousarray(np.atleast_2d(w), dtype=np.float64)
     if w.ndim != 2 or w.shape != (f.shape[0], 2):
         raise ValueError(f"uv must have shape ({f.shape[0]}, 2), got shape {w.shape}")
+    single = _checks.is_float32(vertices)
     p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.creases(creases),
-                                       _names(scheme, beta, boundary), f, w, bool(curvature))
+                                       _names(scheme, beta, boundary), f, w, (bool(curvature), not single))
+    # float64 control points are evaluated as given; float32 ones as float32,
+    # the results handed back in float32
+    dtype = np.float32 if single else np.float64
+    p, n = p.astype(dtype, copy=False), n.astype(dtype, copy=False)
     if curvature:
-        return p, n, hk[:, 0].copy(), hk[:, 1].copy()
+        return p, n, hk[:, 0].astype(dtype), hk[:, 1].astype(dtype)
     return p, n
 
 

@@ -47,3 +47,26 @@ def test_float32_is_computed_and_returned_in_float32():
     assert v32.dtype == np.float32 and v64.dtype == np.float64
     assert np.array_equal(f32, f64)
     assert np.abs(v32 - v64).max() < 1e-5
+
+
+def test_evaluate_takes_float64_control_points_as_given():
+    # an affine net's Loop limit on a regular patch is the same affine map,
+    # so the exact value is known; a million units out float32 misses it
+    n = 9
+    a, b = np.array([0.7, -0.2, 0.13]), np.array([0.31, 0.9, 0.05])
+    c = np.array([1e6 + 0.123456789, 1e6 - 0.987654321, 1e6 + 0.5])
+    v = np.array([c + a * (k % n) + b * (k // n) for k in range(n * n)])
+    f = []
+    for j in range(n - 1):
+        for i in range(n - 1):
+            p, q, r, s = j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i
+            f += [[p, q, r], [p, r, s]]
+    f = np.array(f)
+    t = [k for k in range(len(f)) if all(2 <= x % n < 7 and 2 <= x // n < 7 for x in f[k])]
+    uv = np.tile([[0.2, 0.3]], (len(t), 1))
+    exact = v[f[t, 0]] * 0.5 + v[f[t, 1]] * 0.2 + v[f[t, 2]] * 0.3
+    p64, _ = subdiv.evaluate(v, f, t, uv)
+    p32, _ = subdiv.evaluate(v.astype(np.float32), f, t, uv)
+    assert p64.dtype == np.float64 and p32.dtype == np.float32
+    assert np.abs(p64 - exact).max() / 1.7e6 < 1e-12
+    assert np.abs(p32.astype(np.float64) - exact).max() / 1.7e6 > 1e-9
