@@ -111,7 +111,8 @@ pub struct AnimateArgs {
     /// Image size WxH.
     #[arg(long, default_value = "480x480", value_parser = parse_size)]
     size: (u32, u32),
-    /// phong, flat, studio (matcap), wire or phong+wire.
+    /// phong, flat, studio (matcap), wire, phong+wire, zebra (reflection
+    /// lines) or isophotes.
     #[arg(long, default_value = "phong")]
     shading: String,
     /// Overlay the moving control mesh.

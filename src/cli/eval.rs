@@ -10,6 +10,7 @@ use subdiv::subdiv::eval::{Evaluator, parse_points_in};
 
 /// `subdiv eval` arguments.
 #[derive(clap::Args)]
+#[command(mut_arg("scheme_flag", |a| a.help("Scheme: loop (triangles, the default) or catmull-clark (polygons): the schemes with an exact evaluation")))]
 pub struct EvalArgs {
     /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
     input: PathBuf,
