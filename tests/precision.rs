@@ -297,3 +297,40 @@ fn exact_evaluation_of_double_control_points_is_exact_to_1e_12_relative() {
     }
     assert!(worst < 1e-12, "Catmull-Clark from f64 control points: {worst:e} relative");
 }
+
+#[test]
+#[cfg(feature = "cli")]
+fn loop_limit_positions_in_double_precision_equal_the_textbook_mask() {
+    let dir = common::scratch_dir("precision-limit");
+    let (v, f) = bipyramid(1e6);
+    let input = dir.join("far.obj");
+    let mut text: String = v.iter().map(|p| format!("v {:?} {:?} {:?}\n", p.x, p.y, p.z)).collect();
+    text += &f.iter().map(|t| format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1)).collect::<String>();
+    std::fs::write(&input, text).unwrap();
+    // Loop's limit mask: (1 - n chi) v + chi (sum of the ring), chi = 1 / (n + 3 / (8 beta))
+    let expected: Vec<DVec3> = (0..v.len())
+        .map(|a| {
+            let b = f.iter().find_map(|t| (0..3).find(|&i| t[i] == a).map(|i| t[(i + 1) % 3])).unwrap();
+            let r = ring(&f, a, b);
+            let n = r.len() as f64;
+            let beta = (0.625 - (0.375 + 0.25 * (2.0 * PI / n).cos()).powi(2)) / n;
+            let chi = 1.0 / (n + 3.0 / (8.0 * beta));
+            v[a] * (1.0 - n * chi) + r.iter().map(|&x| v[x]).sum::<DVec3>() * chi
+        })
+        .collect();
+    let run = |out: &str, precision: &str| {
+        let path = dir.join(out);
+        let st = std::process::Command::new(env!("CARGO_BIN_EXE_subdiv"))
+            .args(["limit", input.to_str().unwrap(), path.to_str().unwrap(), "--precision", precision])
+            .output()
+            .unwrap();
+        assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+        obj_points(&std::fs::read_to_string(&path).unwrap())
+    };
+    let double = run("d.obj", "f64");
+    let far = double.iter().zip(&expected).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+    assert!(far < 1e-9, "f64 limit {far:e} from the mask");
+    let single = run("s.obj", "f32");
+    let far = single.iter().zip(&expected).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+    assert!(far > 1e-3, "f32 limit as exact as f64's? {far:e}");
+}

@@ -14,7 +14,7 @@ use subdiv::mesh::Faces;
 use subdiv::subdiv::ControlCounts;
 use subdiv::subdiv::PlanF64;
 use subdiv::subdiv::rules::features::with_boundary_corners;
-use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_with};
+use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_f64, loop_limit_positions_with};
 use subdiv::{Mesh, Options, Scheme, subdivide_faces_as, subdivide_poly, subdivide_poly_faces_as};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
@@ -320,6 +320,7 @@ pub fn limit_arrays<'py>(
     mesh: MeshArgs<'py>,
     creases: CreaseArgs<'py>,
     names: (String, String),
+    precise: bool,
 ) -> PyResult<Pair<'py, f64>> {
     let s = mesh.slices(&creases)?;
     let (p, n) = run(py, None, || {
@@ -327,10 +328,17 @@ pub fn limit_arrays<'py>(
         let (c, remap) = control(&s, Scheme::Loop, false)?;
         let Control::Tri(mesh) = c else { return Err("Loop built a polygon table (a bug)".into()) };
         let mesh = Mesh { ct: with_boundary_corners(&mesh.ct, opts.boundary).into_owned(), positions: mesh.positions };
-        let positions = loop_limit_positions_with(&mesh, opts.loop_beta);
         let normals = loop_limit_normals(&mesh);
         let zeros = vec![0.0; 3 * remap.n_input];
-        Ok((remap.positions(&positions, s.vertices), remap.positions(&normals, &zeros)))
+        // float64 vertices: the limit of the caller's own rows, in f64
+        let positions = match precise {
+            true => {
+                let control = remap.control_f64(s.vertices, &mesh.positions, false);
+                remap.positions(&loop_limit_positions_f64(&mesh, &control, opts.loop_beta), s.vertices)
+            }
+            false => remap.positions(&loop_limit_positions_with(&mesh, opts.loop_beta), s.vertices),
+        };
+        Ok((positions, remap.positions(&normals, &zeros)))
     })?;
     Ok((f64_array(py, p, 3)?, f64_array(py, n, 3)?))
 }

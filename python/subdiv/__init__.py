@@ -153,8 +153,9 @@ def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
 
     Returns
     -------
-    P : float64 (n, 3), the point of the limit surface each vertex converges to.
-    N : float64 (n, 3), unit normals (zero for a vertex no face uses).
+    P : (n, 3), the point of the limit surface each vertex converges to, in the
+        vertices' dtype (float64 rows are taken as given).
+    N : (n, 3), unit normals (zero for a vertex no face uses).
 
     Examples
     --------
@@ -168,7 +169,10 @@ def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
     v = _checks.vertices(vertices)
     corners, starts = _checks.faces(faces)
     names = (_checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
-    return _subdiv.limit_arrays((v, corners, starts), _checks.creases(creases), names)
+    single = _checks.is_float32(vertices)
+    p, n = _subdiv.limit_arrays((v, corners, starts), _checks.creases(creases), names, not single)
+    # float64 in: the limit of the rows as given; float32: computed and handed back in float32
+    return (p.astype(np.float32), n.astype(np.float32)) if single else (p, n)
 
 
 def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary="edge", creases=None,

@@ -70,3 +70,15 @@ def test_evaluate_takes_float64_control_points_as_given():
     assert p64.dtype == np.float64 and p32.dtype == np.float32
     assert np.abs(p64 - exact).max() / 1.7e6 < 1e-12
     assert np.abs(p32.astype(np.float64) - exact).max() / 1.7e6 > 1e-9
+
+
+def test_limit_keeps_the_dtype_and_float64_is_exact_far_out():
+    v, f = bipyramid(1e6)
+    p64, n64 = subdiv.limit(v, f)
+    p32, _ = subdiv.limit(v.astype(np.float32), f)
+    assert p64.dtype == np.float64 and n64.dtype == np.float64 and p32.dtype == np.float32
+    # the limit is the limit of the levels: S^k applied, nearing it (Loop level 6 from matrix)
+    s = subdiv.matrix(f, 6, "loop")
+    near = (s @ v)[: len(v)]
+    assert np.abs(p64 - near).max() < 1e-3
+    assert np.abs(p64 - near).max() < np.abs(p32.astype(np.float64) - near).max()

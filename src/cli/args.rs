@@ -6,7 +6,6 @@
 
 use std::path::Path;
 use subdiv::io::{Limits, Loaded, ReadOptions, Topology};
-use subdiv::mesh::attributes::Attributes;
 use subdiv::mesh::options::{FileScheme, ShapeOptions};
 use subdiv::subdiv::eval::color::CurvatureKind;
 use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
@@ -85,13 +84,6 @@ impl InputArgs {
     /// The mesh `input` names (see [`InputArgs::read`]).
     pub fn load(&self, input: &Path) -> Result<Mesh> {
         Ok(self.read(input, false)?.mesh)
-    }
-
-    /// [`InputArgs::load`] with the file's texture coordinates, colours and
-    /// materials (none after a repair, which renumbers the vertices).
-    pub fn load_with_attributes(&self, input: &Path) -> Result<(Mesh, Attributes)> {
-        let l = self.read(input, false)?;
-        Ok((l.mesh, l.attributes))
     }
 }
 

@@ -332,14 +332,28 @@ pub struct LimitCmdArgs {
     scheme: subdiv::Scheme,
     #[command(flatten)]
     features: super::args::FeatureArgs,
+    /// f32 (the default) or f64: Loop's limit from the file's own digits
+    /// (OBJ's text, PLY's doubles), written in double precision (OBJ or PLY).
+    #[arg(long, default_value = "f32")]
+    precision: Precision,
 }
 
 /// `subdiv limit`.
 pub fn limit(a: &LimitCmdArgs) -> Result<()> {
-    let (mesh, attrs) = a.from.load_with_attributes(&a.input)?;
+    if a.precision == Precision::F64 && a.scheme != subdiv::Scheme::Loop {
+        return Err(Error::Usage("--precision f64 takes Loop's limit (catmull-clark's is f32 for now)".into()));
+    }
+    let loaded = a.from.read(&a.input, false)?;
+    let (mesh, attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
     let features = a.features.over(attrs.options);
     let mesh = features.apply(mesh);
     match a.scheme {
+        subdiv::Scheme::Loop if a.precision == Precision::F64 => {
+            use subdiv::subdiv::rules::limit::loop_limit_positions_f64;
+            let control = precise.unwrap_or_else(|| mesh.positions.iter().map(|p| p.as_dvec3()).collect());
+            let pos = loop_limit_positions_f64(&mesh, &control, subdiv::LoopBeta::Loop);
+            io::save_f64(&a.output, &mesh, &pos, &Attributes { options: attrs.options, ..Default::default() }, true)?;
+        }
         subdiv::Scheme::Loop => {
             let positions = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh);
             io::save(&a.output, &Mesh { ct: mesh.ct, positions })?;

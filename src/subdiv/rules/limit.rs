@@ -98,9 +98,15 @@ pub fn loop_limit_positions(mesh: &Mesh) -> Vec<Vec3> {
 /// semi-sharp here counts as sharp (the limit of a crease that would decay
 /// later is neither, OpenSubdiv leaves that choice to the caller too).
 pub fn loop_limit_positions_with(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
-    let mut out = smooth_limit_positions(mesh, beta);
+    let pos: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+    loop_limit_positions_f64(mesh, &pos, beta).iter().map(|p| p.as_vec3()).collect()
+}
+
+/// [`loop_limit_positions_with`] of the control positions `pos` (one per
+/// vertex of `mesh`, in f64; `mesh.positions` are not read), in f64.
+pub fn loop_limit_positions_f64(mesh: &Mesh, pos: &[DVec3], beta: LoopBeta) -> Vec<DVec3> {
+    let mut out = smooth_limit_positions(mesh, pos, beta);
     if let Some(f) = super::features::Features::of(&mesh.ct, crate::mesh::Creasing::Uniform) {
-        let pos = &mesh.positions;
         for vf in f.vertices() {
             let v = vf.vertex as usize;
             match vf.parent {
@@ -116,26 +122,25 @@ pub fn loop_limit_positions_with(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
 }
 
 /// [`loop_limit_positions_with`] without sharp features (borders only).
-fn smooth_limit_positions(mesh: &Mesh, beta: LoopBeta) -> Vec<Vec3> {
+fn smooth_limit_positions(mesh: &Mesh, pos: &[DVec3], beta: LoopBeta) -> Vec<DVec3> {
     let ct = &mesh.ct;
-    let pos = &mesh.positions;
     (0..ct.num_vertices() as u32)
         .into_par_iter()
         .with_min_len(4096)
         .map_init(
             || Vec::with_capacity(16),
             |ring, v| {
-                let x = pos[v as usize].as_dvec3();
+                let x = pos[v as usize];
                 if let Some((q1, q2)) = ct.boundary_neighbours(v) {
-                    let q = pos[q1 as usize].as_dvec3() + pos[q2 as usize].as_dvec3();
-                    return (x * (2.0 / 3.0) + q * (1.0 / 6.0)).as_vec3();
+                    let q = pos[q1 as usize] + pos[q2 as usize];
+                    return x * (2.0 / 3.0) + q * (1.0 / 6.0);
                 }
                 ring.clear();
                 ring.extend(ct.ring(v));
                 let k = ring.len() as u32;
                 let chi = 1.0 / (f64::from(k) + 3.0 / (8.0 * beta.beta(k)));
-                let sum: DVec3 = ring.iter().map(|&q| pos[q as usize].as_dvec3()).sum();
-                (x * (1.0 - f64::from(k) * chi) + sum * chi).as_vec3()
+                let sum: DVec3 = ring.iter().map(|&q| pos[q as usize]).sum();
+                x * (1.0 - f64::from(k) * chi) + sum * chi
             },
         )
         .collect()
