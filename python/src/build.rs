@@ -64,10 +64,11 @@ impl Remap {
         out
     }
     /// The control positions in f64 as the library numbers them: the
-    /// caller's rows `input` (flat) of the kept vertices, or, after a
-    /// repair (which renumbers), the repaired mesh's own `positions`.
-    pub fn control_f64(&self, input: &[f64], positions: &[Vec3], repaired: bool) -> Vec<glam::DVec3> {
-        if repaired {
+    /// caller's rows `input` (flat) of the kept vertices, or, with `own`
+    /// (after a repair, which renumbers, or for float32 input), the mesh's
+    /// own `positions` widened.
+    pub fn control_f64(&self, input: &[f64], positions: &[Vec3], own: bool) -> Vec<glam::DVec3> {
+        if own {
             return positions.iter().map(|p| p.as_dvec3()).collect();
         }
         let row = |i: usize| glam::DVec3::from_slice(&input[3 * i..3 * i + 3]);

@@ -41,7 +41,7 @@ fn limit_help() -> String {
 
 impl LimitArgs {
     /// The default limits with these set.
-    pub fn limits(&self) -> Result<Limits> {
+    pub(crate) fn limits(&self) -> Result<Limits> {
         let mut limits = Limits::default();
         for (name, value) in &self.limit {
             limits.set(name, *value)?;
@@ -53,14 +53,14 @@ impl LimitArgs {
 impl InputArgs {
     /// The read options for these arguments (attributes kept; textures
     /// decoded when `textures`, for drawing).
-    pub fn options(&self, textures: bool) -> Result<ReadOptions> {
+    pub(crate) fn options(&self, textures: bool) -> Result<ReadOptions> {
         let topology = if self.repair { Topology::Repair } else { Topology::Refuse };
         Ok(ReadOptions { limits: self.limits.limits()?, topology, attributes: true, textures })
     }
 
     /// Reads the mesh `input` names (a file or `bundled:NAME`), repaired
     /// when asked (the report on stderr unless `-q`; warnings through the log).
-    pub fn read(&self, input: &Path, textures: bool) -> Result<Loaded> {
+    pub(crate) fn read(&self, input: &Path, textures: bool) -> Result<Loaded> {
         let loaded = bundled::read(input, &self.options(textures)?)?;
         if let Some(report) = &loaded.notes.repair
             && super::logging::warnings_shown()
@@ -82,13 +82,13 @@ impl InputArgs {
     }
 
     /// The mesh `input` names (see [`InputArgs::read`]).
-    pub fn load(&self, input: &Path) -> Result<Mesh> {
+    pub(crate) fn load(&self, input: &Path) -> Result<Mesh> {
         Ok(self.read(input, false)?.mesh)
     }
 }
 
 /// `NAME=VALUE` of `--limit`: a known limit and a count or size.
-pub fn parse_limit(s: &str) -> std::result::Result<(String, u64), String> {
+pub(crate) fn parse_limit(s: &str) -> std::result::Result<(String, u64), String> {
     let (name, value) = s.split_once('=').ok_or_else(|| format!("'{s}' is not NAME=VALUE"))?;
     let name = name.trim();
     if Limits::default().get(name).is_none() {
@@ -110,7 +110,7 @@ pub struct SubdivArgs {
 
 impl SubdivArgs {
     /// The levels asked for, or this command's `default`.
-    pub fn levels_or(&self, default: u32) -> u32 {
+    pub(crate) fn levels_or(&self, default: u32) -> u32 {
         self.levels.unwrap_or(default)
     }
 }
@@ -121,9 +121,6 @@ pub struct SchemeArgs {
     // the help lists Scheme::TRIANGLE and Scheme::POLYGON by their names
     #[arg(long = "scheme", short = 's', value_name = "SCHEME", help = scheme_help())]
     pub scheme_flag: Option<Scheme>,
-    /// The scheme a file states, where no flag chose one (see `over`).
-    #[arg(skip)]
-    pub file_choice: Option<Scheme>,
     /// Use Warren's beta for Loop instead of Loop's.
     #[arg(long)]
     pub warren: bool,
@@ -160,12 +157,17 @@ fn scheme_help() -> String {
 impl SchemeArgs {
     /// The scheme: `--scheme`, else the file's (after [`SchemeArgs::over`]),
     /// else Loop.
-    pub fn scheme(&self) -> Scheme {
-        self.scheme_flag.or(self.file_choice).unwrap_or(Scheme::Loop)
+    pub(crate) fn scheme(&self) -> Scheme {
+        let file = self.file_scheme.map(|f| match f {
+            FileScheme::CatmullClark => Scheme::CatmullClark,
+            FileScheme::Loop => Scheme::Loop,
+            FileScheme::Bilinear | FileScheme::None => Scheme::Bilinear,
+        });
+        self.scheme_flag.or(file).unwrap_or(Scheme::Loop)
     }
 
     /// The library's options for these arguments.
-    pub fn options(&self) -> Options {
+    pub(crate) fn options(&self) -> Options {
         Options {
             loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
             tension: self.tension,
@@ -178,7 +180,7 @@ impl SchemeArgs {
     }
 
     /// The shape options these flags state (`None` where a flag is absent).
-    pub fn shape(&self) -> ShapeOptions {
+    pub(crate) fn shape(&self) -> ShapeOptions {
         ShapeOptions {
             boundary: self.features.sharp.boundary,
             fvar: self.uv,
@@ -200,21 +202,11 @@ impl SchemeArgs {
     /// (flags override the file's tags).
     /// A file's scheme (USD's `subdivisionScheme`) applies where `--scheme`
     /// is left at its default (`none` as bilinear: the polygons are the surface).
-    pub fn over(&self, file: ShapeOptions) -> SchemeArgs {
+    pub(crate) fn over(&self, file: ShapeOptions) -> SchemeArgs {
         let o = file.overridden_by(ShapeOptions { scheme: None, ..self.shape() });
-        let (file_choice, file_scheme) = match file.scheme {
-            Some(f) if self.scheme_flag.is_none() => (
-                Some(match f {
-                    FileScheme::CatmullClark => Scheme::CatmullClark,
-                    FileScheme::Loop => Scheme::Loop,
-                    FileScheme::Bilinear | FileScheme::None => Scheme::Bilinear,
-                }),
-                Some(f),
-            ),
-            _ => (None, None),
-        };
+        // the file's scheme counts where no flag chose one
+        let file_scheme = file.scheme.filter(|_| self.scheme_flag.is_none());
         SchemeArgs {
-            file_choice,
             file_scheme,
             uv: o.fvar,
             triangles: o.triangles,
@@ -238,13 +230,13 @@ pub struct FeatureArgs {
 
 impl FeatureArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
-    pub fn apply(&self, mesh: Mesh) -> Mesh {
+    pub(crate) fn apply(&self, mesh: Mesh) -> Mesh {
         self.sharp.apply(mesh)
     }
 
     /// These arguments with the boundary and creasing a file states where
     /// no flag does.
-    pub fn over(&self, file: ShapeOptions) -> FeatureArgs {
+    pub(crate) fn over(&self, file: ShapeOptions) -> FeatureArgs {
         let mut f = self.clone();
         f.sharp.boundary = self.sharp.boundary.or(file.boundary);
         f.creasing = self.creasing.or(file.creasing);
@@ -267,7 +259,7 @@ pub struct SharpArgs {
 
 impl SharpArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
-    pub fn apply(&self, mesh: Mesh) -> Mesh {
+    pub(crate) fn apply(&self, mesh: Mesh) -> Mesh {
         let Some(deg) = self.crease_angle else { return mesh };
         let Mesh { ct, positions } = mesh;
         Mesh { ct: ct.with_angle_creases(&positions, deg), positions }
@@ -275,7 +267,7 @@ impl SharpArgs {
 }
 
 /// A dihedral angle in degrees, 0..=180 (NaN and infinities refused).
-pub fn parse_angle(s: &str) -> std::result::Result<f32, String> {
+pub(crate) fn parse_angle(s: &str) -> std::result::Result<f32, String> {
     let bad = || format!("'{s}' is not an angle from 0 to 180 degrees");
     let deg: f32 = s.trim().parse().map_err(|_| bad())?;
     if (0.0..=180.0).contains(&deg) { Ok(deg) } else { Err(bad()) }
@@ -342,7 +334,7 @@ impl ColorArgs {
     /// `Coloring::initial`), every other name its colouring (`none` the
     /// plain front colour, even on a model with materials).
     #[cfg(feature = "viewer")]
-    pub fn asked(&self) -> Result<Option<subdiv::app::display::Coloring>> {
+    pub(crate) fn asked(&self) -> Result<Option<subdiv::app::display::Coloring>> {
         match self.color.as_str() {
             "auto" => Ok(None),
             c => c.parse().map(Some).map_err(subdiv::Error::Usage),
@@ -352,7 +344,7 @@ impl ColorArgs {
     /// The isolines asked for, refused unless `coloring` is a curvature
     /// (the lines are contours of its value).
     #[cfg(feature = "viewer")]
-    pub fn isolines(&self, coloring: Option<subdiv::app::display::Coloring>) -> Result<Option<u8>> {
+    pub(crate) fn isolines(&self, coloring: Option<subdiv::app::display::Coloring>) -> Result<Option<u8>> {
         use subdiv::app::display::Coloring;
         let n = self.isolines.as_deref().map(parse_isolines).transpose().map_err(subdiv::Error::Usage)?;
         match (n, coloring) {
@@ -367,7 +359,7 @@ impl ColorArgs {
     /// The half-width of the curvature colours asked for (`None`: the
     /// default percentile), refused unless `coloring` is a curvature.
     #[cfg(feature = "viewer")]
-    pub fn range(
+    pub(crate) fn range(
         &self,
         coloring: Option<subdiv::app::display::Coloring>,
     ) -> Result<Option<subdiv::subdiv::eval::color::HalfWidth>> {
@@ -385,13 +377,13 @@ impl ColorArgs {
 
 /// A half-width of the curvature colours (`--range`): a number above 0.
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
-pub fn parse_range(s: &str) -> std::result::Result<subdiv::subdiv::eval::color::HalfWidth, String> {
+pub(crate) fn parse_range(s: &str) -> std::result::Result<subdiv::subdiv::eval::color::HalfWidth, String> {
     s.parse().map_err(|_| format!("--range '{s}': expected the half-width of the colour range, a number above 0"))
 }
 
 /// An isoline count, 1..=50 (`--isolines`).
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
-pub fn parse_isolines(s: &str) -> std::result::Result<u8, String> {
+pub(crate) fn parse_isolines(s: &str) -> std::result::Result<u8, String> {
     let most = subdiv::subdiv::eval::color::MAX_ISOLINES;
     let bad = || format!("--isolines '{s}': expected a count of levels per side from 1 to {most}");
     let n: u8 = s.trim().parse().map_err(|_| bad())?;
@@ -405,7 +397,7 @@ impl Default for ColorArgs {
 }
 
 /// `WxH`, each side 1..=16384.
-pub fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+pub(crate) fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("'{s}' is not WxH"))?;
     let w: u32 = w.parse().map_err(|_| format!("bad width in '{s}'"))?;
     let h: u32 = h.parse().map_err(|_| format!("bad height in '{s}'"))?;
@@ -416,7 +408,7 @@ pub fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
 }
 
 /// A byte count with an optional K, M, G or T suffix.
-pub fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
+pub(crate) fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
     let s = s.trim();
     let (num, mult) = match s.chars().last().map(|c| c.to_ascii_uppercase()) {
         Some('K') => (&s[..s.len() - 1], 1u64 << 10),
