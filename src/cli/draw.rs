@@ -210,12 +210,12 @@ fn animate_stats(anim: &mut Animation) {
 }
 
 #[cfg(not(feature = "viewer"))]
-pub fn render(_: &RenderArgs) -> Result<()> {
+pub(crate) fn render(_: &RenderArgs) -> Result<()> {
     Err(Error::Usage("built without the 'viewer' feature: rendering is not available".into()))
 }
 
 #[cfg(not(feature = "viewer"))]
-pub fn animate(a: AnimateArgs) -> Result<()> {
+pub(crate) fn animate(a: AnimateArgs) -> Result<()> {
     if a.eval == "gpu" {
         return Err(Error::Usage("built without the 'viewer' feature: no GPU evaluation".into()));
     }
@@ -227,7 +227,7 @@ pub fn animate(a: AnimateArgs) -> Result<()> {
 }
 
 #[cfg(feature = "viewer")]
-pub use gpu::{animate, render};
+pub(crate) use gpu::{animate, render};
 
 #[cfg(feature = "viewer")]
 mod gpu {
@@ -311,7 +311,7 @@ mod gpu {
     }
 
     /// `subdiv render`.
-    pub fn render(a: &RenderArgs) -> Result<()> {
+    pub(crate) fn render(a: &RenderArgs) -> Result<()> {
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
         let levels = a.sub.levels_or(0);
         let asked = a.color.asked()?;
@@ -393,7 +393,7 @@ mod gpu {
     }
 
     /// `subdiv animate`.
-    pub fn animate(a: AnimateArgs) -> Result<()> {
+    pub(crate) fn animate(a: AnimateArgs) -> Result<()> {
         use subdiv::render::export::{Evaluation, ExportStyle, ExportTarget, export_animation_painted};
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
         let coloring: Coloring = a.color.parse().map_err(Error::Usage)?;

@@ -44,7 +44,7 @@ pub struct EvalArgs {
 }
 
 /// `subdiv eval`.
-pub fn eval(a: &EvalArgs) -> Result<()> {
+pub(crate) fn eval(a: &EvalArgs) -> Result<()> {
     let loaded = a.from.read(&a.input, false)?;
     let scheme = a.scheme.over(loaded.attributes.options);
     let mesh = scheme.features.apply(loaded.mesh);

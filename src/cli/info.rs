@@ -173,7 +173,7 @@ fn is_topology_error(e: &Error) -> bool {
 }
 
 /// `subdiv models`: one line per bundled model, its command-line name and what it is.
-pub fn models() {
+pub(crate) fn models() {
     let width = bundled::MODELS.iter().map(|m| m.cli_name().len()).max().unwrap_or(0);
     for m in bundled::MODELS {
         println!("{:<width$}  {}", m.cli_name(), m.what);
@@ -239,7 +239,7 @@ fn load(a: &InfoArgs, input: &Path) -> Result<subdiv::io::Loaded> {
 }
 
 /// `subdiv info`.
-pub fn info(a: &InfoArgs) -> Result<()> {
+pub(crate) fn info(a: &InfoArgs) -> Result<()> {
     let input = a.input.as_path();
     if let Some(name) = unused_subdivision_option(a).filter(|_| a.stencil.is_none()) {
         return Err(Error::Usage(format!(

@@ -63,7 +63,7 @@ fn shown(x: Option<u32>) -> String {
 /// `info --corner c`: the polygon table's operators for a file of polygons
 /// (corners in the file's order), else the triangle table's (corner `c % 3`
 /// of triangle `c / 3`).
-pub fn corner(input: &Path, mesh: &Mesh, c: u32, json: bool) -> Result<()> {
+pub(crate) fn corner(input: &Path, mesh: &Mesh, c: u32, json: bool) -> Result<()> {
     let out_of_range = |n: usize| Error::Usage(format!("corner {c} out of range: {} has {n} corners", input.display()));
     if PolyMesh::is_polygonal(mesh) {
         let pm = PolyMesh::from_mesh(mesh);
@@ -90,7 +90,7 @@ pub fn corner(input: &Path, mesh: &Mesh, c: u32, json: bool) -> Result<()> {
 
 /// `info --stencil v --levels L`: the weights of refined vertex `v` over
 /// the control vertices and the rules that made it.
-pub fn stencil_of(mesh: &Mesh, sub: &SubdivArgs, v: u32, json: bool) -> Result<()> {
+pub(crate) fn stencil_of(mesh: &Mesh, sub: &SubdivArgs, v: u32, json: bool) -> Result<()> {
     let s = &sub.scheme;
     let levels = sub.levels_or(1);
     let st = stencil(mesh, s.scheme(), levels, &s.options(), v)?;

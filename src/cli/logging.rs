@@ -34,7 +34,7 @@ impl Log for Stderr {
 static LOGGER: Stderr = Stderr;
 
 /// The level for the flags (and `RUST_LOG` when neither is given).
-pub fn level(quiet: bool, verbose: u8, env: Option<&str>) -> LevelFilter {
+pub(crate) fn level(quiet: bool, verbose: u8, env: Option<&str>) -> LevelFilter {
     if quiet {
         return LevelFilter::Error;
     }
@@ -47,7 +47,7 @@ pub fn level(quiet: bool, verbose: u8, env: Option<&str>) -> LevelFilter {
 }
 
 /// Installs the backend at the level the flags ask for.
-pub fn init(quiet: bool, verbose: u8) {
+pub(crate) fn init(quiet: bool, verbose: u8) {
     let env = std::env::var("RUST_LOG").ok();
     log::set_max_level(level(quiet, verbose, env.as_deref()));
     // a second init (none happens) would keep the first backend
@@ -55,6 +55,6 @@ pub fn init(quiet: bool, verbose: u8) {
 }
 
 /// Whether warnings and notes are shown (not `-q`).
-pub fn warnings_shown() -> bool {
+pub(crate) fn warnings_shown() -> bool {
     log::max_level() >= LevelFilter::Warn
 }

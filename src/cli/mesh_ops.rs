@@ -55,7 +55,7 @@ struct Summary<'a> {
 const BIG_FACES: u64 = 1 << 20;
 
 /// `subdiv subdivide`.
-pub fn subdivide(a: &SubdivideArgs) -> Result<()> {
+pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let levels = a.sub.levels_or(1);
     let t0 = Instant::now();
     let loaded = a.from.read(&a.input, false)?;
@@ -302,7 +302,7 @@ pub struct SmoothArgs {
 }
 
 /// `subdiv smooth`.
-pub fn smooth(a: &SmoothArgs) -> Result<()> {
+pub(crate) fn smooth(a: &SmoothArgs) -> Result<()> {
     let (lambda, mu) = (a.lambda, a.mu);
     if !(lambda.is_finite() && mu.is_finite() && lambda > 0.0 && (a.laplacian || mu < -lambda)) {
         return Err(Error::Usage(format!("need lambda > 0 and mu < -lambda (got {lambda}, {mu})")));
@@ -339,7 +339,7 @@ pub struct LimitCmdArgs {
 }
 
 /// `subdiv limit`.
-pub fn limit(a: &LimitCmdArgs) -> Result<()> {
+pub(crate) fn limit(a: &LimitCmdArgs) -> Result<()> {
     if a.precision == Precision::F64 && a.scheme != subdiv::Scheme::Loop {
         return Err(Error::Usage("--precision f64 takes Loop's limit (catmull-clark's is f32 for now)".into()));
     }
@@ -380,7 +380,7 @@ pub fn limit(a: &LimitCmdArgs) -> Result<()> {
 }
 
 /// `subdiv repair` (always repairs).
-pub fn repair(a: &RepairArgs) -> Result<()> {
+pub(crate) fn repair(a: &RepairArgs) -> Result<()> {
     let from = InputArgs { repair: true, limits: a.limits.clone() };
     let loaded = bundled::read(&a.input, &from.options(false)?)?;
     let mesh = loaded.mesh;

@@ -7,14 +7,14 @@
 //! are in [`args`], the log backend in [`logging`], progress bars in
 //! [`progress`].
 
-pub mod args;
+pub(crate) mod args;
 mod draw;
 mod eval;
 mod info;
 mod inspect;
-pub mod logging;
+pub(crate) mod logging;
 mod mesh_ops;
-pub mod progress;
+pub(crate) mod progress;
 mod view;
 
 use clap::{CommandFactory, Parser, Subcommand};
@@ -77,7 +77,7 @@ enum Cmd {
 }
 
 /// Runs the command line; the process's exit code.
-pub fn main() -> ExitCode {
+pub(crate) fn main() -> ExitCode {
     // Like other Unix tools, end quietly when the reader of our output goes away
     // (`subdiv info big.obj | head`) instead of panicking on a broken pipe.
     // SAFETY: setting a signal disposition to the default before any thread starts.

@@ -13,7 +13,7 @@ fn shown() -> bool {
 
 /// A bar over `total` steps named `what` (hidden where bars are not shown).
 #[cfg(feature = "viewer")]
-pub fn bar(total: u64, what: &str) -> ProgressBar {
+pub(crate) fn bar(total: u64, what: &str) -> ProgressBar {
     if !shown() {
         return ProgressBar::hidden();
     }
@@ -25,7 +25,7 @@ pub fn bar(total: u64, what: &str) -> ProgressBar {
 
 /// A spinner for work of unknown length (one big library call), ticking by
 /// itself until finished.
-pub fn spinner(what: &str) -> ProgressBar {
+pub(crate) fn spinner(what: &str) -> ProgressBar {
     if !shown() {
         return ProgressBar::hidden();
     }

@@ -41,7 +41,7 @@ pub struct ViewArgs {
 
 /// `subdiv view`.
 #[cfg(feature = "viewer")]
-pub fn view(a: ViewArgs) -> Result<()> {
+pub(crate) fn view(a: ViewArgs) -> Result<()> {
     if a.screenshot.is_some() && a.frames.is_none() {
         return Err(Error::Usage("--screenshot needs --frames N (or press P in the window)".into()));
     }
@@ -71,19 +71,19 @@ pub fn view(a: ViewArgs) -> Result<()> {
 
 /// `subdiv` alone: the viewer with something worth seeing (see `ViewOptions::first_launch`).
 #[cfg(feature = "viewer")]
-pub fn first_launch() -> Result<()> {
+pub(crate) fn first_launch() -> Result<()> {
     subdiv::app::run(subdiv::app::ViewOptions::first_launch())
 }
 
 /// `subdiv` alone without the viewer: the same refusal as `view`.
 #[cfg(not(feature = "viewer"))]
-pub fn first_launch() -> Result<()> {
+pub(crate) fn first_launch() -> Result<()> {
     view(ViewArgs::default())
 }
 
 /// `subdiv view` without the viewer.
 #[cfg(not(feature = "viewer"))]
-pub fn view(_a: ViewArgs) -> Result<()> {
+pub(crate) fn view(_a: ViewArgs) -> Result<()> {
     Err(Error::Usage(
         "built without the 'viewer' feature: use subdivide / info, or rebuild with default features".into(),
     ))

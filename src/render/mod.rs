@@ -4,7 +4,7 @@
 //! Data in: flat position/normal arrays and the corner table's V table; the
 //! mesh core knows nothing of this module.
 
-pub mod blit;
+pub(crate) mod blit;
 pub mod camera;
 pub mod colorbar;
 pub mod export;

@@ -21,7 +21,7 @@
 //! Source: Loop 1987; Hoppe et al. 1994; OpenSubdiv `sdc/loopScheme.h`
 //! (`assignSmoothLimitMask`, `assignCreaseLimitMask`, whose comment explains
 //! why (1/6, 2/3, 1/6), not (1/5, 3/5, 1/5), matches the (1/2, 1/2) boundary
-//! edge rule and (1/8, 3/4, 1/8) boundary vertex rule used by [`super::loop_`]).
+//! edge rule and (1/8, 3/4, 1/8) boundary vertex rule used by `super::loop_`).
 //! Our boundary rule has no corners (a manifold vertex has exactly two border
 //! edges; valence-2 vertices are smooth, OpenSubdiv's `EDGE_ONLY`), so every
 //! boundary vertex uses the crease mask.

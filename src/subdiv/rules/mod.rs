@@ -16,14 +16,14 @@
 
 pub mod butterfly;
 pub mod catmark_limit;
-pub mod catmull_clark;
+pub(crate) mod catmull_clark;
 pub mod crease;
 pub mod features;
 pub mod jarek;
 pub mod limit;
-pub mod loop_;
+pub(crate) mod loop_;
 pub mod midpoint;
-pub mod modified_butterfly;
+pub(crate) mod modified_butterfly;
 
 use crate::mesh::split::Owners;
 use crate::mesh::{BORDER, CornerTable, n, p};

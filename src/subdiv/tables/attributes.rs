@@ -7,7 +7,7 @@
 //!   reproduces it), then clamped to [0, 1] since the interpolating schemes'
 //!   negative weights can overshoot.
 //! * **Texture coordinates** are refined by Catmull-Clark and Loop on their
-//!   UV charts ([`super::face_varying`]: OpenSubdiv's face-varying
+//!   UV charts (`face_varying`: OpenSubdiv's face-varying
 //!   interpolation, every mode of [`crate::Options::uv`] but `all`), per
 //!   polygon corner for the polygon schemes; linearly in each face with
 //!   `all` ([`split_poly_uvs`]) and by the other triangle schemes
@@ -124,7 +124,7 @@ pub fn split_poly_uvs(pt: &crate::mesh::poly::PolyTable, uv: &[glam::Vec2]) -> V
 /// The attributes of a polygon mesh (texture coordinates per polygon
 /// corner, colours per vertex, a material per face) after `levels` levels
 /// of the polygon scheme `scheme`: texture coordinates as `opts.uv` says
-/// (smooth on the charts, [`super::face_varying`], or bilinear in each face,
+/// (smooth on the charts, `face_varying`, or bilinear in each face,
 /// [`split_poly_uvs`]), colours with the scheme's own weights
 /// (clamped to [0, 1]), each child face keeping its parent's material.
 ///

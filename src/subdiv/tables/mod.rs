@@ -5,7 +5,7 @@
 //! colours and texture coordinates ([`attributes`]).
 
 pub mod attributes;
-pub mod face_varying;
+pub(crate) mod face_varying;
 pub mod packed;
 pub mod plan;
 pub(crate) mod poly_plan;
