@@ -52,6 +52,6 @@ pub mod app;
 pub use error::{Error, MeshError, Result};
 pub use mesh::{BORDER, CornerTable, Mesh};
 pub use subdiv::{
-    LoopBeta, Options, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_as, subdivide_poly,
-    subdivide_poly_f64, subdivide_poly_faces, subdivide_poly_faces_as,
+    LoopBeta, Options, Refiner, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_as,
+    subdivide_poly, subdivide_poly_f64, subdivide_poly_faces, subdivide_poly_faces_as,
 };

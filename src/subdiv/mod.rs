@@ -21,6 +21,7 @@ pub mod inspect;
 pub mod pick;
 mod precise;
 pub mod refine;
+mod refiner;
 pub mod rules;
 pub mod sizes;
 pub mod stencil;
@@ -40,6 +41,7 @@ use std::time::Instant;
 pub use catmull_clark::TriangleSubdivision;
 pub use loop_::LoopBeta;
 pub use precise::{PlanF64, plan_f64, subdivide_f64, subdivide_poly_f64};
+pub use refiner::Refiner;
 pub use sizes::ControlCounts;
 
 /// A subdivision scheme.

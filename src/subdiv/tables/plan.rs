@@ -305,7 +305,7 @@ impl StencilPlan {
     }
 
     /// Level `i`, packed where it could be packed (bit-identical either way).
-    fn apply_level<I: Point, O: Point>(&self, i: usize, input: &[I], out: &mut [O]) {
+    pub(crate) fn apply_level<I: Point, O: Point>(&self, i: usize, input: &[I], out: &mut [O]) {
         match &self.packed[i] {
             Some(p) => p.apply(input, out),
             None => self.levels[i].apply(input, out),

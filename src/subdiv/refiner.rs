@@ -1,0 +1,586 @@
+//! The refiner: a control mesh's topology refined once, any data served on
+//! it many times (OpenSubdiv's `Far::TopologyRefiner` with its
+//! `PrimvarRefiner` and stencil table in one object).
+//!
+//! [`Refiner::new`] records the stencils of every level once (the same rule
+//! code as [`crate::subdivide`]) and keeps the points of every level. From
+//! then on:
+//!
+//! - any per-vertex data of any width is refined through the recorded rows,
+//!   in f32 ([`Refiner::refine_f32`]) or f64 ([`Refiner::refine_f64`], the
+//!   weights recorded in f64 on first use);
+//! - moving control vertices ([`Refiner::move_vertices`]) re-evaluates only
+//!   their support: at each level the rows that read a changed point of the
+//!   level above, found through the transposed rows, then the normals of
+//!   the changed finest points and of their neighbours. The result is
+//!   bit-identical to evaluating every row again ([`Refiner::set_control`]);
+//! - a sharpness change ([`Refiner::set_edge_sharpness`]) records the
+//!   stencils again for the new tags and re-evaluates;
+//! - every change is a step of a history ([`Refiner::undo`],
+//!   [`Refiner::redo`]) that stores what changed, not the mesh.
+
+use super::tables::{LevelPlan, StencilPlan};
+use super::{Options, Scheme};
+use crate::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
+use crate::{CornerTable, Error, Mesh, Result};
+use glam::{Vec3, Vec3A};
+use rayon::prelude::*;
+use std::sync::OnceLock;
+
+/// For each point of a level, the rows of the next level that read it
+/// (the level's stencil table transposed): CSR.
+#[derive(Clone, Debug, Default)]
+struct Readers {
+    offsets: Vec<u32>,
+    rows: Vec<u32>,
+}
+
+impl Readers {
+    fn of(level: &LevelPlan) -> Readers {
+        let n_in = level.n_in;
+        let base = if level.copy_vertices { n_in } else { 0 };
+        let mut count = vec![0u32; n_in + 1];
+        if level.copy_vertices {
+            count[..n_in].iter_mut().for_each(|c| *c += 1);
+        }
+        for &j in &level.indices {
+            count[j as usize] += 1;
+        }
+        let mut offsets = Vec::with_capacity(n_in + 1);
+        let mut acc = 0u32;
+        for c in &count[..n_in] {
+            offsets.push(acc);
+            acc += c;
+        }
+        offsets.push(acc);
+        let mut fill = offsets.clone();
+        let mut rows = vec![0u32; acc as usize];
+        if level.copy_vertices {
+            for j in 0..n_in {
+                rows[fill[j] as usize] = j as u32;
+                fill[j] += 1;
+            }
+        }
+        for r in 0..level.offsets.len() - 1 {
+            let (a, b) = (level.offsets[r] as usize, level.offsets[r + 1] as usize);
+            for &j in &level.indices[a..b] {
+                rows[fill[j as usize] as usize] = (base + r) as u32;
+                fill[j as usize] += 1;
+            }
+        }
+        Readers { offsets, rows }
+    }
+
+    fn of_point(&self, j: u32) -> &[u32] {
+        let (a, b) = (self.offsets[j as usize] as usize, self.offsets[j as usize + 1] as usize);
+        &self.rows[a..b]
+    }
+}
+
+/// Which points of each level an update touched: the lists, and a stamp
+/// per point so that each is listed once.
+#[derive(Clone, Debug, Default)]
+struct Touched {
+    lists: Vec<Vec<u32>>,
+    stamps: Vec<Vec<u32>>,
+    epoch: u32,
+}
+
+impl Touched {
+    fn sized(counts: &[usize]) -> Touched {
+        Touched {
+            lists: vec![Vec::new(); counts.len()],
+            stamps: counts.iter().map(|&n| vec![0; n]).collect(),
+            epoch: 0,
+        }
+    }
+
+    /// A new update: every stamp older than it.
+    fn begin(&mut self) {
+        self.epoch = self.epoch.wrapping_add(1);
+        if self.epoch == 0 {
+            self.stamps.iter_mut().for_each(|s| s.fill(0));
+            self.epoch = 1;
+        }
+        self.lists.iter_mut().for_each(Vec::clear);
+    }
+
+    /// Lists point `i` of level `l` unless it is listed already.
+    fn mark(&mut self, l: usize, i: u32) {
+        let s = &mut self.stamps[l][i as usize];
+        if *s != self.epoch {
+            *s = self.epoch;
+            self.lists[l].push(i);
+        }
+    }
+}
+
+/// One change of a [`Refiner`]'s history.
+#[derive(Clone, Debug)]
+enum Step {
+    /// Control vertices moved: their ids, positions before and after.
+    Move { ids: Vec<u32>, before: Vec<Vec3>, after: Vec<Vec3> },
+    /// The sharpness tags before and after.
+    Tags { before: Tags, after: Tags },
+}
+
+/// Undo and redo stacks.
+#[derive(Clone, Debug, Default)]
+struct History {
+    done: Vec<Step>,
+    undone: Vec<Step>,
+}
+
+/// A control mesh refined `levels` times with one scheme: the topology of
+/// every level recorded once, the points of every level kept, any data
+/// refined on demand, edits applied where they reach. See the module's
+/// documentation.
+///
+/// ```
+/// use subdiv::{Mesh, Options, Refiner, Scheme};
+/// use glam::Vec3;
+/// let pos = vec![Vec3::new(1., 1., 1.), Vec3::new(1., -1., -1.), Vec3::new(-1., 1., -1.), Vec3::new(-1., -1., 1.)];
+/// let mesh = Mesh::from_triangles(pos, &[0, 1, 2, 0, 2, 3, 0, 3, 1, 1, 3, 2]).unwrap();
+/// let mut r = Refiner::new(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
+/// let changed = r.move_vertices(&[0], &[Vec3::new(2., 2., 2.)]).unwrap();
+/// assert!(changed > 0 && changed < r.positions().len() + 1);
+/// r.undo();
+/// assert_eq!(r.control()[0], Vec3::new(1., 1., 1.));
+/// ```
+pub struct Refiner {
+    scheme: Scheme,
+    opts: Options,
+    /// The control topology with its current tags.
+    cage: CornerTable,
+    plan: StencilPlan,
+    /// The levels with f64 weights, recorded on first use.
+    plan_f64: OnceLock<Vec<LevelPlan<f64>>>,
+    /// Points of every level: `[0]` the control points, last the finest.
+    points: Vec<Vec<Vec3>>,
+    normals: Vec<Vec3>,
+    /// The finest level's one-rings (CSR, a closed ring's first neighbour
+    /// repeated at its end); `None` where a fan does not chain.
+    rings: Option<(Vec<u32>, Vec<u32>)>,
+    readers: Vec<Readers>,
+    touched: Touched,
+    history: History,
+}
+
+impl Refiner {
+    /// Records `levels` levels of `scheme` on `mesh`'s topology (its tags
+    /// and holes included) and evaluates them at its positions.
+    ///
+    /// # Errors
+    /// [`Error::TooLarge`] when a level would not fit in memory; a polygon
+    /// scheme's refusal of the mesh.
+    pub fn new(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<Refiner> {
+        let plan = StencilPlan::build(&mesh.ct, scheme, levels, opts)?;
+        let mut r = Refiner {
+            scheme,
+            opts: *opts,
+            cage: mesh.ct.clone(),
+            plan,
+            plan_f64: OnceLock::new(),
+            points: Vec::new(),
+            normals: Vec::new(),
+            rings: None,
+            readers: Vec::new(),
+            touched: Touched::default(),
+            history: History::default(),
+        };
+        r.adopt_plan();
+        r.set_control(&mesh.positions);
+        Ok(r)
+    }
+
+    /// The tables derived from the plan: per-level buffers, readers, rings.
+    fn adopt_plan(&mut self) {
+        let mut counts = vec![self.plan.n_control()];
+        counts.extend(self.plan.levels.iter().map(LevelPlan::n_out));
+        if self.plan.levels.is_empty() {
+            counts[0] = self.plan.ct.num_vertices();
+        }
+        self.points = counts.iter().map(|&n| vec![Vec3::ZERO; n]).collect();
+        self.readers = self.plan.levels.par_iter().map(Readers::of).collect();
+        self.touched = Touched::sized(&counts);
+        self.rings = match self.plan.polygons() {
+            Some(pt) => crate::mesh::normals::ring_lists(pt),
+            None => crate::mesh::normals::ring_lists(&self.plan.ct),
+        };
+        self.plan_f64 = OnceLock::new();
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
+    }
+
+    /// Levels refined.
+    pub fn levels(&self) -> u32 {
+        self.plan.levels.len() as u32
+    }
+
+    /// The options the levels were recorded with.
+    pub fn options(&self) -> &Options {
+        &self.opts
+    }
+
+    /// The control mesh as it now is (moved points, current tags).
+    pub fn cage(&self) -> Mesh {
+        Mesh { ct: self.cage.clone(), positions: self.control().to_vec() }
+    }
+
+    /// The control points.
+    pub fn control(&self) -> &[Vec3] {
+        &self.points[0]
+    }
+
+    /// The finest level's points.
+    pub fn positions(&self) -> &[Vec3] {
+        self.points.last().map_or(&[], Vec::as_slice)
+    }
+
+    /// The points of level `level` (0: the control points), if refined.
+    pub fn level_positions(&self, level: u32) -> Option<&[Vec3]> {
+        self.points.get(level as usize).map(Vec::as_slice)
+    }
+
+    /// The finest level's unit vertex normals (area-weighted over its
+    /// faces; for a polygon scheme, over the polygons' rings of edge
+    /// neighbours).
+    pub fn normals(&self) -> &[Vec3] {
+        &self.normals
+    }
+
+    /// The finest level's triangles (a polygon scheme's quads as two
+    /// triangles each, see [`Refiner::polygons`]).
+    pub fn topology(&self) -> &CornerTable {
+        &self.plan.ct
+    }
+
+    /// A polygon scheme's finest polygons.
+    pub fn polygons(&self) -> Option<&crate::mesh::poly::PolyTable> {
+        self.plan.polygons()
+    }
+
+    /// The finest level as a mesh.
+    pub fn mesh(&self) -> Mesh {
+        Mesh { ct: self.plan.ct.clone(), positions: self.positions().to_vec() }
+    }
+
+    /// The stencil plan the levels were recorded in (for the GPU or an
+    /// animation).
+    pub fn plan(&self) -> &StencilPlan {
+        &self.plan
+    }
+
+    /// New control positions, every level evaluated again (into the
+    /// buffers already held) and every normal.
+    ///
+    /// # Panics
+    /// If `control` has not one point per control vertex (a caller bug).
+    pub fn set_control(&mut self, control: &[Vec3]) {
+        assert_eq!(control.len(), self.points[0].len(), "one position per control vertex");
+        self.points[0].copy_from_slice(control);
+        for l in 0..self.plan.levels.len() {
+            let (done, rest) = self.points.split_at_mut(l + 1);
+            self.plan.apply_level(l, &done[l], &mut rest[0]);
+        }
+        self.normals = vec![Vec3::Z; self.positions().len()];
+        let all: Vec<u32> = (0..self.positions().len() as u32).collect();
+        self.update_normals(&all);
+    }
+
+    /// The finest points that control vertex `v` influences (its support),
+    /// in increasing order; empty for an id out of range.
+    pub fn support(&mut self, v: u32) -> Vec<u32> {
+        if v as usize >= self.points[0].len() {
+            return Vec::new();
+        }
+        self.touch(&[v]);
+        let mut rows = self.touched.lists.last().cloned().unwrap_or_default();
+        rows.sort_unstable();
+        rows
+    }
+
+    /// Marks the control points `ids` and, level by level, the rows that
+    /// read a marked point.
+    fn touch(&mut self, ids: &[u32]) {
+        let t = &mut self.touched;
+        t.begin();
+        for &v in ids {
+            t.mark(0, v);
+        }
+        for (l, readers) in self.readers.iter().enumerate() {
+            let list = std::mem::take(&mut t.lists[l]);
+            for &j in &list {
+                for &r in readers.of_point(j) {
+                    t.mark(l + 1, r);
+                }
+            }
+            t.lists[l] = list;
+        }
+    }
+
+    /// Moves control vertices `ids` to `to` and re-evaluates what they
+    /// reach: the rows of each level that read a changed point, and the
+    /// normals around the changed finest points. One step of the history.
+    /// Returns how many finest points changed.
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when the lists differ in length or an id is out of
+    /// range (nothing is changed then).
+    pub fn move_vertices(&mut self, ids: &[u32], to: &[Vec3]) -> Result<usize> {
+        let n = self.points[0].len();
+        if ids.len() != to.len() {
+            return Err(Error::Usage(format!("{} vertex ids but {} positions", ids.len(), to.len())));
+        }
+        if let Some(bad) = ids.iter().find(|&&v| v as usize >= n) {
+            return Err(Error::Usage(format!("vertex {bad} is not a control vertex (the cage has {n})")));
+        }
+        let before = ids.iter().map(|&v| self.points[0][v as usize]).collect();
+        self.history.done.push(Step::Move { ids: ids.to_vec(), before, after: to.to_vec() });
+        self.history.undone.clear();
+        Ok(self.place(ids, to))
+    }
+
+    /// Sets control points and re-evaluates their support (no history).
+    fn place(&mut self, ids: &[u32], to: &[Vec3]) -> usize {
+        for (&v, &p) in ids.iter().zip(to) {
+            self.points[0][v as usize] = p;
+        }
+        self.touch(ids);
+        for l in 0..self.plan.levels.len() {
+            let (done, rest) = self.points.split_at_mut(l + 1);
+            let (input, out) = (&done[l], &mut rest[0]);
+            let level = &self.plan.levels[l];
+            let rows = &self.touched.lists[l + 1];
+            if rows.len() > 4096 {
+                let values: Vec<Vec3> = rows.par_iter().map(|&r| row_value(level, r, input)).collect();
+                rows.iter().zip(values).for_each(|(&r, p)| out[r as usize] = p);
+            } else {
+                rows.iter().for_each(|&r| out[r as usize] = row_value(level, r, input));
+            }
+        }
+        let changed = std::mem::take(&mut self.touched.lists[self.plan.levels.len()]);
+        self.update_normals_around(&changed);
+        let count = changed.len();
+        self.touched.lists[self.plan.levels.len()] = changed;
+        count
+    }
+
+    /// The normals of the changed finest points and their neighbours.
+    fn update_normals_around(&mut self, changed: &[u32]) {
+        let Some((offsets, ids)) = &self.rings else {
+            return self.update_normals(&[]);
+        };
+        let mut around = Vec::with_capacity(changed.len() * 7);
+        let last = self.points.len() - 1;
+        let t = &mut self.touched;
+        t.begin();
+        for &v in changed {
+            t.mark(last, v);
+            let (a, b) = (offsets[v as usize] as usize, offsets[v as usize + 1] as usize);
+            for &w in &ids[a..b] {
+                t.mark(last, w);
+            }
+        }
+        around.extend_from_slice(&t.lists[last]);
+        self.update_normals(&around);
+    }
+
+    /// The normals of the finest points `which` (all of them, without
+    /// rings: the fan-averaged normals of the whole level).
+    fn update_normals(&mut self, which: &[u32]) {
+        let pos = self.points.last().map_or(&[][..], Vec::as_slice);
+        let Some((offsets, ids)) = &self.rings else {
+            self.normals = match self.plan.polygons() {
+                Some(pt) => crate::mesh::normals::vertex_normals(&pt.triangulated(), pos),
+                None => crate::mesh::normals::vertex_normals(&self.plan.ct, pos),
+            };
+            return;
+        };
+        let normal = |v: u32| ring_normal(pos, v, &ids[offsets[v as usize] as usize..offsets[v as usize + 1] as usize]);
+        if which.len() > 4096 {
+            let values: Vec<Vec3> = which.par_iter().map(|&v| normal(v)).collect();
+            which.iter().zip(values).for_each(|(&v, n)| self.normals[v as usize] = n);
+        } else {
+            which.iter().for_each(|&v| self.normals[v as usize] = normal(v));
+        }
+    }
+
+    /// The control mesh's tags now.
+    pub fn tags(&self) -> Tags {
+        self.cage.sharpness().map(|s| s.to_tags(&self.cage)).unwrap_or_default()
+    }
+
+    /// Sets the sharpness of the control edge `a`-`b` (0 smooth, 10 and
+    /// above infinitely sharp), records the stencils again and
+    /// re-evaluates. One step of the history.
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when `a`-`b` is not an edge of the cage.
+    pub fn set_edge_sharpness(&mut self, a: u32, b: u32, sharpness: f32) -> Result<()> {
+        if self.cage.corner_opposite(a, b).is_none() && self.cage.corner_opposite(b, a).is_none() {
+            return Err(Error::Usage(format!("{a}-{b} is not an edge of the control mesh")));
+        }
+        let mut tags = self.tags();
+        tags.creases.retain(|t| (t.v0.min(t.v1), t.v0.max(t.v1)) != (a.min(b), a.max(b)));
+        let s = if sharpness.is_finite() { sharpness.clamp(0.0, INFINITE) } else { 0.0 };
+        if s > 0.0 {
+            tags.creases.push(CreaseTag { v0: a, v1: b, sharpness: s });
+        }
+        self.retag(tags)
+    }
+
+    /// Sets the sharpness of control vertex `v` (a corner; 0 smooth).
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when `v` is not a control vertex.
+    pub fn set_vertex_sharpness(&mut self, v: u32, sharpness: f32) -> Result<()> {
+        if v as usize >= self.points[0].len() {
+            return Err(Error::Usage(format!("vertex {v} is not a control vertex")));
+        }
+        let mut tags = self.tags();
+        tags.corners.retain(|t| t.vertex != v);
+        let s = if sharpness.is_finite() { sharpness.clamp(0.0, INFINITE) } else { 0.0 };
+        if s > 0.0 {
+            tags.corners.push(CornerTag { vertex: v, sharpness: s });
+        }
+        self.retag(tags)
+    }
+
+    fn retag(&mut self, after: Tags) -> Result<()> {
+        let before = self.tags();
+        self.apply_tags(&after)?;
+        self.history.done.push(Step::Tags { before, after });
+        self.history.undone.clear();
+        Ok(())
+    }
+
+    /// The cage with `tags`, its stencils recorded again, every level
+    /// re-evaluated.
+    fn apply_tags(&mut self, tags: &Tags) -> Result<()> {
+        let cage = self.cage.clone().with_tags(tags).map_err(Error::Invalid)?;
+        let levels = self.levels();
+        self.plan = StencilPlan::build(&cage, self.scheme, levels, &self.opts)?;
+        self.cage = cage;
+        let control = std::mem::take(&mut self.points[0]);
+        self.adopt_plan();
+        self.set_control(&control);
+        Ok(())
+    }
+
+    /// Undoes the last step; whether there was one.
+    pub fn undo(&mut self) -> bool {
+        let Some(step) = self.history.done.pop() else { return false };
+        self.redo_or_undo(&step, true);
+        self.history.undone.push(step);
+        true
+    }
+
+    /// Redoes the last undone step; whether there was one.
+    pub fn redo(&mut self) -> bool {
+        let Some(step) = self.history.undone.pop() else { return false };
+        self.redo_or_undo(&step, false);
+        self.history.done.push(step);
+        true
+    }
+
+    fn redo_or_undo(&mut self, step: &Step, undo: bool) {
+        match step {
+            Step::Move { ids, before, after } => {
+                self.place(ids, if undo { before } else { after });
+            }
+            Step::Tags { before, after } => {
+                // the tags were valid when the step was made on this cage
+                if let Err(e) = self.apply_tags(if undo { before } else { after }) {
+                    log::warn!("undo of a sharpness change: {e}");
+                }
+            }
+        }
+    }
+
+    /// Steps that can be undone and redone.
+    pub fn history_len(&self) -> (usize, usize) {
+        (self.history.done.len(), self.history.undone.len())
+    }
+
+    /// Per-vertex data of `channels` values a control vertex (row-major)
+    /// refined to the finest level with the f32 weights.
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when `data` is not `channels` values per control
+    /// vertex.
+    pub fn refine_f32(&self, data: &[f32], channels: usize) -> Result<Vec<f32>> {
+        self.check_width(data.len(), channels)?;
+        Ok(self.plan.levels.iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
+    }
+
+    /// Per-vertex data refined with the weights recorded in f64 (computed
+    /// and returned in f64: positions far from the origin keep their
+    /// digits).
+    ///
+    /// # Errors
+    /// As [`Refiner::refine_f32`]; [`Error::TooLarge`] from recording.
+    pub fn refine_f64(&self, data: &[f64], channels: usize) -> Result<Vec<f64>> {
+        self.check_width(data.len(), channels)?;
+        let levels = match self.plan_f64.get() {
+            Some(l) => l,
+            None => {
+                let (levels, _, _) = StencilPlan::record::<f64>(&self.cage, self.scheme, self.levels(), &self.opts)?;
+                self.plan_f64.get_or_init(|| levels)
+            }
+        };
+        Ok(levels.iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
+    }
+
+    fn check_width(&self, len: usize, channels: usize) -> Result<()> {
+        let n = self.points[0].len();
+        if channels == 0 || len != n * channels {
+            return Err(Error::Usage(format!(
+                "{len} values are not {channels} per control vertex (the cage has {n} vertices)"
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Row `r` of `level` evaluated on `input`, summed in the order and width
+/// of [`LevelPlan::apply`] (so bit-identical to it).
+fn row_value(level: &LevelPlan, r: u32, input: &[Vec3]) -> Vec3 {
+    let Some((idx, w)) = level.row(r as usize) else {
+        return input[r as usize];
+    };
+    let mut sum = Vec3A::ZERO;
+    for (&j, &w) in idx.iter().zip(w) {
+        sum += Vec3A::from(input[j as usize]) * w;
+    }
+    Vec3::from(sum)
+}
+
+/// The area-weighted unit normal of `v` from its ring (`Vec3::Z` where the
+/// ring has no area).
+fn ring_normal(pos: &[Vec3], v: u32, ring: &[u32]) -> Vec3 {
+    let p = pos[v as usize];
+    let n: Vec3 = ring.windows(2).map(|w| (pos[w[0] as usize] - p).cross(pos[w[1] as usize] - p)).sum();
+    n.try_normalize().unwrap_or(Vec3::Z)
+}
+
+/// One level's rows applied to `data` of `channels` values a point.
+fn refine_rows<W: crate::subdiv::rules::Weight, T>(level: &LevelPlan<W>, data: &[T], channels: usize) -> Vec<T>
+where
+    T: Copy + Send + Sync + Default + std::ops::AddAssign + std::ops::Mul<Output = T> + From<W>,
+{
+    let mut out = vec![T::default(); level.n_out() * channels];
+    out.par_chunks_mut(channels).enumerate().with_min_len(1024).for_each(|(i, o)| match level.row(i) {
+        Some((idx, w)) => {
+            for (&j, &w) in idx.iter().zip(w) {
+                let src = &data[j as usize * channels..(j as usize + 1) * channels];
+                o.iter_mut().zip(src).for_each(|(o, &s)| *o += s * T::from(w));
+            }
+        }
+        None => o.copy_from_slice(&data[i * channels..(i + 1) * channels]),
+    });
+    out
+}

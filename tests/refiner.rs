@@ -1,0 +1,165 @@
+//! The refiner: local updates equal full evaluation bit for bit, the
+//! support is exactly what changes, undo and redo give back the same bits,
+//! data of any width and precision refine as positions do, and sharpness
+//! edits equal a fresh subdivision of the re-tagged mesh.
+
+mod common;
+
+use common::{Rng, bundled, icosphere};
+use glam::{DVec3, Vec3};
+use subdiv::mesh::Tags;
+use subdiv::mesh::sharpness::CreaseTag;
+use subdiv::{Mesh, Options, Refiner, Scheme, subdivide, subdivide_f64};
+
+/// A refiner whose control points were all set anew: every row evaluated.
+fn evaluated_afresh(r: &Refiner) -> (Vec<Vec3>, Vec<Vec3>) {
+    let mut fresh = Refiner::new(&r.cage(), r.scheme(), r.levels(), r.options()).unwrap();
+    fresh.set_control(r.control());
+    (fresh.positions().to_vec(), fresh.normals().to_vec())
+}
+
+fn cases() -> Vec<(&'static str, Mesh, Scheme, u32)> {
+    let cube = bundled("cube.obj");
+    let lprism = bundled("lprism.obj");
+    vec![
+        ("icosphere loop", icosphere(1), Scheme::Loop, 3),
+        ("icosphere butterfly", icosphere(1), Scheme::ModifiedButterfly, 2),
+        ("torus jarek", bundled("torus.obj"), Scheme::Jarek, 2),
+        ("cube catmull-clark", cube.clone(), Scheme::CatmullClark, 3),
+        ("lprism catmull-clark", lprism, Scheme::CatmullClark, 2),
+        ("cube bilinear", cube, Scheme::Bilinear, 2),
+    ]
+}
+
+#[test]
+fn moving_vertices_updates_exactly_what_a_full_evaluation_gives() {
+    let mut rng = Rng(7);
+    for (name, mesh, scheme, levels) in cases() {
+        let mut r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
+        let n = mesh.positions.len() as u32;
+        for k in 0..5 {
+            let ids: Vec<u32> = (0..1 + k).map(|_| (rng.next_u64() % n as u64) as u32).collect();
+            let to: Vec<Vec3> = ids.iter().map(|&v| r.control()[v as usize] + rng.vec3() * 0.3).collect();
+            let changed = r.move_vertices(&ids, &to).unwrap();
+            assert!(changed > 0, "{name}: a move changes the surface");
+            let (pos, normals) = evaluated_afresh(&r);
+            assert_eq!(r.positions(), &pos[..], "{name}: step {k} positions");
+            assert_eq!(r.normals(), &normals[..], "{name}: step {k} normals");
+        }
+    }
+}
+
+#[test]
+fn the_support_is_exactly_where_the_surface_changes() {
+    for (name, mesh, scheme, levels) in cases() {
+        let mut r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
+        let before = r.positions().to_vec();
+        let v = 3;
+        let support = r.support(v);
+        assert!(!support.is_empty() && support.len() < before.len(), "{name}: a local support");
+        let to = r.control()[v as usize] + Vec3::new(0.37, -0.21, 0.53);
+        r.move_vertices(&[v], &[to]).unwrap();
+        let moved: Vec<u32> =
+            (0..before.len() as u32).filter(|&i| r.positions()[i as usize] != before[i as usize]).collect();
+        // every moved point is in the support; the support's points with a
+        // non-zero weight moved (a zero weight, as a crease's, may not)
+        assert!(moved.iter().all(|i| support.binary_search(i).is_ok()), "{name}: a point outside the support moved");
+        assert!(moved.len() * 2 > support.len(), "{name}: {} of {} support points moved", moved.len(), support.len());
+    }
+}
+
+#[test]
+fn undo_and_redo_give_back_the_same_bits() {
+    for (name, mesh, scheme, levels) in cases() {
+        let mut r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
+        let first = (r.positions().to_vec(), r.normals().to_vec());
+        r.move_vertices(&[0, 1], &[Vec3::splat(0.5), Vec3::splat(-0.25)]).unwrap();
+        let moved = r.positions().to_vec();
+        r.move_vertices(&[0], &[Vec3::new(2.0, 0.0, 0.0)]).unwrap();
+        assert_eq!(r.history_len(), (2, 0));
+        assert!(r.undo() && r.undo() && !r.undo(), "{name}");
+        assert_eq!((r.positions().to_vec(), r.normals().to_vec()), first, "{name}: undone");
+        assert!(r.redo(), "{name}");
+        assert_eq!(r.positions(), &moved[..], "{name}: redone");
+        r.move_vertices(&[2], &[Vec3::ZERO]).unwrap();
+        assert!(!r.redo(), "{name}: a new step clears what was undone");
+    }
+}
+
+#[test]
+fn data_of_any_width_refines_as_the_positions_do() {
+    for (name, mesh, scheme, levels) in cases() {
+        let r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
+        let flat: Vec<f32> = mesh.positions.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
+        let refined = r.refine_f32(&flat, 3).unwrap();
+        let as_points: Vec<Vec3> = refined.chunks(3).map(Vec3::from_slice).collect();
+        let diff = as_points.iter().zip(r.positions()).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+        assert!(diff < 1e-5, "{name}: positions as data differ by {diff}");
+        // one channel: the x coordinate alone; five: x, y, z, 1, 2
+        let x: Vec<f32> = mesh.positions.iter().map(|p| p.x).collect();
+        let rx = r.refine_f32(&x, 1).unwrap();
+        assert!(rx.iter().zip(&as_points).all(|(a, p)| (a - p.x).abs() < 1e-6), "{name}: one channel");
+        let five: Vec<f32> = mesh.positions.iter().flat_map(|p| [p.x, p.y, p.z, 1.0, 2.0]).collect();
+        let r5 = r.refine_f32(&five, 5).unwrap();
+        assert!(r5.chunks(5).all(|c| (c[3] - 1.0).abs() < 1e-5 && (c[4] - 2.0).abs() < 1e-5), "{name}: constants kept");
+        assert!(r.refine_f32(&x, 2).is_err(), "{name}: a wrong width is refused");
+    }
+}
+
+#[test]
+fn double_data_equals_the_double_subdivision() {
+    let mesh = icosphere(1);
+    let far: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3() + DVec3::splat(1e6)).collect();
+    let r = Refiner::new(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
+    let flat: Vec<f64> = far.iter().flat_map(|p| p.to_array()).collect();
+    let refined = r.refine_f64(&flat, 3).unwrap();
+    let (_, exact) = subdivide_f64(&mesh, &far, Scheme::Loop, 2, &Options::default()).unwrap();
+    let diff =
+        refined.chunks(3).zip(&exact).map(|(a, b)| (DVec3::from_slice(a) - *b).abs().max_element()).fold(0.0, f64::max);
+    assert!(diff < 1e-9, "a million units out the f64 data keeps its digits ({diff})");
+}
+
+#[test]
+fn a_sharpness_edit_equals_subdividing_the_retagged_mesh() {
+    for (scheme, mesh) in [(Scheme::Loop, icosphere(1)), (Scheme::CatmullClark, bundled("cube.obj"))] {
+        let mut r = Refiner::new(&mesh, scheme, 2, &Options::default()).unwrap();
+        let plain = r.positions().to_vec();
+        let (a, b) = (mesh.ct.v_table()[1], mesh.ct.v_table()[2]);
+        r.set_edge_sharpness(a, b, 2.5).unwrap();
+        let tags = Tags { creases: vec![CreaseTag { v0: a, v1: b, sharpness: 2.5 }], corners: vec![] };
+        let tagged = Mesh { ct: mesh.ct.clone().with_tags(&tags).unwrap(), positions: mesh.positions.clone() };
+        let expected = match scheme {
+            Scheme::CatmullClark => Refiner::new(&tagged, scheme, 2, &Options::default()).unwrap().positions().to_vec(),
+            _ => subdivide(&tagged, scheme, 2, &Options::default()).unwrap().0.positions,
+        };
+        let diff = r.positions().iter().zip(&expected).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+        assert!(diff < 1e-5, "{scheme:?}: {diff}");
+        assert_ne!(r.positions(), &plain[..], "{scheme:?}: the crease changed the surface");
+        assert_eq!(r.tags().creases.len(), 1);
+        r.undo();
+        assert_eq!(r.positions(), &plain[..], "{scheme:?}: undone");
+        assert!(r.set_edge_sharpness(0, 0, 1.0).is_err(), "not an edge");
+    }
+}
+
+#[test]
+fn the_loop_refiner_equals_subdivide() {
+    let mesh = icosphere(2);
+    let r = Refiner::new(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
+    let (fine, _) = subdivide(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
+    assert_eq!(r.topology().v_table(), fine.ct.v_table());
+    let diff =
+        r.positions().iter().zip(&fine.positions).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+    assert!(diff < 1e-6, "{diff}");
+}
+
+#[test]
+fn bad_moves_are_refused_and_change_nothing() {
+    let mut r = Refiner::new(&icosphere(1), Scheme::Loop, 1, &Options::default()).unwrap();
+    let before = r.positions().to_vec();
+    assert!(r.move_vertices(&[1000], &[Vec3::ZERO]).is_err());
+    assert!(r.move_vertices(&[0, 1], &[Vec3::ZERO]).is_err());
+    assert_eq!(r.positions(), &before[..]);
+    assert_eq!(r.history_len(), (0, 0));
+    assert!(r.support(1000).is_empty());
+}
