@@ -139,6 +139,10 @@ pub(crate) enum Command {
     Gpu(Box<GpuReport>),
     /// The Inspect mode: on or off, its sub-mode, a pick, a step.
     Inspect(super::inspect::Action),
+    /// Editing the cage: selection, grab, sharpness, undo, saving.
+    Edit(super::edit::EditAction),
+    /// The answer to closing or opening with unsaved changes.
+    Answer(super::edit::Answer),
 }
 
 /// What the GPU mirror's sync found that the document should know: the
@@ -169,6 +173,7 @@ impl Viewer {
         let (doc, view) = (&mut self.doc, &mut self.view);
         match command {
             Command::OpenBuiltin => doc.open_builtin(),
+            Command::Open(path) if doc.edit.history.dirty() => doc.edit.pending = Some(super::edit::Pending::Open(path)),
             Command::Open(path) => doc.open(path),
             Command::RepairAndOpen(path) => doc.repair_and_open(path),
             Command::SetRepairOnOpen(on) => doc.repair_on_open = on,
@@ -233,6 +238,8 @@ impl Viewer {
             Command::DismissNotice => doc.status.notice = None,
             Command::Finished(finished) => self.finished(*finished),
             Command::Inspect(action) => doc.inspect(action),
+            Command::Edit(action) => doc.edit(action),
+            Command::Answer(answer) => self.answer(answer),
             camera => self.apply_camera(camera),
         }
         if self.doc.model.control.version() != control && self.doc.model.original.is_none() {
@@ -252,6 +259,18 @@ impl Viewer {
             Command::Screenshot => view.screenshot = true,
             Command::SetShot(shot) => view.shot = shot,
             _ => unreachable!("Viewer::apply handles every other command"),
+        }
+    }
+
+    /// Goes on with what waited for the answer about unsaved changes.
+    fn answer(&mut self, answer: super::edit::Answer) {
+        let Some(pending) = self.doc.edit.pending.take() else { return };
+        if !self.doc.answer(answer) {
+            return;
+        }
+        match pending {
+            super::edit::Pending::Close => self.view.quit = true,
+            super::edit::Pending::Open(path) => self.doc.open(path),
         }
     }
 

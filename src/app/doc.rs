@@ -107,6 +107,8 @@ pub(crate) struct Doc {
     /// The shape options the command line gave, which a file's option
     /// tags do not replace (see [`Doc::adopt_file_options`]).
     pub(crate) pinned: ShapeOptions,
+    /// Editing the cage: selection, grab, history, saving, recovery.
+    pub(crate) edit: super::edit::Edit,
 }
 
 /// The triangles of the polygon triangle `t` belongs to: `t` and those
@@ -160,6 +162,7 @@ impl Doc {
             repair_on_open: false,
             inspect: Default::default(),
             pinned: ShapeOptions::default(),
+            edit: Default::default(),
         }
     }
 
@@ -259,6 +262,7 @@ impl Doc {
             None => self.anim.generate_paths(&mesh),
         }
         m.path = Some(path);
+        self.edit.reset();
         self.anim.playback = None;
         self.reshade();
         // Keep the level when it fits; otherwise the largest that does.
@@ -277,6 +281,7 @@ impl Doc {
         self.model.path = None;
         self.model.name = BUILTIN_NAME.into();
         self.anim.paths_source = BUILTIN_PATHS.into();
+        self.look_for_recovery();
     }
 
     /// Requests the subdivision of [`Doc::request`] (superseding any running one).
@@ -351,13 +356,23 @@ impl Doc {
 impl Doc {
     /// Replaces the control mesh by an edited version (smoothing, edge
     /// operations), keeping the original for [`Doc::revert`], and
+    /// re-subdivides; one step of the history, called `what`.
+    pub(crate) fn replace_control(&mut self, what: &str, mesh: Mesh) {
+        let before = self.model.control.mesh.clone();
+        let after = Arc::new(mesh);
+        self.install_control(after.clone());
+        self.record(what, before, after);
+        self.after_change();
+    }
+
+    /// Makes `mesh` the control mesh (an edit, or its undoing) and
     /// re-subdivides.
-    pub(crate) fn replace_control(&mut self, mesh: Mesh) {
+    pub(crate) fn install_control(&mut self, mesh: Arc<Mesh>) {
         let m = &mut self.model;
         if m.original.is_none() {
             m.original = Some(m.control.mesh.clone());
         }
-        let mesh = Arc::new(mesh);
+        self.edit.topology += 1;
         // Edits that change the counts (edge splits) leave the file's attributes behind.
         let file = &mut m.attrs.file;
         if file.colors.as_ref().is_some_and(|c| c.len() != mesh.positions.len()) {
@@ -388,13 +403,13 @@ impl Doc {
         let control = &self.model.control.mesh;
         let positions = taubin(control, steps, TAUBIN_LAMBDA, TAUBIN_MU);
         let ct = control.ct.clone();
-        self.replace_control(Mesh { ct, positions });
+        self.replace_control(&format!("smooth {steps} steps"), Mesh { ct, positions });
     }
 
     /// Back to the control mesh as loaded.
     pub(crate) fn revert(&mut self) {
         if let Some(m) = self.model.original.take() {
-            self.replace_control(Arc::unwrap_or_clone(m));
+            self.replace_control("revert to the file", Arc::unwrap_or_clone(m));
             self.model.original = None;
         }
     }
@@ -411,7 +426,7 @@ impl Doc {
             Err(e) => return self.fail(Problem::Other(crate::Error::Invalid(e))),
         };
         let picked = *self.model.picked;
-        self.replace_control(Mesh { ct, positions: control.positions.clone() });
+        self.replace_control("sharpness", Mesh { ct, positions: control.positions.clone() });
         self.model.picked.set(picked);
     }
 
@@ -464,7 +479,7 @@ impl Doc {
         let Some(c) = *self.model.picked else { return };
         let mut m = (*self.model.control.mesh).clone();
         match crate::mesh::edit::flip_edge(&mut m.ct, c) {
-            Ok(()) => self.replace_control(m),
+            Ok(()) => self.replace_control("flip edge", m),
             Err(e) => self.fail(Problem::Flip(e)),
         }
     }
@@ -490,7 +505,8 @@ impl Doc {
         }
         let mesh = &self.model.control.mesh;
         let picked = *self.model.picked;
-        self.replace_control(Mesh { ct: mesh.ct.clone().with_holes(holes), positions: mesh.positions.clone() });
+        let after = Mesh { ct: mesh.ct.clone().with_holes(holes), positions: mesh.positions.clone() };
+        self.replace_control("hole", after);
         self.model.picked.set(picked);
     }
 
@@ -502,7 +518,7 @@ impl Doc {
         }
         let mut m = (*self.model.control.mesh).clone();
         crate::mesh::edit::split_edge(&mut m, c, 0.5);
-        self.replace_control(m);
+        self.replace_control("split edge", m);
     }
 }
 
@@ -542,6 +558,7 @@ impl Doc {
                 self.adopt_file_options(o.attrs.options);
                 self.model.attrs.file = o.attrs;
                 self.adopt(o.path, o.mesh, o.paths);
+                self.look_for_recovery();
             }
             Err(e) => {
                 // Only a mesh-validity problem can be repaired; parse errors cannot.

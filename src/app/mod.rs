@@ -30,6 +30,7 @@ pub(crate) mod animation;
 pub(crate) mod command;
 pub mod display;
 pub(crate) mod doc;
+pub(crate) mod edit;
 mod gpu_scene;
 pub(crate) mod inspect;
 pub(crate) mod jobs;

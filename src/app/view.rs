@@ -43,6 +43,8 @@ pub(crate) struct View {
     pub(crate) hovering_file: bool,
     /// Frame times and counters.
     pub(crate) stats: FrameStats,
+    /// The window is to close (after the unsaved changes were answered).
+    pub(crate) quit: bool,
 }
 
 impl Default for View {
@@ -57,6 +59,7 @@ impl Default for View {
             shot: crate::render::Shot::default(),
             hovering_file: false,
             stats: FrameStats::default(),
+            quit: false,
         }
     }
 }

@@ -322,6 +322,27 @@ impl Refiner {
         }
     }
 
+    /// [`Refiner::move_vertices`] without a step of the history (a drag's
+    /// intermediate positions; the caller keeps its own history).
+    ///
+    /// # Errors
+    /// As [`Refiner::move_vertices`].
+    pub fn set_vertices(&mut self, ids: &[u32], to: &[Vec3]) -> Result<usize> {
+        self.check_move(ids, to)?;
+        Ok(self.place(ids, to))
+    }
+
+    fn check_move(&self, ids: &[u32], to: &[Vec3]) -> Result<()> {
+        let n = self.points[0].len();
+        if ids.len() != to.len() {
+            return Err(Error::Usage(format!("{} vertex ids but {} positions", ids.len(), to.len())));
+        }
+        if let Some(bad) = ids.iter().find(|&&v| v as usize >= n) {
+            return Err(Error::Usage(format!("vertex {bad} is not a control vertex (the cage has {n})")));
+        }
+        Ok(())
+    }
+
     /// Moves control vertices `ids` to `to` and re-evaluates what they
     /// reach: the rows of each level that read a changed point, and the
     /// normals around the changed finest points. One step of the history.
@@ -331,13 +352,7 @@ impl Refiner {
     /// [`Error::Usage`] when the lists differ in length or an id is out of
     /// range (nothing is changed then).
     pub fn move_vertices(&mut self, ids: &[u32], to: &[Vec3]) -> Result<usize> {
-        let n = self.points[0].len();
-        if ids.len() != to.len() {
-            return Err(Error::Usage(format!("{} vertex ids but {} positions", ids.len(), to.len())));
-        }
-        if let Some(bad) = ids.iter().find(|&&v| v as usize >= n) {
-            return Err(Error::Usage(format!("vertex {bad} is not a control vertex (the cage has {n})")));
-        }
+        self.check_move(ids, to)?;
         let before = ids.iter().map(|&v| self.points[0][v as usize]).collect();
         self.history.done.push(Step::Move { ids: ids.to_vec(), before, after: to.to_vec() });
         self.history.undone.clear();
