@@ -86,6 +86,8 @@ pub(crate) enum EditAction {
     /// Save the control mesh to its file (asks for a path when it has
     /// none, or its format cannot hold what the mesh has).
     Save,
+    /// Ask for a path to save to (Save As).
+    AskPath,
     /// Save to this path and make it the model's file.
     SaveAs(PathBuf),
     /// Recover the edits found in the recovery file.
@@ -359,6 +361,7 @@ impl Doc {
             EditAction::Undo => self.undo(),
             EditAction::Redo => self.redo(),
             EditAction::Save => self.save(),
+            EditAction::AskPath => self.edit.ask_path = true,
             EditAction::SaveAs(path) => self.save_as(path),
             EditAction::Recover => self.recover(),
             EditAction::DiscardRecovery => {

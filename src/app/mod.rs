@@ -384,6 +384,10 @@ impl App {
                 Err(e) => viewer.doc.fail(e.into()),
             }
         }
+        win.show_title(&viewer.doc);
+        if viewer.view.quit {
+            event_loop.exit();
+        }
         self.end_of_frame(event_loop, finishing);
     }
 
@@ -435,6 +439,10 @@ impl ApplicationHandler for App {
         }
         let view = &mut self.viewer.view;
         match event {
+            WindowEvent::CloseRequested if self.viewer.doc.edit.history.dirty() => {
+                self.viewer.doc.edit.pending = Some(edit::Pending::Close);
+                win.window.request_redraw();
+            }
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => {
                 win.resize(size.width, size.height);

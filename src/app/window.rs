@@ -109,6 +109,15 @@ pub(crate) struct Win {
     gpu_error: Arc<Mutex<Option<String>>>,
     /// When egui wants the next frame.
     pub(crate) repaint_after: Option<Duration>,
+    /// The title shown.
+    title: String,
+}
+
+/// The window's title: the model, `*` before it while it has unsaved
+/// changes.
+pub(crate) fn title(doc: &super::doc::Doc) -> String {
+    let star = if doc.edit.history.dirty() { "*" } else { "" };
+    format!("{star}{} — subdiv", doc.model.name)
 }
 
 /// The window's first size in points: 1280 x 800, or within 90% of the
@@ -213,6 +222,7 @@ impl Win {
             samples,
             gpu_error,
             repaint_after: None,
+            title: String::new(),
         })
     }
 
@@ -243,6 +253,15 @@ impl Win {
             report.errors.push(Error::Gpu(e));
         }
         viewer.apply(Command::Gpu(Box::new(report)));
+    }
+
+    /// Shows the document's title when it changed.
+    pub(crate) fn show_title(&mut self, doc: &super::doc::Doc) {
+        let t = title(doc);
+        if t != self.title {
+            self.window.set_title(&t);
+            self.title = t;
+        }
     }
 
     /// Whether the window has an area to draw into.

@@ -4,7 +4,9 @@
 //! corner instead of their usual toggles.
 
 use crate::app::command::Command;
+use super::PanelState;
 use crate::app::display::Display;
+use crate::app::doc::Doc;
 use crate::app::inspect::{Action, Inspect, Mode};
 use crate::app::probe::ray_at;
 use crate::app::view::{View, cursor_ndc, viewport_aspect};
@@ -18,11 +20,16 @@ use glam::Vec2;
 pub(crate) fn scene_input(
     ui: &mut egui::Ui,
     rect: egui::Rect,
-    (view, inspect): (&View, &Inspect),
+    (doc, view): (&Doc, &View),
     display: &mut Display,
+    panel: &mut PanelState,
 ) -> Vec<Command> {
     let mut out = Vec::new();
+    let inspect = &doc.inspect;
     let resp = ui.allocate_rect(rect, Sense::click_and_drag());
+    if super::edit::edit_input(ui, (rect, &resp), (doc, view), panel, &mut out) {
+        return out;
+    }
     let shift = ui.input(|i| i.modifiers.shift);
     let delta = Vec2::new(resp.drag_delta().x, resp.drag_delta().y);
     let aspect = viewport_aspect(rect, display.side_by_side);
@@ -91,7 +98,9 @@ fn inspect_keys(ui: &egui::Ui, inspect: &Inspect) -> Vec<Command> {
 /// commands; with `walking` (Inspect's Corners mode) the operator letters
 /// are left to [`inspect_keys`].
 fn keys(ui: &egui::Ui, view: &View, display: &mut Display, walking: bool) -> Vec<Command> {
-    let pressed = |k: Key| ui.input(|i| i.key_pressed(k)) && !(walking && WALK.iter().any(|w| w.0 == k));
+    // Ctrl and Alt chords are the edit mode's (Ctrl+S saves, Alt+A selects none)
+    let chord = ui.input(|i| i.modifiers.command || i.modifiers.alt);
+    let pressed = |k: Key| ui.input(|i| i.key_pressed(k)) && !chord && !(walking && WALK.iter().any(|w| w.0 == k));
     let toggles: [(Key, &mut bool); 5] = [
         (Key::W, &mut display.wireframe),
         (Key::C, &mut display.control),

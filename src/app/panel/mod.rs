@@ -11,6 +11,7 @@
 mod animation;
 mod browser;
 mod creases;
+mod edit;
 mod input;
 mod inspect;
 mod model;
@@ -35,7 +36,7 @@ use std::path::PathBuf;
 
 /// Keyboard help shown at the bottom of the panel.
 pub(crate) const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor, \
-click pick a point, double click fit. Keys: Q inspect (corners, stencils, splits), Esc clear the pick, W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
+click pick a point, double click fit. Keys: E edit the cage (click select, G grab, X/Y/Z axis, A all, Shift+E sharpness), Ctrl+Z undo, Ctrl+S save, Q inspect (corners, stencils, splits), Esc clear the pick, W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
 B side by side, T turntable, Space play/pause, Left/Right step frame, P screenshot.";
 
 /// The panel's own widget state.
@@ -60,6 +61,16 @@ pub(crate) struct PanelState {
     pub(crate) range_text: String,
     /// Why the range field's entry was refused.
     pub(crate) range_error: Option<String>,
+    /// The Edit section's sharpness field.
+    pub(crate) sharpness: f32,
+    /// The sharpness typed after Shift+E.
+    pub(crate) sharpness_text: Option<String>,
+    /// Where a Ctrl+drag box started.
+    pub(crate) box_start: Option<egui::Pos2>,
+    /// A selected handle is being dragged.
+    pub(crate) dragging_handle: bool,
+    /// The Save As field is shown.
+    pub(crate) save_as_open: bool,
 }
 
 impl PanelState {
@@ -76,6 +87,11 @@ impl PanelState {
             save_path: "control.obj".into(),
             range_text: String::new(),
             range_error: None,
+            sharpness: 2.5,
+            sharpness_text: None,
+            box_start: None,
+            dragging_handle: false,
+            save_as_open: false,
         }
     }
 }
@@ -110,6 +126,10 @@ pub(crate) fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelS
         egui::ScrollArea::vertical().auto_shrink([false, false]).show(ui, |ui| {
             ui.heading("subdiv");
             out.extend(model::model_section(ui, doc, panel));
+            egui::CollapsingHeader::new(RichText::new("Edit").strong())
+                .default_open(false)
+                .open(doc.edit.on.then_some(true))
+                .show(ui, |ui| out.extend(edit::edit_section(ui, doc, panel)));
             section(ui, "Subdivision", true, |ui| out.extend(subdivision::subdivision_section(ui, doc)));
             section(ui, "Display", true, |ui| out.extend(display_section(ui, doc, view, &mut display)));
             section(ui, "Animation", false, |ui| out.extend(animation::animation_section(ui, doc, panel, &display)));
@@ -131,8 +151,10 @@ pub(crate) fn show(ui: &mut egui::Ui, doc: &Doc, view: &View, panel: &mut PanelS
         });
     });
     let rect = ui.available_rect_before_wrap();
-    out.extend(input::scene_input(ui, rect, (view, &doc.inspect), &mut display));
+    out.extend(input::scene_input(ui, rect, (doc, view), &mut display, panel));
     overlay::overlay(ui, rect, doc, view, &display);
+    edit::handles(ui, rect, doc, view, panel);
+    out.extend(edit::dialogs(ui.ctx(), doc));
     out.extend(browser::file_browser(ui.ctx(), panel));
     if display != doc.display {
         out.push(Command::SetDisplay(display));
