@@ -173,7 +173,9 @@ impl Viewer {
         let (doc, view) = (&mut self.doc, &mut self.view);
         match command {
             Command::OpenBuiltin => doc.open_builtin(),
-            Command::Open(path) if doc.edit.history.dirty() => doc.edit.pending = Some(super::edit::Pending::Open(path)),
+            Command::Open(path) if doc.edit.history.dirty() => {
+                doc.edit.pending = Some(super::edit::Pending::Open(path))
+            }
             Command::Open(path) => doc.open(path),
             Command::RepairAndOpen(path) => doc.repair_and_open(path),
             Command::SetRepairOnOpen(on) => doc.repair_on_open = on,

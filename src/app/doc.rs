@@ -597,5 +597,6 @@ impl Doc {
         m.proxy = s.proxy;
         m.made = Made { level: s.level, scheme: s.scheme, opts: s.opts, stats: Some(s.stats), job_ms: s.ms };
         self.reshade();
+        self.edit_surface();
     }
 }

@@ -248,7 +248,8 @@ impl Default for Edit {
             history: History::default(),
             refiner: None,
             topology: 0,
-            recovery_dir: state_dir().map(|d| d.join("subdiv").join("recovery")),
+            // the unit tests name their own folder: they never write the user's
+            recovery_dir: if cfg!(test) { None } else { state_dir().map(|d| d.join("subdiv").join("recovery")) },
             offer: None,
             ask_path: false,
             pending: None,
@@ -346,6 +347,7 @@ impl Doc {
                 self.cancel_grab();
                 self.edit.on = !self.edit.on;
                 self.display.control |= self.edit.on;
+                self.edit_surface();
             }
             EditAction::Select { ids, add } => self.select(&ids, add),
             EditAction::SelectAll => self.edit.selected = (0..self.model.control.mesh.positions.len() as u32).collect(),
@@ -493,6 +495,16 @@ impl Doc {
 
 /// The drawn level following moved control vertices, history and files.
 impl Doc {
+    /// In the edit mode, the drawn level is the refiner's (built now, not
+    /// on the first move), so that undoing a move gives back exactly the
+    /// surface the edit started from.
+    pub(crate) fn edit_surface(&mut self) {
+        if self.edit.on && self.model.made.level > 0 {
+            self.follow_surface(&[], &[]);
+            self.reshade();
+        }
+    }
+
     /// The drawn level after control vertices `ids` moved to `to`: the
     /// control mesh itself at level 0, else the refiner of the drawn level
     /// (built on first use, on the cage as it now is) moved locally.

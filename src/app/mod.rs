@@ -43,6 +43,8 @@ pub(crate) mod viewer;
 mod window;
 
 #[cfg(test)]
+mod edit_tests;
+#[cfg(test)]
 mod inspect_tests;
 #[cfg(test)]
 mod tests;

@@ -34,12 +34,12 @@ use glam::Vec3;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
-fn key(k: egui::Key) -> egui::Event {
+pub(super) fn key(k: egui::Key) -> egui::Event {
     egui::Event::Key { key: k, physical_key: None, pressed: true, repeat: false, modifiers: Default::default() }
 }
 
 /// One frame of the panel in a window of `size` points.
-fn frame_sized(ctx: &egui::Context, v: &mut Viewer, size: egui::Vec2, events: Vec<egui::Event>) {
+pub(super) fn frame_sized(ctx: &egui::Context, v: &mut Viewer, size: egui::Vec2, events: Vec<egui::Event>) {
     let raw = egui::RawInput {
         screen_rect: Some(egui::Rect::from_min_size(egui::Pos2::ZERO, size)),
         events,
@@ -51,11 +51,11 @@ fn frame_sized(ctx: &egui::Context, v: &mut Viewer, size: egui::Vec2, events: Ve
     out.drop_without_applying_deltas();
 }
 
-fn frame(ctx: &egui::Context, v: &mut Viewer, events: Vec<egui::Event>) {
+pub(super) fn frame(ctx: &egui::Context, v: &mut Viewer, events: Vec<egui::Event>) {
     frame_sized(ctx, v, egui::vec2(1280.0, 800.0), events);
 }
 
-fn settle(v: &mut Viewer) {
+pub(super) fn settle(v: &mut Viewer) {
     let t0 = Instant::now();
     loop {
         v.poll();
@@ -67,7 +67,7 @@ fn settle(v: &mut Viewer) {
     }
 }
 
-fn subdivide(v: &mut Viewer, scheme: Scheme, level: u32) {
+pub(super) fn subdivide(v: &mut Viewer, scheme: Scheme, level: u32) {
     v.apply(Command::Subdivide(Request { scheme, level, ..v.doc.request }));
 }
 

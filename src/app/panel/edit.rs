@@ -44,8 +44,9 @@ pub(crate) fn handle_positions(doc: &Doc, view: &View, rect: Rect) -> Vec<Option
         .iter()
         .map(|&p| {
             let ndc = vp_m.project_point3(p);
-            ((0.0..=1.0).contains(&ndc.z) && ndc.is_finite())
-                .then(|| egui::pos2(vp.left() + (ndc.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - ndc.y) * 0.5 * vp.height()))
+            ((0.0..=1.0).contains(&ndc.z) && ndc.is_finite()).then(|| {
+                egui::pos2(vp.left() + (ndc.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - ndc.y) * 0.5 * vp.height())
+            })
         })
         .collect()
 }

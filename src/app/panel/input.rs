@@ -3,8 +3,8 @@
 //! it, and in its Corners mode the letters `n p o l r s u` walk the picked
 //! corner instead of their usual toggles.
 
-use crate::app::command::Command;
 use super::PanelState;
+use crate::app::command::Command;
 use crate::app::display::Display;
 use crate::app::doc::Doc;
 use crate::app::inspect::{Action, Inspect, Mode};
