@@ -232,3 +232,21 @@ fn shift_e_sets_the_sharpness_of_the_selected_vertices_and_undo_clears_it() {
     v.apply(Command::Edit(EditAction::Undo));
     assert!(v.doc.model.control.mesh.ct.sharpness().is_none());
 }
+
+#[test]
+fn keys_typed_within_one_frame_are_taken_in_their_order() {
+    // xdotool or a fast typist: `E A G Z 0.5 Return` and a Ctrl+Z whose
+    // Ctrl is up again before the frame ends
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    let cage = v.doc.model.control.mesh.positions.clone();
+    let events = vec![key(Key::E), key(Key::A), key(Key::G), key(Key::Z), Event::Text("0.5".into()), key(Key::Enter)];
+    frame(&ctx, &mut v, events);
+    let moved = &v.doc.model.control.mesh.positions;
+    assert!(moved.iter().zip(&cage).all(|(a, b)| *a == *b + Vec3::new(0.0, 0.0, 0.5)), "moved 0.5 along Z");
+    let surface = v.doc.display.surface;
+    frame(&ctx, &mut v, vec![chord(Key::Z, Modifiers::COMMAND), Event::ModifiersChanged(Modifiers::NONE)]);
+    assert_eq!(v.doc.model.control.mesh.positions, cage, "Ctrl+Z undid it");
+    frame(&ctx, &mut v, vec![chord(Key::S, Modifiers::COMMAND)]);
+    assert_eq!(v.doc.display.surface, surface, "Ctrl+S is not S (the shading)");
+}

@@ -423,6 +423,9 @@ fn a_new_model_is_framed_and_an_edit_keeps_the_view() {
     frame(&ctx, &mut v, vec![]);
     assert_eq!(v.view.camera, zoomed, "smoothing the control mesh keeps the view");
     v.apply(Command::Open(common::model_path("cube.obj")));
+    // the smoothing is unsaved: opening another model asks first
+    assert!(v.doc.edit.pending.is_some());
+    v.apply(Command::Answer(crate::app::edit::Answer::Discard));
     settle(&mut v);
     frame(&ctx, &mut v, vec![]);
     let mut framed = zoomed;

@@ -14,7 +14,7 @@ use crate::app::command::Command;
 use crate::app::doc::Doc;
 use crate::app::edit::{Answer, Axis, EditAction, Pending};
 use crate::app::view::{View, cursor_ndc, viewport_aspect};
-use egui::{Color32, Key, Pos2, Rect};
+use egui::{Color32, Event, Key, Pos2, Rect};
 use glam::{Vec2, Vec3};
 
 /// Handles drawn at most (a denser cage shows the selected ones only).
@@ -32,23 +32,32 @@ fn cage_viewport(rect: Rect, side_by_side: bool) -> Rect {
     vp
 }
 
-/// Where the control vertices fall on the screen (`None` behind the eye).
+/// Where the control vertices fall on the screen: `None` behind the eye,
+/// or on the far side of the cage (its normal facing away), as Blender
+/// hides what the surface hides.
 pub(crate) fn handle_positions(doc: &Doc, view: &View, rect: Rect) -> Vec<Option<Pos2>> {
     let side = doc.display.side_by_side;
     let (vp, aspect) = (cage_viewport(rect, side), viewport_aspect(rect, side));
     let vp_m = view.camera.view_proj(aspect);
-    doc.model
-        .control
+    let (eye, forward, ortho) = (view.camera.eye(), view.camera.forward(), view.camera.orthographic);
+    let control = &doc.model.control;
+    let normals = control.normals.iter().copied().chain(std::iter::repeat(Vec3::ZERO));
+    control
         .mesh
         .positions
         .iter()
-        .map(|&p| {
+        .zip(normals)
+        .map(|(&p, n)| {
             let ndc = vp_m.project_point3(p);
-            ((0.0..=1.0).contains(&ndc.z) && ndc.is_finite()).then(|| {
-                egui::pos2(vp.left() + (ndc.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - ndc.y) * 0.5 * vp.height())
-            })
+            let toward = if ortho { -forward } else { eye - p };
+            ((0.0..=1.0).contains(&ndc.z) && ndc.is_finite() && toward.dot(n) >= 0.0).then(|| to_screen(vp, ndc))
         })
         .collect()
+}
+
+/// A point of the viewport `vp` from its NDC.
+fn to_screen(vp: Rect, ndc: Vec3) -> Pos2 {
+    egui::pos2(vp.left() + (ndc.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - ndc.y) * 0.5 * vp.height())
 }
 
 /// The control vertex whose handle is nearest `at`, within reach.
@@ -84,13 +93,19 @@ pub(crate) fn edit_input(
     if !resp.dragged() {
         panel.dragging_handle = false;
     }
+    let side = doc.display.side_by_side;
+    let cursor = ui.input(|i| i.pointer.hover_pos()).map(|p| cursor_ndc(rect, side, p));
     if !doc.edit.on {
-        if ui.input(|i| i.key_pressed(Key::E) && !i.modifiers.shift && !i.modifiers.command) {
+        // E turns it on; what follows in the same frame is the mode's
+        let events = ui.input(|i| i.events.clone());
+        let e =
+            |ev: &Event| matches!(ev, Event::Key { key: Key::E, pressed: true, modifiers, .. } if modifiers.is_none());
+        if let Some(k) = events.iter().position(e) {
             out.push(Command::Edit(EditAction::Toggle));
+            mode_keys(&events[k + 1..], cursor, panel, out);
         }
         return false;
     }
-    let side = doc.display.side_by_side;
     let aspect = viewport_aspect(rect, side);
     let pointer = ui.input(|i| i.pointer.hover_pos());
     if let Some(g) = &doc.edit.grab {
@@ -132,76 +147,112 @@ pub(crate) fn edit_input(
         }
         return true;
     }
-    mode_keys(ui, pointer.map(|p| cursor_ndc(rect, side, p)), panel, out);
+    mode_keys(&ui.input(|i| i.events.clone()), cursor, panel, out);
     panel.dragging_handle
 }
 
-/// Ctrl+Z, Ctrl+Shift+Z or Ctrl+Y, Ctrl+S, Ctrl+Shift+S.
+/// Ctrl+Z, Ctrl+Shift+Z or Ctrl+Y, Ctrl+S, Ctrl+Shift+S (each key with
+/// the modifiers it was pressed with: a quick chord is over by the end of
+/// the frame).
 fn history_keys(ui: &egui::Ui) -> Vec<Command> {
-    let (ctrl, shift) = ui.input(|i| (i.modifiers.command, i.modifiers.shift));
-    if !ctrl {
-        return Vec::new();
+    let events = ui.input(|i| i.events.clone());
+    let chord = |e: &Event| match e {
+        Event::Key { key, pressed: true, modifiers, .. } if modifiers.command => Some((*key, modifiers.shift)),
+        _ => None,
+    };
+    events
+        .iter()
+        .filter_map(chord)
+        .filter_map(|(key, shift)| match key {
+            Key::Z if shift => Some(EditAction::Redo),
+            Key::Z => Some(EditAction::Undo),
+            Key::Y => Some(EditAction::Redo),
+            Key::S if shift => Some(EditAction::AskPath),
+            Key::S => Some(EditAction::Save),
+            _ => None,
+        })
+        .map(Command::Edit)
+        .collect()
+}
+
+/// E, G, A, Alt+A, Shift+E in the edit mode (not grabbing). The keys
+/// typed after G or Shift+E in the same frame (a fast typist, a script)
+/// are theirs, in the order they came.
+fn mode_keys(events: &[Event], cursor: Option<Vec2>, panel: &mut PanelState, out: &mut Vec<Command>) {
+    for (k, e) in events.iter().enumerate() {
+        let Event::Key { key, pressed: true, modifiers, .. } = e else { continue };
+        if modifiers.command {
+            continue;
+        }
+        match key {
+            Key::E if modifiers.shift => {
+                panel.sharpness_text = Some(String::new());
+                return sharpness_keys(&events[k + 1..], panel, out);
+            }
+            Key::E => out.push(Command::Edit(EditAction::Toggle)),
+            Key::G => {
+                out.push(Command::Edit(EditAction::Grab { anchor: cursor.unwrap_or(Vec2::ZERO) }));
+                out.extend(grab_keys(&events[k + 1..], "").into_iter().map(Command::Edit));
+                return;
+            }
+            Key::A if modifiers.alt => out.push(Command::Edit(EditAction::Select { ids: Vec::new(), add: false })),
+            Key::A => out.push(Command::Edit(EditAction::SelectAll)),
+            _ => {}
+        }
     }
-    let pressed = |k: Key| ui.input(|i| i.key_pressed(k));
+}
+
+/// A grab's keys in the order they came: X Y Z hold it to an axis,
+/// digits, a point and a minus type a distance (Backspace takes one
+/// back), Return confirms, Esc cancels.
+fn grab_keys(events: &[Event], typed: &str) -> Vec<EditAction> {
     let mut out = Vec::new();
-    if pressed(Key::Z) {
-        out.push(Command::Edit(if shift { EditAction::Redo } else { EditAction::Undo }));
-    }
-    if pressed(Key::Y) {
-        out.push(Command::Edit(EditAction::Redo));
-    }
-    if pressed(Key::S) {
-        out.push(Command::Edit(if shift { EditAction::AskPath } else { EditAction::Save }));
+    let mut t = typed.to_string();
+    for e in events {
+        match e {
+            Event::Key { key, pressed: true, .. } => match key {
+                Key::X => out.push(EditAction::Constrain(Axis::X)),
+                Key::Y => out.push(EditAction::Constrain(Axis::Y)),
+                Key::Z => out.push(EditAction::Constrain(Axis::Z)),
+                Key::Backspace => {
+                    t.pop();
+                    out.push(EditAction::Typed(t.clone()));
+                }
+                Key::Enter => return [out, vec![EditAction::Confirm]].concat(),
+                Key::Escape => return [out, vec![EditAction::Cancel]].concat(),
+                _ => {}
+            },
+            Event::Text(s) if s.chars().any(number_char) => {
+                t.extend(s.chars().filter(|&c| number_char(c)));
+                out.push(EditAction::Typed(t.clone()));
+            }
+            _ => {}
+        }
     }
     out
 }
 
-/// E, G, A, Alt+A, Shift+E in the edit mode (not grabbing).
-fn mode_keys(ui: &egui::Ui, cursor: Option<Vec2>, panel: &mut PanelState, out: &mut Vec<Command>) {
-    let (ctrl, shift, alt) = ui.input(|i| (i.modifiers.command, i.modifiers.shift, i.modifiers.alt));
-    if ctrl {
-        return;
-    }
-    let pressed = |k: Key| ui.input(|i| i.key_pressed(k));
-    if pressed(Key::E) && shift {
-        panel.sharpness_text = Some(String::new());
-    } else if pressed(Key::E) {
-        out.push(Command::Edit(EditAction::Toggle));
-    }
-    if pressed(Key::G) {
-        out.push(Command::Edit(EditAction::Grab { anchor: cursor.unwrap_or(Vec2::ZERO) }));
-    }
-    if pressed(Key::A) {
-        out.push(Command::Edit(if alt {
-            EditAction::Select { ids: Vec::new(), add: false }
-        } else {
-            EditAction::SelectAll
-        }));
-    }
+fn number_char(c: char) -> bool {
+    c.is_ascii_digit() || c == '.' || c == '-'
 }
 
-/// The text typed after a key: digits, a point, a minus, Backspace.
-fn typed(ui: &egui::Ui, text: &str) -> Option<String> {
-    let mut t = text.to_string();
-    let mut changed = false;
-    ui.input(|i| {
-        for e in &i.events {
-            match e {
-                egui::Event::Text(s) => {
-                    for ch in s.chars().filter(|c| c.is_ascii_digit() || *c == '.' || *c == '-') {
-                        t.push(ch);
-                        changed = true;
-                    }
+/// Shift+E's number from `events`: typed, Return sets it, Esc drops it.
+fn sharpness_keys(events: &[Event], panel: &mut PanelState, out: &mut Vec<Command>) {
+    for e in events {
+        let Some(t) = panel.sharpness_text.as_mut() else { return };
+        match e {
+            Event::Text(s) => t.extend(s.chars().filter(|&c| number_char(c))),
+            Event::Key { key: Key::Backspace, pressed: true, .. } => _ = t.pop(),
+            Event::Key { key: Key::Enter, pressed: true, .. } => {
+                if let Ok(s) = t.parse::<f32>() {
+                    out.push(Command::Edit(EditAction::Sharpness(s)));
                 }
-                egui::Event::Key { key: Key::Backspace, pressed: true, .. } => {
-                    t.pop();
-                    changed = true;
-                }
-                _ => {}
+                panel.sharpness_text = None;
             }
+            Event::Key { key: Key::Escape, pressed: true, .. } => panel.sharpness_text = None,
+            _ => {}
         }
-    });
-    changed.then_some(t)
+    }
 }
 
 /// During a grab: the mouse moves it, X Y Z hold it, numbers are typed,
@@ -214,46 +265,36 @@ fn grab_input(
     (pointer, rect, side): (Option<Pos2>, Rect, bool),
     out: &mut Vec<Command>,
 ) {
-    let pressed = |k: Key| ui.input(|i| i.key_pressed(k));
     if let Some(p) = pointer {
         let offset = view_plane_offset(view, aspect, g.centroid, g.anchor, cursor_ndc(rect, side, p));
         if offset != g.mouse {
             out.push(Command::Edit(EditAction::GrabTo(offset)));
         }
     }
-    for (k, a) in [(Key::X, Axis::X), (Key::Y, Axis::Y), (Key::Z, Axis::Z)] {
-        if pressed(k) {
-            out.push(Command::Edit(EditAction::Constrain(a)));
-        }
-    }
-    if let Some(t) = typed(ui, &g.typed) {
-        out.push(Command::Edit(EditAction::Typed(t)));
+    let keys = grab_keys(&ui.input(|i| i.events.clone()), &g.typed);
+    let ended = keys.iter().any(|a| matches!(a, EditAction::Confirm | EditAction::Cancel));
+    out.extend(keys.into_iter().map(Command::Edit));
+    if ended {
+        return;
     }
     let scroll = ui.input(|i| i.smooth_scroll_delta.y);
     if scroll.abs() > 0.5 {
         out.push(Command::Edit(EditAction::ScaleRadius((scroll * 0.005).exp())));
     }
     let released = resp.drag_stopped_by(egui::PointerButton::Primary);
-    if pressed(Key::Enter) || resp.clicked() || released {
+    if resp.clicked() || released {
         out.push(Command::Edit(EditAction::Confirm));
-    } else if pressed(Key::Escape) || resp.secondary_clicked() {
+    } else if resp.secondary_clicked() {
         out.push(Command::Edit(EditAction::Cancel));
     }
 }
 
-/// Shift+E's number: typed, Return sets it, Esc drops it.
+/// While Shift+E's number is typed, the frame's keys are its.
 fn sharpness_typing(ui: &egui::Ui, panel: &mut PanelState, out: &mut Vec<Command>) -> bool {
-    let Some(text) = panel.sharpness_text.clone() else { return false };
-    if let Some(t) = typed(ui, &text) {
-        panel.sharpness_text = Some(t);
+    if panel.sharpness_text.is_none() {
+        return false;
     }
-    if ui.input(|i| i.key_pressed(Key::Enter)) {
-        if let Some(s) = panel.sharpness_text.take().and_then(|t| t.parse::<f32>().ok()) {
-            out.push(Command::Edit(EditAction::Sharpness(s)));
-        }
-    } else if ui.input(|i| i.key_pressed(Key::Escape)) {
-        panel.sharpness_text = None;
-    }
+    sharpness_keys(&ui.input(|i| i.events.clone()), panel, out);
     true
 }
 
@@ -291,7 +332,9 @@ pub(crate) fn handles(ui: &egui::Ui, rect: Rect, doc: &Doc, view: &View, panel: 
             painter.circle(*h, 3.0, Color32::from_gray(230), dark);
         }
     }
-    for h in sel.iter().filter_map(|&v| all.get(v as usize).copied().flatten()) {
+    // the selection shows through: it is what a grab moves
+    let sel_at = handle_points(doc, view, rect, sel);
+    for h in sel_at {
         painter.circle(h, 4.5, Color32::from_rgb(255, 150, 30), dark);
     }
     let font = egui::FontId::proportional(15.0);
@@ -312,6 +355,20 @@ pub(crate) fn handles(ui: &egui::Ui, rect: Rect, doc: &Doc, view: &View, panel: 
     }
 }
 
+/// Where the vertices `ids` fall on the screen, hidden or not.
+fn handle_points(doc: &Doc, view: &View, rect: Rect, ids: &[u32]) -> Vec<Pos2> {
+    let side = doc.display.side_by_side;
+    let (vp, aspect) = (cage_viewport(rect, side), viewport_aspect(rect, side));
+    let m = view.camera.view_proj(aspect);
+    let pos = &doc.model.control.mesh.positions;
+    ids.iter()
+        .filter_map(|&v| pos.get(v as usize))
+        .map(|&p| m.project_point3(p))
+        .filter(|n| (0.0..=1.0).contains(&n.z) && n.is_finite())
+        .map(|n| to_screen(vp, n))
+        .collect()
+}
+
 /// The proportional radius as a circle around `centre`.
 fn radius_ring(painter: &egui::Painter, rect: Rect, doc: &Doc, view: &View, centre: Vec3) {
     let side = doc.display.side_by_side;
@@ -320,7 +377,7 @@ fn radius_ring(painter: &egui::Painter, rect: Rect, doc: &Doc, view: &View, cent
     let (right, _) = view.camera.right_up();
     let screen = |p: Vec3| {
         let n = m.project_point3(p);
-        egui::pos2(vp.left() + (n.x + 1.0) * 0.5 * vp.width(), vp.top() + (1.0 - n.y) * 0.5 * vp.height())
+        to_screen(vp, n)
     };
     let (c, e) = (screen(centre), screen(centre + right * doc.edit.radius));
     painter.circle_stroke(c, c.distance(e), egui::Stroke::new(1.5, Color32::from_white_alpha(160)));

@@ -98,9 +98,17 @@ fn inspect_keys(ui: &egui::Ui, inspect: &Inspect) -> Vec<Command> {
 /// commands; with `walking` (Inspect's Corners mode) the operator letters
 /// are left to [`inspect_keys`].
 fn keys(ui: &egui::Ui, view: &View, display: &mut Display, walking: bool) -> Vec<Command> {
-    // Ctrl and Alt chords are the edit mode's (Ctrl+S saves, Alt+A selects none)
-    let chord = ui.input(|i| i.modifiers.command || i.modifiers.alt);
-    let pressed = |k: Key| ui.input(|i| i.key_pressed(k)) && !chord && !(walking && WALK.iter().any(|w| w.0 == k));
+    // Ctrl and Alt chords are the edit mode's (Ctrl+S saves, Alt+A selects
+    // none), told by the modifiers each key was pressed with
+    let plain = |k: Key| {
+        ui.input(|i| {
+            i.events.iter().any(|e| {
+                matches!(e, egui::Event::Key { key, pressed: true, modifiers, .. }
+                    if *key == k && !modifiers.command && !modifiers.alt)
+            })
+        })
+    };
+    let pressed = |k: Key| plain(k) && !(walking && WALK.iter().any(|w| w.0 == k));
     let toggles: [(Key, &mut bool); 5] = [
         (Key::W, &mut display.wireframe),
         (Key::C, &mut display.control),
