@@ -54,7 +54,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Err("usage: edit_latency MODEL LEVELS [SCHEME]".into());
     };
     let scheme: Scheme = args.get(3).map_or(Ok(Scheme::Loop), |s| s.parse()).map_err(|e: String| e)?;
-    let mesh = subdiv::io::load(std::path::Path::new(model))?;
+    // repaired where it is not a manifold (some scans and sculpts are not)
+    let opts = subdiv::io::ReadOptions { topology: subdiv::io::Topology::Repair, ..Default::default() };
+    let mesh = subdiv::io::read(subdiv::io::Source::File(std::path::Path::new(model)), &opts)?.mesh;
     let t = Instant::now();
     let mut r = Refiner::new(&mesh, scheme, levels.parse()?, &Options::default())?;
     let build_ms = t.elapsed().as_secs_f64() * 1e3;

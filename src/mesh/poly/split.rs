@@ -315,3 +315,10 @@ mod tests {
         assert_eq!(full.v, v, "the full split's V");
     }
 }
+
+/// The sharpness the split of `old` gives its children (what [`split`]
+/// carries), without splitting: a sharpness edit's new tags carried down
+/// the levels of a refiner.
+pub(crate) fn split_sharpness_of(old: &PolyTable, creasing: Creasing) -> Option<crate::mesh::sharpness::Sharpness> {
+    old.sharpness().and_then(|s| split_sharpness(s, old, creasing))
+}

@@ -48,6 +48,17 @@ pub struct StencilPlan {
 /// scheme, the finest polygons.
 pub(crate) type Recorded<W = f32> = (Vec<LevelPlan<W>>, CornerTable, Option<crate::mesh::poly::PolyTable>);
 
+/// The table every level of a plan was recorded on (its boundary corners
+/// applied, its sharpness that level's), with the owner corners of its
+/// edges for the triangle schemes.
+#[derive(Clone, Debug)]
+pub(crate) enum LevelTables {
+    /// The triangle schemes' levels.
+    Triangles(Vec<(CornerTable, Vec<u32>)>),
+    /// The polygon schemes'.
+    Polygons(Vec<crate::mesh::poly::PolyTable>),
+}
+
 /// Reusable buffers for [`StencilPlan::apply`]: the intermediate levels,
 /// 16 bytes a point (see [`Point`]).
 #[derive(Default)]
@@ -203,22 +214,56 @@ impl StencilPlan {
         levels: u32,
         opts: &Options,
     ) -> Result<Recorded<W>> {
+        Self::record_keeping(ct, (scheme, levels, opts), None)
+    }
+
+    /// [`StencilPlan::record`], keeping in `keep` the table each level
+    /// was recorded on (what a later edit of sharpness re-records rows
+    /// on).
+    pub(crate) fn record_keeping<W: Weight + std::ops::AddAssign>(
+        ct: &CornerTable,
+        (scheme, levels, opts): (Scheme, u32, &Options),
+        mut keep: Option<&mut LevelTables>,
+    ) -> Result<Recorded<W>> {
         if scheme.is_polygonal() {
-            let (plans, poly) = super::poly_plan::record(ct, scheme, levels, opts)?;
+            let mut kept = Vec::new();
+            let (plans, poly) = super::poly_plan::record(ct, scheme, levels, opts, keep.is_some().then_some(&mut kept))?;
+            if let Some(k) = keep {
+                *k = LevelTables::Polygons(kept);
+            }
             return Ok((plans, poly.triangulated(), Some(poly)));
         }
+        let mut kept = Vec::new();
         let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
         check_levels_fit(ct, 0, levels, limit)?;
         let mut cur = with_boundary_corners(ct, opts.boundary).into_owned();
         let mut plans = Vec::with_capacity(levels as usize);
         for _ in 1..=levels {
             let (next, edges) = split::split_with(&cur, opts.creasing);
+            if keep.is_some() {
+                kept.push((cur.clone(), edges.owners.clone()));
+            }
             let weight = std::marker::PhantomData;
             let record = RecordLevel { ct: cur, owners: &edges.owners, creasing: opts.creasing, weight, only: None };
             plans.push(with_rules(scheme, opts, record));
             cur = next;
         }
+        if let Some(k) = keep.as_deref_mut() {
+            *k = LevelTables::Triangles(kept);
+        }
         Ok((plans, cur, None))
+    }
+
+    /// A plan of levels recorded elsewhere (the refiner's), packed.
+    pub(crate) fn from_recorded(scheme: Scheme, (levels, ct, poly): Recorded) -> Self {
+        Self::packed(scheme, levels, (ct, poly), None)
+    }
+
+    /// Level `i`'s rows replaced (a sharpness edit's): applied unpacked
+    /// from now on (bit-identical, a little slower).
+    pub(crate) fn level_mut(&mut self, i: usize) -> &mut LevelPlan {
+        self.packed[i] = None;
+        &mut self.levels[i]
     }
 
     /// A plan of recorded levels, packed for evaluation.

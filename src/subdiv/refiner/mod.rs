@@ -19,7 +19,11 @@
 //! - every change is a step of a history ([`Refiner::undo`],
 //!   [`Refiner::redo`]) that stores what changed, not the mesh.
 
+mod retag;
+
+use super::tables::plan::LevelTables;
 use super::tables::{LevelPlan, StencilPlan};
+use retag::Patches;
 use super::{Options, Scheme};
 use crate::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
 use crate::{CornerTable, Error, Mesh, Result};
@@ -164,6 +168,10 @@ pub struct Refiner {
     readers: Vec<Readers>,
     touched: Touched,
     history: History,
+    /// The table each level was recorded on (sharpness edits re-record on them).
+    tables: LevelTables,
+    /// Rows recorded again after sharpness edits.
+    patches: Patches,
 }
 
 impl Refiner {
@@ -174,7 +182,9 @@ impl Refiner {
     /// [`Error::TooLarge`] when a level would not fit in memory; a polygon
     /// scheme's refusal of the mesh.
     pub fn new(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<Refiner> {
-        let plan = StencilPlan::build(&mesh.ct, scheme, levels, opts)?;
+        let mut tables = LevelTables::Triangles(Vec::new());
+        let recorded = StencilPlan::record_keeping(&mesh.ct, (scheme, levels, opts), Some(&mut tables))?;
+        let plan = StencilPlan::from_recorded(scheme, recorded);
         let mut r = Refiner {
             scheme,
             opts: *opts,
@@ -187,6 +197,8 @@ impl Refiner {
             readers: Vec::new(),
             touched: Touched::default(),
             history: History::default(),
+            patches: Patches::sized(levels as usize),
+            tables,
         };
         r.adopt_plan();
         r.set_control(&mesh.positions);
@@ -268,9 +280,29 @@ impl Refiner {
         Mesh { ct: self.plan.ct.clone(), positions: self.positions().to_vec() }
     }
 
-    /// The stencil plan the levels were recorded in (for the GPU or an
-    /// animation).
-    pub fn plan(&self) -> &StencilPlan {
+    /// The stencil plan of the levels as they now are (for the GPU or an
+    /// animation): rows recorded again after sharpness edits are written
+    /// into it first.
+    pub fn plan(&mut self) -> &StencilPlan {
+        for l in 0..self.plan.levels.len() {
+            if self.patches.rows[l].is_empty() {
+                continue;
+            }
+            let rows = std::mem::take(&mut self.patches.rows[l]);
+            let level = self.plan.level_mut(l);
+            let first = if level.copy_vertices { level.n_in } else { 0 };
+            let (mut offsets, mut indices, mut weights) = (vec![0u32], Vec::new(), Vec::new());
+            for i in 0..level.offsets.len() - 1 {
+                let (idx, w) = match rows.get(&((first + i) as u32)) {
+                    Some(r) => (&r.idx[..], &r.w[..]),
+                    None => level.row(first + i).unwrap_or((&[], &[])),
+                };
+                indices.extend_from_slice(idx);
+                weights.extend_from_slice(w);
+                offsets.push(indices.len() as u32);
+            }
+            (level.offsets, level.indices, level.weights) = (offsets, indices, weights);
+        }
         &self.plan
     }
 
@@ -285,6 +317,9 @@ impl Refiner {
         for l in 0..self.plan.levels.len() {
             let (done, rest) = self.points.split_at_mut(l + 1);
             self.plan.apply_level(l, &done[l], &mut rest[0]);
+            for (&r, row) in &self.patches.rows[l] {
+                rest[0][r as usize] = sum_row(&row.idx, &row.w, &done[l]);
+            }
         }
         self.normals = vec![Vec3::Z; self.positions().len()];
         let all: Vec<u32> = (0..self.positions().len() as u32).collect();
@@ -297,24 +332,28 @@ impl Refiner {
         if v as usize >= self.points[0].len() {
             return Vec::new();
         }
-        self.touch(&[v]);
+        self.touch(&[v], &[]);
         let mut rows = self.touched.lists.last().cloned().unwrap_or_default();
         rows.sort_unstable();
         rows
     }
 
-    /// Marks the control points `ids` and, level by level, the rows that
-    /// read a marked point.
-    fn touch(&mut self, ids: &[u32]) {
+    /// Marks the control points `ids`, the rows `seeds[l]` of level
+    /// `l + 1` and, level by level, the rows that read a marked point.
+    fn touch(&mut self, ids: &[u32], seeds: &[Vec<u32>]) {
         let t = &mut self.touched;
         t.begin();
         for &v in ids {
             t.mark(0, v);
         }
         for (l, readers) in self.readers.iter().enumerate() {
+            for &r in seeds.get(l).into_iter().flatten() {
+                t.mark(l + 1, r);
+            }
+            let extra = &self.patches.readers[l];
             let list = std::mem::take(&mut t.lists[l]);
             for &j in &list {
-                for &r in readers.of_point(j) {
+                for &r in readers.of_point(j).iter().chain(extra.get(&j).into_iter().flatten()) {
                     t.mark(l + 1, r);
                 }
             }
@@ -364,17 +403,27 @@ impl Refiner {
         for (&v, &p) in ids.iter().zip(to) {
             self.points[0][v as usize] = p;
         }
-        self.touch(ids);
+        self.touch(ids, &[]);
+        self.evaluate_touched()
+    }
+
+    /// Evaluates the marked rows level by level, then the normals around
+    /// the marked finest points; returns how many finest points changed.
+    fn evaluate_touched(&mut self) -> usize {
         for l in 0..self.plan.levels.len() {
             let (done, rest) = self.points.split_at_mut(l + 1);
             let (input, out) = (&done[l], &mut rest[0]);
-            let level = &self.plan.levels[l];
+            let (level, patch) = (&self.plan.levels[l], &self.patches.rows[l]);
             let rows = &self.touched.lists[l + 1];
+            let value = |r: u32| match patch.get(&r) {
+                Some(row) => sum_row(&row.idx, &row.w, input),
+                None => row_value(level, r, input),
+            };
             if rows.len() > 4096 {
-                let values: Vec<Vec3> = rows.par_iter().map(|&r| row_value(level, r, input)).collect();
+                let values: Vec<Vec3> = rows.par_iter().map(|&r| value(r)).collect();
                 rows.iter().zip(values).for_each(|(&r, p)| out[r as usize] = p);
             } else {
-                rows.iter().for_each(|&r| out[r as usize] = row_value(level, r, input));
+                rows.iter().for_each(|&r| out[r as usize] = value(r));
             }
         }
         let changed = std::mem::take(&mut self.touched.lists[self.plan.levels.len()]);
@@ -473,16 +522,15 @@ impl Refiner {
         Ok(())
     }
 
-    /// The cage with `tags`, its stencils recorded again, every level
-    /// re-evaluated.
+    /// The cage with `tags`: the rows the change reaches recorded again
+    /// ([`retag`]) and evaluated with what follows from them.
     fn apply_tags(&mut self, tags: &Tags) -> Result<()> {
         let cage = self.cage.clone().with_tags(tags).map_err(Error::Invalid)?;
-        let levels = self.levels();
-        self.plan = StencilPlan::build(&cage, self.scheme, levels, &self.opts)?;
+        let redone = self.retag_locally(&cage)?;
         self.cage = cage;
-        let control = std::mem::take(&mut self.points[0]);
-        self.adopt_plan();
-        self.set_control(&control);
+        self.plan_f64 = OnceLock::new();
+        self.touch(&[], &redone);
+        self.evaluate_touched();
         Ok(())
     }
 
@@ -564,9 +612,14 @@ impl Refiner {
 /// Row `r` of `level` evaluated on `input`, summed in the order and width
 /// of [`LevelPlan::apply`] (so bit-identical to it).
 fn row_value(level: &LevelPlan, r: u32, input: &[Vec3]) -> Vec3 {
-    let Some((idx, w)) = level.row(r as usize) else {
-        return input[r as usize];
-    };
+    match level.row(r as usize) {
+        Some((idx, w)) => sum_row(idx, w, input),
+        None => input[r as usize],
+    }
+}
+
+/// A row's weighted sum, as [`LevelPlan::apply`] sums.
+fn sum_row(idx: &[u32], w: &[f32], input: &[Vec3]) -> Vec3 {
     let mut sum = Vec3A::ZERO;
     for (&j, &w) in idx.iter().zip(w) {
         sum += Vec3A::from(input[j as usize]) * w;
