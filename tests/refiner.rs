@@ -174,8 +174,10 @@ fn bad_moves_are_refused_and_change_nothing() {
 
 #[test]
 fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit() {
-    use subdiv::mesh::Creasing;
+    use subdiv::mesh::{BoundaryInterpolation, Creasing};
     let chaikin = Options { creasing: Creasing::Chaikin, ..Options::default() };
+    let corners = Options { boundary: BoundaryInterpolation::EdgeAndCorner, ..Options::default() };
+    let no_boundary = Options { boundary: BoundaryInterpolation::None, ..Options::default() };
     let cases = [
         ("loop", icosphere(1), Scheme::Loop, Options::default()),
         ("loop chaikin", icosphere(1), Scheme::Loop, chaikin),
@@ -183,6 +185,9 @@ fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit()
         ("catmull-clark", bundled("lprism.obj"), Scheme::CatmullClark, Options::default()),
         ("catmull-clark chaikin", bundled("cube.obj"), Scheme::CatmullClark, chaikin),
         ("bilinear", bundled("cube.obj"), Scheme::Bilinear, Options::default()),
+        ("open loop, corners", common::flat_grid(5), Scheme::Loop, corners),
+        ("open catmull-clark, corners", common::flat_grid(5), Scheme::CatmullClark, corners),
+        ("open catmull-clark, no boundary", common::flat_grid(5), Scheme::CatmullClark, no_boundary),
     ];
     for (name, mesh, scheme, opts) in cases {
         let mut r = Refiner::new(&mesh, scheme, 3, &opts).unwrap();

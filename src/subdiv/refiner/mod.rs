@@ -23,12 +23,12 @@ mod retag;
 
 use super::tables::plan::LevelTables;
 use super::tables::{LevelPlan, StencilPlan};
-use retag::Patches;
 use super::{Options, Scheme};
 use crate::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
 use crate::{CornerTable, Error, Mesh, Result};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
+use retag::Patches;
 use std::sync::OnceLock;
 
 /// For each point of a level, the rows of the next level that read it
@@ -523,14 +523,29 @@ impl Refiner {
     }
 
     /// The cage with `tags`: the rows the change reaches recorded again
-    /// ([`retag`]) and evaluated with what follows from them.
+    /// ([`retag`]) and evaluated with what follows from them (or, where
+    /// the tags decide holes, every level recorded again).
     fn apply_tags(&mut self, tags: &Tags) -> Result<()> {
         let cage = self.cage.clone().with_tags(tags).map_err(Error::Invalid)?;
-        let redone = self.retag_locally(&cage)?;
-        self.cage = cage;
+        match self.retag_locally(tags)? {
+            Some(redone) => {
+                self.cage = cage;
+                self.touch(&[], &redone);
+                self.evaluate_touched();
+            }
+            None => {
+                let fresh = Refiner::new(
+                    &Mesh { ct: cage, positions: self.control().to_vec() },
+                    self.scheme,
+                    self.levels(),
+                    &self.opts,
+                )?;
+                let history = std::mem::take(&mut self.history);
+                *self = fresh;
+                self.history = history;
+            }
+        }
         self.plan_f64 = OnceLock::new();
-        self.touch(&[], &redone);
-        self.evaluate_touched();
         Ok(())
     }
 

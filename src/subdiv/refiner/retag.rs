@@ -10,9 +10,12 @@
 use super::Refiner;
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::normals::Fans;
-use crate::mesh::sharpness::Sharpness;
+use crate::mesh::poly::PolyTable;
+use crate::mesh::sharpness::{Sharpness, Tags};
+use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::subdiv::tables::LevelPlan;
 use crate::subdiv::tables::plan::LevelTables;
+use crate::subdiv::{Options, Scheme};
 use crate::{CornerTable, Result};
 use std::collections::HashMap;
 
@@ -116,58 +119,104 @@ impl Refiner {
         }
     }
 
-    /// The cage `cage` (new tags, same faces): every level's table takes
-    /// the new sharpness, the rows it reaches are recorded again and
-    /// evaluated with what follows from them. Returns, per level, the rows
-    /// recorded again.
-    pub(super) fn retag_locally(&mut self, cage: &CornerTable) -> Result<Vec<Vec<u32>>> {
+    /// New `tags` on the same faces: every level's table takes the new
+    /// sharpness, the rows it reaches are recorded again. Returns, per
+    /// level, the rows recorded again, or `None` where the tags decide
+    /// more than sharpness (boundary `None`: a border edge's tag decides
+    /// which faces are holes), for a whole new recording.
+    ///
+    /// # Errors
+    /// A tag naming no edge of the tables.
+    pub(super) fn retag_locally(&mut self, tags: &Tags) -> Result<Option<Vec<Vec<u32>>>> {
+        if self.opts.boundary == BoundaryInterpolation::None {
+            return Ok(None);
+        }
         let mut tables = std::mem::replace(&mut self.tables, LevelTables::Triangles(Vec::new()));
         let result = match &mut tables {
-            LevelTables::Triangles(t) => self.retag_triangles(cage, t),
-            LevelTables::Polygons(t) => self.retag_polygons(cage, t),
+            LevelTables::Triangles(t) => self.retag_levels(t.iter_mut().map(|(t, o)| Level::Triangles(t, o)), tags),
+            LevelTables::Polygons(t) => self.retag_levels(t.iter_mut().map(Level::Polygons), tags),
         };
         self.tables = tables;
-        result
+        result.map(Some)
     }
 
-    fn retag_triangles(&mut self, cage: &CornerTable, t: &mut [(CornerTable, Vec<u32>)]) -> Result<Vec<Vec<u32>>> {
-        use crate::subdiv::rules::features::with_boundary_corners;
-        let mut sharpness = with_boundary_corners(cage, self.opts.boundary).sharpness().cloned();
-        let mut redone = Vec::with_capacity(t.len());
-        for (l, (table, owners)) in t.iter_mut().enumerate() {
-            let old = table.sharpness().cloned();
-            *table = std::mem::take(table).with_sharpness(sharpness);
-            let changed = changed_vertices(table, old.as_ref(), table.sharpness());
-            let ids = self.readers_of(l, &with_rings(table, &changed));
-            let rows = crate::subdiv::tables::plan::record_rows_of(table, owners, (self.scheme, &self.opts), &ids);
+    fn retag_levels<'a>(&mut self, levels: impl Iterator<Item = Level<'a>>, tags: &Tags) -> Result<Vec<Vec<u32>>> {
+        let mut sharpness = None;
+        let mut redone = Vec::new();
+        for (l, mut level) in levels.enumerate() {
+            if l == 0 {
+                sharpness = level.control_sharpness(tags, self.opts.boundary)?;
+            }
+            let old = level.set_sharpness(sharpness);
+            let near = level.changed_and_near(old.as_ref());
+            let ids = self.readers_of(l, &near);
+            let rows = level.record_rows(self.scheme, &self.opts, &ids);
             self.patch(l, &ids, &rows);
             redone.push(ids);
-            sharpness = table.sharpness().and_then(|s| s.split(table, self.opts.creasing));
+            sharpness = level.next_sharpness(self.opts.creasing);
         }
         Ok(redone)
     }
+}
 
-    fn retag_polygons(
-        &mut self,
-        cage: &CornerTable,
-        t: &mut [crate::mesh::poly::PolyTable],
-    ) -> Result<Vec<Vec<u32>>> {
-        use crate::mesh::poly::PolyTable;
-        use crate::subdiv::refine::poly::with_boundary_corners;
-        let control = PolyTable::from_corner_table(cage);
-        let first = with_boundary_corners(&control, self.opts.boundary).unwrap_or(control);
-        let mut sharpness = first.sharpness().cloned();
-        let mut redone = Vec::with_capacity(t.len());
-        for (l, table) in t.iter_mut().enumerate() {
-            let old = table.sharpness().cloned();
-            *table = std::mem::take(table).with_sharpness(sharpness);
-            let changed = changed_vertices(table, old.as_ref(), table.sharpness());
-            let ids = self.readers_of(l, &with_rings(table, &changed));
-            let rows = crate::subdiv::tables::poly_plan::record_poly_level(table, self.scheme, &self.opts, Some(&ids));
-            self.patch(l, &ids, &rows);
-            redone.push(ids);
-            sharpness = crate::mesh::poly::split::split_sharpness_of(table, self.opts.creasing);
+/// A kept level's table, of either kind.
+enum Level<'a> {
+    Triangles(&'a mut CornerTable, &'a [u32]),
+    Polygons(&'a mut PolyTable),
+}
+
+impl Level<'_> {
+    /// The control level's sharpness for `tags`, boundary corners added.
+    fn control_sharpness(&self, tags: &Tags, boundary: BoundaryInterpolation) -> Result<Option<Sharpness>> {
+        use crate::subdiv::rules::features::boundary_corners;
+        let (s, corners) = match self {
+            Level::Triangles(t, _) => (Sharpness::from_tags(&**t, tags), boundary_corners(&**t, boundary)),
+            Level::Polygons(t) => (Sharpness::from_tags(&**t, tags), boundary_corners(&**t, boundary)),
+        };
+        let s = s.map_err(crate::Error::Invalid)?;
+        Ok(if corners.is_empty() { s } else { Sharpness::with_corners(s, &corners) })
+    }
+
+    /// Gives the table `s`; returns the sharpness it had.
+    fn set_sharpness(&mut self, s: Option<Sharpness>) -> Option<Sharpness> {
+        match self {
+            Level::Triangles(t, _) => {
+                let old = t.sharpness().cloned();
+                **t = std::mem::take(&mut **t).with_sharpness(s);
+                old
+            }
+            Level::Polygons(t) => {
+                let old = t.sharpness().cloned();
+                **t = std::mem::take(&mut **t).with_sharpness(s);
+                old
+            }
         }
-        Ok(redone)
+    }
+
+    /// The vertices whose features changed from `old`, with their
+    /// neighbours.
+    fn changed_and_near(&self, old: Option<&Sharpness>) -> Vec<u32> {
+        match self {
+            Level::Triangles(t, _) => with_rings(&**t, &changed_vertices(&**t, old, t.sharpness())),
+            Level::Polygons(t) => with_rings(&**t, &changed_vertices(&**t, old, t.sharpness())),
+        }
+    }
+
+    /// The rows of new vertices `ids`, by the rules of the whole level.
+    fn record_rows(&self, scheme: Scheme, opts: &Options, ids: &[u32]) -> LevelPlan {
+        match self {
+            Level::Triangles(t, owners) => {
+                crate::subdiv::tables::plan::record_rows_of(&**t, owners, (scheme, opts), ids)
+            }
+            Level::Polygons(t) => crate::subdiv::tables::poly_plan::record_poly_level(&**t, scheme, opts, Some(ids)),
+        }
+    }
+
+    /// The sharpness the split gives the next level.
+    fn next_sharpness(&self, creasing: Creasing) -> Option<Sharpness> {
+        match self {
+            Level::Triangles(t, _) => t.sharpness().and_then(|s| s.split(&**t, creasing)),
+            Level::Polygons(t) => crate::mesh::poly::split::split_sharpness_of(&**t, creasing),
+        }
     }
 }

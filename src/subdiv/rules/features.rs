@@ -340,7 +340,7 @@ fn boundary_holes(ct: &CornerTable) -> Vec<u32> {
 /// The vertices `boundary` makes corners: with
 /// [`BoundaryInterpolation::EdgeAndCorner`] the boundary vertices with a
 /// single face (two edges, in either table), else none.
-fn boundary_corners<T: EdgeTable>(t: &T, boundary: BoundaryInterpolation) -> Vec<u32> {
+pub(crate) fn boundary_corners<T: EdgeTable>(t: &T, boundary: BoundaryInterpolation) -> Vec<u32> {
     if boundary != BoundaryInterpolation::EdgeAndCorner {
         return Vec::new();
     }

@@ -227,7 +227,8 @@ impl StencilPlan {
     ) -> Result<Recorded<W>> {
         if scheme.is_polygonal() {
             let mut kept = Vec::new();
-            let (plans, poly) = super::poly_plan::record(ct, scheme, levels, opts, keep.is_some().then_some(&mut kept))?;
+            let (plans, poly) =
+                super::poly_plan::record(ct, scheme, levels, opts, keep.is_some().then_some(&mut kept))?;
             if let Some(k) = keep {
                 *k = LevelTables::Polygons(kept);
             }
