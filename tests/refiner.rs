@@ -203,6 +203,8 @@ fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit()
             let fresh = Refiner::new(&r.cage(), scheme, 3, &opts).unwrap();
             assert_eq!(differ(r.positions(), fresh.positions()), None, "{name}: edit {k}");
             assert_eq!(differ(r.normals(), fresh.normals()), None, "{name}: edit {k} normals");
+            let tags = |t: &subdiv::CornerTable| t.sharpness().map(|s| s.to_tags(t)).unwrap_or_default();
+            assert_eq!(tags(r.topology()), tags(fresh.topology()), "{name}: edit {k}: the finest level's tags");
         }
         // moves after the edits read the recorded rows too
         r.move_vertices(&[v[1]], &[Vec3::new(0.3, 0.2, 0.9)]).unwrap();

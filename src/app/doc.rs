@@ -426,7 +426,10 @@ impl Doc {
             Err(e) => return self.fail(Problem::Other(crate::Error::Invalid(e))),
         };
         let picked = *self.model.picked;
-        self.replace_control("sharpness", Mesh { ct, positions: control.positions.clone() });
+        let mesh = Mesh { ct, positions: control.positions.clone() };
+        if let Some(mesh) = self.retag_surface(&tags, mesh) {
+            self.replace_control("sharpness", mesh);
+        }
         self.model.picked.set(picked);
     }
 

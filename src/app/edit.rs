@@ -509,12 +509,11 @@ impl Doc {
     /// control mesh itself at level 0, else the refiner of the drawn level
     /// (built on first use, on the cage as it now is) moved locally.
     fn follow_surface(&mut self, ids: &[u32], to: &[Vec3]) {
-        let made = &self.model.made;
-        if made.level == 0 {
+        if self.model.made.level == 0 {
             self.model.raw = (*self.model.control).clone();
             return;
         }
-        let key = RefinerKey { topology: self.edit.topology, scheme: made.scheme, level: made.level, opts: made.opts };
+        let key = self.refiner_key();
         let fresh = match self.edit.refiner.take() {
             Some((k, mut r)) if k == key => r.set_vertices(ids, to).map(|_| (r, false)),
             _ => Refiner::new(&self.model.control.mesh, key.scheme, key.level, &key.opts).map(|r| (r, true)),
@@ -539,6 +538,34 @@ impl Doc {
             Shown::new(mesh)
         };
         self.edit.refiner = Some((key, r));
+    }
+
+    /// What the drawn level's refiner must have been built for.
+    fn refiner_key(&self) -> RefinerKey {
+        let made = &self.model.made;
+        RefinerKey { topology: self.edit.topology, scheme: made.scheme, level: made.level, opts: made.opts }
+    }
+
+    /// In the edit mode, new tags (`mesh`: the cage with them) re-record
+    /// the drawn level's refiner where they reach instead of subdividing
+    /// anew (one step of the history); `mesh` is handed back where that
+    /// cannot be done (no refiner of the drawn level, a tag it refuses).
+    pub(crate) fn retag_surface(&mut self, tags: &crate::mesh::Tags, mesh: Mesh) -> Option<Mesh> {
+        let key = self.refiner_key();
+        let fits =
+            self.edit.on && self.model.made.level > 0 && self.edit.refiner.as_ref().is_some_and(|(k, _)| *k == key);
+        let Some((_, r)) = self.edit.refiner.as_mut().filter(|_| fits) else { return Some(mesh) };
+        if r.set_tags(tags).is_err() {
+            return Some(mesh);
+        }
+        let raw = Shown::new(Arc::new(r.mesh()));
+        let (before, after) = (self.model.control.mesh.clone(), Arc::new(mesh));
+        self.model.control.set(Shown::new(after.clone()));
+        self.model.raw = raw;
+        self.edit.history.push(Step::Control { what: "sharpness".into(), before, after });
+        self.reshade();
+        self.after_change();
+        None
     }
 
     /// Undoes the last change of the control mesh.

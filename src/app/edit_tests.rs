@@ -250,3 +250,27 @@ fn keys_typed_within_one_frame_are_taken_in_their_order() {
     frame(&ctx, &mut v, vec![chord(Key::S, Modifiers::COMMAND)]);
     assert_eq!(v.doc.display.surface, surface, "Ctrl+S is not S (the shading)");
 }
+
+#[test]
+fn in_the_edit_mode_a_sharpness_change_re_records_the_drawn_level_locally() {
+    let mut v = Viewer::new();
+    v.apply(Command::Open("bundled:torus.obj".into()));
+    settle(&mut v);
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    v.apply(Command::Edit(EditAction::Toggle));
+    let ct = &v.doc.model.control.mesh.ct;
+    let c = ct.edge_owners().next().unwrap();
+    v.apply(Command::SetSharpness { corner: c, sharpness: 3.0 });
+    assert!(!v.doc.busy(), "no subdivision was started");
+    assert_eq!(v.doc.model.made.level, 2, "the drawn level stayed");
+    assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(c), 3.0);
+    let local = v.doc.model.raw.mesh.positions.clone();
+    let (fresh, _) = crate::subdivide(&v.doc.model.control.mesh, Scheme::Loop, 2, &v.doc.model.made.opts).unwrap();
+    let diff = local.iter().zip(&fresh.positions).map(|(a, b)| a.distance(*b)).fold(0.0, f32::max);
+    assert!(diff < 1e-5, "the local re-recording is the subdivision of the tagged cage ({diff})");
+    assert!(v.doc.model.raw.creased.is_some(), "the crease is drawn as one");
+    v.apply(Command::Edit(EditAction::Undo));
+    settle(&mut v);
+    assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(c), 0.0, "undone");
+}

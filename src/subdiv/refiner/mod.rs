@@ -514,6 +514,16 @@ impl Refiner {
         self.retag(tags)
     }
 
+    /// Gives the cage `tags` (replacing its sharp edges and vertices);
+    /// one step of the history, re-recorded where it reaches as
+    /// [`Refiner::set_edge_sharpness`].
+    ///
+    /// # Errors
+    /// A tag naming no edge or vertex of the cage.
+    pub fn set_tags(&mut self, tags: &Tags) -> Result<()> {
+        self.retag(tags.clone())
+    }
+
     fn retag(&mut self, after: Tags) -> Result<()> {
         let before = self.tags();
         self.apply_tags(&after)?;

@@ -137,10 +137,18 @@ impl Refiner {
             LevelTables::Polygons(t) => self.retag_levels(t.iter_mut().map(Level::Polygons), tags),
         };
         self.tables = tables;
-        result.map(Some)
+        let (redone, fine) = result?;
+        self.plan.set_fine_sharpness(fine);
+        Ok(Some(redone))
     }
 
-    fn retag_levels<'a>(&mut self, levels: impl Iterator<Item = Level<'a>>, tags: &Tags) -> Result<Vec<Vec<u32>>> {
+    /// The levels retagged; the rows recorded again per level, and the
+    /// finest level's new sharpness.
+    fn retag_levels<'a>(
+        &mut self,
+        levels: impl Iterator<Item = Level<'a>>,
+        tags: &Tags,
+    ) -> Result<(Vec<Vec<u32>>, Option<Sharpness>)> {
         let mut sharpness = None;
         let mut redone = Vec::new();
         for (l, mut level) in levels.enumerate() {
@@ -155,7 +163,7 @@ impl Refiner {
             redone.push(ids);
             sharpness = level.next_sharpness(self.opts.creasing);
         }
-        Ok(redone)
+        Ok((redone, sharpness))
     }
 }
 

@@ -260,6 +260,19 @@ impl StencilPlan {
         Self::packed(scheme, levels, (ct, poly), None)
     }
 
+    /// The finest level's sharpness after an edit of the tags (on its
+    /// polygons and their triangles alike, edge by edge).
+    pub(crate) fn set_fine_sharpness(&mut self, s: Option<crate::mesh::Sharpness>) {
+        if let Some(poly) = self.poly.as_deref_mut() {
+            let tags = s.as_ref().map(|s| s.to_tags(&*poly)).unwrap_or_default();
+            *poly = std::mem::take(poly).with_sharpness(s);
+            let on_triangles = crate::mesh::Sharpness::from_tags(&self.ct, &tags).ok().flatten();
+            self.ct = std::mem::take(&mut self.ct).with_sharpness(on_triangles);
+        } else {
+            self.ct = std::mem::take(&mut self.ct).with_sharpness(s);
+        }
+    }
+
     /// Level `i`'s rows replaced (a sharpness edit's): applied unpacked
     /// from now on (bit-identical, a little slower).
     pub(crate) fn level_mut(&mut self, i: usize) -> &mut LevelPlan {
