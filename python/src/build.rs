@@ -78,7 +78,7 @@ impl Remap {
         }
     }
     /// The caller's id to the library's (`None`: a vertex no face uses).
-    fn inverse(&self) -> impl Fn(u32) -> Option<u32> + '_ {
+    pub fn inverse(&self) -> impl Fn(u32) -> Option<u32> + '_ {
         let mut inv = Vec::new();
         if let Some(k) = &self.kept {
             inv = vec![u32::MAX; self.n_input];

@@ -23,6 +23,11 @@ pub fn msg(e: impl std::fmt::Display) -> Msg {
     e.to_string()
 }
 
+/// A library message as the `SubdivError` Python raises.
+pub fn error(m: &str) -> PyErr {
+    SubdivError::new_err(m.to_string())
+}
+
 /// Runs `f` with the GIL released (`Python::detach`, PyO3's
 /// `allow_threads`), on `threads` worker threads (`None`: the shared
 /// pool), turning an error or a panic into `SubdivError`.

@@ -13,6 +13,7 @@ mod files;
 mod guard;
 mod ops;
 mod options;
+mod refiner;
 #[cfg(feature = "viewer")]
 mod view;
 
@@ -30,6 +31,7 @@ fn _subdiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ops::limit_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::evaluate_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(files::load_file, m)?)?;
+    m.add_class::<refiner::NativeRefiner>()?;
     m.add_function(wrap_pyfunction!(files::save_file, m)?)?;
     #[cfg(feature = "viewer")]
     {

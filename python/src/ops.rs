@@ -220,7 +220,7 @@ fn drop_later<T: Send + 'static>(value: T) {
 }
 
 /// The size of every face of `pt`, when they all have one.
-fn face_size(pt: &subdiv::mesh::poly::PolyTable) -> Result<usize, Msg> {
+pub(crate) fn face_size(pt: &subdiv::mesh::poly::PolyTable) -> Result<usize, Msg> {
     let k = pt.face_size(0) as usize;
     if (0..pt.num_faces() as u32).all(|f| pt.face_size(f) as usize == k) {
         Ok(k)

@@ -29,6 +29,7 @@ __all__ = [
     "SubdivError",
     "evaluate",
     "Mesh",
+    "Refiner",
     "subdivide",
     "matrix",
     "limit",
@@ -104,6 +105,78 @@ def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary
                                       _checks.levels(levels), (bool(repair), not single), _checks.threads(threads))
     # float32 in: computed in float32, handed back as float32 (exactly)
     return (v2.astype(np.float32) if single else v2), f2
+
+
+class Refiner:
+    """A mesh refined ``levels`` times once, then edited: control vertices
+    moved, edges creased, steps undone, each edit evaluating again only the
+    refined vertices it reaches (OpenSubdiv's ``TopologyRefiner`` with its
+    stencil table, updated locally).
+
+    Parameters are those of :func:`subdivide` (``repair`` aside: the
+    vertex ids are the caller's). Float32 vertices are refined and returned
+    in float32; float64 ones in float64 (the control rows as given, the
+    rules' float64 weights).
+
+    >>> import numpy as np, subdiv
+    >>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    >>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    >>> r = subdiv.Refiner(V, F, levels=2)
+    >>> V2 = r.move([0], [[2.0, 2.0, 2.0]])
+    >>> V2.shape, r.faces.shape
+    ((34, 3), (64, 3))
+    >>> r.undo()
+    True
+    """
+
+    def __init__(self, vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary="edge", creases=None):
+        v, self._single = _checks.vertices(vertices), _checks.is_float32(vertices)
+        self._n = v.shape[0]
+        corners, starts = _checks.faces(faces)
+        self._native = _subdiv.NativeRefiner((v, corners, starts), _checks.creases(creases),
+                                             _names(scheme, beta, boundary), _checks.levels(levels))
+
+    @property
+    def vertices(self):
+        """The refined vertices ``(n2, 3)``, in the input's dtype."""
+        v = self._native.vertices(not self._single)
+        return v.astype(np.float32) if self._single else v
+
+    @property
+    def faces(self):
+        """The refined faces: int64 ``(m2, 3)`` or ``(m2, 4)``."""
+        return self._native.faces()
+
+    def move(self, ids, positions):
+        """Moves control vertices ``ids`` (k,) to ``positions`` (k, 3); one
+        step of the history. Returns the refined vertices."""
+        ids = np.asarray(ids)
+        if ids.dtype.kind not in "iu":
+            raise TypeError("ids must be integers")
+        ids = np.ascontiguousarray(ids, dtype=np.int64).reshape(-1)
+        pos = _checks.vertices(positions)
+        if pos.shape[0] != ids.shape[0]:
+            raise ValueError(f"{ids.shape[0]} ids but {pos.shape[0]} positions")
+        self._native.move_vertices(ids, pos)
+        return self.vertices
+
+    def set_sharpness(self, v0, v1, sharpness):
+        """The sharpness of the edge ``v0``-``v1`` (0 smooth, 10 or more
+        infinitely sharp); one step of the history. Returns the refined vertices."""
+        self._native.set_sharpness(int(v0), int(v1), float(sharpness))
+        return self.vertices
+
+    def undo(self) -> bool:
+        """Undoes the last move or sharpness; whether there was one."""
+        return self._native.undo()
+
+    def redo(self) -> bool:
+        """Redoes the last undone step; whether there was one."""
+        return self._native.redo()
+
+    def support(self, vertex):
+        """The refined vertices that control vertex ``vertex`` moves (int64, sorted)."""
+        return np.sort(self._native.support(int(vertex)))
 
 
 def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boundary="edge", creases=None,
