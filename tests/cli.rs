@@ -714,3 +714,50 @@ fn info_prints_the_corner_operators_and_a_stencil_as_json() {
     let v = json(&["info", "bundled:critter.obj", "--stencil", "0", "-n", "1", "-s", "catmull-clark", "--json"]);
     assert!(v["rules"][1]["rule"].as_str().unwrap().contains("vertex point"), "{v}");
 }
+
+#[test]
+fn edit_moves_vertices_and_tags_edges_in_a_script() {
+    let quad = write(
+        "edit-in.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 2 0\nvt 2 1\n\
+         f 1/1 2/2 3/3 4/4\nf 2/2 5/5 6/6 3/3\n",
+    );
+    let out = tmp("edit-out.obj");
+    let status = bin()
+        .args(["edit", quad.to_str().unwrap(), out.to_str().unwrap(), "--move", "0=0,0,1", "--offset", "4=0,0,-0.5"])
+        .args(["--crease", "1,2=2.5", "--corner", "5=10"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let text = std::fs::read_to_string(&out).unwrap();
+    let edited = subdiv::io::load(&out).unwrap();
+    assert_eq!(edited.positions[0], glam::Vec3::new(0.0, 0.0, 1.0));
+    assert_eq!(edited.positions[4], glam::Vec3::new(2.0, 0.0, -0.5));
+    assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 2, "still two quads:\n{text}");
+    assert!(text.contains("vt "), "texture coordinates kept:\n{text}");
+    assert!(text.contains("t crease 2/1/0 1 2 2.5") && text.contains("t corner 1/1/0 5 10"), "{text}");
+    // the refined level of the edited cage equals subdividing the edited file
+    let fine = tmp("edit-fine.obj");
+    let args =
+        ["edit", quad.to_str().unwrap(), fine.to_str().unwrap(), "-n", "2", "-s", "catmull-clark", "--move", "0=0,0,1"];
+    assert!(bin().args(args).status().unwrap().success());
+    let moved = write("edit-moved.obj", "v 0 0 1\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\nf 1 2 3 4\nf 2 5 6 3\n");
+    let reference = tmp("edit-reference.obj");
+    let args = ["subdivide", moved.to_str().unwrap(), reference.to_str().unwrap(), "-n", "2", "-s", "catmull-clark"];
+    assert!(bin().args(args).status().unwrap().success());
+    let (a, b) = (subdiv::io::load(&fine).unwrap(), subdiv::io::load(&reference).unwrap());
+    assert_eq!(a.positions.len(), b.positions.len());
+    let d = a.positions.iter().zip(&b.positions).map(|(p, q)| p.distance(*q)).fold(0.0, f32::max);
+    assert!(d < 1e-5, "{d}");
+    // refused in one line each
+    let bad = run_fail(&["edit", quad.to_str().unwrap(), out.to_str().unwrap(), "--move", "9=0,0,0"]);
+    assert!(bad.contains("vertex 9 is not a control vertex"), "{bad}");
+    let bad = run_fail(&["edit", quad.to_str().unwrap(), out.to_str().unwrap(), "--crease", "0,2=1"]);
+    assert!(bad.contains("0-2 is a diagonal of a polygon"), "{bad}");
+    let bad = run_fail(&["edit", quad.to_str().unwrap(), out.to_str().unwrap(), "--crease", "0,5=1"]);
+    assert!(bad.contains("no edge (0, 5)"), "{bad}");
+    // clap's own refusal of a malformed value (with its usual hint line)
+    let bad =
+        bin().args(["edit", quad.to_str().unwrap(), out.to_str().unwrap(), "--move", "1=nan,0,0"]).output().unwrap();
+    assert!(!bad.status.success() && String::from_utf8_lossy(&bad.stderr).contains("three finite numbers"));
+}

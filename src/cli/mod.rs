@@ -9,6 +9,7 @@
 
 pub(crate) mod args;
 mod draw;
+mod edit;
 mod eval;
 mod info;
 mod inspect;
@@ -52,6 +53,8 @@ enum Cmd {
     Limit(mesh_ops::LimitCmdArgs),
     /// The exact Loop or Catmull-Clark limit surface at points `f u v`: position and normal (and curvature).
     Eval(eval::EvalArgs),
+    /// Edit the cage: move control vertices, set edge and vertex sharpness (in order), and write the edited cage (or, with --levels, its refined surface).
+    Edit(edit::EditArgs),
     /// Repair a mesh into a valid manifold one and write it (format by extension).
     ///
     /// Drops degenerate and duplicate faces, cuts non-manifold edges, makes the
@@ -112,6 +115,7 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
         Some(Cmd::Animate(args)) => draw::animate(args),
         Some(Cmd::Subdivide(args)) => mesh_ops::subdivide(&args),
         Some(Cmd::Repair(args)) => mesh_ops::repair(&args),
+        Some(Cmd::Edit(args)) => edit::edit(&args),
         Some(Cmd::Smooth(args)) => mesh_ops::smooth(&args),
         Some(Cmd::Limit(args)) => mesh_ops::limit(&args),
         Some(Cmd::Eval(args)) => eval::eval(&args),

@@ -525,6 +525,14 @@ impl Refiner {
     }
 
     fn retag(&mut self, after: Tags) -> Result<()> {
+        // a fanned polygon's diagonals are no edges of the surface
+        let hidden = |a: u32, b: u32| {
+            let c = self.cage.corner_opposite(a, b).or_else(|| self.cage.corner_opposite(b, a));
+            c.is_some_and(|c| self.cage.edge_generation(c) == crate::mesh::Generations::HIDDEN)
+        };
+        if let Some(t) = after.creases.iter().find(|t| hidden(t.v0, t.v1)) {
+            return Err(Error::Usage(format!("{}-{} is a diagonal of a polygon, not an edge", t.v0, t.v1)));
+        }
         let before = self.tags();
         self.apply_tags(&after)?;
         self.history.done.push(Step::Tags { before, after });
