@@ -143,6 +143,8 @@ pub(crate) enum Command {
     Edit(super::edit::EditAction),
     /// The answer to closing or opening with unsaved changes.
     Answer(super::edit::Answer),
+    /// The animation's keys: insert, set, delete, save.
+    Key(super::keys::KeyAction),
 }
 
 /// What the GPU mirror's sync found that the document should know: the
@@ -242,6 +244,7 @@ impl Viewer {
             Command::Inspect(action) => doc.inspect(action),
             Command::Edit(action) => doc.edit(action),
             Command::Answer(answer) => self.answer(answer),
+            Command::Key(action) => doc.key(action),
             camera => self.apply_camera(camera),
         }
         if self.doc.model.control.version() != control && self.doc.model.original.is_none() {

@@ -150,6 +150,15 @@ pub(crate) enum Step {
         /// And after.
         after: Vec<Vec3>,
     },
+    /// The animation's keys before and after.
+    Paths {
+        /// What the history list shows.
+        what: String,
+        /// Before.
+        before: Box<crate::anim::paths::Paths>,
+        /// After.
+        after: Box<crate::anim::paths::Paths>,
+    },
     /// Any other change (tags, smoothing, a flip, a split, a hole, a
     /// revert): the meshes before and after, shared with the document.
     Control {
@@ -166,7 +175,7 @@ impl Step {
     /// Its line in the history list.
     pub(crate) fn label(&self) -> &str {
         match self {
-            Step::Move { what, .. } | Step::Control { what, .. } => what,
+            Step::Move { what, .. } | Step::Control { what, .. } | Step::Paths { what, .. } => what,
         }
     }
 }
@@ -192,6 +201,10 @@ impl History {
     /// Whether the control mesh differs from its file.
     pub(crate) fn dirty(&self) -> bool {
         self.top() != self.saved
+    }
+    /// Records a step (clearing what was undone).
+    pub(crate) fn push_step(&mut self, step: Step) {
+        self.push(step);
     }
     fn push(&mut self, step: Step) {
         self.next += 1;
@@ -589,6 +602,9 @@ impl Doc {
     fn apply_step(&mut self, step: &Step, undo: bool) {
         match step {
             Step::Move { ids, before, after, .. } => self.place(ids, if undo { before } else { after }),
+            Step::Paths { before, after, .. } => {
+                self.install_paths(if undo { (**before).clone() } else { (**after).clone() })
+            }
             Step::Control { before, after, .. } => {
                 let picked = *self.model.picked;
                 self.install_control(if undo { before.clone() } else { after.clone() });

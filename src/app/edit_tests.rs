@@ -274,3 +274,39 @@ fn in_the_edit_mode_a_sharpness_change_re_records_the_drawn_level_locally() {
     settle(&mut v);
     assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(c), 0.0, "undone");
 }
+
+#[test]
+fn keys_are_inserted_from_the_cage_undone_and_saved_for_animate() {
+    use crate::app::keys::KeyAction;
+    let dir = scratch("keys");
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    let k = v.doc.anim.paths.keys_per_vertex;
+    let last: Vec<Vec3> = (0..4).map(|i| v.doc.anim.paths.polygon(i)[k - 1]).collect();
+    frame(&ctx, &mut v, vec![key(Key::E)]);
+    v.apply(Command::Edit(EditAction::Select { ids: vec![0], add: false }));
+    frame(&ctx, &mut v, vec![key(Key::G), key(Key::Z), Event::Text("0.5".into()), key(Key::Enter)]);
+    let moved = v.doc.model.control.mesh.positions[0];
+    frame(&ctx, &mut v, vec![key(Key::I)]);
+    let paths = &v.doc.anim.paths;
+    assert_eq!(paths.keys_per_vertex, k + 1, "I inserted a key");
+    assert_eq!(paths.polygon(0)[k], moved, "the selected vertex keyed where the cage has it");
+    for i in 1..4 {
+        assert_eq!(paths.polygon(i)[k], last[i], "vertex {i} holds its last key");
+    }
+    frame_with(&ctx, &mut v, Modifiers::COMMAND, vec![chord(Key::Z, Modifiers::COMMAND)]);
+    assert_eq!(v.doc.anim.paths.keys_per_vertex, k, "undone");
+    v.apply(Command::Edit(EditAction::Redo));
+    assert_eq!(v.doc.anim.paths.keys_per_vertex, k + 1, "redone");
+    v.apply(Command::Key(KeyAction::Delete(0)));
+    assert_eq!(v.doc.anim.paths.keys_per_vertex, k);
+    let file = dir.join("edited.paths");
+    v.apply(Command::Key(KeyAction::Save(file.clone())));
+    let read = crate::anim::paths::Paths::load(&file, &Default::default()).unwrap();
+    assert_eq!(read, v.doc.anim.paths, "the saved paths read back the same");
+    read.check_model(&v.doc.model.control.mesh, "edited.paths").unwrap();
+    // the animation plays through the new keys
+    frame(&ctx, &mut v, vec![key(Key::Space)]);
+    settle(&mut v);
+    assert!(v.doc.anim.playback.as_ref().is_some_and(|p| p.player.frame_count() >= k));
+}

@@ -34,6 +34,7 @@ pub(crate) mod edit;
 mod gpu_scene;
 pub(crate) mod inspect;
 pub(crate) mod jobs;
+pub(crate) mod keys;
 pub(crate) mod model;
 pub(crate) mod panel;
 pub(crate) mod probe;

@@ -47,8 +47,45 @@ pub(crate) fn animation_section(
     if rebuild {
         out.push(Command::SetPathRefinement { refine, tweak });
     }
+    out.extend(key_rows(ui, doc, panel));
     out.extend(clock_rows(ui, doc));
     out.extend(export_rows(ui, doc, panel, display));
+    out
+}
+
+/// The keys the paths run through: insert one from the cage (I), set or
+/// delete key k, save them as a `.paths` file.
+fn key_rows(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState) -> Vec<Command> {
+    use crate::app::keys::KeyAction;
+    let mut out = Vec::new();
+    let k = doc.anim.paths.keys_per_vertex;
+    let who = if doc.edit.selected.is_empty() {
+        "all vertices".to_string()
+    } else {
+        format!("{} selected", doc.edit.selected.len())
+    };
+    ui.horizontal(|ui| {
+        ui.label(format!("{k} keys"));
+        if ui.button("Insert key (I)").on_hover_text(format!("the cage's positions of {who}")).clicked() {
+            out.push(Command::Key(KeyAction::Insert));
+        }
+    });
+    panel.key_index = panel.key_index.min(k.saturating_sub(1));
+    ui.horizontal(|ui| {
+        ui.add(egui::Slider::new(&mut panel.key_index, 0..=k.saturating_sub(1)).text("key"));
+        if ui.button("Set").on_hover_text(format!("key it again from the cage ({who})")).clicked() {
+            out.push(Command::Key(KeyAction::Set(panel.key_index)));
+        }
+        if ui.add_enabled(k > 1, egui::Button::new("Delete")).clicked() {
+            out.push(Command::Key(KeyAction::Delete(panel.key_index)));
+        }
+    });
+    ui.horizontal(|ui| {
+        ui.text_edit_singleline(&mut panel.paths_path);
+        if ui.button("Save paths").clicked() {
+            out.push(Command::Key(KeyAction::Save(PathBuf::from(&panel.paths_path))));
+        }
+    });
     out
 }
 

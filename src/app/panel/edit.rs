@@ -332,6 +332,7 @@ pub(crate) fn handles(ui: &egui::Ui, rect: Rect, doc: &Doc, view: &View, panel: 
             painter.circle(*h, 3.0, Color32::from_gray(230), dark);
         }
     }
+    paths(&painter, rect, doc, view);
     // the selection shows through: it is what a grab moves
     let sel_at = handle_points(doc, view, rect, sel);
     for h in sel_at {
@@ -352,6 +353,36 @@ pub(crate) fn handles(ui: &egui::Ui, rect: Rect, doc: &Doc, view: &View, panel: 
     } else if let Some(t) = &panel.sharpness_text {
         let text = format!("Sharpness: {t}_  (Return sets, Esc cancels)");
         painter.text(at, egui::Align2::LEFT_BOTTOM, text, font, accent);
+    }
+}
+
+/// Paths shown at most (one per selected vertex).
+const MAX_PATHS: usize = 64;
+
+/// The refined split-and-tweak paths of the selected vertices through
+/// their keys (small squares), while an animation is built.
+fn paths(painter: &egui::Painter, rect: Rect, doc: &Doc, view: &View) {
+    let Some(p) = &doc.anim.playback else { return };
+    let side = doc.display.side_by_side;
+    let (vp, aspect) = (cage_viewport(rect, side), viewport_aspect(rect, side));
+    let m = view.camera.view_proj(aspect);
+    let screen = |q: Vec3| Some(m.project_point3(q)).filter(|n| (0.0..=1.0).contains(&n.z)).map(|n| to_screen(vp, n));
+    let frames = p.player.frame_count();
+    let line = egui::Stroke::new(1.5, Color32::from_rgb(120, 200, 255));
+    for &v in doc.edit.selected.iter().take(MAX_PATHS) {
+        let v = v as usize;
+        let points: Vec<Pos2> =
+            (0..=frames).filter_map(|f| p.player.control(f).get(v).copied().and_then(screen)).collect();
+        painter.add(egui::Shape::line(points, line));
+        if v < doc.anim.paths.vertex_count() {
+            for q in doc.anim.paths.polygon(v).iter().filter_map(|&q| screen(q)) {
+                painter.rect_filled(
+                    Rect::from_center_size(q, egui::vec2(6.0, 6.0)),
+                    1.0,
+                    Color32::from_rgb(120, 200, 255),
+                );
+            }
+        }
     }
 }
 

@@ -130,6 +130,7 @@ fn keys(ui: &egui::Ui, view: &View, display: &mut Display, walking: bool) -> Vec
         (pressed(Key::R), Command::ResetCamera),
         (pressed(Key::P), Command::Screenshot),
         (pressed(Key::Space), Command::TogglePlay),
+        (pressed(Key::I), Command::Key(crate::app::keys::KeyAction::Insert)),
         (pressed(Key::ArrowRight), Command::Step(1)),
         (pressed(Key::ArrowLeft), Command::Step(-1)),
         (pressed(Key::Plus) || pressed(Key::Equals), Command::LevelUp),

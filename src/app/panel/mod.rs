@@ -36,7 +36,7 @@ use std::path::PathBuf;
 
 /// Keyboard help shown at the bottom of the panel.
 pub(crate) const HELP: &str = "Mouse: left drag orbit, right/middle or shift+drag pan, wheel zoom to cursor, \
-click pick a point, double click fit. Keys: E edit the cage (click select, G grab, X/Y/Z axis, A all, Shift+E sharpness), Ctrl+Z undo, Ctrl+S save, Q inspect (corners, stencils, splits), Esc clear the pick, W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
+click pick a point, double click fit. Keys: E edit the cage (click select, G grab, X/Y/Z axis, A all, Shift+E sharpness), Ctrl+Z undo, Ctrl+S save, I insert an animation key, Q inspect (corners, stencils, splits), Esc clear the pick, W wireframe, S shading, +/- level, F fit, R reset, O ortho, C control mesh, N normals, \
 B side by side, T turntable, Space play/pause, Left/Right step frame, P screenshot.";
 
 /// The panel's own widget state.
@@ -71,6 +71,10 @@ pub(crate) struct PanelState {
     pub(crate) dragging_handle: bool,
     /// The Save As field is shown.
     pub(crate) save_as_open: bool,
+    /// The animation key the key rows act on.
+    pub(crate) key_index: usize,
+    /// Where "Save paths" writes.
+    pub(crate) paths_path: String,
 }
 
 impl PanelState {
@@ -92,6 +96,8 @@ impl PanelState {
             box_start: None,
             dragging_handle: false,
             save_as_open: false,
+            key_index: 0,
+            paths_path: "animation.paths".into(),
         }
     }
 }
