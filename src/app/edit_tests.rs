@@ -291,8 +291,8 @@ fn keys_are_inserted_from_the_cage_undone_and_saved_for_animate() {
     let paths = &v.doc.anim.paths;
     assert_eq!(paths.keys_per_vertex, k + 1, "I inserted a key");
     assert_eq!(paths.polygon(0)[k], moved, "the selected vertex keyed where the cage has it");
-    for i in 1..4 {
-        assert_eq!(paths.polygon(i)[k], last[i], "vertex {i} holds its last key");
+    for (i, held) in last.iter().enumerate().skip(1) {
+        assert_eq!(paths.polygon(i)[k], *held, "vertex {i} holds its last key");
     }
     frame_with(&ctx, &mut v, Modifiers::COMMAND, vec![chord(Key::Z, Modifiers::COMMAND)]);
     assert_eq!(v.doc.anim.paths.keys_per_vertex, k, "undone");

@@ -195,6 +195,13 @@ fn split_sharpness(
     crate::mesh::sharpness::Sharpness::from_lists(corners, vertices)
 }
 
+/// The sharpness the split of `old` gives its children (what [`split`]
+/// carries), without splitting: a sharpness edit's new tags carried down
+/// the levels of a refiner.
+pub(crate) fn split_sharpness_of(old: &PolyTable, creasing: Creasing) -> Option<crate::mesh::sharpness::Sharpness> {
+    old.sharpness().and_then(|s| split_sharpness(s, old, creasing))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -314,11 +321,4 @@ mod tests {
         let (full, _) = split(&pt, Creasing::Uniform);
         assert_eq!(full.v, v, "the full split's V");
     }
-}
-
-/// The sharpness the split of `old` gives its children (what [`split`]
-/// carries), without splitting: a sharpness edit's new tags carried down
-/// the levels of a refiner.
-pub(crate) fn split_sharpness_of(old: &PolyTable, creasing: Creasing) -> Option<crate::mesh::sharpness::Sharpness> {
-    old.sharpness().and_then(|s| split_sharpness(s, old, creasing))
 }

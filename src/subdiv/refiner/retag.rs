@@ -51,7 +51,8 @@ fn changed_vertices<T: EdgeTable + ?Sized>(table: &T, old: Option<&Sharpness>, n
         out.extend(mb.keys().filter(|k| !ma.contains_key(k)));
         out
     }
-    fn lists(s: Option<&Sharpness>) -> (&[(u32, f32)], &[(u32, f32)]) {
+    type Lists<'a> = (&'a [(u32, f32)], &'a [(u32, f32)]);
+    fn lists(s: Option<&Sharpness>) -> Lists<'_> {
         s.map_or((&[], &[]), |s| (s.sharp_corners(), s.sharp_vertices()))
     }
     let ((oc, ov), (nc, nv)) = (lists(old), lists(new));
@@ -213,18 +214,16 @@ impl Level<'_> {
     /// The rows of new vertices `ids`, by the rules of the whole level.
     fn record_rows(&self, scheme: Scheme, opts: &Options, ids: &[u32]) -> LevelPlan {
         match self {
-            Level::Triangles(t, owners) => {
-                crate::subdiv::tables::plan::record_rows_of(&**t, owners, (scheme, opts), ids)
-            }
-            Level::Polygons(t) => crate::subdiv::tables::poly_plan::record_poly_level(&**t, scheme, opts, Some(ids)),
+            Level::Triangles(t, owners) => crate::subdiv::tables::plan::record_rows_of(t, owners, (scheme, opts), ids),
+            Level::Polygons(t) => crate::subdiv::tables::poly_plan::record_poly_level(t, scheme, opts, Some(ids)),
         }
     }
 
     /// The sharpness the split gives the next level.
     fn next_sharpness(&self, creasing: Creasing) -> Option<Sharpness> {
         match self {
-            Level::Triangles(t, _) => t.sharpness().and_then(|s| s.split(&**t, creasing)),
-            Level::Polygons(t) => crate::mesh::poly::split::split_sharpness_of(&**t, creasing),
+            Level::Triangles(t, _) => t.sharpness().and_then(|s| s.split(t, creasing)),
+            Level::Polygons(t) => crate::mesh::poly::split::split_sharpness_of(t, creasing),
         }
     }
 }

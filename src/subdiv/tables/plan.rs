@@ -223,7 +223,7 @@ impl StencilPlan {
     pub(crate) fn record_keeping<W: Weight + std::ops::AddAssign>(
         ct: &CornerTable,
         (scheme, levels, opts): (Scheme, u32, &Options),
-        mut keep: Option<&mut LevelTables>,
+        keep: Option<&mut LevelTables>,
     ) -> Result<Recorded<W>> {
         if scheme.is_polygonal() {
             let mut kept = Vec::new();
@@ -249,7 +249,7 @@ impl StencilPlan {
             plans.push(with_rules(scheme, opts, record));
             cur = next;
         }
-        if let Some(k) = keep.as_deref_mut() {
+        if let Some(k) = keep {
             *k = LevelTables::Triangles(kept);
         }
         Ok((plans, cur, None))
