@@ -38,7 +38,7 @@ impl NativeRefiner {
             .ok()
             .filter(|&i| (i as usize) < n)
             .ok_or_else(|| format!("vertex {i} is not one of the {n} vertices"))?;
-        self.remap.inverse()(i).ok_or_else(|| format!("vertex {i} is in no face: moving it changes no surface").into())
+        self.remap.inverse()(i).ok_or_else(|| format!("vertex {i} is in no face: moving it changes no surface"))
     }
 
     /// The finest positions, float64 rows in the caller's numbering.
