@@ -175,10 +175,7 @@ impl Viewer {
         let (doc, view) = (&mut self.doc, &mut self.view);
         match command {
             Command::OpenBuiltin => doc.open_builtin(),
-            Command::Open(path) if doc.edit.history.dirty() => {
-                doc.edit.pending = Some(super::edit::Pending::Open(path))
-            }
-            Command::Open(path) => doc.open(path),
+            Command::Open(path) => doc.open_asking(path),
             Command::RepairAndOpen(path) => doc.repair_and_open(path),
             Command::SetRepairOnOpen(on) => doc.repair_on_open = on,
             Command::EditCurve(curve) => doc.model.curve.set(Some(curve)),

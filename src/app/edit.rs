@@ -707,6 +707,14 @@ impl Doc {
         }
     }
 
+    /// Opens `path`, or first asks what to do with unsaved changes.
+    pub(crate) fn open_asking(&mut self, path: PathBuf) {
+        match self.edit.history.dirty() {
+            true => self.edit.pending = Some(Pending::Open(path)),
+            false => self.open(path),
+        }
+    }
+
     /// The answer to closing or opening with unsaved changes; whether to
     /// go on.
     pub(crate) fn answer(&mut self, answer: Answer) -> bool {
