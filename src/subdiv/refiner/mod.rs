@@ -321,9 +321,15 @@ impl Refiner {
                 rest[0][r as usize] = sum_row(&row.idx, &row.w, &done[l]);
             }
         }
-        self.normals = vec![Vec3::Z; self.positions().len()];
-        let all: Vec<u32> = (0..self.positions().len() as u32).collect();
-        self.update_normals(&all);
+        // every normal, into the buffer already held (no id list, no new buffer)
+        let pos = self.points.last().map_or(&[][..], Vec::as_slice);
+        self.normals.resize(pos.len(), Vec3::Z);
+        match &self.rings {
+            Some((offsets, ids)) => self.normals.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, n)| {
+                *n = ring_normal(pos, v as u32, &ids[offsets[v] as usize..offsets[v + 1] as usize]);
+            }),
+            None => self.update_normals(&[]),
+        }
     }
 
     /// The finest points that control vertex `v` influences (its support),
