@@ -9,7 +9,7 @@ use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
 use subdiv::anim::{Animation, Paths, Tweak};
-use subdiv::mesh::shapes::icosphere;
+use subdiv::mesh::icosphere;
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn per_level(c: &mut Criterion, group: &str, mesh: &Mesh, levels: &[u32]) {
@@ -59,7 +59,7 @@ fn animation(c: &mut Criterion) {
         });
         // positions only, as OpenSubdiv's StencilTable::UpdateValues (osd_bench --frames)
         let plan = anim.plan().clone();
-        let mut scratch = subdiv::subdiv::tables::PlanScratch::for_plan(&plan);
+        let mut scratch = subdiv::rules::PlanScratch::for_plan(&plan);
         let mut out = Vec::new();
         g.bench_function(BenchmarkId::new("plan_positions", name), |b| {
             b.iter(|| {

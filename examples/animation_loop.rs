@@ -8,7 +8,8 @@
 use glam::Vec3;
 use std::path::PathBuf;
 use std::time::Instant;
-use subdiv::subdiv::tables::{PlanScratch, StencilPlan};
+use subdiv::StencilPlan;
+use subdiv::rules::PlanScratch;
 use subdiv::{Options, Scheme, bundled, subdivide};
 
 fn main() -> subdiv::Result<()> {

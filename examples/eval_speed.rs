@@ -5,7 +5,7 @@
 //! `cargo run --release --example eval_speed [MODEL] [POINTS]`
 
 use std::time::Instant;
-use subdiv::subdiv::eval::Evaluator;
+use subdiv::Evaluator;
 use subdiv::{Options, Scheme};
 
 fn main() -> subdiv::Result<()> {
@@ -52,7 +52,7 @@ fn main() -> subdiv::Result<()> {
         }
         best[1] = best[1].min(t.elapsed().as_secs_f64() * 1e3);
         let t = Instant::now();
-        let keep = |s: &subdiv::subdiv::eval::Sample| [s.position, s.normal];
+        let keep = |s: &subdiv::eval::Sample| [s.position, s.normal];
         let batch = one.install(|| ev.eval_map(&points, false, keep))?;
         best[2] = best[2].min(t.elapsed().as_secs_f64() * 1e3);
         check += batch[n / 2][0].z;

@@ -21,7 +21,7 @@ fn main() -> subdiv::Result<()> {
     let opts = Options::default();
     let (fine, stats) = subdivide(&mesh, scheme, levels, &opts)?;
     // attributes follow the same levels: colours with the scheme's weights, UVs linearly
-    let fine_attrs = subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, scheme, levels, &opts)?;
+    let fine_attrs = subdiv::rules::refine_attributes(&mesh.ct, &attrs, scheme, levels, &opts)?;
     io::save_with(&output, &fine, &fine_attrs)?;
 
     // read it back: the same triangles

@@ -1,5 +1,5 @@
 //! Per-phase timing of the subdivision call that `subdiv subdivide` makes
-//! (`subdivide_faces`, `subdivide_poly_faces`: the last level without its
+//! (`subdivide_faces`, `subdivide_faces`: the last level without its
 //! adjacency), input loaded once:
 //! `cargo run --release --no-default-features --example phases -- MODEL LEVELS REPEATS [SCHEME...]`
 //! prints, per scheme, the minimum over the repeats of every phase (ms), which
@@ -9,7 +9,7 @@
 //! process is `subdiv subdivide --stats`.
 
 use std::path::Path;
-use subdiv::{Options, Scheme, subdivide_faces, subdivide_poly_faces};
+use subdiv::{Options, Scheme, subdivide_faces};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -22,15 +22,15 @@ fn main() {
     // that repeats after the first measure the work without fresh pages
     subdiv::mem::keep_freed_memory();
     let mesh = subdiv::io::load(Path::new(model)).unwrap();
-    let poly = subdiv::mesh::poly::PolyMesh::from_mesh(&mesh);
+    let poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
     for s in schemes {
         let mut best = [f64::MAX; 8];
         for _ in 0..reps {
             let r0 = usage();
             let (m, st) = match s.is_polygonal() {
                 // the polygons the file holds, as `subdiv subdivide` takes them
-                true => subdivide_poly_faces(&poly, s, levels, &Options::default()).unwrap(),
-                false => subdivide_faces(&mesh, s, levels, &Options::default()).unwrap(),
+                true => subdivide_faces(&poly, s, levels, &Options::default(), |j| j).unwrap(),
+                false => subdivide_faces(&mesh, s, levels, &Options::default(), |j| j).unwrap(),
             };
             let r1 = usage();
             std::hint::black_box(m.positions.len());

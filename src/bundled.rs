@@ -36,13 +36,9 @@ impl Model {
     ///
     /// # Errors
     /// As [`io::read`] (`teapot.bez` needs [`io::Topology::Repair`]).
-    pub fn read(&self, opts: &ReadOptions) -> Result<Loaded> {
+    pub(crate) fn read(&self, opts: &ReadOptions) -> Result<Loaded> {
         let name = self.cli_name();
         io::read(io::Source::Bytes { bytes: self.bytes, name: &name, folder: None }, opts)
-    }
-    /// Its animation paths, when some are bundled for it.
-    pub fn paths(&self) -> Option<&'static str> {
-        paths_text(stem(self.file_name))
     }
 }
 
@@ -75,12 +71,12 @@ pub const MODELS: &[Model] = &[
 const PATHS: &[(&str, &str)] = &[("tetrahedron", include_str!("../paths/tetrahedron.paths"))];
 
 /// The bundled model called `file_name` (`torus.obj`).
-pub fn model(file_name: &str) -> Option<&'static Model> {
+pub(crate) fn model(file_name: &str) -> Option<&'static Model> {
     MODELS.iter().find(|m| m.file_name == file_name)
 }
 
 /// The bundled model a command-line argument names (`bundled:torus.obj`).
-pub fn from_arg(arg: &Path) -> Option<&'static Model> {
+pub(crate) fn from_arg(arg: &Path) -> Option<&'static Model> {
     arg.to_str().and_then(|s| s.strip_prefix(PREFIX)).and_then(model)
 }
 
@@ -89,7 +85,7 @@ pub fn from_arg(arg: &Path) -> Option<&'static Model> {
 ///
 /// # Errors
 /// As [`io::read_file`]; an unknown `bundled:` name.
-pub fn bytes(arg: &Path, limits: &io::Limits) -> Result<std::borrow::Cow<'static, [u8]>> {
+pub(crate) fn bytes(arg: &Path, limits: &io::Limits) -> Result<std::borrow::Cow<'static, [u8]>> {
     if let Some(m) = from_arg(arg) {
         return Ok(std::borrow::Cow::Borrowed(m.bytes));
     }
@@ -139,7 +135,7 @@ pub fn load_curve(arg: &Path, limits: &io::Limits) -> Result<Vec<glam::Vec2>> {
 }
 
 /// The text of the bundled `.paths` for models called `stem`.
-pub fn paths_text(stem: &str) -> Option<&'static str> {
+pub(crate) fn paths_text(stem: &str) -> Option<&'static str> {
     PATHS.iter().find(|(s, _)| *s == stem).map(|&(_, t)| t)
 }
 

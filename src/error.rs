@@ -19,7 +19,7 @@ const ELEMENT_CHARS: usize = 48;
 /// Characters of the description of a problem in a message.
 const MSG_CHARS: usize = 160;
 /// Ids an error lists (a non-manifold edge's faces): the rest are counted.
-pub const MAX_EXAMPLES: usize = 8;
+pub(crate) const MAX_EXAMPLES: usize = 8;
 
 /// `s` as one printable line of at most `max` characters: control
 /// characters escaped (`\n`, `\0`, `\u{1b}`), and a longer text cut in
@@ -169,7 +169,7 @@ pub enum MeshError {
 
 impl MeshError {
     /// The input face this error is about, when there is exactly one.
-    pub fn face(&self) -> Option<usize> {
+    pub(crate) fn face(&self) -> Option<usize> {
         match self {
             MeshError::IndexOutOfRange { face, .. } | MeshError::DegenerateFace { face, .. } => Some(*face),
             MeshError::NonManifoldEdge { examples, .. } => examples.first().copied(),
@@ -179,7 +179,7 @@ impl MeshError {
     }
     /// The same error with vertex ids shifted by `d` (1 gives OBJ's 1-based
     /// numbering in messages).
-    pub fn shift_vertices(self, d: u32) -> MeshError {
+    pub(crate) fn shift_vertices(self, d: u32) -> MeshError {
         use MeshError as E;
         match self {
             E::IndexOutOfRange { face, index, len } => E::IndexOutOfRange { face, index: index + i64::from(d), len },
@@ -198,7 +198,7 @@ impl MeshError {
     }
 
     /// The input vertex this error is about, when there is exactly one.
-    pub fn vertex(&self) -> Option<usize> {
+    pub(crate) fn vertex(&self) -> Option<usize> {
         match self {
             MeshError::NonFinite { vertex } => Some(*vertex),
             MeshError::NonManifoldVertex { vertex, .. } | MeshError::UnusedVertex { vertex } => Some(*vertex as usize),
@@ -364,15 +364,15 @@ pub enum Error {
 
 impl Error {
     /// An I/O error on `path`.
-    pub fn io(path: &Path, source: std::io::Error) -> Self {
+    pub(crate) fn io(path: &Path, source: std::io::Error) -> Self {
         Error::Io { path: path.display().to_string(), source }
     }
     /// [`Error::Cancelled`] for `what`.
-    pub fn cancelled(what: &str) -> Self {
+    pub(crate) fn cancelled(what: &str) -> Self {
         Error::Cancelled { what: what.to_string() }
     }
     /// [`Error::Encode`] of `format` into `path`.
-    pub fn encode(path: &Path, format: &'static str, msg: impl std::fmt::Display) -> Self {
+    pub(crate) fn encode(path: &Path, format: &'static str, msg: impl std::fmt::Display) -> Self {
         Error::Encode { path: path.display().to_string(), format, msg: msg.to_string() }
     }
 }
@@ -381,7 +381,7 @@ impl Error {
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// Bytes as a short human-readable string (`1.5 GiB`).
-pub fn human_bytes(b: u64) -> String {
+pub(crate) fn human_bytes(b: u64) -> String {
     const U: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
     let mut x = b as f64;
     let mut i = 0;

@@ -33,15 +33,16 @@
 //! are the old vertices' new positions, *odd* points the new edge vertices.
 
 #![warn(missing_docs)]
+#![warn(unreachable_pub)]
 
 pub mod anim;
 pub mod bundled;
 pub mod cpu;
-pub mod error;
+pub(crate) mod error;
 pub mod io;
 pub mod mem;
 pub mod mesh;
-pub mod subdiv;
+pub(crate) mod subdiv;
 
 #[cfg(feature = "viewer")]
 pub mod render;
@@ -49,9 +50,59 @@ pub mod render;
 #[cfg(feature = "viewer")]
 pub mod app;
 
-pub use error::{Error, MeshError, Result};
+// One way in per operation: reading, saving, subdividing, refining, the
+// stencil plan, the exact evaluator; the namespaces below hold what these take
+// and give.
+pub use error::{Error, MeshError, Result, clean as clean_error};
+pub use io::{read, save};
 pub use mesh::{BORDER, CornerTable, Mesh};
-pub use subdiv::{
-    LoopBeta, Options, Refiner, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_as,
-    subdivide_poly, subdivide_poly_f64, subdivide_poly_faces, subdivide_poly_faces_as,
-};
+pub use subdiv::eval::Evaluator;
+pub use subdiv::tables::StencilPlan;
+pub use subdiv::{Cage, LoopBeta, Options, Refiner, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces};
+
+#[cfg(feature = "viewer")]
+pub use render::{render_image, render_png};
+
+pub mod eval {
+    //! Exact limit evaluation ([`crate::Evaluator`]): what a sample holds,
+    //! the points it is asked at, the Loop and Catmull-Clark limit formulas
+    //! per vertex, and the curvature colours.
+    pub use crate::subdiv::eval::catmark::{QUAD, ptex_faces};
+    pub use crate::subdiv::eval::{
+        Domain, EDGE_SLACK, Sample, evaluate_one, parse_points_in, poly_vertex_params, vertex_samples,
+    };
+    pub use crate::subdiv::rules::catmark_limit::{LimitFrame, frame_from, frames_at, limit_frames};
+    pub use crate::subdiv::rules::limit::{
+        butterfly_normals, loop_limit_normals, loop_limit_positions, loop_limit_positions_f64,
+        loop_limit_positions_with,
+    };
+    /// Curvature as colour: which curvature, its range and the colour scale.
+    pub mod color {
+        pub use crate::subdiv::eval::color::{
+            CurvatureKind, HalfWidth, MAX_ISOLINES, PERCENTILE, SCHEMES, Scale, check_scheme, normalized, vertex_areas,
+            vertex_curvatures,
+        };
+    }
+}
+
+pub mod pick {
+    //! Picking: a ray against a mesh, and a hit on a refined level traced
+    //! back to the control face and vertex it came from, with the limit
+    //! surface there.
+    pub use crate::mesh::pick::{Hit, first_hit, nearest_hit};
+    pub use crate::subdiv::pick::{ControlFace, ControlVertex, Level, Limit, Pick, neighbourhood, pick};
+}
+
+pub mod rules {
+    //! The rules made visible: the stencil plan's levels and rows, one
+    //! vertex's stencil, the sharp features a mesh carries, the level each
+    //! vertex was made at, the predicted sizes, and data (colours, UVs,
+    //! materials) refined along the surface.
+    pub use crate::subdiv::inspect::{creation_levels, displacement};
+    pub use crate::subdiv::rules::features::{Summary, poly_summary, summary, with_boundary_corners};
+    pub use crate::subdiv::sizes::ControlCounts;
+    pub use crate::subdiv::stencil::{Stencil, stencil};
+    pub use crate::subdiv::tables::attributes::{refine as refine_attributes, refine_poly as refine_poly_attributes};
+    pub use crate::subdiv::tables::{LevelPlan, PlanScratch, Point};
+    pub use crate::subdiv::{PlanF64, plan_f64};
+}

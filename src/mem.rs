@@ -145,6 +145,38 @@ fn advise(ptr: *mut u8, len: usize) {
 #[cfg(not(target_os = "linux"))]
 fn advise(_ptr: *mut u8, _len: usize) {}
 
+/// Bytes this process can still be given: 80% of the machine's
+/// `MemAvailable`, and no more than half the process's address-space limit
+/// (`ulimit -v`) where one is set; `None` when neither is known.
+pub fn default_memory_limit() -> Option<u64> {
+    let available = || -> Option<u64> {
+        let s = std::fs::read_to_string("/proc/meminfo").ok()?;
+        let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
+        let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+        Some(kb * 1024 / 5 * 4)
+    };
+    match (available(), address_space_limit().map(|l| l / 2)) {
+        (Some(a), Some(l)) => Some(a.min(l)),
+        (a, l) => a.or(l),
+    }
+}
+
+/// The process's address-space limit (`RLIMIT_AS`), when one is set.
+fn address_space_limit() -> Option<u64> {
+    #[cfg(unix)]
+    {
+        let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
+        // SAFETY: getrlimit writes the limit into the struct we own and
+        // reads nothing else of ours.
+        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
+        // rlim_t is u64 on Linux but not everywhere
+        #[allow(clippy::unnecessary_cast)]
+        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
+    }
+    #[cfg(not(unix))]
+    None
+}
+
 #[cfg(test)]
 mod tests {
     #[test]

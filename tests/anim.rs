@@ -103,7 +103,7 @@ fn polygon_schemes_animate_like_a_direct_subdivision() {
                 assert!((*x - *y).abs().max_element() < 1e-5, "{what}: {x} against {y}");
             }
             for (v, n) in nrm.iter().enumerate() {
-                let m = edge_ring_normal(&subdiv::mesh::poly::PolyMesh::from_mesh(&full), v as u32);
+                let m = edge_ring_normal(&subdiv::mesh::PolyMesh::from_mesh(&full), v as u32);
                 assert!(n.distance(m) < 1e-4, "{what}: normal {n} against {m}");
             }
         }
@@ -112,7 +112,7 @@ fn polygon_schemes_animate_like_a_direct_subdivision() {
 
 /// The unit normal of the polygon of `v`'s edge neighbours in fan order
 /// (with `v` itself on the boundary), by Newell's sum of cross products.
-fn edge_ring_normal(m: &subdiv::mesh::poly::PolyMesh, v: u32) -> glam::Vec3 {
+fn edge_ring_normal(m: &subdiv::mesh::PolyMesh, v: u32) -> glam::Vec3 {
     let pt = &m.pt;
     let mut ring: Vec<glam::Vec3> = pt.fan(v).map(|c| m.positions[pt.vtx(pt.next(c)) as usize]).collect();
     if pt.is_boundary_vertex(v) {

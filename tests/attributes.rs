@@ -6,7 +6,8 @@ mod common;
 use common::*;
 use glam::{Vec2, Vec3};
 use subdiv::io::obj;
-use subdiv::subdiv::tables::attributes::{Attributes, refine, refine_corner_uvs};
+use subdiv::mesh::{Attributes, refine_corner_uvs};
+use subdiv::rules::refine_attributes;
 use subdiv::{Options, Scheme, subdivide};
 
 #[test]
@@ -59,7 +60,7 @@ fn colours_use_the_scheme_weights_and_reproduce_affine_fields() {
     };
     for scheme in [Scheme::Loop, Scheme::Midpoint, Scheme::Jarek] {
         let (fine, _) = subdivide(&mesh, scheme, 2, &Options::default()).unwrap();
-        let out = refine(&mesh.ct, &attrs, scheme, 2, &Options::default()).unwrap();
+        let out = refine_attributes(&mesh.ct, &attrs, scheme, 2, &Options::default()).unwrap();
         let colors = out.colors.unwrap();
         assert_eq!(colors.len(), fine.positions.len());
         for (c, q) in colors.iter().zip(&fine.positions) {
@@ -73,7 +74,7 @@ fn colours_use_the_scheme_weights_and_reproduce_affine_fields() {
         options: Default::default(),
         colors: Some((0..mesh.positions.len()).map(|i| if i % 2 == 0 { Vec3::ONE } else { Vec3::ZERO }).collect()),
     };
-    let out = refine(&mesh.ct, &spiky, Scheme::Butterfly, 1, &Options::default()).unwrap().colors.unwrap();
+    let out = refine_attributes(&mesh.ct, &spiky, Scheme::Butterfly, 1, &Options::default()).unwrap().colors.unwrap();
     assert!(out.iter().all(|c| c.cmpge(Vec3::ZERO).all() && c.cmple(Vec3::ONE).all()));
 }
 

@@ -11,7 +11,7 @@ use subdiv::io::bezier::{
     Patch, curve_polyline, de_casteljau, de_casteljau_step, parse_bez, parse_bzc, tessellate_raw,
 };
 use subdiv::mesh::RepairReport;
-use subdiv::mesh::topology::{check_invariants, topology};
+use subdiv::mesh::{check_invariants, topology};
 use subdiv::{Error, Mesh};
 
 /// The tessellation built as the reading pipeline builds it, `topology` deciding.
@@ -125,7 +125,7 @@ fn a_flat_patch_tessellates_to_a_planar_mesh() {
         assert!((*q - o).dot(nrm).abs() < 1e-5, "{q} is off the plane");
     }
     // faces counter-clockwise about S_u x S_v = a x b
-    for f in subdiv::mesh::normals::face_normals(&mesh.ct, &mesh.positions) {
+    for f in subdiv::mesh::face_normals(&mesh.ct, &mesh.positions) {
         assert!(f.normalize().dot(nrm) > 0.999);
     }
 }

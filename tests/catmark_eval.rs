@@ -1,4 +1,4 @@
-//! Exact Catmull-Clark limit evaluation (`subdiv::subdiv::eval`, ptex faces)
+//! Exact Catmull-Clark limit evaluation (`subdiv::eval`, ptex faces)
 //! against independent truths: the limit masks of the level-4 refinement at
 //! the dyadic points of levels 0 to 4 (subdivision and masks, not the
 //! evaluator), finite differences of positions for the derivatives, and
@@ -8,12 +8,12 @@ mod common;
 
 use glam::DVec3;
 use std::path::PathBuf;
-use subdiv::mesh::poly::PolyMesh;
+use subdiv::Evaluator;
+use subdiv::eval::frames_at;
+use subdiv::eval::{QUAD, ptex_faces};
+use subdiv::mesh::PolyMesh;
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
-use subdiv::subdiv::eval::Evaluator;
-use subdiv::subdiv::eval::catmark::{QUAD, ptex_faces};
-use subdiv::subdiv::rules::catmark_limit::frames_at;
-use subdiv::{Mesh, Options, Scheme, subdivide_poly};
+use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn load(name: &str) -> PolyMesh {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name);
@@ -80,7 +80,7 @@ fn dyadic_points_are_the_limits_of_subdivided_vertices() {
         assert_eq!(ev.num_faces(), ptex.len(), "{name}: the evaluator's faces are the ptex faces");
         let mut levels = vec![poly.clone()];
         for _ in 0..5 {
-            levels.push(subdivide_poly(levels.last().unwrap(), Scheme::CatmullClark, 1, &opts).unwrap().0);
+            levels.push(subdivide(levels.last().unwrap(), Scheme::CatmullClark, 1, &opts).unwrap().0);
         }
         let fine = &levels[5];
         let limits = frames_at(&fine.pt, &fine.positions, opts.creasing);
@@ -158,7 +158,7 @@ fn quads_meet_their_neighbours_with_one_tangent_plane() {
                 let ((uf, vf), (ug, vg)) = (on(i, t), on(j, 1.0 - t));
                 let (a, b) = (ev.eval(f as usize, uf, vf).unwrap(), ev.eval(g as usize, ug, vg).unwrap());
                 assert!((a.position - b.position).length() < 1e-9 * size(&poly), "{name}: edge of corner {c} at {t}");
-                if pt.sharpness().is_none_or(|s| s.corner(c) < subdiv::mesh::sharpness::INFINITE) {
+                if pt.sharpness().is_none_or(|s| s.corner(c) < subdiv::mesh::INFINITE) {
                     assert!(a.normal.dot(b.normal) > 1.0 - 1e-9, "{name}: normals across corner {c}'s edge at {t}");
                 }
             }
@@ -269,7 +269,7 @@ fn osd_normals(poly: &PolyMesh, opts: &Options, fixture: &str) -> Vec<DVec3> {
         .filter_map(|l| l.strip_prefix("l "))
         .map(|l| l.split_whitespace().map(|t| t.parse().unwrap()).collect())
         .collect();
-    let (fine, _) = subdivide_poly(poly, Scheme::CatmullClark, 1, opts).unwrap();
+    let (fine, _) = subdivide(poly, Scheme::CatmullClark, 1, opts).unwrap();
     (0..poly.positions.len())
         .map(|v| {
             let p = fine.positions[v].as_dvec3();
@@ -321,8 +321,8 @@ fn every_corner_of_an_open_or_creased_mesh_has_a_finite_limit_normal() {
 /// through its proxy.
 #[test]
 fn every_vertex_of_a_level_is_evaluated_at_its_own_limit() {
-    use subdiv::subdiv::eval::{poly_vertex_params, vertex_samples};
-    use subdiv::subdiv::rules::catmark_limit::limit_frames;
+    use subdiv::eval::limit_frames;
+    use subdiv::eval::{poly_vertex_params, vertex_samples};
     for (name, poly, opts) in cases() {
         let mesh: Mesh = poly.triangulated();
         let size = size(&poly);
@@ -338,7 +338,7 @@ fn every_vertex_of_a_level_is_evaluated_at_its_own_limit() {
                 && (0.0..=1.0).contains(&u)
                 && (0.0..=1.0).contains(&v)));
             let samples = vertex_samples(&mesh, &fine, Scheme::CatmullClark, levels, &opts).unwrap();
-            let level = subdivide_poly(&poly, Scheme::CatmullClark, levels, &opts).unwrap().0;
+            let level = subdivide(&poly, Scheme::CatmullClark, levels, &opts).unwrap().0;
             let limits = limit_frames(&level, &opts).unwrap();
             assert_eq!((samples.len(), limits.len()), (fine.positions.len(), fine.positions.len()));
             let mut worst = 0.0f64;

@@ -10,10 +10,10 @@ mod common;
 
 use glam::Vec3;
 use std::path::PathBuf;
-use subdiv::mesh::poly::PolyMesh;
+use subdiv::eval::{LimitFrame, frame_from, frames_at, limit_frames};
+use subdiv::mesh::PolyMesh;
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
-use subdiv::subdiv::rules::catmark_limit::{LimitFrame, frame_from, frames_at, limit_frames};
-use subdiv::{Options, Scheme, subdivide_poly};
+use subdiv::{Options, Scheme, subdivide};
 
 fn fixture(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name)
@@ -82,7 +82,7 @@ const CASES: [Case; 8] = {
 /// The refined level `case` names and its options.
 fn level_of(case: &Case) -> (PolyMesh, Options) {
     let o = Options { creasing: case.creasing, boundary: case.boundary, ..Options::default() };
-    let (fine, _) = subdivide_poly(&load(&format!("{}.obj", case.name)), Scheme::CatmullClark, case.level, &o).unwrap();
+    let (fine, _) = subdivide(&load(&format!("{}.obj", case.name)), Scheme::CatmullClark, case.level, &o).unwrap();
     (fine, o)
 }
 
@@ -91,7 +91,7 @@ fn level_of(case: &Case) -> (PolyMesh, Options) {
 /// refined surface converges to: seven more levels lie ten times nearer to
 /// ours than to OpenSubdiv's, and within 1e-4 of it.
 fn exact_where_opensubdiv_is_not(fine: &PolyMesh, o: &Options, v: usize, ours: Vec3, theirs: Vec3, what: &str) {
-    let (deep, _) = subdivide_poly(fine, Scheme::CatmullClark, 7, o).unwrap();
+    let (deep, _) = subdivide(fine, Scheme::CatmullClark, 7, o).unwrap();
     let (to_ours, to_theirs) = (deep.positions[v].distance(ours), deep.positions[v].distance(theirs));
     assert!(
         to_ours < 1e-4 && to_ours * 10.0 < to_theirs,
@@ -205,9 +205,9 @@ fn limit_is_the_same_from_the_next_level_and_the_mesh_converges() {
         let what = format!("{} {} L{}", case.name, case.opts, case.level);
         let (fine, o) = level_of(case);
         let here = limit_frames(&fine, &o).unwrap();
-        let (finer, _) = subdivide_poly(&fine, Scheme::CatmullClark, 1, &o).unwrap();
+        let (finer, _) = subdivide(&fine, Scheme::CatmullClark, 1, &o).unwrap();
         let next = limit_frames(&finer, &o).unwrap();
-        let (deep, _) = subdivide_poly(&fine, Scheme::CatmullClark, 6, &o).unwrap();
+        let (deep, _) = subdivide(&fine, Scheme::CatmullClark, 6, &o).unwrap();
         let dart = case.name == "grid_dart";
         for (v, f) in here.iter().enumerate() {
             let g = next[v];

@@ -9,9 +9,9 @@ mod common;
 use common::{assert_same_points, read_points};
 use glam::Vec3;
 use std::path::PathBuf;
-use subdiv::mesh::poly::PolyMesh;
+use subdiv::mesh::PolyMesh;
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
-use subdiv::{Options, Scheme, subdivide_poly};
+use subdiv::{Options, Scheme, subdivide};
 
 fn fixture(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name)
@@ -48,7 +48,7 @@ fn catmull_clark_equals_opensubdiv() {
         let control = load(&format!("{name}.obj"));
         for &n in levels {
             let o = Options { creasing, boundary, ..Options::default() };
-            let (fine, _) = subdivide_poly(&control, Scheme::CatmullClark, n, &o).unwrap();
+            let (fine, _) = subdivide(&control, Scheme::CatmullClark, n, &o).unwrap();
             let path = fixture(&format!("{name}.{opts}.L{n}.osd.txt"));
             let what = format!("{name} {opts} L{n}");
             assert_eq!(fine.pt.num_faces(), osd_faces(&path), "{what}: faces");
@@ -73,8 +73,8 @@ fn affine_maps_commute_with_the_polygon_schemes() {
             ..control.clone()
         };
         for scheme in Scheme::POLYGON {
-            let (a, _) = subdivide_poly(&control, scheme, 2, &Options::default()).unwrap();
-            let (b, _) = subdivide_poly(&moved, scheme, 2, &Options::default()).unwrap();
+            let (a, _) = subdivide(&control, scheme, 2, &Options::default()).unwrap();
+            let (b, _) = subdivide(&moved, scheme, 2, &Options::default()).unwrap();
             for (p, q) in a.positions.iter().zip(&b.positions) {
                 assert!(m.transform_point3(*p).distance(*q) < 1e-4, "{name} {scheme}");
             }
@@ -88,7 +88,7 @@ fn affine_maps_commute_with_the_polygon_schemes() {
 #[test]
 fn bilinear_points_and_the_numbering_of_new_vertices() {
     let control = load("ngons.obj");
-    let (fine, _) = subdivide_poly(&control, Scheme::Bilinear, 1, &Options::default()).unwrap();
+    let (fine, _) = subdivide(&control, Scheme::Bilinear, 1, &Options::default()).unwrap();
     let (nv, ne, nf) = (control.pt.num_vertices(), control.pt.num_edges(), control.pt.num_faces());
     assert_eq!(fine.positions.len(), nv + ne + nf);
     assert_eq!(&fine.positions[..nv], &control.positions[..]);
@@ -110,7 +110,7 @@ fn bilinear_points_and_the_numbering_of_new_vertices() {
     // a polygon mesh through the triangle pipeline gives the same points
     let mesh = subdiv::io::load(&fixture("ngons.obj")).unwrap();
     let (tri, _) = subdiv::subdivide(&mesh, Scheme::CatmullClark, 2, &Options::default()).unwrap();
-    let (poly, _) = subdivide_poly(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
+    let (poly, _) = subdivide(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
     assert_eq!(tri.positions, poly.positions);
     assert_eq!(tri.ct.num_triangles(), 2 * poly.pt.num_faces());
 }
@@ -133,7 +133,7 @@ fn face_lists(m: &PolyMesh) -> Vec<Vec<u32>> {
 fn polygon_formats_round_trip() {
     let dir = common::scratch_dir("poly-round-trip");
     let control = load("ngons.obj");
-    let (level1, _) = subdivide_poly(&control, Scheme::CatmullClark, 1, &Options::default()).unwrap();
+    let (level1, _) = subdivide(&control, Scheme::CatmullClark, 1, &Options::default()).unwrap();
     for (what, mesh) in [("ngons", &control), ("ngons L1", &level1)] {
         for ext in ["obj", "ply", "off", "ct"] {
             let path = dir.join(format!("{}.{ext}", what.replace(' ', "_")));
@@ -201,8 +201,8 @@ fn read_corners(path: &std::path::Path) -> Vec<[f32; 5]> {
 /// (position, texture coordinate) is one of OpenSubdiv's, one for one.
 #[test]
 fn texture_coordinates_equal_opensubdiv_face_varying() {
-    use subdiv::subdiv::UvInterpolation;
-    use subdiv::subdiv::tables::attributes::refine_poly;
+    use subdiv::mesh::UvInterpolation;
+    use subdiv::rules::refine_poly_attributes;
     let (edge, corners) = (BoundaryInterpolation::EdgeOnly, BoundaryInterpolation::EdgeAndCorner);
     let (linear, smooth) = (UvInterpolation::Linear, UvInterpolation::Smooth);
     let (uniform, chaikin) = (Creasing::Uniform, Creasing::Chaikin);
@@ -222,8 +222,9 @@ fn texture_coordinates_equal_opensubdiv_face_varying() {
         let loaded = subdiv::io::read(subdiv::io::Source::File(&fixture(&format!("{name}.obj"))), &opts).unwrap();
         let (control, attrs) = PolyMesh::from_mesh_with_attributes(&loaded.mesh, &loaded.attributes);
         let o = Options { uv, boundary, creasing, ..Options::default() };
-        let (fine, _) = subdivide_poly(&control, Scheme::CatmullClark, level, &o).unwrap();
-        let fine_uv = refine_poly(&control, &attrs, Scheme::CatmullClark, level, &o).unwrap().uv.expect("uvs");
+        let (fine, _) = subdivide(&control, Scheme::CatmullClark, level, &o).unwrap();
+        let fine_uv =
+            refine_poly_attributes(&control, &attrs, Scheme::CatmullClark, level, &o).unwrap().uv.expect("uvs");
         let want = read_corners(&fixture(&format!("{name}.uv.{mode}.osd.txt")));
         let what = format!("{name} {mode}");
         assert_eq!(fine_uv.len(), want.len(), "{what}: corners");
@@ -259,23 +260,21 @@ fn a_repair_with_nothing_to_mend_keeps_the_polygons() {
 /// semi-sharp crease among them (scripts/triangle-fixtures.py).
 #[test]
 fn both_triangle_rules_equal_opensubdiv() {
-    use subdiv::subdiv::TriangleSubdivision;
+    use subdiv::mesh::TriangleSubdivision;
     let control = load("tri_quads.obj");
     let mut outs = Vec::new();
     for (rule, name) in [(TriangleSubdivision::Catmark, "catmark"), (TriangleSubdivision::Smooth, "smooth")] {
         for n in [1, 2] {
             let o = Options { triangles: rule, ..Options::default() };
-            let (fine, _) = subdivide_poly(&control, Scheme::CatmullClark, n, &o).unwrap();
+            let (fine, _) = subdivide(&control, Scheme::CatmullClark, n, &o).unwrap();
             let path = fixture(&format!("tri_quads.{name}.L{n}.osd.txt"));
             let what = format!("tri_quads {name} L{n}");
             assert_eq!(fine.pt.num_faces(), osd_faces(&path), "{what}: faces");
             assert_same_points(&fine.positions, &read_points(&path), 1e-5, &what);
             // the plan records the same rule
-            let plan =
-                subdiv::subdiv::tables::StencilPlan::build(&control.triangulated().ct, Scheme::CatmullClark, n, &o)
-                    .unwrap();
+            let plan = subdiv::StencilPlan::build(&control.triangulated().ct, Scheme::CatmullClark, n, &o).unwrap();
             let mut out = Vec::new();
-            plan.apply(&control.positions, &mut subdiv::subdiv::tables::PlanScratch::for_plan(&plan), &mut out);
+            plan.apply(&control.positions, &mut subdiv::rules::PlanScratch::for_plan(&plan), &mut out);
             let worst = out.iter().zip(&fine.positions).map(|(a, b)| a.distance(*b)).fold(0.0f32, f32::max);
             assert!(worst < 1e-5, "{what}: the plan is {worst} away");
             outs.push(fine.positions);

@@ -329,7 +329,7 @@ fn json_output_is_valid_for_any_file_name() {
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("info --json is JSON");
     assert_eq!(v["file"].as_str().unwrap(), input.to_str().unwrap());
     let cube = subdiv::io::load(&model_path("cube.obj")).unwrap();
-    let hist = subdiv::mesh::topology::topology(&cube.ct).valence_histogram;
+    let hist = subdiv::mesh::topology(&cube.ct).valence_histogram;
     assert_eq!(v["faces"].as_u64(), Some(12));
     for (k, &n) in hist.iter().enumerate().filter(|(_, n)| **n > 0) {
         assert_eq!(v["valence"][k.to_string()].as_u64(), Some(n as u64), "valence {k}");
@@ -457,7 +457,7 @@ fn eval_writes_one_line_per_point_and_refuses_bad_points_by_line() {
         }
         // the limit of a corner is the vertex's limit position (2/5 v + 1/5 ring at valence 3)
         let mesh = bundled("tetrahedron.obj");
-        let lim = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh)[mesh.ct.vtx(0) as usize];
+        let lim = subdiv::eval::loop_limit_positions(&mesh)[mesh.ct.vtx(0) as usize];
         assert!((rows[0][0] - f64::from(lim.x)).abs() < 1e-6 && (rows[0][1] - f64::from(lim.y)).abs() < 1e-6);
         if curv {
             // at an extraordinary vertex the curvature is undefined; elsewhere H > 0 (convex, outward)
@@ -482,8 +482,8 @@ fn eval_writes_one_line_per_point_and_refuses_bad_points_by_line() {
 fn eval_takes_catmull_clark_ptex_faces_in_the_unit_square() {
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark");
     let model = dir.join("ngons.obj");
-    let mesh = subdiv::mesh::poly::PolyMesh::from_mesh(&subdiv::io::load(&model).unwrap());
-    let ptex = subdiv::subdiv::eval::catmark::ptex_faces(&mesh.pt).len();
+    let mesh = subdiv::mesh::PolyMesh::from_mesh(&subdiv::io::load(&model).unwrap());
+    let ptex = subdiv::eval::ptex_faces(&mesh.pt).len();
     assert!(ptex > mesh.pt.num_faces(), "the n-gons have a ptex face per corner");
     let out = tmp("eval-cc-out.txt");
     // (0.7, 0.7) is outside a triangle but inside a square
@@ -572,7 +572,7 @@ fn listed_values(help: &str) -> Vec<String> {
 #[cfg(feature = "viewer")]
 #[test]
 fn the_help_of_color_lists_every_colouring_it_takes() {
-    use subdiv::app::display::Coloring;
+    use subdiv::app::Coloring;
     for cmd in ["render", "view"] {
         let help = option_help(cmd, "--color <COLOR>");
         let values = listed_values(&help);

@@ -7,10 +7,10 @@
 mod common;
 use common::*;
 use std::collections::{BTreeMap, HashMap};
-use subdiv::mesh::inspect::corner_ops;
-use subdiv::mesh::split::{number_edges, split_linear};
+use subdiv::mesh::corner_ops;
 use subdiv::mesh::{n, p};
-use subdiv::subdiv::stencil::{Stencil, stencil};
+use subdiv::mesh::{number_edges, split_linear};
+use subdiv::rules::{Stencil, stencil};
 use subdiv::{LoopBeta, Mesh, Options, Scheme, subdivide};
 
 /// O from the triangles alone: the corner facing the same edge the other
@@ -159,11 +159,11 @@ fn stencils_equal_the_published_weights_exactly() {
         (0..8).map(|i| glam::Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, (i >> 2) as f32)).collect();
     let faces = [0, 2, 3, 1, 4, 5, 7, 6, 0, 1, 5, 4, 2, 6, 7, 3, 0, 4, 6, 2, 1, 3, 7, 5];
     let starts: Vec<u32> = (0..=6).map(|f| 4 * f).collect();
-    let cube = subdiv::mesh::poly::PolyMesh::from_faces(positions, &starts, &faces).unwrap().0.triangulated();
+    let cube = subdiv::mesh::PolyMesh::from_faces(positions, &starts, &faces).unwrap().0.triangulated();
     let s = stencil(&cube, Scheme::CatmullClark, 1, &o, 0).unwrap();
     let nf = 3.0;
     let mut want = vec![(0, (nf - 2.0) / nf + 1.0 / (4.0 * nf))];
-    let pm = subdiv::mesh::poly::PolyMesh::from_mesh(&cube);
+    let pm = subdiv::mesh::PolyMesh::from_mesh(&cube);
     for c in pm.pt.fan(0) {
         want.push((pm.pt.vtx(pm.pt.next(c)), 3.0 / (2.0 * nf * nf)));
         want.push((pm.pt.vtx(pm.pt.next(pm.pt.next(c))), 1.0 / (4.0 * nf * nf)));

@@ -14,8 +14,8 @@
 mod common;
 use common::*;
 use glam::Vec3;
-use subdiv::mesh::repair::{RepairReport, repair};
-use subdiv::mesh::topology::{check_invariants, topology};
+use subdiv::mesh::{RepairReport, repair};
+use subdiv::mesh::{check_invariants, topology};
 use subdiv::{Mesh, MeshError, Options, Scheme};
 
 /// Any count is accepted (the exact number depends on search order).

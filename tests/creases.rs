@@ -5,9 +5,10 @@ mod common;
 use common::{assert_same_points, icosphere, read_points, scratch_dir};
 use glam::{Mat3, Vec3};
 use std::path::PathBuf;
-use subdiv::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
+use subdiv::StencilPlan;
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
-use subdiv::subdiv::tables::{PlanScratch, StencilPlan};
+use subdiv::mesh::{CornerTag, CreaseTag, INFINITE, Tags};
+use subdiv::rules::PlanScratch;
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn fixture(name: &str) -> PathBuf {
@@ -280,9 +281,9 @@ fn affine_maps_commute_with_creased_subdivision() {
 /// level, found from the topology alone: control vertex `v` is plan vertex
 /// `order.new_vertex(v)`, and level by level the vertex made on an edge is
 /// matched to the vertex made on the edge between the matched end points.
-fn plain_ids(ct: &subdiv::CornerTable, order: &subdiv::mesh::order::Relabel, levels: u32) -> Vec<u32> {
+fn plain_ids(ct: &subdiv::CornerTable, order: &subdiv::mesh::Relabel, levels: u32) -> Vec<u32> {
     use std::collections::HashMap;
-    use subdiv::mesh::split::split;
+    use subdiv::mesh::split;
     use subdiv::mesh::{n, p};
     let mut map = order.old_vertices();
     let (mut local, mut plain) = (ct.relabelled(order), ct.clone());
@@ -420,12 +421,12 @@ fn the_crease_angle_finds_the_cube_edges_and_info_counts_them() {
     let tagged = sharp_cube();
     assert_eq!(auto.sharpness(), tagged.ct.sharpness(), "the 12 edges at 90 degrees, not the diagonals at 0");
     assert!(plain.ct.clone().with_angle_creases(&plain.positions, 95.0).sharpness().is_none());
-    let s = subdiv::subdiv::rules::features::summary(&auto, BoundaryInterpolation::EdgeOnly);
+    let s = subdiv::rules::summary(&auto, BoundaryInterpolation::EdgeOnly);
     assert_eq!((s.sharp_edges, s.infinite_edges, s.corners, s.darts, s.crease_vertices), (12, 12, 8, 0, 0));
     // the icosphere fixture: a dart at the end of its infinitely sharp edge,
     // two semi-sharp crease paths
     let ico = load("ico_crease.obj");
-    let s = subdiv::subdiv::rules::features::summary(&ico.ct, BoundaryInterpolation::EdgeOnly);
+    let s = subdiv::rules::summary(&ico.ct, BoundaryInterpolation::EdgeOnly);
     assert_eq!(s.sharp_edges, 6);
     assert_eq!(s.infinite_edges, 1);
     assert!(s.darts >= 2 && s.crease_vertices >= 2, "{s:?}");
@@ -433,21 +434,21 @@ fn the_crease_angle_finds_the_cube_edges_and_info_counts_them() {
     // (two; the other two have two triangles each)
     let grid = load("grid_open.obj");
     let (a, b) = (
-        subdiv::subdiv::rules::features::summary(&grid.ct, BoundaryInterpolation::EdgeOnly),
-        subdiv::subdiv::rules::features::summary(&grid.ct, BoundaryInterpolation::EdgeAndCorner),
+        subdiv::rules::summary(&grid.ct, BoundaryInterpolation::EdgeOnly),
+        subdiv::rules::summary(&grid.ct, BoundaryInterpolation::EdgeAndCorner),
     );
     assert_eq!(b.sharp_vertices, a.sharp_vertices + 2, "{a:?} {b:?}");
     // on polygons, the corners of one polygon: all four of a quad grid's,
     // though its fan gives two of them two triangles
     let quads =
         subdiv::io::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark/grid.obj")).unwrap();
-    let pt = subdiv::mesh::poly::PolyTable::from_corner_table(&quads.ct);
+    let pt = subdiv::mesh::PolyTable::from_corner_table(&quads.ct);
     let (a, b) = (
-        subdiv::subdiv::rules::features::poly_summary(&pt, BoundaryInterpolation::EdgeOnly),
-        subdiv::subdiv::rules::features::poly_summary(&pt, BoundaryInterpolation::EdgeAndCorner),
+        subdiv::rules::poly_summary(&pt, BoundaryInterpolation::EdgeOnly),
+        subdiv::rules::poly_summary(&pt, BoundaryInterpolation::EdgeAndCorner),
     );
     assert_eq!((b.sharp_vertices, b.corners), (a.sharp_vertices + 4, a.corners + 4), "{a:?} {b:?}");
-    let fan = subdiv::subdiv::rules::features::summary(&quads.ct, BoundaryInterpolation::EdgeAndCorner);
+    let fan = subdiv::rules::summary(&quads.ct, BoundaryInterpolation::EdgeAndCorner);
     assert_eq!(fan.sharp_vertices, 2, "{fan:?}");
 }
 
@@ -458,8 +459,8 @@ fn loop_limit_positions_follow_the_crease_curve() {
     let (m, ring) = torus_with_loop(INFINITE);
     let l2 = sub(&m, Scheme::Loop, 2, &Options::default());
     let l6 = sub(&m, Scheme::Loop, 6, &Options::default());
-    let lim = subdiv::subdiv::rules::limit::loop_limit_positions(&l2);
-    let smooth = subdiv::subdiv::rules::limit::loop_limit_positions(&Mesh {
+    let lim = subdiv::eval::loop_limit_positions(&l2);
+    let smooth = subdiv::eval::loop_limit_positions(&Mesh {
         ct: l2.ct.clone().with_tags(&Tags::default()).unwrap(),
         positions: l2.positions.clone(),
     });
@@ -478,7 +479,7 @@ fn loop_limit_positions_follow_the_crease_curve() {
 /// The smallest angle (degrees) between the normals of the two faces of any
 /// infinitely sharp edge of `m`.
 fn min_sharp_dihedral(m: &Mesh) -> f32 {
-    let fnorm = subdiv::mesh::normals::face_normals(&m.ct, &m.positions);
+    let fnorm = subdiv::mesh::face_normals(&m.ct, &m.positions);
     let s = m.ct.sharpness().expect("sharp edges");
     s.sharp_corners()
         .iter()

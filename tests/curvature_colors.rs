@@ -3,7 +3,8 @@
 //! tinted, where the 2nd/98th-percentile clamp it replaced left the body
 //! near white (issue 38, item 7).
 
-use subdiv::subdiv::eval::color::{self, CurvatureKind, HalfWidth, Scale};
+use subdiv::eval::color;
+use subdiv::eval::color::{CurvatureKind, HalfWidth, Scale};
 use subdiv::{Mesh, Options, Scheme, bundled, subdivide};
 
 /// The control mesh of a bundled model.

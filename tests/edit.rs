@@ -5,9 +5,9 @@
 mod common;
 use common::*;
 use glam::Vec3;
-use subdiv::mesh::edit::{EditError, flip_edge, split_edge};
-use subdiv::mesh::topology::{check_invariants, topology};
 use subdiv::mesh::{BORDER, n, p};
+use subdiv::mesh::{EditError, flip_edge, split_edge};
+use subdiv::mesh::{check_invariants, topology};
 use subdiv::{CornerTable, Mesh};
 
 /// The triangles as a sorted list of rotation-normalised triples (keeps orientation).

@@ -6,8 +6,8 @@
 
 mod common;
 use common::*;
-use subdiv::mesh::sharpness::{CornerTag, CreaseTag, Tags};
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
+use subdiv::mesh::{CornerTag, CreaseTag, Tags};
 use subdiv::{LoopBeta, Mesh, Options, Scheme, subdivide, subdivide_faces};
 
 /// `mesh` with every edge of the first `k` triangles tagged `s` and its
@@ -59,7 +59,7 @@ fn faces_only_equal_the_full_subdivision_bit_for_bit() {
         for scheme in SCHEMES {
             for levels in 0..=3 {
                 let (full, st) = subdivide(&mesh, scheme, levels, &opts).unwrap();
-                let (faces, st_faces) = subdivide_faces(&mesh, scheme, levels, &opts).unwrap();
+                let (faces, st_faces) = subdivide_faces(&mesh, scheme, levels, &opts, |j| j).unwrap();
                 let what = format!("{name}, {scheme}, {levels} levels");
                 assert_same_bits(&what, &full, &faces);
                 assert_eq!(st.faces_per_level, st_faces.faces_per_level, "{what}");
@@ -78,7 +78,8 @@ fn faces_only_equal_the_full_subdivision_on_any_thread_count() {
         assert!(full.ct.num_corners() / 4 > 3 * 16_384, "{name}: several chunks");
         for threads in [1, 3] {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            let (faces, _) = pool.install(|| subdivide_faces(&mesh, Scheme::Loop, 2, &Options::default())).unwrap();
+            let (faces, _) =
+                pool.install(|| subdivide_faces(&mesh, Scheme::Loop, 2, &Options::default(), |j| j)).unwrap();
             assert_same_bits(&format!("{name} icosphere on {threads} threads"), &full, &faces);
         }
     }
@@ -89,7 +90,7 @@ fn polygon_schemes_give_their_triangulated_faces() {
     let mesh = icosphere(1);
     for scheme in [Scheme::CatmullClark, Scheme::Bilinear] {
         let (full, _) = subdivide(&mesh, scheme, 2, &Options::default()).unwrap();
-        let (faces, _) = subdivide_faces(&mesh, scheme, 2, &Options::default()).unwrap();
+        let (faces, _) = subdivide_faces(&mesh, scheme, 2, &Options::default(), |j| j).unwrap();
         assert_same_bits(&format!("{scheme}"), &full, &faces);
     }
 }
@@ -97,9 +98,9 @@ fn polygon_schemes_give_their_triangulated_faces() {
 #[test]
 fn faces_are_written_as_the_mesh_is() {
     use subdiv::io;
-    use subdiv::mesh::attributes::Attributes;
+    use subdiv::mesh::Attributes;
     let (full, _) = subdivide(&icosphere(2), Scheme::Loop, 2, &Options::default()).unwrap();
-    let (faces, _) = subdivide_faces(&icosphere(2), Scheme::Loop, 2, &Options::default()).unwrap();
+    let (faces, _) = subdivide_faces(&icosphere(2), Scheme::Loop, 2, &Options::default(), |j| j).unwrap();
     let colors = Attributes { colors: Some(full.positions.iter().map(|p| p.abs()).collect()), ..Default::default() };
     let uv = Attributes {
         uv: Some(full.ct.v_table().iter().map(|&v| glam::Vec2::new(v as f32 * 1e-4, 0.5)).collect()),
@@ -126,12 +127,12 @@ fn faces_are_written_as_the_mesh_is() {
     assert!(err.contains("faces.ct"), "{err}");
 }
 
-fn load_poly(name: &str) -> subdiv::mesh::poly::PolyMesh {
+fn load_poly(name: &str) -> subdiv::mesh::PolyMesh {
     let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name);
-    subdiv::mesh::poly::PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap())
+    subdiv::mesh::PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap())
 }
 
-fn poly_cases() -> Vec<(&'static str, subdiv::mesh::poly::PolyMesh, Options)> {
+fn poly_cases() -> Vec<(&'static str, subdiv::mesh::PolyMesh, Options)> {
     let d = Options::default;
     vec![
         ("cube", load_poly("cube.obj"), d()),
@@ -145,13 +146,13 @@ fn poly_cases() -> Vec<(&'static str, subdiv::mesh::poly::PolyMesh, Options)> {
 
 #[test]
 fn quads_alone_equal_the_polygon_subdivision_bit_for_bit() {
-    use subdiv::{subdivide_poly, subdivide_poly_faces};
+    use subdiv::{subdivide, subdivide_faces};
     for (name, mesh, opts) in poly_cases() {
         for scheme in [Scheme::CatmullClark, Scheme::Bilinear] {
             for levels in 1..=3 {
                 let what = format!("{name}, {scheme}, {levels} levels");
-                let (full, st) = subdivide_poly(&mesh, scheme, levels, &opts).unwrap();
-                let (faces, st_faces) = subdivide_poly_faces(&mesh, scheme, levels, &opts).unwrap();
+                let (full, st) = subdivide(&mesh, scheme, levels, &opts).unwrap();
+                let (faces, st_faces) = subdivide_faces(&mesh, scheme, levels, &opts, |j| j).unwrap();
                 assert_eq!(faces.sides, 4, "{what}");
                 assert_eq!(full.pt.v_table(), &faces.corners[..], "{what}: corners");
                 let bits = |p: &[glam::Vec3]| p.iter().flat_map(|q| q.to_array().map(f32::to_bits)).collect::<Vec<_>>();
@@ -159,18 +160,18 @@ fn quads_alone_equal_the_polygon_subdivision_bit_for_bit() {
                 assert_eq!(st.faces_per_level, st_faces.faces_per_level, "{what}");
             }
         }
-        assert!(subdivide_poly_faces(&mesh, Scheme::CatmullClark, 0, &opts).is_err(), "{name}: no levels");
-        assert!(subdivide_poly_faces(&mesh, Scheme::Loop, 1, &opts).is_err(), "{name}: a triangle scheme");
+        assert!(subdivide_faces(&mesh, Scheme::CatmullClark, 0, &opts, |j| j).is_err(), "{name}: no levels");
+        assert!(subdivide_faces(&mesh, Scheme::Loop, 1, &opts, |j| j).is_err(), "{name}: a triangle scheme");
     }
 }
 
 #[test]
 fn quads_are_written_as_the_polygon_mesh_is() {
     use subdiv::io;
-    use subdiv::mesh::attributes::{Attributes, Material, MaterialGroups};
+    use subdiv::mesh::{Attributes, Material, MaterialGroups};
     let control = load_poly("ngons.obj");
-    let (full, _) = subdiv::subdivide_poly(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
-    let (faces, _) = subdiv::subdivide_poly_faces(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
+    let (full, _) = subdiv::subdivide(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
+    let (faces, _) = subdiv::subdivide_faces(&control, Scheme::CatmullClark, 2, &Options::default(), |j| j).unwrap();
     let nf = full.pt.num_faces();
     let colors = Attributes { colors: Some(full.positions.iter().map(|p| p.abs()).collect()), ..Default::default() };
     let uv = Attributes {
@@ -208,13 +209,13 @@ fn renumber(j: u32, keep: u32) -> i64 {
 
 #[test]
 fn ids_written_through_a_map_are_the_mapped_table() {
-    use subdiv::subdivide_faces_as;
+    use subdiv::subdivide_faces;
     for (name, mesh, opts) in cases() {
         for scheme in [Scheme::Loop, Scheme::Butterfly, Scheme::CatmullClark] {
             for levels in 0..=2 {
                 let what = format!("{name}, {scheme}, {levels} levels");
-                let (plain, _) = subdivide_faces(&mesh, scheme, levels, &opts).unwrap();
-                let (wide, _) = subdivide_faces_as(&mesh, scheme, levels, &opts, |j| renumber(j, 5)).unwrap();
+                let (plain, _) = subdivide_faces(&mesh, scheme, levels, &opts, |j| j).unwrap();
+                let (wide, _) = subdivide_faces(&mesh, scheme, levels, &opts, |j| renumber(j, 5)).unwrap();
                 let mapped: Vec<i64> = plain.corners.iter().map(|&j| renumber(j, 5)).collect();
                 assert_eq!(wide.corners, mapped, "{what}: corners");
                 assert_eq!(wide.positions, plain.positions, "{what}: positions");
@@ -226,13 +227,12 @@ fn ids_written_through_a_map_are_the_mapped_table() {
 
 #[test]
 fn quad_ids_written_through_a_map_are_the_mapped_table() {
-    use subdiv::{subdivide_poly_faces, subdivide_poly_faces_as};
+    use subdiv::subdivide_faces;
     for (name, mesh, opts) in poly_cases() {
         for levels in 1..=2 {
             let what = format!("{name}, {levels} levels");
-            let (plain, _) = subdivide_poly_faces(&mesh, Scheme::CatmullClark, levels, &opts).unwrap();
-            let (wide, _) =
-                subdivide_poly_faces_as(&mesh, Scheme::CatmullClark, levels, &opts, |j| renumber(j, 3)).unwrap();
+            let (plain, _) = subdivide_faces(&mesh, Scheme::CatmullClark, levels, &opts, |j| j).unwrap();
+            let (wide, _) = subdivide_faces(&mesh, Scheme::CatmullClark, levels, &opts, |j| renumber(j, 3)).unwrap();
             let mapped: Vec<i64> = plain.corners.iter().map(|&j| renumber(j, 3)).collect();
             assert_eq!(wide.corners, mapped, "{what}: corners");
             assert_eq!(wide.positions, plain.positions, "{what}: positions");

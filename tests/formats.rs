@@ -8,7 +8,7 @@
 mod common;
 use common::*;
 use glam::{Vec2, Vec3};
-use subdiv::mesh::attributes::Attributes;
+use subdiv::mesh::Attributes;
 use subdiv::{Error, Scheme, io};
 
 /// Each point of `a` has one of `b` within `tol`, and both have as many.
@@ -321,7 +321,7 @@ const DAE: &str = r##"<?xml version="1.0" encoding="utf-8"?>
 fn collada_reads_triangles_and_polylists_of_every_geometry() {
     let m = mesh_of(DAE.as_bytes(), "pyr.dae").unwrap();
     assert_eq!((m.positions.len(), m.ct.num_triangles()), (8, 7), "pyramid (quad base fanned) + a triangle");
-    assert_eq!(subdiv::mesh::topology::topology(&m.ct).components, 2);
+    assert_eq!(subdiv::mesh::topology(&m.ct).components, 2);
     // the second geometry has no texture coordinates: its corners get (0, 0)
     let (_, a) = with_attributes(DAE.as_bytes(), "pyr.dae").unwrap();
     assert_eq!(a.uv.as_ref().map(|u| (u.len(), u[18..] == [Vec2::ZERO; 3])), Some((21, true)));

@@ -12,7 +12,7 @@
 mod common;
 use common::*;
 use glam::Vec3;
-use subdiv::mesh::split::refine_linear;
+use subdiv::mesh::refine_linear;
 use subdiv::mesh::{n, p};
 use subdiv::{Mesh, Options, Scheme};
 
@@ -139,7 +139,7 @@ fn an_edit_makes_a_new_control_table() {
     let mut m = subdiv::subdivide(&bundled("cube.obj"), Scheme::Loop, 1, &Options::default()).unwrap().0;
     assert_eq!(m.ct.level(), 1);
     let c = m.ct.edge_owners().next().unwrap();
-    subdiv::mesh::edit::split_edge(&mut m, c, 0.5);
+    subdiv::mesh::split_edge(&mut m, c, 0.5);
     assert_eq!(m.ct.level(), 0);
     assert!((0..m.ct.num_corners() as u32).all(|c| m.ct.edge_generation(c) == 0));
 }

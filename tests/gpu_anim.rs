@@ -11,9 +11,9 @@ mod common;
 
 use common::{bundled, offscreen, scratch_dir, share_within};
 use subdiv::anim::{Animation, Paths, Tweak};
-use subdiv::render::export::{Evaluation, ExportStyle, ExportTarget, export_animation, frame_path};
-use subdiv::render::gpu_anim::{GpuAnimator, read_vec3};
 use subdiv::render::{Camera, GpuMesh, Look, Offscreen};
+use subdiv::render::{Evaluation, ExportStyle, ExportTarget, export_animation, frame_path};
+use subdiv::render::{GpuAnimator, read_vec3};
 use subdiv::{Mesh, Options, Scheme};
 
 fn tetrahedron() -> (Mesh, Paths) {
@@ -104,7 +104,7 @@ fn frames_evaluated_on_the_gpu_draw_the_cpu_image() {
     let Some(mut off) = offscreen(128, 128) else { return };
     let (m, paths) = tetrahedron();
     let mut anim = Animation::new(&m, &paths, Tweak::Jarek, 3, Scheme::Loop, 3, &Options::default()).unwrap();
-    let (lo, hi) = subdiv::render::export::motion_bounds(&anim);
+    let (lo, hi) = subdiv::render::motion_bounds(&anim);
     let cam = Camera::framing(lo, hi, 1.0);
     let (gpu_mesh, gpu) = gpu_of(&off, &mut anim);
     let (ct, p, n) = anim.evaluate_with_topology(0);

@@ -71,7 +71,7 @@ fn hole_tags_round_trip_and_bad_ones_are_refused() {
     subdiv::io::save(&out, &mesh).unwrap();
     let back = subdiv::io::load(&out).unwrap();
     assert_eq!(back.ct.holes(), mesh.ct.holes());
-    let poly = subdiv::mesh::poly::PolyMesh::from_mesh(&back);
+    let poly = subdiv::mesh::PolyMesh::from_mesh(&back);
     assert_eq!(poly.pt.holes(), [7, 12], "the file's faces");
     // a tag naming no face is refused at its line
     let text = std::fs::read_to_string(&control).unwrap().replace("t hole 2/0/0 7 12", "t hole 1/0/0 99");
@@ -92,8 +92,8 @@ fn holes_are_neither_drawn_nor_picked() {
     let v = fine.ct.v_table();
     let centre = (0..3).map(|k| fine.positions[v[3 * t as usize + k] as usize]).sum::<Vec3>() / 3.0;
     let (origin, dir) = (centre + Vec3::Z * 10.0, -Vec3::Z);
-    assert!(subdiv::mesh::pick::first_hit(&filled, origin, dir).is_some());
-    assert!(subdiv::mesh::pick::first_hit(&fine, origin, dir).is_none(), "a hole is picked");
+    assert!(subdiv::pick::first_hit(&filled, origin, dir).is_some());
+    assert!(subdiv::pick::first_hit(&fine, origin, dir).is_none(), "a hole is picked");
     #[cfg(feature = "viewer")]
     {
         let Some(mut off) = common::offscreen(240, 180) else { return };
@@ -103,7 +103,7 @@ fn holes_are_neither_drawn_nor_picked() {
             let gm = off.upload(m).unwrap();
             let img = off.render_one(cam, &gm, None, subdiv::render::Shading::Phong.look()).unwrap();
             let bg = |x: u32, y: u32| {
-                let b = subdiv::render::scene::background_srgb8_at(y, img.height());
+                let b = subdiv::render::background_srgb8_at(y, img.height());
                 (0..3).all(|i| img.get_pixel(x, y).0[i].abs_diff(b[i]) <= 1)
             };
             (0..240).flat_map(|x| (0..180).map(move |y| (x, y))).filter(|&(x, y)| !bg(x, y)).count()

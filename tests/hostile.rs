@@ -26,7 +26,7 @@ use std::process::{Command, Stdio};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 use subdiv::Mesh;
-use subdiv::mesh::attributes::Attributes;
+use subdiv::mesh::Attributes;
 
 // ======================================================================
 // Shims: the only places that name the library's API.
@@ -52,7 +52,7 @@ fn load(path: &Path) -> Result<Loaded, subdiv::Error> {
 /// budget, returning an error instead of logging.
 fn decode_texture(path: &Path) -> Result<(), String> {
     let budget = subdiv::io::Budget::new(subdiv::io::Limits::default());
-    subdiv::io::texture::load_file(path, &budget).map(|_| ()).map_err(|e| e.to_string())
+    subdiv::io::load_texture(path, &budget).map(|_| ()).map_err(|e| e.to_string())
 }
 
 /// Writes a mesh, format by extension. New API: `io::save`.

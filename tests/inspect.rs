@@ -3,7 +3,7 @@
 
 mod common;
 use common::*;
-use subdiv::mesh::inspect::{displacement_from_control, vertex_counts_per_level, vertex_creation_level};
+use subdiv::mesh::{displacement_from_control, vertex_counts_per_level, vertex_creation_level};
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn sub(m: &Mesh, s: Scheme, levels: u32) -> Mesh {

@@ -12,9 +12,9 @@ use glam::{Vec2, Vec3};
 use image::RgbaImage;
 use std::path::PathBuf;
 use std::process::{Command, Output};
-use subdiv::render::inspect::{op_color, triangle_corner_point, weight_color};
-use subdiv::render::overlay::Viewport;
+use subdiv::render::Viewport;
 use subdiv::render::{RenderOptions, default_camera};
+use subdiv::render::{op_color, triangle_corner_point, weight_color};
 use subdiv::{Mesh, Options, Scheme};
 
 const W: u32 = 480;
@@ -84,7 +84,7 @@ fn a_corner_is_drawn_as_a_dot_with_its_operators_arrows() {
     assert!(colour_near(&marked, dot, 2, [255, 255, 255, 255], 20), "the white dot at corner {c}'s point {dot}");
     assert!(!colour_near(&plain, dot, 2, [255, 255, 255, 255], 20), "no dot without --corner");
     // each arrow in its colour partway to its target
-    let ops = subdiv::mesh::inspect::corner_ops(&fine.ct, c).unwrap();
+    let ops = subdiv::mesh::corner_ops(&fine.ct, c).unwrap();
     let mut seen = 0;
     for (name, target) in [("n", Some(ops.n)), ("p", Some(ops.p)), ("o", ops.o), ("r", ops.r)] {
         let tip = screen(&fine, at(target.unwrap()));
@@ -123,7 +123,7 @@ fn a_stencil_is_drawn_as_discs_in_its_weights_colours_at_the_control_vertices() 
     let control = subdiv::io::load(&model_path("cube.obj")).unwrap();
     // an edge point of the 8-point butterfly: weights of both signs
     let (v, opts) = (8 + 3, Options::default());
-    let st = subdiv::subdiv::stencil::stencil(&control, Scheme::Butterfly, 1, &opts, v).unwrap();
+    let st = subdiv::rules::stencil(&control, Scheme::Butterfly, 1, &opts, v).unwrap();
     assert!(st.weights.iter().any(|w| w.1 < 0.0) && st.weights.iter().any(|w| w.1 > 0.0), "{:?}", st.weights);
     let marked = render("cube.obj", "butterfly", 1, &["--stencil", &v.to_string()], "stencil.png").unwrap();
     let max = st.weights.iter().fold(0.0f64, |m, w| m.max(w.1.abs()));
@@ -179,8 +179,8 @@ fn the_quad_table_corner_is_drawn_for_catmull_clark() {
     let marked = render("critter.obj", "catmull-clark", 1, &["--corner", "1000"], "critter-corner.png").unwrap();
     let control = subdiv::io::load(&model_path("critter.obj")).unwrap();
     let (fine, _) = subdiv::subdivide(&control, Scheme::CatmullClark, 1, &Options::default()).unwrap();
-    let pm = subdiv::mesh::poly::PolyMesh::from_mesh(&fine);
-    let dot = screen(&fine, subdiv::render::inspect::polygon_corner_point(&pm.pt, &fine.positions, 1000));
+    let pm = subdiv::mesh::PolyMesh::from_mesh(&fine);
+    let dot = screen(&fine, subdiv::render::polygon_corner_point(&pm.pt, &fine.positions, 1000));
     assert!(colour_near(&marked, dot, 2, [255, 255, 255, 255], 20), "the dot at quad corner 1000: {dot}");
     assert!(changed(&plain, &marked).len() > 100);
 }

@@ -185,21 +185,21 @@ fn parsers_never_panic_on_mutated_input() {
         if let Ok(m) = fuzz_read(&data, "fuzz.obj", Topology::Repair).map(|l| l.mesh) {
             let (fine, _) =
                 subdiv::subdivide(&m, Scheme::ALL[round % Scheme::ALL.len()], 1, &Default::default()).unwrap();
-            assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok());
+            assert!(subdiv::mesh::check_invariants(&fine.ct).is_ok());
         }
         if let Ok(s) = std::str::from_utf8(&data) {
             let _ = fuzz_read(s.as_bytes(), "fuzz.ct", Topology::Refuse);
-            let _ = subdiv::anim::paths::Paths::parse(s, "fuzz.paths");
+            let _ = subdiv::anim::Paths::parse(s, "fuzz.paths");
         }
         // every other reader, by extension and by content sniffing
         for name in ["fuzz.ply", "fuzz.stl", "fuzz.off", "fuzz.glb", "fuzz.gltf", "fuzz.dae", "fuzz"] {
             if let Ok(m) = fuzz_read(&data, name, Topology::Refuse).map(|l| l.mesh) {
-                assert!(subdiv::mesh::topology::check_invariants(&m.ct).is_ok(), "{name}");
+                assert!(subdiv::mesh::check_invariants(&m.ct).is_ok(), "{name}");
             }
             if let Ok(m) = fuzz_read(&data, name, Topology::Repair).map(|l| l.mesh) {
                 let (fine, _) =
                     subdiv::subdivide(&m, Scheme::ALL[round % Scheme::ALL.len()], 1, &Default::default()).unwrap();
-                assert!(subdiv::mesh::topology::check_invariants(&fine.ct).is_ok(), "{name}");
+                assert!(subdiv::mesh::check_invariants(&fine.ct).is_ok(), "{name}");
             }
         }
     }
@@ -288,7 +288,7 @@ fn saving_into_a_device_writes_into_it_and_leaves_it_a_device() {
     let link = std::env::temp_dir().join(format!("subdiv-null-{}.ply", std::process::id()));
     let _ = std::fs::remove_file(&link);
     std::os::unix::fs::symlink("/dev/null", &link).unwrap();
-    let m = subdiv::mesh::shapes::icosphere(1);
+    let m = subdiv::mesh::icosphere(1);
     subdiv::io::save(&link, &m).unwrap();
     let meta = std::fs::symlink_metadata(&link).unwrap();
     assert!(meta.file_type().is_symlink(), "the link was replaced by a file");

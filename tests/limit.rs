@@ -8,10 +8,8 @@
 mod common;
 use common::*;
 use glam::{Mat3, Vec3};
-use subdiv::mesh::normals::vertex_normals;
-use subdiv::subdiv::rules::limit::{
-    butterfly_normals, loop_limit_normals, loop_limit_positions, loop_limit_positions_with,
-};
+use subdiv::eval::{butterfly_normals, loop_limit_normals, loop_limit_positions, loop_limit_positions_with};
+use subdiv::mesh::vertex_normals;
 use subdiv::{LoopBeta, Mesh, Options, Scheme, subdivide};
 
 fn sub(m: &Mesh, s: Scheme, levels: u32) -> Mesh {

@@ -1,4 +1,4 @@
-//! Exact Loop limit evaluation (`subdiv::subdiv::eval`) against independent
+//! Exact Loop limit evaluation (`subdiv::eval`) against independent
 //! truths: the limit positions of subdivided vertices at dyadic parameters
 //! (subdivision and limit masks, not the evaluator), OpenSubdiv's regular
 //! patches (tests/fixtures/loop_eval), finite differences of positions for
@@ -8,8 +8,9 @@
 mod common;
 use common::*;
 use glam::{DVec3, Vec3};
-use subdiv::subdiv::eval::{Evaluator, Sample};
-use subdiv::subdiv::rules::limit::loop_limit_positions_with;
+use subdiv::Evaluator;
+use subdiv::eval::Sample;
+use subdiv::eval::loop_limit_positions_with;
 use subdiv::{LoopBeta, Mesh, Options, Scheme, subdivide};
 
 /// A closed bipyramid: two apexes of valence `n` around an `n`-gon of
@@ -67,7 +68,7 @@ fn vertex_at(levels: &[Mesh], f: u32, u: f64, v: f64) -> u32 {
 /// `mesh` with the crease tags `(v0, v1, sharpness)` and corner tags
 /// `(vertex, sharpness)`.
 fn tagged(mut mesh: Mesh, creases: &[(u32, u32, f32)], corners: &[(u32, f32)]) -> Mesh {
-    use subdiv::mesh::sharpness::{CornerTag, CreaseTag, Tags};
+    use subdiv::mesh::{CornerTag, CreaseTag, Tags};
     let tags = Tags {
         creases: creases.iter().map(|&(v0, v1, sharpness)| CreaseTag { v0, v1, sharpness }).collect(),
         corners: corners.iter().map(|&(vertex, sharpness)| CornerTag { vertex, sharpness }).collect(),
@@ -365,7 +366,7 @@ fn the_extraordinary_vertex_itself_has_its_limit_and_normal() {
     let mesh = bipyramid(7, 3);
     let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
     let limits = loop_limit_positions_with(&mesh, LoopBeta::Loop);
-    let normals = subdiv::subdiv::rules::limit::loop_limit_normals(&mesh);
+    let normals = subdiv::eval::loop_limit_normals(&mesh);
     let ct = &mesh.ct;
     for f in 0..ct.num_triangles() as u32 {
         for (i, (u, v)) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)].into_iter().enumerate() {
@@ -429,8 +430,7 @@ fn every_refined_vertex_gets_the_limit_of_its_own_position() {
     let mesh = bipyramid(5, 17);
     for levels in 0..=3 {
         let fine = subdivide(&mesh, Scheme::Loop, levels, &Options::default()).unwrap().0;
-        let samples =
-            subdiv::subdiv::eval::vertex_samples(&mesh, &fine, Scheme::Loop, levels, &Options::default()).unwrap();
+        let samples = subdiv::eval::vertex_samples(&mesh, &fine, Scheme::Loop, levels, &Options::default()).unwrap();
         let limits = loop_limit_positions_with(&fine, LoopBeta::Loop);
         for (s, l) in samples.iter().zip(&limits) {
             assert!((s.position - l.as_dvec3()).length() < 1e-5, "level {levels}");
@@ -447,7 +447,7 @@ fn featured_faces_have_their_derivatives_and_meet_their_neighbours() {
         across_edges(&mesh, &ev, |c, x, y| {
             assert!((x.position - y.position).length() < 1e-9 * size, "{name}: edge of corner {c}");
             // a crease that never decays is a fold; every other edge is smooth in the limit
-            if mesh.ct.edge_sharpness(c) < subdiv::mesh::sharpness::INFINITE {
+            if mesh.ct.edge_sharpness(c) < subdiv::mesh::INFINITE {
                 assert!(x.normal.dot(y.normal) > 1.0 - 1e-9, "{name}: normals across the edge of corner {c}");
             }
         });
@@ -462,10 +462,8 @@ fn one_point_at_a_time_equals_the_prepared_evaluator() {
         let ev = Evaluator::new(&mesh, Scheme::Loop, &opts).unwrap();
         let size = f64::from(scale(&mesh));
         for (f, u, v) in random_points(&mesh, 1, 23).into_iter().chain([(0, 0.0, 0.0), (0, 0.5, 0.5)]) {
-            let (a, b) = (
-                ev.eval(f, u, v).unwrap(),
-                subdiv::subdiv::eval::evaluate_one(&mesh, Scheme::Loop, &opts, (f, u, v)).unwrap(),
-            );
+            let (a, b) =
+                (ev.eval(f, u, v).unwrap(), subdiv::eval::evaluate_one(&mesh, Scheme::Loop, &opts, (f, u, v)).unwrap());
             // the prepared evaluator's smooth faces use double-precision weights, the local path the rules' single ones
             assert!((a.position - b.position).length() < 1e-7 * size, "{name} face {f} ({u}, {v})");
             assert!(a.normal.dot(b.normal) > 1.0 - 1e-9, "{name} face {f} ({u}, {v})");
@@ -535,7 +533,7 @@ fn icosphere_cap(seed: u64) -> Mesh {
 /// vertex of more than six faces (the rules are not C1 there).
 fn has_tangent_plane(mesh: &Mesh, v: u32) -> bool {
     let ct = &mesh.ct;
-    let infinite = subdiv::mesh::sharpness::INFINITE;
+    let infinite = subdiv::mesh::INFINITE;
     let sharp_vertex = ct.sharpness().is_some_and(|s| s.vertex(v) >= infinite);
     let fan: Vec<u32> = ct.fan(v).collect();
     let sharp_edges = fan.iter().filter(|&&c| ct.edge_sharpness(subdiv::mesh::p(c)) >= infinite).count()

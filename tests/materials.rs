@@ -8,7 +8,7 @@ use common::{load_with_attributes, scratch_dir, with_attributes};
 use glam::Vec3;
 use std::path::PathBuf;
 use subdiv::Scheme;
-use subdiv::mesh::attributes::refine_face_ids;
+use subdiv::mesh::refine_face_ids;
 
 /// Two unit squares side by side in the z = 0 plane: the left one textured
 /// (material `tex`, UVs 0..1), the right one plain green (`green`).
@@ -69,8 +69,7 @@ fn each_child_triangle_keeps_its_parents_material() {
     let levels = 3;
     let (fine, _) = subdiv::subdivide(&mesh, Scheme::Midpoint, levels, &Default::default()).unwrap();
     let refined =
-        subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, Scheme::Midpoint, levels, &Default::default())
-            .unwrap();
+        subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Midpoint, levels, &Default::default()).unwrap();
     let face = refined.materials.unwrap().face;
     assert_eq!(face.len(), fine.ct.num_triangles());
     let coarse: Vec<[Vec3; 3]> =
@@ -105,7 +104,7 @@ fn subdivide_writes_mtllib_and_usemtl_back() {
 #[cfg(feature = "viewer")]
 mod drawn {
     use super::*;
-    use subdiv::mesh::attributes::MaterialGroups;
+    use subdiv::mesh::MaterialGroups;
 
     /// The colour of each corner: its material's `Kd` times the texture at
     /// the corner's texture coordinate (the CPU's reference sampler, what
@@ -115,14 +114,14 @@ mod drawn {
         (0..uv.len())
             .map(|c| {
                 let m = &groups.list[groups.face[c / 3] as usize];
-                let tex = m.texture.as_ref().map_or(Vec3::ONE, |t| subdiv::render::materials::sample(t, uv[c], m.wrap));
+                let tex = m.texture.as_ref().map_or(Vec3::ONE, |t| subdiv::render::sample_material(t, uv[c], m.wrap));
                 m.diffuse * tex
             })
             .collect()
     }
 
     /// The model with its textures decoded, as the viewer and `render` read it.
-    fn load_textured(path: &std::path::Path) -> (subdiv::Mesh, subdiv::mesh::attributes::Attributes) {
+    fn load_textured(path: &std::path::Path) -> (subdiv::Mesh, subdiv::mesh::Attributes) {
         let opts = subdiv::io::ReadOptions { textures: true, ..Default::default() };
         let l = subdiv::io::read(subdiv::io::Source::File(path), &opts).unwrap();
         assert!(l.warnings.is_empty(), "{:?}", l.warnings);
@@ -137,8 +136,7 @@ mod drawn {
     fn the_texture_is_sampled_through_the_refined_uvs() {
         let path = model("mtl-sample");
         let (mesh, attrs) = load_textured(&path);
-        let r =
-            subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, Scheme::Loop, 3, &Default::default()).unwrap();
+        let r = subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Loop, 3, &Default::default()).unwrap();
         let (uv, groups) = (r.uv.unwrap(), r.materials.unwrap());
         let colors = corner_colors(&groups, Some(&uv));
         assert_eq!(colors.len(), uv.len());
@@ -178,8 +176,7 @@ mod drawn {
         img.save(dir.join("two.jpg")).unwrap();
         std::fs::write(dir.join("two.mtl"), MTL.replace("two.png", "two.jpg")).unwrap();
         let (mesh, attrs) = load_textured(&path);
-        let r =
-            subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, Scheme::Loop, 2, &Default::default()).unwrap();
+        let r = subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Loop, 2, &Default::default()).unwrap();
         let (uv, groups) = (r.uv.unwrap(), r.materials.unwrap());
         let colors = corner_colors(&groups, Some(&uv));
         let (mut reds, mut blues) = (0, 0);

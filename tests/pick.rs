@@ -1,4 +1,4 @@
-//! Picking the subdivision surface (`subdiv::subdiv::pick`): a ray through a
+//! Picking the subdivision surface (`subdiv::pick`): a ray through a
 //! known point of a control face comes back as that face and its `(u, v)`;
 //! on a curved Loop surface the exact limit at the reported `(f, u, v)` lies
 //! within the level's known distance of the hit; a ray past the surface is
@@ -7,9 +7,9 @@
 mod common;
 use common::*;
 use glam::{DVec3, Vec3};
-use subdiv::mesh::pick::nearest_hit;
-use subdiv::subdiv::eval::vertex_samples;
-use subdiv::subdiv::pick::{ControlFace, Level, Limit, Pick, pick};
+use subdiv::eval::vertex_samples;
+use subdiv::pick::nearest_hit;
+use subdiv::pick::{ControlFace, Level, Limit, Pick, pick};
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
 /// `control` refined by `scheme` to `level`, picked along a ray.
@@ -219,8 +219,8 @@ fn polygon_schemes_name_the_polygon_and_the_corner_of_its_quarter() {
 
 #[test]
 fn a_faces_neighbourhood_has_the_same_limit_as_the_whole_mesh() {
-    use subdiv::subdiv::eval::Evaluator;
-    use subdiv::subdiv::pick::neighbourhood;
+    use subdiv::Evaluator;
+    use subdiv::pick::neighbourhood;
     let mut rng = Rng(11);
     let (torus, ico) = (bundled("torus.obj"), icosahedron());
     let (lumpy, _) = subdivide(&bundled("cube.obj"), Scheme::Loop, 1, &Options::default()).unwrap();

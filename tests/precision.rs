@@ -166,11 +166,11 @@ fn the_double_precision_levels_are_the_single_precision_levels_in_f64() {
     let precise = loaded.precise.expect("OBJ keeps its digits");
     let (mesh, opts) =
         (loaded.mesh, Options { boundary: subdiv::mesh::BoundaryInterpolation::EdgeAndCorner, ..Default::default() });
-    let poly = subdiv::mesh::poly::PolyMesh::from_mesh(&mesh);
+    let poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
     for scheme in Scheme::TRIANGLE.into_iter().chain(Scheme::POLYGON) {
         let (single, double): (Vec<glam::Vec3>, Vec<DVec3>) = if scheme.is_polygonal() {
-            let (s, _) = subdiv::subdivide_poly(&poly, scheme, 2, &opts).unwrap();
-            let (d, p) = subdiv::subdivide_poly_f64(&poly, &precise, scheme, 2, &opts).unwrap();
+            let (s, _) = subdiv::subdivide(&poly, scheme, 2, &opts).unwrap();
+            let (d, p) = subdiv::subdivide_f64(&poly, &precise, scheme, 2, &opts).unwrap();
             assert_eq!(s.pt.v_table(), d.pt.v_table(), "{scheme}: faces");
             (s.positions, p)
         } else {
@@ -235,8 +235,8 @@ fn subdivide_with_double_precision_writes_obj_and_ply_that_read_back_to_the_same
         .unwrap();
     assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
     let text = std::fs::read_to_string(&path).unwrap();
-    let poly = subdiv::mesh::poly::PolyMesh::from_mesh(&mesh_of(&v, &f));
-    let (fine, quads) = subdiv::subdivide_poly_f64(&poly, &v, Scheme::CatmullClark, 1, &Options::default()).unwrap();
+    let poly = subdiv::mesh::PolyMesh::from_mesh(&mesh_of(&v, &f));
+    let (fine, quads) = subdiv::subdivide_f64(&poly, &v, Scheme::CatmullClark, 1, &Options::default()).unwrap();
     assert_eq!(obj_points(&text), quads, "Catmull-Clark's OBJ");
     assert_eq!(
         text.lines().filter(|l| l.starts_with("f ") && l.split_whitespace().count() == 5).count(),
@@ -267,8 +267,8 @@ fn exact_evaluation_of_double_control_points_is_exact_to_1e_12_relative() {
     // map (linear precision), so the exact value is known in closed form
     let (v, tris) = affine_grid(9, false);
     let mesh = Mesh::from_triangles(v.iter().map(|p| p.as_vec3()).collect(), &tris).unwrap();
-    let ev = subdiv::subdiv::eval::Evaluator::new_f64(&mesh, &v, Scheme::Loop, &Options::default()).unwrap();
-    let single = subdiv::subdiv::eval::Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
+    let ev = subdiv::Evaluator::new_f64(&mesh, &v, Scheme::Loop, &Options::default()).unwrap();
+    let single = subdiv::Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
     let interior =
         |t: usize| tris[3 * t..3 * t + 3].iter().all(|&x| (2..7).contains(&(x % 9)) && (2..7).contains(&(x / 9)));
     let (mut worst64, mut worst32) = (0.0f64, 0.0f64);
@@ -285,9 +285,9 @@ fn exact_evaluation_of_double_control_points_is_exact_to_1e_12_relative() {
     // Catmull-Clark: bilinear in each regular quad of an affine net
     let (v, quads) = affine_grid(9, true);
     let starts: Vec<u32> = (0..=quads.len() as u32 / 4).map(|f| 4 * f).collect();
-    let poly = subdiv::mesh::poly::PolyMesh::from_faces(v.iter().map(|p| p.as_vec3()).collect(), &starts, &quads);
+    let poly = subdiv::mesh::PolyMesh::from_faces(v.iter().map(|p| p.as_vec3()).collect(), &starts, &quads);
     let mesh = poly.unwrap().0.triangulated();
-    let ev = subdiv::subdiv::eval::Evaluator::new_f64(&mesh, &v, Scheme::CatmullClark, &Options::default()).unwrap();
+    let ev = subdiv::Evaluator::new_f64(&mesh, &v, Scheme::CatmullClark, &Options::default()).unwrap();
     let mut worst = 0.0f64;
     for f in (0..quads.len() / 4).filter(|&f| (2..6).contains(&(f % 8)) && (2..6).contains(&(f / 8))) {
         let [a, b, c] = [0, 1, 2].map(|k| v[quads[4 * f + k] as usize]);

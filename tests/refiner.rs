@@ -7,8 +7,8 @@ mod common;
 
 use common::{Rng, bundled, icosphere};
 use glam::{DVec3, Vec3};
+use subdiv::mesh::CreaseTag;
 use subdiv::mesh::Tags;
-use subdiv::mesh::sharpness::CreaseTag;
 use subdiv::{Mesh, Options, Refiner, Scheme, subdivide, subdivide_f64};
 
 /// Where two point lists differ: the count and the largest difference (a

@@ -8,7 +8,7 @@ mod common;
 use common::{bundled, hemisphere, offscreen};
 use glam::Vec3;
 use image::RgbaImage;
-use subdiv::render::scene::background_srgb8_at;
+use subdiv::render::background_srgb8_at;
 use subdiv::render::{Camera, Look, Offscreen, Shading, Surface, default_camera};
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
@@ -92,7 +92,7 @@ fn the_lit_side_is_brighter_than_the_far_side() {
     // headlight from the eye): on a sphere the upper-left limb must be
     // brighter than the lower-right one.
     let Some(mut off) = offscreen(200, 200) else { return };
-    let sphere = subdiv::mesh::shapes::icosphere(4);
+    let sphere = subdiv::mesh::icosphere(4);
     let img = render(&mut off, &sphere, None, Shading::Phong.look(), true);
     let mean = |x0: u32, y0: u32| {
         let mut s = 0.0;
@@ -150,7 +150,7 @@ fn the_control_overlay_draws_orange_lines_and_open_meshes_show_their_back() {
 
 #[test]
 fn animation_frames_update_in_place_and_move() {
-    use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
+    use subdiv::anim::{Animation, Paths, Tweak};
     let Some(mut off) = offscreen(128, 128) else { return };
     let control = bundled("tetrahedron.obj");
     let paths = Paths::load(
@@ -161,7 +161,7 @@ fn animation_frames_update_in_place_and_move() {
     let mut anim = Animation::new(&control, &paths, Tweak::Jarek, 2, Scheme::Loop, 3, &Options::default()).unwrap();
     let (topo, p, n) = anim.evaluate_with_topology(0);
     let mut g = subdiv::render::GpuMesh::new(&off.gpu.device, topo, p, n).unwrap();
-    let (lo, hi) = subdiv::render::export::motion_bounds(&anim);
+    let (lo, hi) = subdiv::render::motion_bounds(&anim);
     let cam = Camera::framing(lo, hi, 1.0);
     let first = off.render_one(cam, &g, None, Look::default()).unwrap();
     let (p, n) = anim.evaluate(anim.frame_count() / 2);
@@ -193,7 +193,7 @@ fn the_checker_texture_follows_per_corner_uvs() {
     let (control, attrs) = common::load_with_attributes(&common::model_path("cube_uv.obj"));
     let uv = attrs.uv.expect("cube_uv.obj has vt");
     let (fine, _) = subdivide(&control, Scheme::Loop, 2, &Options::default()).unwrap();
-    let fuv = subdiv::subdiv::tables::attributes::refine_corner_uvs(&uv, 2);
+    let fuv = subdiv::mesh::refine_corner_uvs(&uv, 2);
     let attr: Vec<Vec3> = fuv.iter().map(|t| t.extend(0.0)).collect();
     let g =
         subdiv::render::GpuMesh::unwelded(&off.gpu.device, &fine.ct, &fine.positions, &fine.vertex_normals(), &attr)
@@ -213,7 +213,7 @@ fn the_checker_texture_follows_per_corner_uvs() {
 /// (shininess 48), for unit normal `n`, direction to the eye `v` and the
 /// headlight's direction `head`; linear RGB.
 fn documented_shading(n: Vec3, v: Vec3, head: Vec3) -> Vec3 {
-    use subdiv::render::scene::{FILL_INTENSITY, FILL_LIGHT, FRONT, HEADLIGHT_INTENSITY, KEY_INTENSITY, KEY_LIGHT};
+    use subdiv::render::{FILL_INTENSITY, FILL_LIGHT, FRONT, HEADLIGHT_INTENSITY, KEY_INTENSITY, KEY_LIGHT};
     let base = FRONT.truncate();
     let light = |l: Vec3, intensity: f32| {
         let d = n.dot(l).max(0.0);
@@ -329,7 +329,7 @@ fn transitions(img: &RgbaImage, line: impl Iterator<Item = (u32, u32)>) -> usize
 #[test]
 fn zebra_stripes_follow_their_count_and_angle() {
     let Some(mut off) = offscreen(240, 240) else { return };
-    let sphere = subdiv::mesh::shapes::icosphere(4);
+    let sphere = subdiv::mesh::icosphere(4);
     let zebra = |count, angle| Look {
         surface: Surface::Zebra,
         stripes: subdiv::render::Stripes { count, angle },
@@ -356,7 +356,7 @@ fn zebra_stripes_follow_their_count_and_angle() {
 #[test]
 fn isophotes_are_rings_around_the_view_direction() {
     let Some(mut off) = offscreen(240, 240) else { return };
-    let sphere = subdiv::mesh::shapes::icosphere(4);
+    let sphere = subdiv::mesh::icosphere(4);
     let look = Look { surface: Surface::Isophotes, ..Look::default() };
     let img = render(&mut off, &sphere, None, look, true);
     let row = transitions(&img, (0..240).map(|x| (x, 120)));

@@ -5,7 +5,7 @@
 mod common;
 use common::*;
 use glam::{Mat3, Vec3};
-use subdiv::subdiv::tables::StencilPlan;
+use subdiv::StencilPlan;
 use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn sub(m: &Mesh, s: Scheme, levels: u32) -> Mesh {

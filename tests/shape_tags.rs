@@ -9,8 +9,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use subdiv::mesh::options::{ShapeOptions, TriangleSubdivision};
-use subdiv::mesh::{BoundaryInterpolation, Creasing, attributes::UvInterpolation};
+use subdiv::mesh::{BoundaryInterpolation, Creasing, UvInterpolation};
+use subdiv::mesh::{ShapeOptions, TriangleSubdivision};
 
 fn fixture(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name)

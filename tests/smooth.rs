@@ -6,7 +6,7 @@ mod common;
 use common::*;
 use glam::{Mat3, Vec3};
 use subdiv::Mesh;
-use subdiv::mesh::smooth::{TAUBIN_LAMBDA, TAUBIN_MU, laplacian, taubin};
+use subdiv::mesh::{TAUBIN_LAMBDA, TAUBIN_MU, laplacian, taubin};
 
 fn radii(p: &[Vec3]) -> (f32, f32) {
     let n = p.len() as f32;

@@ -12,9 +12,10 @@
 mod common;
 use common::*;
 use std::collections::BTreeMap;
-use subdiv::mesh::split::{number_edges, split_linear};
+use subdiv::StencilPlan;
 use subdiv::mesh::{n, p};
-use subdiv::subdiv::tables::{LevelPlan, StencilPlan};
+use subdiv::mesh::{number_edges, split_linear};
+use subdiv::rules::LevelPlan;
 use subdiv::{CornerTable, LoopBeta, Mesh, Options, Scheme};
 
 /// A row as vertex -> total weight (repeated ids added), zero weights dropped.

@@ -14,8 +14,8 @@ use common::{offscreen, scratch_dir};
 use glam::{Vec2, Vec3};
 use image::RgbaImage;
 use std::path::{Path, PathBuf};
-use subdiv::mesh::attributes::{MaterialGroups, Wrap};
-use subdiv::render::textures::MaterialDraw;
+use subdiv::mesh::{MaterialGroups, Wrap};
+use subdiv::render::MaterialDraw;
 use subdiv::render::{Camera, GpuMesh, Look, Offscreen, Paint, RenderOptions};
 use subdiv::{Mesh, Scheme};
 
@@ -39,7 +39,7 @@ fn two_colour_png(path: &Path, w: u32, h: u32, rows: bool) {
 
 /// The model at `path` with its textures decoded, as `render` and the
 /// viewer read it.
-fn load_textured(path: &Path) -> (Mesh, subdiv::mesh::attributes::Attributes) {
+fn load_textured(path: &Path) -> (Mesh, subdiv::mesh::Attributes) {
     let opts = subdiv::io::ReadOptions { textures: true, ..Default::default() };
     let l = subdiv::io::read(subdiv::io::Source::File(path), &opts).unwrap();
     assert!(l.warnings.is_empty(), "{:?}", l.warnings);
@@ -114,7 +114,7 @@ fn a_two_colour_texture_on_a_cube_shows_both_colours_with_a_sharp_boundary() {
     // through one level of refined texture coordinates (midpoint keeps the cube)
     let opts = subdiv::Options::default();
     let (fine, _) = subdiv::subdivide(&mesh, Scheme::Midpoint, 1, &opts).unwrap();
-    let r = subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, Scheme::Midpoint, 1, &opts).unwrap();
+    let r = subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Midpoint, 1, &opts).unwrap();
     let paint = Paint::Materials { groups: r.materials.unwrap(), uv: r.uv };
     let ropts = RenderOptions { width: 240, height: 200, ..Default::default() };
     let img = subdiv::render::render_image_painted(&fine, None, &ropts, &paint).unwrap();
@@ -272,7 +272,7 @@ fn gltf_wrap_modes_are_read_per_axis_with_the_base_colour() {
 fn a_texture_whose_pixels_do_not_fill_its_size_is_drawn_flat() {
     let Some(mut off) = offscreen(64, 64) else { return };
     let mut groups = groups_from_mtl("tex-short", "map_Kd t.png", false);
-    let short = subdiv::mesh::attributes::Texture { width: 64, height: 64, rgba: vec![255, 0, 0, 255] };
+    let short = subdiv::mesh::Texture { width: 64, height: 64, rgba: vec![255, 0, 0, 255] };
     groups.list[0].texture = Some(std::sync::Arc::new(short));
     let (mesh, uv) = square(0.0, 1.0);
     let (img, g) = draw(&mut off, &mesh, &uv, &groups);

@@ -78,10 +78,10 @@ fn catmull_clark_is_the_same_on_any_thread_count() {
     let triangles: Vec<u32> = quads.chunks(4).flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]]).collect();
     for (corners, k) in [(quads, 4), (triangles, 3)] {
         let starts: Vec<u32> = (0..=corners.len() as u32 / k).map(|f| k * f).collect();
-        let (m, _) = subdiv::mesh::poly::PolyMesh::from_faces(positions.clone(), &starts, &corners).unwrap();
+        let (m, _) = subdiv::mesh::PolyMesh::from_faces(positions.clone(), &starts, &corners).unwrap();
         let run = |threads: usize| {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-            pool.install(|| subdiv::subdivide_poly(&m, Scheme::CatmullClark, 2, &Options::default()).unwrap().0)
+            pool.install(|| subdiv::subdivide(&m, Scheme::CatmullClark, 2, &Options::default()).unwrap().0)
         };
         let one = run(1);
         for threads in [2, 3] {

@@ -4,7 +4,7 @@
 
 mod common;
 use common::*;
-use subdiv::mesh::topology::{check_invariants, topology};
+use subdiv::mesh::{check_invariants, topology};
 use subdiv::{CornerTable, Options, Scheme};
 
 #[test]
@@ -67,7 +67,7 @@ fn ct_files_round_trip_with_their_o_table() {
         assert_eq!(obj.ct, ct.ct, "{name}: .ct table differs from the OBJ's");
         assert_eq!(obj.positions, ct.positions);
         let mut buf = Vec::new();
-        subdiv::io::ct::write(&mut buf, &obj).unwrap();
+        subdiv::io::write_ct(&mut buf, &obj).unwrap();
         let src = subdiv::io::Source::Bytes { bytes: &buf, name: "mem.ct", folder: None };
         let back = subdiv::io::read(src, &Default::default()).unwrap().mesh;
         assert_eq!(back.ct, obj.ct);

@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use subdiv::io::{ReadOptions, Source};
 use subdiv::mesh::BoundaryInterpolation;
-use subdiv::mesh::attributes::UvInterpolation;
-use subdiv::mesh::options::FileScheme;
+use subdiv::mesh::FileScheme;
+use subdiv::mesh::UvInterpolation;
 
 fn fixture(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/usd").join(name)

@@ -159,7 +159,7 @@ fn a_transparent_shot_has_alpha_0_around_an_opaque_object_and_scale_2_twice_the_
 #[test]
 fn a_window_screenshot_renders_its_viewports_at_n_times_their_size() {
     // what P does in the window: the same draws, offscreen on the window's device
-    use subdiv::render::offscreen::shoot;
+    use subdiv::render::shoot;
     use subdiv::render::{Shot, ViewportDraw};
     let Some(off) = offscreen() else { return };
     let (control, fine) = level("tetrahedron.obj", 2);

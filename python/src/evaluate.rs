@@ -8,7 +8,7 @@ use crate::ops::{CreaseArgs, MeshArgs, control, named};
 use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
-use subdiv::subdiv::eval::Evaluator;
+use subdiv::Evaluator;
 
 /// Positions `(k, 3)`, unit normals `(k, 3)` and `(H, K)` per point `(k, 2)`
 /// (`(0, 2)` unless `curvature`).

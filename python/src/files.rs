@@ -10,9 +10,10 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use subdiv::Mesh;
-use subdiv::io::{self, ReadOptions, Source, Topology};
-use subdiv::mesh::attributes::Attributes;
-use subdiv::mesh::poly::PolyMesh;
+use subdiv::io;
+use subdiv::io::{ReadOptions, Source, Topology};
+use subdiv::mesh::Attributes;
+use subdiv::mesh::PolyMesh;
 
 /// What a file held, flat: vertices, triangles, per-corner texture
 /// coordinates, per-vertex colours, and the polygons (corners, offsets)

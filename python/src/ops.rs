@@ -11,11 +11,11 @@ use numpy::{
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use subdiv::mesh::Faces;
-use subdiv::subdiv::ControlCounts;
-use subdiv::subdiv::PlanF64;
-use subdiv::subdiv::rules::features::with_boundary_corners;
-use subdiv::subdiv::rules::limit::{loop_limit_normals, loop_limit_positions_f64, loop_limit_positions_with};
-use subdiv::{Mesh, Options, Scheme, subdivide_faces_as, subdivide_poly, subdivide_poly_faces_as};
+use subdiv::rules::ControlCounts;
+use subdiv::rules::PlanF64;
+use subdiv::rules::with_boundary_corners;
+use subdiv::eval::{loop_limit_normals, loop_limit_positions_f64, loop_limit_positions_with};
+use subdiv::{Mesh, Options, Scheme, subdivide_faces, subdivide};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
 /// flat corners and face offsets (int64), all C-contiguous.
@@ -129,16 +129,16 @@ fn refine(
         // writes the caller's int64 ids itself
         Control::Tri(mesh) => {
             check_predicted(remap, ControlCounts::of(&mesh.ct), (scheme, levels), 3)?;
-            let (fine, _) = subdivide_faces_as(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
+            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
             Ok(hand_over(remap, fine, input))
         }
         Control::Poly(mesh) if levels > 0 => {
             check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?;
-            let (fine, _) = subdivide_poly_faces_as(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
+            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
             Ok(hand_over(remap, fine, input))
         }
         Control::Poly(mesh) => {
-            let (fine, _) = subdivide_poly(&mesh, scheme, levels, opts).map_err(msg)?;
+            let (fine, _) = subdivide(&mesh, scheme, levels, opts).map_err(msg)?;
             let k = face_size(&fine.pt)?;
             check_output(remap, fine.positions.len() as u64, fine.pt.num_corners() as u64)?;
             let out = (remap.positions(&fine.positions, input), remap.ids(fine.pt.v_table()), k);
@@ -167,7 +167,7 @@ fn refine_f64(
         Control::Poly(mesh) => {
             check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?;
             let control = remap.control_f64(input, &mesh.positions, repaired);
-            let (fine, pos) = subdiv::subdivide_poly_f64(&mesh, &control, scheme, levels, opts).map_err(msg)?;
+            let (fine, pos) = subdiv::subdivide_f64(&mesh, &control, scheme, levels, opts).map_err(msg)?;
             let k = face_size(&fine.pt)?;
             Ok((remap.positions(&pos, input), remap.ids(fine.pt.v_table()), k))
         }
@@ -204,7 +204,7 @@ fn hand_over(remap: &Remap, fine: Faces<i64>, input: &[f64]) -> Refined {
 pub fn check_output(remap: &Remap, points: u64, corners: u64) -> Result<(), Msg> {
     let rows = points.saturating_add(remap.n_input as u64);
     let bytes = rows.saturating_mul(24).saturating_add(corners.saturating_mul(8));
-    match subdiv::subdiv::default_memory_limit() {
+    match subdiv::mem::default_memory_limit() {
         Some(limit) if bytes > limit => {
             Err(format!("the output arrays need {bytes} bytes, more than the {limit} bytes of memory available"))
         }
@@ -220,7 +220,7 @@ fn drop_later<T: Send + 'static>(value: T) {
 }
 
 /// The size of every face of `pt`, when they all have one.
-pub(crate) fn face_size(pt: &subdiv::mesh::poly::PolyTable) -> Result<usize, Msg> {
+pub(crate) fn face_size(pt: &subdiv::mesh::PolyTable) -> Result<usize, Msg> {
     let k = pt.face_size(0) as usize;
     if (0..pt.num_faces() as u32).all(|f| pt.face_size(f) as usize == k) {
         Ok(k)
@@ -254,7 +254,7 @@ pub fn plan_levels<'py>(
     names: (String, String, String),
     levels: u32,
 ) -> PyResult<(Vec<PyLevel<'py>>, Bound<'py, PyArray2<i64>>, Option<Bound<'py, PyArray1<u32>>>, usize)> {
-    let limit = subdiv::subdiv::default_memory_limit().unwrap_or(u64::MAX);
+    let limit = subdiv::mem::default_memory_limit().unwrap_or(u64::MAX);
     if n_vertices >= u64::from(u32::MAX) || n_vertices.saturating_mul(MATRIX_BYTES_PER_VERTEX) > limit {
         return Err(crate::guard::SubdivError::new_err(format!(
             "n_vertices={n_vertices}: more vertices than fit in memory ({limit} bytes available)"
@@ -299,7 +299,7 @@ fn plan_of(
         Control::Tri(m) => m.ct.clone(),
         Control::Poly(m) => m.pt.triangulated(),
     };
-    let plan = subdiv::subdiv::plan_f64(&ct, scheme, levels, opts).map_err(msg)?;
+    let plan = subdiv::rules::plan_f64(&ct, scheme, levels, opts).map_err(msg)?;
     let (faces, k) = match (c, plan.poly.as_ref()) {
         (Control::Poly(m), _) if levels == 0 => (remap.ids(m.pt.v_table()), face_size(&m.pt)?),
         (Control::Poly(_), Some(pt)) => (remap.ids(pt.v_table()), 4),

@@ -1,8 +1,8 @@
 //! The names Python passes (scheme, beta, boundary) as the library's options.
 
 use crate::guard::Msg;
-use subdiv::error::clean;
-use subdiv::subdiv::BoundaryInterpolation;
+use subdiv::clean_error as clean;
+use subdiv::mesh::BoundaryInterpolation;
 use subdiv::{LoopBeta, Options, Scheme};
 
 /// The scheme called `name` (the command line's names and aliases).

@@ -10,7 +10,7 @@ use numpy::{IntoPyArray, PyArray3};
 use pyo3::prelude::*;
 use subdiv::io::{save, save_poly};
 use subdiv::render::{RenderOptions, Shading};
-use subdiv::{Mesh, Scheme, subdivide, subdivide_poly};
+use subdiv::{Mesh, Scheme, subdivide};
 
 /// Largest image side `render` makes.
 const MAX_SIDE: u32 = 8192;
@@ -19,7 +19,7 @@ const MAX_SIDE: u32 = 8192;
 fn refined(c: Control, scheme: Scheme, levels: u32, opts: &subdiv::Options) -> Result<Mesh, Msg> {
     match c {
         Control::Tri(m) => subdivide(&m, scheme, levels, opts).map(|r| r.0).map_err(msg),
-        Control::Poly(m) => subdivide_poly(&m, scheme, levels, opts).map(|r| r.0.triangulated()).map_err(msg),
+        Control::Poly(m) => subdivide(&m, scheme, levels, opts).map(|r| r.0.triangulated()).map_err(msg),
     }
 }
 
@@ -45,7 +45,7 @@ pub fn render_image<'py>(
     }
     // the image, its readback and the render targets: about 16 bytes a pixel
     let bytes = u64::from(w) * u64::from(h) * 16;
-    if subdiv::subdiv::default_memory_limit().is_some_and(|limit| bytes > limit) {
+    if subdiv::mem::default_memory_limit().is_some_and(|limit| bytes > limit) {
         return Err(SubdivError::new_err(format!("a {w} x {h} image needs more memory than is available")));
     }
     let s = mesh.slices(&creases)?;

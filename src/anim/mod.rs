@@ -4,9 +4,9 @@
 //! polygon, and the mesh is re-evaluated through a recorded
 //! [`crate::subdiv::tables::StencilPlan`] ([`player`]).
 
-pub mod paths;
-pub mod player;
-pub mod tweak;
+pub(crate) mod paths;
+pub(crate) mod player;
+pub(crate) mod tweak;
 
 pub use paths::Paths;
 pub use player::{Animation, Clock};

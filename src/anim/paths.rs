@@ -107,7 +107,7 @@ impl Paths {
     ///
     /// # Errors
     /// I/O errors.
-    pub fn write(&self, w: &mut dyn Write) -> std::io::Result<()> {
+    pub(crate) fn write(&self, w: &mut dyn Write) -> std::io::Result<()> {
         writeln!(w, "paths {} {}", self.vertex_count(), self.keys_per_vertex)?;
         for (i, p) in self.keys.iter().enumerate() {
             if i % self.keys_per_vertex == 0 {
@@ -122,7 +122,7 @@ impl Paths {
     ///
     /// # Errors
     /// I/O errors naming the file.
-    pub fn save(&self, path: &Path) -> Result<()> {
+    pub(crate) fn save(&self, path: &Path) -> Result<()> {
         atomic_write(path, |w| self.write(w).map_err(|e| Error::io(path, e)))
     }
 

@@ -164,7 +164,7 @@ impl Animation {
 
     /// Positions and unit normals of the last [`Animation::evaluate`]
     /// (empty before the first).
-    pub fn evaluated(&self) -> (&[Vec3], &[Vec3]) {
+    pub(crate) fn evaluated(&self) -> (&[Vec3], &[Vec3]) {
         (&self.positions, &self.normals)
     }
 
@@ -194,11 +194,6 @@ impl Animation {
         (&self.plan.ct, &self.positions, &self.normals)
     }
 
-    /// The mesh at frame `f` (a copy, for export).
-    pub fn mesh_at(&mut self, f: usize) -> Mesh {
-        let positions = self.evaluate(f).0.to_vec();
-        Mesh { ct: self.plan.ct.clone(), positions }
-    }
 }
 
 /// A frame clock: play/pause, speed, loop, step.
@@ -216,35 +211,29 @@ pub struct Clock {
 
 impl Clock {
     /// A paused looping clock over `frames` frames at 30 fps.
-    pub fn new(frames: usize) -> Self {
+    pub(crate) fn new(frames: usize) -> Self {
         Clock { playing: false, fps: 30.0, looping: true, pos: 0.0, frames: frames.max(1) }
     }
     /// Number of frames.
-    pub fn frames(&self) -> usize {
+    pub(crate) fn frames(&self) -> usize {
         self.frames
     }
-    /// Changes the frame count, keeping the relative position.
-    pub fn set_frames(&mut self, frames: usize) {
-        let rel = self.pos / self.frames as f64;
-        self.frames = frames.max(1);
-        self.pos = (rel * self.frames as f64).floor();
-    }
     /// Current frame.
-    pub fn frame(&self) -> usize {
+    pub(crate) fn frame(&self) -> usize {
         (self.pos.floor() as usize).min(self.frames - 1)
     }
     /// Jumps to frame `f` (clamped).
-    pub fn set_frame(&mut self, f: usize) {
+    pub(crate) fn set_frame(&mut self, f: usize) {
         self.pos = f.min(self.frames - 1) as f64;
     }
     /// Steps by `d` frames (wrapping when looping).
-    pub fn step(&mut self, d: i64) {
+    pub(crate) fn step(&mut self, d: i64) {
         let n = self.frames as i64;
         let f = self.frame() as i64 + d;
         self.pos = if self.looping { f.rem_euclid(n) } else { f.clamp(0, n - 1) } as f64;
     }
     /// Advances by `dt` seconds when playing; returns the current frame.
-    pub fn tick(&mut self, dt: f64) -> usize {
+    pub(crate) fn tick(&mut self, dt: f64) -> usize {
         if self.playing {
             self.pos += dt * f64::from(self.fps);
             let n = self.frames as f64;

@@ -30,7 +30,7 @@ impl Tweak {
     /// All tweaks, in menu order.
     pub const ALL: [Tweak; 3] = [Tweak::BSpline, Tweak::FourPoint, Tweak::Jarek];
     /// Command-line name.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Tweak::BSpline => "bspline",
             Tweak::FourPoint => "four-point",
@@ -61,7 +61,7 @@ impl std::str::FromStr for Tweak {
 }
 
 /// One split-and-tweak step of a closed polygon: `n` points give `2n`.
-pub fn refine_once(poly: &[Vec3], tweak: Tweak) -> Vec<Vec3> {
+pub(crate) fn refine_once(poly: &[Vec3], tweak: Tweak) -> Vec<Vec3> {
     let n = poly.len();
     if n == 0 {
         return Vec::new();
@@ -78,7 +78,7 @@ pub fn refine_once(poly: &[Vec3], tweak: Tweak) -> Vec<Vec3> {
 }
 
 /// `levels` split-and-tweak steps: `n` points give `n * 2^levels`.
-pub fn refine_closed(poly: &[Vec3], tweak: Tweak, levels: u32) -> Vec<Vec3> {
+pub(crate) fn refine_closed(poly: &[Vec3], tweak: Tweak, levels: u32) -> Vec<Vec3> {
     let mut cur = poly.to_vec();
     for _ in 0..levels {
         cur = refine_once(&cur, tweak);

@@ -79,7 +79,7 @@ fn a_typed_grab_moves_the_surface_and_undo_and_redo_give_back_the_same_bits() {
         assert_eq!(*a, *b + Vec3::new(0.0, 0.0, 0.25), "every vertex moved 0.25 along Z");
     }
     // the drawn level is the subdivision of the moved cage
-    let (fresh, _) = crate::subdivide_poly(
+    let (fresh, _) = crate::subdivide(
         &crate::mesh::poly::PolyMesh::from_mesh(&v.doc.model.control.mesh),
         Scheme::CatmullClark,
         2,
@@ -266,7 +266,7 @@ fn in_the_edit_mode_a_sharpness_change_re_records_the_drawn_level_locally() {
     assert_eq!(v.doc.model.made.level, 2, "the drawn level stayed");
     assert_eq!(v.doc.model.control.mesh.ct.edge_sharpness(c), 3.0);
     let local = v.doc.model.raw.mesh.positions.clone();
-    let (fresh, _) = crate::subdivide(&v.doc.model.control.mesh, Scheme::Loop, 2, &v.doc.model.made.opts).unwrap();
+    let (fresh, _) = crate::subdivide(&*v.doc.model.control.mesh, Scheme::Loop, 2, &v.doc.model.made.opts).unwrap();
     let diff = local.iter().zip(&fresh.positions).map(|(a, b)| a.distance(*b)).fold(0.0, f32::max);
     assert!(diff < 1e-5, "the local re-recording is the subdivision of the tagged cage ({diff})");
     assert!(v.doc.model.raw.creased.is_some(), "the crease is drawn as one");

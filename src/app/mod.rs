@@ -28,7 +28,7 @@
 
 pub(crate) mod animation;
 pub(crate) mod command;
-pub mod display;
+pub(crate) mod display;
 pub(crate) mod doc;
 pub(crate) mod edit;
 mod gpu_scene;
@@ -51,11 +51,12 @@ mod inspect_tests;
 mod tests;
 
 pub(crate) use command::Command;
+pub use display::Coloring;
 pub(crate) use viewer::Viewer;
 
 use crate::render::Camera;
 use crate::{Error, Result, Scheme};
-use display::{Coloring, Display};
+use display::Display;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 use window::Win;

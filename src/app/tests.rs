@@ -8,19 +8,19 @@ mod common {
     use std::path::PathBuf;
 
     /// A fresh directory for one test's files.
-    pub fn scratch_dir(name: &str) -> PathBuf {
+    pub(crate) fn scratch_dir(name: &str) -> PathBuf {
         let d = std::env::temp_dir().join(format!("subdiv-{name}-{}", std::process::id()));
         std::fs::create_dir_all(&d).expect("temporary directory");
         d
     }
 
     /// A bundled model, as the command line names it (`bundled:NAME`).
-    pub fn model_path(name: &str) -> PathBuf {
+    pub(crate) fn model_path(name: &str) -> PathBuf {
         PathBuf::from(format!("{}{name}", crate::bundled::PREFIX))
     }
 
     /// The model's mesh and attributes.
-    pub fn load_with_attributes(path: &std::path::Path) -> (crate::Mesh, crate::mesh::attributes::Attributes) {
+    pub(crate) fn load_with_attributes(path: &std::path::Path) -> (crate::Mesh, crate::mesh::attributes::Attributes) {
         let l = crate::bundled::read(path, &Default::default()).expect("readable");
         (l.mesh, l.attributes)
     }

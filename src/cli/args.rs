@@ -5,9 +5,9 @@
 //! subdivides, [`ColorArgs`] on every command that draws.
 
 use std::path::Path;
+use subdiv::eval::color::CurvatureKind;
 use subdiv::io::{Limits, Loaded, ReadOptions, Topology};
-use subdiv::mesh::options::{FileScheme, ShapeOptions};
-use subdiv::subdiv::eval::color::CurvatureKind;
+use subdiv::mesh::{FileScheme, ShapeOptions};
 use subdiv::{LoopBeta, Mesh, Options, Result, Scheme, bundled};
 
 /// How a mesh is read.
@@ -133,10 +133,10 @@ pub struct SchemeArgs {
     /// Texture coordinates through Catmull-Clark and Loop (OpenSubdiv's face-varying interpolation): none (the scheme on the UV charts, nothing kept), corners-only (their one-face corners kept), corners-plus1 (and junctions of three or more charts), corners-plus2 (and darts and the other side of a chart corner), boundaries (linear along the charts' borders) or all (bilinear in every face); smooth and linear name corners-only and all.
     /// Default: the file's `t facevaryinginterpolateboundary` tag, else corners-only.
     #[arg(long = "fvar", visible_alias = "uv", value_name = "MODE")]
-    pub uv: Option<subdiv::subdiv::UvInterpolation>,
+    pub uv: Option<subdiv::mesh::UvInterpolation>,
     /// Triangles in Catmull-Clark meshes: catmark (Catmull-Clark's own rules) or smooth (OpenSubdiv's smooth triangle rule, TRI_SUB_SMOOTH). Default: the file's `t smoothtriangles` tag, else catmark.
     #[arg(long, value_name = "RULE")]
-    pub triangles: Option<subdiv::subdiv::TriangleSubdivision>,
+    pub triangles: Option<subdiv::mesh::TriangleSubdivision>,
     #[command(flatten)]
     pub features: FeatureArgs,
     /// The scheme the file states, when it chose `scheme` (see `over`).
@@ -324,7 +324,7 @@ fn color_help() -> String {
     format!(
         "Colouring: {}, or a curvature of the exact limit at each drawn vertex (with -s {}): {}",
         plain.join(", "),
-        subdiv::subdiv::eval::color::SCHEMES.map(|s| s.name()).join(" or -s "),
+        subdiv::eval::color::SCHEMES.map(|s| s.name()).join(" or -s "),
         curvatures.join(", ")
     )
 }
@@ -334,7 +334,7 @@ impl ColorArgs {
     /// `Coloring::initial`), every other name its colouring (`none` the
     /// plain front colour, even on a model with materials).
     #[cfg(feature = "viewer")]
-    pub(crate) fn asked(&self) -> Result<Option<subdiv::app::display::Coloring>> {
+    pub(crate) fn asked(&self) -> Result<Option<subdiv::app::Coloring>> {
         match self.color.as_str() {
             "auto" => Ok(None),
             c => c.parse().map(Some).map_err(subdiv::Error::Usage),
@@ -344,8 +344,8 @@ impl ColorArgs {
     /// The isolines asked for, refused unless `coloring` is a curvature
     /// (the lines are contours of its value).
     #[cfg(feature = "viewer")]
-    pub(crate) fn isolines(&self, coloring: Option<subdiv::app::display::Coloring>) -> Result<Option<u8>> {
-        use subdiv::app::display::Coloring;
+    pub(crate) fn isolines(&self, coloring: Option<subdiv::app::Coloring>) -> Result<Option<u8>> {
+        use subdiv::app::Coloring;
         let n = self.isolines.as_deref().map(parse_isolines).transpose().map_err(subdiv::Error::Usage)?;
         match (n, coloring) {
             (Some(_), Some(Coloring::Curvature(_))) | (None, _) => Ok(n),
@@ -361,9 +361,9 @@ impl ColorArgs {
     #[cfg(feature = "viewer")]
     pub(crate) fn range(
         &self,
-        coloring: Option<subdiv::app::display::Coloring>,
-    ) -> Result<Option<subdiv::subdiv::eval::color::HalfWidth>> {
-        use subdiv::app::display::Coloring;
+        coloring: Option<subdiv::app::Coloring>,
+    ) -> Result<Option<subdiv::eval::color::HalfWidth>> {
+        use subdiv::app::Coloring;
         let r = self.range.as_deref().map(parse_range).transpose().map_err(subdiv::Error::Usage)?;
         match (r, coloring) {
             (Some(_), Some(Coloring::Curvature(_))) | (None, _) => Ok(r),
@@ -377,14 +377,14 @@ impl ColorArgs {
 
 /// A half-width of the curvature colours (`--range`): a number above 0.
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
-pub(crate) fn parse_range(s: &str) -> std::result::Result<subdiv::subdiv::eval::color::HalfWidth, String> {
+pub(crate) fn parse_range(s: &str) -> std::result::Result<subdiv::eval::color::HalfWidth, String> {
     s.parse().map_err(|_| format!("--range '{s}': expected the half-width of the colour range, a number above 0"))
 }
 
 /// An isoline count, 1..=50 (`--isolines`).
 #[cfg_attr(not(feature = "viewer"), allow(dead_code))]
 pub(crate) fn parse_isolines(s: &str) -> std::result::Result<u8, String> {
-    let most = subdiv::subdiv::eval::color::MAX_ISOLINES;
+    let most = subdiv::eval::color::MAX_ISOLINES;
     let bad = || format!("--isolines '{s}': expected a count of levels per side from 1 to {most}");
     let n: u8 = s.trim().parse().map_err(|_| bad())?;
     if (1..=most).contains(&n) { Ok(n) } else { Err(bad()) }
@@ -427,7 +427,7 @@ pub(crate) fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
 #[cfg(all(test, feature = "viewer"))]
 mod tests {
     use super::{COLORINGS, CURVATURES, ColorArgs};
-    use subdiv::app::display::Coloring;
+    use subdiv::app::Coloring;
 
     #[test]
     fn the_help_of_color_names_every_coloring() {

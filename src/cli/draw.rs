@@ -4,8 +4,8 @@
 use super::args::{ColorArgs, InputArgs, SubdivArgs, parse_size};
 use std::path::PathBuf;
 use std::time::Instant;
-use subdiv::anim::{paths::Paths, player::Animation, tweak::Tweak};
-use subdiv::mesh::attributes::Attributes;
+use subdiv::anim::{Animation, Paths, Tweak};
+use subdiv::mesh::Attributes;
 use subdiv::{Error, Mesh, Result, bundled};
 
 /// `subdiv render` arguments.
@@ -234,17 +234,18 @@ mod gpu {
     use super::super::progress;
     use super::{AnimateArgs, RenderArgs, RenderInspect, animate_stats, animation_of};
     use glam::Vec3;
-    use subdiv::app::display::Coloring;
-    use subdiv::mesh::attributes::Attributes;
-    use subdiv::mesh::inspect::colormap;
-    use subdiv::mesh::inspect::{corner_ops, poly_corner_ops};
-    use subdiv::mesh::poly::PolyMesh;
+    use subdiv::app::Coloring;
+    use subdiv::eval::color;
+    use subdiv::eval::color::HalfWidth;
+    use subdiv::mesh::Attributes;
+    use subdiv::mesh::PolyMesh;
+    use subdiv::mesh::colormap;
+    use subdiv::mesh::{corner_ops, poly_corner_ops};
     use subdiv::render::Paint;
     use subdiv::render::inspect;
-    use subdiv::render::overlay::{self, Overlay, Viewport};
-    use subdiv::subdiv::eval::color::{self, HalfWidth};
-    use subdiv::subdiv::inspect::{creation_levels, displacement};
-    use subdiv::subdiv::stencil::stencil;
+    use subdiv::render::{Overlay, Viewport, overlay};
+    use subdiv::rules::stencil;
+    use subdiv::rules::{creation_levels, displacement};
     use subdiv::{Error, Mesh, Result, Scheme};
 
     fn ramp(t: impl Iterator<Item = f32>) -> Vec<Vec3> {
@@ -259,8 +260,8 @@ mod gpu {
 
     /// What a curvature colouring's bar says: the curvature and the range in use.
     struct Legend {
-        kind: subdiv::subdiv::eval::color::CurvatureKind,
-        scale: subdiv::subdiv::eval::color::Scale,
+        kind: subdiv::eval::color::CurvatureKind,
+        scale: subdiv::eval::color::Scale,
     }
 
     /// The paint of a colouring for `fine`, `levels` levels of `scheme`
@@ -273,7 +274,7 @@ mod gpu {
         attrs: &Attributes,
         (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
     ) -> Result<(Paint, Option<Legend>)> {
-        let refined = |a: Attributes| subdiv::subdiv::tables::attributes::refine(&control.ct, &a, scheme, levels, opts);
+        let refined = |a: Attributes| subdiv::rules::refine_attributes(&control.ct, &a, scheme, levels, opts);
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         let paint = match coloring {
             Coloring::None => Paint::Material,
@@ -337,7 +338,7 @@ mod gpu {
         let control = (a.control || a.inspect.stencil.is_some()).then_some(&mesh);
         let mut img = subdiv::render::render_image_painted(&fine, control, &opts, &paint)?;
         if let Some(Legend { kind, scale }) = legend {
-            subdiv::render::colorbar::draw(&mut img, scale.half, isolines, &[kind.words().into(), scale.describe()]);
+            subdiv::render::draw_colorbar(&mut img, scale.half, isolines, &[kind.words().into(), scale.describe()]);
         }
         if let Some(overlay) = overlay {
             let camera = subdiv::render::default_camera(control.unwrap_or(&fine), &opts);
@@ -379,7 +380,7 @@ mod gpu {
     /// `subdiv animate --stats --eval gpu`: every frame through the compute passes.
     fn animate_stats_gpu(anim: &subdiv::anim::Animation) -> Result<()> {
         let n = anim.frame_count().max(32);
-        let (mut times, upload_ms, adapter) = subdiv::render::gpu_anim::time_frames(anim, n)?;
+        let (mut times, upload_ms, adapter) = subdiv::render::time_frames(anim, n)?;
         times.sort_by(f64::total_cmp);
         println!(
             "plan_ms={:.3} frame_ms={:.3} frame_min_ms={:.3} (gpu upload_ms={upload_ms:.3}) evaluations={n} frames={} triangles={} adapter=\"{adapter}\"",
@@ -394,7 +395,7 @@ mod gpu {
 
     /// `subdiv animate`.
     pub(crate) fn animate(a: AnimateArgs) -> Result<()> {
-        use subdiv::render::export::{Evaluation, ExportStyle, ExportTarget, export_animation_painted};
+        use subdiv::render::{Evaluation, ExportStyle, ExportTarget, export_animation_painted};
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
         let coloring: Coloring = a.color.parse().map_err(Error::Usage)?;
         let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
@@ -412,7 +413,7 @@ mod gpu {
             Coloring::Shells => Some(shells(&mesh, s.scheme(), level, nv)),
             Coloring::File => {
                 let only = Attributes { colors: attrs.colors, ..Default::default() };
-                let r = subdiv::subdiv::tables::attributes::refine(&mesh.ct, &only, s.scheme(), level, &s.options())?;
+                let r = subdiv::rules::refine_attributes(&mesh.ct, &only, s.scheme(), level, &s.options())?;
                 Some(r.colors.ok_or_else(|| Error::Usage("--color file: the model has no colors".into()))?)
             }
             other => return Err(Error::Usage(format!("animate --color {}: use none, shells or file", other.name()))),

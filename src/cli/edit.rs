@@ -8,7 +8,7 @@ use super::args::{InputArgs, SubdivArgs};
 use glam::Vec3;
 use std::path::PathBuf;
 use subdiv::mesh::Tags;
-use subdiv::mesh::sharpness::{CornerTag, CreaseTag};
+use subdiv::mesh::{CornerTag, CreaseTag};
 use subdiv::{Error, Refiner, Result, io};
 
 /// `subdiv edit` arguments.

@@ -4,9 +4,10 @@
 use super::args::{InputArgs, Precision, SchemeArgs};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+use subdiv::Evaluator;
 use subdiv::Result;
+use subdiv::eval::parse_points_in;
 use subdiv::io::write_rows;
-use subdiv::subdiv::eval::{Evaluator, parse_points_in};
 
 /// `subdiv eval` arguments.
 #[derive(clap::Args)]

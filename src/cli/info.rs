@@ -7,9 +7,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use subdiv::io::{ReadOptions, Topology};
 use subdiv::mesh::BoundaryInterpolation;
-use subdiv::mesh::poly::{PolyMesh, PolyTable};
-use subdiv::mesh::topology::{Topology as MeshTopology, topology};
-use subdiv::subdiv::rules::features::{self, Summary};
+use subdiv::mesh::{PolyMesh, PolyTable};
+use subdiv::mesh::{Topology as MeshTopology, topology};
+use subdiv::rules;
+use subdiv::rules::Summary;
 use subdiv::{Error, Mesh, MeshError, Result, bundled};
 
 /// `subdiv info` arguments.
@@ -120,11 +121,11 @@ impl Counts {
 /// one-face corners are the polygons'.
 fn own_counts(mesh: &Mesh, t: &MeshTopology, boundary: BoundaryInterpolation) -> (Counts, Option<Counts>, Summary) {
     if !PolyMesh::is_polygonal(mesh) {
-        return (Counts::triangles(t, mesh.ct.holes().len()), None, features::summary(&mesh.ct, boundary));
+        return (Counts::triangles(t, mesh.ct.holes().len()), None, rules::summary(&mesh.ct, boundary));
     }
     // the triangles joined back across the hidden diagonals (PolyMesh::from_mesh)
     let pt = PolyTable::from_corner_table(&mesh.ct);
-    (Counts::polygons(&pt), Some(Counts::triangles(t, mesh.ct.holes().len())), features::poly_summary(&pt, boundary))
+    (Counts::polygons(&pt), Some(Counts::triangles(t, mesh.ct.holes().len())), rules::poly_summary(&pt, boundary))
 }
 
 /// How many of `values` are each value.

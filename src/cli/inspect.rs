@@ -6,9 +6,9 @@ use super::args::SubdivArgs;
 use super::print_json;
 use serde::Serialize;
 use std::path::Path;
-use subdiv::mesh::inspect::{corner_ops, poly_corner_ops};
-use subdiv::mesh::poly::PolyMesh;
-use subdiv::subdiv::stencil::stencil;
+use subdiv::mesh::PolyMesh;
+use subdiv::mesh::{corner_ops, poly_corner_ops};
+use subdiv::rules::stencil;
 use subdiv::{Error, Mesh, Result};
 
 /// `info --corner --json` of a triangle table.

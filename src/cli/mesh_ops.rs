@@ -5,7 +5,7 @@ use super::{logging, print_json, progress};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::time::Instant;
-use subdiv::mesh::attributes::Attributes;
+use subdiv::mesh::Attributes;
 use subdiv::{Error, Mesh, Result, bundled, io};
 
 /// `subdiv subdivide` arguments.
@@ -90,8 +90,8 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
     if let Some(pb) = spin {
         pb.finish_and_clear();
     }
-    let file_faces = match subdiv::mesh::poly::PolyMesh::is_polygonal(&mesh) {
-        true => subdiv::mesh::poly::PolyMesh::from_mesh(&mesh).pt.num_faces(),
+    let file_faces = match subdiv::mesh::PolyMesh::is_polygonal(&mesh) {
+        true => subdiv::mesh::PolyMesh::from_mesh(&mesh).pt.num_faces(),
         false => mesh.ct.num_triangles(),
     };
     report((a, s), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
@@ -114,14 +114,14 @@ fn subdivide_triangles(
     // Texture coordinates and colours ride along (see subdiv::attributes).
     let fine_attrs = |attrs: Attributes| match attrs.is_empty() {
         true => Ok(attrs),
-        false => subdiv::subdiv::tables::attributes::refine(&mesh.ct, &attrs, s.scheme(), levels, &s.options()),
+        false => subdiv::rules::refine_attributes(&mesh.ct, &attrs, s.scheme(), levels, &s.options()),
     };
     // OBJ writes the sharp features of the result, the boundary's corners too
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     // a mesh with holes goes the whole way: its attributes follow the faces left out
     let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
-        let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options())?;
+        let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options(), |j| j)?;
         let fine_attrs = fine_attrs(attrs)?;
         let t1 = Instant::now();
         io::save_faces(&a.output, &fine, &fine_attrs)?;
@@ -142,25 +142,25 @@ fn subdivide_polygons(
     a: &SubdivideArgs,
     s: &SchemeArgs,
     mesh: &Mesh,
-    attrs: &subdiv::mesh::attributes::Attributes,
+    attrs: &subdiv::mesh::Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
     let levels = a.sub.levels_or(1);
-    let (control, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
+    let (control, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
     let fine_attrs = |pattrs: Attributes| match pattrs.is_empty() {
         true => Ok(pattrs),
-        false => subdiv::subdiv::tables::attributes::refine_poly(&control, &pattrs, s.scheme(), levels, &s.options()),
+        false => subdiv::rules::refine_poly_attributes(&control, &pattrs, s.scheme(), levels, &s.options()),
     };
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
-        let (fine, st) = subdiv::subdivide_poly_faces(&control, s.scheme(), levels, &s.options())?;
+        let (fine, st) = subdiv::subdivide_faces(&control, s.scheme(), levels, &s.options(), |j| j)?;
         let fine_attrs = fine_attrs(pattrs)?;
         let t1 = Instant::now();
         io::save_faces(&a.output, &fine, &fine_attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
-    let (fine, st) = subdiv::subdivide_poly(&control, s.scheme(), levels, &s.options())?;
+    let (fine, st) = subdiv::subdivide(&control, s.scheme(), levels, &s.options())?;
     let fine_attrs = fine_attrs(pattrs)?;
     let t1 = Instant::now();
     io::save_poly(&a.output, &fine, &fine_attrs)?;
@@ -185,10 +185,10 @@ fn subdivide_precise(
     let t0 = Instant::now();
     // a control mesh keeps its holes as tags (OBJ); a refined level leaves them out
     let keep_holes = levels == 0;
-    let refine = subdiv::subdiv::tables::attributes::refine_poly;
+    let refine = subdiv::rules::refine_poly_attributes;
     let (vertices, faces, write): (usize, usize, Box<dyn FnOnce() -> Result<()>>) = if s.scheme().is_polygonal() {
-        let (pm, pattrs) = subdiv::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-        let (fine, pos) = subdiv::subdivide_poly_f64(&pm, &control, s.scheme(), levels, &opts)?;
+        let (pm, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
+        let (fine, pos) = subdiv::subdivide_f64(&pm, &control, s.scheme(), levels, &opts)?;
         let fa = if pattrs.is_empty() { pattrs } else { refine(&pm, &pattrs, s.scheme(), levels, &opts)? };
         let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
         (pos.len(), faces, Box::new(move || io::save_poly_f64(&a.output, &fine, &pos, &fa, keep_holes)))
@@ -196,7 +196,7 @@ fn subdivide_precise(
         let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
         let fa = match attrs.is_empty() {
             true => attrs.clone(),
-            false => subdiv::subdiv::tables::attributes::refine(&mesh.ct, attrs, s.scheme(), levels, &opts)?,
+            false => subdiv::rules::refine_attributes(&mesh.ct, attrs, s.scheme(), levels, &opts)?,
         };
         let faces = fine.ct.num_triangles() - if keep_holes { 0 } else { fine.ct.holes().len() };
         (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
@@ -291,10 +291,10 @@ pub struct SmoothArgs {
     #[arg(long, short = 'n', default_value_t = 10)]
     steps: u32,
     /// Shrinking factor lambda (> 0).
-    #[arg(long, default_value_t = subdiv::mesh::smooth::TAUBIN_LAMBDA)]
+    #[arg(long, default_value_t = subdiv::mesh::TAUBIN_LAMBDA)]
     lambda: f32,
     /// Inflating factor mu (< -lambda).
-    #[arg(long, default_value_t = subdiv::mesh::smooth::TAUBIN_MU, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = subdiv::mesh::TAUBIN_MU, allow_hyphen_values = true)]
     mu: f32,
     /// Plain Laplacian smoothing with lambda only (shrinks; for comparison).
     #[arg(long)]
@@ -309,9 +309,9 @@ pub(crate) fn smooth(a: &SmoothArgs) -> Result<()> {
     }
     let mesh = a.io.from.load(&a.io.input)?;
     let positions = if a.laplacian {
-        subdiv::mesh::smooth::laplacian(&mesh, a.steps, lambda)
+        subdiv::mesh::laplacian(&mesh, a.steps, lambda)
     } else {
-        subdiv::mesh::smooth::taubin(&mesh, a.steps, lambda, mu)
+        subdiv::mesh::taubin(&mesh, a.steps, lambda, mu)
     };
     io::save(&a.io.output, &Mesh { ct: mesh.ct, positions })?;
     println!("{} -> {}: {} smoothing steps", a.io.input.display(), a.io.output.display(), a.steps);
@@ -349,13 +349,13 @@ pub(crate) fn limit(a: &LimitCmdArgs) -> Result<()> {
     let mesh = features.apply(mesh);
     match a.scheme {
         subdiv::Scheme::Loop if a.precision == Precision::F64 => {
-            use subdiv::subdiv::rules::limit::loop_limit_positions_f64;
+            use subdiv::eval::loop_limit_positions_f64;
             let control = precise.unwrap_or_else(|| mesh.positions.iter().map(|p| p.as_dvec3()).collect());
             let pos = loop_limit_positions_f64(&mesh, &control, subdiv::LoopBeta::Loop);
             io::save_f64(&a.output, &mesh, &pos, &Attributes { options: attrs.options, ..Default::default() }, true)?;
         }
         subdiv::Scheme::Loop => {
-            let positions = subdiv::subdiv::rules::limit::loop_limit_positions(&mesh);
+            let positions = subdiv::eval::loop_limit_positions(&mesh);
             io::save(&a.output, &Mesh { ct: mesh.ct, positions })?;
         }
         subdiv::Scheme::CatmullClark => {
@@ -364,8 +364,8 @@ pub(crate) fn limit(a: &LimitCmdArgs) -> Result<()> {
                 boundary: features.sharp.boundary.unwrap_or_default(),
                 ..Default::default()
             };
-            let mut poly = subdiv::mesh::poly::PolyMesh::from_mesh(&mesh);
-            let frames = subdiv::subdiv::rules::catmark_limit::limit_frames(&poly, &opts)?;
+            let mut poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
+            let frames = subdiv::eval::limit_frames(&poly, &opts)?;
             poly.positions = frames.iter().map(|f| f.position).collect();
             io::save_poly(&a.output, &poly, &Default::default())?;
         }

@@ -67,7 +67,7 @@ pub fn curve_polyline(points: &[Vec2], segments: usize) -> Vec<Vec2> {
 /// polygons `P^(1) .. P^(n-1)` (each segment as two consecutive points, in
 /// level order), and the curve point `C(t) = P_0^(n)` (`None` for no points).
 /// A curve of `n + 1` control points gives `n (n - 1) / 2` segments.
-pub fn de_casteljau_construction(points: &[Vec2], t: f32) -> (Vec<Vec2>, Option<Vec2>) {
+pub(crate) fn de_casteljau_construction(points: &[Vec2], t: f32) -> (Vec<Vec2>, Option<Vec2>) {
     let mut level = points.to_vec();
     let mut segments = Vec::new();
     while level.len() > 1 {

@@ -68,7 +68,7 @@ impl<'a> Tokens<'a> {
 }
 
 /// The `.ct` row of [`super::FORMATS`].
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "corner table",
     extensions: &["ct"],
     sniff: |_| false,
@@ -280,7 +280,7 @@ pub fn write(w: &mut dyn Write, mesh: &Mesh) -> std::io::Result<()> {
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+pub(crate) fn save(path: &Path, mesh: &Mesh) -> Result<()> {
     let text = Text::of(mesh);
     atomic_write(path, |w| {
         let mut sink = |b: &[u8]| w.write_all(b).map_err(|e| Error::io(path, e));
@@ -294,7 +294,7 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh) -> Result<()> {
+pub(crate) fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh) -> Result<()> {
     let pt = &mesh.pt;
     let mut out = Vec::new();
     let _ = writeln!(out, "{}", mesh.positions.len());

@@ -35,7 +35,7 @@ struct Input {
 }
 
 /// The COLLADA row of [`super::FORMATS`].
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "COLLADA",
     extensions: &["dae"],
     sniff: |b| b.trim_ascii_start().starts_with(b"<"),

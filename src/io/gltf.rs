@@ -33,7 +33,7 @@ use std::borrow::Cow;
 use std::path::Path;
 
 /// The glTF row of [`super::FORMATS`].
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "glTF 2.0",
     extensions: &["gltf", "glb"],
     sniff: |b| b.starts_with(b"glTF") || b.trim_ascii_start().starts_with(b"{"),
@@ -425,7 +425,7 @@ fn points<'a>(a: &'a [Vec3], per_corner: Option<&[u32]>) -> Cow<'a, [u8]> {
 ///
 /// # Errors
 /// I/O errors naming `path`; a mesh too large for a `.glb` (4 GiB).
-pub fn save(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+pub(crate) fn save(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     save_faces(path, &mesh.positions, mesh.ct.v_table(), attrs)
 }
 
@@ -433,7 +433,7 @@ pub fn save(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
 ///
 /// # Errors
 /// As [`save`].
-pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Attributes) -> Result<()> {
+pub(crate) fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Attributes) -> Result<()> {
     let normals = crate::mesh::normals::face_vertex_normals(v, positions);
     let uv = attrs.uv.as_ref().filter(|u| u.len() == v.len());
     let colors = attrs.colors.as_ref().filter(|c| c.len() == positions.len());

@@ -128,7 +128,7 @@ impl Default for Limits {
     /// [`Limits::for_memory`] of 80% of the memory available now (8 GiB
     /// where that cannot be read).
     fn default() -> Limits {
-        Limits::for_memory(crate::subdiv::default_memory_limit().unwrap_or(8 << 30))
+        Limits::for_memory(crate::mem::default_memory_limit().unwrap_or(8 << 30))
     }
 }
 
@@ -150,7 +150,7 @@ impl Budget {
     }
 
     /// The limits it counts against.
-    pub fn limits(&self) -> &Limits {
+    pub(crate) fn limits(&self) -> &Limits {
         &self.limits
     }
 
@@ -159,7 +159,7 @@ impl Budget {
     ///
     /// # Errors
     /// [`Error::Format`] on `file` at `element`, naming the limit.
-    pub fn check(&self, name: &str, n: u64, file: &str, element: &str) -> Result<()> {
+    pub(crate) fn check(&self, name: &str, n: u64, file: &str, element: &str) -> Result<()> {
         let limit = self.limits.get(name).unwrap_or(u64::MAX);
         let name = LIMIT_NAMES.iter().find(|(n, _)| *n == name).map_or("", |(n, _)| n);
         if n > limit {
@@ -173,7 +173,7 @@ impl Budget {
     ///
     /// # Errors
     /// Over `file-bytes` or `total-bytes`.
-    pub fn take_bytes(&self, n: u64, file: &str, element: &str) -> Result<()> {
+    pub(crate) fn take_bytes(&self, n: u64, file: &str, element: &str) -> Result<()> {
         self.check("file-bytes", n, file, element)?;
         take(&self.bytes, n, self.limits.total_bytes, file, element, "total-bytes")
     }
@@ -182,7 +182,7 @@ impl Budget {
     ///
     /// # Errors
     /// Over `vertices`.
-    pub fn take_vertices(&self, n: u64, file: &str, element: &str) -> Result<()> {
+    pub(crate) fn take_vertices(&self, n: u64, file: &str, element: &str) -> Result<()> {
         take(&self.vertices, n, self.limits.vertices, file, element, "vertices")
     }
 
@@ -190,7 +190,7 @@ impl Budget {
     ///
     /// # Errors
     /// Over `faces`.
-    pub fn take_faces(&self, n: u64, file: &str, element: &str) -> Result<()> {
+    pub(crate) fn take_faces(&self, n: u64, file: &str, element: &str) -> Result<()> {
         take(&self.faces, n, self.limits.faces, file, element, "faces")
     }
 
@@ -198,7 +198,7 @@ impl Budget {
     ///
     /// # Errors
     /// Over `libraries`.
-    pub fn take_library(&self, file: &str, element: &str) -> Result<()> {
+    pub(crate) fn take_library(&self, file: &str, element: &str) -> Result<()> {
         take(&self.libraries, 1, self.limits.libraries, file, element, "libraries")
     }
 }

@@ -20,27 +20,32 @@
 //! [`atomic_write`], so a failure never leaves a truncated file behind.
 
 pub mod bezier;
-pub mod ct;
-pub mod dae;
-pub mod gltf;
-pub mod limits;
+pub(crate) mod ct;
+pub(crate) mod dae;
+pub(crate) mod gltf;
+pub(crate) mod limits;
 mod mtl;
 pub mod obj;
-pub mod off;
-pub mod ply;
+pub(crate) mod off;
+pub(crate) mod ply;
 mod precise;
-pub mod raw;
-pub mod resolve;
-pub mod stl;
+pub(crate) mod raw;
+pub(crate) mod resolve;
+pub(crate) mod stl;
 mod text;
-pub mod texture;
-pub mod usd;
+pub(crate) mod texture;
+pub(crate) mod usd;
 mod write;
 
+// What the library's users reach; the format modules are the crate's own
+// (Bézier patches, a format with an API of its own, stay a module).
+pub use ct::write as write_ct;
 pub use limits::{Budget, LIMIT_NAMES, Limits};
 pub use precise::{save_f64, save_poly_f64};
 pub use raw::{BuildNotes, RawMesh, Topology};
-pub use write::{atomic_write, write_rows};
+pub use texture::load_file as load_texture;
+pub(crate) use write::atomic_write;
+pub use write::write_rows;
 pub(crate) use write::{atomic_write_pieces, write_formatted};
 
 use crate::mesh::Mesh;
@@ -130,30 +135,20 @@ pub static FORMATS: &[Format] = &[
 impl Format {
     /// The format of `file` by its extension; without a known one, by the
     /// first bytes of its content, else OBJ.
-    pub fn of(file: &str, bytes: &[u8]) -> &'static Format {
+    pub(crate) fn of(file: &str, bytes: &[u8]) -> &'static Format {
         Format::by_extension(Path::new(file))
             .or_else(|| FORMATS.iter().find(|f| (f.sniff)(bytes)))
             .unwrap_or(&obj::FORMAT)
     }
 
     /// The format `path`'s extension names.
-    pub fn by_extension(path: &Path) -> Option<&'static Format> {
+    pub(crate) fn by_extension(path: &Path) -> Option<&'static Format> {
         let e = ext(path);
         FORMATS.iter().find(|f| f.extensions.contains(&e.as_str()))
     }
 
-    /// Whether this format holds a mesh (a `.bzc` curve does not).
-    pub fn is_mesh(&self) -> bool {
-        self.reader.is_some()
-    }
-
-    /// Whether this format is written.
-    pub fn is_written(&self) -> bool {
-        self.writer.is_some()
-    }
-
     /// The format [`save`] writes for `path`'s extension.
-    pub fn for_output(path: &Path) -> Option<&'static Format> {
+    pub(crate) fn for_output(path: &Path) -> Option<&'static Format> {
         let e = ext(path);
         FORMATS.iter().find(|f| f.writer.is_some() && f.written_as.contains(&e.as_str()))
     }
@@ -192,7 +187,7 @@ impl Input<'_> {
     ///
     /// # Errors
     /// [`Error::Parse`] at the line of the first invalid byte.
-    pub fn text(&self) -> Result<&str> {
+    pub(crate) fn text(&self) -> Result<&str> {
         text(self.bytes, self.file)
     }
 }
@@ -214,13 +209,13 @@ const SHOWN_PER_KIND: usize = 3;
 
 impl Warnings {
     /// Warnings of at most `chars` characters a line, about `file`.
-    pub fn new(file: &str, chars: u64) -> Warnings {
+    pub(crate) fn new(file: &str, chars: u64) -> Warnings {
         let file = crate::error::clean(file, 80).into_owned();
         Warnings { file, chars: chars.clamp(40, 100_000) as usize, ..Default::default() }
     }
 
     /// Adds a warning of `kind` (a short phrase naming what is counted).
-    pub fn warn(&self, kind: &'static str, msg: impl std::fmt::Display) {
+    pub(crate) fn warn(&self, kind: &'static str, msg: impl std::fmt::Display) {
         let mut kinds = self.kinds.borrow_mut();
         let n = match kinds.iter_mut().find(|(k, _)| *k == kind) {
             Some((_, n)) => {
@@ -238,7 +233,7 @@ impl Warnings {
     }
 
     /// The warnings, with a line counting those not shown of each kind.
-    pub fn finish(self) -> Vec<String> {
+    pub(crate) fn finish(self) -> Vec<String> {
         let mut lines = self.lines.take();
         for (kind, n) in self.kinds.take() {
             if n > SHOWN_PER_KIND {
@@ -397,7 +392,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// # Errors
 /// One line naming the file: not a regular file (a device, a pipe or a
 /// folder), an I/O error, or over the budget.
-pub fn read_file(path: &Path, limits: &Limits) -> Result<Vec<u8>> {
+pub(crate) fn read_file(path: &Path, limits: &Limits) -> Result<Vec<u8>> {
     let budget = Budget::new(*limits);
     resolve::read_model(path, &budget, &path.display().to_string())
 }
@@ -417,7 +412,7 @@ pub fn read_text_file(path: &Path, limits: &Limits) -> Result<String> {
 ///
 /// # Errors
 /// [`Error::Parse`] at the line of the first invalid byte.
-pub fn text<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str> {
+pub(crate) fn text<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str> {
     std::str::from_utf8(bytes).map_err(|e| Error::Parse {
         file: file.to_string(),
         line: bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() + 1,

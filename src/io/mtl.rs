@@ -12,7 +12,7 @@ use glam::Vec3;
 
 /// One `newmtl` entry, as far as it is read.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Entry {
+pub(crate) struct Entry {
     /// Its name.
     pub name: String,
     /// `Kd`, when given.
@@ -25,7 +25,7 @@ pub struct Entry {
 
 /// The entries of the library `text` (`lib` names it in warnings, as part
 /// of `file`).
-pub fn parse(text: &str, lib: &str, warnings: &Warnings) -> Vec<Entry> {
+pub(crate) fn parse(text: &str, lib: &str, warnings: &Warnings) -> Vec<Entry> {
     let mut out: Vec<Entry> = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let line = line.split('#').next().unwrap_or("").trim();

@@ -601,7 +601,7 @@ fn is_small_whole(x: f32) -> bool {
 ///
 /// # Errors
 /// The first error of `sink`.
-pub fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
+pub(crate) fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
     write_faces((&mesh.positions, mesh.ct.v_table(), 3), &Attributes::default(), &tag_records(mesh), sink)
 }
 
@@ -678,7 +678,7 @@ fn face_text(ch: &[u32], sides: usize) -> Vec<u8> {
 
 /// The mesh's sharpness as OBJ tag records (OpenSubdiv's `t crease 2/1/0 a b
 /// s` and `t corner 1/1/0 v s`, 0-based ids), so a file round-trips.
-pub fn tag_records(mesh: &Mesh) -> Vec<u8> {
+pub(crate) fn tag_records(mesh: &Mesh) -> Vec<u8> {
     let mut out = mesh.ct.sharpness().map_or_else(Vec::new, |s| tag_lines(&s.to_tags(&mesh.ct)));
     out.extend(hole_lines(mesh.ct.holes()));
     out
@@ -759,7 +759,7 @@ pub fn write_obj_with(mesh: &Mesh, attrs: &Attributes, sink: &mut dyn FnMut(&[u8
 ///
 /// # Errors
 /// The first error of `sink`.
-pub fn write_poly(
+pub(crate) fn write_poly(
     mesh: &crate::mesh::poly::PolyMesh,
     attrs: &Attributes,
     sink: &mut dyn FnMut(&[u8]) -> Result<()>,
@@ -879,7 +879,7 @@ fn poly_tag_records(pt: &crate::mesh::poly::PolyTable) -> Vec<u8> {
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, attrs: &Attributes) -> Result<()> {
+pub(crate) fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, attrs: &Attributes) -> Result<()> {
     atomic_write(path, |w| write_poly(mesh, attrs, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e))))
 }
 
@@ -887,7 +887,7 @@ pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, attrs: &Attrib
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+pub(crate) fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     crate::io::atomic_write(path, |w| {
         write_obj_with(mesh, attrs, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
     })
@@ -900,7 +900,7 @@ pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], sides: usize, attrs: &Attributes) -> Result<()> {
+pub(crate) fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], sides: usize, attrs: &Attributes) -> Result<()> {
     crate::io::atomic_write(path, |w| {
         write_faces((positions, v, sides), attrs, &[], &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
     })

@@ -24,7 +24,7 @@ const MIN_VERTEX_BYTES: u64 = 6;
 const MIN_FACE_BYTES: u64 = 8;
 
 /// The OFF row of [`super::FORMATS`].
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "OFF",
     extensions: &["off"],
     sniff: |b| {
@@ -174,7 +174,7 @@ fn read(input: &Input) -> Result<RawMesh> {
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
+pub(crate) fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
     save_faces(path, &mesh.positions, (mesh.ct.v_table(), 3), colors)
 }
 
@@ -183,7 +183,12 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_faces(path: &Path, positions: &[Vec3], (v, sides): (&[u32], usize), colors: Option<&[Vec3]>) -> Result<()> {
+pub(crate) fn save_faces(
+    path: &Path,
+    positions: &[Vec3],
+    (v, sides): (&[u32], usize),
+    colors: Option<&[Vec3]>,
+) -> Result<()> {
     let nf = v.len() / sides;
     let prefix = format!("{sides} ");
     let faces = |first: usize| {
@@ -202,7 +207,7 @@ pub fn save_faces(path: &Path, positions: &[Vec3], (v, sides): (&[u32], usize), 
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option<&[Vec3]>) -> Result<()> {
+pub(crate) fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option<&[Vec3]>) -> Result<()> {
     let nf = mesh.pt.num_faces();
     let faces = |first: usize| {
         let rows = first as u32..(first + ROWS).min(nf) as u32;
@@ -268,14 +273,6 @@ fn vertex_lines(positions: &[Vec3], colors: Option<&[Vec3]>) -> Vec<u8> {
         line.append_to(&mut out);
     }
     out
-}
-
-/// Saves `mesh` as OFF text.
-///
-/// # Errors
-/// I/O errors naming `path`.
-pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
-    save_with(path, mesh, None)
 }
 
 #[cfg(test)]

@@ -123,7 +123,7 @@ struct Header {
 }
 
 /// The PLY row of [`super::FORMATS`].
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "Stanford PLY",
     extensions: &["ply"],
     sniff: |b| b.starts_with(b"ply"),
@@ -426,7 +426,7 @@ fn read_faces(body: &mut Body, el: &Element, count: usize, input: &Input, raw: &
 ///
 /// # Errors
 /// I/O errors naming `path`.
-pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
+pub(crate) fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()> {
     write(path, &mesh.positions, colors, &Faces::Fixed(mesh.ct.v_table(), 3))
 }
 
@@ -434,7 +434,7 @@ pub fn save_with(path: &Path, mesh: &Mesh, colors: Option<&[Vec3]>) -> Result<()
 ///
 /// # Errors
 /// I/O errors naming `path`; a face of more than 255 corners (a `uchar` count).
-pub fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option<&[Vec3]>) -> Result<()> {
+pub(crate) fn save_poly(path: &Path, mesh: &crate::mesh::poly::PolyMesh, colors: Option<&[Vec3]>) -> Result<()> {
     let pt = &mesh.pt;
     if let Some(f) = (0..pt.num_faces() as u32).find(|&f| pt.face_size(f) > 255) {
         let msg = format!("face {f} has {} corners, more than a PLY uchar count holds", pt.face_size(f));
@@ -559,14 +559,6 @@ fn face_records(v: &[u32], k: usize) -> Vec<u8> {
         }
     }
     out
-}
-
-/// Saves `mesh` as binary PLY (no colours).
-///
-/// # Errors
-/// I/O errors naming `path`.
-pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
-    save_with(path, mesh, None)
 }
 
 #[cfg(test)]

@@ -114,12 +114,12 @@ impl RawMesh {
     }
 
     /// The corners of face `f`.
-    pub fn face(&self, f: usize) -> &[u32] {
+    pub(crate) fn face(&self, f: usize) -> &[u32] {
         &self.corners[self.face_starts[f] as usize..self.face_starts[f + 1] as usize]
     }
 
     /// Appends a face with corners `vertices`.
-    pub fn push_face(&mut self, vertices: &[u32]) {
+    pub(crate) fn push_face(&mut self, vertices: &[u32]) {
         if self.face_starts.is_empty() {
             self.face_starts.push(0);
         }
@@ -128,7 +128,7 @@ impl RawMesh {
     }
 
     /// A mesh of triangles `triangles` (three vertex ids each) on `positions`.
-    pub fn from_triangles(positions: Vec<Vec3>, triangles: Vec<u32>) -> RawMesh {
+    pub(crate) fn from_triangles(positions: Vec<Vec3>, triangles: Vec<u32>) -> RawMesh {
         let n = triangles.len() / 3;
         let face_starts = if n == 0 { Vec::new() } else { (0..=n as u32).map(|f| 3 * f).collect() };
         let mut corners = triangles;
@@ -137,14 +137,14 @@ impl RawMesh {
     }
 
     /// Whether every face is a triangle.
-    pub fn is_triangles(&self) -> bool {
+    pub(crate) fn is_triangles(&self) -> bool {
         self.corners.len() == 3 * self.num_faces()
     }
 
     /// The faces fanned into triangles (face `f` of `k` corners gives
     /// `(c0, ck, ck+1)` for `k` in 1..n-1), with the face of every
     /// triangle; `None` for that map when every face already is one.
-    pub fn fanned(&self) -> (std::borrow::Cow<'_, [u32]>, Option<Vec<u32>>) {
+    pub(crate) fn fanned(&self) -> (std::borrow::Cow<'_, [u32]>, Option<Vec<u32>>) {
         if self.is_triangles() {
             return (std::borrow::Cow::Borrowed(&self.corners), None);
         }
@@ -181,7 +181,7 @@ impl RawMesh {
     /// keeps (the referenced ones, in order), when the file holds more than
     /// f32 and the build does not repair (a repair renumbers): what a
     /// computation in double precision starts from.
-    pub fn kept_precise(&self, topology: Topology) -> Option<Vec<glam::DVec3>> {
+    pub(crate) fn kept_precise(&self, topology: Topology) -> Option<Vec<glam::DVec3>> {
         if topology != Topology::Refuse || self.precise.len() != self.positions.len() {
             return None;
         }
@@ -295,7 +295,7 @@ impl RawMesh {
     /// `0` alike) into one, so a triangle soup (STL) or a mesh split at its
     /// texture seams (glTF) becomes connected. Texture coordinates are per
     /// corner and stay as they are; a merged vertex keeps its first colour.
-    pub fn weld(&mut self) {
+    pub(crate) fn weld(&mut self) {
         let key = |p: Vec3| p.to_array().map(|x| if x == 0.0 { 0 } else { x.to_bits() });
         let mut first = std::collections::HashMap::with_capacity(self.positions.len());
         let mut remap = Vec::with_capacity(self.positions.len());
@@ -322,7 +322,7 @@ impl RawMesh {
     /// Appends `other`, renumbering its vertices; an attribute that either
     /// side has is kept, the side without it getting defaults (texture
     /// coordinates (0, 0), white, material 0).
-    pub fn append(&mut self, other: RawMesh) {
+    pub(crate) fn append(&mut self, other: RawMesh) {
         let base = self.positions.len() as u32;
         let (nc0, nv0, nf0) = (self.corners.len(), self.positions.len(), self.num_faces());
         let start = self.corners.len() as u32;
@@ -538,7 +538,7 @@ fn used_vertices(n: usize, triangles: &[u32]) -> Vec<bool> {
 }
 
 /// A [`Error::Format`] on `file` at `element`.
-pub fn format_err(file: &str, element: impl Into<String>, msg: impl Into<String>) -> Error {
+pub(crate) fn format_err(file: &str, element: impl Into<String>, msg: impl Into<String>) -> Error {
     Error::Format { file: file.to_string(), element: element.into(), msg: msg.into() }
 }
 
@@ -548,7 +548,7 @@ pub fn format_err(file: &str, element: impl Into<String>, msg: impl Into<String>
 ///
 /// # Errors
 /// [`Error::Format`] naming `file` and `what`.
-pub fn check_count(file: &str, what: &str, count: u64, min_bytes: u64, available: usize) -> Result<usize> {
+pub(crate) fn check_count(file: &str, what: &str, count: u64, min_bytes: u64, available: usize) -> Result<usize> {
     let need = count.saturating_mul(min_bytes.max(1));
     if need > available as u64 || count > u64::from(u32::MAX) {
         return Err(format_err(

@@ -26,7 +26,7 @@ use std::path::{Component, Path, PathBuf};
 
 /// Where a reference may lead.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Scope {
+pub(crate) enum Scope {
     /// Inside the model's folder only (glTF, COLLADA).
     Folder,
     /// Anywhere the user could read (OBJ's `mtllib`, `map_Kd`).
@@ -45,7 +45,7 @@ pub struct Resolver<'a> {
 
 impl<'a> Resolver<'a> {
     /// A resolver for the model `file` in `folder`.
-    pub fn new(file: &'a str, folder: Option<PathBuf>, budget: &'a Budget) -> Resolver<'a> {
+    pub(crate) fn new(file: &'a str, folder: Option<PathBuf>, budget: &'a Budget) -> Resolver<'a> {
         Resolver { file, folder, budget }
     }
 
@@ -57,7 +57,7 @@ impl<'a> Resolver<'a> {
     /// # Errors
     /// [`crate::Error::Format`] naming the model, the element and the
     /// reference.
-    pub fn resolve(&self, reference: &str, scope: Scope, element: &str) -> Result<PathBuf> {
+    pub(crate) fn resolve(&self, reference: &str, scope: Scope, element: &str) -> Result<PathBuf> {
         let Some(folder) = &self.folder else {
             let shown = crate::error::clean(reference, 60);
             let why = "the model was read from memory, so there is no folder to find it in";
@@ -71,7 +71,7 @@ impl<'a> Resolver<'a> {
     ///
     /// # Errors
     /// As [`Resolver::resolve`].
-    pub fn resolve_in(&self, folder: &Path, reference: &str, scope: Scope, element: &str) -> Result<PathBuf> {
+    pub(crate) fn resolve_in(&self, folder: &Path, reference: &str, scope: Scope, element: &str) -> Result<PathBuf> {
         let shown = crate::error::clean(reference, 60);
         let refuse = |why: &str| format_err(self.file, element, format!("'{shown}': {why}"));
         let path = match scope {
@@ -100,21 +100,17 @@ impl<'a> Resolver<'a> {
     /// # Errors
     /// A file that is not regular, cannot be read or is over the budget,
     /// naming the model, the element and the file.
-    pub fn read(&self, path: &Path, declared: Option<u64>, element: &str) -> Result<Vec<u8>> {
+    pub(crate) fn read(&self, path: &Path, declared: Option<u64>, element: &str) -> Result<Vec<u8>> {
         let shown = crate::error::clean(&path.display().to_string(), 60).into_owned();
         let at = format!("{element} ({shown})");
         read_regular(path, declared, self.budget, self.file, &at)
     }
 
     /// The model's folder (`None` for a model read from memory).
-    pub fn folder(&self) -> Option<&Path> {
+    pub(crate) fn folder(&self) -> Option<&Path> {
         self.folder.as_deref()
     }
 
-    /// The budget references are read against.
-    pub fn budget(&self) -> &Budget {
-        self.budget
-    }
 }
 
 /// The relative path a URI names inside its folder: percent-decoded, with
@@ -156,7 +152,7 @@ fn confined(uri: &str) -> std::result::Result<PathBuf, String> {
 }
 
 /// `%20` and friends decoded (invalid sequences kept as they are).
-pub fn percent_decode(s: &str) -> String {
+pub(crate) fn percent_decode(s: &str) -> String {
     let b = s.as_bytes();
     let mut out = Vec::with_capacity(b.len());
     let mut i = 0;

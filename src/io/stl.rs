@@ -17,7 +17,7 @@ use glam::Vec3;
 use std::path::Path;
 
 /// The STL row of [`super::FORMATS`].
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "STL",
     extensions: &["stl"],
     sniff: |b| is_binary(b) || b.trim_ascii_start().starts_with(b"solid"),
@@ -30,7 +30,7 @@ pub const FORMAT: Format = Format {
 };
 
 /// Whether `bytes` are a binary STL file (its size matches its triangle count).
-pub fn is_binary(bytes: &[u8]) -> bool {
+pub(crate) fn is_binary(bytes: &[u8]) -> bool {
     match bytes.get(80..84) {
         Some(n) => 84 + 50 * u64::from(u32::from_le_bytes([n[0], n[1], n[2], n[3]])) == bytes.len() as u64,
         None => false,
@@ -143,7 +143,7 @@ fn parse_ascii(bytes: &[u8], file: &str) -> Result<RawMesh> {
 ///
 /// # Errors
 /// I/O errors naming `path`; a mesh of more than 2^32 - 1 triangles.
-pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
+pub(crate) fn save(path: &Path, mesh: &Mesh) -> Result<()> {
     save_faces(path, &mesh.positions, mesh.ct.v_table())
 }
 
@@ -151,7 +151,7 @@ pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
 ///
 /// # Errors
 /// As [`save`].
-pub fn save_faces(path: &Path, positions: &[Vec3], v: &[u32]) -> Result<()> {
+pub(crate) fn save_faces(path: &Path, positions: &[Vec3], v: &[u32]) -> Result<()> {
     let nt = u32::try_from(v.len() / 3)
         .map_err(|_| Error::Usage(format!("{}: too many triangles for STL", path.display())))?;
     let mut header = [b' '; 84];

@@ -18,7 +18,7 @@ const BYTES_PER_PIXEL: u64 = 12;
 /// The texture in the file `path` (named `at` in messages) that a model
 /// names, read through its resolver and decoded within its budget; `None`
 /// (with a warning) when it cannot be.
-pub fn load(input: &super::Input, path: &std::path::Path, at: &str) -> Option<std::sync::Arc<Texture>> {
+pub(crate) fn load(input: &super::Input, path: &std::path::Path, at: &str) -> Option<std::sync::Arc<Texture>> {
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     let at = format!("{at} {}", crate::error::clean(&name, 40));
     let decoded = input.refs.read(path, None, &at).and_then(|bytes| decode(&bytes, input.budget, input.file, &at));
@@ -47,7 +47,7 @@ pub fn load_file(path: &std::path::Path, budget: &Budget) -> Result<Texture> {
 /// # Errors
 /// An image over the `texture-pixels` limit, or one the decoder refuses,
 /// naming the file and the image.
-pub fn decode(bytes: &[u8], budget: &Budget, file: &str, at: &str) -> Result<Texture> {
+pub(crate) fn decode(bytes: &[u8], budget: &Budget, file: &str, at: &str) -> Result<Texture> {
     let err = |e: image::ImageError| format_err(file, at, e.to_string());
     let open = || image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format();
     let reader = open().map_err(|e| format_err(file, at, e.to_string()))?;

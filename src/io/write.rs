@@ -141,7 +141,7 @@ const WRITE_BUFFER: usize = 64 << 10;
 ///
 /// # Errors
 /// The error of `f`, or an I/O error naming `path`.
-pub fn atomic_write(path: &Path, f: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
+pub(crate) fn atomic_write(path: &Path, f: impl FnOnce(&mut dyn Write) -> Result<()>) -> Result<()> {
     if let Some(file) = open_device(path)? {
         let mut w = std::io::BufWriter::with_capacity(WRITE_BUFFER, file);
         f(&mut w)?;

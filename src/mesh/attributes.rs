@@ -198,7 +198,7 @@ pub fn refine_face_ids(ids: &[u32], levels: u32) -> Vec<u32> {
 }
 
 /// Corner UVs after one 1-to-4 split (linear inside each triangle).
-pub fn split_corner_uvs(uv: &[Vec2]) -> Vec<Vec2> {
+pub(crate) fn split_corner_uvs(uv: &[Vec2]) -> Vec<Vec2> {
     let nt = uv.len() / 3;
     let mut out = vec![Vec2::ZERO; 12 * nt];
     let (central, corners) = out.split_at_mut(3 * nt);

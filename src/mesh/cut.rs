@@ -13,7 +13,7 @@ use super::{BORDER, CornerTable, n, p};
 
 /// A table cut open (see the module docs).
 #[derive(Clone, Debug)]
-pub struct Cut {
+pub(crate) struct Cut {
     /// The cut table.
     pub table: CornerTable,
     /// For vertex `num_vertices() + i` of the cut table (of the uncut one),
@@ -22,11 +22,6 @@ pub struct Cut {
 }
 
 impl Cut {
-    /// The vertex of the uncut table that cut vertex `v` stands for.
-    #[inline]
-    pub fn original(&self, v: u32, nv: u32) -> u32 {
-        if v < nv { v } else { self.copies[(v - nv) as usize] }
-    }
 }
 
 impl CornerTable {
@@ -34,7 +29,7 @@ impl CornerTable {
     /// edge may be listed at one or both of its corners; border corners are
     /// ignored). The result is a valid table: O stays an involution, every
     /// sector is one fan with its first corner in `C`.
-    pub fn cut_at(&self, corners: &[u32]) -> Cut {
+    pub(crate) fn cut_at(&self, corners: &[u32]) -> Cut {
         // the sharpness stays: its corners are the same, now on the border
         let mut table = self.clone();
         let copies = table.cut_in_place(corners);
@@ -44,7 +39,7 @@ impl CornerTable {
     /// [`CornerTable::cut_at`] in place: returns the copies (cut vertex
     /// `num_vertices() + i`, numbered before the cut, is a copy of
     /// `copies[i]`). Costs the work at the cut only.
-    pub fn cut_in_place(&mut self, corners: &[u32]) -> Vec<u32> {
+    pub(crate) fn cut_in_place(&mut self, corners: &[u32]) -> Vec<u32> {
         // the touched vertices' corners, read from the uncut fans
         let mut touched = Vec::with_capacity(2 * corners.len());
         for &c in corners {
@@ -125,7 +120,7 @@ impl CornerTable {
     /// The table cut open along its sharp edges (every interior edge with
     /// sharpness > 0), for shading that shows a crease as a crease: one
     /// normal per side. `None` when it has none.
-    pub fn cut_at_sharp_edges(&self) -> Option<Cut> {
+    pub(crate) fn cut_at_sharp_edges(&self) -> Option<Cut> {
         let s = self.sharpness()?;
         let corners: Vec<u32> = s.sharp_corners().iter().map(|&(c, _)| c).collect();
         (!corners.is_empty()).then(|| self.cut_at(&corners))
@@ -134,7 +129,7 @@ impl CornerTable {
 
 impl Cut {
     /// `positions` of the uncut table extended with the copies' positions.
-    pub fn positions(&self, positions: &[glam::Vec3]) -> Vec<glam::Vec3> {
+    pub(crate) fn positions(&self, positions: &[glam::Vec3]) -> Vec<glam::Vec3> {
         let mut out = Vec::with_capacity(positions.len() + self.copies.len());
         out.extend_from_slice(positions);
         out.extend(self.copies.iter().map(|&v| positions[v as usize]));

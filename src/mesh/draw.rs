@@ -8,7 +8,7 @@ use super::{CornerTable, Generations, n, p};
 
 /// The sharp edges (sharpness > 0, borders excluded unless tagged) as pairs
 /// of vertex ids.
-pub fn sharp_edge_indices(ct: &CornerTable) -> Vec<u32> {
+pub(crate) fn sharp_edge_indices(ct: &CornerTable) -> Vec<u32> {
     let Some(s) = ct.sharpness() else { return Vec::new() };
     s.sharp_corners()
         .iter()
@@ -19,7 +19,7 @@ pub fn sharp_edge_indices(ct: &CornerTable) -> Vec<u32> {
 
 /// [`sharp_edge_indices`] for a mesh with one GPU vertex per corner: the
 /// pairs of corners that end each sharp edge.
-pub fn sharp_corner_pairs(ct: &CornerTable) -> Vec<u32> {
+pub(crate) fn sharp_corner_pairs(ct: &CornerTable) -> Vec<u32> {
     let Some(s) = ct.sharpness() else { return Vec::new() };
     s.sharp_corners()
         .iter()
@@ -42,7 +42,7 @@ fn drawn_edges(ct: &CornerTable) -> impl Iterator<Item = u32> + '_ {
 /// The V table as drawn: a hole's triangles collapsed to a point (the same
 /// vertex three times, which rasterises to nothing), so every triangle
 /// keeps its place for the buffers indexed by triangle.
-pub fn drawn_triangles(ct: &CornerTable) -> std::borrow::Cow<'_, [u32]> {
+pub(crate) fn drawn_triangles(ct: &CornerTable) -> std::borrow::Cow<'_, [u32]> {
     if ct.holes().is_empty() {
         return std::borrow::Cow::Borrowed(ct.v_table());
     }
@@ -56,7 +56,7 @@ pub fn drawn_triangles(ct: &CornerTable) -> std::borrow::Cow<'_, [u32]> {
 
 /// Each edge once as a pair of vertex ids (see [`CornerTable::edge_owners`]),
 /// diagonals inside polygons left out.
-pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
+pub(crate) fn edge_indices(ct: &CornerTable) -> Vec<u32> {
     drawn_edges(ct).flat_map(|c| [ct.v_table()[n(c) as usize], ct.v_table()[p(c) as usize]]).collect()
 }
 
@@ -67,7 +67,7 @@ pub fn edge_indices(ct: &CornerTable) -> Vec<u32> {
 /// `15 + 5k`. Generations are below 31 (level 30 is far past any memory);
 /// 31 marks a hidden diagonal ([`Generations::HIDDEN`]), which the shader
 /// never draws.
-pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
+pub(crate) fn packed_generations(ct: &CornerTable) -> Vec<u32> {
     let nc = ct.num_corners();
     let mut words = vec![0u32; nc / 3];
     let Some(g) = ct.generations() else { return words };
@@ -90,6 +90,6 @@ pub fn packed_generations(ct: &CornerTable) -> Vec<u32> {
 
 /// [`edge_indices`] for a mesh with one GPU vertex per corner: each edge
 /// once as the pair of corners that end it on its owner's side.
-pub fn edge_corner_pairs(ct: &CornerTable) -> Vec<u32> {
+pub(crate) fn edge_corner_pairs(ct: &CornerTable) -> Vec<u32> {
     drawn_edges(ct).flat_map(|c| [n(c), p(c)]).collect()
 }

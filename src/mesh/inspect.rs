@@ -87,14 +87,6 @@ pub fn colormap(t: f32) -> [f32; 3] {
     c.clamp(Vec3::ZERO, Vec3::ONE).to_array()
 }
 
-/// [`colormap`] of `values` normalised by their maximum (all zero: the
-/// colour of 0): one colour per value, for displacement or level overlays.
-pub fn colors_of(values: &[f32]) -> Vec<[f32; 3]> {
-    let max = values.iter().copied().filter(|x| x.is_finite()).fold(0.0f32, f32::max);
-    let scale = if max > 0.0 { 1.0 / max } else { 0.0 };
-    values.iter().map(|&x| colormap(x * scale)).collect()
-}
-
 /// Rossignac's operators at corner `c` of a triangle table (`src/mesh`'s
 /// definitions: `n`, `p` next and previous in the triangle, `o` across the
 /// opposite edge, `l = o(n)`, `r = o(p)`, `s = n(o(n))` the swing, `u =

@@ -19,13 +19,13 @@
 //! triangles `2q` and `2q + 1`.
 
 /// The parameters of a control triangle's corners.
-pub const CONTROL_CORNERS: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+pub(crate) const CONTROL_CORNERS: [[f64; 2]; 3] = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
 
 /// Triangle `t` of level `levels` of the 1-to-4 split of a table of
 /// `control_faces` triangles: its control triangle and the `(u, v)` of its
 /// three corners there, in its own corner order; `None` when there is no
 /// such triangle.
-pub fn triangle_origin(t: u32, control_faces: usize, levels: u32) -> Option<(u32, [[f64; 2]; 3])> {
+pub(crate) fn triangle_origin(t: u32, control_faces: usize, levels: u32) -> Option<(u32, [[f64; 2]; 3])> {
     let mut nt = u64::try_from(control_faces).ok()?.checked_mul(1u64.checked_shl(2 * levels)?)?;
     let mut t = u64::from(t);
     if t >= nt {
@@ -49,10 +49,11 @@ pub fn triangle_origin(t: u32, control_faces: usize, levels: u32) -> Option<(u32
     Some((t as u32, c))
 }
 
+#[cfg(test)]
 /// Triangle `t` of the triangulated level `levels >= 1` of the quad split:
 /// the control polygon corner whose level-1 quad holds it (that quad is the
 /// part of the control face nearest the corner's vertex).
-pub fn quad_origin(t: u32, levels: u32) -> u32 {
+pub(crate) fn quad_origin(t: u32, levels: u32) -> u32 {
     let mut q = t / 2;
     for _ in 1..levels {
         q /= 4;
@@ -62,12 +63,12 @@ pub fn quad_origin(t: u32, levels: u32) -> u32 {
 
 /// The parameters of a quad's corners: the vertex, the edge leaving it, the
 /// face point, the edge entering it (a level-1 quad's corners in the split).
-pub const QUAD_CORNERS: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+pub(crate) const QUAD_CORNERS: [[f64; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
 
 /// The point `(s, t)` of child quad `k` of a quad (the child of its corner
 /// `k`) in the parent's parameters: the inverse of the quadrant maps
 /// (child `k` covers the parent's quarter at its corner `k`).
-pub fn quad_parent(k: u32, [s, t]: [f64; 2]) -> [f64; 2] {
+pub(crate) fn quad_parent(k: u32, [s, t]: [f64; 2]) -> [f64; 2] {
     match k % 4 {
         0 => [s / 2.0, t / 2.0],
         1 => [1.0 - t / 2.0, s / 2.0],
@@ -81,7 +82,7 @@ pub fn quad_parent(k: u32, [s, t]: [f64; 2]) -> [f64; 2] {
 /// quad holds it ([`quad_origin`]) and its `(u, v)` in that quad (corners
 /// [`QUAD_CORNERS`]). Quad `q` is drawn as triangles `2q` (corners 0 1 2)
 /// and `2q + 1` (corners 0 2 3).
-pub fn quad_point(t: u32, levels: u32, b1: f64, b2: f64) -> (u32, [f64; 2]) {
+pub(crate) fn quad_point(t: u32, levels: u32, b1: f64, b2: f64) -> (u32, [f64; 2]) {
     let c = QUAD_CORNERS;
     let tri = if t.is_multiple_of(2) { [c[0], c[1], c[2]] } else { [c[0], c[2], c[3]] };
     let (mut q, mut uv) = (t / 2, barycentric(&tri, b1, b2));
@@ -93,7 +94,7 @@ pub fn quad_point(t: u32, levels: u32, b1: f64, b2: f64) -> (u32, [f64; 2]) {
 }
 
 /// The point `(1 - b1 - b2) a + b1 b + b2 c` of the parameters `[a, b, c]`.
-pub fn barycentric(corners: &[[f64; 2]; 3], b1: f64, b2: f64) -> [f64; 2] {
+pub(crate) fn barycentric(corners: &[[f64; 2]; 3], b1: f64, b2: f64) -> [f64; 2] {
     let b0 = 1.0 - b1 - b2;
     let [a, b, c] = corners;
     [b0 * a[0] + b1 * b[0] + b2 * c[0], b0 * a[1] + b1 * b[1] + b2 * c[1]]

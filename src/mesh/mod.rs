@@ -12,34 +12,52 @@
 //! the whole fan) and the valence (number of incident edges). All four arrays
 //! are propagated through a 1-to-4 split in linear time ([`split`]).
 
-pub mod attributes;
+pub(crate) mod attributes;
 mod build;
-pub mod cut;
-pub mod draw;
-pub mod edges;
-pub mod edit;
-pub mod inspect;
-pub mod lineage;
-pub mod normals;
-pub mod options;
-pub mod order;
-pub mod pick;
-pub mod poly;
-pub mod repair;
-pub mod shapes;
-pub mod sharpness;
-pub mod smooth;
-pub mod split;
-pub mod topology;
+pub(crate) mod cut;
+pub(crate) mod draw;
+pub(crate) mod edges;
+pub(crate) mod edit;
+pub(crate) mod inspect;
+pub(crate) mod lineage;
+pub(crate) mod normals;
+pub(crate) mod options;
+pub(crate) mod order;
+pub(crate) mod pick;
+pub(crate) mod poly;
+pub(crate) mod repair;
+pub(crate) mod shapes;
+pub(crate) mod sharpness;
+pub(crate) mod smooth;
+pub(crate) mod split;
+pub(crate) mod topology;
 
-pub use build::BuildReport;
 use glam::Vec3;
 use rayon::prelude::*;
+
+// The mesh layer as the library's users see it: its modules are the crate's
+// own, and what a caller needs is named here once.
+pub use attributes::{
+    Attributes, Material, MaterialGroups, Texture, UvInterpolation, Wrap, refine_corner_uvs, refine_face_ids,
+};
+pub use build::BuildReport;
+pub use edit::{EditError, flip_edge, split_edge};
+pub use inspect::{
+    colormap, corner_ops, displacement_from_control, poly_corner_ops, vertex_counts_per_level, vertex_creation_level,
+};
+pub use normals::{face_normals, vertex_normals};
+pub use options::{FileScheme, ShapeOptions, TriangleSubdivision};
+pub use order::Relabel;
+pub use poly::{PolyBuildReport, PolyMesh, PolyTable};
 pub use repair::{RepairReport, repair};
-pub use sharpness::{BoundaryInterpolation, Creasing, Sharpness, Tags};
+pub use shapes::icosphere;
+pub use sharpness::{BoundaryInterpolation, CornerTag, CreaseTag, Creasing, INFINITE, Sharpness, Tags};
+pub use smooth::{TAUBIN_LAMBDA, TAUBIN_MU, laplacian, taubin};
+pub use split::{number_edges, refine_linear, split, split_linear};
+pub use topology::{Topology, check_invariants, topology};
 
 /// Axis-aligned bounds `(min, max)` of points; zero when there are none.
-pub fn bounds_of<'a>(points: impl IntoIterator<Item = &'a Vec3>) -> (Vec3, Vec3) {
+pub(crate) fn bounds_of<'a>(points: impl IntoIterator<Item = &'a Vec3>) -> (Vec3, Vec3) {
     let (lo, hi) =
         points.into_iter().fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), &q| (lo.min(q), hi.max(q)));
     if lo.cmple(hi).all() { (lo, hi) } else { (Vec3::ZERO, Vec3::ZERO) }
@@ -58,16 +76,11 @@ pub fn n(c: u32) -> u32 {
 pub fn p(c: u32) -> u32 {
     if c.is_multiple_of(3) { c + 2 } else { c - 1 }
 }
-/// Triangle of a corner.
-#[inline(always)]
-pub fn t(c: u32) -> u32 {
-    c / 3
-}
 /// Whether corner `c`, whose raw O entry is `o_entry`, names its edge once for the
 /// mesh: a border corner always does, an interior edge by its smaller corner.
 /// (`BORDER` is `u32::MAX`, so this is `c < o`.)
 #[inline(always)]
-pub fn owns_edge(c: u32, o_entry: u32) -> bool {
+pub(crate) fn owns_edge(c: u32, o_entry: u32) -> bool {
     c < o_entry
 }
 
@@ -163,13 +176,13 @@ impl Generations {
 
     /// The generations of a table (a triangulated polygon mesh made at
     /// `level`) given per corner.
-    pub fn explicit(corners: Vec<u8>, level: u8) -> Generations {
+    pub(crate) fn explicit(corners: Vec<u8>, level: u8) -> Generations {
         Generations { base: Some((corners, level)), splits: Vec::new() }
     }
     /// Whether some edge may be [`Self::HIDDEN`]: only a table given its
     /// generations per corner (a triangulated polygon mesh) and not split
     /// since (a triangle split shows every edge).
-    pub fn may_hide(&self) -> bool {
+    pub(crate) fn may_hide(&self) -> bool {
         self.splits.is_empty() && self.base.as_ref().is_some_and(|(b, _)| b.contains(&Self::HIDDEN))
     }
     /// The newest generation of the table.
@@ -261,7 +274,7 @@ impl CornerTable {
     }
     /// `C[v]`: one corner of vertex `v`, the first of its fan on the boundary.
     #[inline(always)]
-    pub fn corner_of(&self, v: u32) -> u32 {
+    pub(crate) fn corner_of(&self, v: u32) -> u32 {
         self.vc[v as usize]
     }
     /// The raw O entry of corner `c`: the opposite corner or [`BORDER`]
@@ -285,7 +298,7 @@ impl CornerTable {
     }
     /// Whether triangle `t` is a hole.
     #[inline]
-    pub fn is_hole(&self, t: u32) -> bool {
+    pub(crate) fn is_hole(&self, t: u32) -> bool {
         self.holes.as_deref().is_some_and(|h| h.binary_search(&t).is_ok())
     }
     /// This table with the triangles `holes` (ids in range, any order) as
@@ -396,23 +409,23 @@ impl CornerTable {
     }
     /// Left neighbour `o(n(c))`: across the edge `(v(c), v(p(c)))`.
     #[inline]
-    pub fn l(&self, c: u32) -> Option<u32> {
+    pub(crate) fn l(&self, c: u32) -> Option<u32> {
         self.o(n(c))
     }
     /// Right neighbour `o(p(c))`: across the edge `(v(c), v(n(c)))`.
     #[inline]
-    pub fn r(&self, c: u32) -> Option<u32> {
+    pub(crate) fn r(&self, c: u32) -> Option<u32> {
         self.o(p(c))
     }
     /// Swing `n(o(n(c)))`: the corner of the same vertex in the next triangle
     /// counter-clockwise; `None` at the border.
     #[inline(always)]
-    pub fn s(&self, c: u32) -> Option<u32> {
+    pub(crate) fn s(&self, c: u32) -> Option<u32> {
         self.o(n(c)).map(n)
     }
     /// Unswing `p(o(p(c)))`, the inverse of [`Self::s`]; `None` at the border.
     #[inline(always)]
-    pub fn u(&self, c: u32) -> Option<u32> {
+    pub(crate) fn u(&self, c: u32) -> Option<u32> {
         self.o(p(c)).map(p)
     }
     /// Is vertex `v` on the boundary?
@@ -434,7 +447,7 @@ impl CornerTable {
     /// The two boundary neighbours `(q_first, q_last)` of vertex `v`, or
     /// `None` when `v` is interior: `q_first` across the border edge of
     /// `C[v]`, `q_last` at the end of the fan.
-    pub fn boundary_neighbours(&self, v: u32) -> Option<(u32, u32)> {
+    pub(crate) fn boundary_neighbours(&self, v: u32) -> Option<(u32, u32)> {
         let first = self.vc[v as usize];
         if self.o[p(first) as usize] != BORDER {
             return None;
@@ -448,7 +461,7 @@ impl CornerTable {
         Some((self.vtx(n(first)), self.vtx(p(c))))
     }
     /// Whether the table has no border (a closed surface).
-    pub fn is_closed(&self) -> bool {
+    pub(crate) fn is_closed(&self) -> bool {
         !self.o.contains(&BORDER)
     }
     /// Number of border edges (corners whose opposite is the border).
@@ -461,7 +474,7 @@ impl CornerTable {
         self.o.iter().enumerate().map(|(c, &x)| (c as u32, x)).filter(|&(c, x)| owns_edge(c, x)).map(|(c, _)| c)
     }
     /// Number of edges: each interior edge has two corners, each border edge one.
-    pub fn num_edges(&self) -> usize {
+    pub(crate) fn num_edges(&self) -> usize {
         (self.num_corners() + self.num_border_edges()) / 2
     }
 }
@@ -534,16 +547,12 @@ pub trait VertexId: bytemuck::Zeroable + Copy + Send + Sync {}
 impl<T: bytemuck::Zeroable + Copy + Send + Sync> VertexId for T {}
 
 impl Faces {
-    /// The triangles of `mesh` (copied).
-    pub fn of(mesh: &Mesh) -> Faces {
-        Faces::of_mapped(mesh, |j| j)
-    }
 }
 
 impl<I: VertexId> Faces<I> {
     /// The triangles of `mesh` (copied), every vertex id `j` as `id(j)`;
     /// its holes left out (every vertex kept, as OpenSubdiv writes them).
-    pub fn of_mapped(mesh: &Mesh, id: impl Fn(u32) -> I + Sync) -> Faces<I> {
+    pub(crate) fn of_mapped(mesh: &Mesh, id: impl Fn(u32) -> I + Sync) -> Faces<I> {
         let v = mesh.ct.v_table();
         let corners = if mesh.ct.holes().is_empty() {
             v.par_iter().with_min_len(1 << 14).map(|&j| id(j)).collect()
@@ -602,7 +611,7 @@ impl Mesh {
     ///
     /// # Errors
     /// Any [`crate::MeshError`] found by validation.
-    pub fn from_triangles_report(
+    pub(crate) fn from_triangles_report(
         positions: Vec<Vec3>,
         triangles: &[u32],
     ) -> Result<(Mesh, BuildReport), crate::MeshError> {
@@ -637,7 +646,7 @@ mod tests {
             assert_eq!(n(n(n(c))), c);
             assert_eq!(p(n(c)), c);
             assert_eq!(p(c), n(n(c)));
-            assert_eq!(t(n(c)), t(c));
+            assert_eq!(n(c) / 3, c / 3);
         }
     }
 }

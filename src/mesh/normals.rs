@@ -13,7 +13,7 @@ pub fn face_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
 }
 
 /// [`face_normals`] into a caller-owned buffer (no allocation per frame).
-pub fn face_normals_into(ct: &CornerTable, pos: &[Vec3], out: &mut [Vec3]) {
+pub(crate) fn face_normals_into(ct: &CornerTable, pos: &[Vec3], out: &mut [Vec3]) {
     out.par_iter_mut().zip(ct.v_table().par_chunks_exact(3)).with_min_len(4096).for_each(|(f, tri)| {
         let a = pos[tri[0] as usize];
         *f = (pos[tri[1] as usize] - a).cross(pos[tri[2] as usize] - a);
@@ -35,7 +35,7 @@ pub fn vertex_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
 
 /// [`vertex_normals`] of the triangles `tris` (a V table, three vertex
 /// ids a triangle) over the vertices `pos`: the faces alone, no adjacency.
-pub fn face_vertex_normals(tris: &[u32], pos: &[Vec3]) -> Vec<Vec3> {
+pub(crate) fn face_vertex_normals(tris: &[u32], pos: &[Vec3]) -> Vec<Vec3> {
     let threads = rayon::current_num_threads().clamp(1, 16).min(tris.len().div_ceil(3 << 16)).max(1);
     let per = tris.len().div_ceil(3 * threads) * 3;
     let mut sums: Vec<Vec<Vec3>> = (0..threads).map(|_| crate::mem::zeroed(pos.len())).collect();
@@ -63,7 +63,7 @@ pub fn face_vertex_normals(tris: &[u32], pos: &[Vec3]) -> Vec<Vec3> {
 /// for a fixed topology, it turns the per-frame normal gather into
 /// sequential reads instead of a fan walk through the O table.
 #[derive(Clone, Debug, Default)]
-pub struct VertexFaces {
+pub(crate) struct VertexFaces {
     /// `faces[offsets[v]..offsets[v + 1]]` are the triangles around `v`.
     offsets: Vec<u32>,
     faces: Vec<u32>,
@@ -71,7 +71,7 @@ pub struct VertexFaces {
 
 impl VertexFaces {
     /// Counting sort of the corners by vertex (O(corners)).
-    pub fn new(ct: &CornerTable) -> VertexFaces {
+    pub(crate) fn new(ct: &CornerTable) -> VertexFaces {
         let nv = ct.num_vertices();
         let mut offsets = vec![0u32; nv + 1];
         for &v in ct.v_table() {
@@ -91,7 +91,7 @@ impl VertexFaces {
     }
 
     /// Area-weighted unit vertex normals from face normals `fnorm`.
-    pub fn normals_into(&self, fnorm: &[Vec3], out: &mut [Vec3]) {
+    pub(crate) fn normals_into(&self, fnorm: &[Vec3], out: &mut [Vec3]) {
         out.par_iter_mut().enumerate().with_min_len(8192).for_each(|(v, nrm)| {
             let (a, b) = (self.offsets[v] as usize, self.offsets[v + 1] as usize);
             let s = self.faces[a..b].iter().fold(Vec3::ZERO, |s, &f| s + fnorm[f as usize]);
@@ -125,7 +125,7 @@ const MAX_RING: usize = 255;
 /// normals' edges). One header byte per vertex holds the polygon's length
 /// and one start offset per chunk lets chunks run in parallel.
 #[derive(Clone, Debug, Default)]
-pub struct VertexRings {
+pub(crate) struct VertexRings {
     /// Polygon length of every vertex.
     len: Vec<u8>,
     /// The polygons, vertex after vertex.
@@ -139,7 +139,7 @@ pub struct VertexRings {
 /// face and `b` entering it: the ring of edge neighbours, which for a quad
 /// mesh gives each vertex the normal of its four neighbours' quadrilateral
 /// rather than of the triangles the quads are drawn with).
-pub trait Fans: Sync {
+pub(crate) trait Fans: Sync {
     /// Vertices.
     fn num_vertices(&self) -> usize;
     /// The `(a, b)` of each face around `v` in fan order.
@@ -199,7 +199,7 @@ fn fan_polygon(v: u32, ring: &mut Vec<u32>) {
 /// ring repeats its first neighbour at the end), the faces around `v` being
 /// `(v, ids[k], ids[k+1])`: the layout the GPU's normal pass reads. `None`
 /// as for [`VertexRings::new`].
-pub fn ring_lists<T: Fans + ?Sized>(ct: &T) -> Option<(Vec<u32>, Vec<u32>)> {
+pub(crate) fn ring_lists<T: Fans + ?Sized>(ct: &T) -> Option<(Vec<u32>, Vec<u32>)> {
     let nv = ct.num_vertices();
     let (mut offsets, mut ids, mut ring, mut pairs) = (Vec::with_capacity(nv + 1), Vec::new(), Vec::new(), Vec::new());
     offsets.push(0u32);
@@ -214,7 +214,7 @@ pub fn ring_lists<T: Fans + ?Sized>(ct: &T) -> Option<(Vec<u32>, Vec<u32>)> {
 impl VertexRings {
     /// The polygons of every vertex of `ct`, or `None` when a vertex has
     /// more than 253 neighbours (then use [`VertexFaces`]).
-    pub fn new<T: Fans + ?Sized>(ct: &T) -> Option<VertexRings> {
+    pub(crate) fn new<T: Fans + ?Sized>(ct: &T) -> Option<VertexRings> {
         let nv = ct.num_vertices();
         let parts: Vec<Option<(Vec<u8>, Vec<u32>)>> = (0..nv.div_ceil(RING_CHUNK))
             .into_par_iter()
@@ -247,7 +247,7 @@ impl VertexRings {
     /// # Panics
     /// If `pos` or `out` does not have one entry per vertex of the table the
     /// rings were built from (a caller bug, not input data).
-    pub fn normals_into(&self, pos: &[Vec3], out: &mut [Vec3]) {
+    pub(crate) fn normals_into(&self, pos: &[Vec3], out: &mut [Vec3]) {
         assert!(pos.len() == self.len.len() && out.len() == self.len.len(), "one position and normal per vertex");
         out.par_chunks_mut(RING_CHUNK)
             .zip(self.len.par_chunks(RING_CHUNK))

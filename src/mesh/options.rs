@@ -48,7 +48,7 @@ pub enum FileScheme {
 
 impl FileScheme {
     /// USD's token for it.
-    pub fn token(self) -> &'static str {
+    pub(crate) fn token(self) -> &'static str {
         match self {
             FileScheme::CatmullClark => "catmullClark",
             FileScheme::Loop => "loop",
@@ -58,7 +58,7 @@ impl FileScheme {
     }
 
     /// The scheme USD's token names.
-    pub fn of_token(t: &str) -> Option<FileScheme> {
+    pub(crate) fn of_token(t: &str) -> Option<FileScheme> {
         [FileScheme::CatmullClark, FileScheme::Loop, FileScheme::Bilinear, FileScheme::None]
             .into_iter()
             .find(|s| s.token() == t)
@@ -85,10 +85,6 @@ pub struct ShapeOptions {
 }
 
 impl ShapeOptions {
-    /// Whether the file states nothing.
-    pub fn is_empty(&self) -> bool {
-        *self == ShapeOptions::default()
-    }
 
     /// These options with the ones `over` states taking their place
     /// (a command's flags over the file's tags).
@@ -104,7 +100,7 @@ impl ShapeOptions {
 
     /// Only the options that differ from OpenSubdiv's defaults (what a
     /// writer writes).
-    pub fn not_default(self) -> ShapeOptions {
+    pub(crate) fn not_default(self) -> ShapeOptions {
         fn keep<T: Default + PartialEq>(x: Option<T>) -> Option<T> {
             x.filter(|v| *v != T::default())
         }
@@ -118,7 +114,7 @@ impl ShapeOptions {
     }
 
     /// The value of `t interpolateboundary` for `b`.
-    pub fn boundary_code(b: BoundaryInterpolation) -> u32 {
+    pub(crate) fn boundary_code(b: BoundaryInterpolation) -> u32 {
         match b {
             BoundaryInterpolation::None => 0,
             BoundaryInterpolation::EdgeAndCorner => 1,
@@ -127,19 +123,19 @@ impl ShapeOptions {
     }
 
     /// The boundary interpolation `t interpolateboundary` names by `k`.
-    pub fn boundary_of(k: u32) -> Option<BoundaryInterpolation> {
+    pub(crate) fn boundary_of(k: u32) -> Option<BoundaryInterpolation> {
         [BoundaryInterpolation::None, BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::EdgeOnly]
             .get(k as usize)
             .copied()
     }
 
     /// The value of `t facevaryinginterpolateboundary` for `m`.
-    pub fn fvar_code(m: UvInterpolation) -> u32 {
+    pub(crate) fn fvar_code(m: UvInterpolation) -> u32 {
         UvInterpolation::ALL.iter().position(|&x| x == m).unwrap_or(1) as u32
     }
 
     /// The face-varying mode `t facevaryinginterpolateboundary` names by `k`.
-    pub fn fvar_of(k: u32) -> Option<UvInterpolation> {
+    pub(crate) fn fvar_of(k: u32) -> Option<UvInterpolation> {
         UvInterpolation::ALL.get(k as usize).copied()
     }
 }

@@ -33,7 +33,7 @@ impl Relabel {
     /// Faces in breadth-first order across edges, one connected piece
     /// after the other (each started at its first face in the old order);
     /// vertices numbered by first use in the new face order. O(corners).
-    pub fn breadth_first(ct: &CornerTable) -> Relabel {
+    pub(crate) fn breadth_first(ct: &CornerTable) -> Relabel {
         let nt = ct.num_triangles();
         let o = ct.o_table();
         let mut seen = vec![false; nt];
@@ -76,13 +76,15 @@ impl Relabel {
         Relabel { faces, vertex }
     }
 
+    #[cfg(test)]
     /// The new id of old vertex `v`.
-    pub fn new_vertex(&self, v: u32) -> u32 {
+    pub(crate) fn new_vertex(&self, v: u32) -> u32 {
         self.vertex[v as usize]
     }
 
+    #[cfg(test)]
     /// The old face that became face `i`.
-    pub fn old_face(&self, i: u32) -> u32 {
+    pub(crate) fn old_face(&self, i: u32) -> u32 {
         self.faces[i as usize]
     }
 

@@ -16,15 +16,16 @@
 use super::{Mesh, n, p};
 use glam::Vec3;
 
+#[cfg(test)]
 /// The ray parameter `t > 0` where `origin + t * dir` crosses the triangle
 /// `tri`, or `None` when it misses (or runs parallel to its plane).
-pub fn ray_triangle(origin: Vec3, dir: Vec3, tri: [Vec3; 3]) -> Option<f32> {
+pub(crate) fn ray_triangle(origin: Vec3, dir: Vec3, tri: [Vec3; 3]) -> Option<f32> {
     ray_triangle_uv(origin, dir, tri).map(|(t, _, _)| t)
 }
 
 /// [`ray_triangle`] with the barycentric weights `(u, v)` of the hit's
 /// corners 1 and 2: the hit is `(1 - u - v) a + u b + v c`.
-pub fn ray_triangle_uv(origin: Vec3, dir: Vec3, tri: [Vec3; 3]) -> Option<(f32, f32, f32)> {
+pub(crate) fn ray_triangle_uv(origin: Vec3, dir: Vec3, tri: [Vec3; 3]) -> Option<(f32, f32, f32)> {
     let [a, b, c] = tri;
     let (e1, e2) = (b - a, c - a);
     let pv = dir.cross(e2);
@@ -95,7 +96,7 @@ pub fn first_hit(mesh: &Mesh, origin: Vec3, dir: Vec3) -> Option<(u32, Vec3)> {
 }
 
 /// Distance from `x` to the segment `(a, b)`.
-pub fn distance_to_segment(x: Vec3, a: Vec3, b: Vec3) -> f32 {
+pub(crate) fn distance_to_segment(x: Vec3, a: Vec3, b: Vec3) -> f32 {
     let d = b - a;
     let s = ((x - a).dot(d) / d.length_squared().max(1e-30)).clamp(0.0, 1.0);
     (a + d * s).distance(x)
@@ -103,7 +104,7 @@ pub fn distance_to_segment(x: Vec3, a: Vec3, b: Vec3) -> f32 {
 
 /// The corner of `mesh` whose opposite edge is nearest to where the ray
 /// `origin + t * dir` first hits the surface, or `None` when the ray misses.
-pub fn pick_edge(mesh: &Mesh, origin: Vec3, dir: Vec3) -> Option<u32> {
+pub(crate) fn pick_edge(mesh: &Mesh, origin: Vec3, dir: Vec3) -> Option<u32> {
     let (t, hit) = first_hit(mesh, origin, dir)?;
     let v = mesh.ct.v_table();
     let at = |c: u32| mesh.positions[v[c as usize] as usize];

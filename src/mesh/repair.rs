@@ -56,7 +56,7 @@ use glam::Vec3;
 use std::fmt;
 
 /// How many example ids a [`RepairReport`] keeps per kind of change.
-pub const EXAMPLES: usize = 10;
+pub(crate) const EXAMPLES: usize = 10;
 
 /// A count and its first few examples.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -85,7 +85,7 @@ impl<T> Tally<T> {
         }
     }
     /// Nothing found?
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.count == 0
     }
 }
@@ -280,12 +280,13 @@ pub fn repair(positions: Vec<Vec3>, triangles: &[u32]) -> Result<(Mesh, RepairRe
     repair_with_cap(positions, triangles, EXAMPLES)
 }
 
+#[cfg(test)]
 /// Runs the repair analysis and returns only its report, keeping every id
 /// (no cap): what `subdiv info` lists for a mesh that does not build.
 ///
 /// # Errors
 /// As [`repair`].
-pub fn analyze(positions: &[Vec3], triangles: &[u32]) -> Result<RepairReport, MeshError> {
+pub(crate) fn analyze(positions: &[Vec3], triangles: &[u32]) -> Result<RepairReport, MeshError> {
     repair_with_cap(positions.to_vec(), triangles, usize::MAX).map(|(_, r)| r)
 }
 
@@ -293,7 +294,11 @@ pub fn analyze(positions: &[Vec3], triangles: &[u32]) -> Result<RepairReport, Me
 ///
 /// # Errors
 /// As [`repair`].
-pub fn repair_with_cap(positions: Vec<Vec3>, triangles: &[u32], cap: usize) -> Result<(Mesh, RepairReport), MeshError> {
+pub(crate) fn repair_with_cap(
+    positions: Vec<Vec3>,
+    triangles: &[u32],
+    cap: usize,
+) -> Result<(Mesh, RepairReport), MeshError> {
     let mut rep = check_input(&positions, triangles, cap)?;
     let nv = positions.len();
     // 1. and 2.: the kept faces; `orig[t]` is the input id of face t

@@ -5,7 +5,7 @@ use super::Mesh;
 use glam::Vec3;
 
 /// Regular icosahedron on the unit sphere.
-pub fn icosahedron() -> Mesh {
+pub(crate) fn icosahedron() -> Mesh {
     let t = (1.0 + 5f32.sqrt()) / 2.0;
     let pos: Vec<Vec3> = [
         (-1.0, t, 0.0),
@@ -46,8 +46,9 @@ pub fn icosphere(levels: u32) -> Mesh {
     m
 }
 
+#[cfg(test)]
 /// A planar `n x n` grid of unit squares, each cut along the same diagonal.
-pub fn grid(n: usize) -> Mesh {
+pub(crate) fn grid(n: usize) -> Mesh {
     let n = n.max(1);
     let id = |i: usize, j: usize| (j * (n + 1) + i) as u32;
     let pos = (0..=n).flat_map(|j| (0..=n).map(move |i| Vec3::new(i as f32, j as f32, 0.0))).collect();

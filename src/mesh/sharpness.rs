@@ -155,7 +155,7 @@ fn check_value(index: usize, s: f32) -> Result<(), MeshError> {
 
 /// `s - 1` with OpenSubdiv's clamps (`Crease::decrementSharpness`).
 #[inline]
-pub fn decrement(s: f32) -> f32 {
+pub(crate) fn decrement(s: f32) -> f32 {
     if s >= INFINITE {
         INFINITE
     } else if s > 1.0 {
@@ -173,7 +173,7 @@ impl Sharpness {
     /// # Errors
     /// [`MeshError::BadTag`] for a vertex out of range, an edge that does
     /// not exist, or a sharpness that is negative or NaN.
-    pub fn from_tags<T: EdgeTable + ?Sized>(ct: &T, tags: &Tags) -> Result<Option<Sharpness>, MeshError> {
+    pub(crate) fn from_tags<T: EdgeTable + ?Sized>(ct: &T, tags: &Tags) -> Result<Option<Sharpness>, MeshError> {
         let nv = ct.num_vertices() as u32;
         let mut corners = Vec::new();
         for (i, t) in tags.creases.iter().enumerate() {
@@ -264,7 +264,7 @@ impl Sharpness {
 
     /// Adds infinitely sharp vertices (OpenSubdiv's `EDGE_AND_CORNER`
     /// boundary interpolation sharpens every boundary vertex with one face).
-    pub fn with_corners(this: Option<Sharpness>, corners: &[u32]) -> Option<Sharpness> {
+    pub(crate) fn with_corners(this: Option<Sharpness>, corners: &[u32]) -> Option<Sharpness> {
         let (c, mut v) = this.map_or((Vec::new(), Vec::new()), |s| (s.corners, s.vertices));
         v.extend(corners.iter().map(|&x| (x, INFINITE)));
         Self::from_lists(c, v)
@@ -272,7 +272,7 @@ impl Sharpness {
 
     /// Adds sharp edges `(corner, sharpness)` (either corner of an edge; a
     /// later value replaces an earlier one for the same edge).
-    pub fn with_edges<T: EdgeTable + ?Sized>(
+    pub(crate) fn with_edges<T: EdgeTable + ?Sized>(
         this: Option<Sharpness>,
         ct: &T,
         edges: &[(u32, f32)],
@@ -302,7 +302,7 @@ impl Sharpness {
     /// The sharpness after the 1-to-4 split of `old` (whose sharpness this
     /// is), decaying by `creasing`, or `None` when every value decayed to
     /// smooth. Linear in the number of sharp features (plus a sort of them).
-    pub fn split(&self, old: &CornerTable, creasing: Creasing) -> Option<Sharpness> {
+    pub(crate) fn split(&self, old: &CornerTable, creasing: Creasing) -> Option<Sharpness> {
         let nt3 = 3 * old.num_triangles() as u32;
         // A(x): first corner of the corner triangle of v(x)
         let a = |x: u32| nt3 * (x % 3 + 1) + 3 * (x / 3);
@@ -321,7 +321,7 @@ impl Sharpness {
 
     /// How the edges of `ct` (whose sharpness this is) decay at each end
     /// vertex through the next split.
-    pub fn edge_decay<'a, T: EdgeTable>(&self, ct: &'a T, creasing: Creasing) -> EdgeDecay<'a> {
+    pub(crate) fn edge_decay<'a, T: EdgeTable>(&self, ct: &'a T, creasing: Creasing) -> EdgeDecay<'a> {
         let chaikin = creasing == Creasing::Chaikin;
         let sums = if chaikin { self.semi_sharp_sums(ct) } else { Vec::new() };
         EdgeDecay { ct, chaikin, sums }
@@ -357,7 +357,7 @@ impl Sharpness {
 
 /// The subdivided sharpness of a level's edges at their end vertices (see
 /// [`Sharpness::edge_decay`]).
-pub struct EdgeDecay<'a> {
+pub(crate) struct EdgeDecay<'a> {
     ct: &'a dyn EdgeTable,
     chaikin: bool,
     sums: Vec<(u32, f32, u32)>,
@@ -367,11 +367,11 @@ impl EdgeDecay<'_> {
     /// The sharpness of the half, ending at `v`, of an edge of sharpness
     /// `s` after the split.
     #[inline]
-    pub fn at(&self, s: f32, v: u32) -> f32 {
+    pub(crate) fn at(&self, s: f32, v: u32) -> f32 {
         if self.chaikin { chaikin_at(s, v, self.ct.valence(v), &self.sums) } else { decrement(s) }
     }
     /// Whether the decay is uniform (`s - 1`).
-    pub fn is_uniform(&self) -> bool {
+    pub(crate) fn is_uniform(&self) -> bool {
         !self.chaikin
     }
 }
@@ -424,7 +424,7 @@ impl CornerTable {
 
     /// The corner opposite the edge `(a, b)` (in either direction), by
     /// walking `a`'s fan; `None` when there is no such edge.
-    pub fn corner_opposite(&self, a: u32, b: u32) -> Option<u32> {
+    pub(crate) fn corner_opposite(&self, a: u32, b: u32) -> Option<u32> {
         self.edge_between(a, b)
     }
 }

@@ -64,7 +64,7 @@ pub struct EdgeIds {
 
 impl EdgeIds {
     /// The owner bits of the table whose O table is `o_table`, in parallel.
-    pub fn new(o_table: &[u32]) -> EdgeIds {
+    pub(crate) fn new(o_table: &[u32]) -> EdgeIds {
         let owns: Vec<u64> = o_table
             .par_chunks(64)
             .with_min_len(CHUNK / 64)
@@ -82,13 +82,13 @@ impl EdgeIds {
     }
 
     /// Number of edges.
-    pub fn count(&self) -> u32 {
+    pub(crate) fn count(&self) -> u32 {
         self.before.last().copied().unwrap_or(0)
     }
 
     /// Owner corners before corner `c` (`c` up to the corner count).
     #[inline(always)]
-    pub fn rank(&self, c: u32) -> u32 {
+    pub(crate) fn rank(&self, c: u32) -> u32 {
         let (k, i) = ((c / 64) as usize, c % 64);
         let below = self.owns.get(k).map_or(0, |w| (w & ((1u64 << i) - 1)).count_ones());
         self.before[k] + below
@@ -96,7 +96,7 @@ impl EdgeIds {
 
     /// The id of the edge opposite corner `c`, whose O entry is `x`.
     #[inline(always)]
-    pub fn edge(&self, c: u32, x: u32) -> u32 {
+    pub(crate) fn edge(&self, c: u32, x: u32) -> u32 {
         if owns_edge(c, x) { self.rank(c) } else { self.rank(x) }
     }
 
@@ -176,7 +176,7 @@ impl EdgeIds {
 /// only its faces: at bunny level 3 the list is 6.7 MB written, faulted in
 /// and read once).
 #[derive(Clone, Copy, Debug)]
-pub enum Owners<'a> {
+pub(crate) enum Owners<'a> {
     /// `list[e]` owns edge `e`.
     List(&'a [u32]),
     /// The owner bits: the `e`-th owner corner owns edge `e`.
@@ -185,15 +185,16 @@ pub enum Owners<'a> {
 
 impl Owners<'_> {
     /// Number of edges.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         match self {
             Owners::List(list) => list.len(),
             Owners::Bits(ids) => ids.count() as usize,
         }
     }
 
+    #[cfg(test)]
     /// Whether there are no edges.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
@@ -203,7 +204,7 @@ impl Owners<'_> {
     ///
     /// # Panics
     /// If `out` does not have one element per edge.
-    pub fn par_pieces<T: Send>(&self, out: &mut [T], each: impl Fn(&mut [T], &[u32]) + Sync) {
+    pub(crate) fn par_pieces<T: Send>(&self, out: &mut [T], each: impl Fn(&mut [T], &[u32]) + Sync) {
         assert_eq!(out.len(), self.len(), "one element per edge");
         match *self {
             Owners::List(list) => {
@@ -290,7 +291,7 @@ pub fn split(old: &CornerTable) -> (CornerTable, EdgeNumbering) {
 }
 
 /// [`split`], the sharpness decaying by `creasing`.
-pub fn split_with(old: &CornerTable, creasing: Creasing) -> (CornerTable, EdgeNumbering) {
+pub(crate) fn split_with(old: &CornerTable, creasing: Creasing) -> (CornerTable, EdgeNumbering) {
     let ((ct, edges, _), _) = split_with_boundary(old, None, creasing);
     (ct, edges)
 }
@@ -303,7 +304,7 @@ pub fn split_with(old: &CornerTable, creasing: Creasing) -> (CornerTable, EdgeNu
 /// no bounds checks inside the loop, no division but one `x % 3` per
 /// opposite corner); the new vertices' `C` and valence are written by the
 /// numbering pass, which has each edge's owner and opposite at hand.
-pub fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f64)) {
+pub(crate) fn split_timed(old: &CornerTable) -> ((CornerTable, EdgeNumbering), (f64, f64)) {
     let ((ct, edges, _), times) = split_with_boundary(old, None, Creasing::Uniform);
     ((ct, edges), times)
 }

@@ -105,7 +105,7 @@ pub fn topology(ct: &CornerTable) -> Topology {
 }
 
 /// The inner diagonals of `ct`'s polygons (none without edge generations).
-pub fn diagonals(ct: &CornerTable) -> usize {
+pub(crate) fn diagonals(ct: &CornerTable) -> usize {
     if !ct.generations().is_some_and(super::Generations::may_hide) {
         return 0;
     }
@@ -118,7 +118,7 @@ pub fn diagonals(ct: &CornerTable) -> usize {
 }
 
 /// Component id of every triangle (0-based, in order of first triangle).
-pub fn triangle_components(ct: &CornerTable) -> Vec<u32> {
+pub(crate) fn triangle_components(ct: &CornerTable) -> Vec<u32> {
     let nf = ct.num_triangles();
     let mut comp = vec![u32::MAX; nf];
     let mut next = 0u32;

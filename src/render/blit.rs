@@ -4,20 +4,20 @@
 //! interaction never re-rasterises a million triangles.
 
 /// The blit pipeline.
-pub struct Blit {
+pub(crate) struct Blit {
     pipeline: wgpu::RenderPipeline,
     layout: wgpu::BindGroupLayout,
 }
 
 impl Blit {
     /// A pipeline writing `format` targets.
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
+    pub(crate) fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
         Blit::with_shader(device, format, include_str!("../../shaders/blit.wgsl"), "fs_blit")
     }
 
     /// The post-process anti-aliasing pass (shaders/fxaa.wgsl): the same
     /// full-screen copy, each pixel blended across the edge it lies on.
-    pub fn fxaa(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
+    pub(crate) fn fxaa(device: &wgpu::Device, format: wgpu::TextureFormat) -> Blit {
         Blit::with_shader(device, format, include_str!("../../shaders/fxaa.wgsl"), "fs_fxaa")
     }
 
@@ -69,7 +69,7 @@ impl Blit {
     }
 
     /// A bind group reading `view`.
-    pub fn bind(&self, device: &wgpu::Device, view: &wgpu::TextureView) -> wgpu::BindGroup {
+    pub(crate) fn bind(&self, device: &wgpu::Device, view: &wgpu::TextureView) -> wgpu::BindGroup {
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("blit source"),
             layout: &self.layout,
@@ -78,7 +78,12 @@ impl Blit {
     }
 
     /// Records the copy of `source` onto `target`.
-    pub fn draw(&self, encoder: &mut wgpu::CommandEncoder, source: &wgpu::BindGroup, target: &wgpu::TextureView) {
+    pub(crate) fn draw(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        source: &wgpu::BindGroup,
+        target: &wgpu::TextureView,
+    ) {
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("blit"),
             color_attachments: &[Some(wgpu::RenderPassColorAttachment {

@@ -11,7 +11,7 @@ const MAX_PITCH: f32 = 1.55;
 
 /// The share of the view's width or height (the tighter of the two) that
 /// [`Camera::fit_points`] gives the model.
-pub const FIT_FILL: f32 = 0.9;
+pub(crate) const FIT_FILL: f32 = 0.9;
 
 /// The eye `(ex, ey, ez)` seeing the points `q` (camera frame) centred
 /// with half-angle tangents `s` in perspective ([`Camera::fit_points`]).
@@ -111,20 +111,20 @@ impl Camera {
 
     /// A camera looking at `points` from the default direction,
     /// orthographic or not (see [`Camera::fit_points`]).
-    pub fn framing_points(points: &[Vec3], aspect: f32, orthographic: bool) -> Camera {
+    pub(crate) fn framing_points(points: &[Vec3], aspect: f32, orthographic: bool) -> Camera {
         let mut c = Camera { orthographic, ..Camera::default() };
         c.fit_points(points, aspect);
         c
     }
 
     /// Unit vector from the target towards the eye.
-    pub fn back(&self) -> Vec3 {
+    pub(crate) fn back(&self) -> Vec3 {
         let (sy, cy) = self.yaw.sin_cos();
         let (sp, cp) = self.pitch.sin_cos();
         Vec3::new(cp * sy, sp, cp * cy)
     }
     /// Eye position.
-    pub fn eye(&self) -> Vec3 {
+    pub(crate) fn eye(&self) -> Vec3 {
         self.target + self.distance * self.back()
     }
     /// Unit viewing direction.
@@ -132,14 +132,14 @@ impl Camera {
         -self.back()
     }
     /// Camera right and up unit vectors in world space.
-    pub fn right_up(&self) -> (Vec3, Vec3) {
+    pub(crate) fn right_up(&self) -> (Vec3, Vec3) {
         let f = self.forward();
         let right = f.cross(Vec3::Y).normalize_or(Vec3::X);
         (right, right.cross(f))
     }
 
     /// World to view matrix.
-    pub fn view(&self) -> Mat4 {
+    pub(crate) fn view(&self) -> Mat4 {
         glam::camera::rh::view::look_at_mat4(self.eye(), self.target, Vec3::Y)
     }
     /// Half height of the view at the target's depth.
@@ -147,7 +147,7 @@ impl Camera {
         self.distance * (0.5 * self.fovy).tan()
     }
     /// View to clip matrix for a viewport of the given aspect (width / height).
-    pub fn proj(&self, aspect: f32) -> Mat4 {
+    pub(crate) fn proj(&self, aspect: f32) -> Mat4 {
         let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
         let r = self.radius.max(1e-6);
         let far = self.distance + 3.0 * r;
@@ -161,7 +161,7 @@ impl Camera {
         }
     }
     /// World to clip.
-    pub fn view_proj(&self, aspect: f32) -> Mat4 {
+    pub(crate) fn view_proj(&self, aspect: f32) -> Mat4 {
         self.proj(aspect) * self.view()
     }
     /// Normalised device coordinates (x, y in -1..1, y up) of a world point.
@@ -172,7 +172,7 @@ impl Camera {
     /// The ray through a point of a viewport of the given aspect, given in
     /// its normalised device coordinates (`cursor`, y up): the point on the
     /// near plane and the unit direction away from the eye.
-    pub fn ray(&self, cursor: Vec2, aspect: f32) -> (Vec3, Vec3) {
+    pub(crate) fn ray(&self, cursor: Vec2, aspect: f32) -> (Vec3, Vec3) {
         let inv = self.view_proj(aspect).inverse();
         let near = inv.project_point3(cursor.extend(0.0));
         let far = inv.project_point3(cursor.extend(1.0));
@@ -209,7 +209,7 @@ impl Camera {
     /// larger `ez`) is so fitted; the other is then centred by bisection on
     /// its offset (its extreme projections are monotone in it).
     /// Orthographically the extents are the points' own.
-    pub fn fit_points(&mut self, points: &[Vec3], aspect: f32) {
+    pub(crate) fn fit_points(&mut self, points: &[Vec3], aspect: f32) {
         let aspect = if aspect.is_finite() && aspect > 0.0 { aspect } else { 1.0 };
         let (lo, hi) = finite_bounds(points).unwrap_or((-Vec3::ONE, Vec3::ONE));
         let centre = 0.5 * (lo + hi);
@@ -239,14 +239,14 @@ impl Camera {
     }
 
     /// Orbits by a mouse motion in pixels.
-    pub fn orbit(&mut self, delta: Vec2) {
+    pub(crate) fn orbit(&mut self, delta: Vec2) {
         self.yaw -= delta.x * 0.008;
         self.pitch = (self.pitch + delta.y * 0.008).clamp(-MAX_PITCH, MAX_PITCH);
     }
 
     /// Moves the target with the cursor: `delta` in pixels in a viewport
     /// `height` pixels tall, so the point under the cursor follows it.
-    pub fn pan(&mut self, delta: Vec2, height: f32) {
+    pub(crate) fn pan(&mut self, delta: Vec2, height: f32) {
         let per_pixel = 2.0 * self.half_height() / height.max(1.0);
         let (right, up) = self.right_up();
         self.target += (-delta.x * right + delta.y * up) * per_pixel;
@@ -254,7 +254,7 @@ impl Camera {
 
     /// Scales the distance by `factor` (< 1 zooms in) keeping the point under
     /// the cursor fixed; `cursor` is in NDC of a viewport of the given aspect.
-    pub fn zoom_to(&mut self, factor: f32, cursor: Vec2, aspect: f32) {
+    pub(crate) fn zoom_to(&mut self, factor: f32, cursor: Vec2, aspect: f32) {
         if !factor.is_finite() || factor <= 0.0 {
             return;
         }

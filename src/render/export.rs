@@ -60,7 +60,7 @@ pub fn motion_bounds(anim: &Animation) -> (Vec3, Vec3) {
 }
 
 /// Bounds of the subdivided surface over every frame (evaluates them all).
-pub fn surface_motion_bounds(anim: &mut Animation) -> (Vec3, Vec3) {
+pub(crate) fn surface_motion_bounds(anim: &mut Animation) -> (Vec3, Vec3) {
     (0..anim.frame_count())
         .map(|f| bounds_of(anim.evaluate(f).0))
         .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
@@ -73,7 +73,7 @@ pub fn surface_motion_bounds(anim: &mut Animation) -> (Vec3, Vec3) {
 ///
 /// # Errors
 /// As [`AnimatedMesh::evaluate`] and [`AnimatedMesh::positions`].
-pub fn gpu_surface_motion_bounds(animated: &AnimatedMesh, gpu: &Gpu, anim: &Animation) -> Result<(Vec3, Vec3)> {
+pub(crate) fn gpu_surface_motion_bounds(animated: &AnimatedMesh, gpu: &Gpu, anim: &Animation) -> Result<(Vec3, Vec3)> {
     let mut bounds: Option<(Vec3, Vec3)> = None;
     for f in 0..anim.frame_count() {
         animated.evaluate(&gpu.device, &gpu.queue, anim.control(f))?;

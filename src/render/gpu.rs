@@ -20,7 +20,7 @@ impl Gpu {
     ///
     /// # Errors
     /// [`Error::Gpu`] when no adapter or device exists.
-    pub fn headless() -> Result<Gpu> {
+    pub(crate) fn headless() -> Result<Gpu> {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = wgpu::Backends::all();
         let instance = wgpu::Instance::new(desc.with_env());
@@ -31,7 +31,10 @@ impl Gpu {
     ///
     /// # Errors
     /// [`Error::Gpu`] when no adapter or device exists.
-    pub async fn with_instance(instance: wgpu::Instance, surface: Option<&wgpu::Surface<'static>>) -> Result<Gpu> {
+    pub(crate) async fn with_instance(
+        instance: wgpu::Instance,
+        surface: Option<&wgpu::Surface<'static>>,
+    ) -> Result<Gpu> {
         let adapter = instance
             .request_adapter(&wgpu::RequestAdapterOptions {
                 power_preference: wgpu::PowerPreference::HighPerformance,
@@ -54,13 +57,13 @@ impl Gpu {
     }
 
     /// `backend | name`, for logs and the stats panel.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         let info = self.adapter.get_info();
         format!("{:?} | {}", info.backend, info.name)
     }
 
     /// Whether the adapter is a software rasteriser (lavapipe, llvmpipe...).
-    pub fn is_software(&self) -> bool {
+    pub(crate) fn is_software(&self) -> bool {
         self.adapter.get_info().device_type == wgpu::DeviceType::Cpu
     }
 
@@ -68,13 +71,13 @@ impl Gpu {
     /// where 4x MSAA costs two to three times the frame and the FXAA pass
     /// smooths the edges instead, else [`Self::msaa_samples`]; `SUBDIV_MSAA`
     /// overrides both.
-    pub fn default_samples(&self, format: wgpu::TextureFormat) -> u32 {
+    pub(crate) fn default_samples(&self, format: wgpu::TextureFormat) -> u32 {
         if self.is_software() && std::env::var_os("SUBDIV_MSAA").is_none() { 1 } else { self.msaa_samples(format) }
     }
 
     /// Largest supported MSAA sample count (up to 4) usable with both `format`
     /// and the depth format. `SUBDIV_MSAA=1` (or 4) overrides.
-    pub fn msaa_samples(&self, format: wgpu::TextureFormat) -> u32 {
+    pub(crate) fn msaa_samples(&self, format: wgpu::TextureFormat) -> u32 {
         if let Some(n) = std::env::var("SUBDIV_MSAA").ok().and_then(|v| v.parse::<u32>().ok()) {
             return if n <= 1 { 1 } else { 4 };
         }

@@ -57,7 +57,7 @@ pub struct GpuAnimator {
 
 /// Whether `device` can run the animation passes (compute with six storage
 /// buffers per stage; lavapipe can).
-pub fn supports_compute(device: &wgpu::Device) -> bool {
+pub(crate) fn supports_compute(device: &wgpu::Device) -> bool {
     device.limits().max_storage_buffers_per_shader_stage >= 6
         && device.limits().max_compute_workgroups_per_dimension > 0
 }
@@ -205,7 +205,12 @@ impl GpuAnimator {
     ///
     /// # Errors
     /// [`Error::Usage`] when `control` does not have the plan's vertex count.
-    pub fn encode(&self, queue: &wgpu::Queue, encoder: &mut wgpu::CommandEncoder, control: &[Vec3]) -> Result<()> {
+    pub(crate) fn encode(
+        &self,
+        queue: &wgpu::Queue,
+        encoder: &mut wgpu::CommandEncoder,
+        control: &[Vec3],
+    ) -> Result<()> {
         if control.len() != self.n_control {
             return Err(Error::Usage(format!(
                 "{} control positions for a plan of {} vertices",
@@ -288,7 +293,7 @@ impl GpuMesh {
 ///
 /// # Errors
 /// [`Error::Gpu`] without compute shaders with six storage buffers.
-pub fn require_compute(gpu: &Gpu) -> Result<()> {
+pub(crate) fn require_compute(gpu: &Gpu) -> Result<()> {
     if supports_compute(&gpu.device) {
         Ok(())
     } else {
@@ -302,7 +307,7 @@ pub fn require_compute(gpu: &Gpu) -> Result<()> {
 /// they are built ([`AnimatedMesh::start_gpu`], [`AnimatedMesh::on_gpu`]).
 /// The viewer, the animation export and `animate --stats --eval gpu` all
 /// evaluate frames on the GPU through this one type.
-pub struct AnimatedMesh {
+pub(crate) struct AnimatedMesh {
     mesh: GpuMesh,
     /// The compute passes writing `mesh` (`None`: frames come from the CPU).
     animator: Option<GpuAnimator>,
@@ -313,7 +318,12 @@ impl AnimatedMesh {
     ///
     /// # Errors
     /// [`Error::Gpu`] when the mesh exceeds the device's buffer limit.
-    pub fn new(device: &wgpu::Device, ct: &CornerTable, positions: &[Vec3], normals: &[Vec3]) -> Result<AnimatedMesh> {
+    pub(crate) fn new(
+        device: &wgpu::Device,
+        ct: &CornerTable,
+        positions: &[Vec3],
+        normals: &[Vec3],
+    ) -> Result<AnimatedMesh> {
         Ok(AnimatedMesh { mesh: GpuMesh::new(device, ct, positions, normals)?, animator: None })
     }
 
@@ -325,7 +335,7 @@ impl AnimatedMesh {
     /// # Errors
     /// [`Error::Gpu`] without compute shaders, or as [`GpuAnimator::new`];
     /// [`Error::Usage`] as [`GpuAnimator::encode`].
-    pub fn on_gpu(gpu: &Gpu, plan: &StencilPlan, control: &[Vec3]) -> Result<AnimatedMesh> {
+    pub(crate) fn on_gpu(gpu: &Gpu, plan: &StencilPlan, control: &[Vec3]) -> Result<AnimatedMesh> {
         require_compute(gpu)?;
         let zeros = vec![Vec3::ZERO; plan.ct.num_vertices()];
         let mut animated = AnimatedMesh::new(&gpu.device, &plan.ct, &zeros, &zeros)?;
@@ -341,18 +351,18 @@ impl AnimatedMesh {
     ///
     /// # Errors
     /// As [`GpuAnimator::new`]; the mesh is then left as it was.
-    pub fn start_gpu(&mut self, device: &wgpu::Device, plan: &StencilPlan) -> Result<()> {
+    pub(crate) fn start_gpu(&mut self, device: &wgpu::Device, plan: &StencilPlan) -> Result<()> {
         self.animator = Some(GpuAnimator::new(device, plan, &self.mesh)?);
         Ok(())
     }
 
     /// Whether the compute passes are built.
-    pub fn gpu_ready(&self) -> bool {
+    pub(crate) fn gpu_ready(&self) -> bool {
         self.animator.is_some()
     }
 
     /// Takes a frame the CPU evaluated (the compute passes, if built, stay).
-    pub fn upload(&mut self, queue: &wgpu::Queue, positions: &[Vec3], normals: &[Vec3]) {
+    pub(crate) fn upload(&mut self, queue: &wgpu::Queue, positions: &[Vec3], normals: &[Vec3]) {
         self.mesh.update(queue, positions, normals);
     }
 
@@ -363,7 +373,7 @@ impl AnimatedMesh {
     /// # Errors
     /// [`Error::Gpu`] before [`AnimatedMesh::start_gpu`]; as
     /// [`GpuAnimator::update`].
-    pub fn evaluate(&self, device: &wgpu::Device, queue: &wgpu::Queue, control: &[Vec3]) -> Result<()> {
+    pub(crate) fn evaluate(&self, device: &wgpu::Device, queue: &wgpu::Queue, control: &[Vec3]) -> Result<()> {
         let animator =
             self.animator.as_ref().ok_or_else(|| Error::Gpu("the GPU evaluation passes are not built".into()))?;
         animator.update(device, queue, control)
@@ -373,17 +383,17 @@ impl AnimatedMesh {
     ///
     /// # Errors
     /// As [`read_vec3`].
-    pub fn positions(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<Vec3>> {
+    pub(crate) fn positions(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<Vec3>> {
         read_vec3(device, queue, &self.mesh.positions, self.mesh.vertex_count())
     }
 
     /// The mesh as drawn.
-    pub fn mesh(&self) -> &GpuMesh {
+    pub(crate) fn mesh(&self) -> &GpuMesh {
         &self.mesh
     }
 
     /// The mesh as drawn, to add colours or normal segments to.
-    pub fn mesh_mut(&mut self) -> &mut GpuMesh {
+    pub(crate) fn mesh_mut(&mut self) -> &mut GpuMesh {
         &mut self.mesh
     }
 }

@@ -57,7 +57,7 @@ pub enum Cull {
 /// Closed meshes skip the faces turned away from the eye; which side is
 /// "away" follows the sign of the enclosed volume (the corner table makes the
 /// orientation consistent, not necessarily outward).
-pub fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
+pub(crate) fn cull_for(ct: &CornerTable, positions: &[Vec3]) -> Cull {
     if !ct.is_closed() {
         return Cull::None;
     }
@@ -234,7 +234,7 @@ impl GpuMesh {
 
     /// Lines only (no faces): `points` joined by the index pairs in `pairs`
     /// (a curve and its control polygon).
-    pub fn lines(device: &wgpu::Device, points: &[Vec3], pairs: &[u32]) -> GpuMesh {
+    pub(crate) fn lines(device: &wgpu::Device, points: &[Vec3], pairs: &[u32]) -> GpuMesh {
         let vertex = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
         let normals = vec![Vec3::Z; points.len()];
         GpuMesh {
@@ -258,11 +258,11 @@ impl GpuMesh {
     }
 
     /// Number of vertices.
-    pub fn vertex_count(&self) -> usize {
+    pub(crate) fn vertex_count(&self) -> usize {
         self.vertex_count
     }
     /// Number of triangles.
-    pub fn triangle_count(&self) -> usize {
+    pub(crate) fn triangle_count(&self) -> usize {
         self.triangle_indices as usize / 3
     }
 
@@ -281,7 +281,13 @@ impl GpuMesh {
     }
 
     /// Builds the segments, `length` long, that display the vertex normals.
-    pub fn set_normal_lines(&mut self, device: &wgpu::Device, positions: &[Vec3], normals: &[Vec3], length: f32) {
+    pub(crate) fn set_normal_lines(
+        &mut self,
+        device: &wgpu::Device,
+        positions: &[Vec3],
+        normals: &[Vec3],
+        length: f32,
+    ) {
         self.normal_length = length;
         let v = normal_segments(positions, normals, length);
         let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
@@ -289,7 +295,7 @@ impl GpuMesh {
     }
 
     /// Whether the normal segments are built.
-    pub fn has_normal_lines(&self) -> bool {
+    pub(crate) fn has_normal_lines(&self) -> bool {
         self.normal_lines.is_some()
     }
 
@@ -308,7 +314,7 @@ impl GpuMesh {
     /// half-width, NaN where not evaluated (grey). They ride in the colour
     /// slot as `(t, 1, 0)`, or `(0, 0, 0)` for NaN, so the shader can blend
     /// the grey in and draw isolines only where every corner has a value.
-    pub fn set_values(&mut self, device: &wgpu::Device, t: &[f32]) {
+    pub(crate) fn set_values(&mut self, device: &wgpu::Device, t: &[f32]) {
         let attr: Vec<Vec3> =
             t.iter().map(|&t| if t.is_finite() { Vec3::new(t, 1.0, 0.0) } else { Vec3::ZERO }).collect();
         self.set_colors(device, &attr);
@@ -350,7 +356,7 @@ impl GpuMesh {
 
     /// Segments (point pairs) drawn highlighted over this mesh, e.g. a
     /// picked edge; empty clears them.
-    pub fn set_highlight(&mut self, device: &wgpu::Device, segments: &[Vec3]) {
+    pub(crate) fn set_highlight(&mut self, device: &wgpu::Device, segments: &[Vec3]) {
         self.highlight = (!segments.is_empty()).then(|| {
             (
                 buffer(device, "highlight", bytemuck::cast_slice(segments), wgpu::BufferUsages::VERTEX),
@@ -360,7 +366,7 @@ impl GpuMesh {
     }
 
     /// Drops the normal segments.
-    pub fn clear_normal_lines(&mut self) {
+    pub(crate) fn clear_normal_lines(&mut self) {
         self.normal_lines = None;
     }
 }

@@ -45,7 +45,7 @@ pub fn op_color(name: &str) -> Rgba8 {
 
 /// The point standing for a corner at `vertex` of a face with the vertex
 /// positions `face`: `vertex + 0.45 (centroid - vertex)`.
-pub fn corner_point(vertex: Vec3, face: &[Vec3]) -> Vec3 {
+pub(crate) fn corner_point(vertex: Vec3, face: &[Vec3]) -> Vec3 {
     let centroid = face.iter().copied().sum::<Vec3>() / face.len().max(1) as f32;
     vertex + 0.45 * (centroid - vertex)
 }
@@ -65,12 +65,12 @@ pub fn polygon_corner_point(pt: &PolyTable, positions: &[Vec3], c: u32) -> Vec3 
 
 /// The triangle table's operators as rows: `n p o l r s u` and their
 /// targets (`None` across a border).
-pub fn corner_rows(x: &CornerOps) -> Vec<(&'static str, Option<u32>)> {
+pub(crate) fn corner_rows(x: &CornerOps) -> Vec<(&'static str, Option<u32>)> {
     vec![("n", Some(x.n)), ("p", Some(x.p)), ("o", x.o), ("l", x.l), ("r", x.r), ("s", x.s), ("u", x.u)]
 }
 
 /// The polygon table's operators as rows: `next prev twin swing`.
-pub fn poly_corner_rows(x: &PolyCornerOps) -> Vec<(&'static str, Option<u32>)> {
+pub(crate) fn poly_corner_rows(x: &PolyCornerOps) -> Vec<(&'static str, Option<u32>)> {
     vec![("next", Some(x.next)), ("prev", Some(x.prev)), ("twin", x.twin), ("swing", x.swing)]
 }
 
@@ -119,7 +119,7 @@ fn corner_overlay(
 
 /// `w` as a fraction `k/2^m` when it is one with `2^m <= 4096`, else in
 /// four decimals (`43/128`, `-1/16`, `0.2143`).
-pub fn weight_text(w: f64) -> String {
+pub(crate) fn weight_text(w: f64) -> String {
     for m in 0..=12 {
         let d = f64::from(1u32 << m);
         let k = w * d;
@@ -132,7 +132,7 @@ pub fn weight_text(w: f64) -> String {
 
 /// The name of a rule without its parenthesis (`interior edge` of
 /// `interior edge (3/8 its ends, ...)`).
-pub fn rule_short(rule: &str) -> &str {
+pub(crate) fn rule_short(rule: &str) -> &str {
     rule.split(" (").next().unwrap_or(rule)
 }
 
@@ -152,7 +152,7 @@ pub fn weight_color(w: f64, max: f64) -> Rgba8 {
 /// The radius in pixels of a disc of weight `w` (largest magnitude `max`):
 /// 3 to 14 pixels by the square root of `|w| / max`, so that the area
 /// follows the weight.
-pub fn weight_radius(w: f64, max: f64) -> f32 {
+pub(crate) fn weight_radius(w: f64, max: f64) -> f32 {
     3.0 + 11.0 * if max > 0.0 { (w.abs() / max).sqrt() as f32 } else { 0.0 }
 }
 

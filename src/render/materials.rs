@@ -82,7 +82,7 @@ fn linear_pixel(t: &Texture, x: usize, y: usize) -> Vec4 {
 /// `t` at half its size (at least one pixel a side; an odd side's pixels
 /// shared by the two halves), each pixel the average in linear light of
 /// the pixels it covers.
-pub fn downsample(t: &Texture) -> Texture {
+pub(crate) fn downsample(t: &Texture) -> Texture {
     let (w, h) = (t.width as usize, t.height as usize);
     let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
     // the source pixels of output pixel i of n along a side of m pixels
@@ -104,7 +104,7 @@ pub fn downsample(t: &Texture) -> Texture {
 /// The mipmaps of `t`: the largest level whose sides are at most
 /// `max_side` pixels (a texture larger than the device holds starts at a
 /// smaller level), then each level half the one before, down to one pixel.
-pub fn mip_chain(t: &Texture, max_side: u32) -> Vec<Texture> {
+pub(crate) fn mip_chain(t: &Texture, max_side: u32) -> Vec<Texture> {
     let mut levels: Vec<Texture> = Vec::new();
     let mut fits = t.width <= max_side && t.height <= max_side;
     if fits {
@@ -126,7 +126,7 @@ pub fn mip_chain(t: &Texture, max_side: u32) -> Vec<Texture> {
 
 /// A range of the corner order drawn with one material.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Run {
+pub(crate) struct Run {
     /// The material's index in the group's list (`list.len()` for ids that
     /// name no material: drawn grey).
     pub material: usize,
@@ -139,7 +139,7 @@ pub struct Run {
 /// each material in that order; `face` holds the material of each
 /// triangle, `count` how many materials there are (larger ids share one
 /// run, numbered `count`).
-pub fn material_runs(face: &[u32], count: usize) -> (Vec<u32>, Vec<Run>) {
+pub(crate) fn material_runs(face: &[u32], count: usize) -> (Vec<u32>, Vec<Run>) {
     let slot = |m: u32| (m as usize).min(count);
     let mut sizes = vec![0u32; count + 1];
     for &m in face {

@@ -5,25 +5,39 @@
 //! mesh core knows nothing of this module.
 
 pub(crate) mod blit;
-pub mod camera;
-pub mod colorbar;
-pub mod export;
-pub mod gpu;
-pub mod gpu_anim;
-pub mod gpu_mesh;
+pub(crate) mod camera;
+pub(crate) mod colorbar;
+pub(crate) mod export;
+pub(crate) mod gpu;
+pub(crate) mod gpu_anim;
+pub(crate) mod gpu_mesh;
 pub mod inspect;
-pub mod materials;
-pub mod offscreen;
+pub(crate) mod materials;
+pub(crate) mod offscreen;
 pub mod overlay;
-pub mod pipelines;
-pub mod readback;
-pub mod scene;
-pub mod textures;
+pub(crate) mod pipelines;
+pub(crate) mod readback;
+pub(crate) mod scene;
+pub(crate) mod textures;
 
+// What the library's users reach; the modules are the crate's own.
 pub use camera::Camera;
+pub use colorbar::draw as draw_colorbar;
+pub use export::{
+    Evaluation, ExportStyle, ExportTarget, export_animation, export_animation_painted, frame_path, motion_bounds,
+};
 pub use gpu::Gpu;
-pub use offscreen::Offscreen;
-pub use scene::{GpuMesh, Renderer, Targets, ViewportDraw};
+pub use gpu_anim::{GpuAnimator, read_vec3, time_frames};
+pub use gpu_mesh::GpuMesh;
+pub use inspect::{op_color, polygon_corner_point, triangle_corner_point, weight_color};
+pub use materials::sample as sample_material;
+pub use offscreen::{Offscreen, shoot};
+pub use overlay::{Overlay, Viewport};
+pub use scene::{
+    FILL_INTENSITY, FILL_LIGHT, FRONT, HEADLIGHT_INTENSITY, KEY_INTENSITY, KEY_LIGHT, Renderer, Targets, ViewportDraw,
+    background_srgb8_at,
+};
+pub use textures::MaterialDraw;
 
 use crate::{Error, Mesh, Result};
 use std::path::Path;
@@ -119,7 +133,7 @@ pub enum WireEdges {
 
 impl WireEdges {
     /// The highest generation drawn.
-    pub fn max_generation(self) -> u8 {
+    pub(crate) fn max_generation(self) -> u8 {
         match self {
             WireEdges::All => u8::MAX,
             WireEdges::UpTo(k) => k,

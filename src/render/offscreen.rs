@@ -8,10 +8,8 @@ use super::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
 use crate::{Error, Mesh, Result};
 use image::RgbaImage;
 
-pub use super::readback::{padded_bytes_per_row, read_rows};
-
 /// Format of offscreen images: sRGB, so the shader writes linear colour.
-pub const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub(crate) const OFFSCREEN_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 
 /// An offscreen target of a fixed size with its own device.
 pub struct Offscreen {
@@ -67,7 +65,7 @@ impl Offscreen {
     /// Takes the next images as `shot` says: its scale widens the lines
     /// (the target keeps its size; make it `shot.size(...)`), its
     /// transparency clears the background to alpha 0.
-    pub fn set_shot(&mut self, shot: super::Shot) {
+    pub(crate) fn set_shot(&mut self, shot: super::Shot) {
         self.renderer.pixel_scale = shot.scale.max(1) as f32;
         self.renderer.transparent = shot.transparent;
     }
@@ -105,7 +103,7 @@ impl Offscreen {
     ///
     /// # Errors
     /// [`Error::Gpu`] when the readback fails.
-    pub fn render(&mut self, draws: &[ViewportDraw]) -> Result<RgbaImage> {
+    pub(crate) fn render(&mut self, draws: &[ViewportDraw]) -> Result<RgbaImage> {
         let device = &self.gpu.device;
         let mut encoder = device.create_command_encoder(&Default::default());
         self.renderer.encode(device, &self.gpu.queue, &mut encoder, &self.targets, &self.view, draws);

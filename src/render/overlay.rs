@@ -380,7 +380,7 @@ pub fn paint(img: &mut RgbaImage, prims: &[Prim], scale: f32) {
 }
 
 /// The size in image pixels of `text` in the pixel font at `scale`.
-pub fn text_size(text: &str, scale: f32) -> Vec2 {
+pub(crate) fn text_size(text: &str, scale: f32) -> Vec2 {
     let s = font_scale(scale) as f32;
     Vec2::new((text.chars().count() as f32 * 4.0 - 1.0).max(0.0) * s, 5.0 * s)
 }

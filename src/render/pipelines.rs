@@ -34,26 +34,26 @@
 use super::DEPTH_FORMAT;
 
 /// Vertex buffer 0: positions (`@location(0)`).
-pub const POS_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+pub(crate) const POS_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: 12,
     step_mode: wgpu::VertexStepMode::Vertex,
     attributes: &wgpu::vertex_attr_array![0 => Float32x3],
 };
 /// Vertex buffer 1: normals (`@location(1)`).
-pub const NRM_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+pub(crate) const NRM_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: 12,
     step_mode: wgpu::VertexStepMode::Vertex,
     attributes: &wgpu::vertex_attr_array![1 => Float32x3],
 };
 /// Vertex buffer 2: per-vertex colours or texture coordinates (`@location(2)`).
-pub const COLOR_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+pub(crate) const COLOR_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: 12,
     step_mode: wgpu::VertexStepMode::Vertex,
     attributes: &wgpu::vertex_attr_array![2 => Float32x3],
 };
 
 /// Vertex buffer 0 stepped per instance: one point per dot (`@location(0)`).
-pub const POS_INSTANCE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
+pub(crate) const POS_INSTANCE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexBufferLayout {
     array_stride: 12,
     step_mode: wgpu::VertexStepMode::Instance,
     attributes: &wgpu::vertex_attr_array![0 => Float32x3],
@@ -63,7 +63,7 @@ pub const POS_INSTANCE_LAYOUT: wgpu::VertexBufferLayout<'static> = wgpu::VertexB
 const CULLS: [Option<wgpu::Face>; 3] = [None, Some(wgpu::Face::Back), Some(wgpu::Face::Front)];
 
 /// The pipelines and the bind group layouts they were made with.
-pub struct Pipelines {
+pub(crate) struct Pipelines {
     /// Shaded faces, material colour.
     pub mesh: [wgpu::RenderPipeline; 3],
     /// Shaded faces, per-vertex colour.
@@ -100,7 +100,7 @@ pub struct Pipelines {
 /// The storage buffers of the wire pipeline, in binding order (see
 /// shaders/mesh.wgsl): positions, normals, corner vertices, generations,
 /// colours.
-pub const MESH_DATA_BINDINGS: u32 = 5;
+pub(crate) const MESH_DATA_BINDINGS: u32 = 5;
 
 /// The bind group layout of [`MESH_DATA_BINDINGS`] read-only storage buffers,
 /// seen by the vertex stage.
@@ -251,7 +251,7 @@ fn textured(
 }
 
 /// A bind group layout with one uniform buffer at binding 0.
-pub fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
+pub(crate) fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayout {
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some(label),
         entries: &[wgpu::BindGroupLayoutEntry {
@@ -268,7 +268,11 @@ pub fn uniform_layout(device: &wgpu::Device, label: &str) -> wgpu::BindGroupLayo
 }
 
 /// A bind group of `layout` (from [`uniform_layout`]) holding `buf`.
-pub fn uniform_group(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, buf: &wgpu::Buffer) -> wgpu::BindGroup {
+pub(crate) fn uniform_group(
+    device: &wgpu::Device,
+    layout: &wgpu::BindGroupLayout,
+    buf: &wgpu::Buffer,
+) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: None,
         layout,
@@ -290,7 +294,7 @@ fn pipeline_layout(
 
 impl Pipelines {
     /// Every pipeline for colour targets of `format` with `samples` MSAA samples.
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, samples: u32) -> Pipelines {
+    pub(crate) fn new(device: &wgpu::Device, format: wgpu::TextureFormat, samples: u32) -> Pipelines {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("mesh.wgsl"),
             source: wgpu::ShaderSource::Wgsl(include_str!("../../shaders/mesh.wgsl").into()),

@@ -12,13 +12,13 @@ use image::RgbaImage;
 
 /// Row pitch of a texture-to-buffer copy: 4 bytes per pixel rounded up to
 /// wgpu's 256-byte alignment.
-pub fn padded_bytes_per_row(width: u32) -> u32 {
+pub(crate) fn padded_bytes_per_row(width: u32) -> u32 {
     (width * 4).div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT
 }
 
 /// A `width` x `height` texture of `format` that can be rendered into and
 /// copied from (an offscreen image, a screenshot), with its view.
-pub fn capture_texture(
+pub(crate) fn capture_texture(
     device: &wgpu::Device,
     label: &str,
     format: wgpu::TextureFormat,
@@ -40,7 +40,7 @@ pub fn capture_texture(
 }
 
 /// A mappable buffer that receives one texture of a fixed size.
-pub struct Readback {
+pub(crate) struct Readback {
     buffer: wgpu::Buffer,
     padded_row: u32,
     width: u32,
@@ -49,7 +49,7 @@ pub struct Readback {
 
 impl Readback {
     /// A buffer for `width` x `height` RGBA8 (or BGRA8) pixels.
-    pub fn new(device: &wgpu::Device, width: u32, height: u32) -> Readback {
+    pub(crate) fn new(device: &wgpu::Device, width: u32, height: u32) -> Readback {
         let padded_row = padded_bytes_per_row(width);
         let buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("readback"),
@@ -61,7 +61,7 @@ impl Readback {
     }
 
     /// Records the copy of `texture` (of this readback's size) into the buffer.
-    pub fn copy_from(&self, encoder: &mut wgpu::CommandEncoder, texture: &wgpu::Texture) {
+    pub(crate) fn copy_from(&self, encoder: &mut wgpu::CommandEncoder, texture: &wgpu::Texture) {
         encoder.copy_texture_to_buffer(
             texture.as_image_copy(),
             wgpu::TexelCopyBufferInfo {
@@ -80,7 +80,7 @@ impl Readback {
     ///
     /// # Errors
     /// [`Error::Gpu`] when mapping fails.
-    pub fn read(&self, device: &wgpu::Device) -> Result<RgbaImage> {
+    pub(crate) fn read(&self, device: &wgpu::Device) -> Result<RgbaImage> {
         read_rows(device, &self.buffer, self.padded_row, self.width, self.height)
     }
 
@@ -89,7 +89,7 @@ impl Readback {
     ///
     /// # Errors
     /// [`Error::Gpu`] when mapping fails.
-    pub fn read_rgba(&self, device: &wgpu::Device, format: wgpu::TextureFormat) -> Result<RgbaImage> {
+    pub(crate) fn read_rgba(&self, device: &wgpu::Device, format: wgpu::TextureFormat) -> Result<RgbaImage> {
         let mut img = self.read(device)?;
         let bgra = matches!(format, wgpu::TextureFormat::Bgra8Unorm | wgpu::TextureFormat::Bgra8UnormSrgb);
         for px in img.pixels_mut() {
@@ -106,7 +106,13 @@ impl Readback {
 ///
 /// # Errors
 /// [`Error::Gpu`] when mapping fails.
-pub fn read_rows(device: &wgpu::Device, buffer: &wgpu::Buffer, padded: u32, w: u32, h: u32) -> Result<RgbaImage> {
+pub(crate) fn read_rows(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    padded: u32,
+    w: u32,
+    h: u32,
+) -> Result<RgbaImage> {
     let slice = buffer.slice(..);
     let (tx, rx) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |r| {

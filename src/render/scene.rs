@@ -17,15 +17,15 @@ use bytemuck::{Pod, Zeroable};
 use glam::{Vec3, Vec4};
 use wgpu::util::DeviceExt;
 
-pub use super::gpu_mesh::{Cull, GpuMesh, cull_for};
+pub(crate) use super::gpu_mesh::GpuMesh;
 
 /// Background colour (linear RGB) of the window outside the viewports.
-pub const BACKGROUND: [f64; 3] = [0.045, 0.05, 0.065];
+pub(crate) const BACKGROUND: [f64; 3] = [0.045, 0.05, 0.065];
 /// The quiet vertical gradient behind every viewport (linear RGB): its top
 /// and bottom rows (shaders/mesh.wgsl, `fs_background`).
-pub const BACKGROUND_TOP: Vec3 = Vec3::new(0.075, 0.08, 0.1);
+pub(crate) const BACKGROUND_TOP: Vec3 = Vec3::new(0.075, 0.08, 0.1);
 /// See [`BACKGROUND_TOP`].
-pub const BACKGROUND_BOTTOM: Vec3 = Vec3::new(0.025, 0.027, 0.036);
+pub(crate) const BACKGROUND_BOTTOM: Vec3 = Vec3::new(0.025, 0.027, 0.036);
 
 /// Linear colour of front faces (the material).
 pub const FRONT: Vec4 = Vec4::new(0.32, 0.40, 0.58, 1.0);
@@ -40,7 +40,7 @@ const CONTROL: [f32; 4] = [1.0, 0.38, 0.03, 0.75];
 const CONTROL_DENSE: [f32; 4] = [1.0, 0.38, 0.03, 0.45];
 /// Cages with more vertices than this are drawn without dots and without
 /// their hidden part: on a dense cage they would cover the surface.
-pub const CAGE_DETAIL_UP_TO: usize = 500;
+pub(crate) const CAGE_DETAIL_UP_TO: usize = 500;
 const NORMALS: [f32; 4] = [0.15, 0.85, 0.25, 1.0];
 /// Sharp edges (creases): magenta, apart from the orange cage and green normals.
 const SHARP: [f32; 4] = [0.92, 0.12, 0.62, 1.0];
@@ -57,7 +57,7 @@ pub const FILL_INTENSITY: f32 = 0.15;
 pub const HEADLIGHT_INTENSITY: f32 = 0.6;
 
 /// The 8-bit sRGB value the background has in a rendered image.
-pub fn background_srgb8() -> [u8; 3] {
+pub(crate) fn background_srgb8() -> [u8; 3] {
     BACKGROUND.map(|c| {
         let s = if c <= 0.0031308 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
         (s * 255.0).round().clamp(0.0, 255.0) as u8
@@ -110,7 +110,7 @@ pub struct Targets {
 
 impl Targets {
     /// Attachments for a `width` x `height` target of the renderer's format.
-    pub fn new(device: &wgpu::Device, renderer: &Renderer, width: u32, height: u32) -> Targets {
+    pub(crate) fn new(device: &wgpu::Device, renderer: &Renderer, width: u32, height: u32) -> Targets {
         let size = wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: 1 };
         let make = |format, label| {
             device
@@ -171,13 +171,13 @@ const STYLE_SHARP: usize = 4;
 const STYLE_CONTROL_DENSE: usize = 5;
 
 /// Width of wireframe lines in pixels (at [`Renderer::pixel_scale`] 1).
-pub const WIRE_WIDTH: f32 = 1.5;
+pub(crate) const WIRE_WIDTH: f32 = 1.5;
 /// Radius of the control cage's vertex dots in pixels (at scale 1).
-pub const DOT_RADIUS: f32 = 3.0;
+pub(crate) const DOT_RADIUS: f32 = 3.0;
 /// Width of isolines in pixels (at scale 1); the zero level's is twice it.
-pub const ISOLINE_WIDTH: f32 = 1.25;
+pub(crate) const ISOLINE_WIDTH: f32 = 1.25;
 /// How strongly a wire line darkens the shading under it (0..1).
-pub const WIRE_STRENGTH: f32 = 0.8;
+pub(crate) const WIRE_STRENGTH: f32 = 0.8;
 
 /// Pipelines and per-viewport uniforms.
 pub struct Renderer {
@@ -200,7 +200,7 @@ pub struct Renderer {
 
 impl Renderer {
     /// Pipelines for colour targets of `format` with `samples` MSAA samples.
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat, samples: u32) -> Renderer {
+    pub(crate) fn new(device: &wgpu::Device, format: wgpu::TextureFormat, samples: u32) -> Renderer {
         let pipelines = Pipelines::new(device, format, samples);
         let styles = STYLES.map(|c| {
             let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -273,7 +273,7 @@ impl Renderer {
     /// Writes the uniforms of `draws` and records one render pass that clears
     /// `targets` and draws every viewport, resolving into `resolve` (or
     /// drawing straight into it without MSAA).
-    pub fn encode(
+    pub(crate) fn encode(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,

@@ -38,6 +38,7 @@ pub struct GpuMaterials {
     /// The textures bound, in the order the materials first use them.
     textures: Vec<Uploaded>,
     /// How many of them were uploaded here.
+    #[cfg_attr(not(test), allow(dead_code))]
     uploaded: usize,
     /// The bind group of each slot, made on first draw with the renderer's layout.
     groups: std::sync::OnceLock<Vec<wgpu::BindGroup>>,
@@ -176,7 +177,7 @@ impl GpuMaterials {
     /// The materials of `groups` for a mesh of `groups.face.len()` triangles
     /// drawn one GPU vertex per corner; `textured` false (no texture
     /// coordinates) draws every material in its flat colour.
-    pub fn new(
+    pub(crate) fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         groups: &MaterialGroups,
@@ -223,17 +224,18 @@ impl GpuMaterials {
         }
     }
 
+    /// How many of the textures bound were uploaded for these materials
+    /// (the others were taken over from the materials they replace).
+    #[cfg(test)]
+    pub(crate) fn uploaded(&self) -> usize {
+        self.uploaded
+    }
+
     /// The mip level count of each texture bound (the white one of
     /// untextured materials included), in the order the materials first
     /// use them.
     pub fn mip_level_counts(&self) -> Vec<u32> {
         self.textures.iter().map(|u| u.mips).collect()
-    }
-
-    /// How many of the textures bound were uploaded for these materials
-    /// (the others were taken over from the materials they replace).
-    pub fn uploaded(&self) -> usize {
-        self.uploaded
     }
 
     /// The bind group of each material (made once) with `layout` (from
@@ -263,7 +265,7 @@ impl GpuMaterials {
 
 /// The layout of a material's bind group: its texture, sampler and uniform,
 /// seen by the fragment stage.
-pub fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+pub(crate) fn material_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     let fragment = wgpu::ShaderStages::FRAGMENT;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
         label: Some("material"),

@@ -9,7 +9,7 @@ use crate::mesh::inspect::{displacement_from_control, vertex_creation_level};
 use crate::{Error, Mesh, Result};
 
 /// Vertices after each of `0..=levels` levels of `scheme` on `control`.
-pub fn vertices_per_level(control: &Mesh, scheme: Scheme, levels: u32) -> Vec<usize> {
+pub(crate) fn vertices_per_level(control: &Mesh, scheme: Scheme, levels: u32) -> Vec<usize> {
     let c = ControlCounts::of(&control.ct);
     let mut out = vec![c.vertices as usize];
     if scheme.is_polygonal() {

@@ -16,33 +16,36 @@
 //! level with their exact sizes (`V' = V + E`, `F' = 4F`); the work is spread
 //! over rayon's threads in chunks.
 
-pub mod eval;
-pub mod inspect;
-pub mod pick;
+mod cage;
+pub(crate) mod eval;
+pub(crate) mod inspect;
+pub(crate) mod pick;
 mod precise;
-pub mod refine;
+pub(crate) mod refine;
 mod refiner;
-pub mod rules;
-pub mod sizes;
-pub mod stencil;
-pub mod tables;
+pub(crate) mod rules;
+pub(crate) mod sizes;
+pub(crate) mod stencil;
+pub(crate) mod tables;
 
 use crate::Result;
-pub use crate::mesh::attributes::UvInterpolation;
+pub(crate) use crate::mem::default_memory_limit;
+pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
-pub use crate::mesh::{BoundaryInterpolation, Creasing};
+pub(crate) use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::mesh::{Faces, Mesh, VertexId};
 use refine::{OneLevel, Refined};
-pub use refine::{check_level_fits, check_levels_fit, default_memory_limit, predict_faces, predict_level_bytes};
+pub(crate) use refine::check_levels_fit;
 use rules::{Rules, butterfly, catmull_clark, features, jarek, loop_, midpoint, modified_butterfly};
 use std::borrow::Cow;
 use std::time::Instant;
 
-pub use catmull_clark::TriangleSubdivision;
+pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces};
+pub(crate) use catmull_clark::TriangleSubdivision;
 pub use loop_::LoopBeta;
-pub use precise::{PlanF64, plan_f64, subdivide_f64, subdivide_poly_f64};
+pub use precise::{PlanF64, plan_f64};
 pub use refiner::Refiner;
-pub use sizes::ControlCounts;
+pub(crate) use sizes::ControlCounts;
 
 /// A subdivision scheme.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -182,7 +185,7 @@ pub struct Stats {
 impl Stats {
     /// The stats of two calls run one after the other (the second
     /// continuing from the first's result).
-    pub fn then(mut self, later: Stats) -> Stats {
+    pub(crate) fn then(mut self, later: Stats) -> Stats {
         self.split_ms += later.split_ms;
         self.numbering_ms += later.numbering_ms;
         self.edge_ms += later.edge_ms;
@@ -222,7 +225,7 @@ pub(crate) trait RulesFn<T> {
 /// # Errors
 /// [`crate::Error::TooLarge`] when a level would exceed the memory limit (checked
 /// before it is allocated) or 32-bit corner ids.
-pub fn subdivide(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Mesh, Stats)> {
+pub(crate) fn subdivide_mesh(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Mesh, Stats)> {
     subdivide_with_progress(mesh, scheme, levels, opts, |_, _| true)
 }
 
@@ -231,7 +234,7 @@ pub fn subdivide(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Re
 ///
 /// # Errors
 /// See [`subdivide`].
-pub fn subdivide_with_progress(
+pub(crate) fn subdivide_with_progress(
     mesh: &Mesh,
     scheme: Scheme,
     levels: u32,
@@ -253,18 +256,6 @@ pub fn subdivide_with_progress(
     }
 }
 
-/// [`subdivide`] for a caller that needs only the faces of the result (to
-/// write them or hand them over): the same positions and V table, but the
-/// last level writes no O, C or valence table, no sharpness and no edge
-/// generations, which at bunny level 3 is 70 of the 150 MB it writes.
-/// `tests/faces_only.rs` checks that both give the same bits.
-///
-/// # Errors
-/// As [`subdivide`].
-pub fn subdivide_faces(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Faces, Stats)> {
-    subdivide_faces_as(mesh, scheme, levels, opts, |j| j)
-}
-
 /// [`subdivide_faces`] with every vertex id `j` of the faces written as
 /// `id(j)`, in the pass that writes them: for a caller that wants other ids
 /// (wider integers, its own numbering) without converting a `u32` table
@@ -273,7 +264,7 @@ pub fn subdivide_faces(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options)
 ///
 /// # Errors
 /// As [`subdivide`].
-pub fn subdivide_faces_as<I: VertexId>(
+pub(crate) fn subdivide_mesh_faces_as<I: VertexId>(
     mesh: &Mesh,
     scheme: Scheme,
     levels: u32,
@@ -355,7 +346,12 @@ fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync>(
 /// # Errors
 /// [`crate::Error::TooLarge`] when a level would exceed the memory limit or
 /// 32-bit ids; [`crate::Error::Usage`] for a triangle scheme.
-pub fn subdivide_poly(mesh: &PolyMesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(PolyMesh, Stats)> {
+pub(crate) fn subdivide_poly(
+    mesh: &PolyMesh,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<(PolyMesh, Stats)> {
     subdivide_poly_with_progress(mesh, scheme, levels, opts, |_, _| true)
 }
 
@@ -365,7 +361,7 @@ pub fn subdivide_poly(mesh: &PolyMesh, scheme: Scheme, levels: u32, opts: &Optio
 ///
 /// # Errors
 /// See [`subdivide_poly`].
-pub fn subdivide_poly_with_progress(
+pub(crate) fn subdivide_poly_with_progress(
     mesh: &PolyMesh,
     scheme: Scheme,
     levels: u32,
@@ -398,26 +394,12 @@ pub fn subdivide_poly_with_progress(
     Ok((cur.or(base).unwrap_or_else(|| mesh.clone()), stats))
 }
 
-/// [`subdivide_poly`] for a caller that needs only the quads of the result
-/// (to write them or hand them over): the same positions and vertices of
-/// the quads' corners, but the last level writes no twin, C or valence
-/// table and no sharpness, which at level 3 of 70 k quads is 108 of the
-/// 220 MB it writes. `tests/faces_only.rs` checks that both give the same
-/// bits.
-///
-/// # Errors
-/// As [`subdivide_poly`]; [`crate::Error::Usage`] for no levels (the
-/// faces of a control mesh need not be quads).
-pub fn subdivide_poly_faces(mesh: &PolyMesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Faces, Stats)> {
-    subdivide_poly_faces_as(mesh, scheme, levels, opts, |j| j)
-}
-
 /// [`subdivide_poly_faces`] with every vertex id `j` of the quads written
 /// as `id(j)`, in the pass that writes them (see [`subdivide_faces_as`]).
 ///
 /// # Errors
 /// As [`subdivide_poly_faces`].
-pub fn subdivide_poly_faces_as<I: VertexId>(
+pub(crate) fn subdivide_poly_faces_as<I: VertexId>(
     mesh: &PolyMesh,
     scheme: Scheme,
     levels: u32,

@@ -136,7 +136,7 @@ pub fn pick(level: &Level, opts: &Options, origin: Vec3, dir: Vec3) -> Result<Op
 ///
 /// # Errors
 /// As [`pick`].
-pub fn trace(level: &Level, hit: &Hit) -> Result<(ControlFace, ControlVertex)> {
+pub(crate) fn trace(level: &Level, hit: &Hit) -> Result<(ControlFace, ControlVertex)> {
     let ct = &level.control.ct;
     let nt = ct.num_triangles();
     let mismatch = || {
@@ -227,7 +227,7 @@ fn polygon_of(pt: &PolyTable, ct: &CornerTable, f: u32) -> Option<u32> {
 
 /// The exact limit of `control` under `scheme` at a pick's face, or why
 /// there is none (the scheme, or what the face touches).
-pub fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &ControlFace) -> Limit {
+pub(crate) fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &ControlFace) -> Limit {
     let why = |s: String| Limit::Unavailable(s);
     let exact = |r: Result<Sample>| r.map_or_else(|e| why(e.to_string()), |s| Limit::Exact(Box::new(s)));
     let (face, u, v) = match (scheme, *face) {

@@ -24,7 +24,7 @@ use rayon::prelude::*;
 /// # Errors
 /// `control` not one position per vertex of `mesh`; a level that does not
 /// fit in memory ([`Error::TooLarge`]).
-pub fn subdivide_f64(
+pub(crate) fn subdivide_mesh_f64(
     mesh: &Mesh,
     control: &[DVec3],
     scheme: Scheme,
@@ -44,7 +44,7 @@ pub fn subdivide_f64(
 ///
 /// # Errors
 /// As [`subdivide_f64`]; a triangle scheme.
-pub fn subdivide_poly_f64(
+pub(crate) fn subdivide_poly_f64(
     mesh: &PolyMesh,
     control: &[DVec3],
     scheme: Scheme,

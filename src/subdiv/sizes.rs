@@ -58,7 +58,7 @@ impl ControlCounts {
     }
 
     /// The counts [`topology`](crate::mesh::topology::topology) found.
-    pub fn of_topology(t: &Topology) -> ControlCounts {
+    pub(crate) fn of_topology(t: &Topology) -> ControlCounts {
         ControlCounts {
             vertices: t.vertices as u64,
             edges: t.edges as u64,
@@ -68,12 +68,12 @@ impl ControlCounts {
     }
 
     /// Faces of the polygon mesh (each diagonal joins two triangles).
-    pub fn polygons(&self) -> u64 {
+    pub(crate) fn polygons(&self) -> u64 {
         self.triangles - self.diagonals
     }
 
     /// Polygon corners: the sum of the face sizes.
-    pub fn polygon_corners(&self) -> u64 {
+    pub(crate) fn polygon_corners(&self) -> u64 {
         3 * self.triangles - 2 * self.diagonals
     }
 
@@ -114,7 +114,7 @@ impl ControlCounts {
     }
 
     /// Triangles drawn after `levels` levels of `scheme` (a quad is two).
-    pub fn triangles_at(&self, scheme: Scheme, levels: u32) -> u64 {
+    pub(crate) fn triangles_at(&self, scheme: Scheme, levels: u32) -> u64 {
         match (scheme.is_polygonal(), levels) {
             (true, 1..) => self.faces_at(scheme, levels).saturating_mul(2),
             _ if scheme.is_polygonal() => self.triangles,
@@ -127,7 +127,7 @@ impl ControlCounts {
     ///
     /// # Errors
     /// [`crate::Error::TooLarge`] naming the first level that does not fit.
-    pub fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
+    pub(crate) fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
         if scheme.is_polygonal() {
             let (h, ne, nf) = (self.polygon_corners(), self.edges - self.diagonals, self.polygons());
             super::refine::poly::check_counts_fit(h, self.vertices, ne, nf, 0, levels, limit)

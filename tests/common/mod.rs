@@ -191,7 +191,7 @@ pub fn low_valence_meshes() -> Vec<(String, Mesh)> {
         for p in &mut m.positions {
             *p += rng.vec3() * 0.2;
         }
-        let split = subdiv::mesh::split::split_linear(&m);
+        let split = subdiv::mesh::split_linear(&m);
         out.push((format!("{name} (valence {})", m.ct.valence(0)), m));
         out.push((format!("{name} split once"), split));
     }
@@ -406,7 +406,7 @@ pub fn mesh_of(bytes: &[u8], name: &str) -> subdiv::Result<Mesh> {
 }
 
 /// The mesh in `bytes` called `name` with its attributes.
-pub fn with_attributes(bytes: &[u8], name: &str) -> subdiv::Result<(Mesh, subdiv::mesh::attributes::Attributes)> {
+pub fn with_attributes(bytes: &[u8], name: &str) -> subdiv::Result<(Mesh, subdiv::mesh::Attributes)> {
     read_bytes(bytes, name).map(|l| (l.mesh, l.attributes))
 }
 
@@ -423,7 +423,7 @@ pub fn read_file_as(path: &std::path::Path, topology: subdiv::io::Topology) -> s
 }
 
 /// The mesh in the file `path` with its attributes (materials found beside it).
-pub fn load_with_attributes(path: &std::path::Path) -> (Mesh, subdiv::mesh::attributes::Attributes) {
+pub fn load_with_attributes(path: &std::path::Path) -> (Mesh, subdiv::mesh::Attributes) {
     let l = read_file_as(path, subdiv::io::Topology::Refuse).unwrap_or_else(|e| panic!("{e}"));
     (l.mesh, l.attributes)
 }

@@ -26,7 +26,7 @@ use super::{Format, Input, Keeps};
 use crate::Result;
 
 /// The USD row of [`super::FORMATS`].
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "USD",
     extensions: &["usda", "usdc", "usdz", "usd"],
     sniff: |b| b.starts_with(b"#usda ") || b.starts_with(openusd::usdc::MAGIC),

@@ -16,7 +16,7 @@
 //! and nothing else is stored (docs/schemes.md §12.1).
 
 mod build;
-pub mod split;
+pub(crate) mod split;
 mod triangulate;
 
 use super::edges::EdgeTable;
@@ -86,7 +86,7 @@ impl PolyTable {
         (self.num_corners() + self.num_border_edges()) / 2
     }
     /// Border edges.
-    pub fn num_border_edges(&self) -> usize {
+    pub(crate) fn num_border_edges(&self) -> usize {
         self.t.iter().filter(|&&x| x == BORDER).count()
     }
     /// Whether every face is a quad stored by arithmetic.
@@ -145,7 +145,7 @@ impl PolyTable {
     }
     /// The raw twin entry of `c` ([`BORDER`] on the border).
     #[inline(always)]
-    pub fn twin_entry(&self, c: u32) -> u32 {
+    pub(crate) fn twin_entry(&self, c: u32) -> u32 {
         self.t[c as usize]
     }
     /// The corner across the edge leaving `c`.
@@ -156,7 +156,7 @@ impl PolyTable {
     }
     /// The next corner around `V[c]` (across the edge entering `c`).
     #[inline]
-    pub fn swing(&self, c: u32) -> Option<u32> {
+    pub(crate) fn swing(&self, c: u32) -> Option<u32> {
         self.twin(self.prev(c))
     }
     /// The V table.
@@ -164,7 +164,7 @@ impl PolyTable {
         &self.v
     }
     /// The twin table.
-    pub fn t_table(&self) -> &[u32] {
+    pub(crate) fn t_table(&self) -> &[u32] {
         &self.t
     }
     /// Edges at each vertex.
@@ -173,7 +173,7 @@ impl PolyTable {
     }
     /// One corner of vertex `v`, the first of its fan on the boundary.
     #[inline]
-    pub fn corner_of(&self, v: u32) -> u32 {
+    pub(crate) fn corner_of(&self, v: u32) -> u32 {
         self.vc[v as usize]
     }
     /// Whether `v` is on the border.
@@ -194,7 +194,7 @@ impl PolyTable {
     }
     /// The corner owning each edge ([`owns_edge`] of its twin entry), in
     /// corner order.
-    pub fn edge_owners(&self) -> impl Iterator<Item = u32> + '_ {
+    pub(crate) fn edge_owners(&self) -> impl Iterator<Item = u32> + '_ {
         self.t.iter().enumerate().filter(|&(c, &x)| owns_edge(c as u32, x)).map(|(c, _)| c as u32)
     }
     /// Sharp edges and vertices.
@@ -223,12 +223,12 @@ impl PolyTable {
     }
     /// Whether face `f` is a hole.
     #[inline]
-    pub fn is_hole(&self, f: u32) -> bool {
+    pub(crate) fn is_hole(&self, f: u32) -> bool {
         self.holes.as_deref().is_some_and(|h| h.binary_search(&f).is_ok())
     }
     /// This table with the faces `holes` (ids in range, any order) as its
     /// holes, replacing any it had.
-    pub fn with_holes(mut self, mut holes: Vec<u32>) -> PolyTable {
+    pub(crate) fn with_holes(mut self, mut holes: Vec<u32>) -> PolyTable {
         holes.retain(|&f| (f as usize) < self.num_faces());
         holes.sort_unstable();
         holes.dedup();
@@ -236,7 +236,7 @@ impl PolyTable {
         self
     }
     /// How many splits made this table (0: a control table).
-    pub fn level(&self) -> u32 {
+    pub(crate) fn level(&self) -> u32 {
         self.level
     }
     /// The generation of the edge leaving corner `c`: 0 for a piece of a
@@ -245,7 +245,7 @@ impl PolyTable {
     /// of the edges leaving `x` and `prev(x)`, `4x + 1` and `4x + 2` along
     /// the new inner edges ([`split`]); walking back level by level costs
     /// no stored byte per corner.
-    pub fn edge_generation(&self, c: u32) -> u8 {
+    pub(crate) fn edge_generation(&self, c: u32) -> u8 {
         let mut c = c;
         for level in (1..=self.level).rev() {
             match c % 4 {

@@ -40,7 +40,7 @@ use rayon::prelude::*;
 /// # Panics
 /// If the new table's ids would not fit below [`BORDER`] (the subdivision
 /// refuses such levels beforehand).
-pub fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) {
+pub(crate) fn split(old: &PolyTable, creasing: Creasing) -> (PolyTable, EdgeNumbering) {
     let nc = old.num_corners();
     assert!(4 * nc as u64 + 4 < u64::from(BORDER), "quad split: {nc} corners are too many for 32-bit ids");
     let ids = EdgeIds::new(&old.t);

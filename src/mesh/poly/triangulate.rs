@@ -29,7 +29,7 @@ impl PolyTable {
 
     /// The triangle corner that names the polygon edge leaving corner `c`.
     #[inline]
-    pub fn triangle_corner(&self, c: u32) -> u32 {
+    pub(crate) fn triangle_corner(&self, c: u32) -> u32 {
         let f = self.face(c);
         let r = self.face_corners(f);
         let (i, m, t0) = (c - r.start, r.end - r.start, self.first_triangle(f));
@@ -44,7 +44,7 @@ impl PolyTable {
 
     /// The polygon corner of every corner of [`PolyTable::triangulated`]
     /// (to carry per-corner values onto the triangles).
-    pub fn fan_corners(&self) -> Vec<u32> {
+    pub(crate) fn fan_corners(&self) -> Vec<u32> {
         let mut out = Vec::with_capacity(3 * (self.num_corners() - 2 * self.num_faces()));
         for f in 0..self.num_faces() as u32 {
             let r = self.face_corners(f);

@@ -68,7 +68,7 @@ pub enum CurvatureKind {
 
 impl CurvatureKind {
     /// The value of this curvature in a sample.
-    pub fn of(self, s: &Sample) -> f64 {
+    pub(crate) fn of(self, s: &Sample) -> f64 {
         match self {
             CurvatureKind::Mean => s.mean,
             CurvatureKind::Gaussian => s.gaussian,
@@ -136,7 +136,7 @@ pub fn vertex_curvatures(
 }
 
 /// Blue (-1) through white (0) to red (+1), in linear RGB.
-pub fn diverging(t: f32) -> Vec3 {
+pub(crate) fn diverging(t: f32) -> Vec3 {
     let t = t.clamp(-1.0, 1.0);
     let white = Vec3::splat(0.92);
     let (blue, red) = (Vec3::new(0.05, 0.18, 0.75), Vec3::new(0.75, 0.06, 0.05));
@@ -163,7 +163,7 @@ pub fn vertex_areas(ct: &CornerTable, positions: &[Vec3]) -> Vec<f64> {
 /// area at or below it); NaN and infinite values are skipped. Where the
 /// areas are all zero every value weighs the same. 0 when no value is
 /// finite.
-pub fn area_percentile(values: &[f64], areas: &[f64], percentile: f64) -> f64 {
+pub(crate) fn area_percentile(values: &[f64], areas: &[f64], percentile: f64) -> f64 {
     let mut v: Vec<(f64, f64)> = values
         .iter()
         .zip(areas.iter().copied().chain(std::iter::repeat(0.0)))
@@ -192,7 +192,7 @@ pub fn area_percentile(values: &[f64], areas: &[f64], percentile: f64) -> f64 {
 /// The default half-width of the curvature colours for `values` at the
 /// vertices of the level `(ct, positions)`: the [`PERCENTILE`]th
 /// percentile of `|value|` by area (module docs).
-pub fn auto_range(values: &[f64], ct: &CornerTable, positions: &[Vec3]) -> f64 {
+pub(crate) fn auto_range(values: &[f64], ct: &CornerTable, positions: &[Vec3]) -> f64 {
     area_percentile(values, &vertex_areas(ct, positions), PERCENTILE)
 }
 
@@ -217,7 +217,7 @@ impl HalfWidth {
         }
     }
     /// The half-width.
-    pub fn get(self) -> f64 {
+    pub(crate) fn get(self) -> f64 {
         self.0
     }
 }
@@ -266,7 +266,7 @@ impl Scale {
 
 /// `x` in three significant digits, without an exponent from 0.001 to
 /// 99999 (`3.40`, `24.1`, `0.0123`), with one outside (`1.23e-5`).
-pub fn short(x: f64) -> String {
+pub(crate) fn short(x: f64) -> String {
     let a = x.abs();
     if !x.is_finite() || a == 0.0 {
         return format!("{x}");
@@ -278,9 +278,10 @@ pub fn short(x: f64) -> String {
     format!("{x:.digits$}")
 }
 
+#[cfg(test)]
 /// The colour of each value on the diverging map over `[-range, range]`;
 /// NaN (not evaluated) is mid grey.
-pub fn colors(values: &[f64], range: f64) -> Vec<Vec3> {
+pub(crate) fn colors(values: &[f64], range: f64) -> Vec<Vec3> {
     values
         .iter()
         .map(|&x| {

@@ -34,8 +34,8 @@
 //! error naming it. Schemes other than Loop and Catmull-Clark are refused
 //! by name.
 
-pub mod catmark;
-pub mod color;
+pub(crate) mod catmark;
+pub(crate) mod color;
 mod extraordinary;
 mod group;
 mod level1;
@@ -45,8 +45,10 @@ mod points;
 mod sector;
 mod vertices;
 
-pub use points::{Domain, EDGE_SLACK, parse_points, parse_points_in};
-pub use vertices::{poly_vertex_params, vertex_params, vertex_samples};
+pub use points::{Domain, EDGE_SLACK, parse_points_in};
+
+pub use vertices::{poly_vertex_params, vertex_samples};
+
 
 use crate::mesh::{Mesh, n, p};
 use crate::subdiv::{Options, Scheme};
@@ -101,7 +103,7 @@ impl Default for Sample {
 impl Sample {
     /// Position, unit normal, mean and Gaussian curvature: a line of
     /// `subdiv eval --curvature` (without it, the first six).
-    pub fn row(&self) -> [f64; 8] {
+    pub(crate) fn row(&self) -> [f64; 8] {
         let (p, n) = (self.position, self.normal);
         [p.x, p.y, p.z, n.x, n.y, n.z, self.mean, self.gaussian]
     }
@@ -383,7 +385,7 @@ impl Evaluator {
     ///
     /// # Errors
     /// [`Error::Usage`] naming a scheme other than Catmull-Clark.
-    pub fn new_poly(mesh: &crate::mesh::poly::PolyMesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
+    pub(crate) fn new_poly(mesh: &crate::mesh::poly::PolyMesh, scheme: Scheme, opts: &Options) -> Result<Evaluator> {
         check_scheme(scheme)?;
         if scheme != Scheme::CatmullClark {
             return Err(Error::Usage(format!("the {scheme} limit surface is evaluated on triangles, not polygons")));
@@ -737,14 +739,6 @@ impl Evaluator {
             Error::Usage(format!("point {}: {why}", i + 1))
         })
     }
-}
-
-/// The limit surface of `mesh` under `scheme` at each `(face, u, v)`.
-///
-/// # Errors
-/// As [`Evaluator::new`] and [`Evaluator::eval_all`].
-pub fn evaluate(mesh: &Mesh, scheme: Scheme, opts: &Options, points: &[(usize, f64, f64)]) -> Result<Vec<Sample>> {
-    Evaluator::new(mesh, scheme, opts)?.eval_all(points, true)
 }
 
 /// `m` with `s 2^m` in `(1/2, 1]`, for `0 < s <= 1`.

@@ -18,6 +18,7 @@ pub enum Domain {
     Ptex(usize),
 }
 
+#[cfg(test)]
 /// Parses and checks a points file `text` (named `file` in messages) for
 /// a mesh of `faces` control triangles, reading at most `max_points`.
 ///
@@ -25,7 +26,7 @@ pub enum Domain {
 /// [`Error::Parse`] naming the line: not three fields, a face that is not
 /// a non-negative integer or out of range, `u` or `v` not a number,
 /// negative, NaN or infinite, `u + v > 1 + 1e-6`, or too many points.
-pub fn parse_points(text: &str, file: &str, faces: usize, max_points: usize) -> Result<Vec<(usize, f64, f64)>> {
+pub(crate) fn parse_points(text: &str, file: &str, faces: usize, max_points: usize) -> Result<Vec<(usize, f64, f64)>> {
     parse_points_in(text, file, Domain::Triangles(faces), max_points)
 }
 

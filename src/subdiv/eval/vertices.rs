@@ -26,7 +26,7 @@ use rayon::prelude::*;
 
 /// The control face and `(u, v)` of every vertex of the level-`levels`
 /// table `fine` made from a control mesh of `control_faces` triangles.
-pub fn vertex_params(control_faces: usize, fine: &CornerTable, levels: u32) -> Result<Vec<(usize, f64, f64)>> {
+pub(crate) fn vertex_params(control_faces: usize, fine: &CornerTable, levels: u32) -> Result<Vec<(usize, f64, f64)>> {
     let expect = control_faces.saturating_mul(1usize << (2 * levels.min(30)));
     if fine.num_triangles() != expect {
         return Err(Error::Usage(format!(

@@ -23,7 +23,7 @@ use std::time::Instant;
 /// Predicted peak bytes of refining a mesh with `nt` triangles, `nv`
 /// vertices and `ne` edges once (new tables, positions and scratch, plus the
 /// old level still alive).
-pub fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
+pub(crate) fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
     let new_corners = 12 * nt;
     let new_verts = nv + ne;
     let new = new_corners * 8 + new_verts * (8 + 12);
@@ -32,54 +32,13 @@ pub fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
     new + scratch + old
 }
 
-/// Bytes this process can still be given: 80% of the machine's
-/// `MemAvailable`, and no more than half the process's address-space limit
-/// (`ulimit -v`) where one is set; `None` when neither is known.
-pub fn default_memory_limit() -> Option<u64> {
-    let available = || -> Option<u64> {
-        let s = std::fs::read_to_string("/proc/meminfo").ok()?;
-        let line = s.lines().find(|l| l.starts_with("MemAvailable:"))?;
-        let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-        Some(kb * 1024 / 5 * 4)
-    };
-    match (available(), address_space_limit().map(|l| l / 2)) {
-        (Some(a), Some(l)) => Some(a.min(l)),
-        (a, l) => a.or(l),
-    }
-}
-
-/// The process's address-space limit (`RLIMIT_AS`), when one is set.
-fn address_space_limit() -> Option<u64> {
-    #[cfg(unix)]
-    {
-        let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
-        // SAFETY: getrlimit writes the limit into the struct we own and
-        // reads nothing else of ours.
-        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut r) } == 0;
-        // rlim_t is u64 on Linux but not everywhere
-        #[allow(clippy::unnecessary_cast)]
-        (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
-    }
-    #[cfg(not(unix))]
-    None
-}
-
-/// Checks that refining `ct` once more (to level `level`) fits in `limit`
-/// bytes and in 32-bit corner ids.
-///
-/// # Errors
-/// [`Error::TooLarge`] with the predicted size.
-pub fn check_level_fits(ct: &CornerTable, level: u32, limit: Option<u64>) -> Result<()> {
-    check_levels_fit(ct, level.saturating_sub(1), 1, limit)
-}
-
 /// Checks, before any work, that refining `ct` (already at level `done`)
 /// `more` more times fits in `limit` bytes and in 32-bit ids at every level.
 /// Counts are predicted exactly: `F' = 4F`, `E' = 2E + 3F`, `V' = V + E`.
 ///
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
-pub fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
+pub(crate) fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
     let nt = ct.num_triangles() as u64;
     let ne = (3 * nt + ct.num_border_edges() as u64) / 2;
     check_counts_fit(nt, ct.num_vertices() as u64, ne, done, more, limit)
@@ -109,11 +68,6 @@ pub(crate) fn check_counts_fit(
         (nt, nv, ne) = (4 * nt, nv + ne, 2 * ne + 3 * nt);
     }
     Ok(())
-}
-
-/// Predicted triangle count after `levels` more levels.
-pub fn predict_faces(ct: &CornerTable, levels: u32) -> u64 {
-    (ct.num_triangles() as u64).saturating_mul(4u64.saturating_pow(levels))
 }
 
 /// One level: split plus the scheme's points. `boundary` holds the input

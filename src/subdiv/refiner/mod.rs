@@ -372,7 +372,7 @@ impl Refiner {
     ///
     /// # Errors
     /// As [`Refiner::move_vertices`].
-    pub fn set_vertices(&mut self, ids: &[u32], to: &[Vec3]) -> Result<usize> {
+    pub(crate) fn set_vertices(&mut self, ids: &[u32], to: &[Vec3]) -> Result<usize> {
         self.check_move(ids, to)?;
         Ok(self.place(ids, to))
     }

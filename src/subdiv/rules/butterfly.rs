@@ -22,7 +22,7 @@ use crate::mesh::{BORDER, CornerTable, n, p};
 use glam::Vec3;
 
 /// Classic butterfly rules.
-pub struct Butterfly;
+pub(crate) struct Butterfly;
 
 /// Emits `w` times the vertex across the edge opposite corner `x`; if that
 /// edge is a border edge, `w` times the ghost `v(n(x)) + v(p(x)) - v(x)`

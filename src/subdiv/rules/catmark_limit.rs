@@ -330,7 +330,7 @@ fn smooth(v: DVec3, e: &[DVec3], f: &[DVec3]) -> (DVec3, DVec3, DVec3) {
 }
 
 /// tan1's edge and face weights at an interior vertex of valence `n`.
-pub fn smooth_tangent_weights(n: usize) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn smooth_tangent_weights(n: usize) -> (Vec<f64>, Vec<f64>) {
     if n == 4 {
         return (vec![4.0, 0.0, -4.0, 0.0], vec![1.0, -1.0, -1.0, 1.0]);
     }
@@ -359,7 +359,7 @@ pub(crate) fn crease_frame(v: DVec3, e: &[DVec3], f: &[DVec3], a: usize, b: usiz
 
 /// The across-crease tangent's weights for a span of `k` faces: the
 /// vertex's, the edges' `a ..= a + k`, the faces' `a .. a + k`.
-pub fn crease_across_weights(k: usize) -> (f64, Vec<f64>, Vec<f64>) {
+pub(crate) fn crease_across_weights(k: usize) -> (f64, Vec<f64>, Vec<f64>) {
     match k {
         0 | 1 => (-6.0, vec![3.0, 3.0], vec![0.0]),
         2 => (-4.0 / 6.0, vec![-1.0 / 6.0, 4.0 / 6.0, -1.0 / 6.0], vec![1.0 / 6.0, 1.0 / 6.0]),

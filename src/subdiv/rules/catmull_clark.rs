@@ -31,11 +31,11 @@
 use super::Sink;
 use super::crease::Blend;
 use super::features::Features;
-pub use crate::mesh::options::TriangleSubdivision;
+pub(crate) use crate::mesh::options::TriangleSubdivision;
 use crate::mesh::poly::PolyTable;
 
 /// One polygon level as the masks see it.
-pub struct PolyLevel<'a> {
+pub(crate) struct PolyLevel<'a> {
     /// The table.
     pub pt: &'a PolyTable,
     /// Its sharp features, classified (`None`: no sharpness).
@@ -47,7 +47,7 @@ impl PolyLevel<'_> {
     /// the edges leaving along the border from its first corner and
     /// entering its last one).
     #[inline]
-    pub fn border_neighbours(&self, v: u32) -> (u32, u32) {
+    pub(crate) fn border_neighbours(&self, v: u32) -> (u32, u32) {
         let pt = self.pt;
         let first = pt.corner_of(v);
         let last = pt.fan(v).last().unwrap_or(first);
@@ -57,7 +57,7 @@ impl PolyLevel<'_> {
 
 /// Emits `scale` times face `f`'s point (the average of its vertices).
 #[inline]
-pub fn face_point<S: Sink>(pt: &PolyTable, f: u32, scale: f64, s: &mut S) {
+pub(crate) fn face_point<S: Sink>(pt: &PolyTable, f: u32, scale: f64, s: &mut S) {
     let r = pt.face_corners(f);
     let w = scale / f64::from(r.end - r.start);
     for c in r {
@@ -66,7 +66,7 @@ pub fn face_point<S: Sink>(pt: &PolyTable, f: u32, scale: f64, s: &mut S) {
 }
 
 /// The masks of one polygon scheme (see the module docs).
-pub trait PolyRules: Sync {
+pub(crate) trait PolyRules: Sync {
     /// Whether old vertices move and edge points see the faces (false:
     /// bilinear).
     const SMOOTH: bool;
@@ -85,7 +85,7 @@ pub trait PolyRules: Sync {
 /// Catmull-Clark's masks, with OpenSubdiv's smooth triangle rule when
 /// asked (`TRI_SUB_SMOOTH`: below).
 #[derive(Clone, Copy, Debug, Default)]
-pub struct CatmullClark {
+pub(crate) struct CatmullClark {
     /// The edge rule of OpenSubdiv's `TRI_SUB_SMOOTH` on the edges of
     /// triangles.
     pub smooth_triangles: bool,
@@ -93,7 +93,7 @@ pub struct CatmullClark {
 
 impl CatmullClark {
     /// The rules `opts` ask for.
-    pub fn new(opts: &crate::subdiv::Options) -> CatmullClark {
+    pub(crate) fn new(opts: &crate::subdiv::Options) -> CatmullClark {
         CatmullClark { smooth_triangles: opts.triangles == TriangleSubdivision::Smooth }
     }
 }
@@ -116,7 +116,7 @@ pub(crate) fn smooth_triangle_edge(k0: u32, k1: u32) -> Option<(f64, f64)> {
 }
 
 /// Bilinear masks.
-pub struct Bilinear;
+pub(crate) struct Bilinear;
 
 impl PolyRules for CatmullClark {
     const SMOOTH: bool = true;
@@ -179,14 +179,14 @@ impl PolyRules for Bilinear {
 
 /// The crease (and border) vertex mask: `(a + 6 v + b) / 8`.
 #[inline]
-pub fn crease_vertex<S: Sink>(v: u32, a: u32, b: u32, s: &mut S) {
+pub(crate) fn crease_vertex<S: Sink>(v: u32, a: u32, b: u32, s: &mut S) {
     s.add(a, 0.125);
     s.add(v, 0.75);
     s.add(b, 0.125);
 }
 
 /// A polygon scheme's masks on a level, as [`Blend`] asks for them.
-pub struct PolyOn<'a, R> {
+pub(crate) struct PolyOn<'a, R> {
     /// The masks.
     pub r: &'a R,
     /// The level.

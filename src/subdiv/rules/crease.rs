@@ -8,7 +8,7 @@ use super::{Level, Rules, Sink};
 use crate::mesh::{CornerTable, n, p};
 
 /// A sink that scales every weight.
-pub struct Scaled<'s, S: Sink> {
+pub(crate) struct Scaled<'s, S: Sink> {
     /// The sink weights go to.
     pub sink: &'s mut S,
     /// The factor.
@@ -26,7 +26,7 @@ impl<S: Sink> Sink for Scaled<'_, S> {
 /// the level's classified features and the scheme's four masks. The
 /// triangle schemes give it through [`OnLevel`], Catmull-Clark and bilinear
 /// through their polygon level.
-pub trait Blend {
+pub(crate) trait Blend {
     /// The level's sharp features (`None`: none).
     fn features(&self) -> Option<&Features>;
     /// The smooth (or boundary) mask of vertex `v`.
@@ -40,7 +40,7 @@ pub trait Blend {
 }
 
 /// A triangle scheme's rules on a level, as [`Blend`] asks for them.
-pub struct OnLevel<'a, R> {
+pub(crate) struct OnLevel<'a, R> {
     /// The rules.
     pub r: &'a R,
     /// The level.
@@ -83,7 +83,7 @@ fn emit_mask<B: Blend, S: Sink>(b: &B, v: u32, m: Mask, scale: f64, s: &mut S) {
 /// The stencil of vertex `v`'s new position with its feature, if any
 /// (else the scheme's smooth rule).
 #[inline]
-pub fn vertex_stencil<B: Blend, S: Sink>(b: &B, v: u32, s: &mut S) {
+pub(crate) fn vertex_stencil<B: Blend, S: Sink>(b: &B, v: u32, s: &mut S) {
     match b.features().and_then(|f| f.vertex(v)) {
         Some(f) if f.parent != Mask::Smooth => {
             if f.parent == f.child || f.weight >= 1.0 {
@@ -101,7 +101,7 @@ pub fn vertex_stencil<B: Blend, S: Sink>(b: &B, v: u32, s: &mut S) {
 /// The stencil of the new vertex on the edge owned by `c`, with its
 /// feature, if any (else the scheme's smooth rule).
 #[inline]
-pub fn edge_stencil<B: Blend, S: Sink>(b: &B, c: u32, s: &mut S) {
+pub(crate) fn edge_stencil<B: Blend, S: Sink>(b: &B, c: u32, s: &mut S) {
     match b.features().and_then(|f| f.edge(c)) {
         // a crease at this level
         Some(w) if (w - 1.0).abs() < f32::EPSILON / 2.0 => b.crease_edge(c, s),
@@ -123,7 +123,7 @@ pub fn edge_stencil<B: Blend, S: Sink>(b: &B, c: u32, s: &mut S) {
 /// with `p0 = 3 p1 - 3 p2 + p3`), and an edge ending at both ends is
 /// split at its midpoint. Points along a crease therefore depend on the
 /// crease polygon alone.
-pub fn four_point_crease<S: Sink>(f: &Features, ct: &CornerTable, c: u32, s: &mut S) {
+pub(crate) fn four_point_crease<S: Sink>(f: &Features, ct: &CornerTable, c: u32, s: &mut S) {
     let (p1, p2) = (f.original(ct.vtx(n(c))), f.original(ct.vtx(p(c))));
     match (f.crease_continues(ct, p1, p2), f.crease_continues(ct, p2, p1)) {
         (Some(p0), Some(p3)) => {
@@ -151,7 +151,7 @@ pub fn four_point_crease<S: Sink>(f: &Features, ct: &CornerTable, c: u32, s: &mu
 
 /// A sink that maps the extra vertices of a cut table back to the vertices
 /// they are copies of (for stencils recorded on a cut level).
-pub struct Unsplit<'s, S: Sink> {
+pub(crate) struct Unsplit<'s, S: Sink> {
     /// The sink weights go to.
     pub sink: &'s mut S,
     /// The uncut table's vertex count.

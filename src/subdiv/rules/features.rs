@@ -41,7 +41,7 @@ use std::borrow::Cow;
 
 /// Which mask a vertex point uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mask {
+pub(crate) enum Mask {
     /// The scheme's smooth mask (smooth and dart vertices).
     Smooth,
     /// The scheme's curve mask along the crease through these two neighbours.
@@ -52,7 +52,7 @@ pub enum Mask {
 
 /// OpenSubdiv's vertex rules (`Sdc::Crease::Rule`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Rule {
+pub(crate) enum Rule {
     /// No sharp edge.
     Smooth,
     /// One sharp edge: the smooth mask, the edge keeps its crease rule.
@@ -65,7 +65,7 @@ pub enum Rule {
 
 /// The rule and masks of one vertex on a sharp feature.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VertexFeature {
+pub(crate) struct VertexFeature {
     /// The vertex.
     pub vertex: u32,
     /// Its rule at this level.
@@ -81,7 +81,7 @@ pub struct VertexFeature {
 
 /// An edge whose point uses the crease mask, fully or in part.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EdgeFeature {
+pub(crate) struct EdgeFeature {
     /// Its owner corner.
     pub owner: u32,
     /// Weight of the crease mask (1: a crease at this level; otherwise
@@ -95,7 +95,7 @@ pub struct EdgeFeature {
 /// ([`Features::set_cut`]) the cut table's extra vertices map back through
 /// [`Features::original`].
 #[derive(Clone, Debug, Default)]
-pub struct Features {
+pub(crate) struct Features {
     vertices: Vec<VertexFeature>,
     edges: Vec<EdgeFeature>,
     nv: u32,
@@ -115,7 +115,7 @@ impl Features {
     /// Classifies the sharp features of `ct`, or `None` when it has no
     /// sharpness (its borders are handled by every scheme's boundary rules).
     /// Parallel over the feature vertices and edges.
-    pub fn of<T: EdgeTable>(ct: &T, creasing: Creasing) -> Option<Features> {
+    pub(crate) fn of<T: EdgeTable>(ct: &T, creasing: Creasing) -> Option<Features> {
         let sharp = ct.sharpness()?;
         let decay = sharp.edge_decay(ct, creasing);
         let mut candidates: Vec<u32> = sharp.sharp_vertices().iter().map(|&(v, _)| v).collect();
@@ -156,52 +156,47 @@ impl Features {
 
     /// Records that the level is evaluated cut open: cut vertex
     /// `nv + i` is a copy of `copies[i]`.
-    pub fn set_cut(&mut self, copies: Vec<u32>) {
+    pub(crate) fn set_cut(&mut self, copies: Vec<u32>) {
         self.copies = copies;
     }
 
     /// The uncut level's vertex that vertex `v` of the level's (possibly
     /// cut) table stands for.
     #[inline]
-    pub fn original(&self, v: u32) -> u32 {
+    pub(crate) fn original(&self, v: u32) -> u32 {
         if v < self.nv { v } else { self.copies[(v - self.nv) as usize] }
     }
 
-    /// The uncut level's vertex count.
-    pub fn num_vertices(&self) -> u32 {
-        self.nv
-    }
-
     /// The copies made by the cut ([`Features::set_cut`]).
-    pub fn copies(&self) -> &[u32] {
+    pub(crate) fn copies(&self) -> &[u32] {
         &self.copies
     }
 
     /// The classified vertices, sorted by vertex.
-    pub fn vertices(&self) -> &[VertexFeature] {
+    pub(crate) fn vertices(&self) -> &[VertexFeature] {
         &self.vertices
     }
 
     /// The edges that use the crease mask, sorted by owner corner.
-    pub fn edges(&self) -> &[EdgeFeature] {
+    pub(crate) fn edges(&self) -> &[EdgeFeature] {
         &self.edges
     }
 
     /// The feature of vertex `v`, if it has one.
     #[inline]
-    pub fn vertex(&self, v: u32) -> Option<&VertexFeature> {
+    pub(crate) fn vertex(&self, v: u32) -> Option<&VertexFeature> {
         self.vertices.binary_search_by_key(&v, |f| f.vertex).ok().map(|i| &self.vertices[i])
     }
 
     /// The crease weight of the edge owned by `c`, if it has one.
     #[inline]
-    pub fn edge(&self, c: u32) -> Option<f32> {
+    pub(crate) fn edge(&self, c: u32) -> Option<f32> {
         self.edges.binary_search_by_key(&c, |e| e.owner).ok().map(|i| self.edges[i].weight)
     }
 
     /// The corners of the edges that are creases at this level (weight
     /// exactly 1, not border): where the level is cut for [`super::Rules::CUT_AT_CREASES`].
-    pub fn cut_corners(&self, ct: &CornerTable) -> Vec<u32> {
+    pub(crate) fn cut_corners(&self, ct: &CornerTable) -> Vec<u32> {
         self.edges.iter().filter(|e| e.weight == 1.0 && ct.o_entry(e.owner) != BORDER).map(|e| e.owner).collect()
     }
 
@@ -210,7 +205,7 @@ impl Features {
     /// the crease curve ends at `v` (a dart or a corner). A vertex without
     /// a feature is a regular boundary vertex: its crease is the border,
     /// found in `ct`, the level's table (the cut does not touch it).
-    pub fn crease_continues(&self, ct: &CornerTable, v: u32, from: u32) -> Option<u32> {
+    pub(crate) fn crease_continues(&self, ct: &CornerTable, v: u32, from: u32) -> Option<u32> {
         match self.vertex(v) {
             Some(f) => match f.parent {
                 Mask::Crease(a, b) => Some(if a == from { b } else { a }),

@@ -23,7 +23,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 /// Jarek rules.
-pub struct Jarek;
+pub(crate) struct Jarek;
 
 impl Jarek {
     /// Emits `scale * d_v`, `d_v` the displacement vertex `v` gets at this

@@ -151,7 +151,7 @@ fn smooth_limit_positions(mesh: &Mesh, pos: &[DVec3], beta: LoopBeta) -> Vec<DVe
 /// product points along the limit normal. See the module docs for the masks.
 /// Both are zero for a boundary vertex with more than [`MAX_BOUNDARY_FACES`]
 /// faces.
-pub fn loop_limit_tangents(ct: &CornerTable, pos: &[Vec3], v: u32) -> (Vec3, Vec3) {
+pub(crate) fn loop_limit_tangents(ct: &CornerTable, pos: &[Vec3], v: u32) -> (Vec3, Vec3) {
     let ring: Vec<DVec3> = ct.ring(v).map(|q| pos[q as usize].as_dvec3()).collect();
     let x = pos[v as usize].as_dvec3();
     let (t1, t2) = if ct.is_boundary_vertex(v) {
@@ -179,11 +179,11 @@ pub fn loop_limit_tangents(ct: &CornerTable, pos: &[Vec3], v: u32) -> (Vec3, Vec
 
 /// Boundary vertices with more faces than this have no limit normal from the
 /// tangent masks (not C1, see the module docs); they get the fallback.
-pub const MAX_BOUNDARY_FACES: usize = 6;
+pub(crate) const MAX_BOUNDARY_FACES: usize = 6;
 
 /// The across-boundary tangent mask for a boundary vertex with `m >= 2`
 /// faces: `[w_v, w_0, ..., w_m]` (derived here, see the module docs).
-pub fn boundary_across_weights(m: usize) -> Vec<f64> {
+pub(crate) fn boundary_across_weights(m: usize) -> Vec<f64> {
     let th = PI / m as f64;
     let (s, c) = th.sin_cos();
     let mut w = vec![-s, -s * c];

@@ -59,7 +59,7 @@ impl LoopBeta {
 }
 
 /// Loop rules with a precomputed table of the vertex rule's weights.
-pub struct Loop {
+pub(crate) struct Loop {
     /// `(1 - k beta, beta)` by valence `k`, in f64.
     weights: Vec<(f64, f64)>,
     kind: LoopBeta,
@@ -67,7 +67,7 @@ pub struct Loop {
 
 impl Loop {
     /// Loop rules with the given beta.
-    pub fn new(kind: LoopBeta) -> Self {
+    pub(crate) fn new(kind: LoopBeta) -> Self {
         Loop { weights: (0..64).map(|k| Self::weights_of(kind, k)).collect(), kind }
     }
     fn weights_of(kind: LoopBeta, k: u32) -> (f64, f64) {

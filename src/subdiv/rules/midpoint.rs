@@ -12,7 +12,7 @@ use super::{Level, Rules, Sink};
 use crate::mesh::{n, p};
 
 /// Midpoint rules.
-pub struct Midpoint;
+pub(crate) struct Midpoint;
 
 impl Rules for Midpoint {
     const MOVES_VERTICES: bool = false;

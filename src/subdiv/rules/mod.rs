@@ -14,15 +14,15 @@
 //! [`crate::subdiv::refine`]; the tables that record them,
 //! [`crate::subdiv::tables`].
 
-pub mod butterfly;
-pub mod catmark_limit;
+pub(crate) mod butterfly;
+pub(crate) mod catmark_limit;
 pub(crate) mod catmull_clark;
-pub mod crease;
-pub mod features;
-pub mod jarek;
-pub mod limit;
+pub(crate) mod crease;
+pub(crate) mod features;
+pub(crate) mod jarek;
+pub(crate) mod limit;
 pub(crate) mod loop_;
-pub mod midpoint;
+pub(crate) mod midpoint;
 pub(crate) mod modified_butterfly;
 
 use crate::mesh::split::Owners;
@@ -36,7 +36,7 @@ use std::borrow::Cow;
 /// dereferences to the [`CornerTable`], so rules call the table's operators
 /// directly; [`Level::is_boundary_vertex`] answers from a flag array (one
 /// load) instead of `O[p(C[v])]` (two dependent loads).
-pub struct Level<'a> {
+pub(crate) struct Level<'a> {
     /// The table (for [`Rules::CUT_AT_CREASES`] schemes on a level with
     /// creases: the table cut open along them).
     pub ct: &'a CornerTable,
@@ -48,27 +48,27 @@ pub struct Level<'a> {
 
 impl<'a> Level<'a> {
     /// Precomputes the per-vertex flags of `ct` (parallel, O(V)).
-    pub fn new(ct: &'a CornerTable) -> Self {
+    pub(crate) fn new(ct: &'a CornerTable) -> Self {
         Self::with_boundary(ct, boundary_flags(ct))
     }
     /// A level whose boundary flags are known.
-    pub fn with_boundary(ct: &'a CornerTable, boundary: Vec<bool>) -> Self {
+    pub(crate) fn with_boundary(ct: &'a CornerTable, boundary: Vec<bool>) -> Self {
         Level { ct, boundary, features: None }
     }
     /// This level with its sharp features.
-    pub fn with_features(mut self, features: Option<&'a Features>) -> Self {
+    pub(crate) fn with_features(mut self, features: Option<&'a Features>) -> Self {
         self.features = features;
         self
     }
     /// Is vertex `v` on the boundary?
     #[inline(always)]
-    pub fn is_boundary_vertex(&self, v: u32) -> bool {
+    pub(crate) fn is_boundary_vertex(&self, v: u32) -> bool {
         self.boundary[v as usize]
     }
 }
 
 /// `boundary[v]`: is vertex `v` of `ct` on the boundary (parallel, O(V)).
-pub fn boundary_flags(ct: &CornerTable) -> Vec<bool> {
+pub(crate) fn boundary_flags(ct: &CornerTable) -> Vec<bool> {
     ct.c_table().par_iter().with_min_len(8192).map(|&c| ct.o_table()[p(c) as usize] == BORDER).collect()
 }
 
@@ -81,7 +81,7 @@ impl std::ops::Deref for Level<'_> {
 }
 
 /// Receives the weights of one stencil.
-pub trait Sink {
+pub(crate) trait Sink {
     /// Adds `w` times old vertex `v`. Rules compute their weights in f64;
     /// a sink of single-precision values rounds each weight to f32 as it
     /// takes it (so a fast pass that rounds the same weights alike gives
@@ -90,7 +90,7 @@ pub trait Sink {
 }
 
 /// Sums weighted old positions.
-pub struct Accumulate<'a> {
+pub(crate) struct Accumulate<'a> {
     /// Old positions.
     pub pos: &'a [Vec3],
     /// The running sum.
@@ -100,7 +100,7 @@ pub struct Accumulate<'a> {
 impl<'a> Accumulate<'a> {
     /// A zero sum over `pos`.
     #[inline(always)]
-    pub fn new(pos: &'a [Vec3]) -> Self {
+    pub(crate) fn new(pos: &'a [Vec3]) -> Self {
         Accumulate { pos, sum: Vec3::ZERO }
     }
 }
@@ -114,7 +114,7 @@ impl Sink for Accumulate<'_> {
 
 /// Records a stencil as (index, weight) pairs, the weights rounded to f32
 /// (the stencil plans' precision) or kept in f64 (`Record<f64>`).
-pub struct Record<W = f32> {
+pub(crate) struct Record<W = f32> {
     /// Vertex ids.
     pub idx: Vec<u32>,
     /// Weights.
@@ -168,7 +168,7 @@ impl<W: Weight> Sink for Record<W> {
 /// The rules of one scheme: a stencil for every edge point and (for
 /// approximating schemes) every vertex point, smooth and along creases
 /// (how the two are chosen and blended is [`super::features`]).
-pub trait Rules: Sync {
+pub(crate) trait Rules: Sync {
     /// Whether old vertices move (Loop, Jarek) or are copied (interpolating).
     const MOVES_VERTICES: bool;
     /// Whether the smooth stencils reach across edges, so that on a level
@@ -241,7 +241,13 @@ pub trait Rules: Sync {
 /// points of all levels on one thread, warm (`examples/phases`), 21-22 ms
 /// without against 13.3-13.9 with (8 edges ahead gave 15-16, 24 to 96 the
 /// same as 32; prefetching the four positions as well made it slower).
-pub fn stencil_edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: Owners, pos: &[Vec3], out: &mut [Vec3]) {
+pub(crate) fn stencil_edge_points<R: Rules + ?Sized>(
+    r: &R,
+    lv: &Level,
+    owners: Owners,
+    pos: &[Vec3],
+    out: &mut [Vec3],
+) {
     let (vt, ot) = (lv.v_table(), lv.o_table());
     owners.par_pieces(out, |out, own| {
         for (i, (q, &c)) in out.iter_mut().zip(own).enumerate() {
@@ -259,27 +265,13 @@ pub fn stencil_edge_points<R: Rules + ?Sized>(r: &R, lv: &Level, owners: Owners,
 /// How many edges ahead [`stencil_edge_points`] prefetches.
 const AHEAD: usize = 32;
 
-/// For every vertex: the sum of its neighbours' positions (interior) or of
-/// its two boundary neighbours (boundary vertex).
-///
-/// Walking each fan is a chain of dependent loads (`O` then the next corner),
-/// so it runs at memory latency. Instead the corners are streamed in order
-/// and each adds its next vertex to its own vertex (`S[v(c)] += P[v(n(c))]`:
-/// around an interior vertex every neighbour is `v(n(c))` of exactly one of
-/// its corners). Each thread scatters into a private accumulator over its own
-/// range of corners; the accumulators are then added, and boundary vertices
-/// are replaced by the sum of their two boundary neighbours.
-pub fn ring_sums(lv: &Level, pos: &[Vec3], out: &mut [Vec3]) {
-    ring_sums_map(lv, pos, out, &mut [], |_, s| s);
-}
-
 /// [`ring_sums`], then `out[v] = f(v, sum)`, in the same pass that adds the
 /// per-thread accumulators and fixes boundary vertices (one pass over the
 /// vertices instead of three). The accumulators of the threads after the
 /// first are taken from `scratch` as far as it holds them (its contents are
 /// overwritten), so that a level's edge part, written afterwards, serves as
 /// memory already faulted in; the rest are allocated.
-pub fn ring_sums_map(
+pub(crate) fn ring_sums_map(
     lv: &Level,
     pos: &[Vec3],
     out: &mut [Vec3],
@@ -361,7 +353,7 @@ pub(crate) fn scatter_parts<'s>(
 /// boundary vertices. Uses boundary vertices only, so the boundary curve is
 /// the interpolating 4-point curve of the boundary polygon.
 #[inline]
-pub fn four_point<S: Sink>(ct: &CornerTable, c: u32, s: &mut S) {
+pub(crate) fn four_point<S: Sink>(ct: &CornerTable, c: u32, s: &mut S) {
     let (p1, p2) = (ct.vtx(n(c)), ct.vtx(p(c)));
     // the border edge runs p1 -> p2; p0 ends the fan of p1, p3 starts that
     // of p2 (both ends of a border edge are boundary vertices, so the
@@ -372,18 +364,6 @@ pub fn four_point<S: Sink>(ct: &CornerTable, c: u32, s: &mut S) {
     s.add(p1, 9.0 / 16.0);
     s.add(p2, 9.0 / 16.0);
     s.add(p3, -1.0 / 16.0);
-}
-
-/// Walks the `k` neighbours of interior vertex `v(x)` in swing order,
-/// starting with `v(n(x))`.
-#[inline]
-pub fn ring_from(ct: &CornerTable, x: u32) -> impl Iterator<Item = u32> + '_ {
-    let mut c = Some(x);
-    std::iter::from_fn(move || {
-        let cur = c?;
-        c = ct.s(cur).filter(|&y| y != x);
-        Some(ct.vtx(n(cur)))
-    })
 }
 
 #[cfg(test)]

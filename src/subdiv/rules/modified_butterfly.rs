@@ -46,7 +46,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 /// Modified butterfly rules with tension `w` and precomputed EV weights.
-pub struct ModifiedButterfly {
+pub(crate) struct ModifiedButterfly {
     w: f32,
     /// `ev[k]` = the `k` weights `s_j` for valence `k` (k < 64).
     ev: Vec<Vec<f64>>,
@@ -66,7 +66,7 @@ pub struct ModifiedButterfly {
 /// `s_0` and `s_2`; with the 3/4 on the vertex the stencil sums to one.
 /// Valences 0 and 1 cannot occur at an interior vertex of a valid table
 /// (`CornerTable` refuses degenerate faces); they get empty weights.
-pub fn ev_weights(k: u32) -> Vec<f64> {
+pub(crate) fn ev_weights(k: u32) -> Vec<f64> {
     match k {
         0 | 1 => Vec::new(),
         2 => vec![3.0 / 8.0, -1.0 / 8.0],
@@ -83,7 +83,7 @@ pub fn ev_weights(k: u32) -> Vec<f64> {
 
 impl ModifiedButterfly {
     /// Rules with tension `w` (0 = Zorin's default).
-    pub fn new(w: f32) -> Self {
+    pub(crate) fn new(w: f32) -> Self {
         ModifiedButterfly { w, ev: (0..64).map(ev_weights).collect() }
     }
 

@@ -16,7 +16,7 @@
 
 use super::plan::{PlanScratch, StencilPlan};
 use crate::mesh::CornerTable;
-pub use crate::mesh::attributes::{Attributes, refine_corner_uvs, split_corner_uvs};
+pub(crate) use crate::mesh::attributes::{Attributes, refine_corner_uvs};
 use crate::subdiv::UvInterpolation;
 use crate::{Options, Result, Scheme};
 use glam::Vec3;
@@ -27,7 +27,7 @@ use rayon::prelude::*;
 ///
 /// # Errors
 /// A level that does not fit in memory.
-pub fn refine_colors(
+pub(crate) fn refine_colors(
     ct: &CornerTable,
     colors: &[Vec3],
     scheme: Scheme,
@@ -100,7 +100,7 @@ fn refine_through_polygons(
 /// bilinear inside each face (OpenSubdiv's `FVAR_LINEAR_ALL`): child quad
 /// `c` gets `uv(c)`, the midpoints of the edges leaving and entering `c`,
 /// and the face's centroid, so seams stay where they are.
-pub fn split_poly_uvs(pt: &crate::mesh::poly::PolyTable, uv: &[glam::Vec2]) -> Vec<glam::Vec2> {
+pub(crate) fn split_poly_uvs(pt: &crate::mesh::poly::PolyTable, uv: &[glam::Vec2]) -> Vec<glam::Vec2> {
     let centroid: Vec<glam::Vec2> = (0..pt.num_faces() as u32)
         .into_par_iter()
         .map(|f| {

@@ -31,7 +31,7 @@ use std::collections::HashMap;
 ///
 /// # Errors
 /// A level that does not fit in memory.
-pub fn smooth_uvs(
+pub(crate) fn smooth_uvs(
     pt: &PolyTable,
     uv: &[Vec2],
     scheme: Scheme,
@@ -53,7 +53,12 @@ pub fn smooth_uvs(
 ///
 /// # Errors
 /// A level that does not fit in memory.
-pub fn smooth_triangle_uvs(ct: &CornerTable, uv: &[Vec2], levels: u32, opts: &Options) -> Result<Option<Vec<Vec2>>> {
+pub(crate) fn smooth_triangle_uvs(
+    ct: &CornerTable,
+    uv: &[Vec2],
+    levels: u32,
+    opts: &Options,
+) -> Result<Option<Vec<Vec2>>> {
     // a table with hidden diagonals stands for polygons: not the triangles'
     let plain = crate::mesh::CornerTable::from_parts(
         ct.v_table().to_vec(),

@@ -4,12 +4,12 @@
 //! re-applied to new control values: positions each animation frame,
 //! colours and texture coordinates ([`attributes`]).
 
-pub mod attributes;
+pub(crate) mod attributes;
 pub(crate) mod face_varying;
-pub mod packed;
-pub mod plan;
+pub(crate) mod packed;
+pub(crate) mod plan;
 pub(crate) mod poly_plan;
-pub mod rows;
+pub(crate) mod rows;
 
 pub use plan::{PlanScratch, StencilPlan};
 pub use rows::{LevelPlan, Point};

@@ -18,14 +18,14 @@ use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// Rows per parallel chunk (one start offset each).
-pub const CHUNK: usize = 2048;
+pub(crate) const CHUNK: usize = 2048;
 
 /// Most distinct weight vectors a packed level holds (class ids are `u16`).
 const MAX_CLASSES: usize = u16::MAX as usize;
 
 /// One level's stencils as weight classes plus indices (see the module docs).
 #[derive(Clone, Debug, Default)]
-pub struct PackedLevel {
+pub(crate) struct PackedLevel {
     n_in: usize,
     copy_vertices: bool,
     /// Class of every row.
@@ -43,7 +43,7 @@ impl PackedLevel {
     /// Packs `lv`, or `None` when it has more distinct weight vectors than
     /// class ids, or is malformed (an index not below `n_in`, offsets out of
     /// order): then the CSR rows are evaluated instead.
-    pub fn pack(lv: &LevelPlan) -> Option<PackedLevel> {
+    pub(crate) fn pack(lv: &LevelPlan) -> Option<PackedLevel> {
         let rows = lv.offsets.len().saturating_sub(1);
         let ordered = lv.offsets.first() == Some(&0)
             && lv.offsets.windows(2).all(|w| w[0] <= w[1])
@@ -82,22 +82,12 @@ impl PackedLevel {
         })
     }
 
-    /// Number of distinct weight vectors.
-    pub fn classes(&self) -> usize {
-        self.class_start.len() - 1
-    }
-
-    /// Bytes read per evaluation (tables only, not the positions).
-    pub fn table_bytes(&self) -> usize {
-        self.class.len() * 2 + self.indices.len() * 4 + self.class_weights.len() * 4
-    }
-
     /// Applies this level: the same positions as [`LevelPlan::apply`].
     ///
     /// # Panics
     /// If `input` has fewer than `n_in` positions or `out` is not the size of
     /// the finer level (a caller bug, not input data).
-    pub fn apply<I: Point, O: Point>(&self, input: &[I], out: &mut [O]) {
+    pub(crate) fn apply<I: Point, O: Point>(&self, input: &[I], out: &mut [O]) {
         assert!(input.len() >= self.n_in, "input has the coarser level's vertices");
         let rows = if self.copy_vertices {
             copy_points(&input[..self.n_in], &mut out[..self.n_in]);

@@ -324,12 +324,12 @@ impl StencilPlan {
     /// The finest level's polygons, for a polygon scheme's plan (its
     /// [`StencilPlan::ct`] is their triangles): what the normals' rings of
     /// edge neighbours are built from.
-    pub fn polygons(&self) -> Option<&crate::mesh::poly::PolyTable> {
+    pub(crate) fn polygons(&self) -> Option<&crate::mesh::poly::PolyTable> {
         self.poly.as_deref()
     }
 
     /// Number of control vertices the plan expects.
-    pub fn n_control(&self) -> usize {
+    pub(crate) fn n_control(&self) -> usize {
         self.levels.first().map_or(self.ct.num_vertices(), |l| l.n_in)
     }
 
@@ -371,12 +371,4 @@ impl StencilPlan {
         }
     }
 
-    /// Bytes of stencil tables read per evaluation (packed where packed).
-    pub fn table_bytes(&self) -> usize {
-        self.levels
-            .iter()
-            .zip(&self.packed)
-            .map(|(l, p)| p.as_ref().map_or(l.offsets.len() * 4 + l.indices.len() * 8, PackedLevel::table_bytes))
-            .sum()
-    }
 }

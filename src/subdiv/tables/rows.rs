@@ -84,7 +84,7 @@ impl<W: Weight> LevelPlan<W> {
     /// The row of new vertex `i`: its sources and weights (a copied old
     /// vertex of an interpolating level: itself with weight 1, returned as
     /// `None`).
-    pub fn row(&self, i: usize) -> Option<(&[u32], &[W])> {
+    pub(crate) fn row(&self, i: usize) -> Option<(&[u32], &[W])> {
         let r = if self.copy_vertices { i.checked_sub(self.n_in)? } else { i };
         let (a, b) = (*self.offsets.get(r)? as usize, *self.offsets.get(r + 1)? as usize);
         Some((&self.indices[a..b], &self.weights[a..b]))

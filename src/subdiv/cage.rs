@@ -1,0 +1,144 @@
+//! One way in to subdivide a cage, whatever it is: a triangle table
+//! ([`Mesh`], every scheme; polygon schemes read its fanned polygons) or a
+//! polygon table ([`PolyMesh`], Catmull-Clark and bilinear), in f32 or f64,
+//! whole or faces only. [`Cage`] is sealed: the two tables are the cages.
+
+use super::{Options, Scheme, Stats};
+use crate::Result;
+use crate::mesh::poly::PolyMesh;
+use crate::mesh::{Faces, Mesh, VertexId};
+use glam::DVec3;
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for crate::Mesh {}
+    impl Sealed for crate::mesh::poly::PolyMesh {}
+}
+
+/// A control mesh that [`subdivide`], [`subdivide_f64`] and
+/// [`subdivide_faces`] refine: [`Mesh`] (triangles) or [`PolyMesh`]
+/// (polygons). The refined mesh is of the same kind.
+pub trait Cage: sealed::Sealed + Sized {
+    /// `levels` levels of `scheme`; see [`subdivide`].
+    ///
+    /// # Errors
+    /// As [`subdivide`].
+    fn refined(&self, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Self, Stats)>;
+    /// The refined positions in f64; see [`subdivide_f64`].
+    ///
+    /// # Errors
+    /// As [`subdivide_f64`].
+    fn refined_f64(&self, control: &[DVec3], scheme: Scheme, levels: u32, opts: &Options)
+    -> Result<(Self, Vec<DVec3>)>;
+    /// The last level's faces only; see [`subdivide_faces`].
+    ///
+    /// # Errors
+    /// As [`subdivide_faces`].
+    fn refined_faces<I: VertexId>(
+        &self,
+        scheme: Scheme,
+        levels: u32,
+        opts: &Options,
+        id: impl Fn(u32) -> I + Sync,
+    ) -> Result<(Faces<I>, Stats)>;
+}
+
+impl Cage for Mesh {
+    fn refined(&self, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Mesh, Stats)> {
+        super::subdivide_mesh(self, scheme, levels, opts)
+    }
+    fn refined_f64(
+        &self,
+        control: &[DVec3],
+        scheme: Scheme,
+        levels: u32,
+        opts: &Options,
+    ) -> Result<(Mesh, Vec<DVec3>)> {
+        super::precise::subdivide_mesh_f64(self, control, scheme, levels, opts)
+    }
+    fn refined_faces<I: VertexId>(
+        &self,
+        scheme: Scheme,
+        levels: u32,
+        opts: &Options,
+        id: impl Fn(u32) -> I + Sync,
+    ) -> Result<(Faces<I>, Stats)> {
+        super::subdivide_mesh_faces_as(self, scheme, levels, opts, id)
+    }
+}
+
+impl Cage for PolyMesh {
+    fn refined(&self, scheme: Scheme, levels: u32, opts: &Options) -> Result<(PolyMesh, Stats)> {
+        super::subdivide_poly(self, scheme, levels, opts)
+    }
+    fn refined_f64(
+        &self,
+        control: &[DVec3],
+        scheme: Scheme,
+        levels: u32,
+        opts: &Options,
+    ) -> Result<(PolyMesh, Vec<DVec3>)> {
+        super::precise::subdivide_poly_f64(self, control, scheme, levels, opts)
+    }
+    fn refined_faces<I: VertexId>(
+        &self,
+        scheme: Scheme,
+        levels: u32,
+        opts: &Options,
+        id: impl Fn(u32) -> I + Sync,
+    ) -> Result<(Faces<I>, Stats)> {
+        super::subdivide_poly_faces_as(self, scheme, levels, opts, id)
+    }
+}
+
+/// Refines `cage` `levels` times with `scheme`: a [`Mesh`] under any
+/// scheme (a polygon scheme reads the polygons its hidden diagonals
+/// stand for), a [`PolyMesh`] under Catmull-Clark or bilinear.
+///
+/// # Errors
+/// [`crate::Error::TooLarge`] when a level would exceed the memory limit
+/// (checked before it is allocated) or 32-bit corner ids;
+/// [`crate::Error::Usage`] for a triangle scheme on a [`PolyMesh`] (fan it
+/// first).
+pub fn subdivide<C: Cage>(cage: &C, scheme: Scheme, levels: u32, opts: &Options) -> Result<(C, Stats)> {
+    cage.refined(scheme, levels, opts)
+}
+
+/// [`subdivide`] of `cage`'s topology with the control positions `control`
+/// in f64: the refined mesh (its `positions` the f64 ones rounded to f32,
+/// for drawing) and the refined positions in f64, computed with the f64
+/// weights of the same stencils.
+///
+/// # Errors
+/// `control` not one position per vertex of `cage`; as [`subdivide`].
+pub fn subdivide_f64<C: Cage>(
+    cage: &C,
+    control: &[DVec3],
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<(C, Vec<DVec3>)> {
+    cage.refined_f64(control, scheme, levels, opts)
+}
+
+/// [`subdivide`] for a caller that needs only the faces of the result (to
+/// write them or hand them over): the same positions and faces, but the
+/// last level writes no O, C or valence table, no sharpness and no edge
+/// generations (at bunny level 3, 70 of the 150 MB `subdivide` writes).
+/// Every vertex id `j` of the faces is written as `id(j)` in the pass that
+/// writes them (`|j| j` keeps `u32`), so a caller that wants other ids
+/// converts no table afterwards. `tests/faces_only.rs` checks that both give
+/// the same bits.
+///
+/// # Errors
+/// As [`subdivide`]; [`crate::Error::Usage`] for no levels of a
+/// [`PolyMesh`] (the faces of a control mesh need not be quads).
+pub fn subdivide_faces<C: Cage, I: VertexId>(
+    cage: &C,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+    id: impl Fn(u32) -> I + Sync,
+) -> Result<(Faces<I>, Stats)> {
+    cage.refined_faces(scheme, levels, opts, id)
+}
