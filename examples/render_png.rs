@@ -4,8 +4,8 @@
 //! Needs a GPU adapter; Mesa's lavapipe is enough.
 
 use std::path::PathBuf;
-use subdiv::render::{RenderOptions, Shading, render_png};
-use subdiv::{Scheme, bundled, subdivide};
+use subdiv::render::{RenderOptions, Shading, save_png};
+use subdiv::{Scheme, io, subdivide};
 
 fn main() -> subdiv::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -13,11 +13,11 @@ fn main() -> subdiv::Result<()> {
     let output = args.get(1).map_or_else(|| std::env::temp_dir().join("torus.png"), PathBuf::from);
     let levels: u32 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2);
 
-    let control = bundled::load(&input)?;
+    let control = io::load(&input)?;
     let (fine, _) = subdivide(&control, Scheme::ModifiedButterfly, levels, &Default::default())?;
     let opts = RenderOptions { shading: Shading::PhongWire, width: 640, height: 480, ..Default::default() };
     // the control mesh overlaid, the camera framed on it
-    render_png(&fine, Some(&control), &opts, &output)?;
+    save_png(&subdiv::render_image(&fine, Some(&control), &opts)?, &output)?;
     let img = image::open(&output).map_err(|e| subdiv::Error::Usage(format!("{}: {e}", output.display())))?;
     println!("{} -> {} ({}x{})", input.display(), output.display(), img.width(), img.height());
     Ok(())

@@ -117,14 +117,6 @@ pub fn read(arg: &Path, opts: &ReadOptions) -> Result<Loaded> {
     io::read(io::Source::File(arg), opts)
 }
 
-/// The mesh a model argument names, with the default [`ReadOptions`].
-///
-/// # Errors
-/// As [`read`].
-pub fn load(arg: &Path) -> Result<Mesh> {
-    read(arg, &ReadOptions::default()).map(|l| l.mesh)
-}
-
 /// Loads the `.bzc` curve a model argument names (a file within `limits`).
 ///
 /// # Errors

@@ -58,10 +58,10 @@ pub use io::{read, save};
 pub use mesh::{BORDER, CornerTable, Mesh};
 pub use subdiv::eval::Evaluator;
 pub use subdiv::tables::StencilPlan;
-pub use subdiv::{Cage, LoopBeta, Options, Refiner, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces};
+pub use subdiv::{Cage, LoopBeta, Options, Refiner, Scalar, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces};
 
 #[cfg(feature = "viewer")]
-pub use render::{render_image, render_png};
+pub use render::render_image;
 
 pub mod eval {
     //! Exact limit evaluation ([`crate::Evaluator`]): what a sample holds,

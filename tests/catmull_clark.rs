@@ -137,7 +137,7 @@ fn polygon_formats_round_trip() {
     for (what, mesh) in [("ngons", &control), ("ngons L1", &level1)] {
         for ext in ["obj", "ply", "off", "ct"] {
             let path = dir.join(format!("{}.{ext}", what.replace(' ', "_")));
-            subdiv::io::save_poly(&path, mesh, &Default::default()).unwrap();
+            subdiv::io::save_with(&path, mesh, &Default::default()).unwrap();
             let back = PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap_or_else(|e| panic!("{ext}: {e}")));
             assert_eq!(face_lists(&back), face_lists(mesh), "{what} .{ext}: faces");
             for (a, b) in back.positions.iter().zip(&mesh.positions) {
@@ -155,7 +155,7 @@ fn ct_polygon_twins_are_checked() {
     let dir = common::scratch_dir("poly-ct-twins");
     let path = dir.join("two.ct");
     let control = load("ngons.obj");
-    subdiv::io::save_poly(&path, &control, &Default::default()).unwrap();
+    subdiv::io::save_with(&path, &control, &Default::default()).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     assert!(subdiv::io::load(&path).is_ok());
     // Swap two twin entries: each row still names corners, but not the ones

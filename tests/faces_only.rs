@@ -113,7 +113,7 @@ fn faces_are_written_as_the_mesh_is() {
         for attrs in [Attributes::default(), colors.clone(), uv.clone()] {
             let (a, b) = (dir.join(format!("mesh.{ext}")), dir.join(format!("faces.{ext}")));
             io::save_with(&a, &full, &attrs).unwrap();
-            io::save_faces(&b, &faces, &attrs).unwrap();
+            io::save_with(&b, &faces, &attrs).unwrap();
             assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "{ext}");
             checked += 1;
         }
@@ -123,7 +123,7 @@ fn faces_are_written_as_the_mesh_is() {
     assert!(!io::writes_faces(std::path::Path::new("a.obj"), true));
     assert!(io::writes_faces(std::path::Path::new("a.ply"), true));
     assert!(!io::writes_faces(std::path::Path::new("a.ct"), false));
-    let err = io::save_faces(&dir.join("faces.ct"), &faces, &Attributes::default()).unwrap_err().to_string();
+    let err = io::save_with(&dir.join("faces.ct"), &faces, &Attributes::default()).unwrap_err().to_string();
     assert!(err.contains("faces.ct"), "{err}");
 }
 
@@ -187,17 +187,17 @@ fn quads_are_written_as_the_polygon_mesh_is() {
     for ext in ["ply", "obj", "off", "stl", "glb"] {
         for attrs in [Attributes::default(), colors.clone(), uv.clone()] {
             let (a, b) = (dir.join(format!("poly.{ext}")), dir.join(format!("quads.{ext}")));
-            io::save_poly(&a, &full, &attrs).unwrap();
-            io::save_faces(&b, &faces, &attrs).unwrap();
+            io::save_with(&a, &full, &attrs).unwrap();
+            io::save_with(&b, &faces, &attrs).unwrap();
             assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap(), "{ext}");
         }
     }
     // faces that are neither triangles nor quads, or name a missing vertex
     let five = subdiv::mesh::Faces { sides: 5, ..faces.clone() };
-    assert!(io::save_faces(&dir.join("five.ply"), &five, &Attributes::default()).is_err());
+    assert!(io::save_with(&dir.join("five.ply"), &five, &Attributes::default()).is_err());
     let mut broken = faces.clone();
     broken.corners[7] = broken.positions.len() as u32;
-    let err = io::save_faces(&dir.join("broken.stl"), &broken, &Attributes::default()).unwrap_err().to_string();
+    let err = io::save_with(&dir.join("broken.stl"), &broken, &Attributes::default()).unwrap_err().to_string();
     assert!(err.contains("corner 7"), "{err}");
 }
 

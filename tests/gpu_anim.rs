@@ -11,9 +11,9 @@ mod common;
 
 use common::{bundled, offscreen, scratch_dir, share_within};
 use subdiv::anim::{Animation, Paths, Tweak};
+use subdiv::render::GpuAnimator;
 use subdiv::render::{Camera, GpuMesh, Look, Offscreen};
 use subdiv::render::{Evaluation, ExportStyle, ExportTarget, export_animation, frame_path};
-use subdiv::render::{GpuAnimator, read_vec3};
 use subdiv::{Mesh, Options, Scheme};
 
 fn tetrahedron() -> (Mesh, Paths) {
@@ -77,8 +77,7 @@ fn gpu_positions_and_normals_equal_the_cpu_plan() {
         for f in [5, 17, anim.frame_count() - 1] {
             gpu.update(dev, queue, anim.control(f)).unwrap();
             let n = anim.topology().num_vertices();
-            let gp = read_vec3(dev, queue, mesh.positions_buffer(), n).unwrap();
-            let gn = read_vec3(dev, queue, mesh.normals_buffer(), n).unwrap();
+            let (gp, gn) = mesh.read_back(dev, queue).unwrap();
             let (cp, cn) = anim.evaluate(f);
             assert_eq!((gp.len(), gn.len(), cp.len(), cn.len(), first.len()), (n, n, n, n, n), "{name} {scheme}");
             let scale = cp.iter().fold(1.0f32, |s, p| s.max(p.abs().max_element()));

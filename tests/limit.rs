@@ -9,7 +9,6 @@ mod common;
 use common::*;
 use glam::{Mat3, Vec3};
 use subdiv::eval::{butterfly_normals, loop_limit_normals, loop_limit_positions, loop_limit_positions_with};
-use subdiv::mesh::vertex_normals;
 use subdiv::{LoopBeta, Mesh, Options, Scheme, subdivide};
 
 fn sub(m: &Mesh, s: Scheme, levels: u32) -> Mesh {
@@ -132,14 +131,14 @@ fn limit_normals_match_finite_differences() {
         let nrm = loop_limit_normals(&m);
         let fine = sub(&m, Scheme::Loop, 3);
         let surf = Mesh { ct: fine.ct.clone(), positions: loop_limit_positions(&fine) };
-        let fd = vertex_normals(&surf.ct, &surf.positions);
+        let fd = surf.vertex_normals();
         let mut worst = 0.0f32;
         for i in 0..m.positions.len() {
             worst = worst.max(angle(nrm[i], fd[i]).to_degrees());
         }
         assert!(worst < tol_deg, "{name}: worst angle {worst} degrees");
         // orientation: like the face normals of the control mesh
-        let coarse = vertex_normals(&m.ct, &m.positions);
+        let coarse = m.vertex_normals();
         for i in 0..m.positions.len() {
             assert!(nrm[i].dot(coarse[i]) > 0.0, "{name}: vertex {i} points inward");
         }
@@ -242,7 +241,7 @@ fn butterfly_normals_match_finite_differences() {
     ] {
         let nrm = butterfly_normals(&m);
         let fine = sub(&m, Scheme::ModifiedButterfly, 3);
-        let fd = vertex_normals(&fine.ct, &fine.positions);
+        let fd = fine.vertex_normals();
         let (mut exact, mut approx) = (0.0f32, 0.0f32);
         for i in 0..m.positions.len() {
             let v = i as u32;
@@ -310,7 +309,7 @@ fn high_valence_boundary_vertices_fall_back() {
         let m = Mesh::from_triangles(pos, &tris).unwrap();
         assert_eq!(m.ct.valences()[0], faces + 1);
         let got = loop_limit_normals(&m)[0];
-        let area = vertex_normals(&m.ct, &m.positions)[0];
+        let area = m.vertex_normals()[0];
         if faces > 6 {
             assert_eq!(got, area, "{faces} faces");
         } else {

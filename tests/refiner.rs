@@ -99,18 +99,18 @@ fn data_of_any_width_refines_as_the_positions_do() {
     for (name, mesh, scheme, levels) in cases() {
         let r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
         let flat: Vec<f32> = mesh.positions.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
-        let refined = r.refine_f32(&flat, 3).unwrap();
+        let refined = r.refine(&flat, 3).unwrap();
         let as_points: Vec<Vec3> = refined.chunks(3).map(Vec3::from_slice).collect();
         let diff = as_points.iter().zip(r.positions()).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
         assert!(diff < 1e-5, "{name}: positions as data differ by {diff}");
         // one channel: the x coordinate alone; five: x, y, z, 1, 2
         let x: Vec<f32> = mesh.positions.iter().map(|p| p.x).collect();
-        let rx = r.refine_f32(&x, 1).unwrap();
+        let rx = r.refine(&x, 1).unwrap();
         assert!(rx.iter().zip(&as_points).all(|(a, p)| (a - p.x).abs() < 1e-6), "{name}: one channel");
         let five: Vec<f32> = mesh.positions.iter().flat_map(|p| [p.x, p.y, p.z, 1.0, 2.0]).collect();
-        let r5 = r.refine_f32(&five, 5).unwrap();
+        let r5 = r.refine(&five, 5).unwrap();
         assert!(r5.chunks(5).all(|c| (c[3] - 1.0).abs() < 1e-5 && (c[4] - 2.0).abs() < 1e-5), "{name}: constants kept");
-        assert!(r.refine_f32(&x, 2).is_err(), "{name}: a wrong width is refused");
+        assert!(r.refine(&x, 2).is_err(), "{name}: a wrong width is refused");
     }
 }
 
@@ -120,7 +120,7 @@ fn double_data_equals_the_double_subdivision() {
     let far: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3() + DVec3::splat(1e6)).collect();
     let r = Refiner::new(&mesh, Scheme::Loop, 2, &Options::default()).unwrap();
     let flat: Vec<f64> = far.iter().flat_map(|p| p.to_array()).collect();
-    let refined = r.refine_f64(&flat, 3).unwrap();
+    let refined = r.refine(&flat, 3).unwrap();
     let (_, exact) = subdivide_f64(&mesh, &far, Scheme::Loop, 2, &Options::default()).unwrap();
     let diff =
         refined.chunks(3).zip(&exact).map(|(a, b)| (DVec3::from_slice(a) - *b).abs().max_element()).fold(0.0, f64::max);

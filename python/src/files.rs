@@ -95,6 +95,6 @@ fn write(path: &std::path::Path, v: &[f64], c: &[i64], s: &[i64]) -> Result<(), 
         io::save(path, &mesh).map_err(msg)
     } else {
         let (pm, _) = PolyMesh::from_faces(positions, &faces.starts, &faces.corners).map_err(msg)?;
-        io::save_poly(path, &pm, &Attributes::default()).map_err(msg)
+        io::save_with(path, &pm, &Attributes::default()).map_err(msg)
     }
 }

@@ -52,7 +52,7 @@ impl NativeRefiner {
             .iter()
             .flat_map(|p| p.to_array())
             .collect();
-        let fine = self.inner.refine_f64(&control, 3).map_err(msg)?;
+        let fine = self.inner.refine(&control, 3).map_err(msg)?;
         let points: Vec<glam::DVec3> = fine.chunks_exact(3).map(glam::DVec3::from_slice).collect();
         Ok(self.remap.positions(&points, &self.input))
     }

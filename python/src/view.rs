@@ -8,7 +8,7 @@ use crate::options;
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3};
 use pyo3::prelude::*;
-use subdiv::io::{save, save_poly};
+use subdiv::io::{save, save_with};
 use subdiv::render::{RenderOptions, Shading};
 use subdiv::{Mesh, Scheme, subdivide};
 
@@ -88,7 +88,7 @@ pub fn view_window<'py>(
         let file = TempFile::new()?;
         match &c {
             Control::Tri(m) => save(&file.0, m),
-            Control::Poly(m) => save_poly(&file.0, m, &Default::default()),
+            Control::Poly(m) => save_with(&file.0, m, &Default::default()),
         }
         .map_err(msg)?;
         let (wireframe, cage) = flags;

@@ -193,7 +193,6 @@ impl Animation {
         self.evaluate(f);
         (&self.plan.ct, &self.positions, &self.normals)
     }
-
 }
 
 /// A frame clock: play/pause, speed, loop, step.

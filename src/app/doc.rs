@@ -471,7 +471,7 @@ impl Doc {
 
     /// Writes the control mesh (its tags kept: OBJ `t crease`, .ct sections).
     pub(crate) fn save_control(&mut self, path: &std::path::Path) {
-        match crate::io::save(path, &self.model.control.mesh) {
+        match crate::io::save(path, &*self.model.control.mesh) {
             Ok(()) => self.status.notice = Some(format!("saved {}", path.display())),
             Err(e) => self.fail(Problem::Other(e)),
         }

@@ -631,7 +631,7 @@ impl Doc {
         }
         let written = std::fs::create_dir_all(&dir)
             .map_err(|e| crate::Error::io(&dir, e))
-            .and_then(|()| crate::io::save_with(&file, &self.model.control.mesh, &self.model.attrs.file));
+            .and_then(|()| crate::io::save_with(&file, &*self.model.control.mesh, &self.model.attrs.file));
         if let Err(e) = written {
             self.status.notice = Some(format!("could not write the recovery file: {e}"));
         }
@@ -691,7 +691,7 @@ impl Doc {
     /// Writes the control mesh (atomically); a failure keeps the edits and
     /// says why. Whether it was written.
     fn write_to(&mut self, path: &Path) -> bool {
-        match crate::io::save_with(path, &self.model.control.mesh, &self.model.attrs.file) {
+        match crate::io::save_with(path, &*self.model.control.mesh, &self.model.attrs.file) {
             Ok(()) => {
                 self.edit.history.saved = self.edit.history.top();
                 if let Some(dir) = &self.edit.recovery_dir {

@@ -124,7 +124,7 @@ fn subdivide_triangles(
         let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options(), |j| j)?;
         let fine_attrs = fine_attrs(attrs)?;
         let t1 = Instant::now();
-        io::save_faces(&a.output, &fine, &fine_attrs)?;
+        io::save_with(&a.output, &fine, &fine_attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(mesh, s.scheme(), levels, &s.options())?;
@@ -157,13 +157,13 @@ fn subdivide_polygons(
         let (fine, st) = subdiv::subdivide_faces(&control, s.scheme(), levels, &s.options(), |j| j)?;
         let fine_attrs = fine_attrs(pattrs)?;
         let t1 = Instant::now();
-        io::save_faces(&a.output, &fine, &fine_attrs)?;
+        io::save_with(&a.output, &fine, &fine_attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(&control, s.scheme(), levels, &s.options())?;
     let fine_attrs = fine_attrs(pattrs)?;
     let t1 = Instant::now();
-    io::save_poly(&a.output, &fine, &fine_attrs)?;
+    io::save_with(&a.output, &fine, &fine_attrs)?;
     let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -191,7 +191,7 @@ fn subdivide_precise(
         let (fine, pos) = subdiv::subdivide_f64(&pm, &control, s.scheme(), levels, &opts)?;
         let fa = if pattrs.is_empty() { pattrs } else { refine(&pm, &pattrs, s.scheme(), levels, &opts)? };
         let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
-        (pos.len(), faces, Box::new(move || io::save_poly_f64(&a.output, &fine, &pos, &fa, keep_holes)))
+        (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
     } else {
         let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
         let fa = match attrs.is_empty() {
@@ -367,7 +367,7 @@ pub(crate) fn limit(a: &LimitCmdArgs) -> Result<()> {
             let mut poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
             let frames = subdiv::eval::limit_frames(&poly, &opts)?;
             poly.positions = frames.iter().map(|f| f.position).collect();
-            io::save_poly(&a.output, &poly, &Default::default())?;
+            io::save_with(&a.output, &poly, &Default::default())?;
         }
         s => {
             return Err(Error::Usage(format!(

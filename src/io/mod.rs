@@ -41,7 +41,8 @@ mod write;
 // (Bézier patches, a format with an API of its own, stay a module).
 pub use ct::write as write_ct;
 pub use limits::{Budget, LIMIT_NAMES, Limits};
-pub use precise::{save_f64, save_poly_f64};
+pub use save::{Save, save_f64, save_with};
+mod save;
 pub use raw::{BuildNotes, RawMesh, Topology};
 pub use texture::load_file as load_texture;
 pub(crate) use write::atomic_write;
@@ -376,13 +377,14 @@ pub fn read_raw(source: Source, opts: &ReadOptions) -> Result<Raw> {
     Ok(Raw { raw, format, file, warnings: warnings.finish() })
 }
 
-/// The mesh in the file `path`, with the default [`ReadOptions`]: a
-/// shorthand for `read(Source::File(path), &ReadOptions::default())`.
+/// The mesh in the file `path`, or the bundled model it names
+/// (`bundled:torus.obj`, as the command line takes it), with the default
+/// [`ReadOptions`]: a shorthand for [`read`].
 ///
 /// # Errors
-/// As [`read`].
+/// As [`read`]; an unknown `bundled:` name.
 pub fn load(path: &Path) -> Result<Mesh> {
-    read(Source::File(path), &ReadOptions::default()).map(|l| l.mesh)
+    crate::bundled::read(path, &ReadOptions::default()).map(|l| l.mesh)
 }
 
 /// The bytes of a file the user names besides a model (key paths, a
@@ -424,8 +426,8 @@ pub(crate) fn text<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str> {
 ///
 /// # Errors
 /// An unknown extension or an I/O error.
-pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
-    save_with(path, mesh, &Default::default())
+pub fn save(path: &Path, mesh: &impl Save) -> Result<()> {
+    mesh.save_to(path, &Attributes::default())
 }
 
 /// Whether [`save_with`] writes texture coordinates or colours to `path`'s
@@ -441,7 +443,7 @@ pub fn keeps_attributes(path: &Path) -> bool {
 ///
 /// # Errors
 /// As [`save`].
-pub fn save_with(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
+pub(crate) fn save_mesh(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()> {
     // a refined level's holes are not written; a control mesh keeps them as
     // tags where the format holds them (OBJ's `t hole`), else they go too
     let control = mesh.ct.generations().is_none_or(|g| g.level() == 0);
@@ -521,7 +523,7 @@ pub fn writes_faces(path: &Path, sharp: bool) -> bool {
 /// Faces of other than 3 or 4 corners, a corner naming no vertex, an
 /// extension whose format needs the corner table (`.ct`, see
 /// [`writes_faces`]), an unknown one, or an I/O error.
-pub fn save_faces(path: &Path, faces: &crate::mesh::Faces, attrs: &Attributes) -> Result<()> {
+pub(crate) fn save_faces(path: &Path, faces: &crate::mesh::Faces, attrs: &Attributes) -> Result<()> {
     use rayon::prelude::*;
     let (v, sides, nv) = (&faces.corners, faces.sides, faces.positions.len());
     let bad = |msg: String| Err(Error::Usage(format!("{}: {msg}", path.display())));
@@ -575,7 +577,7 @@ pub fn save_faces(path: &Path, faces: &crate::mesh::Faces, attrs: &Attributes) -
 ///
 /// # Errors
 /// An unknown extension or an I/O error.
-pub fn save_poly(path: &Path, mesh: &PolyMesh, attrs: &Attributes) -> Result<()> {
+pub(crate) fn save_poly(path: &Path, mesh: &PolyMesh, attrs: &Attributes) -> Result<()> {
     if !mesh.pt.holes().is_empty() {
         // through the mesh of its triangles, which leaves the holes out (or
         // keeps them as tags) as save_with does

@@ -20,7 +20,13 @@ use std::path::Path;
 /// # Errors
 /// A position count other than the vertex count, another format, or an
 /// I/O error naming `path`.
-pub fn save_f64(path: &Path, mesh: &Mesh, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
+pub(crate) fn save_mesh_f64(
+    path: &Path,
+    mesh: &Mesh,
+    positions: &[DVec3],
+    attrs: &Attributes,
+    keep_holes: bool,
+) -> Result<()> {
     if PolyMesh::is_polygonal(mesh) {
         let (pm, pattrs) = PolyMesh::from_mesh_with_attributes(mesh, attrs);
         return save_poly_f64(path, &pm, positions, &pattrs, keep_holes);
@@ -32,7 +38,7 @@ pub fn save_f64(path: &Path, mesh: &Mesh, positions: &[DVec3], attrs: &Attribute
 ///
 /// # Errors
 /// As [`save_f64`].
-pub fn save_poly_f64(
+pub(crate) fn save_poly_f64(
     path: &Path,
     mesh: &PolyMesh,
     positions: &[DVec3],

@@ -110,7 +110,6 @@ impl<'a> Resolver<'a> {
     pub(crate) fn folder(&self) -> Option<&Path> {
         self.folder.as_deref()
     }
-
 }
 
 /// The relative path a URI names inside its folder: percent-decoded, with

@@ -21,8 +21,7 @@ pub(crate) struct Cut {
     pub copies: Vec<u32>,
 }
 
-impl Cut {
-}
+impl Cut {}
 
 impl CornerTable {
     /// This table cut open along the edges opposite `corners` (an interior

@@ -45,7 +45,7 @@ pub use edit::{EditError, flip_edge, split_edge};
 pub use inspect::{
     colormap, corner_ops, displacement_from_control, poly_corner_ops, vertex_counts_per_level, vertex_creation_level,
 };
-pub use normals::{face_normals, vertex_normals};
+pub use normals::face_normals;
 pub use options::{FileScheme, ShapeOptions, TriangleSubdivision};
 pub use order::Relabel;
 pub use poly::{PolyBuildReport, PolyMesh, PolyTable};
@@ -546,8 +546,7 @@ pub struct Faces<I = u32> {
 pub trait VertexId: bytemuck::Zeroable + Copy + Send + Sync {}
 impl<T: bytemuck::Zeroable + Copy + Send + Sync> VertexId for T {}
 
-impl Faces {
-}
+impl Faces {}
 
 impl<I: VertexId> Faces<I> {
     /// The triangles of `mesh` (copied), every vertex id `j` as `id(j)`;

@@ -29,7 +29,7 @@ pub(crate) fn face_normals_into(ct: &CornerTable, pos: &[Vec3], out: &mut [Vec3]
 /// function take 94-135 ms instead of 47-58). A vertex whose faces all have
 /// zero area gets `Vec3::Z`. For a fixed topology evaluated many times,
 /// keep a [`VertexRings`] (or a [`VertexFaces`]).
-pub fn vertex_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
+pub(crate) fn vertex_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
     face_vertex_normals(ct.v_table(), pos)
 }
 

@@ -85,7 +85,6 @@ pub struct ShapeOptions {
 }
 
 impl ShapeOptions {
-
     /// These options with the ones `over` states taking their place
     /// (a command's flags over the file's tags).
     pub fn overridden_by(self, over: ShapeOptions) -> ShapeOptions {

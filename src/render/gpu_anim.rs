@@ -251,7 +251,12 @@ impl GpuAnimator {
 ///
 /// # Errors
 /// [`Error::Gpu`] when mapping fails.
-pub fn read_vec3(device: &wgpu::Device, queue: &wgpu::Queue, buffer: &wgpu::Buffer, n: usize) -> Result<Vec<Vec3>> {
+pub(crate) fn read_vec3(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    buffer: &wgpu::Buffer,
+    n: usize,
+) -> Result<Vec<Vec3>> {
     let bytes = (n * 12) as u64;
     let staging = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("vec3 readback"),
@@ -278,13 +283,14 @@ pub fn read_vec3(device: &wgpu::Device, queue: &wgpu::Queue, buffer: &wgpu::Buff
 }
 
 impl GpuMesh {
-    /// The positions buffer (packed `Vec3`s; storage and copy source too).
-    pub fn positions_buffer(&self) -> &wgpu::Buffer {
-        &self.positions
-    }
-    /// The normals buffer (as [`GpuMesh::positions_buffer`]).
-    pub fn normals_buffer(&self) -> &wgpu::Buffer {
-        &self.normals
+    /// The positions and normals in the mesh's buffers, read back (waits for
+    /// the GPU): what a [`GpuAnimator`] wrote, for checking or export.
+    ///
+    /// # Errors
+    /// [`Error::Gpu`] when the copy or the mapping fails.
+    pub fn read_back(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<(Vec<Vec3>, Vec<Vec3>)> {
+        let n = self.vertex_count();
+        Ok((read_vec3(device, queue, &self.positions, n)?, read_vec3(device, queue, &self.normals, n)?))
     }
 }
 

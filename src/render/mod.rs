@@ -27,7 +27,7 @@ pub use export::{
     Evaluation, ExportStyle, ExportTarget, export_animation, export_animation_painted, frame_path, motion_bounds,
 };
 pub use gpu::Gpu;
-pub use gpu_anim::{GpuAnimator, read_vec3, time_frames};
+pub use gpu_anim::{GpuAnimator, time_frames};
 pub use gpu_mesh::GpuMesh;
 pub use inspect::{op_color, polygon_corner_point, triangle_corner_point, weight_color};
 pub use materials::sample as sample_material;
@@ -356,15 +356,6 @@ pub fn render_image_painted(
     };
     let gc = control.map(|c| off.upload(c)).transpose()?;
     off.render_one(default_camera(control.unwrap_or(mesh), opts), &gm, gc.as_ref(), look)
-}
-
-/// Renders `mesh` to a PNG file (written atomically).
-///
-/// # Errors
-/// See [`render_image`]; I/O errors.
-pub fn render_png(mesh: &Mesh, control: Option<&Mesh>, opts: &RenderOptions, out: &Path) -> Result<()> {
-    let img = render_image(mesh, control, opts)?;
-    save_png(&img, out)
 }
 
 /// Writes an image as PNG through a temporary file and a rename.

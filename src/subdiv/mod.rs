@@ -34,8 +34,8 @@ pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
 pub(crate) use crate::mesh::{BoundaryInterpolation, Creasing};
 use crate::mesh::{Faces, Mesh, VertexId};
-use refine::{OneLevel, Refined};
 pub(crate) use refine::check_levels_fit;
+use refine::{OneLevel, Refined};
 use rules::{Rules, butterfly, catmull_clark, features, jarek, loop_, midpoint, modified_butterfly};
 use std::borrow::Cow;
 use std::time::Instant;
@@ -44,7 +44,7 @@ pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces};
 pub(crate) use catmull_clark::TriangleSubdivision;
 pub use loop_::LoopBeta;
 pub use precise::{PlanF64, plan_f64};
-pub use refiner::Refiner;
+pub use refiner::{Refiner, Scalar};
 pub(crate) use sizes::ControlCounts;
 
 /// A subdivision scheme.

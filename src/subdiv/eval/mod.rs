@@ -49,7 +49,6 @@ pub use points::{Domain, EDGE_SLACK, parse_points_in};
 
 pub use vertices::{poly_vertex_params, vertex_samples};
 
-
 use crate::mesh::{Mesh, n, p};
 use crate::subdiv::{Options, Scheme};
 use crate::{Error, Result};

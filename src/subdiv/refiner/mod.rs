@@ -7,7 +7,7 @@
 //! then on:
 //!
 //! - any per-vertex data of any width is refined through the recorded rows,
-//!   in f32 ([`Refiner::refine_f32`]) or f64 ([`Refiner::refine_f64`], the
+//!   in f32 or f64 ([`Refiner::refine`], the f64
 //!   weights recorded in f64 on first use);
 //! - moving control vertices ([`Refiner::move_vertices`]) re-evaluates only
 //!   their support: at each level the rows that read a changed point of the
@@ -608,24 +608,34 @@ impl Refiner {
         (self.history.done.len(), self.history.undone.len())
     }
 
-    /// Per-vertex data of `channels` values a control vertex (row-major)
-    /// refined to the finest level with the f32 weights.
+    /// Per-vertex data of `channels` values a control vertex (row-major:
+    /// positions, colours, any user data) refined to the finest level, in
+    /// the caller's precision: `f32` data with the f32 weights, `f64` data
+    /// with the weights recorded in f64 (positions far from the origin keep
+    /// their digits).
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when `data` is not `channels` values per control
+    /// vertex; [`Error::TooLarge`] from recording the f64 weights.
+    pub fn refine<T: Scalar>(&self, data: &[T], channels: usize) -> Result<Vec<T>> {
+        T::refine_on(self, data, channels)
+    }
+
+    /// [`Refiner::refine`] of f32 data.
     ///
     /// # Errors
     /// [`Error::Usage`] when `data` is not `channels` values per control
     /// vertex.
-    pub fn refine_f32(&self, data: &[f32], channels: usize) -> Result<Vec<f32>> {
+    fn refine_f32(&self, data: &[f32], channels: usize) -> Result<Vec<f32>> {
         self.check_width(data.len(), channels)?;
         Ok(self.plan.levels.iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
     }
 
-    /// Per-vertex data refined with the weights recorded in f64 (computed
-    /// and returned in f64: positions far from the origin keep their
-    /// digits).
+    /// [`Refiner::refine`] of f64 data, with the weights recorded in f64.
     ///
     /// # Errors
-    /// As [`Refiner::refine_f32`]; [`Error::TooLarge`] from recording.
-    pub fn refine_f64(&self, data: &[f64], channels: usize) -> Result<Vec<f64>> {
+    /// As [`Refiner::refine`].
+    fn refine_f64(&self, data: &[f64], channels: usize) -> Result<Vec<f64>> {
         self.check_width(data.len(), channels)?;
         let levels = match self.plan_f64.get() {
             Some(l) => l,
@@ -690,4 +700,32 @@ where
         None => o.copy_from_slice(&data[i * channels..(i + 1) * channels]),
     });
     out
+}
+
+mod sealed {
+    pub trait Sealed {}
+    impl Sealed for f32 {}
+    impl Sealed for f64 {}
+}
+
+/// The scalar of the data [`Refiner::refine`] refines: `f32` or `f64`
+/// (sealed).
+pub trait Scalar: sealed::Sealed + Copy + Sized {
+    /// `data` refined by `refiner` in this precision.
+    ///
+    /// # Errors
+    /// As [`Refiner::refine`].
+    fn refine_on(refiner: &Refiner, data: &[Self], channels: usize) -> Result<Vec<Self>>;
+}
+
+impl Scalar for f32 {
+    fn refine_on(refiner: &Refiner, data: &[f32], channels: usize) -> Result<Vec<f32>> {
+        refiner.refine_f32(data, channels)
+    }
+}
+
+impl Scalar for f64 {
+    fn refine_on(refiner: &Refiner, data: &[f64], channels: usize) -> Result<Vec<f64>> {
+        refiner.refine_f64(data, channels)
+    }
 }

@@ -370,5 +370,4 @@ impl StencilPlan {
             None => self.levels[i].apply(input, out),
         }
     }
-
 }
