@@ -336,7 +336,7 @@ fn snapped_and_normals(raw: &Shown, display: &Display, made: &Made) -> Shown {
 /// Catmull-Clark's (refining on where a semi-sharp feature is left); a
 /// bilinear level is its own limit.
 fn snapped(raw: &Shown, display: &Display, made: &Made) -> Arc<Mesh> {
-    use crate::subdiv::rules::catmark_limit::limit_frames;
+    use crate::subdiv::eval::catmark_limit::limit_frames;
     use crate::subdiv::rules::limit::loop_limit_positions_with;
     if !display.snap_limit {
         return raw.mesh.clone();
@@ -361,7 +361,7 @@ fn snapped(raw: &Shown, display: &Display, made: &Made) -> Arc<Mesh> {
 /// a Catmull-Clark level (fan normals where a face is not a quad), Loop's
 /// on `shown` for the triangle schemes, fan normals on a bilinear level.
 fn limit_normals(level: &Mesh, shown: &Mesh, made: &Made) -> Vec<Vec3> {
-    use crate::subdiv::rules::catmark_limit::frames_at;
+    use crate::subdiv::eval::catmark_limit::frames_at;
     match made.scheme {
         Scheme::CatmullClark => {
             let pt = PolyTable::from_corner_table(&level.ct);

@@ -702,7 +702,7 @@ fn catmull_clark_snaps_and_shades_with_its_own_limit() {
     let raw = &v.doc.model.raw.mesh;
     let shown = &v.doc.model.result.shown;
     let limit =
-        crate::subdiv::rules::catmark_limit::limit_frames(&crate::mesh::poly::PolyMesh::from_mesh(raw), &opts).unwrap();
+        crate::subdiv::eval::catmark_limit::limit_frames(&crate::mesh::poly::PolyMesh::from_mesh(raw), &opts).unwrap();
     for (i, f) in limit.iter().enumerate() {
         assert!(shown.mesh.positions[i].distance(f.position) < 1e-6, "vertex {i} snapped to its limit");
     }
@@ -1022,7 +1022,7 @@ fn a_files_option_tags_become_the_asked_options_unless_the_command_line_gave_the
     let opts = v.doc.model.made.opts;
     assert_eq!(opts.boundary, BoundaryInterpolation::EdgeAndCorner, "the file's interpolateboundary");
     assert_eq!(opts.uv, UvInterpolation::Boundaries, "the file's facevaryinginterpolateboundary");
-    assert_eq!(opts.triangles, crate::subdiv::TriangleSubdivision::Smooth, "the file's smoothtriangles");
+    assert_eq!(opts.triangles, crate::mesh::TriangleSubdivision::Smooth, "the file's smoothtriangles");
     assert_eq!(opts.creasing, Creasing::Uniform, "the flag over the file's creasemethod");
     // a file without tags leaves the options as they are
     v.apply(Command::Open(common::model_path("cube.obj")));

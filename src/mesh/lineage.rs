@@ -146,32 +146,6 @@ mod tests {
     }
 
     #[test]
-    fn a_point_of_a_refined_quad_finds_its_level_one_parameters() {
-        use crate::mesh::poly::PolyMesh;
-        use crate::subdiv::{Options, Scheme, subdivide_poly};
-        // bilinear subdivision of the unit square keeps every point at its
-        // own parameters: level-1 quad 0 (corner 0's) is [0, 1/2]^2
-        let square =
-            PolyMesh::from_faces(vec![Vec3::ZERO, Vec3::X, Vec3::ONE.with_z(0.0), Vec3::Y], &[0, 4], &[0, 1, 2, 3])
-                .expect("a square")
-                .0;
-        for levels in 1..4 {
-            let fine = subdivide_poly(&square, Scheme::Bilinear, levels, &Options::default()).expect("levels").0;
-            let tris = fine.pt.triangulated();
-            for t in 0..tris.num_triangles() as u32 {
-                let at = |k: u32| fine.positions[tris.vtx(3 * t + k) as usize];
-                let (b1, b2) = (0.3, 0.2);
-                let p = at(0) * 0.5 + at(1) * b1 as f32 + at(2) * b2 as f32;
-                let (q, [u, v]) = quad_point(t, levels, b1, b2);
-                assert_eq!(q, quad_origin(t, levels));
-                // quad q's quarter of the square, mapped back to the square
-                let [x, y] = quad_parent(q, [u, v]);
-                assert!((f64::from(p.x) - x).abs() < 1e-6 && (f64::from(p.y) - y).abs() < 1e-6, "{t} at {levels}");
-            }
-        }
-    }
-
-    #[test]
     fn barycentric_combines_the_corners() {
         let c = [[0.5, 0.0], [0.5, 0.5], [0.0, 0.5]];
         let [u, v] = barycentric(&c, 1.0 / 3.0, 1.0 / 3.0);

@@ -35,6 +35,7 @@
 //! by name.
 
 pub(crate) mod catmark;
+pub(crate) mod catmark_limit;
 pub(crate) mod color;
 mod extraordinary;
 mod group;

@@ -16,7 +16,7 @@
 //!                  boundary mask of m faces (`rules::limit`); m > 6 has no
 //!                  tangent plane (the rules are not C1 there): none
 //!            Catmull-Clark  OpenSubdiv's crease masks over the m faces
-//!                  (`rules::catmark_limit`)
+//!                  (`eval::catmark_limit`)
 //! corner   a sharp vertex, or three or more sharp edges: v stays; the
 //!          sector's two sharp edges are crease curves ending at v, whose
 //!          tangents there are e_0 - v and e_m - v, so the normal is their
@@ -31,7 +31,7 @@
 use crate::mesh::poly::PolyTable;
 use crate::mesh::sharpness::INFINITE;
 use crate::mesh::{CornerTable, n, p};
-use crate::subdiv::rules::catmark_limit::crease_frame;
+use crate::subdiv::eval::catmark_limit::crease_frame;
 use crate::subdiv::rules::limit::{MAX_BOUNDARY_FACES, boundary_across_weights};
 use glam::DVec3;
 

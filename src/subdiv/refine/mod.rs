@@ -11,7 +11,7 @@ pub(crate) mod poly;
 use super::rules::crease::{Blend, OnLevel, edge_stencil, vertex_stencil};
 use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Level, Rules, boundary_flags};
-use super::{RulesFn, Stats, ms};
+use super::scheme::{RulesFn, Stats, ms};
 use crate::mesh::split::{self, EdgeIds, Owners};
 use crate::mesh::{CornerTable, Creasing, Faces, Mesh, VertexId, n, p};
 use crate::{Error, Result};

@@ -10,12 +10,12 @@
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules, smooth_triangle_edge};
 use super::super::rules::features::Features;
 use super::super::rules::scatter_parts;
-use super::super::{Stats, ms};
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
 use crate::mesh::split::{EdgeIds, Owners};
 use crate::mesh::{BORDER, BoundaryInterpolation, Creasing};
 use crate::mesh::{Faces, VertexId};
+use crate::subdiv::scheme::{Stats, ms};
 use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;

@@ -93,7 +93,7 @@ pub(crate) struct CatmullClark {
 
 impl CatmullClark {
     /// The rules `opts` ask for.
-    pub(crate) fn new(opts: &crate::subdiv::Options) -> CatmullClark {
+    pub(crate) fn new(opts: &crate::subdiv::scheme::Options) -> CatmullClark {
         CatmullClark { smooth_triangles: opts.triangles == TriangleSubdivision::Smooth }
     }
 }

@@ -15,7 +15,6 @@
 //! [`crate::subdiv::tables`].
 
 pub(crate) mod butterfly;
-pub(crate) mod catmark_limit;
 pub(crate) mod catmull_clark;
 pub(crate) mod crease;
 pub(crate) mod features;

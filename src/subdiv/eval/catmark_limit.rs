@@ -40,12 +40,12 @@
 //! left, so its positions are the limit surface's.
 //! `tan1 x tan2` points to the side the faces' normals do.
 
-use super::features::{Features, Mask, Rule};
 use crate::mesh::Creasing;
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::INFINITE;
 use crate::subdiv::refine::poly::with_boundary_corners;
+use crate::subdiv::rules::features::{Features, Mask, Rule};
 use crate::subdiv::{Options, Scheme, subdivide_poly};
 use crate::{Error, Result};
 use glam::{DVec3, Vec3};
