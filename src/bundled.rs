@@ -120,7 +120,7 @@ pub fn read(arg: &Path, opts: &ReadOptions) -> Result<Loaded> {
 /// Loads the `.bzc` curve a model argument names (a file within `limits`).
 ///
 /// # Errors
-/// As [`bytes`] and [`io::bezier::parse_bzc`].
+/// As `bytes` and [`io::bezier::parse_bzc`].
 pub fn load_curve(arg: &Path, limits: &io::Limits) -> Result<Vec<glam::Vec2>> {
     let file = arg.display().to_string();
     io::bezier::parse_bzc(io::text(&bytes(arg, limits)?, &file)?, &file)

@@ -102,7 +102,7 @@ pub enum MeshError {
         v1: u32,
         /// How many faces share it.
         faces: usize,
-        /// Some of those faces (at most [`MAX_EXAMPLES`]).
+        /// Some of those faces (at most `MAX_EXAMPLES`).
         examples: Vec<usize>,
     },
     /// Two faces traverse an edge in the same direction.

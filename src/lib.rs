@@ -4,7 +4,7 @@
 //! [`io`] (OBJ with MTL materials, `.ct`, PLY, STL, OFF, glTF, COLLADA,
 //! `.paths`) → [`mesh`] (Rossignac's corner table: V, O,
 //! one corner per vertex, valences; and its polygon form, faces of any size
-//! then quads, [`mesh::poly`]) → [`subdiv`] (the shared 1-to-4 and quad
+//! then quads, `mesh::poly`) → `subdiv` (the shared 1-to-4 and quad
 //! splits with linear-time O and twin updates, one file of rules per scheme,
 //! Catmull-Clark's limit, stencil plans) →
 //! [`anim`] (split-and-tweak paths). The renderer and the window (feature

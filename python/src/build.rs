@@ -6,8 +6,8 @@ use crate::arrays::{Faces, flat_f64, ids_i64};
 use crate::guard::{Msg, msg};
 use glam::Vec3;
 use subdiv::io::{RawMesh, Topology};
-use subdiv::mesh::{PolyMesh, PolyTable};
 use subdiv::mesh::{CreaseTag, Tags};
+use subdiv::mesh::{PolyMesh, PolyTable};
 use subdiv::{CornerTable, Mesh, Scheme};
 
 /// The control mesh as the library holds it.

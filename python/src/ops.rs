@@ -10,12 +10,12 @@ use numpy::{
 };
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
+use subdiv::eval::{loop_limit_normals, loop_limit_positions_f64, loop_limit_positions_with};
 use subdiv::mesh::Faces;
 use subdiv::rules::ControlCounts;
 use subdiv::rules::PlanF64;
 use subdiv::rules::with_boundary_corners;
-use subdiv::eval::{loop_limit_normals, loop_limit_positions_f64, loop_limit_positions_with};
-use subdiv::{Mesh, Options, Scheme, subdivide_faces, subdivide};
+use subdiv::{Mesh, Options, Scheme, subdivide, subdivide_faces};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
 /// flat corners and face offsets (int64), all C-contiguous.

@@ -97,7 +97,7 @@ impl Paths {
     /// ([`crate::io::read_text_file`]): a regular file within `limits`.
     ///
     /// # Errors
-    /// As [`crate::io::read_file`] and [`Paths::parse`].
+    /// As `crate::io::read_file` and [`Paths::parse`].
     pub fn load(path: &Path, limits: &Limits) -> Result<Paths> {
         let text = crate::io::read_text_file(path, limits)?;
         Self::parse(&text, &path.display().to_string())

@@ -49,11 +49,11 @@ pub enum Coloring {
     /// A checker texture through the file's texture coordinates (`vt`).
     Checker,
     /// The OBJ's MTL materials per group: `Kd` times `map_Kd` through the
-    /// refined texture coordinates (see [`crate::render::materials`]).
+    /// refined texture coordinates (see `crate::render::materials`).
     Material,
     /// A curvature of the exact limit surface (Loop's or Catmull-Clark's)
     /// at each drawn vertex, on a diverging map (see
-    /// [`crate::subdiv::eval::color`]).
+    /// `crate::subdiv::eval::color`).
     Curvature(CurvatureKind),
 }
 

@@ -100,7 +100,7 @@ pub struct ViewOptions {
     /// colouring (`None`: off).
     pub isolines: Option<u8>,
     /// The half-width of the curvature colours' range (`None`: the default
-    /// percentile, see [`crate::subdiv::eval::color`]).
+    /// percentile, see `crate::subdiv::eval::color`).
     pub range: Option<crate::subdiv::eval::color::HalfWidth>,
     /// Tag the edges sharper than this dihedral angle (degrees) on opening.
     pub crease_angle: Option<f32>,

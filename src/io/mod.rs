@@ -10,14 +10,14 @@
 //! attributes come along) and [`Loaded`] holds the mesh, its attributes and
 //! what was found on the way. Everything a file can make us read or
 //! allocate is counted against one [`Limits`], and every file a file names
-//! goes through one [`resolve::Resolver`]. No reader panics, hangs or
+//! goes through one `resolve::Resolver`. No reader panics, hangs or
 //! allocates more than the budget allows (`tests/io.rs` fuzzes them all).
 //!
 //! A format is one module here and one row of [`FORMATS`]: its
 //! extensions, a test of its content, its reader and its writer.
 //!
 //! **Writing**: [`save`] by extension; every writer goes through
-//! [`atomic_write`], so a failure never leaves a truncated file behind.
+//! `atomic_write`, so a failure never leaves a truncated file behind.
 
 pub mod bezier;
 pub(crate) mod ct;
@@ -399,10 +399,10 @@ pub(crate) fn read_file(path: &Path, limits: &Limits) -> Result<Vec<u8>> {
     resolve::read_model(path, &budget, &path.display().to_string())
 }
 
-/// [`read_file`] as text; invalid UTF-8 is a parse error at its line.
+/// `read_file` as text; invalid UTF-8 is a parse error at its line.
 ///
 /// # Errors
-/// As [`read_file`] and [`text`].
+/// As `read_file` and `text`.
 pub fn read_text_file(path: &Path, limits: &Limits) -> Result<String> {
     let bytes = read_file(path, limits)?;
     text(&bytes, &path.display().to_string())?;
@@ -504,7 +504,7 @@ fn save_without_holes(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()
     save_faces(path, &faces, &attrs)
 }
 
-/// Whether [`save_faces`] writes `path`'s format, and writes in it all that
+/// Whether `save_faces` writes `path`'s format, and writes in it all that
 /// [`save_with`] would write of a mesh (`sharp`: whether the mesh has sharp
 /// features, which only the formats that keep creases write): then a
 /// caller that writes a subdivision needs only its faces

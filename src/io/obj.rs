@@ -4,7 +4,7 @@
 //! and OpenSubdiv's `t` tags), with vertex ids global across `o`/`g` groups,
 //! negative (relative) indices, polygons kept as polygons, and the line of
 //! every record remembered so that every error names it. The `mtllib`
-//! libraries are read through the [`Resolver`](super::resolve::Resolver)
+//! libraries are read through the `Resolver`
 //! (OBJ practice lets them lie anywhere; only regular files, each read
 //! once, within the budget) and parsed by `io/mtl.rs`; their textures
 //! are decoded when the read asks for them. A library that cannot be read
@@ -746,7 +746,7 @@ pub(crate) struct FaceSource<'a> {
 /// there are colours, one `vt` per corner and `f a/ta b/tb c/tc` when there
 /// are texture coordinates, the `mtllib` records and a `usemtl` wherever the
 /// material changes when there are material groups. Without attributes this
-/// is [`write_obj`].
+/// is `write_obj`.
 ///
 /// # Errors
 /// The first error of `sink`.

@@ -199,7 +199,7 @@ impl RawMesh {
     /// coordinates, colours and material groups come along (not after a
     /// repair, which renumbers and cuts). Errors name `file` and the line of
     /// the record where the format has lines; vertex ids in them are the
-    /// file's own (from [`Sources::id_base`]).
+    /// file's own (from `Sources::id_base`).
     ///
     /// # Errors
     /// [`Error::Mesh`] or [`Error::Parse`] naming `file`.

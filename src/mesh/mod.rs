@@ -88,7 +88,7 @@ pub(crate) fn owns_edge(c: u32, o_entry: u32) -> bool {
 ///
 /// The tables are private: a `CornerTable` is made only by the validating
 /// constructors ([`CornerTable::build`], [`CornerTable::from_vo`]), by the
-/// 1-to-4 [`split`] of a valid table and by the edits of [`edit`], each of
+/// 1-to-4 [`split`] of a valid table and by the edits of `edit`, each of
 /// which keeps the invariants that the rest of the crate relies on (the
 /// split's parallel raw-pointer writes, indexed by O, among them):
 ///
@@ -325,7 +325,7 @@ impl CornerTable {
         self.sharpness.as_deref()
     }
     /// This table with the sharpness that `tags` give it (replacing any it
-    /// had); see [`Sharpness::from_tags`].
+    /// had); see `Sharpness::from_tags`.
     ///
     /// # Errors
     /// [`crate::MeshError::BadTag`] for a tag naming a vertex or an edge
@@ -468,7 +468,7 @@ impl CornerTable {
     pub fn num_border_edges(&self) -> usize {
         self.o.iter().filter(|&&x| x == BORDER).count()
     }
-    /// The corner owning each edge (see [`owns_edge`]), in corner order: the
+    /// The corner owning each edge (see `owns_edge`), in corner order: the
     /// edge is the one opposite it, from `v(n(c))` to `v(p(c))`.
     pub fn edge_owners(&self) -> impl Iterator<Item = u32> + '_ {
         self.o.iter().enumerate().map(|(c, &x)| (c as u32, x)).filter(|&(c, x)| owns_edge(c, x)).map(|(c, _)| c)
@@ -527,9 +527,9 @@ impl Iterator for Ring<'_> {
 /// every corner (counter-clockwise), without the adjacency of a
 /// [`CornerTable`] or a polygon table. What a subdivision gives when its
 /// caller only writes or copies the faces ([`crate::subdiv::subdivide_faces`],
-/// [`crate::subdiv::subdivide_poly_faces`]): the last level then skips its
+/// `crate::subdiv::subdivide_poly_faces`): the last level then skips its
 /// adjacency tables. The vertex ids are the library's `u32` unless the
-/// caller asked for others ([`crate::subdiv::subdivide_faces_as`]).
+/// caller asked for others (`crate::subdiv::subdivide_faces_as`).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Faces<I = u32> {
     /// One position per vertex.
@@ -630,7 +630,7 @@ impl Mesh {
     pub fn bounds(&self) -> (Vec3, Vec3) {
         bounds_of(&self.positions)
     }
-    /// Area-weighted vertex normals (see [`normals::vertex_normals`]).
+    /// Area-weighted vertex normals (see `normals::vertex_normals`).
     pub fn vertex_normals(&self) -> Vec<Vec3> {
         normals::vertex_normals(&self.ct, &self.positions)
     }

@@ -89,7 +89,7 @@ impl Relabel {
     }
 
     /// `old[j]` is the old id of new vertex `j` (the inverse of
-    /// [`Self::new_vertex`]).
+    /// `Self::new_vertex`).
     pub fn old_vertices(&self) -> Vec<u32> {
         let mut old = vec![0u32; self.vertex.len()];
         for (v, &j) in self.vertex.iter().enumerate() {

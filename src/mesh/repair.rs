@@ -269,7 +269,7 @@ fn corner_of(v: &[u32], c: u32, x: u32) -> u32 {
 }
 
 /// Repairs a triangle soup into a valid mesh (see the module docs for the
-/// steps) and reports what changed, keeping [`EXAMPLES`] ids per kind.
+/// steps) and reports what changed, keeping `EXAMPLES` ids per kind.
 ///
 /// # Errors
 /// [`MeshError::IndexOutOfRange`] for an index past `positions`,

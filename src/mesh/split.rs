@@ -252,7 +252,7 @@ impl SharedMut {
 }
 
 /// Numbers the edges of `ct` in O(n), in parallel: the owner bits and
-/// their counts first ([`EdgeIds`]), then every chunk lists its owners from
+/// their counts first (`EdgeIds`), then every chunk lists its owners from
 /// its first id on.
 pub fn number_edges(ct: &CornerTable) -> EdgeNumbering {
     number_edges_with(ct.o_table(), EdgeIds::new(ct.o_table()), |_, _, _| {})

@@ -179,7 +179,7 @@ impl Camera {
         (near, (far - near).normalize_or_zero())
     }
 
-    /// [`Camera::fit_points`] on the eight corners of the box `(lo, hi)`
+    /// `Camera::fit_points` on the eight corners of the box `(lo, hi)`
     /// (a box that is empty or not finite stands for `[-1, 1]^3`).
     pub fn fit(&mut self, lo: Vec3, hi: Vec3, aspect: f32) {
         let (lo, hi) =

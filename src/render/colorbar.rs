@@ -118,7 +118,7 @@ pub(crate) fn text_from(img: &mut RgbaImage, text: &str, (left, top): (i64, i64)
 /// per side of zero (the levels of [`crate::render::Look::isolines`]; none
 /// for 0), the zero tick longer, and the lines of `caption` above it (in
 /// capitals), right-aligned with it: say what is coloured and the range
-/// (`Scale::describe` of [`crate::subdiv::eval::color`]).
+/// (`Scale::describe` of `crate::subdiv::eval::color`).
 pub fn draw(img: &mut RgbaImage, range: f64, isolines: u8, caption: &[String]) {
     let (w, h) = (i64::from(img.width()), i64::from(img.height()));
     let scale = (h / 240).clamp(1, 4);

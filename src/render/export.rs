@@ -29,7 +29,7 @@ pub enum Evaluation {
     /// On the CPU ([`Animation::evaluate`]), each frame uploaded.
     #[default]
     Cpu,
-    /// By the compute passes ([`AnimatedMesh`]), drawn from the buffers they
+    /// By the compute passes (`AnimatedMesh`), drawn from the buffers they
     /// write: no frame is evaluated on the CPU.
     Gpu,
 }

@@ -235,10 +235,10 @@ impl GpuAnimator {
         Ok(())
     }
 
-    /// [`GpuAnimator::encode`] in its own submission.
+    /// `GpuAnimator::encode` in its own submission.
     ///
     /// # Errors
-    /// As [`GpuAnimator::encode`].
+    /// As `GpuAnimator::encode`.
     pub fn update(&self, device: &wgpu::Device, queue: &wgpu::Queue, control: &[Vec3]) -> Result<()> {
         let mut encoder = device.create_command_encoder(&Default::default());
         self.encode(queue, &mut encoder, control)?;
@@ -405,7 +405,7 @@ impl AnimatedMesh {
 }
 
 /// Times `frames` evaluations of `anim` on a headless device through
-/// [`AnimatedMesh`]: per frame the upload of the control positions, the
+/// `AnimatedMesh`: per frame the upload of the control positions, the
 /// passes and the wait for them (ms). Returns the times, the time to upload
 /// the plan and evaluate a first frame (ms), and the adapter.
 ///

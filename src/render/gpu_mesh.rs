@@ -203,7 +203,7 @@ impl GpuMesh {
     /// texture coordinate (`materials.uv`; without them every material is
     /// drawn in its flat colour), with the material groups bound for
     /// drawing: each group's texture sampled per pixel (see
-    /// [`super::textures`]).
+    /// `super::textures`).
     ///
     /// # Errors
     /// As [`GpuMesh::unwelded`].

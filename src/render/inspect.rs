@@ -14,7 +14,7 @@
 //!            (without its weights: `rule_short`)
 //! ```
 //! The facts come from the library ([`crate::mesh::inspect::corner_ops`],
-//! [`crate::mesh::inspect::poly_corner_ops`], [`crate::subdiv::stencil`]);
+//! [`crate::mesh::inspect::poly_corner_ops`], `crate::subdiv::stencil`);
 //! this only places them.
 
 use super::overlay::{Mark, Overlay, Rgba8};

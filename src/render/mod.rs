@@ -110,7 +110,7 @@ pub struct Look {
     /// The stripes of the zebra and isophote surfaces.
     pub stripes: Stripes,
     /// The colour attribute holds values on the curvature colours' diverging
-    /// map (see [`GpuMesh::set_values`]), coloured per pixel.
+    /// map (see `GpuMesh::set_values`), coloured per pixel.
     pub values: bool,
     /// With `values`: contour lines of the value at zero (wider and darker)
     /// and at `isolines` levels on each side, every multiple of

@@ -35,7 +35,7 @@ impl Offscreen {
 
     /// [`Offscreen::new`] with `samples` MSAA samples: 1 for none (the FXAA
     /// pass smooths the edges instead), more for the most the adapter
-    /// supports up to 4 ([`Gpu::msaa_samples`], 1 where it supports none);
+    /// supports up to 4 (`Gpu::msaa_samples`, 1 where it supports none);
     /// [`Renderer::samples`] says what it got.
     ///
     /// # Errors

@@ -9,7 +9,7 @@
 //!   --the viewer's egui painter-->  the 3D area (src/app/panel/overlay.rs)
 //! ```
 //! Both ends draw the same primitives: only the text's font differs (egui's
-//! in the window, the pixel font of [`super::colorbar`], in capitals, in a
+//! in the window, the pixel font of `super::colorbar`, in capitals, in a
 //! PNG). Marks are drawn over the surface, never hidden by it.
 
 use super::Camera;

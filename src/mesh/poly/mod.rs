@@ -30,7 +30,7 @@ pub use build::PolyBuildReport;
 /// vertex and valences.
 ///
 /// Invariants (the same as [`super::CornerTable`]'s, established by
-/// [`PolyTable::build`] and kept by the [`split`]): every face has at least
+/// [`PolyTable::build`] and kept by the `split`): every face has at least
 /// 3 corners and uses no vertex twice; `V` entries are below
 /// `num_vertices()`; `T` is an involution without fixed points whose
 /// pairs run along the same edge reversed, or [`BORDER`]; every vertex has

@@ -42,7 +42,7 @@ use crate::{Error, Result};
 use glam::Vec3;
 
 /// The default range: the 90th percentile of `|value|` by area
-/// ([`auto_range`], the module docs say why).
+/// (`auto_range`, the module docs say why).
 pub const PERCENTILE: f64 = 90.0;
 
 /// The most isolines per side of zero over the curvature colours
@@ -238,7 +238,7 @@ impl std::fmt::Display for HalfWidth {
 }
 
 /// The range the curvature colours span: `[-half, half]`, set by hand or
-/// the default ([`auto_range`]).
+/// the default (`auto_range`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Scale {
     /// The half-width.
@@ -299,7 +299,7 @@ pub(crate) fn colors(values: &[f64], range: f64) -> Vec<Vec3> {
 /// Each value over `range` (the half-width of the map, so `[-1, 1]` spans
 /// it; values beyond it stay beyond), for a renderer that colours per pixel
 /// and draws isolines; NaN (not evaluated) stays NaN. A zero range maps
-/// every value to 0, as [`colors`] paints it white.
+/// every value to 0, as `colors` paints it white.
 pub fn normalized(values: &[f64], range: f64) -> Vec<f32> {
     values
         .iter()

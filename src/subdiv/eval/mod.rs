@@ -715,7 +715,7 @@ impl Evaluator {
         Ok(rank.par_iter().map(|r| done[r.load(Ordering::Relaxed)]).collect())
     }
 
-    /// The first `N` columns of [`Sample::row`] at every point (six:
+    /// The first `N` columns of `Sample::row` at every point (six:
     /// position and normal; eight: with the curvatures, when `second`), as
     /// [`Evaluator::eval_map`] keeps them: the rows `subdiv eval` writes.
     ///

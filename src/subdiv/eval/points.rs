@@ -30,11 +30,11 @@ pub(crate) fn parse_points(text: &str, file: &str, faces: usize, max_points: usi
     parse_points_in(text, file, Domain::Triangles(faces), max_points)
 }
 
-/// [`parse_points`] in `domain`: for ptex faces, `u` or `v` over `1 +
+/// `parse_points` in `domain`: for ptex faces, `u` or `v` over `1 +
 /// 1e-6` is refused instead of `u + v`.
 ///
 /// # Errors
-/// As [`parse_points`].
+/// As `parse_points`.
 pub fn parse_points_in(text: &str, file: &str, domain: Domain, max_points: usize) -> Result<Vec<(usize, f64, f64)>> {
     // pieces of about 1 MB parsed in parallel; a file with a bad line (or
     // too many points) is parsed again line by line, to name the first

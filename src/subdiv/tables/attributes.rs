@@ -44,7 +44,7 @@ pub(crate) fn refine_colors(
 /// Both attributes after `levels` levels of `scheme` on `ct`.
 ///
 /// # Errors
-/// See [`refine_colors`].
+/// See `refine_colors`.
 pub fn refine(ct: &CornerTable, attrs: &Attributes, scheme: Scheme, levels: u32, opts: &Options) -> Result<Attributes> {
     if scheme.is_polygonal() {
         return refine_through_polygons(ct, attrs, scheme, levels, opts);
@@ -125,7 +125,7 @@ pub(crate) fn split_poly_uvs(pt: &crate::mesh::poly::PolyTable, uv: &[glam::Vec2
 /// corner, colours per vertex, a material per face) after `levels` levels
 /// of the polygon scheme `scheme`: texture coordinates as `opts.uv` says
 /// (smooth on the charts, `face_varying`, or bilinear in each face,
-/// [`split_poly_uvs`]), colours with the scheme's own weights
+/// `split_poly_uvs`), colours with the scheme's own weights
 /// (clamped to [0, 1]), each child face keeping its parent's material.
 ///
 /// # Errors

@@ -293,7 +293,7 @@ impl StencilPlan {
 
     /// [`StencilPlan::build`] for speed of evaluation: the levels are
     /// recorded on the control table renumbered in a locality order
-    /// ([`Relabel::breadth_first`]), so that each row's inputs lie near
+    /// (`Relabel::breadth_first`), so that each row's inputs lie near
     /// each other at every level; the first level reads the control
     /// positions in their own order, so [`StencilPlan::apply`] takes the
     /// same input. The finest topology [`StencilPlan::ct`] and the output
