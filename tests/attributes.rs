@@ -5,7 +5,6 @@
 mod common;
 use common::*;
 use glam::{Vec2, Vec3};
-use subdiv::io::obj;
 use subdiv::mesh::{Attributes, refine_corner_uvs};
 use subdiv::rules::refine_attributes;
 use subdiv::{Options, Scheme, subdivide};
@@ -88,7 +87,7 @@ fn obj_round_trip_with_texture_coordinates_and_colours() {
     assert_eq!(colors, vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::splat(0.5)], "colours follow the renumbering");
     assert_eq!(attrs.uv.as_ref().unwrap()[4], Vec2::ONE);
     let mut bytes = Vec::new();
-    obj::write_obj_with(&mesh, &attrs, &mut |b| {
+    subdiv::io::write_obj_with(&mesh, &attrs, &mut |b| {
         bytes.extend_from_slice(b);
         Ok(())
     })

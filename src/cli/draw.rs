@@ -242,8 +242,10 @@ mod gpu {
     use subdiv::mesh::colormap;
     use subdiv::mesh::{corner_ops, poly_corner_ops};
     use subdiv::render::Paint;
-    use subdiv::render::inspect;
-    use subdiv::render::{Overlay, Viewport, overlay};
+    use subdiv::render::{
+        Overlay, Viewport, paint_overlay, poly_corner_overlay, project_overlay, stencil_overlay,
+        triangle_corner_overlay,
+    };
     use subdiv::rules::stencil;
     use subdiv::rules::{creation_levels, displacement};
     use subdiv::{Error, Mesh, Result, Scheme};
@@ -344,7 +346,7 @@ mod gpu {
             let camera = subdiv::render::default_camera(control.unwrap_or(&fine), &opts);
             let k = opts.shot.scale as f32;
             let vp = Viewport::image(img.width(), img.height(), k);
-            overlay::paint(&mut img, &overlay::project(&overlay, &camera, &vp, 10.0), k);
+            paint_overlay(&mut img, &project_overlay(&overlay, &camera, &vp, 10.0), k);
         }
         subdiv::render::save_png(&img, &a.output)
     }
@@ -360,17 +362,17 @@ mod gpu {
         let shown = format!("level {levels} of {scheme}");
         if let Some(v) = a.stencil {
             let st = stencil(control, scheme, levels, opts, v)?;
-            return Ok(Some(inspect::stencil_overlay(&control.positions, &st, fine.positions[v as usize])));
+            return Ok(Some(stencil_overlay(&control.positions, &st, fine.positions[v as usize])));
         }
         let Some(c) = a.corner else { return Ok(None) };
         let out_of_range = |n: usize| Error::Usage(format!("corner {c} out of range: {shown} has {n} corners"));
         let mut overlay = if scheme.is_polygonal() {
             let pm = PolyMesh::from_mesh(fine);
             let x = poly_corner_ops(&pm.pt, c).ok_or_else(|| out_of_range(pm.pt.num_corners()))?;
-            inspect::poly_corner_overlay(&pm.pt, &fine.positions, &x)
+            poly_corner_overlay(&pm.pt, &fine.positions, &x)
         } else {
             let x = corner_ops(&fine.ct, c).ok_or_else(|| out_of_range(fine.ct.num_corners()))?;
-            inspect::triangle_corner_overlay(fine.ct.v_table(), &fine.positions, &x)
+            triangle_corner_overlay(fine.ct.v_table(), &fine.positions, &x)
         };
         let table = if scheme.is_polygonal() { "quad table" } else { "triangle table" };
         overlay.caption.insert(0, format!("{shown}, the {table}"));

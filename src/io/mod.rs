@@ -25,7 +25,7 @@ pub(crate) mod dae;
 pub(crate) mod gltf;
 pub(crate) mod limits;
 mod mtl;
-pub mod obj;
+pub(crate) mod obj;
 pub(crate) mod off;
 pub(crate) mod ply;
 mod precise;
@@ -41,6 +41,7 @@ mod write;
 // (Bézier patches, a format with an API of its own, stay a module).
 pub use ct::write as write_ct;
 pub use limits::{Budget, LIMIT_NAMES, Limits};
+pub use obj::write_obj_with;
 pub use save::{Save, save_f64, save_with};
 mod save;
 pub use raw::{BuildNotes, RawMesh, Topology};

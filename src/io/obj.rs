@@ -27,7 +27,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 /// The OBJ row of [`super::FORMATS`] (any text is taken for OBJ last).
-pub const FORMAT: Format = Format {
+pub(crate) const FORMAT: Format = Format {
     name: "Wavefront OBJ",
     extensions: &["obj"],
     sniff: |_| true,
@@ -596,15 +596,6 @@ fn is_small_whole(x: f32) -> bool {
     x.abs() < 1e7 && (x as i32) as f32 == x && !(x == 0.0 && x.is_sign_negative())
 }
 
-/// Formats OBJ text for `mesh` in parallel chunks and passes them, in order,
-/// to `sink`: a helper thread formats the next chunks while this one writes.
-///
-/// # Errors
-/// The first error of `sink`.
-pub(crate) fn write_obj(mesh: &Mesh, sink: &mut dyn FnMut(&[u8]) -> Result<()>) -> Result<()> {
-    write_faces((&mesh.positions, mesh.ct.v_table(), 3), &Attributes::default(), &tag_records(mesh), sink)
-}
-
 /// OBJ text of the faces of `sides` corners each whose vertices are `v`
 /// over the vertices `pos`, with their attributes and the tag records
 /// `tags` (see [`write_obj_with`]).
@@ -904,14 +895,6 @@ pub(crate) fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], sides: usiz
     crate::io::atomic_write(path, |w| {
         write_faces((positions, v, sides), attrs, &[], &mut |b| w.write_all(b).map_err(|e| Error::io(path, e)))
     })
-}
-
-/// Saves `mesh` as OBJ (atomically).
-///
-/// # Errors
-/// I/O errors naming `path`.
-pub fn save(path: &Path, mesh: &Mesh) -> Result<()> {
-    atomic_write(path, |w| write_obj(mesh, &mut |b| w.write_all(b).map_err(|e| Error::io(path, e))))
 }
 
 #[cfg(test)]

@@ -24,9 +24,9 @@ use crate::subdiv::stencil::Stencil;
 use glam::Vec3;
 
 /// The picked corner's dot.
-pub const PICKED: Rgba8 = [255, 255, 255, 255];
+pub(crate) const PICKED: Rgba8 = [255, 255, 255, 255];
 /// The refined vertex's ring and the split's outline.
-pub const ACCENT: Rgba8 = [255, 200, 40, 255];
+pub(crate) const ACCENT: Rgba8 = [255, 200, 40, 255];
 
 /// The colour of an operator's arrow (`n p o l r s u`, and the polygon
 /// table's `next prev twin swing`).

@@ -11,10 +11,10 @@ pub(crate) mod export;
 pub(crate) mod gpu;
 pub(crate) mod gpu_anim;
 pub(crate) mod gpu_mesh;
-pub mod inspect;
+pub(crate) mod inspect;
 pub(crate) mod materials;
 pub(crate) mod offscreen;
-pub mod overlay;
+pub(crate) mod overlay;
 pub(crate) mod pipelines;
 pub(crate) mod readback;
 pub(crate) mod scene;
@@ -29,10 +29,13 @@ pub use export::{
 pub use gpu::Gpu;
 pub use gpu_anim::{GpuAnimator, time_frames};
 pub use gpu_mesh::GpuMesh;
-pub use inspect::{op_color, polygon_corner_point, triangle_corner_point, weight_color};
+pub use inspect::{
+    op_color, poly_corner_overlay, polygon_corner_point, stencil_overlay, triangle_corner_overlay,
+    triangle_corner_point, weight_color,
+};
 pub use materials::sample as sample_material;
 pub use offscreen::{Offscreen, shoot};
-pub use overlay::{Overlay, Viewport};
+pub use overlay::{Overlay, Prim, Viewport, paint as paint_overlay, project as project_overlay};
 pub use scene::{
     FILL_INTENSITY, FILL_LIGHT, FRONT, HEADLIGHT_INTENSITY, KEY_INTENSITY, KEY_LIGHT, Renderer, Targets, ViewportDraw,
     background_srgb8_at,

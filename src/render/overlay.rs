@@ -18,10 +18,10 @@ use glam::{Vec2, Vec3};
 use image::{Rgba, RgbaImage};
 
 /// A colour, sRGB with alpha.
-pub type Rgba8 = [u8; 4];
+pub(crate) type Rgba8 = [u8; 4];
 
 /// Dark halo under lines and around discs, so that marks read on any surface.
-pub const HALO: Rgba8 = [20, 20, 24, 220];
+pub(crate) const HALO: Rgba8 = [20, 20, 24, 220];
 
 /// One mark at world points; sizes are in pixels at scale 1.
 #[derive(Clone, Debug, PartialEq)]
