@@ -225,11 +225,8 @@ pub(crate) fn with_boundary_corners(pt: &PolyTable, boundary: BoundaryInterpolat
     if boundary == BoundaryInterpolation::None {
         return boundary_holes(pt);
     }
-    if boundary == BoundaryInterpolation::EdgeOnly {
-        return None;
-    }
-    let corners: Vec<u32> =
-        (0..pt.num_vertices() as u32).filter(|&v| pt.is_boundary_vertex(v) && pt.fan(v).count() == 1).collect();
+    // the triangle table's rule: a boundary vertex of valence 2 (one face)
+    let corners = crate::subdiv::rules::features::boundary_corners(pt, boundary);
     if corners.is_empty() {
         return None;
     }
