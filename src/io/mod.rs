@@ -42,7 +42,7 @@ mod write;
 pub use ct::write as write_ct;
 pub use limits::{Budget, LIMIT_NAMES, Limits};
 pub use obj::write_obj_with;
-pub use save::{Save, save_f64, save_with};
+pub use save::{Save, SaveF64, save_f64, save_with};
 mod save;
 pub use raw::{BuildNotes, RawMesh, Topology};
 pub use texture::load_file as load_texture;

@@ -4,7 +4,7 @@
 
 use super::{precise, save_faces, save_mesh, save_poly};
 use crate::mesh::{Attributes, Faces, PolyMesh};
-use crate::{Error, Mesh, Result};
+use crate::{Mesh, Result};
 use glam::DVec3;
 use std::path::Path;
 
@@ -15,17 +15,27 @@ mod sealed {
     impl Sealed for crate::mesh::Faces {}
 }
 
-/// What [`super::save`], [`save_with`] and [`save_f64`] write (sealed).
+/// What [`super::save`] and [`save_with`] write (sealed): a [`Mesh`], a
+/// [`PolyMesh`] or [`Faces`].
 pub trait Save: sealed::Sealed {
-    /// Writes `self` to `path` by its extension, with `attrs`.
+    /// Writes `self` to `path` by its extension, with `attrs` (call
+    /// [`save_with`]).
     ///
     /// # Errors
     /// As [`save_with`].
+    #[doc(hidden)]
     fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()>;
-    /// Writes `self`'s topology with the f64 `positions` to `path`.
+}
+
+/// What [`save_f64`] writes (sealed): the tables, [`Mesh`] and [`PolyMesh`]
+/// (faces alone have no f64 path, so the compiler refuses them).
+pub trait SaveF64: Save {
+    /// Writes `self`'s topology with the f64 `positions` to `path` (call
+    /// [`save_f64`]).
     ///
     /// # Errors
     /// As [`save_f64`].
+    #[doc(hidden)]
     fn save_f64_to(&self, path: &Path, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()>;
 }
 
@@ -33,6 +43,9 @@ impl Save for Mesh {
     fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()> {
         save_mesh(path, self, attrs)
     }
+}
+
+impl SaveF64 for Mesh {
     fn save_f64_to(&self, path: &Path, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
         precise::save_mesh_f64(path, self, positions, attrs, keep_holes)
     }
@@ -42,6 +55,9 @@ impl Save for PolyMesh {
     fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()> {
         save_poly(path, self, attrs)
     }
+}
+
+impl SaveF64 for PolyMesh {
     fn save_f64_to(&self, path: &Path, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
         precise::save_poly_f64(path, self, positions, attrs, keep_holes)
     }
@@ -50,9 +66,6 @@ impl Save for PolyMesh {
 impl Save for Faces {
     fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()> {
         save_faces(path, self, attrs)
-    }
-    fn save_f64_to(&self, path: &Path, _: &[DVec3], _: &Attributes, _: bool) -> Result<()> {
-        Err(Error::Usage(format!("{}: faces alone are written in f32; save the mesh for f64", path.display())))
     }
 }
 
@@ -78,11 +91,11 @@ pub fn save_with(path: &Path, mesh: &impl Save, attrs: &Attributes) -> Result<()
 /// faces in holes are left out).
 ///
 /// # Errors
-/// `positions` not one per vertex, faces alone, an unknown extension or an
+/// `positions` not one per vertex, an unknown extension or an
 /// I/O error.
 pub fn save_f64(
     path: &Path,
-    mesh: &impl Save,
+    mesh: &impl SaveF64,
     positions: &[DVec3],
     attrs: &Attributes,
     keep_holes: bool,

@@ -23,17 +23,20 @@ pub trait Cage: sealed::Sealed + Sized {
     ///
     /// # Errors
     /// As [`subdivide`].
+    #[doc(hidden)]
     fn refined(&self, scheme: Scheme, levels: u32, opts: &Options) -> Result<(Self, Stats)>;
     /// The refined positions in f64; see [`subdivide_f64`].
     ///
     /// # Errors
     /// As [`subdivide_f64`].
+    #[doc(hidden)]
     fn refined_f64(&self, control: &[DVec3], scheme: Scheme, levels: u32, opts: &Options)
     -> Result<(Self, Vec<DVec3>)>;
     /// The last level's faces only; see [`subdivide_faces`].
     ///
     /// # Errors
     /// As [`subdivide_faces`].
+    #[doc(hidden)]
     fn refined_faces<I: VertexId>(
         &self,
         scheme: Scheme,

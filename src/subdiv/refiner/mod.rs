@@ -715,6 +715,7 @@ pub trait Scalar: sealed::Sealed + Copy + Sized {
     ///
     /// # Errors
     /// As [`Refiner::refine`].
+    #[doc(hidden)]
     fn refine_on(refiner: &Refiner, data: &[Self], channels: usize) -> Result<Vec<Self>>;
 }
 
