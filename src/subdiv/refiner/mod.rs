@@ -119,6 +119,13 @@ impl Touched {
     }
 }
 
+/// What a local edit walks: each level's readers, and the points touched.
+#[derive(Clone, Debug, Default)]
+struct EditTables {
+    readers: Vec<Readers>,
+    touched: Touched,
+}
+
 /// One change of a [`Refiner`]'s history.
 #[derive(Clone, Debug)]
 enum Step {
@@ -161,12 +168,16 @@ pub struct Refiner {
     plan_f64: OnceLock<Vec<LevelPlan<f64>>>,
     /// Points of every level: `[0]` the control points, last the finest.
     points: Vec<Vec<Vec3>>,
-    normals: Vec<Vec3>,
+    /// The finest level's normals, made on first use and then kept up to
+    /// date by every edit.
+    normals: OnceLock<Vec<Vec3>>,
     /// The finest level's one-rings (CSR, a closed ring's first neighbour
-    /// repeated at its end); `None` where a fan does not chain.
-    rings: Option<(Vec<u32>, Vec<u32>)>,
-    readers: Vec<Readers>,
-    touched: Touched,
+    /// repeated at its end; `None` where a fan does not chain), made with
+    /// the normals.
+    rings: OnceLock<Option<(Vec<u32>, Vec<u32>)>>,
+    /// The tables an edit walks (built on the first edit: a refiner that
+    /// only serves data never pays for them).
+    edit: Option<EditTables>,
     history: History,
     /// The table each level was recorded on (sharpness edits re-record on them).
     tables: LevelTables,
@@ -192,10 +203,9 @@ impl Refiner {
             plan,
             plan_f64: OnceLock::new(),
             points: Vec::new(),
-            normals: Vec::new(),
-            rings: None,
-            readers: Vec::new(),
-            touched: Touched::default(),
+            normals: OnceLock::new(),
+            rings: OnceLock::new(),
+            edit: None,
             history: History::default(),
             patches: Patches::sized(levels as usize),
             tables,
@@ -205,21 +215,59 @@ impl Refiner {
         Ok(r)
     }
 
-    /// The tables derived from the plan: per-level buffers, readers, rings.
+    /// The buffers of every level for the plan; what derives from it
+    /// (normals, rings, the edit tables) made again on first use.
     fn adopt_plan(&mut self) {
+        self.points = self.level_counts().iter().map(|&n| vec![Vec3::ZERO; n]).collect();
+        self.edit = None;
+        self.rings = OnceLock::new();
+        self.normals = OnceLock::new();
+        self.plan_f64 = OnceLock::new();
+    }
+
+    /// How many points each level has, the control level first.
+    fn level_counts(&self) -> Vec<usize> {
         let mut counts = vec![self.plan.n_control()];
         counts.extend(self.plan.levels.iter().map(LevelPlan::n_out));
         if self.plan.levels.is_empty() {
             counts[0] = self.plan.ct.num_vertices();
         }
-        self.points = counts.iter().map(|&n| vec![Vec3::ZERO; n]).collect();
-        self.readers = self.plan.levels.par_iter().map(Readers::of).collect();
-        self.touched = Touched::sized(&counts);
-        self.rings = match self.plan.polygons() {
-            Some(pt) => crate::mesh::normals::ring_lists(pt),
-            None => crate::mesh::normals::ring_lists(&self.plan.ct),
-        };
-        self.plan_f64 = OnceLock::new();
+        counts
+    }
+
+    /// The edit tables, built on first use.
+    fn edit_tables(&mut self) -> &mut EditTables {
+        if self.edit.is_none() {
+            let readers = self.plan.levels.par_iter().map(Readers::of).collect();
+            self.edit = Some(EditTables { readers, touched: Touched::sized(&self.level_counts()) });
+        }
+        self.edit.get_or_insert_with(EditTables::default)
+    }
+
+    /// The finest level's rings, made on first use.
+    fn rings(&self) -> Option<&(Vec<u32>, Vec<u32>)> {
+        self.rings
+            .get_or_init(|| match self.plan.polygons() {
+                Some(pt) => crate::mesh::normals::ring_lists(pt),
+                None => crate::mesh::normals::ring_lists(&self.plan.ct),
+            })
+            .as_ref()
+    }
+
+    /// Every normal of the finest level.
+    fn all_normals(&self) -> Vec<Vec3> {
+        let pos = self.positions();
+        match self.rings() {
+            Some((offsets, ids)) => (0..pos.len())
+                .into_par_iter()
+                .with_min_len(4096)
+                .map(|v| ring_normal(pos, v as u32, &ids[offsets[v] as usize..offsets[v + 1] as usize]))
+                .collect(),
+            None => match self.plan.polygons() {
+                Some(pt) => crate::mesh::normals::vertex_normals(&pt.triangulated(), pos),
+                None => crate::mesh::normals::vertex_normals(&self.plan.ct, pos),
+            },
+        }
     }
 
     /// The scheme.
@@ -261,7 +309,7 @@ impl Refiner {
     /// faces; for a polygon scheme, over the polygons' rings of edge
     /// neighbours).
     pub fn normals(&self) -> &[Vec3] {
-        &self.normals
+        self.normals.get_or_init(|| self.all_normals())
     }
 
     /// The finest level's triangles (a polygon scheme's quads as two
@@ -321,11 +369,11 @@ impl Refiner {
                 rest[0][r as usize] = sum_row(&row.idx, &row.w, &done[l]);
             }
         }
-        // every normal, into the buffer already held (no id list, no new buffer)
+        // every normal made so far, into the buffer already held
         let pos = self.points.last().map_or(&[][..], Vec::as_slice);
-        self.normals.resize(pos.len(), Vec3::Z);
-        match &self.rings {
-            Some((offsets, ids)) => self.normals.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, n)| {
+        let Some(normals) = self.normals.get_mut() else { return };
+        match self.rings.get().and_then(Option::as_ref) {
+            Some((offsets, ids)) => normals.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, n)| {
                 *n = ring_normal(pos, v as u32, &ids[offsets[v] as usize..offsets[v + 1] as usize]);
             }),
             None => self.update_normals(&[]),
@@ -339,7 +387,7 @@ impl Refiner {
             return Vec::new();
         }
         self.touch(&[v], &[]);
-        let mut rows = self.touched.lists.last().cloned().unwrap_or_default();
+        let mut rows = self.edit_tables().touched.lists.last().cloned().unwrap_or_default();
         rows.sort_unstable();
         rows
     }
@@ -347,12 +395,13 @@ impl Refiner {
     /// Marks the control points `ids`, the rows `seeds[l]` of level
     /// `l + 1` and, level by level, the rows that read a marked point.
     fn touch(&mut self, ids: &[u32], seeds: &[Vec<u32>]) {
-        let t = &mut self.touched;
+        self.edit_tables();
+        let Some(EditTables { readers, touched: t }) = self.edit.as_mut() else { return };
         t.begin();
         for &v in ids {
             t.mark(0, v);
         }
-        for (l, readers) in self.readers.iter().enumerate() {
+        for (l, readers) in readers.iter().enumerate() {
             for &r in seeds.get(l).into_iter().flatten() {
                 t.mark(l + 1, r);
             }
@@ -416,11 +465,12 @@ impl Refiner {
     /// Evaluates the marked rows level by level, then the normals around
     /// the marked finest points; returns how many finest points changed.
     fn evaluate_touched(&mut self) -> usize {
+        let Some(edit) = self.edit.as_mut() else { return 0 };
         for l in 0..self.plan.levels.len() {
             let (done, rest) = self.points.split_at_mut(l + 1);
             let (input, out) = (&done[l], &mut rest[0]);
             let (level, patch) = (&self.plan.levels[l], &self.patches.rows[l]);
-            let rows = &self.touched.lists[l + 1];
+            let rows = &edit.touched.lists[l + 1];
             let value = |r: u32| match patch.get(&r) {
                 Some(row) => sum_row(&row.idx, &row.w, input),
                 None => row_value(level, r, input),
@@ -432,21 +482,26 @@ impl Refiner {
                 rows.iter().for_each(|&r| out[r as usize] = value(r));
             }
         }
-        let changed = std::mem::take(&mut self.touched.lists[self.plan.levels.len()]);
+        let changed = std::mem::take(&mut edit.touched.lists[self.plan.levels.len()]);
         self.update_normals_around(&changed);
         let count = changed.len();
-        self.touched.lists[self.plan.levels.len()] = changed;
+        if let Some(edit) = self.edit.as_mut() {
+            edit.touched.lists[self.plan.levels.len()] = changed;
+        }
         count
     }
 
     /// The normals of the changed finest points and their neighbours.
     fn update_normals_around(&mut self, changed: &[u32]) {
-        let Some((offsets, ids)) = &self.rings else {
+        if self.normals.get().is_none() {
+            return; // none made yet: all of them made when first asked for
+        }
+        let Some((offsets, ids)) = self.rings.get().and_then(Option::as_ref) else {
             return self.update_normals(&[]);
         };
         let mut around = Vec::with_capacity(changed.len() * 7);
         let last = self.points.len() - 1;
-        let t = &mut self.touched;
+        let Some(t) = self.edit.as_mut().map(|e| &mut e.touched) else { return };
         t.begin();
         for &v in changed {
             t.mark(last, v);
@@ -462,20 +517,22 @@ impl Refiner {
     /// The normals of the finest points `which` (all of them, without
     /// rings: the fan-averaged normals of the whole level).
     fn update_normals(&mut self, which: &[u32]) {
-        let pos = self.points.last().map_or(&[][..], Vec::as_slice);
-        let Some((offsets, ids)) = &self.rings else {
-            self.normals = match self.plan.polygons() {
-                Some(pt) => crate::mesh::normals::vertex_normals(&pt.triangulated(), pos),
-                None => crate::mesh::normals::vertex_normals(&self.plan.ct, pos),
-            };
+        if self.normals.get().is_none() {
+            return;
+        }
+        let Some((offsets, ids)) = self.rings.get().and_then(Option::as_ref) else {
+            let all = self.all_normals();
+            self.normals = OnceLock::from(all);
             return;
         };
+        let pos = self.points.last().map_or(&[][..], Vec::as_slice);
+        let Some(normals) = self.normals.get_mut() else { return };
         let normal = |v: u32| ring_normal(pos, v, &ids[offsets[v as usize] as usize..offsets[v as usize + 1] as usize]);
         if which.len() > 4096 {
             let values: Vec<Vec3> = which.par_iter().map(|&v| normal(v)).collect();
-            which.iter().zip(values).for_each(|(&v, n)| self.normals[v as usize] = n);
+            which.iter().zip(values).for_each(|(&v, n)| normals[v as usize] = n);
         } else {
-            which.iter().for_each(|&v| self.normals[v as usize] = normal(v));
+            which.iter().for_each(|&v| normals[v as usize] = normal(v));
         }
     }
 

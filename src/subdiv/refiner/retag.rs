@@ -89,9 +89,10 @@ impl Refiner {
         let level = &self.plan.levels[l];
         let first = if level.copy_vertices { level.n_in as u32 } else { 0 };
         let extra = &self.patches.readers[l];
+        let readers = self.edit.as_ref().map_or(&[][..], |e| &e.readers[..]);
         let mut rows: Vec<u32> = points
             .iter()
-            .flat_map(|&j| self.readers[l].of_point(j).iter().chain(extra.get(&j).into_iter().flatten()))
+            .flat_map(|&j| readers[l].of_point(j).iter().chain(extra.get(&j).into_iter().flatten()))
             .copied()
             .filter(|&r| r >= first)
             .collect();
@@ -132,6 +133,7 @@ impl Refiner {
         if self.opts.boundary == BoundaryInterpolation::None {
             return Ok(None);
         }
+        self.edit_tables();
         let mut tables = std::mem::replace(&mut self.tables, LevelTables::Triangles(Vec::new()));
         let result = match &mut tables {
             LevelTables::Triangles(t) => self.retag_levels(t.iter_mut().map(|(t, o)| Level::Triangles(t, o)), tags),
