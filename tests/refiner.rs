@@ -128,6 +128,24 @@ fn double_data_equals_the_double_subdivision() {
 }
 
 #[test]
+fn double_data_after_a_sharpness_edit_equals_the_double_subdivision_of_the_retagged_cage() {
+    for (name, mesh, scheme, levels) in cases() {
+        let (a, b) = (mesh.ct.vtx(0), mesh.ct.vtx(1));
+        let mut r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
+        let far: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3() * 3.0 + DVec3::splat(1e6)).collect();
+        let flat: Vec<f64> = far.iter().flat_map(|p| p.to_array()).collect();
+        let before = r.refine(&flat, 3).unwrap();
+        r.set_edge_sharpness(a, b, 2.5).unwrap();
+        let after = r.refine(&flat, 3).unwrap();
+        let (_, exact) = subdivide_f64(&r.cage(), &far, scheme, levels, &Options::default()).unwrap();
+        let exact: Vec<f64> = exact.iter().flat_map(|p| p.to_array()).collect();
+        assert_eq!(after, exact, "{name}: the f64 rows follow the new tags");
+        // bilinear has no smooth rule for a crease to change
+        assert!(scheme == Scheme::Bilinear || before != after, "{name}: the crease changes the surface");
+    }
+}
+
+#[test]
 fn a_sharpness_edit_equals_subdividing_the_retagged_mesh() {
     for (scheme, mesh) in [(Scheme::Loop, icosphere(1)), (Scheme::CatmullClark, bundled("cube.obj"))] {
         let mut r = Refiner::new(&mesh, scheme, 2, &Options::default()).unwrap();

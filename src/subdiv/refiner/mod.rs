@@ -21,7 +21,8 @@
 
 mod retag;
 
-use super::tables::plan::LevelTables;
+use super::tables::plan::{LevelTables, record_level};
+use super::tables::poly_plan::record_poly_level;
 use super::tables::{LevelPlan, StencilPlan};
 use super::{Options, Scheme};
 use crate::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
@@ -673,7 +674,7 @@ impl Refiner {
     ///
     /// # Errors
     /// [`Error::Usage`] when `data` is not `channels` values per control
-    /// vertex; [`Error::TooLarge`] from recording the f64 weights.
+    /// vertex.
     pub fn refine<T: Scalar>(&self, data: &[T], channels: usize) -> Result<Vec<T>> {
         T::refine_on(self, data, channels)
     }
@@ -694,14 +695,23 @@ impl Refiner {
     /// As [`Refiner::refine`].
     fn refine_f64(&self, data: &[f64], channels: usize) -> Result<Vec<f64>> {
         self.check_width(data.len(), channels)?;
-        let levels = match self.plan_f64.get() {
-            Some(l) => l,
-            None => {
-                let (levels, _, _) = StencilPlan::record::<f64>(&self.cage, self.scheme, self.levels(), &self.opts)?;
-                self.plan_f64.get_or_init(|| levels)
-            }
-        };
+        let levels = self.plan_f64.get_or_init(|| self.record_f64());
         Ok(levels.iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
+    }
+
+    /// Every level's rows with the rules' f64 weights, recorded on the
+    /// tables kept (their tags as they now are): the topology is not
+    /// refined again.
+    fn record_f64(&self) -> Vec<LevelPlan<f64>> {
+        let (scheme, opts) = (self.scheme, &self.opts);
+        match &self.tables {
+            LevelTables::Triangles(t) => {
+                t.par_iter().map(|(ct, owners)| record_level::<f64>(ct, owners, scheme, opts)).collect()
+            }
+            LevelTables::Polygons(t) => {
+                t.par_iter().map(|pt| record_poly_level::<f64>(pt, scheme, opts, None)).collect()
+            }
+        }
     }
 
     fn check_width(&self, len: usize, channels: usize) -> Result<()> {
