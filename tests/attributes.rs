@@ -6,7 +6,6 @@ mod common;
 use common::*;
 use glam::{Vec2, Vec3};
 use subdiv::mesh::{Attributes, refine_corner_uvs};
-use subdiv::rules::refine_attributes;
 use subdiv::{Options, Scheme, subdivide};
 
 #[test]
@@ -59,7 +58,7 @@ fn colours_use_the_scheme_weights_and_reproduce_affine_fields() {
     };
     for scheme in [Scheme::Loop, Scheme::Midpoint, Scheme::Jarek] {
         let (fine, _) = subdivide(&mesh, scheme, 2, &Options::default()).unwrap();
-        let out = refine_attributes(&mesh.ct, &attrs, scheme, 2, &Options::default()).unwrap();
+        let out = subdiv::Refiner::new(&mesh, scheme, 2, &Options::default()).unwrap().attributes(&attrs).unwrap();
         let colors = out.colors.unwrap();
         assert_eq!(colors.len(), fine.positions.len());
         for (c, q) in colors.iter().zip(&fine.positions) {
@@ -73,7 +72,12 @@ fn colours_use_the_scheme_weights_and_reproduce_affine_fields() {
         options: Default::default(),
         colors: Some((0..mesh.positions.len()).map(|i| if i % 2 == 0 { Vec3::ONE } else { Vec3::ZERO }).collect()),
     };
-    let out = refine_attributes(&mesh.ct, &spiky, Scheme::Butterfly, 1, &Options::default()).unwrap().colors.unwrap();
+    let out = subdiv::Refiner::new(&mesh, Scheme::Butterfly, 1, &Options::default())
+        .unwrap()
+        .attributes(&spiky)
+        .unwrap()
+        .colors
+        .unwrap();
     assert!(out.iter().all(|c| c.cmpge(Vec3::ZERO).all() && c.cmple(Vec3::ONE).all()));
 }
 

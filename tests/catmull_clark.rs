@@ -202,7 +202,6 @@ fn read_corners(path: &std::path::Path) -> Vec<[f32; 5]> {
 #[test]
 fn texture_coordinates_equal_opensubdiv_face_varying() {
     use subdiv::mesh::UvInterpolation;
-    use subdiv::rules::refine_poly_attributes;
     let (edge, corners) = (BoundaryInterpolation::EdgeOnly, BoundaryInterpolation::EdgeAndCorner);
     let (linear, smooth) = (UvInterpolation::Linear, UvInterpolation::Smooth);
     let (uniform, chaikin) = (Creasing::Uniform, Creasing::Chaikin);
@@ -223,8 +222,12 @@ fn texture_coordinates_equal_opensubdiv_face_varying() {
         let (control, attrs) = PolyMesh::from_mesh_with_attributes(&loaded.mesh, &loaded.attributes);
         let o = Options { uv, boundary, creasing, ..Options::default() };
         let (fine, _) = subdivide(&control, Scheme::CatmullClark, level, &o).unwrap();
-        let fine_uv =
-            refine_poly_attributes(&control, &attrs, Scheme::CatmullClark, level, &o).unwrap().uv.expect("uvs");
+        let fine_uv = subdiv::Refiner::new(&control, Scheme::CatmullClark, level, &o)
+            .unwrap()
+            .attributes(&attrs)
+            .unwrap()
+            .uv
+            .expect("uvs");
         let want = read_corners(&fixture(&format!("{name}.uv.{mode}.osd.txt")));
         let what = format!("{name} {mode}");
         assert_eq!(fine_uv.len(), want.len(), "{what}: corners");

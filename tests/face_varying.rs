@@ -54,7 +54,7 @@ fn every_face_varying_mode_equals_opensubdiv() {
             let what = format!("{scheme} {}", mode.name());
             let opts = Options { uv: mode, ..Options::default() };
             let (fine, _) = subdiv::subdivide(&mesh, scheme, 2, &opts).unwrap();
-            let fa = subdiv::rules::refine_attributes(&mesh.ct, &attrs, scheme, 2, &opts).unwrap();
+            let fa = subdiv::Refiner::new(&mesh, scheme, 2, &opts).unwrap().attributes(&attrs).unwrap();
             let uv = fa.uv.expect("texture coordinates refined");
             assert_eq!(uv.len(), fine.ct.num_corners(), "{what}");
             let ours: Vec<(Vec3, Vec2)> =

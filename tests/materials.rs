@@ -69,7 +69,7 @@ fn each_child_triangle_keeps_its_parents_material() {
     let levels = 3;
     let (fine, _) = subdiv::subdivide(&mesh, Scheme::Midpoint, levels, &Default::default()).unwrap();
     let refined =
-        subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Midpoint, levels, &Default::default()).unwrap();
+        subdiv::Refiner::new(&mesh, Scheme::Midpoint, levels, &Default::default()).unwrap().attributes(&attrs).unwrap();
     let face = refined.materials.unwrap().face;
     assert_eq!(face.len(), fine.ct.num_triangles());
     let coarse: Vec<[Vec3; 3]> =
@@ -136,7 +136,7 @@ mod drawn {
     fn the_texture_is_sampled_through_the_refined_uvs() {
         let path = model("mtl-sample");
         let (mesh, attrs) = load_textured(&path);
-        let r = subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Loop, 3, &Default::default()).unwrap();
+        let r = subdiv::Refiner::new(&mesh, Scheme::Loop, 3, &Default::default()).unwrap().attributes(&attrs).unwrap();
         let (uv, groups) = (r.uv.unwrap(), r.materials.unwrap());
         let colors = corner_colors(&groups, Some(&uv));
         assert_eq!(colors.len(), uv.len());
@@ -176,7 +176,7 @@ mod drawn {
         img.save(dir.join("two.jpg")).unwrap();
         std::fs::write(dir.join("two.mtl"), MTL.replace("two.png", "two.jpg")).unwrap();
         let (mesh, attrs) = load_textured(&path);
-        let r = subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Loop, 2, &Default::default()).unwrap();
+        let r = subdiv::Refiner::new(&mesh, Scheme::Loop, 2, &Default::default()).unwrap().attributes(&attrs).unwrap();
         let (uv, groups) = (r.uv.unwrap(), r.materials.unwrap());
         let colors = corner_colors(&groups, Some(&uv));
         let (mut reds, mut blues) = (0, 0);

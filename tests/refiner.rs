@@ -239,3 +239,19 @@ fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit()
         assert_eq!(differ(r.positions(), first.positions()), None, "{name}: everything undone");
     }
 }
+
+#[test]
+fn a_polygon_cage_refines_to_the_polygons_subdivide_makes() {
+    use subdiv::mesh::PolyMesh;
+    for (name, mesh) in [("cube", bundled("cube.obj")), ("lprism", bundled("lprism.obj"))] {
+        let cage = PolyMesh::from_mesh(&mesh);
+        for scheme in [Scheme::CatmullClark, Scheme::Bilinear] {
+            let (fine, _) = subdivide(&cage, scheme, 2, &Options::default()).unwrap();
+            let r = Refiner::new(&cage, scheme, 2, &Options::default()).unwrap();
+            let polygons = r.polygons().expect("a polygon scheme's polygons");
+            assert_eq!(polygons.v_table(), fine.pt.v_table(), "{name} {scheme}: the same quads");
+            assert_eq!(r.positions(), &fine.positions[..], "{name} {scheme}: the same points");
+        }
+        assert!(Refiner::new(&cage, Scheme::Loop, 1, &Options::default()).is_err(), "{name}: Loop takes triangles");
+    }
+}

@@ -114,7 +114,7 @@ fn a_two_colour_texture_on_a_cube_shows_both_colours_with_a_sharp_boundary() {
     // through one level of refined texture coordinates (midpoint keeps the cube)
     let opts = subdiv::Options::default();
     let (fine, _) = subdiv::subdivide(&mesh, Scheme::Midpoint, 1, &opts).unwrap();
-    let r = subdiv::rules::refine_attributes(&mesh.ct, &attrs, Scheme::Midpoint, 1, &opts).unwrap();
+    let r = subdiv::Refiner::new(&mesh, Scheme::Midpoint, 1, &opts).unwrap().attributes(&attrs).unwrap();
     let paint = Paint::Materials { groups: r.materials.unwrap(), uv: r.uv };
     let ropts = RenderOptions { width: 240, height: 200, ..Default::default() };
     let img = subdiv::render::render_image_painted(&fine, None, &ropts, &paint).unwrap();

@@ -529,7 +529,7 @@ impl Doc {
         let key = self.refiner_key();
         let fresh = match self.edit.refiner.take() {
             Some((k, mut r)) if k == key => r.set_vertices(ids, to).map(|_| (r, false)),
-            _ => Refiner::new(&self.model.control.mesh, key.scheme, key.level, &key.opts).map(|r| (r, true)),
+            _ => Refiner::new(&*self.model.control.mesh, key.scheme, key.level, &key.opts).map(|r| (r, true)),
         };
         let (r, built) = match fresh {
             Ok(x) => x,

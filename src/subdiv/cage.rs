@@ -44,6 +44,10 @@ pub trait Cage: sealed::Sealed + Sized {
         opts: &Options,
         id: impl Fn(u32) -> I + Sync,
     ) -> Result<(Faces<I>, Stats)>;
+    /// The cage as the triangle table the refiner records on (a polygon
+    /// table fanned, its diagonals hidden) and whether it is polygons.
+    #[doc(hidden)]
+    fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool);
 }
 
 impl Cage for Mesh {
@@ -68,6 +72,9 @@ impl Cage for Mesh {
     ) -> Result<(Faces<I>, Stats)> {
         super::subdivide_mesh_faces_as(self, scheme, levels, opts, id)
     }
+    fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
+        (std::borrow::Cow::Borrowed(self), false)
+    }
 }
 
 impl Cage for PolyMesh {
@@ -91,6 +98,9 @@ impl Cage for PolyMesh {
         id: impl Fn(u32) -> I + Sync,
     ) -> Result<(Faces<I>, Stats)> {
         super::subdivide_poly_faces_as(self, scheme, levels, opts, id)
+    }
+    fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
+        (std::borrow::Cow::Owned(self.triangulated()), true)
     }
 }
 

@@ -19,6 +19,7 @@
 //! - every change is a step of a history ([`Refiner::undo`],
 //!   [`Refiner::redo`]) that stores what changed, not the mesh.
 
+mod attributes;
 mod retag;
 
 use super::tables::plan::{LevelTables, record_level};
@@ -184,6 +185,11 @@ pub struct Refiner {
     tables: LevelTables,
     /// Rows recorded again after sharpness edits.
     patches: Patches,
+    /// Whether the cage was a polygon table: attributes come and go per
+    /// polygon corner.
+    from_polygons: bool,
+    /// The face-varying topology of the texture coordinates last served.
+    face_varying: attributes::FaceVaryingCache,
 }
 
 impl Refiner {
@@ -193,7 +199,18 @@ impl Refiner {
     /// # Errors
     /// [`Error::TooLarge`] when a level would not fit in memory; a polygon
     /// scheme's refusal of the mesh.
-    pub fn new(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<Refiner> {
+    pub fn new<C: super::Cage>(cage: &C, scheme: Scheme, levels: u32, opts: &Options) -> Result<Refiner> {
+        let (mesh, polygons) = cage.as_triangles();
+        if polygons && !scheme.is_polygonal() {
+            return Err(Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
+        }
+        let mut r = Self::on_triangles(&mesh, scheme, levels, opts)?;
+        r.from_polygons = polygons;
+        Ok(r)
+    }
+
+    /// [`Refiner::new`] on a triangle table.
+    fn on_triangles(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<Refiner> {
         let mut tables = LevelTables::Triangles(Vec::new());
         let recorded = StencilPlan::record_keeping(&mesh.ct, (scheme, levels, opts), Some(&mut tables))?;
         let plan = StencilPlan::from_recorded(scheme, recorded);
@@ -210,6 +227,8 @@ impl Refiner {
             history: History::default(),
             patches: Patches::sized(levels as usize),
             tables,
+            from_polygons: false,
+            face_varying: Default::default(),
         };
         r.adopt_plan();
         r.set_control(&mesh.positions);
@@ -616,18 +635,20 @@ impl Refiner {
                 self.evaluate_touched();
             }
             None => {
-                let fresh = Refiner::new(
+                let mut fresh = Refiner::on_triangles(
                     &Mesh { ct: cage, positions: self.control().to_vec() },
                     self.scheme,
                     self.levels(),
                     &self.opts,
                 )?;
                 let history = std::mem::take(&mut self.history);
+                fresh.from_polygons = self.from_polygons;
                 *self = fresh;
                 self.history = history;
             }
         }
         self.plan_f64 = OnceLock::new();
+        self.face_varying = Default::default();
         Ok(())
     }
 

@@ -77,7 +77,7 @@ pub(crate) fn smooth_triangle_uvs(
 
 /// The UV charts of `pt` as a polygon mesh (positions `(u, v, 0)`), with
 /// the sharpness described in the module docs.
-fn charts(pt: &PolyTable, uv: &[Vec2], opts: &Options) -> Option<PolyMesh> {
+pub(crate) fn charts(pt: &PolyTable, uv: &[Vec2], opts: &Options) -> Option<PolyMesh> {
     if uv.len() != pt.num_corners() {
         return None;
     }
