@@ -250,7 +250,9 @@ fn a_polygon_cage_refines_to_the_polygons_subdivide_makes() {
             let r = Refiner::new(&cage, scheme, 2, &Options::default()).unwrap();
             let polygons = r.polygons().expect("a polygon scheme's polygons");
             assert_eq!(polygons.v_table(), fine.pt.v_table(), "{name} {scheme}: the same quads");
-            assert_eq!(r.positions(), &fine.positions[..], "{name} {scheme}: the same points");
+            // the recorded rows sum in another order than the one-shot passes
+            let worst = differ(r.positions(), &fine.positions).map_or(0.0, |d| d.1);
+            assert!(r.positions().len() == fine.positions.len() && worst < 1e-5, "{name} {scheme}: points {worst}");
         }
         assert!(Refiner::new(&cage, Scheme::Loop, 1, &Options::default()).is_err(), "{name}: Loop takes triangles");
     }
