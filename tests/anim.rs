@@ -123,3 +123,22 @@ fn edge_ring_normal(m: &subdiv::mesh::PolyMesh, v: u32) -> glam::Vec3 {
     let k = ring.len();
     (0..k).map(|i| ring[i].cross(ring[(i + 1) % k])).sum::<glam::Vec3>().normalize()
 }
+
+/// Per-vertex data through the animation's plan (what `animate --color
+/// file` draws) lands on its finest level's vertices in the plan's
+/// locality order: a colour that is an affine function of the control
+/// positions is the same function of the evaluated positions.
+#[test]
+fn colours_through_the_plan_follow_its_vertex_order() {
+    let m = icosphere(1);
+    let p = Paths::generated(&m, 4);
+    let mut a = Animation::new(&m, &p, Tweak::FourPoint, 2, Scheme::Loop, 3, &Options::default()).unwrap();
+    assert!(a.plan().order().is_some(), "the plan is renumbered: the test means something");
+    let colour = |q: glam::Vec3| q * 0.25 + glam::Vec3::splat(0.5);
+    let control: Vec<glam::Vec3> = a.control(0).iter().map(|&q| colour(q)).collect();
+    let mut fine = Vec::new();
+    a.plan().apply(&control, &mut subdiv::rules::PlanScratch::default(), &mut fine);
+    let (pos, _) = a.evaluate(0);
+    let worst = fine.iter().zip(pos).map(|(c, &q)| c.distance(colour(q))).fold(0.0, f32::max);
+    assert!(worst < 1e-5, "colours follow the positions' order ({worst})");
+}

@@ -473,14 +473,24 @@ fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> 
         }
         None => (None, Stats::default()),
     };
-    let (from, first) = match &proxy {
-        Some(p) => (p.mesh.clone(), proxy_level.unwrap_or(0)),
-        None => (control.mesh.clone(), 0),
+    let (fine, stats, attrs) = match level > 0 && !job.attrs.is_empty() {
+        // the attributes ride on the one refinement that makes the level
+        true => {
+            let r = crate::Refiner::new(&*control.mesh, scheme, level, &opts)?;
+            done.store(level as usize, Ordering::Relaxed);
+            let stats = Stats { faces_per_level: vec![r.topology().num_triangles()], ..Stats::default() };
+            (r.mesh(), stats, r.attributes(&job.attrs).unwrap_or_default())
+        }
+        false => {
+            let (from, first) = match &proxy {
+                Some(p) => (p.mesh.clone(), proxy_level.unwrap_or(0)),
+                None => (control.mesh.clone(), 0),
+            };
+            let (fine, stats) = run(&from, first, level - first)?;
+            (fine, stats, job.attrs.clone())
+        }
     };
-    let (fine, stats) = run(&from, first, level - first)?;
     let shown = if level == 0 { control.clone() } else { Shown::new(Arc::new(fine)) };
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    let attrs = crate::subdiv::tables::attributes::refine(&control.mesh.ct, &job.attrs, scheme, level, &opts)
-        .unwrap_or_default();
     Ok(Subdivided { shown, proxy, stats: first_stats.then(stats), ms, attrs, level, scheme, opts })
 }

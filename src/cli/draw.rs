@@ -268,15 +268,20 @@ mod gpu {
 
     /// The paint of a colouring for `fine`, `levels` levels of `scheme`
     /// over `control` (a curvature's with `isolines` per side of zero, over
-    /// the range `range` or the default), and a curvature's legend.
+    /// the range `range` or the default), and a curvature's legend; the
+    /// file's attributes through `refiner`, the refiner `fine` came from
+    /// (none: no levels).
     fn paint(
         (coloring, isolines, range): (Coloring, u8, Option<HalfWidth>),
-        control: &Mesh,
-        fine: &Mesh,
+        (control, fine): (&Mesh, &Mesh),
         attrs: &Attributes,
+        refiner: Option<&subdiv::Refiner>,
         (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
     ) -> Result<(Paint, Option<Legend>)> {
-        let refined = |a: Attributes| subdiv::rules::refine_attributes(&control.ct, &a, scheme, levels, opts);
+        let refined = |a: Attributes| match refiner {
+            Some(r) => r.attributes(&a),
+            None => Ok(a),
+        };
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         let paint = match coloring {
             Coloring::None => Paint::Material,
@@ -326,9 +331,17 @@ mod gpu {
         let s = &a.sub.scheme.over(attrs.options);
         let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
-        let (fine, _) = subdiv::subdivide(&mesh, s.scheme(), levels, &s.options())?;
-        let (paint, legend) =
-            paint((coloring, isolines, range), &mesh, &fine, &attrs, (s.scheme(), levels, &s.options()))?;
+        // the file's attributes ride on the refinement that makes the level
+        let with_attributes = matches!(coloring, Coloring::File | Coloring::Checker | Coloring::Material);
+        let (fine, refiner) = match with_attributes && levels > 0 {
+            true => {
+                let r = subdiv::Refiner::new(&mesh, s.scheme(), levels, &s.options())?;
+                (r.mesh(), Some(r))
+            }
+            false => (subdiv::subdivide(&mesh, s.scheme(), levels, &s.options())?.0, None),
+        };
+        let how = (s.scheme(), levels, &s.options());
+        let (paint, legend) = paint((coloring, isolines, range), (&mesh, &fine), &attrs, refiner.as_ref(), how)?;
         let (width, height) = a.size;
         let wire_edges = a.look.wire_level.parse().map_err(Error::Usage)?;
         let shot = subdiv::render::Shot { scale: a.look.scale, transparent: a.look.transparent };
@@ -414,9 +427,13 @@ mod gpu {
             Coloring::None => None,
             Coloring::Shells => Some(shells(&mesh, s.scheme(), level, nv)),
             Coloring::File => {
-                let only = Attributes { colors: attrs.colors, ..Default::default() };
-                let r = subdiv::rules::refine_attributes(&mesh.ct, &only, s.scheme(), level, &s.options())?;
-                Some(r.colors.ok_or_else(|| Error::Usage("--color file: the model has no colors".into()))?)
+                // through the animation's own plan: the colours in its finest
+                // level's (locality) order, no second refinement
+                let colors = attrs.colors.filter(|c| c.len() == mesh.positions.len());
+                let colors = colors.ok_or_else(|| Error::Usage("--color file: the model has no colors".into()))?;
+                let mut fine = Vec::new();
+                anim.plan().apply(&colors, &mut subdiv::rules::PlanScratch::default(), &mut fine);
+                Some(fine.into_iter().map(|c| c.clamp(glam::Vec3::ZERO, glam::Vec3::ONE)).collect())
             }
             other => return Err(Error::Usage(format!("animate --color {}: use none, shells or file", other.name()))),
         };

@@ -111,26 +111,30 @@ fn subdivide_triangles(
     attrs: Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
     let levels = a.sub.levels_or(1);
-    // Texture coordinates and colours ride along (see subdiv::attributes).
-    let fine_attrs = |attrs: Attributes| match attrs.is_empty() {
-        true => Ok(attrs),
-        false => subdiv::rules::refine_attributes(&mesh.ct, &attrs, s.scheme(), levels, &s.options()),
-    };
+    if levels > 0 && !attrs.is_empty() {
+        // texture coordinates and colours ride along, on the one refinement
+        let t0 = Instant::now();
+        let r = subdiv::Refiner::new(mesh, s.scheme(), levels, &s.options())?;
+        let (fine, fine_attrs) = (r.mesh(), r.attributes(&attrs)?);
+        let st = refiner_stats(&r, t0);
+        let t1 = Instant::now();
+        io::save_with(&a.output, &fine, &fine_attrs)?;
+        let written = fine.ct.num_triangles() - fine.ct.holes().len();
+        return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
+    }
     // OBJ writes the sharp features of the result, the boundary's corners too
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     // a mesh with holes goes the whole way: its attributes follow the faces left out
     let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options(), |j| j)?;
-        let fine_attrs = fine_attrs(attrs)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(&a.output, &fine, &attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(mesh, s.scheme(), levels, &s.options())?;
-    let fine_attrs = fine_attrs(attrs)?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &fine_attrs)?;
+    io::save_with(&a.output, &fine, &attrs)?;
     let written = fine.ct.num_triangles() - if levels > 0 { fine.ct.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -146,24 +150,30 @@ fn subdivide_polygons(
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
     let levels = a.sub.levels_or(1);
     let (control, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-    let fine_attrs = |pattrs: Attributes| match pattrs.is_empty() {
-        true => Ok(pattrs),
-        false => subdiv::rules::refine_poly_attributes(&control, &pattrs, s.scheme(), levels, &s.options()),
-    };
+    if levels > 0 && !pattrs.is_empty() {
+        // the attributes per polygon corner, on the one refinement
+        let t0 = Instant::now();
+        let r = subdiv::Refiner::new(&control, s.scheme(), levels, &s.options())?;
+        let fine = refined_polygons(&r, r.positions().to_vec());
+        let fine_attrs = r.attributes(&pattrs)?;
+        let st = refiner_stats(&r, t0);
+        let t1 = Instant::now();
+        io::save_with(&a.output, &fine, &fine_attrs)?;
+        let written = fine.pt.num_faces() - fine.pt.holes().len();
+        return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
+    }
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(&control, s.scheme(), levels, &s.options(), |j| j)?;
-        let fine_attrs = fine_attrs(pattrs)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(&a.output, &fine, &pattrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(&control, s.scheme(), levels, &s.options())?;
-    let fine_attrs = fine_attrs(pattrs)?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &fine_attrs)?;
+    io::save_with(&a.output, &fine, &pattrs)?;
     let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -185,18 +195,35 @@ fn subdivide_precise(
     let t0 = Instant::now();
     // a control mesh keeps its holes as tags (OBJ); a refined level leaves them out
     let keep_holes = levels == 0;
-    let refine = subdiv::rules::refine_poly_attributes;
     let (vertices, faces, write): (usize, usize, Box<dyn FnOnce() -> Result<()>>) = if s.scheme().is_polygonal() {
         let (pm, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-        let (fine, pos) = subdiv::subdivide_f64(&pm, &control, s.scheme(), levels, &opts)?;
-        let fa = if pattrs.is_empty() { pattrs } else { refine(&pm, &pattrs, s.scheme(), levels, &opts)? };
+        let (fine, pos, fa) = match pattrs.is_empty() {
+            true => {
+                let (fine, pos) = subdiv::subdivide_f64(&pm, &control, s.scheme(), levels, &opts)?;
+                (fine, pos, pattrs)
+            }
+            // the attributes on the same refinement as the f64 points
+            false => {
+                let r = subdiv::Refiner::new(&pm, s.scheme(), levels, &opts)?;
+                let pos = refined_f64(&r, &control)?;
+                let rounded = pos.iter().map(|p| p.as_vec3()).collect();
+                (refined_polygons(&r, rounded), pos, r.attributes(&pattrs)?)
+            }
+        };
         let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
         (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
     } else {
-        let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
-        let fa = match attrs.is_empty() {
-            true => attrs.clone(),
-            false => subdiv::rules::refine_attributes(&mesh.ct, attrs, s.scheme(), levels, &opts)?,
+        let (fine, pos, fa) = match attrs.is_empty() {
+            true => {
+                let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
+                (fine, pos, attrs.clone())
+            }
+            false => {
+                let r = subdiv::Refiner::new(mesh, s.scheme(), levels, &opts)?;
+                let pos = refined_f64(&r, &control)?;
+                let fine = Mesh { positions: pos.iter().map(|p| p.as_vec3()).collect(), ..r.mesh() };
+                (fine, pos, r.attributes(attrs)?)
+            }
         };
         let faces = fine.ct.num_triangles() - if keep_holes { 0 } else { fine.ct.holes().len() };
         (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
@@ -205,6 +232,26 @@ fn subdivide_precise(
     let t1 = Instant::now();
     write()?;
     Ok((vertices, faces, st, t1.elapsed().as_secs_f64() * 1e3))
+}
+
+/// The refiner's finest polygons with `positions`, or (no levels) its cage.
+fn refined_polygons(r: &subdiv::Refiner, positions: Vec<glam::Vec3>) -> subdiv::mesh::PolyMesh {
+    match r.polygons() {
+        Some(pt) => subdiv::mesh::PolyMesh { pt: pt.clone(), positions },
+        None => subdiv::mesh::PolyMesh::from_mesh(&Mesh { positions, ..r.cage() }),
+    }
+}
+
+/// The refiner's finest points from the f64 control points `control`.
+fn refined_f64(r: &subdiv::Refiner, control: &[glam::DVec3]) -> Result<Vec<glam::DVec3>> {
+    let flat: Vec<f64> = control.iter().flat_map(|p| p.to_array()).collect();
+    Ok(r.refine(&flat, 3)?.chunks_exact(3).map(glam::DVec3::from_slice).collect())
+}
+
+/// The stats of a refiner's levels built since `t0`.
+fn refiner_stats(r: &subdiv::Refiner, t0: Instant) -> subdiv::Stats {
+    let faces = r.polygons().map_or(r.topology().num_triangles(), |p| p.num_faces());
+    subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, faces_per_level: vec![faces], ..Default::default() }
 }
 
 /// What `subdivide` prints: `--stats`, `--json` or a line.
