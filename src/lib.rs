@@ -96,12 +96,15 @@ pub mod pick {
 pub mod rules {
     //! The rules made visible: the stencil plan's levels and rows, one
     //! vertex's stencil, the sharp features a mesh carries, the level each
-    //! vertex was made at, the predicted sizes, and data (colours, UVs,
-    //! materials) refined along the surface.
+    //! vertex was made at, the predicted sizes, and attributes refined along
+    //! their own topology (texture coordinates on their charts, materials by
+    //! lineage; colours, which need the rows, come from
+    //! [`crate::Refiner::attributes`]).
     pub use crate::subdiv::inspect::{creation_levels, displacement};
     pub use crate::subdiv::rules::features::{Summary, poly_summary, summary, with_boundary_corners};
     pub use crate::subdiv::sizes::ControlCounts;
     pub use crate::subdiv::stencil::{Stencil, stencil};
+    pub use crate::subdiv::tables::attributes::{refine as refine_attributes, refine_poly as refine_poly_attributes};
     pub use crate::subdiv::tables::{LevelPlan, PlanScratch, Point};
     pub use crate::subdiv::{PlanF64, plan_f64};
 }

@@ -473,8 +473,8 @@ fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> 
         }
         None => (None, Stats::default()),
     };
-    let (fine, stats, attrs) = match level > 0 && !job.attrs.is_empty() {
-        // the attributes ride on the one refinement that makes the level
+    let (fine, stats, attrs) = match level > 0 && job.attrs.colors.is_some() {
+        // colours need the rows: the level and every attribute from one refiner
         true => {
             let r = crate::Refiner::new(&*control.mesh, scheme, level, &opts)?;
             done.store(level as usize, Ordering::Relaxed);
@@ -487,7 +487,10 @@ fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> 
                 None => (control.mesh.clone(), 0),
             };
             let (fine, stats) = run(&from, first, level - first)?;
-            (fine, stats, job.attrs.clone())
+            // texture coordinates and materials along their own topology
+            let attrs = crate::subdiv::tables::attributes::refine(&control.mesh.ct, &job.attrs, scheme, level, &opts)
+                .unwrap_or_default();
+            (fine, stats, attrs)
         }
     };
     let shown = if level == 0 { control.clone() } else { Shown::new(Arc::new(fine)) };

@@ -278,9 +278,11 @@ mod gpu {
         refiner: Option<&subdiv::Refiner>,
         (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
     ) -> Result<(Paint, Option<Legend>)> {
+        // colours through the rows of the refiner that made the level; the
+        // rest along their own topology
         let refined = |a: Attributes| match refiner {
             Some(r) => r.attributes(&a),
-            None => Ok(a),
+            None => subdiv::rules::refine_attributes(&control.ct, &a, scheme, levels, opts),
         };
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         let paint = match coloring {
@@ -331,9 +333,9 @@ mod gpu {
         let s = &a.sub.scheme.over(attrs.options);
         let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
-        // the file's attributes ride on the refinement that makes the level
-        let with_attributes = matches!(coloring, Coloring::File | Coloring::Checker | Coloring::Material);
-        let (fine, refiner) = match with_attributes && levels > 0 {
+        // the file's colours need the rows: they ride on the refiner that makes the level
+        let with_colors = matches!(coloring, Coloring::File);
+        let (fine, refiner) = match with_colors && levels > 0 {
             true => {
                 let r = subdiv::Refiner::new(&mesh, s.scheme(), levels, &s.options())?;
                 (r.mesh(), Some(r))

@@ -17,6 +17,7 @@ use crate::Result;
 use crate::mesh::attributes::{Attributes, MaterialGroups, UvInterpolation, refine_corner_uvs, refine_face_ids};
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::{BoundaryInterpolation, Mesh};
+use crate::subdiv::tables::attributes::split_poly_uvs;
 use crate::subdiv::tables::face_varying::charts;
 use crate::subdiv::tables::plan::{LevelTables, PlanScratch, StencilPlan};
 use crate::subdiv::{Options, Scheme};
@@ -173,31 +174,6 @@ impl Refiner {
         *kept = Some(fv.clone());
         Ok(fv)
     }
-}
-
-/// Texture coordinates per polygon corner after one quad split of `pt`,
-/// bilinear inside each face (OpenSubdiv's `FVAR_LINEAR_ALL`): child quad
-/// `c` gets `uv(c)`, the midpoints of the edges leaving and entering `c`,
-/// and the face's centroid, so seams stay where they are.
-fn split_poly_uvs(pt: &PolyTable, uv: &[Vec2]) -> Vec<Vec2> {
-    let centroid: Vec<Vec2> = (0..pt.num_faces() as u32)
-        .into_par_iter()
-        .map(|f| {
-            let r = pt.face_corners(f);
-            let k = (r.end - r.start) as f32;
-            r.map(|c| uv[c as usize]).sum::<Vec2>() / k
-        })
-        .collect();
-    let mut out = vec![Vec2::ZERO; 4 * uv.len()];
-    out.par_chunks_mut(4).enumerate().for_each(|(c, q)| {
-        let c = c as u32;
-        let (a, next, prev) = (uv[c as usize], uv[pt.next(c) as usize], uv[pt.prev(c) as usize]);
-        q[0] = a;
-        q[1] = (a + next) * 0.5;
-        q[2] = centroid[pt.face(c) as usize];
-        q[3] = (prev + a) * 0.5;
-    });
-    out
 }
 
 #[cfg(test)]

@@ -2,9 +2,9 @@
 //! new vertex recorded once for a topology ([`StencilPlan`], CSR rows per
 //! level in [`rows`], packed by distinct weights in [`packed`]) and
 //! re-applied to new control values: positions each animation frame,
-//! colours (the refiner) and texture coordinates on their own charts
-//! ([`face_varying`]).
+//! colours and texture coordinates ([`attributes`]).
 
+pub(crate) mod attributes;
 pub(crate) mod face_varying;
 pub(crate) mod packed;
 pub(crate) mod plan;
