@@ -68,7 +68,9 @@ pub mod eval {
     //! the points it is asked at, the Loop and Catmull-Clark limit formulas
     //! per vertex, and the curvature colours.
     pub use crate::subdiv::eval::catmark::{QUAD, ptex_faces};
-    pub use crate::subdiv::eval::catmark_limit::{LimitFrame, frame_from, frames_at, limit_frames};
+    pub use crate::subdiv::eval::catmark_limit::{
+        LimitFrame, frame_from, frames_at, limit_frames, limit_positions_f64,
+    };
     pub use crate::subdiv::eval::{
         Domain, EDGE_SLACK, Sample, evaluate_one, parse_points_in, poly_vertex_params, vertex_samples,
     };

@@ -10,7 +10,7 @@ mod common;
 
 use glam::Vec3;
 use std::path::PathBuf;
-use subdiv::eval::{LimitFrame, frame_from, frames_at, limit_frames};
+use subdiv::eval::{LimitFrame, frame_from, frames_at, limit_frames, limit_positions_f64};
 use subdiv::mesh::PolyMesh;
 use subdiv::mesh::{BoundaryInterpolation, Creasing};
 use subdiv::{Options, Scheme, subdivide};
@@ -220,4 +220,31 @@ fn limit_is_the_same_from_the_next_level_and_the_mesh_converges() {
             assert!(gap < 2e-3, "{what} vertex {v}: level +6 is {gap} from the limit");
         }
     }
+}
+
+/// The f64 limit: OpenSubdiv's limit positions from the f64 control points
+/// (ngons, refined to quads first; the creased cube, refined until its
+/// semi-sharp features decay), and a million units from the origin the
+/// same surface moved, to f64's digits there.
+#[test]
+fn the_f64_limit_equals_opensubdiv_and_keeps_its_digits_far_out() {
+    for (name, fixture_name, opts) in [
+        ("ngons.obj", "ngons.limit.uniform.L1.osd.txt", Options::default()),
+        ("cube_creases.obj", "cube_creases.limit.uniform.L3.osd.txt", Options::default()),
+    ] {
+        let control = load(name);
+        let exact: Vec<glam::DVec3> = control.positions.iter().map(|p| p.as_dvec3()).collect();
+        let ours = limit_positions_f64(&control, &exact, &opts).unwrap();
+        let osd = read_limit(fixture_name);
+        // OpenSubdiv numbers the children of the old vertices first, in order
+        for (v, p) in ours.iter().enumerate() {
+            assert!(close(p.as_vec3(), osd[v].limit, 1e-5), "{name} vertex {v}: {p} against {}", osd[v].limit);
+        }
+        let shift = glam::DVec3::new(1e6, -2e6, 3e6);
+        let far: Vec<glam::DVec3> = exact.iter().map(|p| *p + shift).collect();
+        let moved = limit_positions_f64(&control, &far, &opts).unwrap();
+        let worst = moved.iter().zip(&ours).map(|(a, b)| (*a - shift - *b).abs().max_element()).fold(0.0, f64::max);
+        assert!(worst < 1e-8, "{name}: a million units out the limit keeps its digits ({worst})");
+    }
+    assert!(limit_positions_f64(&load("ngons.obj"), &[], &Options::default()).is_err(), "a wrong count is refused");
 }

@@ -334,3 +334,41 @@ fn loop_limit_positions_in_double_precision_equal_the_textbook_mask() {
     let far = single.iter().zip(&expected).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
     assert!(far > 1e-3, "f32 limit as exact as f64's? {far:e}");
 }
+
+/// `limit` (f64 by default) and `smooth --precision f64` read the file's
+/// digits, compute in f64 and write them: a Catmull-Clark limit and Taubin
+/// smoothing of a grid a million units out equal the library's f64 results
+/// on the same digits, which single precision does not come near.
+#[test]
+#[cfg(feature = "cli")]
+fn limit_and_smooth_compute_and_write_in_double_precision() {
+    let dir = common::scratch_dir("precision-cc-limit");
+    let (v, quads) = affine_grid(6, true);
+    let input = dir.join("grid.obj");
+    let mut text: String = v.iter().map(|p| format!("v {:?} {:?} {:?}\n", p.x, p.y, p.z)).collect();
+    for q in quads.chunks_exact(4) {
+        text += &format!("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+    }
+    std::fs::write(&input, text).unwrap();
+    let run = |args: &[&str], out: &str| {
+        let path = dir.join(out);
+        let st = std::process::Command::new(env!("CARGO_BIN_EXE_subdiv"))
+            .args([args[0], input.to_str().unwrap(), path.to_str().unwrap()])
+            .args(&args[1..])
+            .output()
+            .unwrap();
+        assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
+        obj_points(&std::fs::read_to_string(&path).unwrap())
+    };
+    let mesh = subdiv::io::load(&input).unwrap();
+    let poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
+    let limit = subdiv::eval::limit_positions_f64(&poly, &v, &Options::default()).unwrap();
+    assert!(worst(&run(&["limit", "-s", "catmull-clark"], "l.obj"), &limit) < 1e-9, "the default limit is f64");
+    let single = run(&["limit", "-s", "catmull-clark", "--precision", "f32"], "ls.obj");
+    assert!(worst(&single, &limit) > 1e-3, "an f32 limit as exact as f64's?");
+    // the command's default lambda and mu, parsed as it parses them
+    let smooth = subdiv::mesh::smooth_f64(&mesh, &v, 10, "0.6307".parse().unwrap(), Some("-0.6732".parse().unwrap()));
+    assert!(worst(&run(&["smooth", "--precision", "f64"], "s.obj"), &smooth) < 1e-9, "f64 smoothing");
+    let single = run(&["smooth"], "ss.obj");
+    assert!(worst(&single, &smooth) > 1e-3, "f32 smoothing as exact as f64's?");
+}

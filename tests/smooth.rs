@@ -6,7 +6,7 @@ mod common;
 use common::*;
 use glam::{Mat3, Vec3};
 use subdiv::Mesh;
-use subdiv::mesh::{TAUBIN_LAMBDA, TAUBIN_MU, laplacian, taubin};
+use subdiv::mesh::{TAUBIN_LAMBDA, TAUBIN_MU, laplacian, smooth_f64, taubin};
 
 fn radii(p: &[Vec3]) -> (f32, f32) {
     let n = p.len() as f32;
@@ -136,4 +136,27 @@ fn boundary_moves_along_the_boundary_only() {
 fn zero_steps_is_the_identity() {
     let m = noisy_sphere();
     assert_eq!(taubin(&m, 0, TAUBIN_LAMBDA, TAUBIN_MU), m.positions);
+}
+
+/// Smoothing in f64: the f32 passes' result within f32's rounding, and a
+/// million units from the origin the same result moved, where f32's
+/// spacing (0.06) would swamp it (the umbrella's weights sum to zero).
+#[test]
+fn f64_smoothing_keeps_its_digits_far_from_the_origin() {
+    let m = noisy_sphere();
+    let exact: Vec<glam::DVec3> = m.positions.iter().map(|p| p.as_dvec3()).collect();
+    let (l, mu) = (TAUBIN_LAMBDA as f64, TAUBIN_MU as f64);
+    for (name, f64s, f32s) in [
+        ("taubin", smooth_f64(&m, &exact, 10, l, Some(mu)), taubin(&m, 10, TAUBIN_LAMBDA, TAUBIN_MU)),
+        ("laplacian", smooth_f64(&m, &exact, 10, 0.5, None), laplacian(&m, 10, 0.5)),
+    ] {
+        let near = f64s.iter().zip(&f32s).map(|(a, b)| (*a - b.as_dvec3()).abs().max_element()).fold(0.0, f64::max);
+        assert!(near < 1e-5, "{name}: f64 and f32 agree to f32's rounding ({near})");
+        let shift = glam::DVec3::splat(1e6);
+        let far: Vec<glam::DVec3> = exact.iter().map(|p| *p + shift).collect();
+        let taubin_case = name == "taubin";
+        let moved = smooth_f64(&m, &far, 10, if taubin_case { l } else { 0.5 }, taubin_case.then_some(mu));
+        let worst = moved.iter().zip(&f64s).map(|(a, b)| (*a - shift - *b).abs().max_element()).fold(0.0, f64::max);
+        assert!(worst < 1e-8, "{name}: a million units out ({worst})");
+    }
 }

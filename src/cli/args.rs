@@ -80,11 +80,6 @@ impl InputArgs {
         );
         Ok(loaded)
     }
-
-    /// The mesh `input` names (see [`InputArgs::read`]).
-    pub(crate) fn load(&self, input: &Path) -> Result<Mesh> {
-        Ok(self.read(input, false)?.mesh)
-    }
 }
 
 /// `NAME=VALUE` of `--limit`: a known limit and a count or size.

@@ -360,14 +360,19 @@ pub struct SmoothArgs {
     #[arg(long, short = 'n', default_value_t = 10)]
     steps: u32,
     /// Shrinking factor lambda (> 0).
-    #[arg(long, default_value_t = subdiv::mesh::TAUBIN_LAMBDA)]
-    lambda: f32,
+    #[arg(long, default_value = "0.6307")]
+    lambda: f64,
     /// Inflating factor mu (< -lambda).
-    #[arg(long, default_value_t = subdiv::mesh::TAUBIN_MU, allow_hyphen_values = true)]
-    mu: f32,
+    #[arg(long, default_value = "-0.6732", allow_hyphen_values = true)]
+    mu: f64,
     /// Plain Laplacian smoothing with lambda only (shrinks; for comparison).
     #[arg(long)]
     laplacian: bool,
+    /// f32 (the default) or f64: the passes in double precision from the
+    /// file's own digits (OBJ's text, PLY's doubles), written in double
+    /// precision (OBJ or PLY).
+    #[arg(long, default_value = "f32")]
+    precision: Precision,
 }
 
 /// `subdiv smooth`.
@@ -376,13 +381,21 @@ pub(crate) fn smooth(a: &SmoothArgs) -> Result<()> {
     if !(lambda.is_finite() && mu.is_finite() && lambda > 0.0 && (a.laplacian || mu < -lambda)) {
         return Err(Error::Usage(format!("need lambda > 0 and mu < -lambda (got {lambda}, {mu})")));
     }
-    let mesh = a.io.from.load(&a.io.input)?;
-    let positions = if a.laplacian {
-        subdiv::mesh::laplacian(&mesh, a.steps, lambda)
+    let loaded = a.io.from.read(&a.io.input, false)?;
+    let (mesh, precise) = (loaded.mesh, loaded.precise);
+    if a.precision == Precision::F64 {
+        let control = precise.unwrap_or_else(|| mesh.positions.iter().map(|p| p.as_dvec3()).collect());
+        let mu = (!a.laplacian).then_some(mu);
+        let pos = subdiv::mesh::smooth_f64(&mesh, &control, a.steps, lambda, mu);
+        io::save_f64(&a.io.output, &mesh, &pos, &Attributes::default(), true)?;
     } else {
-        subdiv::mesh::taubin(&mesh, a.steps, lambda, mu)
-    };
-    io::save(&a.io.output, &Mesh { ct: mesh.ct, positions })?;
+        let (lambda, mu) = (lambda as f32, mu as f32);
+        let positions = match a.laplacian {
+            true => subdiv::mesh::laplacian(&mesh, a.steps, lambda),
+            false => subdiv::mesh::taubin(&mesh, a.steps, lambda, mu),
+        };
+        io::save(&a.io.output, &Mesh { ct: mesh.ct, positions })?;
+    }
     println!("{} -> {}: {} smoothing steps", a.io.input.display(), a.io.output.display(), a.steps);
     Ok(())
 }
@@ -401,17 +414,15 @@ pub struct LimitCmdArgs {
     scheme: subdiv::Scheme,
     #[command(flatten)]
     features: super::args::FeatureArgs,
-    /// f32 (the default) or f64: Loop's limit from the file's own digits
-    /// (OBJ's text, PLY's doubles), written in double precision (OBJ or PLY).
-    #[arg(long, default_value = "f32")]
+    /// f64 (the default) or f32: the limit from the file's own digits (OBJ's
+    /// text, PLY's doubles), computed and written in double precision (OBJ or
+    /// PLY); f32 computes from and writes single-precision positions.
+    #[arg(long, default_value = "f64")]
     precision: Precision,
 }
 
 /// `subdiv limit`.
 pub(crate) fn limit(a: &LimitCmdArgs) -> Result<()> {
-    if a.precision == Precision::F64 && a.scheme != subdiv::Scheme::Loop {
-        return Err(Error::Usage("--precision f64 takes Loop's limit (catmull-clark's is f32 for now)".into()));
-    }
     let loaded = a.from.read(&a.input, false)?;
     let (mesh, attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
     let features = a.features.over(attrs.options);
@@ -434,9 +445,15 @@ pub(crate) fn limit(a: &LimitCmdArgs) -> Result<()> {
                 ..Default::default()
             };
             let mut poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
-            let frames = subdiv::eval::limit_frames(&poly, &opts)?;
-            poly.positions = frames.iter().map(|f| f.position).collect();
-            io::save_with(&a.output, &poly, &Default::default())?;
+            if a.precision == Precision::F64 {
+                let control = precise.unwrap_or_else(|| mesh.positions.iter().map(|p| p.as_dvec3()).collect());
+                let pos = subdiv::eval::limit_positions_f64(&poly, &control, &opts)?;
+                io::save_f64(&a.output, &poly, &pos, &Default::default(), true)?;
+            } else {
+                let frames = subdiv::eval::limit_frames(&poly, &opts)?;
+                poly.positions = frames.iter().map(|f| f.position).collect();
+                io::save_with(&a.output, &poly, &Default::default())?;
+            }
         }
         s => {
             return Err(Error::Usage(format!(

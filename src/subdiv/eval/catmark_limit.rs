@@ -80,24 +80,10 @@ impl LimitFrame {
 /// None in practice: levels that do not fit are skipped, not refused.
 pub fn limit_frames(mesh: &PolyMesh, opts: &Options) -> Result<Vec<LimitFrame>> {
     let nv = mesh.positions.len();
-    let mut levels = semi_sharp_levels(&mesh.pt).min(8);
-    if !mesh.pt.is_quads() {
-        levels = levels.max(1);
-    }
-    let mut refined = None;
-    while levels > 0 {
-        match subdivide_poly(mesh, Scheme::CatmullClark, levels, opts) {
-            Ok((m, _)) => {
-                refined = Some(m);
-                break;
-            }
-            Err(Error::TooLarge { .. }) => levels -= 1,
-            Err(e) => return Err(e),
-        }
-    }
+    let refined = refined_for_limit(mesh, |levels| subdivide_poly(mesh, Scheme::CatmullClark, levels, opts))?;
     // old vertices keep their ids through the levels
     let frames = match &refined {
-        Some(m) => frames_at(&m.pt, &m.positions, opts.creasing),
+        Some((m, _)) => frames_at(&m.pt, &m.positions, opts.creasing),
         None => {
             // the control level itself: its one-face corners as the option says
             let pt = with_boundary_corners(&mesh.pt, opts.boundary);
@@ -105,6 +91,48 @@ pub fn limit_frames(mesh: &PolyMesh, opts: &Options) -> Result<Vec<LimitFrame>> 
         }
     };
     Ok(frames.into_iter().take(nv).collect())
+}
+
+/// The limit positions of [`limit_frames`] from the f64 control points
+/// `control` (one per vertex of `mesh`, e.g. a file's own digits): the
+/// levels refined with the rules' f64 weights, the masks applied in f64.
+///
+/// # Errors
+/// `control` not one point per vertex of `mesh`.
+pub fn limit_positions_f64(mesh: &PolyMesh, control: &[DVec3], opts: &Options) -> Result<Vec<DVec3>> {
+    let nv = mesh.positions.len();
+    if control.len() != nv {
+        return Err(Error::Usage(format!("{} control points for {nv} vertices", control.len())));
+    }
+    let refined = refined_for_limit(mesh, |levels| {
+        crate::subdiv::subdivide_f64(mesh, control, Scheme::CatmullClark, levels, opts)
+    })?;
+    let masks = match &refined {
+        Some((m, pos)) => masks_at(&m.pt, opts.creasing, &|i| pos[i as usize]),
+        None => {
+            let pt = with_boundary_corners(&mesh.pt, opts.boundary);
+            masks_at(pt.as_ref().unwrap_or(&mesh.pt), opts.creasing, &|i| control[i as usize])
+        }
+    };
+    Ok(masks.into_iter().take(nv).map(|m| m.map_or(DVec3::ZERO, |(p, _, _)| p)).collect())
+}
+
+/// The levels the limit masks need on `mesh` (every face a quad, every
+/// semi-sharp feature decayed, at most 8), refined by `refine`, fewer where
+/// they do not fit in memory; `None` for none.
+fn refined_for_limit<T>(mesh: &PolyMesh, refine: impl Fn(u32) -> Result<T>) -> Result<Option<T>> {
+    let mut levels = semi_sharp_levels(&mesh.pt).min(8);
+    if !mesh.pt.is_quads() {
+        levels = levels.max(1);
+    }
+    while levels > 0 {
+        match refine(levels) {
+            Ok(m) => return Ok(Some(m)),
+            Err(Error::TooLarge { .. }) => levels -= 1,
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(None)
 }
 
 /// Levels until the sharpest semi-sharp edge or vertex has decayed.
@@ -117,17 +145,30 @@ fn semi_sharp_levels(pt: &PolyTable) -> u32 {
 /// The masks' frames of every vertex of an all-quad level, its rules taken
 /// at this level. Vertices on a face of another size get zeros.
 pub fn frames_at(pt: &PolyTable, pos: &[Vec3], creasing: Creasing) -> Vec<LimitFrame> {
+    let masks = masks_at(pt, creasing, &|i| pos[i as usize].as_dvec3());
+    masks.into_iter().map(|m| m.map_or_else(LimitFrame::default, to_frame)).collect()
+}
+
+/// The masks' position and tangents in f64 at every vertex of an all-quad
+/// level whose points `p` gives; `None` at a vertex with a face of another
+/// size.
+fn masks_at(pt: &PolyTable, creasing: Creasing, p: &(dyn Fn(u32) -> DVec3 + Sync)) -> Vec<Option<Masks>> {
     let features = Features::of(pt, creasing);
     (0..pt.num_vertices() as u32)
         .into_par_iter()
         .with_min_len(2048)
         .map_init(Ring::default, |ring, v| {
-            if !ring.gather(pt, v, pt.corner_of(v)) {
-                return LimitFrame::default();
-            }
-            ring.frame(pt, pos, rule(pt, features.as_ref(), v))
+            ring.gather(pt, v, pt.corner_of(v)).then(|| ring.masks(pt, p, rule(pt, features.as_ref(), v)))
         })
         .collect()
+}
+
+/// A limit position and its two tangents, in f64.
+type Masks = (DVec3, DVec3, DVec3);
+
+/// The f32 frame of `masks`.
+fn to_frame((position, tan1, tan2): Masks) -> LimitFrame {
+    LimitFrame { position: position.as_vec3(), tan1: tan1.as_vec3(), tan2: tan2.as_vec3() }
 }
 
 /// The frame of vertex `v` with its fan started at corner `first` (one of
@@ -138,7 +179,8 @@ pub fn frame_from(pt: &PolyTable, pos: &[Vec3], creasing: Creasing, v: u32, firs
     let features = Features::of(pt, creasing);
     let mut ring = Ring::default();
     let start = if pt.is_boundary_vertex(v) { pt.corner_of(v) } else { first };
-    ring.gather(pt, v, start).then(|| ring.frame(pt, pos, rule(pt, features.as_ref(), v)))
+    let p = |i: u32| pos[i as usize].as_dvec3();
+    ring.gather(pt, v, start).then(|| to_frame(ring.masks(pt, &p, rule(pt, features.as_ref(), v))))
 }
 
 /// The limit rule of a vertex.
@@ -213,14 +255,13 @@ impl Ring {
         true
     }
 
-    /// The frame for `rule` (the vertex's).
-    fn frame(&self, pt: &PolyTable, pos: &[Vec3], rule: LimitRule) -> LimitFrame {
-        let p = |i: u32| pos[i as usize].as_dvec3();
+    /// The masks for `rule` (the vertex's), the level's points from `p`.
+    fn masks(&self, pt: &PolyTable, p: &(dyn Fn(u32) -> DVec3 + Sync), rule: LimitRule) -> Masks {
         let v = p(self.v);
         let e: Vec<DVec3> = self.e.iter().map(|&i| p(i)).collect();
         let f: Vec<DVec3> = self.f.iter().map(|&i| p(i)).collect();
         let smooth_like = self.f.len() > 2 && !self.boundary;
-        let (position, tan1, tan2) = match rule {
+        match rule {
             LimitRule::Smooth if smooth_like => smooth(v, &e, &f),
             LimitRule::Dart if smooth_like => {
                 let (_, tan1, tan2) = smooth(v, &e, &f);
@@ -238,8 +279,7 @@ impl Ring {
                 }
             }
             _ => corner(v, &e),
-        };
-        LimitFrame { position: position.as_vec3(), tan1: tan1.as_vec3(), tan2: tan2.as_vec3() }
+        }
     }
 }
 
