@@ -139,7 +139,9 @@ fn double_data_after_a_sharpness_edit_equals_the_double_subdivision_of_the_retag
         let after = r.refine(&flat, 3).unwrap();
         let (_, exact) = subdivide_f64(&r.cage(), &far, scheme, levels, &Options::default()).unwrap();
         let exact: Vec<f64> = exact.iter().flat_map(|p| p.to_array()).collect();
-        assert_eq!(after, exact, "{name}: the f64 rows follow the new tags");
+        // the recorded rows sum in another order than the one-shot passes
+        let worst = after.iter().zip(&exact).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        assert!(after.len() == exact.len() && worst < 1e-8, "{name}: the f64 rows follow the new tags ({worst})");
         // bilinear has no smooth rule for a crease to change
         assert!(scheme == Scheme::Bilinear || before != after, "{name}: the crease changes the surface");
     }

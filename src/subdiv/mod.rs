@@ -33,7 +33,7 @@ use crate::Result;
 pub(crate) use crate::mem::default_memory_limit;
 pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
-use crate::mesh::{Faces, Mesh, VertexId};
+use crate::mesh::{CornerTable, Faces, Mesh, VertexId};
 pub(crate) use refine::check_levels_fit;
 use refine::{OneLevel, Refined};
 use rules::{catmull_clark, features, loop_};
@@ -165,6 +165,46 @@ fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync>(
     }
     stats.total_ms = ms(t0.elapsed());
     Ok((Refined::Table(cur.unwrap_or_else(|| mesh.clone()), None), stats))
+}
+
+/// The levels of a triangle scheme on `ct` from the points `positions` in
+/// their own precision (`Vec3` or `DVec3`): the one-shot passes, every
+/// level with its table. `refine_levels` is the f32 path with a faces-only
+/// last level and progress.
+///
+/// # Errors
+/// As [`subdivide`].
+pub(crate) fn refine_table_levels<P: rules::Coord>(
+    ct: &CornerTable,
+    positions: &[P],
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<(CornerTable, Vec<P>)> {
+    let limit = opts.max_memory.or_else(default_memory_limit);
+    check_levels_fit(ct, 0, levels, limit)?;
+    let mut stats = Stats::default();
+    let base = features::with_boundary_corners(ct, opts.boundary);
+    let mut cur: Option<(CornerTable, Vec<P>)> = None;
+    let mut boundary: Option<Vec<bool>> = None;
+    for level in 1..=levels {
+        let (ct, positions) = match cur.take() {
+            Some((t, p)) => (Cow::Owned(t), Cow::Owned(p)),
+            None => (base.clone(), Cow::Borrowed(positions)),
+        };
+        let one = refine::TableLevel {
+            ct,
+            positions,
+            boundary: boundary.take(),
+            last: level == levels,
+            creasing: opts.creasing,
+            stats: &mut stats,
+        };
+        let (next, points, next_boundary) = with_rules(scheme, opts, one);
+        boundary = next_boundary;
+        cur = Some((next, points));
+    }
+    Ok(cur.unwrap_or_else(|| (base.into_owned(), positions.to_vec())))
 }
 
 /// Refines the polygon mesh `mesh` `levels` times with a polygon scheme

@@ -32,8 +32,14 @@ pub(crate) fn subdivide_mesh_f64(
     opts: &Options,
 ) -> Result<(Mesh, Vec<DVec3>)> {
     check_count(control.len(), mesh.positions.len())?;
-    let (plans, ct, _) = StencilPlan::record::<f64>(&mesh.ct, scheme, levels, opts)?;
-    let positions = apply_levels(&plans, control);
+    let (ct, positions) = match scheme.is_polygonal() {
+        true => {
+            let (plans, ct, _) = StencilPlan::record::<f64>(&mesh.ct, scheme, levels, opts)?;
+            (ct, apply_levels(&plans, control))
+        }
+        // the triangle schemes' one-shot passes, in f64
+        false => super::refine_table_levels(&mesh.ct, control, scheme, levels, opts)?,
+    };
     let rounded = positions.iter().map(|p| p.as_vec3()).collect();
     Ok((Mesh { ct, positions: rounded }, positions))
 }

@@ -10,7 +10,7 @@ pub(crate) mod poly;
 
 use super::rules::crease::{Blend, OnLevel, edge_stencil, vertex_stencil};
 use super::rules::features::{Features, Mask};
-use super::rules::{Accumulate, Level, Rules, boundary_flags};
+use super::rules::{Accumulate, Coord, Level, Rules, boundary_flags};
 use super::scheme::{RulesFn, Stats, ms};
 use crate::mesh::split::{self, EdgeIds, Owners};
 use crate::mesh::{CornerTable, Creasing, Faces, Mesh, VertexId, n, p};
@@ -116,20 +116,9 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M
         };
         self.stats.split_ms += ms(t0.elapsed());
         let holes = if matches!(table, NewTable::Faces(_)) { old.split_holes() } else { Vec::new() };
-        let features = Features::of(old, self.creasing);
         let owners = list.as_deref().map_or(Owners::Bits(&ids), Owners::List);
-        let mut positions: Vec<Vec3> = crate::mem::zeroed(old.num_vertices() + owners.len());
-        let (vpart, epart) = positions.split_at_mut(old.num_vertices());
-        match features {
-            None => {
-                let lv = Level::with_boundary(old, boundary);
-                points(r, &lv, owners, &self.positions, vpart, epart, self.stats);
-            }
-            Some(f) => {
-                let level = (self.ct, self.positions, boundary);
-                with_features(r, f, level, (owners, &ids), (vpart, epart), self.stats);
-            }
-        }
+        let level = (self.ct, self.positions, boundary);
+        let positions = level_points(r, level, (owners, &ids), self.creasing, self.stats);
         match table {
             NewTable::Full(ct, next_boundary) => Refined::Table(Mesh { ct, positions }, next_boundary),
             // the holes' children are left out of the faces
@@ -138,14 +127,64 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M
     }
 }
 
+/// The new points of one level of `r` on `ct` (the old points `pos`, the
+/// vertex boundary flags `boundary`): the smooth and boundary rules over
+/// the whole level, the sharp features' stencils over them; vertex points
+/// first, then edge points in `owners` order. In the points' precision.
+fn level_points<R: Rules, P: Coord>(
+    r: &R,
+    (ct, pos, boundary): (Cow<'_, CornerTable>, Cow<'_, [P]>, Vec<bool>),
+    (owners, ids): (Owners, &EdgeIds),
+    creasing: Creasing,
+    stats: &mut Stats,
+) -> Vec<P> {
+    let nv = ct.num_vertices();
+    let features = Features::of(&*ct, creasing);
+    let mut positions: Vec<P> = crate::mem::zeroed(nv + owners.len());
+    let (vpart, epart) = positions.split_at_mut(nv);
+    match features {
+        None => {
+            let lv = Level::with_boundary(&ct, boundary);
+            points(r, &lv, owners, &pos, vpart, epart, stats);
+        }
+        Some(f) => with_features(r, f, (ct, pos, boundary), (owners, ids), (vpart, epart), stats),
+    }
+    positions
+}
+
+/// One level of a triangle scheme in the points' precision `P`: the split
+/// table (with the new level's boundary flags unless `last`) and its points.
+pub(crate) struct TableLevel<'a, P: Coord> {
+    pub(crate) ct: Cow<'a, CornerTable>,
+    pub(crate) positions: Cow<'a, [P]>,
+    pub(crate) boundary: Option<Vec<bool>>,
+    pub(crate) last: bool,
+    pub(crate) creasing: Creasing,
+    pub(crate) stats: &'a mut Stats,
+}
+
+impl<P: Coord> RulesFn<(CornerTable, Vec<P>, Option<Vec<bool>>)> for TableLevel<'_, P> {
+    fn call<R: Rules>(self, r: &R) -> (CornerTable, Vec<P>, Option<Vec<bool>>) {
+        let boundary = self.boundary.unwrap_or_else(|| boundary_flags(&self.ct));
+        let t0 = Instant::now();
+        let ((ct, edges, next_boundary), (number_ms, _)) =
+            split::split_with_boundary(&self.ct, (!self.last).then_some(&boundary[..]), self.creasing);
+        self.stats.numbering_ms += number_ms;
+        self.stats.split_ms += ms(t0.elapsed());
+        let level = (self.ct, self.positions, boundary);
+        let positions = level_points(r, level, (Owners::List(&edges.owners), &edges.ids), self.creasing, self.stats);
+        (ct, positions, next_boundary)
+    }
+}
+
 /// The smooth and boundary points of a level through `r`, timed into `stats`.
-fn points<R: Rules>(
+fn points<R: Rules, P: Coord>(
     r: &R,
     lv: &Level,
     owners: Owners,
-    pos: &[Vec3],
-    vpart: &mut [Vec3],
-    epart: &mut [Vec3],
+    pos: &[P],
+    vpart: &mut [P],
+    epart: &mut [P],
     stats: &mut Stats,
 ) {
     let t0 = Instant::now();
@@ -163,12 +202,12 @@ fn points<R: Rules>(
 /// open along its creases, in place (`ct`, `pos` and `boundary` are this
 /// level's, discarded after). `ids` gives each corner's edge id; the
 /// phases are timed into `stats`.
-fn with_features<R: Rules>(
+fn with_features<R: Rules, P: Coord>(
     r: &R,
     mut f: Features,
-    level: (Cow<'_, CornerTable>, Cow<'_, [Vec3]>, Vec<bool>),
+    level: (Cow<'_, CornerTable>, Cow<'_, [P]>, Vec<bool>),
     edges: (Owners, &EdgeIds),
-    out: (&mut [Vec3], &mut [Vec3]),
+    out: (&mut [P], &mut [P]),
     stats: &mut Stats,
 ) {
     let ((ct, pos, mut boundary), (owners, ids), (vout, eout)) = (level, edges, out);
@@ -188,7 +227,7 @@ fn with_features<R: Rules>(
         }
         f.set_cut(copies);
         let lv = Level::with_boundary(&ct, boundary).with_features(Some(&f));
-        let mut vcut = vec![Vec3::ZERO; ct.num_vertices()];
+        let mut vcut = vec![P::ZERO; ct.num_vertices()];
         points(r, &lv, owners, &pos, &mut vcut, eout, stats);
         vout.copy_from_slice(&vcut[..vout.len()]);
         correct(r, &lv, &f, ids, &pos, vout, eout);
@@ -200,14 +239,14 @@ fn with_features<R: Rules>(
 }
 
 /// The feature vertices' and edges' points through their stencils.
-fn correct<R: Rules>(
+fn correct<R: Rules, P: Coord>(
     r: &R,
     lv: &Level,
     f: &Features,
     ids: &EdgeIds,
-    pos: &[Vec3],
-    vout: &mut [Vec3],
-    eout: &mut [Vec3],
+    pos: &[P],
+    vout: &mut [P],
+    eout: &mut [P],
 ) {
     let vout = if R::MOVES_VERTICES { Some(vout) } else { None };
     // every feature edge is listed by its owner corner (Features::of)
@@ -219,16 +258,16 @@ fn correct<R: Rules>(
 /// wrote: the vertices whose mask is not smooth into `vout` (none where the
 /// scheme keeps its old vertices), every feature edge into `eout` at
 /// `slot(owner corner)`. Shared by the triangle and the polygon schemes.
-pub(crate) fn feature_points<B: Blend + Sync>(
+pub(crate) fn feature_points<B: Blend + Sync, P: Coord>(
     b: &B,
     f: &Features,
-    pos: &[Vec3],
-    vout: Option<&mut [Vec3]>,
-    eout: &mut [Vec3],
+    pos: &[P],
+    vout: Option<&mut [P]>,
+    eout: &mut [P],
     slot: impl Fn(u32) -> usize + Sync,
 ) {
     if let Some(vout) = vout {
-        let points: Vec<(usize, Vec3)> = f
+        let points: Vec<(usize, P)> = f
             .vertices()
             .par_iter()
             .with_min_len(256)
@@ -243,7 +282,7 @@ pub(crate) fn feature_points<B: Blend + Sync>(
             vout[v] = q;
         }
     }
-    let points: Vec<(usize, Vec3)> = f
+    let points: Vec<(usize, P)> = f
         .edges()
         .par_iter()
         .with_min_len(256)

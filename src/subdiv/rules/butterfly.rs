@@ -16,10 +16,9 @@
 //! vector), which keeps the stencil linear and linear-precise, unlike VTK's
 //! substitution by the opposite wing (docs/schemes.md §4.5).
 
-use super::{Accumulate, Level, Rules, Sink, four_point};
+use super::{Accumulate, Coord, Level, Rules, Sink, four_point};
 use crate::mesh::split::Owners;
 use crate::mesh::{BORDER, CornerTable, n, p};
-use glam::Vec3;
 
 /// Classic butterfly rules.
 pub(crate) struct Butterfly;
@@ -57,7 +56,7 @@ pub(crate) fn eight_point<S: Sink>(ct: &CornerTable, c: u32, o: u32, s: &mut S) 
 /// branches, then summed in the same order as the emitted stencil (so the
 /// result is bit-identical).
 #[inline(always)]
-pub(crate) fn eight_point_interior(ct: &CornerTable, pos: &[Vec3], c: u32, o: u32) -> Option<Vec3> {
+pub(crate) fn eight_point_interior<P: Coord>(ct: &CornerTable, pos: &[P], c: u32, o: u32) -> Option<P> {
     let (v, o_table) = (ct.v_table(), ct.o_table());
     let (nc, pc, no, po) = (n(c), p(c), n(o), p(o));
     let x = [o_table[nc as usize], o_table[pc as usize], o_table[no as usize], o_table[po as usize]];
@@ -65,10 +64,10 @@ pub(crate) fn eight_point_interior(ct: &CornerTable, pos: &[Vec3], c: u32, o: u3
         return None;
     }
     let ids = [nc, pc, c, o, x[0], x[1], x[2], x[3]].map(|k| v[k as usize] as usize);
-    const W: [f32; 8] = [0.5, 0.5, 0.125, 0.125, -0.0625, -0.0625, -0.0625, -0.0625];
-    let mut sum = Vec3::ZERO;
+    const W: [f64; 8] = [0.5, 0.5, 0.125, 0.125, -0.0625, -0.0625, -0.0625, -0.0625];
+    let mut sum = P::ZERO;
     for (i, w) in ids.into_iter().zip(W) {
-        sum += pos[i] * w;
+        sum += pos[i].times(w);
     }
     Some(sum)
 }
@@ -77,7 +76,7 @@ impl Rules for Butterfly {
     /// Direct evaluation: interior edges with four interior outer edges (all
     /// but a thin band along the boundary) through `eight_point_interior`,
     /// the rest through the emitted stencils.
-    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
+    fn edge_points<P: Coord>(&self, lv: &Level, owners: Owners, pos: &[P], _: &mut [P], epart: &mut [P]) {
         owners.par_pieces(epart, |qs, cs| {
             for (q, &c) in qs.iter_mut().zip(cs) {
                 let o_raw = lv.o_table()[c as usize];

@@ -16,10 +16,9 @@
 //! interior.
 
 use super::crease;
-use super::{Accumulate, Level, Rules, Sink, ring_sums_map};
+use super::{Accumulate, Coord, Level, Rules, Sink, ring_sums_map};
 use crate::mesh::split::Owners;
 use crate::mesh::{n, p};
-use glam::Vec3;
 use rayon::prelude::*;
 
 /// Jarek rules.
@@ -90,11 +89,11 @@ impl Rules for Jarek {
     /// Direct evaluation: every `d_v` once per level (from the ring sums),
     /// then `v' = v + d_v` and `e = (a + b)/2 - (d_a + d_b)/2`, instead of
     /// walking both endpoint rings again for every edge.
-    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3], scratch: &mut [Vec3]) {
+    fn vertex_points<P: Coord>(&self, lv: &Level, pos: &[P], vpart: &mut [P], scratch: &mut [P]) {
         // vpart holds d_v until edge_points has used it
         ring_sums_map(lv, pos, vpart, scratch, |v, sum| {
-            let k = if lv.boundary[v] { 2.0 } else { lv.valences()[v] as f32 };
-            (sum / k - pos[v]) * 0.125
+            let k = if lv.boundary[v] { 2.0 } else { f64::from(lv.valences()[v]) };
+            (sum.over(k) - pos[v]).times(0.125)
         });
         if let Some(f) = lv.features {
             // a vertex on a sharp feature moves by its feature's rule
@@ -109,8 +108,8 @@ impl Rules for Jarek {
 
     /// The edge points from the displacements `d_v` that
     /// [`Rules::vertex_points`] left in `vpart`, then `v' = v + d_v`.
-    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
-        let d: &[Vec3] = vpart;
+    fn edge_points<P: Coord>(&self, lv: &Level, owners: Owners, pos: &[P], vpart: &mut [P], epart: &mut [P]) {
+        let d: &[P] = vpart;
         // chunks with a plain inner loop: the loop body is this function's
         // own code, so its inlining does not depend on where rustc places
         // rayon's per-item glue (a per-item closure cost 6% more
@@ -118,7 +117,7 @@ impl Rules for Jarek {
         owners.par_pieces(epart, |qs, cs| {
             for (q, &c) in qs.iter_mut().zip(cs) {
                 let (a, b) = (lv.vtx(n(c)) as usize, lv.vtx(p(c)) as usize);
-                *q = (pos[a] + pos[b]) * 0.5 - (d[a] + d[b]) * 0.5;
+                *q = (pos[a] + pos[b]).times(0.5) - (d[a] + d[b]).times(0.5);
             }
         });
         vpart.par_chunks_mut(8192).zip(pos.par_chunks(8192)).for_each(|(qs, xs)| {

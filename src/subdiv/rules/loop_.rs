@@ -24,9 +24,8 @@
 //! validation; valence-2 boundary corners use the smooth boundary rule
 //! (OpenSubdiv's `EDGE_ONLY` mode).
 
-use super::{Level, Rules, Sink, ring_sums_map};
+use super::{Coord, Level, Rules, Sink, ring_sums_map};
 use crate::mesh::{n, p};
-use glam::Vec3;
 
 /// Which beta the vertex rule uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -125,14 +124,14 @@ impl Rules for Loop {
     /// Direct evaluation: vertex points from the lane-interleaved ring sums
     /// (`(1 - k beta) v + beta S`, boundary `3/4 v + 1/8 S`), edge points from
     /// the emitted stencils.
-    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3], scratch: &mut [Vec3]) {
+    fn vertex_points<P: Coord>(&self, lv: &Level, pos: &[P], vpart: &mut [P], scratch: &mut [P]) {
         ring_sums_map(lv, pos, vpart, scratch, |v, sum| {
             if lv.boundary[v] {
-                pos[v] * 0.75 + sum * 0.125
+                pos[v].times(0.75) + sum.times(0.125)
             } else {
-                // the weights as a sink of f32 points rounds them
+                // the weights rounded to the points' precision, as a sink rounds them
                 let (centre, beta) = self.weights(lv.valences()[v]);
-                pos[v] * centre as f32 + sum * beta as f32
+                pos[v].times(centre) + sum.times(beta)
             }
         });
     }

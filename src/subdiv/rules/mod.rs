@@ -88,26 +88,72 @@ pub(crate) trait Sink {
     fn add(&mut self, v: u32, w: f64);
 }
 
-/// Sums weighted old positions.
-pub(crate) struct Accumulate<'a> {
-    /// Old positions.
-    pub pos: &'a [Vec3],
-    /// The running sum.
-    pub sum: Vec3,
+/// A point the one-shot passes compute, in the caller's precision: `Vec3`
+/// (f32, what the GPU draws) or `DVec3` (f64). The rules are written once
+/// over it; a weight is rounded to the point's precision as it is taken.
+pub(crate) trait Coord:
+    Copy
+    + Send
+    + Sync
+    + PartialEq
+    + bytemuck::Zeroable
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::AddAssign
+    + 'static
+{
+    /// The origin.
+    const ZERO: Self;
+    /// `self` times the weight `w` (rounded to this precision first).
+    fn times(self, w: f64) -> Self;
+    /// `self` divided by `k` (in this precision).
+    fn over(self, k: f64) -> Self;
 }
 
-impl<'a> Accumulate<'a> {
-    /// A zero sum over `pos`.
+impl Coord for Vec3 {
+    const ZERO: Self = Vec3::ZERO;
     #[inline(always)]
-    pub(crate) fn new(pos: &'a [Vec3]) -> Self {
-        Accumulate { pos, sum: Vec3::ZERO }
+    fn times(self, w: f64) -> Self {
+        self * w as f32
+    }
+    #[inline(always)]
+    fn over(self, k: f64) -> Self {
+        self / k as f32
     }
 }
 
-impl Sink for Accumulate<'_> {
+impl Coord for glam::DVec3 {
+    const ZERO: Self = glam::DVec3::ZERO;
+    #[inline(always)]
+    fn times(self, w: f64) -> Self {
+        self * w
+    }
+    #[inline(always)]
+    fn over(self, k: f64) -> Self {
+        self / k
+    }
+}
+
+/// Sums weighted old positions.
+pub(crate) struct Accumulate<'a, P = Vec3> {
+    /// Old positions.
+    pub pos: &'a [P],
+    /// The running sum.
+    pub sum: P,
+}
+
+impl<'a, P: Coord> Accumulate<'a, P> {
+    /// A zero sum over `pos`.
+    #[inline(always)]
+    pub(crate) fn new(pos: &'a [P]) -> Self {
+        Accumulate { pos, sum: P::ZERO }
+    }
+}
+
+impl<P: Coord> Sink for Accumulate<'_, P> {
     #[inline(always)]
     fn add(&mut self, v: u32, w: f64) {
-        self.sum += self.pos[v as usize] * w as f32;
+        self.sum += self.pos[v as usize].times(w);
     }
 }
 
@@ -206,7 +252,7 @@ pub(crate) trait Rules: Sync {
     ///
     /// `scratch` is memory the pass may use as it likes (the level's edge
     /// part, which [`Rules::edge_points`] writes afterwards).
-    fn vertex_points(&self, lv: &Level, pos: &[Vec3], vpart: &mut [Vec3], scratch: &mut [Vec3]) {
+    fn vertex_points<P: Coord>(&self, lv: &Level, pos: &[P], vpart: &mut [P], scratch: &mut [P]) {
         let _ = scratch;
         if Self::MOVES_VERTICES {
             vpart.par_iter_mut().enumerate().with_min_len(2048).for_each(|(v, q)| {
@@ -224,7 +270,7 @@ pub(crate) trait Rules: Sync {
     /// left it: a scheme whose edge rule needs an intermediate of the
     /// vertex pass (Jarek's displacements) may leave it there and finish
     /// the vertex points here. The default sums each emitted stencil.
-    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], vpart: &mut [Vec3], epart: &mut [Vec3]) {
+    fn edge_points<P: Coord>(&self, lv: &Level, owners: Owners, pos: &[P], vpart: &mut [P], epart: &mut [P]) {
         let _ = vpart;
         stencil_edge_points(self, lv, owners, pos, epart);
     }
@@ -240,12 +286,12 @@ pub(crate) trait Rules: Sync {
 /// points of all levels on one thread, warm (`examples/phases`), 21-22 ms
 /// without against 13.3-13.9 with (8 edges ahead gave 15-16, 24 to 96 the
 /// same as 32; prefetching the four positions as well made it slower).
-pub(crate) fn stencil_edge_points<R: Rules + ?Sized>(
+pub(crate) fn stencil_edge_points<R: Rules + ?Sized, P: Coord>(
     r: &R,
     lv: &Level,
     owners: Owners,
-    pos: &[Vec3],
-    out: &mut [Vec3],
+    pos: &[P],
+    out: &mut [P],
 ) {
     let (vt, ot) = (lv.v_table(), lv.o_table());
     owners.par_pieces(out, |out, own| {
@@ -270,12 +316,12 @@ const AHEAD: usize = 32;
 /// first are taken from `scratch` as far as it holds them (its contents are
 /// overwritten), so that a level's edge part, written afterwards, serves as
 /// memory already faulted in; the rest are allocated.
-pub(crate) fn ring_sums_map(
+pub(crate) fn ring_sums_map<P: Coord>(
     lv: &Level,
-    pos: &[Vec3],
-    out: &mut [Vec3],
-    scratch: &mut [Vec3],
-    f: impl Fn(usize, Vec3) -> Vec3 + Sync,
+    pos: &[P],
+    out: &mut [P],
+    scratch: &mut [P],
+    f: impl Fn(usize, P) -> P + Sync,
 ) {
     let (vt, nc) = (lv.ct.v_table(), lv.ct.num_corners());
     // a thread takes at least 2^20 corners: below that its accumulator's
@@ -283,7 +329,7 @@ pub(crate) fn ring_sums_map(
     // 620 k corners scattered: 3.0-3.6 ms on two threads, 1.5-2.0 on one)
     let threads = rayon::current_num_threads().clamp(1, 16).min(nc.div_ceil(1 << 20)).max(1);
     let per = nc.div_ceil(threads).div_ceil(3) * 3;
-    let scatter = |acc: &mut [Vec3], k: usize| {
+    let scatter = |acc: &mut [P], k: usize| {
         for tri in vt[(k * per).min(nc)..((k + 1) * per).min(nc)].chunks_exact(3) {
             let (a, b, c) = (tri[0] as usize, tri[1] as usize, tri[2] as usize);
             let (pa, pb, pc) = (pos[a], pos[b], pos[c]);
@@ -315,25 +361,25 @@ pub(crate) fn ring_sums_map(
 /// fresh pages fewer), the rest allocated. Every accumulator, `out` too, is
 /// cleared by the thread that then fills it. Returns the later parts'
 /// accumulators, in order, for the caller to add per point.
-pub(crate) fn scatter_parts<'s>(
-    out: &mut [Vec3],
+pub(crate) fn scatter_parts<'s, P: Coord>(
+    out: &mut [P],
     parts: usize,
-    scratch: &'s mut [Vec3],
-    scatter: impl Fn(&mut [Vec3], usize) + Sync,
-) -> Vec<Cow<'s, [Vec3]>> {
+    scratch: &'s mut [P],
+    scatter: impl Fn(&mut [P], usize) + Sync,
+) -> Vec<Cow<'s, [P]>> {
     let (n, later) = (out.len(), parts.saturating_sub(1));
     let from_scratch = scratch.len().checked_div(n).map_or(0, |k| k.min(later));
-    let mut borrowed: Vec<&'s mut [Vec3]> = scratch.chunks_exact_mut(n.max(1)).take(from_scratch).collect();
-    let mut owned: Vec<Vec<Vec3>> = (from_scratch..later).map(|_| crate::mem::zeroed(n)).collect();
+    let mut borrowed: Vec<&'s mut [P]> = scratch.chunks_exact_mut(n.max(1)).take(from_scratch).collect();
+    let mut owned: Vec<Vec<P>> = (from_scratch..later).map(|_| crate::mem::zeroed(n)).collect();
     let scatter = &scatter;
     rayon::scope(|sc| {
         sc.spawn(move |_| {
-            out.fill(Vec3::ZERO);
+            out.fill(P::ZERO);
             scatter(out, 0);
         });
         for (k, acc) in borrowed.iter_mut().enumerate() {
             sc.spawn(move |_| {
-                acc.fill(Vec3::ZERO);
+                acc.fill(P::ZERO);
                 scatter(acc, k + 1);
             });
         }
@@ -342,7 +388,7 @@ pub(crate) fn scatter_parts<'s>(
             sc.spawn(move |_| scatter(acc, from_scratch + k + 1));
         }
     });
-    let borrowed = borrowed.into_iter().map(|a| -> Cow<'s, [Vec3]> { Cow::Borrowed(a) });
+    let borrowed = borrowed.into_iter().map(|a| -> Cow<'s, [P]> { Cow::Borrowed(a) });
     borrowed.chain(owned.into_iter().map(Cow::Owned)).collect()
 }
 

@@ -39,10 +39,9 @@
 //!   parallelogram ghosts for missing outer vertices (linear precision).
 
 use super::butterfly::{eight_point, eight_point_interior, outer};
-use super::{Accumulate, Level, Rules, Sink, four_point};
+use super::{Accumulate, Coord, Level, Rules, Sink, four_point};
 use crate::mesh::split::Owners;
 use crate::mesh::{BORDER, CornerTable, n, p};
-use glam::Vec3;
 use rayon::prelude::*;
 
 /// Modified butterfly rules with tension `w` and precomputed EV weights.
@@ -224,7 +223,7 @@ impl ModifiedButterfly {
     /// `v`, starting at the neighbour across corner `x` (a corner of
     /// `v` in the triangle of the edge).
     #[inline(never)]
-    fn ev_ring(&self, r: &EvRings, v: u32, x: u32, scale: f64, acc: &mut Accumulate) {
+    fn ev_ring<P: Coord>(&self, r: &EvRings, v: u32, x: u32, scale: f64, acc: &mut Accumulate<P>) {
         let i = r.evs.binary_search(&v).expect("a RING vertex is listed");
         let (a, b) = (r.start[i] as usize, r.start[i + 1] as usize);
         let (cs, vs) = (&r.corners[a..b], &r.verts[a..b]);
@@ -245,7 +244,7 @@ impl ModifiedButterfly {
     /// one class load per endpoint; edges at extraordinary vertices read
     /// the rings walked once per level; everything else (boundary, tension)
     /// goes through [`Rules::edge`].
-    fn edge_point(&self, lv: &Level, rings: &EvRings, pos: &[Vec3], c: u32) -> Vec3 {
+    fn edge_point<P: Coord>(&self, lv: &Level, rings: &EvRings, pos: &[P], c: u32) -> P {
         let mut acc = Accumulate::new(pos);
         let o_raw = lv.o_table()[c as usize];
         if o_raw == BORDER {
@@ -275,7 +274,7 @@ impl ModifiedButterfly {
 
     /// [`Rules::edge`] out of line: the rare cases stay out of the hot loop.
     #[inline(never)]
-    fn edge_cold(&self, lv: &Level, c: u32, acc: &mut Accumulate) {
+    fn edge_cold<P: Coord>(&self, lv: &Level, c: u32, acc: &mut Accumulate<P>) {
         self.edge(lv, c, acc);
     }
 }
@@ -294,7 +293,7 @@ impl Rules for ModifiedButterfly {
 
     /// Direct evaluation, the same stencils as [`Rules::edge`]: one
     /// `edge_point` per edge.
-    fn edge_points(&self, lv: &Level, owners: Owners, pos: &[Vec3], _: &mut [Vec3], epart: &mut [Vec3]) {
+    fn edge_points<P: Coord>(&self, lv: &Level, owners: Owners, pos: &[P], _: &mut [P], epart: &mut [P]) {
         let rings = EvRings::new(lv, self.ev.len());
         owners.par_pieces(epart, |qs, cs| {
             for (q, &c) in qs.iter_mut().zip(cs) {
