@@ -58,7 +58,10 @@ pub use io::{read, save};
 pub use mesh::{BORDER, CornerTable, Mesh};
 pub use subdiv::eval::Evaluator;
 pub use subdiv::tables::StencilPlan;
-pub use subdiv::{Cage, LoopBeta, Options, Refiner, Scalar, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces};
+pub use subdiv::{
+    Cage, LoopBeta, Options, Refiner, Scalar, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces,
+    subdivide_faces_f64,
+};
 
 #[cfg(feature = "viewer")]
 pub use render::render_image;

@@ -239,3 +239,33 @@ fn quad_ids_written_through_a_map_are_the_mapped_table() {
         }
     }
 }
+
+/// The f64 faces alone (`subdivide_faces_f64`: the same one-shot passes in
+/// f64, the last level without its tables) equal the f64 levels with their
+/// tables (`subdivide_f64`) bit for bit, for every triangle scheme and
+/// case; and a million units out they are the f32 positions' to f32's
+/// spacing, which says both run the same rules.
+#[test]
+fn f64_faces_only_equal_the_f64_subdivision_bit_for_bit() {
+    for (name, mesh, opts) in cases() {
+        let control: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        for scheme in SCHEMES {
+            for levels in 1..=2 {
+                let what = format!("{name}, {scheme} L{levels}");
+                let (full, pos) = subdiv::subdivide_f64(&mesh, &control, scheme, levels, &opts).unwrap();
+                let (faces, _) = subdiv::subdivide_faces_f64(&mesh, &control, scheme, levels, &opts, |j| j).unwrap();
+                assert_eq!(faces.positions, pos, "{what}: positions");
+                let kept: Vec<u32> = (0..full.ct.num_triangles() as u32)
+                    .filter(|t| full.ct.holes().binary_search(t).is_err())
+                    .flat_map(|t| full.ct.v_table()[3 * t as usize..3 * t as usize + 3].to_vec())
+                    .collect();
+                assert_eq!(faces.corners, kept, "{what}: faces");
+                let (single, _) = subdivide(&mesh, scheme, levels, &opts).unwrap();
+                let worst = single.positions.iter().zip(&pos).map(|(a, b)| (a.as_dvec3() - *b).abs().max_element());
+                assert!(worst.fold(0.0, f64::max) < 1e-5, "{what}: f32 and f64 run the same rules");
+            }
+        }
+    }
+    let bad = subdiv::subdivide_faces_f64(&icosphere(1), &[], Scheme::Loop, 1, &Options::default(), |j| j);
+    assert!(bad.is_err(), "a wrong count of control points is refused");
+}

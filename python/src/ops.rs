@@ -149,7 +149,8 @@ fn refine(
 }
 
 /// [`refine`] in double precision: the caller's float64 rows refined by
-/// the same rules' f64 weights ([`subdiv::subdivide_f64`]).
+/// the same rules' f64 weights ([`subdiv::subdivide_faces_f64`],
+/// [`subdiv::subdivide_f64`]).
 fn refine_f64(
     c: Control,
     remap: &Remap,
@@ -158,11 +159,15 @@ fn refine_f64(
     repaired: bool,
 ) -> Result<Refined, Msg> {
     match c {
+        // the faces alone, as in f32: the caller's int64 ids written by the split
         Control::Tri(mesh) => {
             check_predicted(remap, ControlCounts::of(&mesh.ct), (scheme, levels), 3)?;
             let control = remap.control_f64(input, &mesh.positions, repaired);
-            let (fine, pos) = subdiv::subdivide_f64(&mesh, &control, scheme, levels, opts).map_err(msg)?;
-            Ok((remap.positions(&pos, input), remap.ids(fine.ct.v_table()), 3))
+            let id = |j| remap.id(j);
+            let (fine, _) = subdiv::subdivide_faces_f64(&mesh, &control, scheme, levels, opts, id).map_err(msg)?;
+            let v = remap.positions(&fine.positions, input);
+            drop_later(fine.positions);
+            Ok((v, fine.corners, fine.sides))
         }
         Control::Poly(mesh) => {
             check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?;

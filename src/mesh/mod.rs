@@ -531,9 +531,9 @@ impl Iterator for Ring<'_> {
 /// adjacency tables. The vertex ids are the library's `u32` unless the
 /// caller asked for others (`crate::subdiv::subdivide_faces_as`).
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Faces<I = u32> {
-    /// One position per vertex.
-    pub positions: Vec<Vec3>,
+pub struct Faces<I = u32, P = Vec3> {
+    /// One position per vertex (f32, or f64 from `subdivide_faces_f64`).
+    pub positions: Vec<P>,
     /// The vertex of every corner, `sides` corners a face.
     pub corners: Vec<I>,
     /// Corners per face.
@@ -552,18 +552,25 @@ impl<I: VertexId> Faces<I> {
     /// The triangles of `mesh` (copied), every vertex id `j` as `id(j)`;
     /// its holes left out (every vertex kept, as OpenSubdiv writes them).
     pub(crate) fn of_mapped(mesh: &Mesh, id: impl Fn(u32) -> I + Sync) -> Faces<I> {
-        let v = mesh.ct.v_table();
-        let corners = if mesh.ct.holes().is_empty() {
+        Faces::of_table(&mesh.ct, mesh.positions.clone(), id)
+    }
+}
+
+impl<I: VertexId, P> Faces<I, P> {
+    /// The triangles of `ct` with `positions`, as [`Faces::of_mapped`].
+    pub(crate) fn of_table(ct: &CornerTable, positions: Vec<P>, id: impl Fn(u32) -> I + Sync) -> Faces<I, P> {
+        let v = ct.v_table();
+        let corners = if ct.holes().is_empty() {
             v.par_iter().with_min_len(1 << 14).map(|&j| id(j)).collect()
         } else {
-            let kept = (0..mesh.ct.num_triangles() as u32).filter(|&t| !mesh.ct.is_hole(t));
+            let kept = (0..ct.num_triangles() as u32).filter(|&t| !ct.is_hole(t));
             kept.flat_map(|t| v[3 * t as usize..3 * t as usize + 3].iter().map(|&j| id(j))).collect()
         };
-        Faces { positions: mesh.positions.clone(), corners, sides: 3 }
+        Faces { positions, corners, sides: 3 }
     }
 
     /// These faces without those listed in `holes` (sorted face ids).
-    pub(crate) fn without(mut self, holes: &[u32]) -> Faces<I> {
+    pub(crate) fn without(mut self, holes: &[u32]) -> Faces<I, P> {
         if holes.is_empty() {
             return self;
         }

@@ -44,6 +44,18 @@ pub trait Cage: sealed::Sealed + Sized {
         opts: &Options,
         id: impl Fn(u32) -> I + Sync,
     ) -> Result<(Faces<I>, Stats)>;
+    /// The last level's faces from f64 control points; see
+    /// [`subdivide_faces_f64`].
+    ///
+    /// # Errors
+    /// As [`subdivide_faces_f64`].
+    #[doc(hidden)]
+    fn refined_faces_f64<I: VertexId>(
+        &self,
+        control: &[DVec3],
+        how: (Scheme, u32, &Options),
+        id: impl Fn(u32) -> I + Sync,
+    ) -> Result<(Faces<I, DVec3>, Stats)>;
     /// The cage as the triangle table the refiner records on (a polygon
     /// table fanned, its diagonals hidden) and whether it is polygons.
     #[doc(hidden)]
@@ -72,6 +84,14 @@ impl Cage for Mesh {
     ) -> Result<(Faces<I>, Stats)> {
         super::subdivide_mesh_faces_as(self, scheme, levels, opts, id)
     }
+    fn refined_faces_f64<I: VertexId>(
+        &self,
+        control: &[DVec3],
+        how: (Scheme, u32, &Options),
+        id: impl Fn(u32) -> I + Sync,
+    ) -> Result<(Faces<I, DVec3>, Stats)> {
+        super::subdivide_mesh_faces_f64(self, control, how, id)
+    }
     fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
         (std::borrow::Cow::Borrowed(self), false)
     }
@@ -98,6 +118,20 @@ impl Cage for PolyMesh {
         id: impl Fn(u32) -> I + Sync,
     ) -> Result<(Faces<I>, Stats)> {
         super::subdivide_poly_faces_as(self, scheme, levels, opts, id)
+    }
+    fn refined_faces_f64<I: VertexId>(
+        &self,
+        control: &[DVec3],
+        (scheme, levels, opts): (Scheme, u32, &Options),
+        id: impl Fn(u32) -> I + Sync,
+    ) -> Result<(Faces<I, DVec3>, Stats)> {
+        if levels == 0 {
+            return Err(crate::Error::Usage("faces alone come from at least one level (quads after it)".into()));
+        }
+        let (fine, positions) = super::precise::subdivide_poly_f64(self, control, scheme, levels, opts)?;
+        let corners = fine.pt.v_table().iter().map(|&j| id(j)).collect();
+        let faces = Faces { positions, corners, sides: 4 }.without(fine.pt.holes());
+        Ok((faces, Stats::default()))
     }
     fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
         (std::borrow::Cow::Owned(self.triangulated()), true)
@@ -154,4 +188,22 @@ pub fn subdivide_faces<C: Cage, I: VertexId>(
     id: impl Fn(u32) -> I + Sync,
 ) -> Result<(Faces<I>, Stats)> {
     cage.refined_faces(scheme, levels, opts, id)
+}
+
+/// [`subdivide_faces`] from the control positions `control` in f64: the
+/// last level's faces and their positions in f64, computed with the f64
+/// weights of the same rules (a triangle scheme through the same one-shot
+/// passes as f32, in f64).
+///
+/// # Errors
+/// `control` not one position per vertex of `cage`; as [`subdivide_faces`].
+pub fn subdivide_faces_f64<C: Cage, I: VertexId>(
+    cage: &C,
+    control: &[DVec3],
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+    id: impl Fn(u32) -> I + Sync,
+) -> Result<(Faces<I, DVec3>, Stats)> {
+    cage.refined_faces_f64(control, (scheme, levels, opts), id)
 }

@@ -34,13 +34,14 @@ pub(crate) use crate::mem::default_memory_limit;
 pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
 use crate::mesh::{CornerTable, Faces, Mesh, VertexId};
+use glam::DVec3;
 pub(crate) use refine::check_levels_fit;
 use refine::{OneLevel, Refined};
 use rules::{catmull_clark, features, loop_};
 use std::borrow::Cow;
 use std::time::Instant;
 
-pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces};
+pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
@@ -76,9 +77,10 @@ pub(crate) fn subdivide_with_progress(
         return Ok((fine.triangulated(), stats));
     }
     // every level with its table: no faces-only last level, so no id map
-    let (fine, stats) = refine_levels(mesh, scheme, levels, opts, None::<&fn(u32) -> u32>, progress)?;
+    let (fine, stats) =
+        refine_levels(mesh, &mesh.positions, (scheme, levels, opts), None::<&fn(u32) -> u32>, progress)?;
     match fine {
-        Refined::Table(m, _) => Ok((m, stats)),
+        Refined::Table(ct, positions, _) => Ok((Mesh { ct, positions }, stats)),
         // refine_levels gives faces only when asked for them
         Refined::Faces(_) => unreachable!("refine_levels made faces without being asked"),
     }
@@ -103,9 +105,33 @@ pub(crate) fn subdivide_mesh_faces_as<I: VertexId>(
         let (fine, stats) = subdivide(mesh, scheme, levels, opts)?;
         return Ok((Faces::of_mapped(&fine, id), stats));
     }
-    let (fine, stats) = refine_levels(mesh, scheme, levels, opts, Some(&id), |_, _| true)?;
+    let (fine, stats) = refine_levels(mesh, &mesh.positions, (scheme, levels, opts), Some(&id), |_, _| true)?;
     Ok(match fine {
-        Refined::Table(m, _) => Faces::of_mapped(&m, id),
+        Refined::Table(ct, positions, _) => Faces::of_table(&ct, positions, id),
+        Refined::Faces(t) => t,
+    })
+    .map(|t| (t, stats))
+}
+
+/// [`subdivide_mesh_faces_as`] from the f64 control points `control`: the
+/// one-shot passes in f64 for a triangle scheme (a polygon scheme's levels
+/// through [`precise::subdivide_mesh_f64`]).
+///
+/// # Errors
+/// `control` not one point per vertex; as [`subdivide`].
+pub(crate) fn subdivide_mesh_faces_f64<I: VertexId>(
+    mesh: &Mesh,
+    control: &[DVec3],
+    (scheme, levels, opts): (Scheme, u32, &Options),
+    id: impl Fn(u32) -> I + Sync,
+) -> Result<(Faces<I, DVec3>, Stats)> {
+    if scheme.is_polygonal() || control.len() != mesh.positions.len() {
+        let (fine, positions) = precise::subdivide_mesh_f64(mesh, control, scheme, levels, opts)?;
+        return Ok((Faces::of_table(&fine.ct, positions, id), Stats::default()));
+    }
+    let (fine, stats) = refine_levels(mesh, control, (scheme, levels, opts), Some(&id), |_, _| true)?;
+    Ok(match fine {
+        Refined::Table(ct, positions, _) => Faces::of_table(&ct, positions, id),
         Refined::Faces(t) => t,
     })
     .map(|t| (t, stats))
@@ -114,27 +140,26 @@ pub(crate) fn subdivide_mesh_faces_as<I: VertexId>(
 /// The levels of a triangle scheme, the last one as faces only, its ids
 /// through `faces_only`, when that is given (and the last level reached:
 /// `progress` may stop the work earlier, after a level with its table).
-fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync>(
+pub(crate) fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync, P: rules::Coord>(
     mesh: &Mesh,
-    scheme: Scheme,
-    levels: u32,
-    opts: &Options,
+    control: &[P],
+    (scheme, levels, opts): (Scheme, u32, &Options),
     faces_only: Option<&M>,
     mut progress: impl FnMut(u32, u32) -> bool,
-) -> Result<(Refined<I>, Stats)> {
+) -> Result<(Refined<I, P>, Stats)> {
     let t0 = Instant::now();
     let limit = opts.max_memory.or_else(default_memory_limit);
     let mut stats = Stats::default();
     check_levels_fit(&mesh.ct, 0, levels, limit)?;
-    let mut cur: Option<Mesh> = None;
+    let mut cur: Option<(CornerTable, Vec<P>)> = None;
     let mut boundary: Option<Vec<bool>> = None;
     let mut base = Some(features::with_boundary_corners(&mesh.ct, opts.boundary));
     for level in 1..=levels {
         // each level after the first owns (and may cut, see refine::with_features)
         // the one before it
         let (ct, positions) = match cur.take() {
-            Some(m) => (Cow::Owned(m.ct), Cow::Owned(m.positions)),
-            None => (base.take().unwrap_or(Cow::Borrowed(&mesh.ct)), Cow::Borrowed(&mesh.positions[..])),
+            Some((t, p)) => (Cow::Owned(t), Cow::Owned(p)),
+            None => (base.take().unwrap_or(Cow::Borrowed(&mesh.ct)), Cow::Borrowed(control)),
         };
         let last = level == levels;
         let (boundary_in, creasing) = (boundary.take(), opts.creasing);
@@ -148,10 +173,10 @@ fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync>(
             stats: &mut stats,
         };
         match with_rules(scheme, opts, one) {
-            Refined::Table(next, next_boundary) => {
+            Refined::Table(next, points, next_boundary) => {
                 boundary = next_boundary;
-                stats.faces_per_level.push(next.ct.num_triangles());
-                cur = Some(next);
+                stats.faces_per_level.push(next.num_triangles());
+                cur = Some((next, points));
             }
             Refined::Faces(t) => {
                 stats.faces_per_level.push(t.num_faces());
@@ -164,47 +189,8 @@ fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync>(
         }
     }
     stats.total_ms = ms(t0.elapsed());
-    Ok((Refined::Table(cur.unwrap_or_else(|| mesh.clone()), None), stats))
-}
-
-/// The levels of a triangle scheme on `ct` from the points `positions` in
-/// their own precision (`Vec3` or `DVec3`): the one-shot passes, every
-/// level with its table. `refine_levels` is the f32 path with a faces-only
-/// last level and progress.
-///
-/// # Errors
-/// As [`subdivide`].
-pub(crate) fn refine_table_levels<P: rules::Coord>(
-    ct: &CornerTable,
-    positions: &[P],
-    scheme: Scheme,
-    levels: u32,
-    opts: &Options,
-) -> Result<(CornerTable, Vec<P>)> {
-    let limit = opts.max_memory.or_else(default_memory_limit);
-    check_levels_fit(ct, 0, levels, limit)?;
-    let mut stats = Stats::default();
-    let base = features::with_boundary_corners(ct, opts.boundary);
-    let mut cur: Option<(CornerTable, Vec<P>)> = None;
-    let mut boundary: Option<Vec<bool>> = None;
-    for level in 1..=levels {
-        let (ct, positions) = match cur.take() {
-            Some((t, p)) => (Cow::Owned(t), Cow::Owned(p)),
-            None => (base.clone(), Cow::Borrowed(positions)),
-        };
-        let one = refine::TableLevel {
-            ct,
-            positions,
-            boundary: boundary.take(),
-            last: level == levels,
-            creasing: opts.creasing,
-            stats: &mut stats,
-        };
-        let (next, points, next_boundary) = with_rules(scheme, opts, one);
-        boundary = next_boundary;
-        cur = Some((next, points));
-    }
-    Ok(cur.unwrap_or_else(|| (base.into_owned(), positions.to_vec())))
+    let (ct, positions) = cur.unwrap_or_else(|| (mesh.ct.clone(), control.to_vec()));
+    Ok((Refined::Table(ct, positions, None), stats))
 }
 
 /// Refines the polygon mesh `mesh` `levels` times with a polygon scheme

@@ -38,7 +38,14 @@ pub(crate) fn subdivide_mesh_f64(
             (ct, apply_levels(&plans, control))
         }
         // the triangle schemes' one-shot passes, in f64
-        false => super::refine_table_levels(&mesh.ct, control, scheme, levels, opts)?,
+        false => {
+            let none = None::<&fn(u32) -> u32>;
+            match super::refine_levels(mesh, control, (scheme, levels, opts), none, |_, _| true)?.0 {
+                super::refine::Refined::Table(ct, positions, _) => (ct, positions),
+                // refine_levels gives faces only when asked for them
+                super::refine::Refined::Faces(_) => unreachable!("refine_levels made faces without being asked"),
+            }
+        }
     };
     let rounded = positions.iter().map(|p| p.as_vec3()).collect();
     Ok((Mesh { ct, positions: rounded }, positions))

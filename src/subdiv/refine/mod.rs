@@ -13,7 +13,7 @@ use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Coord, Level, Rules, boundary_flags};
 use super::scheme::{RulesFn, Stats, ms};
 use crate::mesh::split::{self, EdgeIds, Owners};
-use crate::mesh::{CornerTable, Creasing, Faces, Mesh, VertexId, n, p};
+use crate::mesh::{CornerTable, Creasing, Faces, VertexId, n, p};
 use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;
@@ -76,9 +76,9 @@ pub(crate) fn check_counts_fit(
 /// With `faces_only` (for the last level of [`super::subdivide_faces_as`])
 /// the split writes the new V table alone ([`split::split_faces`]), every
 /// vertex id through that map.
-pub(crate) struct OneLevel<'a, M> {
+pub(crate) struct OneLevel<'a, M, P: Coord = Vec3> {
     pub(crate) ct: Cow<'a, CornerTable>,
-    pub(crate) positions: Cow<'a, [Vec3]>,
+    pub(crate) positions: Cow<'a, [P]>,
     pub(crate) boundary: Option<Vec<bool>>,
     pub(crate) last: bool,
     pub(crate) faces_only: Option<&'a M>,
@@ -86,11 +86,11 @@ pub(crate) struct OneLevel<'a, M> {
     pub(crate) stats: &'a mut Stats,
 }
 
-/// What [`OneLevel`] makes: the next level with its table (and its vertex
-/// boundary flags when another level follows), or its faces alone.
-pub(crate) enum Refined<I = u32> {
-    Table(Mesh, Option<Vec<bool>>),
-    Faces(Faces<I>),
+/// What [`OneLevel`] makes: the next level's table and points (and its
+/// vertex boundary flags when another level follows), or its faces alone.
+pub(crate) enum Refined<I = u32, P = Vec3> {
+    Table(CornerTable, Vec<P>, Option<Vec<bool>>),
+    Faces(Faces<I, P>),
 }
 
 /// The split's part of [`Refined`].
@@ -99,8 +99,8 @@ enum NewTable<I> {
     Faces(Vec<I>),
 }
 
-impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M> {
-    fn call<R: Rules>(self, r: &R) -> Refined<I> {
+impl<I: VertexId, M: Fn(u32) -> I + Sync, P: Coord> RulesFn<Refined<I, P>> for OneLevel<'_, M, P> {
+    fn call<R: Rules>(self, r: &R) -> Refined<I, P> {
         let old: &CornerTable = &self.ct;
         let boundary = self.boundary.unwrap_or_else(|| boundary_flags(old));
         let t0 = Instant::now();
@@ -120,7 +120,7 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync> RulesFn<Refined<I>> for OneLevel<'_, M
         let level = (self.ct, self.positions, boundary);
         let positions = level_points(r, level, (owners, &ids), self.creasing, self.stats);
         match table {
-            NewTable::Full(ct, next_boundary) => Refined::Table(Mesh { ct, positions }, next_boundary),
+            NewTable::Full(ct, next_boundary) => Refined::Table(ct, positions, next_boundary),
             // the holes' children are left out of the faces
             NewTable::Faces(corners) => Refined::Faces(Faces { positions, corners, sides: 3 }.without(&holes)),
         }
@@ -150,31 +150,6 @@ fn level_points<R: Rules, P: Coord>(
         Some(f) => with_features(r, f, (ct, pos, boundary), (owners, ids), (vpart, epart), stats),
     }
     positions
-}
-
-/// One level of a triangle scheme in the points' precision `P`: the split
-/// table (with the new level's boundary flags unless `last`) and its points.
-pub(crate) struct TableLevel<'a, P: Coord> {
-    pub(crate) ct: Cow<'a, CornerTable>,
-    pub(crate) positions: Cow<'a, [P]>,
-    pub(crate) boundary: Option<Vec<bool>>,
-    pub(crate) last: bool,
-    pub(crate) creasing: Creasing,
-    pub(crate) stats: &'a mut Stats,
-}
-
-impl<P: Coord> RulesFn<(CornerTable, Vec<P>, Option<Vec<bool>>)> for TableLevel<'_, P> {
-    fn call<R: Rules>(self, r: &R) -> (CornerTable, Vec<P>, Option<Vec<bool>>) {
-        let boundary = self.boundary.unwrap_or_else(|| boundary_flags(&self.ct));
-        let t0 = Instant::now();
-        let ((ct, edges, next_boundary), (number_ms, _)) =
-            split::split_with_boundary(&self.ct, (!self.last).then_some(&boundary[..]), self.creasing);
-        self.stats.numbering_ms += number_ms;
-        self.stats.split_ms += ms(t0.elapsed());
-        let level = (self.ct, self.positions, boundary);
-        let positions = level_points(r, level, (Owners::List(&edges.owners), &edges.ids), self.creasing, self.stats);
-        (ct, positions, next_boundary)
-    }
 }
 
 /// The smooth and boundary points of a level through `r`, timed into `stats`.
