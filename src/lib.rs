@@ -106,10 +106,10 @@ pub mod rules {
     //! lineage; colours, which need the rows, come from
     //! [`crate::Refiner::attributes`]).
     pub use crate::subdiv::inspect::{creation_levels, displacement};
+    pub use crate::subdiv::refine_attributes;
     pub use crate::subdiv::rules::features::{Summary, poly_summary, summary, with_boundary_corners};
     pub use crate::subdiv::sizes::ControlCounts;
     pub use crate::subdiv::stencil::{Stencil, stencil};
-    pub use crate::subdiv::tables::attributes::{refine as refine_attributes, refine_poly as refine_poly_attributes};
     pub use crate::subdiv::tables::{LevelPlan, PlanScratch, Point};
     pub use crate::subdiv::{PlanF64, plan_f64};
 }

@@ -136,7 +136,7 @@ fn exported(
     assert!(anim.frame_ms().is_none(), "recording the plan evaluates no frame");
     let dir = scratch_dir(&format!("gpu-export-{name}-{eval:?}"));
     let style = ExportStyle { size: (96, 96), look, fps: 30.0, eval };
-    let n = export_animation(&mut anim, m, &ExportTarget::Frames(dir.clone()), &style, |_, _| true).unwrap();
+    let n = export_animation(&mut anim, m, &ExportTarget::Frames(dir.clone()), &style, None, |_, _| true).unwrap();
     assert_eq!(n, anim.frame_count());
     let frames = (0..n).map(|f| image::open(frame_path(&dir, f, n)).unwrap().to_rgba8()).collect();
     let _ = std::fs::remove_dir_all(&dir);

@@ -374,7 +374,7 @@ impl Jobs {
         let cancel_at = cancel.load(Ordering::SeqCst);
         self.spawn(Kind::Export, 0, move || {
             let result = job.build().and_then(|mut anim| {
-                export_animation(&mut anim, &job.mesh, &target, &style, |d, _| {
+                export_animation(&mut anim, &job.mesh, &target, &style, None, |d, _| {
                     done.store(d, Ordering::Relaxed);
                     cancel.load(Ordering::SeqCst) == cancel_at
                 })

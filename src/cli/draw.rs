@@ -282,7 +282,7 @@ mod gpu {
         // rest along their own topology
         let refined = |a: Attributes| match refiner {
             Some(r) => r.attributes(&a),
-            None => subdiv::rules::refine_attributes(&control.ct, &a, scheme, levels, opts),
+            None => subdiv::rules::refine_attributes(control, &a, scheme, levels, opts),
         };
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         let paint = match coloring {
@@ -412,7 +412,7 @@ mod gpu {
 
     /// `subdiv animate`.
     pub(crate) fn animate(a: AnimateArgs) -> Result<()> {
-        use subdiv::render::{Evaluation, ExportStyle, ExportTarget, export_animation_painted};
+        use subdiv::render::{Evaluation, ExportStyle, ExportTarget, export_animation};
         let shading: subdiv::render::Shading = a.shading.parse().map_err(Error::Usage)?;
         let coloring: Coloring = a.color.parse().map_err(Error::Usage)?;
         let (s, level) = (&a.sub.scheme, a.sub.levels_or(5));
@@ -450,7 +450,7 @@ mod gpu {
         let t0 = std::time::Instant::now();
         let total = anim.frame_count();
         let bar = progress::bar(total as u64, "frames");
-        let n = export_animation_painted(&mut anim, &mesh, &target, &style, colors.as_deref(), |d, _| {
+        let n = export_animation(&mut anim, &mesh, &target, &style, colors.as_deref(), |d, _| {
             bar.set_position(d as u64);
             true
         })?;

@@ -126,7 +126,7 @@ fn subdivide_triangles(
     // charts, the faces' lineage)
     let fine_attrs = |attrs: Attributes| match attrs.is_empty() {
         true => Ok(attrs),
-        false => subdiv::rules::refine_attributes(&mesh.ct, &attrs, s.scheme(), levels, &s.options()),
+        false => subdiv::rules::refine_attributes(mesh, &attrs, s.scheme(), levels, &s.options()),
     };
     // OBJ writes the sharp features of the result, the boundary's corners too
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
@@ -172,7 +172,7 @@ fn subdivide_polygons(
     }
     let fine_attrs = |pattrs: Attributes| match pattrs.is_empty() {
         true => Ok(pattrs),
-        false => subdiv::rules::refine_poly_attributes(&control, &pattrs, s.scheme(), levels, &s.options()),
+        false => subdiv::rules::refine_attributes(&control, &pattrs, s.scheme(), levels, &s.options()),
     };
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
@@ -216,7 +216,7 @@ fn subdivide_precise(
                 let (fine, pos) = subdiv::subdivide_f64(&pm, &control, s.scheme(), levels, &opts)?;
                 let fa = match pattrs.is_empty() {
                     true => pattrs,
-                    false => subdiv::rules::refine_poly_attributes(&pm, &pattrs, s.scheme(), levels, &opts)?,
+                    false => subdiv::rules::refine_attributes(&pm, &pattrs, s.scheme(), levels, &opts)?,
                 };
                 (fine, pos, fa)
             }
@@ -236,7 +236,7 @@ fn subdivide_precise(
                 let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
                 let fa = match attrs.is_empty() {
                     true => attrs.clone(),
-                    false => subdiv::rules::refine_attributes(&mesh.ct, attrs, s.scheme(), levels, &opts)?,
+                    false => subdiv::rules::refine_attributes(mesh, attrs, s.scheme(), levels, &opts)?,
                 };
                 (fine, pos, fa)
             }

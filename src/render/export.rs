@@ -149,7 +149,9 @@ impl<'a> FrameRenderer<'a> {
 }
 
 /// Renders every frame of `anim` (whose control topology is `control`) and
-/// writes them to `target`, evaluated where `style.eval` says.
+/// writes them to `target`, evaluated where `style.eval` says, with
+/// per-vertex `colors` (linear RGB, one per vertex of the subdivided
+/// topology, the same every frame) on the surface where given.
 /// `progress(done, total)` is called after each
 /// frame; returning `false` cancels (nothing is left behind for a GIF).
 /// Returns the number of frames written.
@@ -157,21 +159,6 @@ impl<'a> FrameRenderer<'a> {
 /// # Errors
 /// GPU, I/O and encoding errors; [`Error::Cancelled`] when cancelled.
 pub fn export_animation(
-    anim: &mut Animation,
-    control: &Mesh,
-    target: &ExportTarget,
-    style: &ExportStyle,
-    progress: impl FnMut(usize, usize) -> bool,
-) -> Result<usize> {
-    export_animation_painted(anim, control, target, style, None, progress)
-}
-
-/// [`export_animation`] with per-vertex `colors` (linear RGB, one per vertex
-/// of the subdivided topology, the same every frame) shown on the surface.
-///
-/// # Errors
-/// As [`export_animation`].
-pub fn export_animation_painted(
     anim: &mut Animation,
     control: &Mesh,
     target: &ExportTarget,

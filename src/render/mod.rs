@@ -23,9 +23,7 @@ pub(crate) mod textures;
 // What the library's users reach; the modules are the crate's own.
 pub use camera::Camera;
 pub use colorbar::draw as draw_colorbar;
-pub use export::{
-    Evaluation, ExportStyle, ExportTarget, export_animation, export_animation_painted, frame_path, motion_bounds,
-};
+pub use export::{Evaluation, ExportStyle, ExportTarget, export_animation, frame_path, motion_bounds};
 pub use gpu::Gpu;
 pub use gpu_anim::{GpuAnimator, time_frames};
 pub use gpu_mesh::GpuMesh;

@@ -41,7 +41,7 @@ use rules::{catmull_clark, features, loop_};
 use std::borrow::Cow;
 use std::time::Instant;
 
-pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
+pub use cage::{Cage, refine_attributes, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};

@@ -45,7 +45,13 @@ pub(crate) fn refine_colors(
 ///
 /// # Errors
 /// See `refine_colors`.
-pub fn refine(ct: &CornerTable, attrs: &Attributes, scheme: Scheme, levels: u32, opts: &Options) -> Result<Attributes> {
+pub(crate) fn refine(
+    ct: &CornerTable,
+    attrs: &Attributes,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<Attributes> {
     if scheme.is_polygonal() {
         return refine_through_polygons(ct, attrs, scheme, levels, opts);
     }
@@ -130,7 +136,7 @@ pub(crate) fn split_poly_uvs(pt: &crate::mesh::poly::PolyTable, uv: &[glam::Vec2
 ///
 /// # Errors
 /// A level that does not fit in memory; a triangle scheme.
-pub fn refine_poly(
+pub(crate) fn refine_poly(
     mesh: &crate::mesh::poly::PolyMesh,
     attrs: &Attributes,
     scheme: Scheme,
