@@ -1,12 +1,12 @@
 //! Double precision, the caller's choice (`--precision f64`, Python's
-//! float64 arrays): each level's rows recorded with f64 weights from the
-//! very rules every other path runs (the rules emit their weights in f64,
-//! [`crate::subdiv::rules::Sink::add`]; [`StencilPlan`]'s recording keeps
-//! them as they are), then applied to f64 points. The topology is the
-//! plan's, the one [`crate::subdivide`] and [`crate::subdivide_poly`] make
-//! (same vertex and face ids); an interpolating scheme's old vertices are
-//! copied, bit for bit. One core, not a second copy of the rules: the f32
-//! paths and this one differ only in the type of the weights and points.
+//! float64 arrays). The triangle schemes run the one-shot passes of f32,
+//! written once over the point type (`rules::Coord`: the rules emit their
+//! weights in f64 and each precision rounds them as it takes them), on f64
+//! points. The polygon schemes record each level's rows with f64 weights
+//! from the very same rules ([`StencilPlan`]'s recording keeps them as they
+//! are) and apply them to f64 points. Either way the topology is the one
+//! [`crate::subdivide`] makes (same vertex and face ids), and an
+//! interpolating scheme's old vertices are copied, bit for bit.
 
 use super::tables::{LevelPlan, StencilPlan};
 use super::{Options, Scheme};
