@@ -18,7 +18,7 @@ use crate::mesh::attributes::{Attributes, MaterialGroups, UvInterpolation, refin
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::{BoundaryInterpolation, Mesh};
 use crate::subdiv::tables::attributes::split_poly_uvs;
-use crate::subdiv::tables::face_varying::charts;
+use crate::subdiv::tables::face_varying::{charts, triangles_as_polygons};
 use crate::subdiv::tables::plan::{LevelTables, PlanScratch, StencilPlan};
 use crate::subdiv::{Options, Scheme};
 use glam::{Vec2, Vec3};
@@ -78,15 +78,7 @@ impl Refiner {
         let uv = attrs.uv.as_ref().filter(|u| u.len() == cage.num_corners());
         let smooth = match uv {
             Some(uv) if self.scheme == Scheme::Loop && self.opts.uv != UvInterpolation::Linear => {
-                // a table with hidden diagonals stands for polygons: not the triangles'
-                let plain = crate::mesh::CornerTable::from_parts(
-                    cage.v_table().to_vec(),
-                    cage.o_table().to_vec(),
-                    cage.c_table().to_vec(),
-                    cage.valences().to_vec(),
-                )
-                .with_sharpness(cage.sharpness().cloned());
-                self.smooth_uvs(&PolyTable::from_corner_table(&plain), uv)?
+                self.smooth_uvs(&triangles_as_polygons(cage), uv)?
             }
             _ => None,
         };

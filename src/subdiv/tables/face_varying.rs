@@ -59,20 +59,24 @@ pub(crate) fn smooth_triangle_uvs(
     levels: u32,
     opts: &Options,
 ) -> Result<Option<Vec<Vec2>>> {
-    // a table with hidden diagonals stands for polygons: not the triangles'
-    let plain = crate::mesh::CornerTable::from_parts(
+    let Some(charts) = charts(&triangles_as_polygons(ct), uv, opts) else { return Ok(None) };
+    let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..*opts };
+    let mesh = crate::Mesh { ct: charts.pt.triangulated(), positions: charts.positions };
+    let (fine, _) = crate::subdiv::subdivide(&mesh, Scheme::Loop, levels, &opts)?;
+    Ok(Some(fine.ct.v_table().iter().map(|&v| fine.positions[v as usize].truncate()).collect()))
+}
+
+/// The triangles of `ct` as polygons of three corners (the same corners):
+/// a table with hidden diagonals stands for polygons, not its triangles'.
+pub(crate) fn triangles_as_polygons(ct: &CornerTable) -> PolyTable {
+    let plain = CornerTable::from_parts(
         ct.v_table().to_vec(),
         ct.o_table().to_vec(),
         ct.c_table().to_vec(),
         ct.valences().to_vec(),
     )
     .with_sharpness(ct.sharpness().cloned());
-    let pt = PolyTable::from_corner_table(&plain);
-    let Some(charts) = charts(&pt, uv, opts) else { return Ok(None) };
-    let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..*opts };
-    let mesh = crate::Mesh { ct: charts.pt.triangulated(), positions: charts.positions };
-    let (fine, _) = crate::subdiv::subdivide(&mesh, Scheme::Loop, levels, &opts)?;
-    Ok(Some(fine.ct.v_table().iter().map(|&v| fine.positions[v as usize].truncate()).collect()))
+    PolyTable::from_corner_table(&plain)
 }
 
 /// The UV charts of `pt` as a polygon mesh (positions `(u, v, 0)`), with
