@@ -259,3 +259,18 @@ fn a_polygon_cage_refines_to_the_polygons_subdivide_makes() {
         assert!(Refiner::new(&cage, Scheme::Loop, 1, &Options::default()).is_err(), "{name}: Loop takes triangles");
     }
 }
+
+/// Data refined after a sharpness edit follows the new tags, in f32 as in
+/// f64: positions given as data land where the refiner's own points are.
+#[test]
+fn f32_data_after_a_sharpness_edit_follows_the_new_tags() {
+    for (name, mesh, scheme, levels) in cases() {
+        let (a, b) = (mesh.ct.vtx(0), mesh.ct.vtx(1));
+        let mut r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
+        r.set_edge_sharpness(a, b, 2.5).unwrap();
+        let flat: Vec<f32> = mesh.positions.iter().flat_map(|p| p.to_array()).collect();
+        let data: Vec<Vec3> = r.refine(&flat, 3).unwrap().chunks_exact(3).map(Vec3::from_slice).collect();
+        let worst = differ(&data, r.positions()).map_or(0.0, |d| d.1);
+        assert!(data.len() == r.positions().len() && worst < 1e-5, "{name}: f32 data after the edit ({worst})");
+    }
+}

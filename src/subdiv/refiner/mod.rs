@@ -707,7 +707,21 @@ impl Refiner {
     /// vertex.
     fn refine_f32(&self, data: &[f32], channels: usize) -> Result<Vec<f32>> {
         self.check_width(data.len(), channels)?;
-        Ok(self.plan.levels.iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
+        let mut d = data.to_vec();
+        for (level, patch) in self.plan.levels.iter().zip(&self.patches.rows) {
+            let mut out = refine_rows(level, &d, channels);
+            // the rows a sharpness edit recorded again, over the plan's
+            for (&r, row) in patch {
+                let o = &mut out[r as usize * channels..(r as usize + 1) * channels];
+                o.fill(0.0);
+                for (&j, &w) in row.idx.iter().zip(&row.w) {
+                    let src = &d[j as usize * channels..(j as usize + 1) * channels];
+                    o.iter_mut().zip(src).for_each(|(o, &s)| *o += s * w);
+                }
+            }
+            d = out;
+        }
+        Ok(d)
     }
 
     /// [`Refiner::refine`] of f64 data, with the weights recorded in f64.
