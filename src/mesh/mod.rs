@@ -14,6 +14,7 @@
 
 pub(crate) mod attributes;
 mod build;
+pub(crate) mod coord;
 pub(crate) mod cut;
 pub(crate) mod draw;
 pub(crate) mod edges;

@@ -20,9 +20,9 @@
 //! sum to zero, so smoothing commutes with affine maps and keeps planes planar.
 
 use super::Mesh;
+use super::coord::Coord;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
-use std::ops::{Add, AddAssign, Sub};
 
 /// Taubin's lambda for a pass band of about 0.1 (docs/schemes.md §9).
 pub const TAUBIN_LAMBDA: f32 = 0.6307;
@@ -33,14 +33,15 @@ pub const TAUBIN_MU: f32 = -0.6732;
 /// of `mesh`; returns the new positions (same ids). Use [`TAUBIN_LAMBDA`] and
 /// [`TAUBIN_MU`] for the usual values; [`smooth_f64`] for f64 positions.
 pub fn taubin(mesh: &Mesh, steps: u32, lambda: f32, mu: f32) -> Vec<Vec3> {
-    passes(mesh, &mesh.positions, steps, lambda, Some(mu))
+    // an f32 factor widened and rounded back as the pass takes it: the same f32
+    passes(mesh, &mesh.positions, steps, f64::from(lambda), Some(f64::from(mu)))
 }
 
 /// `steps` passes of plain Laplacian smoothing `x <- x + lambda L(x)` with
 /// the same umbrella and boundary handling as [`taubin`] (which shrinks a
 /// closed surface; kept to show what Taubin's mu pass prevents).
 pub fn laplacian(mesh: &Mesh, steps: u32, lambda: f32) -> Vec<Vec3> {
-    passes(mesh, &mesh.positions, steps, lambda, None)
+    passes(mesh, &mesh.positions, steps, f64::from(lambda), None)
 }
 
 /// [`taubin`] (with `mu`) or [`laplacian`] (without) of the f64 positions
@@ -54,45 +55,8 @@ pub fn smooth_f64(mesh: &Mesh, positions: &[DVec3], steps: u32, lambda: f64, mu:
     passes(mesh, positions, steps, lambda, mu)
 }
 
-/// A point the passes move: f32 or f64, with factors of its own precision.
-trait Point: Copy + Send + Sync + Add<Output = Self> + Sub<Output = Self> + AddAssign {
-    type Factor: Copy + Send + Sync;
-    const ZERO: Self;
-    fn times(self, f: Self::Factor) -> Self;
-    fn half(self) -> Self;
-    fn over(self, k: u32) -> Self;
-}
-
-impl Point for Vec3 {
-    type Factor = f32;
-    const ZERO: Self = Vec3::ZERO;
-    fn times(self, f: f32) -> Self {
-        self * f
-    }
-    fn half(self) -> Self {
-        self * 0.5
-    }
-    fn over(self, k: u32) -> Self {
-        self / k as f32
-    }
-}
-
-impl Point for DVec3 {
-    type Factor = f64;
-    const ZERO: Self = DVec3::ZERO;
-    fn times(self, f: f64) -> Self {
-        self * f
-    }
-    fn half(self) -> Self {
-        self * 0.5
-    }
-    fn over(self, k: u32) -> Self {
-        self / k as f64
-    }
-}
-
 /// `steps` lambda passes, each followed by a mu pass when there is a mu.
-fn passes<P: Point>(mesh: &Mesh, positions: &[P], steps: u32, lambda: P::Factor, mu: Option<P::Factor>) -> Vec<P> {
+fn passes<P: Coord>(mesh: &Mesh, positions: &[P], steps: u32, lambda: f64, mu: Option<f64>) -> Vec<P> {
     let mut x = positions.to_vec();
     let mut scratch = vec![P::ZERO; x.len()];
     for _ in 0..steps {
@@ -105,21 +69,21 @@ fn passes<P: Point>(mesh: &Mesh, positions: &[P], steps: u32, lambda: P::Factor,
 }
 
 /// One simultaneous pass `x <- x + f L(x)`; `scratch` receives the old `x`.
-fn umbrella_pass<P: Point>(mesh: &Mesh, x: &mut [P], scratch: &mut [P], f: P::Factor) {
+fn umbrella_pass<P: Coord>(mesh: &Mesh, x: &mut [P], scratch: &mut [P], f: f64) {
     let ct = &mesh.ct;
     scratch.copy_from_slice(x);
     let old = &*scratch;
     x.par_iter_mut().enumerate().with_min_len(4096).for_each(|(v, xv)| {
         let v32 = v as u32;
         let avg = if let Some((a, b)) = ct.boundary_neighbours(v32) {
-            (old[a as usize] + old[b as usize]).half()
+            (old[a as usize] + old[b as usize]).times(0.5)
         } else {
             let (mut s, mut k) = (P::ZERO, 0u32);
             for q in ct.ring(v32) {
                 s += old[q as usize];
                 k += 1;
             }
-            s.over(k.max(1))
+            s.over(f64::from(k.max(1)))
         };
         *xv = old[v] + (avg - old[v]).times(f);
     });
