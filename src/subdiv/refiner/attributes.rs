@@ -17,7 +17,7 @@ use crate::Result;
 use crate::mesh::attributes::{Attributes, MaterialGroups, UvInterpolation, refine_corner_uvs, refine_face_ids};
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::{BoundaryInterpolation, Mesh};
-use crate::subdiv::tables::attributes::split_poly_uvs;
+use crate::subdiv::tables::attributes::{onto_fan, through_levels};
 use crate::subdiv::tables::face_varying::{charts, triangles_as_polygons};
 use crate::subdiv::tables::plan::{LevelTables, PlanScratch, StencilPlan};
 use crate::subdiv::{Options, Scheme};
@@ -105,35 +105,21 @@ impl Refiner {
         };
         let LevelTables::Polygons(tables) = &self.tables else { return Ok((None, None)) };
         let control = PolyTable::from_corner_table(&self.cage);
-        let mut uv = on_polygons.uv.filter(|u| u.len() == control.num_corners());
+        let uv = on_polygons.uv.filter(|u| u.len() == control.num_corners());
         let smooth = match &uv {
             Some(u) if self.scheme == Scheme::CatmullClark && self.opts.uv != UvInterpolation::Linear => {
                 self.smooth_uvs(&control, u)?
             }
             _ => None,
         };
-        let linear = smooth.is_none();
-        let mut face =
-            on_polygons.materials.as_ref().map(|m| m.face.clone()).filter(|f| f.len() == control.num_faces());
-        for pt in tables {
-            uv = uv.filter(|_| linear).map(|u| split_poly_uvs(pt, &u));
-            // child face c is old corner c: it keeps its face's material
-            face = face.map(|f| (0..pt.num_corners() as u32).map(|c| f[pt.face(c) as usize]).collect());
-        }
+        let face = on_polygons.materials.as_ref().map(|m| m.face.clone()).filter(|f| f.len() == control.num_faces());
+        let (uv, face) = through_levels(tables, uv, face, smooth.is_none());
         let uv = smooth.or(uv);
         let materials = on_polygons.materials.zip(face).map(|(m, face)| MaterialGroups { face, ..m });
-        if self.from_polygons {
-            return Ok((uv, materials));
+        match self.plan.polygons() {
+            Some(fine) if !self.from_polygons => Ok(onto_fan(fine, uv, materials)),
+            _ => Ok((uv, materials)),
         }
-        let Some(fine) = self.plan.polygons() else { return Ok((uv, materials)) };
-        let fan = fine.fan_corners();
-        Ok((
-            uv.map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
-            materials.map(|m| MaterialGroups {
-                face: fan.chunks_exact(3).map(|t| m.face[fine.face(t[0]) as usize]).collect(),
-                ..m
-            }),
-        ))
     }
 
     /// Texture coordinates per corner of `pt` (the cage's polygons or

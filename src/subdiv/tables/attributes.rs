@@ -16,10 +16,12 @@
 
 use super::plan::{PlanScratch, StencilPlan};
 use crate::mesh::CornerTable;
+use crate::mesh::attributes::MaterialGroups;
 pub(crate) use crate::mesh::attributes::{Attributes, refine_corner_uvs};
+use crate::mesh::poly::PolyTable;
 use crate::subdiv::UvInterpolation;
 use crate::{Options, Result, Scheme};
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
 /// Vertex colours after `levels` levels of `scheme` on `ct`, with the
@@ -64,10 +66,10 @@ pub(crate) fn refine(
     Ok(Attributes {
         uv: smooth.or_else(|| attrs.uv.as_ref().map(|uv| refine_corner_uvs(uv, levels))),
         colors: attrs.colors.as_ref().map(|c| refine_colors(ct, c, scheme, levels, opts)).transpose()?,
-        materials: attrs.materials.as_ref().map(|m| crate::mesh::attributes::MaterialGroups {
-            face: crate::mesh::attributes::refine_face_ids(&m.face, levels),
-            ..m.clone()
-        }),
+        materials: attrs
+            .materials
+            .as_ref()
+            .map(|m| MaterialGroups { face: crate::mesh::attributes::refine_face_ids(&m.face, levels), ..m.clone() }),
         options: attrs.options,
     })
 }
@@ -85,37 +87,61 @@ fn refine_through_polygons(
     use crate::mesh::poly::PolyMesh;
     let stand_in = crate::Mesh { ct: ct.clone(), positions: vec![Vec3::ZERO; ct.num_vertices()] };
     let (pm, pattrs) = PolyMesh::from_mesh_with_attributes(&stand_in, attrs);
-    let fine = refine_poly(&pm, &pattrs, scheme, levels, opts)?;
-    let mut pt = pm.pt;
-    for _ in 0..levels {
-        pt = crate::mesh::poly::split::split(&pt, opts.creasing).0;
-    }
-    let fan = pt.fan_corners();
-    Ok(Attributes {
-        uv: fine.uv.map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
-        colors: fine.colors,
-        materials: fine.materials.map(|m| crate::mesh::attributes::MaterialGroups {
-            face: fan.chunks_exact(3).map(|t| m.face[pt.face(t[0]) as usize]).collect(),
+    let (fine, pt) = refine_poly_levels(&pm, &pattrs, scheme, levels, opts)?;
+    let (uv, materials) = onto_fan(&pt, fine.uv, fine.materials);
+    Ok(Attributes { uv, colors: fine.colors, materials, options: fine.options })
+}
+
+/// Per-polygon-corner texture coordinates and per-face materials of the
+/// finest polygons `fine` onto their fanned triangles, as
+/// [`crate::mesh::poly::PolyMesh::triangulated`] lays them out.
+pub(crate) fn onto_fan(
+    fine: &PolyTable,
+    uv: Option<Vec<Vec2>>,
+    materials: Option<MaterialGroups>,
+) -> (Option<Vec<Vec2>>, Option<MaterialGroups>) {
+    let fan = fine.fan_corners();
+    (
+        uv.map(|u| fan.iter().map(|&c| u[c as usize]).collect()),
+        materials.map(|m| MaterialGroups {
+            face: fan.chunks_exact(3).map(|t| m.face[fine.face(t[0]) as usize]).collect(),
             ..m
         }),
-        options: fine.options,
-    })
+    )
+}
+
+/// Texture coordinates per polygon corner (bilinear in each face, only when
+/// `linear`) and face ids (child face `c` is old corner `c`: it keeps its
+/// face's) through the polygon levels `tables`, coarse to fine, each the
+/// table a level splits.
+pub(crate) fn through_levels<T: std::borrow::Borrow<PolyTable>>(
+    tables: impl IntoIterator<Item = T>,
+    mut uv: Option<Vec<Vec2>>,
+    mut face: Option<Vec<u32>>,
+    linear: bool,
+) -> (Option<Vec<Vec2>>, Option<Vec<u32>>) {
+    for pt in tables {
+        let pt = pt.borrow();
+        uv = uv.filter(|_| linear).map(|u| split_poly_uvs(pt, &u));
+        face = face.map(|f| (0..pt.num_corners() as u32).map(|c| f[pt.face(c) as usize]).collect());
+    }
+    (uv, face)
 }
 
 /// Texture coordinates per polygon corner after one quad split of `pt`,
 /// bilinear inside each face (OpenSubdiv's `FVAR_LINEAR_ALL`): child quad
 /// `c` gets `uv(c)`, the midpoints of the edges leaving and entering `c`,
 /// and the face's centroid, so seams stay where they are.
-pub(crate) fn split_poly_uvs(pt: &crate::mesh::poly::PolyTable, uv: &[glam::Vec2]) -> Vec<glam::Vec2> {
-    let centroid: Vec<glam::Vec2> = (0..pt.num_faces() as u32)
+fn split_poly_uvs(pt: &PolyTable, uv: &[Vec2]) -> Vec<Vec2> {
+    let centroid: Vec<Vec2> = (0..pt.num_faces() as u32)
         .into_par_iter()
         .map(|f| {
             let r = pt.face_corners(f);
             let k = (r.end - r.start) as f32;
-            r.map(|c| uv[c as usize]).sum::<glam::Vec2>() / k
+            r.map(|c| uv[c as usize]).sum::<Vec2>() / k
         })
         .collect();
-    let mut out = vec![glam::Vec2::ZERO; 4 * uv.len()];
+    let mut out = vec![Vec2::ZERO; 4 * uv.len()];
     out.par_chunks_mut(4).enumerate().for_each(|(c, q)| {
         let c = c as u32;
         let (a, next, prev) = (uv[c as usize], uv[pt.next(c) as usize], uv[pt.prev(c) as usize]);
@@ -143,6 +169,17 @@ pub(crate) fn refine_poly(
     levels: u32,
     opts: &Options,
 ) -> Result<Attributes> {
+    refine_poly_levels(mesh, attrs, scheme, levels, opts).map(|(a, _)| a)
+}
+
+/// [`refine_poly`] and the finest polygons it split its way to.
+fn refine_poly_levels(
+    mesh: &crate::mesh::poly::PolyMesh,
+    attrs: &Attributes,
+    scheme: Scheme,
+    levels: u32,
+    opts: &Options,
+) -> Result<(Attributes, PolyTable)> {
     use crate::mesh::poly::{PolyMesh, split};
     let colors = match &attrs.colors {
         Some(c) if c.len() == mesh.positions.len() => {
@@ -153,7 +190,7 @@ pub(crate) fn refine_poly(
         _ => None,
     };
     let mut pt = mesh.pt.clone();
-    let mut uv = attrs.uv.clone().filter(|u| u.len() == pt.num_corners());
+    let uv = attrs.uv.clone().filter(|u| u.len() == pt.num_corners());
     let smooth = match &uv {
         Some(u) if opts.uv != UvInterpolation::Linear && scheme == Scheme::CatmullClark => {
             super::face_varying::smooth_uvs(&pt, u, scheme, levels, opts)?
@@ -161,17 +198,13 @@ pub(crate) fn refine_poly(
         _ => None,
     };
     let linear = smooth.is_none();
-    let mut face = attrs.materials.as_ref().map(|m| m.face.clone()).filter(|f| f.len() == pt.num_faces());
-    for _ in 0..levels {
-        uv = uv.filter(|_| linear).map(|u| split_poly_uvs(&pt, &u));
-        // child face c is old corner c: it keeps its face's material
-        face = face.map(|f| (0..pt.num_corners() as u32).map(|c| f[pt.face(c) as usize]).collect());
-        pt = split::split(&pt, opts.creasing).0;
-    }
-    let materials = attrs
-        .materials
-        .as_ref()
-        .zip(face)
-        .map(|(m, face)| crate::mesh::attributes::MaterialGroups { face, ..m.clone() });
-    Ok(Attributes { uv: smooth.or(uv), colors, materials, options: attrs.options })
+    let face = attrs.materials.as_ref().map(|m| m.face.clone()).filter(|f| f.len() == pt.num_faces());
+    // each level's table, split as it is handed over; pt ends the finest
+    let tables = (0..levels).map(|_| {
+        let next = split::split(&pt, opts.creasing).0;
+        std::mem::replace(&mut pt, next)
+    });
+    let (uv, face) = through_levels(tables, uv, face, linear);
+    let materials = attrs.materials.as_ref().zip(face).map(|(m, face)| MaterialGroups { face, ..m.clone() });
+    Ok((Attributes { uv: smooth.or(uv), colors, materials, options: attrs.options }, pt))
 }
