@@ -1,7 +1,12 @@
-//! The refiner: local updates equal full evaluation bit for bit, the
-//! support is exactly what changes, undo and redo give back the same bits,
-//! data of any width and precision refine as positions do, and sharpness
-//! edits equal a fresh subdivision of the re-tagged mesh.
+//! The refiner: its stencils, recorded on first need from the levels it
+//! kept, equal a whole recording; local updates equal full evaluation bit
+//! for bit, the support is exactly what changes, undo and redo give back
+//! the same bits, data of any width and precision refine as positions do,
+//! and sharpness edits equal a fresh subdivision of the re-tagged mesh.
+//!
+//! `Refiner::new`'s points are the one-shot passes'; the first edit
+//! evaluates every level by the rows (equal within rounding), as every
+//! later edit does. Bit-for-bit comparisons take both sides after that.
 
 mod common;
 
@@ -19,11 +24,54 @@ fn differ(a: &[Vec3], b: &[Vec3]) -> Option<(usize, f32)> {
     (n > 0).then_some((n, max))
 }
 
+/// A refiner of `cage` whose levels were evaluated by their rows.
+fn by_rows(cage: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Refiner {
+    let mut fresh = Refiner::new(cage, scheme, levels, opts).unwrap();
+    fresh.set_control(&cage.positions);
+    fresh
+}
+
 /// A refiner whose control points were all set anew: every row evaluated.
 fn evaluated_afresh(r: &Refiner) -> (Vec<Vec3>, Vec<Vec3>) {
-    let mut fresh = Refiner::new(&r.cage(), r.scheme(), r.levels(), r.options()).unwrap();
-    fresh.set_control(r.control());
+    let fresh = by_rows(&r.cage(), r.scheme(), r.levels(), r.options());
     (fresh.positions().to_vec(), fresh.normals().to_vec())
+}
+
+#[test]
+fn the_stencils_recorded_from_the_kept_levels_equal_a_whole_recording() {
+    use subdiv::StencilPlan;
+    use subdiv::mesh::{BoundaryInterpolation, Creasing};
+    let corners = Options { boundary: BoundaryInterpolation::EdgeAndCorner, ..Options::default() };
+    let chaikin = Options { creasing: Creasing::Chaikin, ..Options::default() };
+    let tags = Tags { creases: vec![CreaseTag { v0: 0, v1: 1, sharpness: 1.5 }], corners: vec![] };
+    let mut all: Vec<(String, Mesh, Scheme, u32, Options)> =
+        cases().into_iter().map(|(n, m, s, l)| (n.to_string(), m, s, l, Options::default())).collect();
+    for scheme in [Scheme::Loop, Scheme::Butterfly, Scheme::CatmullClark] {
+        all.push((format!("open grid {scheme:?}"), common::flat_grid(4), scheme, 3, corners));
+        let cube = bundled("cube.obj");
+        let (a, b) = (cube.ct.v_table()[0], cube.ct.v_table()[1]);
+        let tags = Tags { creases: vec![CreaseTag { v0: a, v1: b, sharpness: 1.5 }], ..tags.clone() };
+        let creased = Mesh { ct: cube.ct.clone().with_tags(&tags).unwrap(), positions: cube.positions };
+        all.push((format!("creased cube {scheme:?}"), creased, scheme, 3, chaikin));
+    }
+    for (name, mesh, scheme, levels, opts) in all {
+        let mut r = Refiner::new(&mesh, scheme, levels, &opts).unwrap();
+        let fine = r.positions().to_vec();
+        let whole = StencilPlan::build(&mesh.ct, scheme, levels, &opts).unwrap();
+        let lazy = r.plan();
+        assert_eq!(lazy.levels.len(), whole.levels.len(), "{name}");
+        for (l, (a, b)) in lazy.levels.iter().zip(&whole.levels).enumerate() {
+            assert_eq!((a.n_in, a.copy_vertices), (b.n_in, b.copy_vertices), "{name}: level {l}");
+            assert_eq!((&a.offsets, &a.indices), (&b.offsets, &b.indices), "{name}: level {l} rows");
+            assert_eq!(a.weights, b.weights, "{name}: level {l} weights");
+        }
+        assert_eq!(lazy.ct.v_table(), whole.ct.v_table(), "{name}: the finest topology");
+        // the one-shot points and the rows' agree within rounding
+        let mut rows = Vec::new();
+        whole.apply(&mesh.positions, &mut Default::default(), &mut rows);
+        let diff = fine.iter().zip(&rows).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+        assert!(fine.len() == rows.len() && diff < 1e-5, "{name}: {diff}");
+    }
 }
 
 fn cases() -> Vec<(&'static str, Mesh, Scheme, u32)> {
@@ -61,9 +109,9 @@ fn moving_vertices_updates_exactly_what_a_full_evaluation_gives() {
 fn the_support_is_exactly_where_the_surface_changes() {
     for (name, mesh, scheme, levels) in cases() {
         let mut r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
-        let before = r.positions().to_vec();
         let v = 3;
         let support = r.support(v);
+        let before = r.positions().to_vec();
         assert!(!support.is_empty() && support.len() < before.len(), "{name}: a local support");
         let to = r.control()[v as usize] + Vec3::new(0.37, -0.21, 0.53);
         r.move_vertices(&[v], &[to]).unwrap();
@@ -79,7 +127,7 @@ fn the_support_is_exactly_where_the_surface_changes() {
 #[test]
 fn undo_and_redo_give_back_the_same_bits() {
     for (name, mesh, scheme, levels) in cases() {
-        let mut r = Refiner::new(&mesh, scheme, levels, &Options::default()).unwrap();
+        let mut r = by_rows(&mesh, scheme, levels, &Options::default());
         let first = (r.positions().to_vec(), r.normals().to_vec());
         r.move_vertices(&[0, 1], &[Vec3::splat(0.5), Vec3::splat(-0.25)]).unwrap();
         let moved = r.positions().to_vec();
@@ -150,7 +198,7 @@ fn double_data_after_a_sharpness_edit_equals_the_double_subdivision_of_the_retag
 #[test]
 fn a_sharpness_edit_equals_subdividing_the_retagged_mesh() {
     for (scheme, mesh) in [(Scheme::Loop, icosphere(1)), (Scheme::CatmullClark, bundled("cube.obj"))] {
-        let mut r = Refiner::new(&mesh, scheme, 2, &Options::default()).unwrap();
+        let mut r = by_rows(&mesh, scheme, 2, &Options::default());
         let plain = r.positions().to_vec();
         let (a, b) = (mesh.ct.v_table()[1], mesh.ct.v_table()[2]);
         r.set_edge_sharpness(a, b, 2.5).unwrap();
@@ -220,7 +268,7 @@ fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit()
             if k == 1 {
                 r.set_vertex_sharpness(v[2], 3.0).unwrap();
             }
-            let fresh = Refiner::new(&r.cage(), scheme, 3, &opts).unwrap();
+            let fresh = by_rows(&r.cage(), scheme, 3, &opts);
             assert_eq!(differ(r.positions(), fresh.positions()), None, "{name}: edit {k}");
             assert_eq!(differ(r.normals(), fresh.normals()), None, "{name}: edit {k} normals");
             let tags = |t: &subdiv::CornerTable| t.sharpness().map(|s| s.to_tags(t)).unwrap_or_default();
@@ -228,7 +276,7 @@ fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit()
         }
         // moves after the edits read the recorded rows too
         r.move_vertices(&[v[1]], &[Vec3::new(0.3, 0.2, 0.9)]).unwrap();
-        let mut fresh = Refiner::new(&r.cage(), scheme, 3, &opts).unwrap();
+        let mut fresh = by_rows(&r.cage(), scheme, 3, &opts);
         assert_eq!(differ(r.positions(), fresh.positions()), None, "{name}: a move after the edits");
         // the plan with the rows written in applies to the same points
         let mut out = Vec::new();
@@ -237,7 +285,7 @@ fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit()
         assert_eq!(differ(&out, fresh.positions()), None, "{name}: the baked plan");
         let _ = fresh.plan();
         while r.undo() {}
-        let first = Refiner::new(&mesh, scheme, 3, &opts).unwrap();
+        let first = by_rows(&mesh, scheme, 3, &opts);
         assert_eq!(differ(r.positions(), first.positions()), None, "{name}: everything undone");
     }
 }

@@ -599,6 +599,7 @@ impl Doc {
         m.raw = s.shown;
         m.proxy = s.proxy;
         m.made = Made { level: s.level, scheme: s.scheme, opts: s.opts, stats: Some(s.stats), job_ms: s.ms };
+        self.adopt_refiner(s.refiner);
         self.reshade();
         self.edit_surface();
     }

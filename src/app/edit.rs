@@ -529,7 +529,10 @@ impl Doc {
         let key = self.refiner_key();
         let fresh = match self.edit.refiner.take() {
             Some((k, mut r)) if k == key => r.set_vertices(ids, to).map(|_| (r, false)),
-            _ => Refiner::new(&*self.model.control.mesh, key.scheme, key.level, &key.opts).map(|r| (r, true)),
+            // the first (even empty) move evaluates the levels by their
+            // rows, as every later move and undo does
+            _ => Refiner::new(&*self.model.control.mesh, key.scheme, key.level, &key.opts)
+                .and_then(|mut r| r.set_vertices(ids, to).map(|_| (r, true))),
         };
         let (r, built) = match fresh {
             Ok(x) => x,
@@ -551,6 +554,23 @@ impl Doc {
             Shown::new(mesh)
         };
         self.edit.refiner = Some((key, r));
+    }
+
+    /// Takes over the refiner that made the drawn level, when it was built
+    /// on the control mesh as it now is: the edit mode then starts without
+    /// refining again.
+    pub(crate) fn adopt_refiner(&mut self, refiner: Option<(Arc<crate::Mesh>, Refiner)>) {
+        if let Some((_, r)) = refiner.filter(|(on, _)| Arc::ptr_eq(on, &self.model.control.mesh)) {
+            self.edit.refiner = Some((self.refiner_key(), r));
+        }
+    }
+
+    /// The refiner held for the drawn level, when one is (one built for
+    /// another level, scheme or cage does not count).
+    #[cfg(test)]
+    pub(crate) fn edit_refiner(&self) -> Option<&Refiner> {
+        let key = self.refiner_key();
+        self.edit.refiner.as_ref().filter(|(k, _)| *k == key).map(|(_, r)| r)
     }
 
     /// What the drawn level's refiner must have been built for.

@@ -67,6 +67,10 @@ fn a_typed_grab_moves_the_surface_and_undo_and_redo_give_back_the_same_bits() {
     settle(&mut v);
     let worker = v.doc.model.raw.mesh.positions.clone();
     let cage = v.doc.model.control.mesh.positions.clone();
+    // the worker's refiner is kept, for the drawn level: the edit mode
+    // takes it over instead of refining again
+    let kept = v.doc.edit_refiner().expect("the worker's refiner is kept for the edit mode");
+    assert_eq!(kept.positions(), &worker[..]);
     frame(&ctx, &mut v, vec![key(Key::E)]);
     // in the edit mode the refiner draws the level: the worker's surface
     // up to rounding

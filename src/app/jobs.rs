@@ -14,7 +14,7 @@ use crate::anim::player::Animation;
 use crate::anim::tweak::Tweak;
 use crate::mesh::attributes::Attributes;
 use crate::render::export::{ExportStyle, ExportTarget, export_animation};
-use crate::subdiv::{ControlCounts, Stats, subdivide_with_progress};
+use crate::subdiv::{ControlCounts, Stats};
 use crate::{Mesh, Options, Result, Scheme, bundled};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
@@ -91,6 +91,9 @@ pub(crate) struct Subdivided {
     pub(crate) scheme: Scheme,
     /// The options used.
     pub(crate) opts: Options,
+    /// The refiner that made the output, and the control mesh it was
+    /// built on (none at level 0).
+    pub(crate) refiner: Option<(Arc<Mesh>, crate::Refiner)>,
 }
 
 /// What a worker sends back.
@@ -452,48 +455,27 @@ fn proxy_level(mesh: &Mesh, scheme: Scheme, level: u32) -> Option<u32> {
     (drawn(level) > PROXY_FACES).then(|| (0..level).rev().find(|&l| drawn(l) <= PROXY_FACES)).flatten()
 }
 
-/// The subdivision of `job`, through its proxy level when the output is big
-/// (the proxy is a step on the way, not computed twice). `done` counts the
-/// levels; `live` says whether the job is still wanted (checked per level).
+/// The subdivision of `job`: one refiner, which makes every level once and
+/// serves the attributes on them; its proxy level, when the output is big,
+/// is one of those levels. `done` counts the levels; `live` says whether
+/// the job is still wanted (checked per level). The refiner goes with the
+/// result, for the edit mode to take over.
 fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> bool) -> Result<Subdivided> {
     let t0 = Instant::now();
     let (control, scheme, level, opts) = (&job.control, job.scheme, job.level, job.opts);
-    let run = |from: &Mesh, first: u32, levels: u32| {
-        subdivide_with_progress(from, scheme, levels, &opts, |l, _| {
-            done.store((first + l) as usize, Ordering::Relaxed);
-            live()
-        })
+    let mut progress = |l: u32, _| {
+        done.store(l as usize, Ordering::Relaxed);
+        live()
     };
-    let proxy_level = proxy_level(&control.mesh, job.scheme, level);
-    let (proxy, first_stats) = match proxy_level {
-        Some(0) => (Some(control.clone()), Stats::default()),
-        Some(l) => {
-            let (p, s) = run(&control.mesh, 0, l)?;
-            (Some(Shown::new(Arc::new(p))), s)
-        }
-        None => (None, Stats::default()),
-    };
-    let (fine, stats, attrs) = match level > 0 && job.attrs.colors.is_some() {
-        // colours need the rows: the level and every attribute from one refiner
-        true => {
-            let r = crate::Refiner::new(&*control.mesh, scheme, level, &opts)?;
-            done.store(level as usize, Ordering::Relaxed);
-            let stats = Stats { faces_per_level: vec![r.topology().num_triangles()], ..Stats::default() };
-            (r.mesh(), stats, r.attributes(&job.attrs).unwrap_or_default())
-        }
-        false => {
-            let (from, first) = match &proxy {
-                Some(p) => (p.mesh.clone(), proxy_level.unwrap_or(0)),
-                None => (control.mesh.clone(), 0),
-            };
-            let (fine, stats) = run(&from, first, level - first)?;
-            // texture coordinates and materials along their own topology
-            let attrs = crate::subdiv::tables::attributes::refine(&control.mesh.ct, &job.attrs, scheme, level, &opts)
-                .unwrap_or_default();
-            (fine, stats, attrs)
-        }
-    };
-    let shown = if level == 0 { control.clone() } else { Shown::new(Arc::new(fine)) };
+    let r = crate::Refiner::with_progress(&*control.mesh, (scheme, level, &opts), &mut progress)?;
+    let proxy = proxy_level(&control.mesh, scheme, level).and_then(|l| match l {
+        0 => Some(control.clone()),
+        l => r.level_mesh(l).map(|m| Shown::new(Arc::new(m))),
+    });
+    let attrs = r.attributes(&job.attrs).unwrap_or_default();
+    let stats = r.stats().clone();
+    let shown = if level == 0 { control.clone() } else { Shown::new(Arc::new(r.mesh())) };
+    let refiner = (level > 0).then(|| (control.mesh.clone(), r));
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    Ok(Subdivided { shown, proxy, stats: first_stats.then(stats), ms, attrs, level, scheme, opts })
+    Ok(Subdivided { shown, proxy, stats, ms, attrs, level, scheme, opts, refiner })
 }

@@ -67,6 +67,16 @@ pub trait Cage: sealed::Sealed + Sized {
     /// table fanned, its diagonals hidden) and whether it is polygons.
     #[doc(hidden)]
     fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool);
+    /// Every level, kept for a [`super::Refiner`].
+    ///
+    /// # Errors
+    /// As [`subdivide`].
+    #[doc(hidden)]
+    fn levels_kept(
+        &self,
+        how: (Scheme, u32, &Options),
+        progress: &mut dyn FnMut(u32, u32) -> bool,
+    ) -> Result<super::Levels>;
 }
 
 impl Cage for Mesh {
@@ -108,6 +118,13 @@ impl Cage for Mesh {
     }
     fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
         (std::borrow::Cow::Borrowed(self), false)
+    }
+    fn levels_kept(
+        &self,
+        how: (Scheme, u32, &Options),
+        progress: &mut dyn FnMut(u32, u32) -> bool,
+    ) -> Result<super::Levels> {
+        super::refine_kept(self, how, progress)
     }
 }
 
@@ -156,6 +173,13 @@ impl Cage for PolyMesh {
     }
     fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
         (std::borrow::Cow::Owned(self.triangulated()), true)
+    }
+    fn levels_kept(
+        &self,
+        how: (Scheme, u32, &Options),
+        progress: &mut dyn FnMut(u32, u32) -> bool,
+    ) -> Result<super::Levels> {
+        super::poly_kept(self, how, progress)
     }
 }
 

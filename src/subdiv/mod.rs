@@ -59,7 +59,8 @@ pub(crate) fn subdivide_mesh(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Op
 }
 
 /// [`subdivide`] calling `progress(level_done, levels)` after each level; if
-/// it returns `false` the work stops and `Ok` holds the last finished level.
+/// it returns `false` the work stops and `Ok` holds the last finished level:
+/// a [`Refiner`]'s finest level (its stencils never recorded).
 ///
 /// # Errors
 /// See [`subdivide`].
@@ -68,22 +69,109 @@ pub(crate) fn subdivide_with_progress(
     scheme: Scheme,
     levels: u32,
     opts: &Options,
-    progress: impl FnMut(u32, u32) -> bool,
+    mut progress: impl FnMut(u32, u32) -> bool,
 ) -> Result<(Mesh, Stats)> {
+    Ok(Refiner::with_progress(mesh, (scheme, levels, opts), &mut progress)?.into_mesh())
+}
+
+/// Every level of a refinement, as the one-shot passes made them and a
+/// [`Refiner`] keeps them: the table each level was made from (its boundary
+/// corners applied, its sharpness that level's; for a triangle scheme with
+/// the owner corners of its edges), the finest level's table, and the
+/// points of every level, the control points first.
+#[doc(hidden)]
+pub struct Levels {
+    pub(crate) tables: tables::plan::LevelTables,
+    /// The finest triangles (a triangle scheme's).
+    pub(crate) fine: Option<CornerTable>,
+    /// The finest polygons (a polygon scheme's).
+    pub(crate) fine_poly: Option<crate::mesh::poly::PolyTable>,
+    pub(crate) points: Vec<Vec<glam::Vec3>>,
+    pub(crate) stats: Stats,
+}
+
+/// The levels of `scheme` on `mesh` (a polygon scheme on the polygons it
+/// stands for), each kept; `progress` as [`subdivide_with_progress`]'s.
+///
+/// # Errors
+/// As [`subdivide`].
+pub(crate) fn refine_kept(
+    mesh: &Mesh,
+    (scheme, levels, opts): (Scheme, u32, &Options),
+    progress: &mut dyn FnMut(u32, u32) -> bool,
+) -> Result<Levels> {
     if scheme.is_polygonal() {
-        // the polygons the mesh stands for (its hidden diagonals joined)
-        let poly = PolyMesh::from_mesh(mesh);
-        let (fine, stats) = subdivide_poly_with_progress(&poly, scheme, levels, opts, progress)?;
-        return Ok((fine.triangulated(), stats));
+        return poly_kept(&PolyMesh::from_mesh(mesh), (scheme, levels, opts), progress);
     }
-    // every level with its table: no faces-only last level, so no id map
-    let (fine, stats) =
-        refine_levels(mesh, &mesh.positions, (scheme, levels, opts), None::<&fn(u32) -> u32>, progress)?;
-    match fine {
-        Refined::Table(ct, positions, _) => Ok((Mesh { ct, positions }, stats)),
-        // refine_levels gives faces only when asked for them
-        Refined::Faces(_) => unreachable!("refine_levels made faces without being asked"),
+    let t0 = Instant::now();
+    check_levels_fit(&mesh.ct, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
+    let mut stats = Stats::default();
+    let mut cur = features::with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
+    let mut points = vec![mesh.positions.clone()];
+    let (mut kept, mut boundary) = (Vec::with_capacity(levels as usize), None);
+    for level in 1..=levels {
+        let one = OneLevel {
+            ct: Cow::Borrowed(&cur),
+            positions: Cow::Borrowed(points.last().map_or(&[][..], Vec::as_slice)),
+            boundary: boundary.take(),
+            last: level == levels,
+            faces_only: None::<&fn(u32) -> u32>,
+            creasing: opts.creasing,
+            stats: &mut stats,
+        };
+        let Refined::Table(next, next_points, next_boundary, owners) = with_rules(scheme, opts, one) else {
+            unreachable!("a level made faces without being asked")
+        };
+        boundary = next_boundary;
+        stats.faces_per_level.push(next.num_triangles());
+        kept.push((std::mem::replace(&mut cur, next), owners));
+        points.push(next_points);
+        if !progress(level, levels) {
+            break;
+        }
     }
+    stats.total_ms = ms(t0.elapsed());
+    // no level: the control table itself, without the boundary's corner tags
+    let fine = if kept.is_empty() { mesh.ct.clone() } else { cur };
+    let tables = tables::plan::LevelTables::Triangles(kept);
+    Ok(Levels { tables, fine: Some(fine), fine_poly: None, points, stats })
+}
+
+/// [`refine_kept`] of a polygon mesh under a polygon scheme.
+///
+/// # Errors
+/// As [`subdivide`]; a triangle scheme.
+pub(crate) fn poly_kept(
+    mesh: &PolyMesh,
+    (scheme, levels, opts): (Scheme, u32, &Options),
+    progress: &mut dyn FnMut(u32, u32) -> bool,
+) -> Result<Levels> {
+    if !scheme.is_polygonal() {
+        return Err(crate::Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
+    }
+    let t0 = Instant::now();
+    refine::poly::check_levels_fit(&mesh.pt, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
+    let mut stats = Stats::default();
+    let base = refine::poly::with_boundary_corners(&mesh.pt, opts.boundary).unwrap_or_else(|| mesh.pt.clone());
+    let mut cur = PolyMesh { pt: base, positions: mesh.positions.clone() };
+    let (mut kept, mut points) = (Vec::with_capacity(levels as usize), Vec::with_capacity(levels as usize + 1));
+    for level in 1..=levels {
+        let next = match scheme {
+            Scheme::Bilinear => refine::poly::level(&catmull_clark::Bilinear, &cur, opts.creasing, &mut stats),
+            _ => refine::poly::level(&catmull_clark::CatmullClark::new(opts), &cur, opts.creasing, &mut stats),
+        };
+        stats.faces_per_level.push(next.pt.num_faces());
+        let done = std::mem::replace(&mut cur, next);
+        kept.push(done.pt);
+        points.push(done.positions);
+        if !progress(level, levels) {
+            break;
+        }
+    }
+    points.push(cur.positions);
+    stats.total_ms = ms(t0.elapsed());
+    let tables = tables::plan::LevelTables::Polygons(kept);
+    Ok(Levels { tables, fine: None, fine_poly: Some(cur.pt), points, stats })
 }
 
 /// [`subdivide_faces`] with every vertex id `j` of the faces written as
@@ -107,7 +195,7 @@ pub(crate) fn subdivide_mesh_faces_as<I: VertexId>(
     }
     let (fine, stats) = refine_levels(mesh, &mesh.positions, (scheme, levels, opts), Some(&id), |_, _| true)?;
     Ok(match fine {
-        Refined::Table(ct, positions, _) => Faces::of_table(&ct, positions, id),
+        Refined::Table(ct, positions, ..) => Faces::of_table(&ct, positions, id),
         Refined::Faces(t) => t,
     })
     .map(|t| (t, stats))
@@ -131,7 +219,7 @@ pub(crate) fn subdivide_mesh_faces_f64<I: VertexId>(
     }
     let (fine, stats) = refine_levels(mesh, control, (scheme, levels, opts), Some(&id), |_, _| true)?;
     Ok(match fine {
-        Refined::Table(ct, positions, _) => Faces::of_table(&ct, positions, id),
+        Refined::Table(ct, positions, ..) => Faces::of_table(&ct, positions, id),
         Refined::Faces(t) => t,
     })
     .map(|t| (t, stats))
@@ -173,7 +261,7 @@ pub(crate) fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync, P: rules::Coord
             stats: &mut stats,
         };
         match with_rules(scheme, opts, one) {
-            Refined::Table(next, points, next_boundary) => {
+            Refined::Table(next, points, next_boundary, _) => {
                 boundary = next_boundary;
                 stats.faces_per_level.push(next.num_triangles());
                 cur = Some((next, points));
@@ -190,7 +278,7 @@ pub(crate) fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync, P: rules::Coord
     }
     stats.total_ms = ms(t0.elapsed());
     let (ct, positions) = cur.unwrap_or_else(|| (mesh.ct.clone(), control.to_vec()));
-    Ok((Refined::Table(ct, positions, None), stats))
+    Ok((Refined::Table(ct, positions, None, Vec::new()), stats))
 }
 
 /// Refines the polygon mesh `mesh` `levels` times with a polygon scheme
@@ -222,30 +310,7 @@ pub(crate) fn subdivide_poly_with_progress(
     opts: &Options,
     mut progress: impl FnMut(u32, u32) -> bool,
 ) -> Result<(PolyMesh, Stats)> {
-    if !scheme.is_polygonal() {
-        return Err(crate::Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
-    }
-    let t0 = Instant::now();
-    let limit = opts.max_memory.or_else(default_memory_limit);
-    refine::poly::check_levels_fit(&mesh.pt, 0, levels, limit)?;
-    let mut stats = Stats::default();
-    let base = refine::poly::with_boundary_corners(&mesh.pt, opts.boundary)
-        .map(|pt| PolyMesh { pt, positions: mesh.positions.clone() });
-    let mut cur: Option<PolyMesh> = None;
-    for level in 1..=levels {
-        let from = cur.as_ref().or(base.as_ref()).unwrap_or(mesh);
-        let next = match scheme {
-            Scheme::Bilinear => refine::poly::level(&catmull_clark::Bilinear, from, opts.creasing, &mut stats),
-            _ => refine::poly::level(&catmull_clark::CatmullClark::new(opts), from, opts.creasing, &mut stats),
-        };
-        stats.faces_per_level.push(next.pt.num_faces());
-        cur = Some(next);
-        if !progress(level, levels) {
-            break;
-        }
-    }
-    stats.total_ms = ms(t0.elapsed());
-    Ok((cur.or(base).unwrap_or_else(|| mesh.clone()), stats))
+    Refiner::with_progress(mesh, (scheme, levels, opts), &mut progress)?.into_poly()
 }
 
 /// [`subdivide_poly_faces`] with every vertex id `j` of the quads written

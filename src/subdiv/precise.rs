@@ -41,7 +41,7 @@ pub(crate) fn subdivide_mesh_f64(
         false => {
             let none = None::<&fn(u32) -> u32>;
             match super::refine_levels(mesh, control, (scheme, levels, opts), none, |_, _| true)?.0 {
-                super::refine::Refined::Table(ct, positions, _) => (ct, positions),
+                super::refine::Refined::Table(ct, positions, ..) => (ct, positions),
                 // refine_levels gives faces only when asked for them
                 super::refine::Refined::Faces(_) => unreachable!("refine_levels made faces without being asked"),
             }

@@ -144,20 +144,6 @@ pub struct Stats {
     pub faces_per_level: Vec<usize>,
 }
 
-impl Stats {
-    /// The stats of two calls run one after the other (the second
-    /// continuing from the first's result).
-    pub(crate) fn then(mut self, later: Stats) -> Stats {
-        self.split_ms += later.split_ms;
-        self.numbering_ms += later.numbering_ms;
-        self.edge_ms += later.edge_ms;
-        self.vertex_ms += later.vertex_ms;
-        self.total_ms += later.total_ms;
-        self.faces_per_level.extend(later.faces_per_level);
-        self
-    }
-}
-
 pub(crate) fn ms(d: std::time::Duration) -> f64 {
     d.as_secs_f64() * 1000.0
 }

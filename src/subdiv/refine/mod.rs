@@ -87,9 +87,10 @@ pub(crate) struct OneLevel<'a, M, P: Coord = Vec3> {
 }
 
 /// What [`OneLevel`] makes: the next level's table and points (and its
-/// vertex boundary flags when another level follows), or its faces alone.
+/// vertex boundary flags when another level follows, and the owner corners
+/// of the old level's edges in the split's order), or its faces alone.
 pub(crate) enum Refined<I = u32, P = Vec3> {
-    Table(CornerTable, Vec<P>, Option<Vec<bool>>),
+    Table(CornerTable, Vec<P>, Option<Vec<bool>>, Vec<u32>),
     Faces(Faces<I, P>),
 }
 
@@ -120,7 +121,7 @@ impl<I: VertexId, M: Fn(u32) -> I + Sync, P: Coord> RulesFn<Refined<I, P>> for O
         let level = (self.ct, self.positions, boundary);
         let positions = level_points(r, level, (owners, &ids), self.creasing, self.stats);
         match table {
-            NewTable::Full(ct, next_boundary) => Refined::Table(ct, positions, next_boundary),
+            NewTable::Full(ct, next_boundary) => Refined::Table(ct, positions, next_boundary, list.unwrap_or_default()),
             // the holes' children are left out of the faces
             NewTable::Faces(corners) => Refined::Faces(Faces { positions, corners, sides: 3 }.without(&holes)),
         }

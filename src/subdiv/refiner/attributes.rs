@@ -19,18 +19,19 @@ use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::{BoundaryInterpolation, Mesh};
 use crate::subdiv::tables::attributes::{onto_fan, through_levels};
 use crate::subdiv::tables::face_varying::{charts, triangles_as_polygons};
-use crate::subdiv::tables::plan::{LevelTables, PlanScratch, StencilPlan};
+use crate::subdiv::tables::plan::LevelTables;
 use crate::subdiv::{Options, Scheme};
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::sync::{Arc, Mutex};
 
 /// The face-varying topology of the texture coordinates last served: the
-/// chart table's corners (the UVs welded per vertex), its levels recorded,
-/// and the finest chart value of every finest corner.
+/// chart table's corners (the UVs welded per vertex), its levels (a
+/// refiner of the charts, the UVs its points), and the finest chart value
+/// of every finest corner.
 struct FaceVarying {
     corners: Vec<u32>,
-    plan: StencilPlan,
+    charts: Refiner,
     fine: Vec<u32>,
 }
 
@@ -57,7 +58,7 @@ impl Refiner {
             return Ok(attrs.clone());
         }
         let colors = attrs.colors.as_ref().filter(|c| c.len() == self.control().len()).map(|c| self.colors(c));
-        let (uv, materials) = match self.scheme.is_polygonal() {
+        let (uv, materials) = match self.scheme().is_polygonal() {
             true => self.polygon_attributes(attrs)?,
             false => self.triangle_attributes(attrs)?,
         };
@@ -77,7 +78,7 @@ impl Refiner {
         let (cage, levels) = (&self.cage, self.levels());
         let uv = attrs.uv.as_ref().filter(|u| u.len() == cage.num_corners());
         let smooth = match uv {
-            Some(uv) if self.scheme == Scheme::Loop && self.opts.uv != UvInterpolation::Linear => {
+            Some(uv) if self.scheme() == Scheme::Loop && self.options().uv != UvInterpolation::Linear => {
                 self.smooth_uvs(&triangles_as_polygons(cage), uv)?
             }
             _ => None,
@@ -103,11 +104,11 @@ impl Refiner {
                 PolyMesh::from_mesh_with_attributes(&stand_in, attrs).1
             }
         };
-        let LevelTables::Polygons(tables) = &self.tables else { return Ok((None, None)) };
+        let LevelTables::Polygons(tables) = &self.topo.tables else { return Ok((None, None)) };
         let control = PolyTable::from_corner_table(&self.cage);
         let uv = on_polygons.uv.filter(|u| u.len() == control.num_corners());
         let smooth = match &uv {
-            Some(u) if self.scheme == Scheme::CatmullClark && self.opts.uv != UvInterpolation::Linear => {
+            Some(u) if self.scheme() == Scheme::CatmullClark && self.options().uv != UvInterpolation::Linear => {
                 self.smooth_uvs(&control, u)?
             }
             _ => None,
@@ -116,7 +117,7 @@ impl Refiner {
         let (uv, face) = through_levels(tables, uv, face, smooth.is_none());
         let uv = smooth.or(uv);
         let materials = on_polygons.materials.zip(face).map(|(m, face)| MaterialGroups { face, ..m });
-        match self.plan.polygons() {
+        match self.polygons() {
             Some(fine) if !self.from_polygons => Ok(onto_fan(fine, uv, materials)),
             _ => Ok((uv, materials)),
         }
@@ -127,10 +128,18 @@ impl Refiner {
     /// the charts do not form a manifold table of their own (the caller
     /// then interpolates linearly).
     fn smooth_uvs(&self, pt: &PolyTable, uv: &[Vec2]) -> Result<Option<Vec<Vec2>>> {
-        let Some(charts) = charts(pt, uv, &self.opts) else { return Ok(None) };
+        let Some(charts) = charts(pt, uv, self.options()) else { return Ok(None) };
         let fv = self.face_varying(&charts)?;
-        let mut values = Vec::new();
-        fv.plan.apply(&charts.positions, &mut PlanScratch::default(), &mut values);
+        // the charts' refiner made its points from these very values, or
+        // the new values go through its rows
+        let values = match fv.charts.control() == &charts.positions[..] {
+            true => fv.charts.positions().to_vec(),
+            false => {
+                let flat: Vec<f32> = charts.positions.iter().flat_map(|p| p.to_array()).collect();
+                let fine = fv.charts.refine_f32(&flat, 3)?;
+                fine.chunks_exact(3).map(Vec3::from_slice).collect()
+            }
+        };
         Ok(Some(fv.fine.par_iter().map(|&v| values[v as usize].truncate()).collect()))
     }
 
@@ -142,13 +151,13 @@ impl Refiner {
             return Ok(fv.clone());
         }
         // the charts' own borders are seams: boundaries, never corners by the option
-        let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..self.opts };
-        let plan = StencilPlan::build(&charts.pt.triangulated(), self.scheme, self.levels(), &opts)?;
-        let fine = match plan.polygons() {
+        let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..*self.options() };
+        let refiner = Refiner::new(&charts.triangulated(), self.scheme(), self.levels(), &opts)?;
+        let fine = match refiner.polygons() {
             Some(p) => p.v_table().to_vec(),
-            None => plan.ct.v_table().to_vec(),
+            None => refiner.topology().v_table().to_vec(),
         };
-        let fv = Arc::new(FaceVarying { corners: charts.pt.v_table().to_vec(), plan, fine });
+        let fv = Arc::new(FaceVarying { corners: charts.pt.v_table().to_vec(), charts: refiner, fine });
         *kept = Some(fv.clone());
         Ok(fv)
     }

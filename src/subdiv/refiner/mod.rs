@@ -2,13 +2,14 @@
 //! it many times (OpenSubdiv's `Far::TopologyRefiner` with its
 //! `PrimvarRefiner` and stencil table in one object).
 //!
-//! [`Refiner::new`] records the stencils of every level once (the same rule
-//! code as [`crate::subdivide`]) and keeps the points of every level. From
+//! [`Refiner::new`] refines the cage by the one-shot passes (it is what
+//! [`crate::subdivide`] runs) and keeps every level: its table, with what
+//! the rules need to record its stencils, and its points. The stencils are
+//! recorded from those tables on first need, by the same rule code. From
 //! then on:
 //!
 //! - any per-vertex data of any width is refined through the recorded rows,
-//!   in f32 or f64 ([`Refiner::refine`], the f64
-//!   weights recorded in f64 on first use);
+//!   in f32 or f64 ([`Refiner::refine`], the f64 weights recorded in f64);
 //! - moving control vertices ([`Refiner::move_vertices`]) re-evaluates only
 //!   their support: at each level the rows that read a changed point of the
 //!   level above, found through the transposed rows, then the normals of
@@ -21,17 +22,18 @@
 
 mod attributes;
 mod retag;
+mod topology;
 
-use super::tables::plan::{LevelTables, record_level};
-use super::tables::poly_plan::record_poly_level;
 use super::tables::{LevelPlan, StencilPlan};
-use super::{Options, Scheme};
+use super::{Levels, Options, Scheme, Stats};
+use crate::mesh::poly::PolyMesh;
 use crate::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
 use crate::{CornerTable, Error, Mesh, Result};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 use retag::Patches;
 use std::sync::OnceLock;
+use topology::Topology;
 
 /// For each point of a level, the rows of the next level that read it
 /// (the level's stencil table transposed): CSR.
@@ -161,13 +163,10 @@ struct History {
 /// assert_eq!(r.control()[0], Vec3::new(1., 1., 1.));
 /// ```
 pub struct Refiner {
-    scheme: Scheme,
-    opts: Options,
     /// The control topology with its current tags.
     cage: CornerTable,
-    plan: StencilPlan,
-    /// The levels with f64 weights, recorded on first use.
-    plan_f64: OnceLock<Vec<LevelPlan<f64>>>,
+    /// Every level's table, the finest, and the stencils made from them.
+    topo: Topology,
     /// Points of every level: `[0]` the control points, last the finest.
     points: Vec<Vec<Vec3>>,
     /// The finest level's normals, made on first use and then kept up to
@@ -181,8 +180,6 @@ pub struct Refiner {
     /// only serves data never pays for them).
     edit: Option<EditTables>,
     history: History,
-    /// The table each level was recorded on (sharpness edits re-record on them).
-    tables: LevelTables,
     /// Rows recorded again after sharpness edits.
     patches: Patches,
     /// Whether the cage was a polygon table: attributes come and go per
@@ -190,75 +187,110 @@ pub struct Refiner {
     from_polygons: bool,
     /// The face-varying topology of the texture coordinates last served.
     face_varying: attributes::FaceVaryingCache,
+    /// What the one-shot refinement took, phase by phase.
+    stats: Stats,
 }
 
 impl Refiner {
-    /// Records `levels` levels of `scheme` on `mesh`'s topology (its tags
-    /// and holes included) and evaluates them at its positions.
+    /// Refines `levels` levels of `scheme` on `cage`'s topology (its tags
+    /// and holes included) at its positions, keeping every level.
     ///
     /// # Errors
     /// [`Error::TooLarge`] when a level would not fit in memory; a polygon
     /// scheme's refusal of the mesh.
     pub fn new<C: super::Cage>(cage: &C, scheme: Scheme, levels: u32, opts: &Options) -> Result<Refiner> {
+        Self::with_progress(cage, (scheme, levels, opts), &mut |_, _| true)
+    }
+
+    /// [`Refiner::new`] calling `progress(level_done, levels)` after each
+    /// level; if it returns `false` the refiner holds the levels done.
+    ///
+    /// # Errors
+    /// As [`Refiner::new`].
+    pub(crate) fn with_progress<C: super::Cage>(
+        cage: &C,
+        (scheme, levels, opts): (Scheme, u32, &Options),
+        progress: &mut dyn FnMut(u32, u32) -> bool,
+    ) -> Result<Refiner> {
         let (mesh, polygons) = cage.as_triangles();
         if polygons && !scheme.is_polygonal() {
             return Err(Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
         }
-        let mut r = Self::on_triangles(&mesh, scheme, levels, opts)?;
+        let kept = cage.levels_kept((scheme, levels, opts), progress)?;
+        let mut r = Self::of_levels(mesh.into_owned().ct, kept, scheme, opts);
         r.from_polygons = polygons;
         Ok(r)
     }
 
-    /// [`Refiner::new`] on a triangle table.
-    fn on_triangles(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<Refiner> {
-        let mut tables = LevelTables::Triangles(Vec::new());
-        let recorded = StencilPlan::record_keeping(&mesh.ct, (scheme, levels, opts), Some(&mut tables))?;
-        let plan = StencilPlan::from_recorded(scheme, recorded);
-        let mut r = Refiner {
-            scheme,
-            opts: *opts,
-            cage: mesh.ct.clone(),
-            plan,
-            plan_f64: OnceLock::new(),
-            points: Vec::new(),
+    /// A refiner holding `levels` of `scheme` made on `cage`.
+    fn of_levels(cage: CornerTable, mut levels: Levels, scheme: Scheme, opts: &Options) -> Refiner {
+        let topo = Topology::of(&mut levels, scheme, opts);
+        Refiner {
+            cage,
+            patches: Patches::sized(topo.levels()),
+            topo,
+            points: levels.points,
             normals: OnceLock::new(),
             rings: OnceLock::new(),
             edit: None,
             history: History::default(),
-            patches: Patches::sized(levels as usize),
-            tables,
             from_polygons: false,
             face_varying: Default::default(),
-        };
-        r.adopt_plan();
-        r.set_control(&mesh.positions);
-        Ok(r)
+            stats: levels.stats,
+        }
     }
 
-    /// The buffers of every level for the plan; what derives from it
-    /// (normals, rings, the edit tables) made again on first use.
-    fn adopt_plan(&mut self) {
-        self.points = self.level_counts().iter().map(|&n| vec![Vec3::ZERO; n]).collect();
-        self.edit = None;
-        self.rings = OnceLock::new();
-        self.normals = OnceLock::new();
-        self.plan_f64 = OnceLock::new();
+    /// The finest level as a mesh, and what refining took (the refiner
+    /// taken apart: nothing is copied).
+    pub(crate) fn into_mesh(mut self) -> (Mesh, Stats) {
+        let positions = self.points.pop().unwrap_or_default();
+        (Mesh { ct: self.topo.into_fine(), positions }, self.stats)
+    }
+
+    /// A polygon scheme's finest level as polygons, and what refining took.
+    ///
+    /// # Errors
+    /// [`Error::Usage`] for a triangle scheme's refiner.
+    pub(crate) fn into_poly(mut self) -> Result<(PolyMesh, Stats)> {
+        let positions = self.points.pop().unwrap_or_default();
+        match self.topo.fine_poly.take() {
+            Some(pt) => Ok((PolyMesh { pt, positions }, self.stats)),
+            None => Err(Error::Usage(format!("{} makes triangles, not polygons", self.topo.scheme))),
+        }
+    }
+
+    /// What the one-shot refinement took.
+    pub(crate) fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// Level `l` as a mesh (the finest: [`Refiner::mesh`]; a polygon
+    /// scheme's fanned), if refined.
+    pub(crate) fn level_mesh(&self, l: u32) -> Option<Mesh> {
+        let positions = self.points.get(l as usize)?.clone();
+        if l as usize + 1 == self.points.len() {
+            return Some(Mesh { ct: self.topology().clone(), positions });
+        }
+        let ct = match &self.topo.tables {
+            super::tables::plan::LevelTables::Triangles(t) => t.get(l as usize)?.0.clone(),
+            super::tables::plan::LevelTables::Polygons(t) => t.get(l as usize)?.triangulated(),
+        };
+        Some(Mesh { ct, positions })
     }
 
     /// How many points each level has, the control level first.
     fn level_counts(&self) -> Vec<usize> {
-        let mut counts = vec![self.plan.n_control()];
-        counts.extend(self.plan.levels.iter().map(LevelPlan::n_out));
-        if self.plan.levels.is_empty() {
-            counts[0] = self.plan.ct.num_vertices();
-        }
-        counts
+        self.points.iter().map(Vec::len).collect()
     }
 
-    /// The edit tables, built on first use.
+    /// The edit tables, built on first use (the stencils recorded then,
+    /// and every level evaluated by them once: an edit re-evaluates rows,
+    /// and a point then equals its row's sum bit for bit whatever moved).
     fn edit_tables(&mut self) -> &mut EditTables {
         if self.edit.is_none() {
-            let readers = self.plan.levels.par_iter().map(Readers::of).collect();
+            let control = self.points[0].clone();
+            self.set_control(&control);
+            let readers = self.topo.plan().levels.par_iter().map(Readers::of).collect();
             self.edit = Some(EditTables { readers, touched: Touched::sized(&self.level_counts()) });
         }
         self.edit.get_or_insert_with(EditTables::default)
@@ -267,9 +299,9 @@ impl Refiner {
     /// The finest level's rings, made on first use.
     fn rings(&self) -> Option<&(Vec<u32>, Vec<u32>)> {
         self.rings
-            .get_or_init(|| match self.plan.polygons() {
+            .get_or_init(|| match &self.topo.fine_poly {
                 Some(pt) => crate::mesh::normals::ring_lists(pt),
-                None => crate::mesh::normals::ring_lists(&self.plan.ct),
+                None => crate::mesh::normals::ring_lists(self.topo.fine()),
             })
             .as_ref()
     }
@@ -283,26 +315,23 @@ impl Refiner {
                 .with_min_len(4096)
                 .map(|v| ring_normal(pos, v as u32, &ids[offsets[v] as usize..offsets[v + 1] as usize]))
                 .collect(),
-            None => match self.plan.polygons() {
-                Some(pt) => crate::mesh::normals::vertex_normals(&pt.triangulated(), pos),
-                None => crate::mesh::normals::vertex_normals(&self.plan.ct, pos),
-            },
+            None => crate::mesh::normals::vertex_normals(self.topo.fine(), pos),
         }
     }
 
     /// The scheme.
     pub fn scheme(&self) -> Scheme {
-        self.scheme
+        self.topo.scheme
     }
 
     /// Levels refined.
     pub fn levels(&self) -> u32 {
-        self.plan.levels.len() as u32
+        self.topo.levels() as u32
     }
 
-    /// The options the levels were recorded with.
+    /// The options the levels were refined with.
     pub fn options(&self) -> &Options {
-        &self.opts
+        &self.topo.opts
     }
 
     /// The control mesh as it now is (moved points, current tags).
@@ -335,29 +364,30 @@ impl Refiner {
     /// The finest level's triangles (a polygon scheme's quads as two
     /// triangles each, see [`Refiner::polygons`]).
     pub fn topology(&self) -> &CornerTable {
-        &self.plan.ct
+        self.topo.fine()
     }
 
     /// A polygon scheme's finest polygons.
     pub fn polygons(&self) -> Option<&crate::mesh::poly::PolyTable> {
-        self.plan.polygons()
+        self.topo.fine_poly.as_ref()
     }
 
     /// The finest level as a mesh.
     pub fn mesh(&self) -> Mesh {
-        Mesh { ct: self.plan.ct.clone(), positions: self.positions().to_vec() }
+        Mesh { ct: self.topology().clone(), positions: self.positions().to_vec() }
     }
 
     /// The stencil plan of the levels as they now are (for the GPU or an
-    /// animation): rows recorded again after sharpness edits are written
-    /// into it first.
+    /// animation; recorded now if not yet): rows recorded again after
+    /// sharpness edits are written into it first.
     pub fn plan(&mut self) -> &StencilPlan {
-        for l in 0..self.plan.levels.len() {
+        let plan = self.topo.plan_mut();
+        for l in 0..plan.levels.len() {
             if self.patches.rows[l].is_empty() {
                 continue;
             }
             let rows = std::mem::take(&mut self.patches.rows[l]);
-            let level = self.plan.level_mut(l);
+            let level = plan.level_mut(l);
             let first = if level.copy_vertices { level.n_in } else { 0 };
             let (mut offsets, mut indices, mut weights) = (vec![0u32], Vec::new(), Vec::new());
             for i in 0..level.offsets.len() - 1 {
@@ -371,7 +401,7 @@ impl Refiner {
             }
             (level.offsets, level.indices, level.weights) = (offsets, indices, weights);
         }
-        &self.plan
+        self.topo.plan()
     }
 
     /// New control positions, every level evaluated again (into the
@@ -382,9 +412,10 @@ impl Refiner {
     pub fn set_control(&mut self, control: &[Vec3]) {
         assert_eq!(control.len(), self.points[0].len(), "one position per control vertex");
         self.points[0].copy_from_slice(control);
-        for l in 0..self.plan.levels.len() {
+        let plan = self.topo.plan();
+        for l in 0..plan.levels.len() {
             let (done, rest) = self.points.split_at_mut(l + 1);
-            self.plan.apply_level(l, &done[l], &mut rest[0]);
+            plan.apply_level(l, &done[l], &mut rest[0]);
             for (&r, row) in &self.patches.rows[l] {
                 rest[0][r as usize] = sum_row(&row.idx, &row.w, &done[l]);
             }
@@ -462,6 +493,13 @@ impl Refiner {
     /// normals around the changed finest points. One step of the history.
     /// Returns how many finest points changed.
     ///
+    /// The first edit (a move, [`Refiner::support`] or a sharpness change)
+    /// records the stencils and evaluates every level by them once: the
+    /// points [`Refiner::new`] made by the one-shot passes may differ from
+    /// the rows' sums in the last bit, and from then on every edit, undo
+    /// and redo equals evaluating every row ([`Refiner::set_control`]) bit
+    /// for bit.
+    ///
     /// # Errors
     /// [`Error::Usage`] when the lists differ in length or an id is out of
     /// range (nothing is changed then).
@@ -486,10 +524,11 @@ impl Refiner {
     /// the marked finest points; returns how many finest points changed.
     fn evaluate_touched(&mut self) -> usize {
         let Some(edit) = self.edit.as_mut() else { return 0 };
-        for l in 0..self.plan.levels.len() {
+        let plan = self.topo.plan();
+        for l in 0..plan.levels.len() {
             let (done, rest) = self.points.split_at_mut(l + 1);
             let (input, out) = (&done[l], &mut rest[0]);
-            let (level, patch) = (&self.plan.levels[l], &self.patches.rows[l]);
+            let (level, patch) = (&plan.levels[l], &self.patches.rows[l]);
             let rows = &edit.touched.lists[l + 1];
             let value = |r: u32| match patch.get(&r) {
                 Some(row) => sum_row(&row.idx, &row.w, input),
@@ -502,11 +541,12 @@ impl Refiner {
                 rows.iter().for_each(|&r| out[r as usize] = value(r));
             }
         }
-        let changed = std::mem::take(&mut edit.touched.lists[self.plan.levels.len()]);
+        let last = plan.levels.len();
+        let changed = std::mem::take(&mut edit.touched.lists[last]);
         self.update_normals_around(&changed);
         let count = changed.len();
         if let Some(edit) = self.edit.as_mut() {
-            edit.touched.lists[self.plan.levels.len()] = changed;
+            edit.touched.lists[last] = changed;
         }
         count
     }
@@ -635,19 +675,20 @@ impl Refiner {
                 self.evaluate_touched();
             }
             None => {
-                let mut fresh = Refiner::on_triangles(
+                let mut fresh = Refiner::new(
                     &Mesh { ct: cage, positions: self.control().to_vec() },
-                    self.scheme,
+                    self.scheme(),
                     self.levels(),
-                    &self.opts,
+                    self.options(),
                 )?;
                 let history = std::mem::take(&mut self.history);
                 fresh.from_polygons = self.from_polygons;
                 *self = fresh;
                 self.history = history;
+                // evaluated by the rows, as after every edit
+                self.edit_tables();
             }
         }
-        self.plan_f64 = OnceLock::new();
         self.face_varying = Default::default();
         Ok(())
     }
@@ -708,7 +749,7 @@ impl Refiner {
     fn refine_f32(&self, data: &[f32], channels: usize) -> Result<Vec<f32>> {
         self.check_width(data.len(), channels)?;
         let mut d = data.to_vec();
-        for (level, patch) in self.plan.levels.iter().zip(&self.patches.rows) {
+        for (level, patch) in self.topo.plan().levels.iter().zip(&self.patches.rows) {
             let mut out = refine_rows(level, &d, channels);
             // the rows a sharpness edit recorded again, over the plan's
             for (&r, row) in patch {
@@ -724,29 +765,14 @@ impl Refiner {
         Ok(d)
     }
 
-    /// [`Refiner::refine`] of f64 data, with the weights recorded in f64.
+    /// [`Refiner::refine`] of f64 data, with the weights recorded in f64
+    /// (on the tables kept, their tags as they now are).
     ///
     /// # Errors
     /// As [`Refiner::refine`].
     fn refine_f64(&self, data: &[f64], channels: usize) -> Result<Vec<f64>> {
         self.check_width(data.len(), channels)?;
-        let levels = self.plan_f64.get_or_init(|| self.record_f64());
-        Ok(levels.iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
-    }
-
-    /// Every level's rows with the rules' f64 weights, recorded on the
-    /// tables kept (their tags as they now are): the topology is not
-    /// refined again.
-    fn record_f64(&self) -> Vec<LevelPlan<f64>> {
-        let (scheme, opts) = (self.scheme, &self.opts);
-        match &self.tables {
-            LevelTables::Triangles(t) => {
-                t.par_iter().map(|(ct, owners)| record_level::<f64>(ct, owners, scheme, opts)).collect()
-            }
-            LevelTables::Polygons(t) => {
-                t.par_iter().map(|pt| record_poly_level::<f64>(pt, scheme, opts, None)).collect()
-            }
-        }
+        Ok(self.topo.plan_f64().iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
     }
 
     fn check_width(&self, len: usize, channels: usize) -> Result<()> {

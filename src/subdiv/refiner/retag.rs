@@ -86,7 +86,7 @@ impl Refiner {
     /// The rows of level `l + 1` that read any of `points` of level `l`,
     /// sorted, without an interpolating level's copies.
     fn readers_of(&self, l: usize, points: &[u32]) -> Vec<u32> {
-        let level = &self.plan.levels[l];
+        let level = &self.topo.plan().levels[l];
         let first = if level.copy_vertices { level.n_in as u32 } else { 0 };
         let extra = &self.patches.readers[l];
         let readers = self.edit.as_ref().map_or(&[][..], |e| &e.readers[..]);
@@ -109,7 +109,7 @@ impl Refiner {
             let row = Row { idx: rows.indices[a..b].to_vec(), w: rows.weights[a..b].to_vec() };
             let old: &[u32] = match self.patches.rows[l].get(&r) {
                 Some(p) => &p.idx,
-                None => self.plan.levels[l].row(r as usize).map_or(&[], |(i, _)| i),
+                None => self.topo.plan().levels[l].row(r as usize).map_or(&[], |(i, _)| i),
             };
             for &j in row.idx.iter().filter(|j| !old.contains(j)) {
                 let list = self.patches.readers[l].entry(j).or_default();
@@ -130,18 +130,18 @@ impl Refiner {
     /// # Errors
     /// A tag naming no edge of the tables.
     pub(super) fn retag_locally(&mut self, tags: &Tags) -> Result<Option<Vec<Vec<u32>>>> {
-        if self.opts.boundary == BoundaryInterpolation::None {
+        if self.topo.opts.boundary == BoundaryInterpolation::None {
             return Ok(None);
         }
         self.edit_tables();
-        let mut tables = std::mem::replace(&mut self.tables, LevelTables::Triangles(Vec::new()));
+        let mut tables = std::mem::replace(&mut self.topo.tables, LevelTables::Triangles(Vec::new()));
         let result = match &mut tables {
             LevelTables::Triangles(t) => self.retag_levels(t.iter_mut().map(|(t, o)| Level::Triangles(t, o)), tags),
             LevelTables::Polygons(t) => self.retag_levels(t.iter_mut().map(Level::Polygons), tags),
         };
-        self.tables = tables;
+        self.topo.tables = tables;
         let (redone, fine) = result?;
-        self.plan.set_fine_sharpness(fine);
+        self.topo.set_fine_sharpness(fine);
         Ok(Some(redone))
     }
 
@@ -156,15 +156,15 @@ impl Refiner {
         let mut redone = Vec::new();
         for (l, mut level) in levels.enumerate() {
             if l == 0 {
-                sharpness = level.control_sharpness(tags, self.opts.boundary)?;
+                sharpness = level.control_sharpness(tags, self.topo.opts.boundary)?;
             }
             let old = level.set_sharpness(sharpness);
             let near = level.changed_and_near(old.as_ref());
             let ids = self.readers_of(l, &near);
-            let rows = level.record_rows(self.scheme, &self.opts, &ids);
+            let rows = level.record_rows(self.topo.scheme, &self.topo.opts, &ids);
             self.patch(l, &ids, &rows);
             redone.push(ids);
-            sharpness = level.next_sharpness(self.opts.creasing);
+            sharpness = level.next_sharpness(self.topo.opts.creasing);
         }
         Ok((redone, sharpness))
     }

@@ -196,6 +196,27 @@ pub(crate) fn record_rows_of<W: Weight>(
     with_rules(scheme, opts, record)
 }
 
+/// A finest level's new sharpness `s`, on its polygons (when a polygon
+/// scheme's) and on their triangles alike, edge by edge (each where held).
+pub(crate) fn with_fine_sharpness(
+    ct: Option<&mut CornerTable>,
+    poly: Option<&mut crate::mesh::poly::PolyTable>,
+    s: Option<crate::mesh::Sharpness>,
+) {
+    match (ct, poly) {
+        (ct, Some(poly)) => {
+            let tags = s.as_ref().map(|s| s.to_tags(&*poly)).unwrap_or_default();
+            *poly = std::mem::take(poly).with_sharpness(s);
+            if let Some(ct) = ct {
+                let on_triangles = crate::mesh::Sharpness::from_tags(&*ct, &tags).ok().flatten();
+                *ct = std::mem::take(ct).with_sharpness(on_triangles);
+            }
+        }
+        (Some(ct), None) => *ct = std::mem::take(ct).with_sharpness(s),
+        (None, None) => {}
+    }
+}
+
 impl StencilPlan {
     /// Records `levels` levels of `scheme` on topology `ct`.
     ///
@@ -263,14 +284,7 @@ impl StencilPlan {
     /// The finest level's sharpness after an edit of the tags (on its
     /// polygons and their triangles alike, edge by edge).
     pub(crate) fn set_fine_sharpness(&mut self, s: Option<crate::mesh::Sharpness>) {
-        if let Some(poly) = self.poly.as_deref_mut() {
-            let tags = s.as_ref().map(|s| s.to_tags(&*poly)).unwrap_or_default();
-            *poly = std::mem::take(poly).with_sharpness(s);
-            let on_triangles = crate::mesh::Sharpness::from_tags(&self.ct, &tags).ok().flatten();
-            self.ct = std::mem::take(&mut self.ct).with_sharpness(on_triangles);
-        } else {
-            self.ct = std::mem::take(&mut self.ct).with_sharpness(s);
-        }
+        with_fine_sharpness(Some(&mut self.ct), self.poly.as_deref_mut(), s);
     }
 
     /// Level `i`'s rows replaced (a sharpness edit's): applied unpacked
