@@ -48,9 +48,9 @@ pub struct StencilPlan {
 /// scheme, the finest polygons.
 pub(crate) type Recorded<W = f32> = (Vec<LevelPlan<W>>, CornerTable, Option<crate::mesh::poly::PolyTable>);
 
-/// The table every level of a plan was recorded on (its boundary corners
-/// applied, its sharpness that level's), with the owner corners of its
-/// edges for the triangle schemes.
+/// The table every level of a refinement was made from (its boundary
+/// corners applied, its sharpness that level's), with the owner corners of
+/// its edges for the triangle schemes: what a level's rows are recorded on.
 #[derive(Clone, Debug)]
 pub(crate) enum LevelTables {
     /// The triangle schemes' levels.
@@ -235,43 +235,20 @@ impl StencilPlan {
         levels: u32,
         opts: &Options,
     ) -> Result<Recorded<W>> {
-        Self::record_keeping(ct, (scheme, levels, opts), None)
-    }
-
-    /// [`StencilPlan::record`], keeping in `keep` the table each level
-    /// was recorded on (what a later edit of sharpness re-records rows
-    /// on).
-    pub(crate) fn record_keeping<W: Weight + std::ops::AddAssign>(
-        ct: &CornerTable,
-        (scheme, levels, opts): (Scheme, u32, &Options),
-        keep: Option<&mut LevelTables>,
-    ) -> Result<Recorded<W>> {
         if scheme.is_polygonal() {
-            let mut kept = Vec::new();
-            let (plans, poly) =
-                super::poly_plan::record(ct, scheme, levels, opts, keep.is_some().then_some(&mut kept))?;
-            if let Some(k) = keep {
-                *k = LevelTables::Polygons(kept);
-            }
+            let (plans, poly) = super::poly_plan::record(ct, scheme, levels, opts)?;
             return Ok((plans, poly.triangulated(), Some(poly)));
         }
-        let mut kept = Vec::new();
         let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
         check_levels_fit(ct, 0, levels, limit)?;
         let mut cur = with_boundary_corners(ct, opts.boundary).into_owned();
         let mut plans = Vec::with_capacity(levels as usize);
         for _ in 1..=levels {
             let (next, edges) = split::split_with(&cur, opts.creasing);
-            if keep.is_some() {
-                kept.push((cur.clone(), edges.owners.clone()));
-            }
             let weight = std::marker::PhantomData;
             let record = RecordLevel { ct: cur, owners: &edges.owners, creasing: opts.creasing, weight, only: None };
             plans.push(with_rules(scheme, opts, record));
             cur = next;
-        }
-        if let Some(k) = keep {
-            *k = LevelTables::Triangles(kept);
         }
         Ok((plans, cur, None))
     }

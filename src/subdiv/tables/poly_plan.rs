@@ -29,7 +29,6 @@ pub(super) fn record<W: Weight + std::ops::AddAssign>(
     scheme: Scheme,
     levels: u32,
     opts: &Options,
-    mut keep: Option<&mut Vec<PolyTable>>,
 ) -> Result<(Vec<LevelPlan<W>>, PolyTable)> {
     let control = PolyTable::from_corner_table(ct);
     let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
@@ -38,9 +37,6 @@ pub(super) fn record<W: Weight + std::ops::AddAssign>(
     let mut plans = Vec::with_capacity(levels as usize);
     for _ in 1..=levels {
         plans.push(record_poly_level(&cur, scheme, opts, None));
-        if let Some(k) = keep.as_deref_mut() {
-            k.push(cur.clone());
-        }
         cur = split::split(&cur, opts.creasing).0;
     }
     Ok((plans, cur))
