@@ -179,7 +179,7 @@ impl Cage for PolyMesh {
         how: (Scheme, u32, &Options),
         progress: &mut dyn FnMut(u32, u32) -> bool,
     ) -> Result<super::Levels> {
-        super::poly_kept(self, how, progress)
+        super::poly_kept((&self.pt, &self.positions), how, progress)
     }
 }
 

@@ -80,13 +80,13 @@ pub(crate) fn subdivide_with_progress(
 /// the owner corners of its edges), the finest level's table, and the
 /// points of every level, the control points first.
 #[doc(hidden)]
-pub struct Levels {
+pub struct Levels<P = glam::Vec3> {
     pub(crate) tables: tables::plan::LevelTables,
     /// The finest triangles (a triangle scheme's).
     pub(crate) fine: Option<CornerTable>,
     /// The finest polygons (a polygon scheme's).
     pub(crate) fine_poly: Option<crate::mesh::poly::PolyTable>,
-    pub(crate) points: Vec<Vec<glam::Vec3>>,
+    pub(crate) points: Vec<Vec<P>>,
     pub(crate) stats: Stats,
 }
 
@@ -101,7 +101,8 @@ pub(crate) fn refine_kept(
     progress: &mut dyn FnMut(u32, u32) -> bool,
 ) -> Result<Levels> {
     if scheme.is_polygonal() {
-        return poly_kept(&PolyMesh::from_mesh(mesh), (scheme, levels, opts), progress);
+        let poly = PolyMesh::from_mesh(mesh);
+        return poly_kept((&poly.pt, &poly.positions), (scheme, levels, opts), progress);
     }
     let t0 = Instant::now();
     check_levels_fit(&mesh.ct, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
@@ -137,41 +138,41 @@ pub(crate) fn refine_kept(
     Ok(Levels { tables, fine: Some(fine), fine_poly: None, points, stats })
 }
 
-/// [`refine_kept`] of a polygon mesh under a polygon scheme.
+/// [`refine_kept`] of the polygon table `pt` with the points `control`
+/// (f32 or f64: the same passes) under a polygon scheme.
 ///
 /// # Errors
 /// As [`subdivide`]; a triangle scheme.
-pub(crate) fn poly_kept(
-    mesh: &PolyMesh,
+pub(crate) fn poly_kept<P: rules::Coord>(
+    (pt, control): (&crate::mesh::poly::PolyTable, &[P]),
     (scheme, levels, opts): (Scheme, u32, &Options),
     progress: &mut dyn FnMut(u32, u32) -> bool,
-) -> Result<Levels> {
+) -> Result<Levels<P>> {
     if !scheme.is_polygonal() {
         return Err(crate::Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
     }
     let t0 = Instant::now();
-    refine::poly::check_levels_fit(&mesh.pt, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
+    refine::poly::check_levels_fit(pt, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
     let mut stats = Stats::default();
-    let base = refine::poly::with_boundary_corners(&mesh.pt, opts.boundary).unwrap_or_else(|| mesh.pt.clone());
-    let mut cur = PolyMesh { pt: base, positions: mesh.positions.clone() };
+    let mut cur = refine::poly::with_boundary_corners(pt, opts.boundary).unwrap_or_else(|| pt.clone());
     let (mut kept, mut points) = (Vec::with_capacity(levels as usize), Vec::with_capacity(levels as usize + 1));
+    points.push(control.to_vec());
     for level in 1..=levels {
-        let next = match scheme {
-            Scheme::Bilinear => refine::poly::level(&catmull_clark::Bilinear, &cur, opts.creasing, &mut stats),
-            _ => refine::poly::level(&catmull_clark::CatmullClark::new(opts), &cur, opts.creasing, &mut stats),
+        let from = (&cur, points.last().map_or(&[][..], Vec::as_slice));
+        let (next, next_points) = match scheme {
+            Scheme::Bilinear => refine::poly::level(&catmull_clark::Bilinear, from, opts.creasing, &mut stats),
+            _ => refine::poly::level(&catmull_clark::CatmullClark::new(opts), from, opts.creasing, &mut stats),
         };
-        stats.faces_per_level.push(next.pt.num_faces());
-        let done = std::mem::replace(&mut cur, next);
-        kept.push(done.pt);
-        points.push(done.positions);
+        stats.faces_per_level.push(next.num_faces());
+        kept.push(std::mem::replace(&mut cur, next));
+        points.push(next_points);
         if !progress(level, levels) {
             break;
         }
     }
-    points.push(cur.positions);
     stats.total_ms = ms(t0.elapsed());
     let tables = tables::plan::LevelTables::Polygons(kept);
-    Ok(Levels { tables, fine: None, fine_poly: Some(cur.pt), points, stats })
+    Ok(Levels { tables, fine: None, fine_poly: Some(cur), points, stats })
 }
 
 /// [`subdivide_faces`] with every vertex id `j` of the faces written as

@@ -1,19 +1,17 @@
 //! Double precision, the caller's choice (`--precision f64`, Python's
-//! float64 arrays). The triangle schemes run the one-shot passes of f32,
-//! written once over the point type (`rules::Coord`: the rules emit their
-//! weights in f64 and each precision rounds them as it takes them), on f64
-//! points. The polygon schemes record each level's rows with f64 weights
-//! from the very same rules ([`StencilPlan`]'s recording keeps them as they
-//! are) and apply them to f64 points. Either way the topology is the one
-//! [`crate::subdivide`] makes (same vertex and face ids), and an
-//! interpolating scheme's old vertices are copied, bit for bit.
+//! float64 arrays). Every scheme runs the one-shot passes of f32, written
+//! once over the point type (`rules::Coord`: the rules emit their weights
+//! in f64 and each precision rounds them as it takes them), on f64 points.
+//! The topology is the one [`crate::subdivide`] makes (same vertex and face
+//! ids), and an interpolating scheme's old vertices are copied, bit for
+//! bit. [`plan_f64`] records the rows themselves with f64 weights, for a
+//! caller that composes them into a subdivision matrix.
 
 use super::tables::{LevelPlan, StencilPlan};
 use super::{Options, Scheme};
 use crate::mesh::poly::PolyMesh;
 use crate::{Error, Mesh, Result};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// `levels` levels of triangle `scheme` (or a polygon scheme on the
 /// polygons the mesh stands for, as [`crate::subdivide`] takes them) of
@@ -33,9 +31,12 @@ pub(crate) fn subdivide_mesh_f64(
 ) -> Result<(Mesh, Vec<DVec3>)> {
     check_count(control.len(), mesh.positions.len())?;
     let (ct, positions) = match scheme.is_polygonal() {
+        // the polygons the mesh stands for, as subdivide takes them
         true => {
-            let (plans, ct, _) = StencilPlan::record::<f64>(&mesh.ct, scheme, levels, opts)?;
-            (ct, apply_levels(&plans, control))
+            let pt = crate::mesh::poly::PolyTable::from_corner_table(&mesh.ct);
+            let mut kept = super::poly_kept((&pt, control), (scheme, levels, opts), &mut |_, _| true)?;
+            let fine = kept.fine_poly.take().unwrap_or(pt);
+            (fine.triangulated(), kept.points.pop().unwrap_or_default())
         }
         // the triangle schemes' one-shot passes, in f64
         false => {
@@ -68,12 +69,13 @@ pub(crate) fn subdivide_poly_f64(
         return Err(Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
     }
     check_count(control.len(), mesh.positions.len())?;
-    let (plans, _, poly) = StencilPlan::record::<f64>(&mesh.pt.triangulated(), scheme, levels, opts)?;
-    let positions = apply_levels(&plans, control);
-    let pt = match poly {
-        Some(pt) => pt,
-        // no level: the table as it came (record joins the fans back)
-        None => mesh.pt.clone(),
+    let (pt, positions) = match levels {
+        // no level: the table as it came
+        0 => (mesh.pt.clone(), control.to_vec()),
+        _ => {
+            let mut kept = super::poly_kept((&mesh.pt, control), (scheme, levels, opts), &mut |_, _| true)?;
+            (kept.fine_poly.take().unwrap_or_default(), kept.points.pop().unwrap_or_default())
+        }
     };
     let rounded = positions.iter().map(|p| p.as_vec3()).collect();
     Ok((PolyMesh { pt, positions: rounded }, positions))
@@ -84,34 +86,6 @@ fn check_count(got: usize, vertices: usize) -> Result<()> {
         return Ok(());
     }
     Err(Error::Usage(format!("{got} double-precision positions for a mesh of {vertices} vertices")))
-}
-
-/// The levels `plans` applied in turn to `control`.
-fn apply_levels(plans: &[LevelPlan<f64>], control: &[DVec3]) -> Vec<DVec3> {
-    let mut cur = control.to_vec();
-    for lv in plans {
-        cur = apply_level(lv, &cur);
-    }
-    cur
-}
-
-/// One level on f64 points: an interpolating level's old vertices copied,
-/// then every row's weighted sum (in the order the rules emitted it).
-pub(crate) fn apply_level(lv: &LevelPlan<f64>, input: &[DVec3]) -> Vec<DVec3> {
-    let rows = lv.offsets.len().saturating_sub(1);
-    let kept = if lv.copy_vertices { lv.n_in } else { 0 };
-    let mut out = Vec::with_capacity(kept + rows);
-    out.extend_from_slice(&input[..kept]);
-    let sums = (0..rows).into_par_iter().with_min_len(4096).map(|i| {
-        let (a, b) = (lv.offsets[i] as usize, lv.offsets[i + 1] as usize);
-        let mut sum = DVec3::ZERO;
-        for (&j, &w) in lv.indices[a..b].iter().zip(&lv.weights[a..b]) {
-            sum += input[j as usize] * w;
-        }
-        sum
-    });
-    out.par_extend(sums);
-    out
 }
 
 /// Every level of `scheme` on the topology `ct` recorded with f64

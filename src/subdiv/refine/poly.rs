@@ -9,7 +9,7 @@
 
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules, smooth_triangle_edge};
 use super::super::rules::features::Features;
-use super::super::rules::scatter_parts;
+use super::super::rules::{Coord, scatter_parts};
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
 use crate::mesh::split::{EdgeIds, Owners};
@@ -17,17 +17,23 @@ use crate::mesh::{BORDER, BoundaryInterpolation, Creasing};
 use crate::mesh::{Faces, VertexId};
 use crate::subdiv::scheme::{Stats, ms};
 use crate::{Error, Result};
-use glam::Vec3;
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// One level of `r` on `mesh`, timed into `stats`.
-pub(crate) fn level<R: PolyRules>(r: &R, mesh: &PolyMesh, creasing: Creasing, stats: &mut Stats) -> PolyMesh {
+/// One level of `r` on the table `pt` with the points `pos` (f32 or f64:
+/// the same passes, the weights rounded to the points' precision), timed
+/// into `stats`: the next table and its points.
+pub(crate) fn level<R: PolyRules, P: Coord>(
+    r: &R,
+    (pt, pos): (&PolyTable, &[P]),
+    creasing: Creasing,
+    stats: &mut Stats,
+) -> (PolyTable, Vec<P>) {
     let t0 = Instant::now();
-    let (pt, edges) = split::split(&mesh.pt, creasing);
+    let (next, edges) = split::split(pt, creasing);
     stats.split_ms += ms(t0.elapsed());
-    let positions = points(r, mesh, (Owners::List(&edges.owners), &edges.ids), creasing, stats);
-    PolyMesh { pt, positions }
+    let positions = points(r, (pt, pos), (Owners::List(&edges.owners), &edges.ids), creasing, stats);
+    (next, positions)
 }
 
 /// [`level`] as faces alone (its quads, without twins, C or valences: the
@@ -42,7 +48,7 @@ pub(crate) fn level_faces<R: PolyRules, I: VertexId>(
     let t0 = Instant::now();
     let (corners, ids) = split::split_faces(&mesh.pt, id);
     stats.split_ms += ms(t0.elapsed());
-    let positions = points(r, mesh, (Owners::Bits(&ids), &ids), creasing, stats);
+    let positions = points(r, (&mesh.pt, &mesh.positions), (Owners::Bits(&ids), &ids), creasing, stats);
     // the quads of a hole's corners are left out
     let mut holes: Vec<u32> = mesh.pt.holes().iter().flat_map(|&f| mesh.pt.face_corners(f)).collect();
     holes.sort_unstable();
@@ -53,25 +59,23 @@ pub(crate) fn level_faces<R: PolyRules, I: VertexId>(
 /// (`owners` in edge order, `ids` per corner): face points, then vertex
 /// points (the edge part, not yet written, serving as their scratch
 /// memory), then edge points.
-fn points<R: PolyRules>(
+fn points<R: PolyRules, P: Coord>(
     r: &R,
-    mesh: &PolyMesh,
+    (old, pos): (&PolyTable, &[P]),
     (owners, ids): (Owners, &EdgeIds),
     creasing: Creasing,
     stats: &mut Stats,
-) -> Vec<Vec3> {
-    let old = &mesh.pt;
+) -> Vec<P> {
     let (nv, ne, nf) = (old.num_vertices(), owners.len(), old.num_faces());
-    let mut positions: Vec<Vec3> = crate::mem::zeroed(nv + ne + nf);
+    let mut positions: Vec<P> = crate::mem::zeroed(nv + ne + nf);
     let (vpart, rest) = positions.split_at_mut(nv);
     let (epart, fpart) = rest.split_at_mut(ne);
-    let pos = &mesh.positions[..];
     let features = if R::SMOOTH { Features::of(old, creasing) } else { None };
     let lv = PolyLevel { pt: old, features: features.as_ref() };
     let t1 = Instant::now();
     face_points(old, pos, fpart);
     let t2 = Instant::now();
-    vertex_points::<R>(&lv, pos, fpart, vpart, epart);
+    vertex_points::<R, P>(&lv, pos, fpart, vpart, epart);
     let t3 = Instant::now();
     edge_points(r, &lv, owners, pos, fpart, epart);
     stats.edge_ms += ms(t2 - t1) + ms(t3.elapsed());
@@ -84,7 +88,7 @@ fn points<R: PolyRules>(
 }
 
 /// Every face's point: the average of its vertices.
-fn face_points(pt: &PolyTable, pos: &[Vec3], out: &mut [Vec3]) {
+fn face_points<P: Coord>(pt: &PolyTable, pos: &[P], out: &mut [P]) {
     if pt.is_quads() {
         // the same sums in the same order, without a face lookup per face:
         // 70 k quads to level 3, one thread, warm, 2 ms of the 24 that face
@@ -92,16 +96,16 @@ fn face_points(pt: &PolyTable, pos: &[Vec3], out: &mut [Vec3]) {
         let (quads, _) = pt.v_table().as_chunks::<4>();
         out.par_chunks_mut(4096).zip(quads.par_chunks(4096)).for_each(|(qs, vs)| {
             for (q, v) in qs.iter_mut().zip(vs) {
-                let sum = v.iter().map(|&j| pos[j as usize]).sum::<Vec3>();
-                *q = sum / 4.0;
+                let sum = v.iter().fold(P::ZERO, |s, &j| s + pos[j as usize]);
+                *q = sum.over(4.0);
             }
         });
         return;
     }
     out.par_iter_mut().enumerate().with_min_len(4096).for_each(|(f, q)| {
         let r = pt.face_corners(f as u32);
-        let k = (r.end - r.start) as f32;
-        *q = r.map(|c| pos[pt.vtx(c) as usize]).sum::<Vec3>() / k;
+        let k = f64::from(r.end - r.start);
+        *q = r.fold(P::ZERO, |s, c| s + pos[pt.vtx(c) as usize]).over(k);
     });
 }
 
@@ -112,7 +116,7 @@ fn face_points(pt: &PolyTable, pos: &[Vec3], out: &mut [Vec3]) {
 const AHEAD: usize = 32;
 
 /// Every edge's point, in owner order, from the face points `fp`.
-fn edge_points<R: PolyRules>(r: &R, lv: &PolyLevel, owners: Owners, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3]) {
+fn edge_points<R: PolyRules, P: Coord>(r: &R, lv: &PolyLevel, owners: Owners, pos: &[P], fp: &[P], out: &mut [P]) {
     let pt = lv.pt;
     // the smooth triangle rule: only a control level has triangles
     let triangles = r.smooth_triangles() && !pt.is_quads();
@@ -132,12 +136,12 @@ fn edge_points<R: PolyRules>(r: &R, lv: &PolyLevel, owners: Owners, pos: &[Vec3]
                     let (f0, f1) = (pt.face(c), pt.face(t));
                     let tri = triangles.then(|| smooth_triangle_edge(pt.face_size(f0), pt.face_size(f1))).flatten();
                     match tri {
-                        // the weights as a sink of f32 points rounds them
-                        Some((we, wf)) => (a + b) * we as f32 + (fp[f0 as usize] + fp[f1 as usize]) * wf as f32,
-                        None => (a + b + fp[f0 as usize] + fp[f1 as usize]) * 0.25,
+                        // the weights rounded to the points' precision, as a sink rounds them
+                        Some((we, wf)) => (a + b).times(we) + (fp[f0 as usize] + fp[f1 as usize]).times(wf),
+                        None => (a + b + fp[f0 as usize] + fp[f1 as usize]).times(0.25),
                     }
                 }
-                _ => (a + b) * 0.5,
+                _ => (a + b).times(0.5),
             };
         }
     });
@@ -151,7 +155,7 @@ fn edge_points<R: PolyRules>(r: &R, lv: &PolyLevel, owners: Owners, pos: &[Vec3]
 /// fan through the twins; each thread sums its range of corners into a
 /// buffer of its own (taken from `scratch` as far as it holds them), and
 /// the buffers are added per vertex.
-fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &mut [Vec3], scratch: &mut [Vec3]) {
+fn vertex_points<R: PolyRules, P: Coord>(lv: &PolyLevel, pos: &[P], fp: &[P], out: &mut [P], scratch: &mut [P]) {
     let pt = lv.pt;
     if !R::SMOOTH {
         out.par_iter_mut().zip(pos.par_iter()).with_min_len(8192).for_each(|(q, &p)| *q = p);
@@ -164,7 +168,7 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
     // 70 k quads to level 3, one thread, warm, 23.5-25.4 to 20.2-21.4 ms)
     let quads = pt.is_quads();
     let bound = |k: usize| if quads { (k * nc / parts) & !3 } else { k * nc / parts };
-    let scatter = |acc: &mut [Vec3], k: usize| {
+    let scatter = |acc: &mut [P], k: usize| {
         let range = bound(k)..bound(k + 1);
         if quads {
             let (vs, _) = pt.v_table()[range.clone()].as_chunks::<4>();
@@ -186,12 +190,14 @@ fn vertex_points<R: PolyRules>(lv: &PolyLevel, pos: &[Vec3], fp: &[Vec3], out: &
         let p = pos[v];
         if pt.is_boundary_vertex(v as u32) {
             let (a, b) = lv.border_neighbours(v as u32);
-            *q = (pos[a as usize] + pos[b as usize]) * 0.125 + p * 0.75;
+            *q = (pos[a as usize] + pos[b as usize]).times(0.125) + p.times(0.75);
             return;
         }
-        let n = pt.valences()[v] as f32;
+        // (n - 2) / n and n^2 in f64, then rounded to the points' precision:
+        // an f32 quotient rounded through f64 is the f32 quotient (53 >= 2 x 24 + 2)
+        let n = f64::from(pt.valences()[v]);
         let sum = extra.iter().fold(*q, |s, e| s + e[v]);
-        *q = p * ((n - 2.0) / n) + sum / (n * n);
+        *q = p.times((n - 2.0) / n) + sum.over(n * n);
     });
 }
 
