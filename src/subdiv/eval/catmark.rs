@@ -34,17 +34,21 @@
 //! Near an extraordinary vertex the levels grow as log2 of 1 / distance
 //! (there is no power table for Catmull-Clark yet), bounded by the cap.
 
+use super::finish::{Affine, finish};
 use super::local::{Fans, MAX_LEVELS, apply_rows, fans};
 use super::patch::Jet;
+use super::points::EDGE_SLACK;
 use super::sector::{at_corner, finite_normal, stationary, vertex_limit};
-use super::{Affine, Sample, finish};
+use super::{Limit, Sample};
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::INFINITE;
 use crate::subdiv::Options;
 use crate::subdiv::refine::poly::with_boundary_corners;
 use crate::subdiv::tables::poly_plan::record_one_catmark_level;
+use crate::{Error, Result};
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// Ptex faces: `(face, corner)`, the corner [`QUAD`] for a quad.
 pub const QUAD: u32 = u32::MAX;
@@ -136,6 +140,58 @@ impl Poly {
         let fallback = (0..k).map(|i| control[i].cross(control[(i + 1) % k])).sum::<DVec3>();
         Sample { position, normal: finite_normal(normal, [fallback]), ..Sample::NAN }
     }
+}
+
+impl Limit for Poly {
+    fn faces(&self) -> usize {
+        self.num_faces()
+    }
+
+    fn accepts(&self, f: usize) -> bool {
+        f < self.num_faces()
+    }
+
+    #[inline]
+    fn fits(&self, f: usize, u: f64, v: f64) -> bool {
+        f < self.num_faces() && in_square(u, v)
+    }
+
+    #[inline]
+    fn onto_domain(&self, u: f64, v: f64) -> (f64, f64) {
+        (u.min(1.0), v.min(1.0))
+    }
+
+    /// Loop's `check_point` (`loop_surface.rs`) for a ptex face's unit square.
+    fn check(&self, f: usize, u: f64, v: f64) -> Result<(f64, f64)> {
+        let faces = self.num_faces();
+        if f >= faces {
+            return Err(Error::Usage(format!("ptex face {f} out of range (the mesh has {faces})")));
+        }
+        if !in_square(u, v) {
+            return Err(Error::Usage(format!("({u}, {v}) is not in the unit square")));
+        }
+        Ok((u.min(1.0), v.min(1.0)))
+    }
+
+    fn eval_checked(&self, f: usize, uv: (f64, f64), second: bool) -> Sample {
+        self.eval(f, uv, second)
+    }
+
+    fn eval_sorted<T: Send>(
+        &self,
+        sorted: &[(usize, (f64, f64))],
+        second: bool,
+        keep: impl Fn(&Sample) -> T + Sync,
+    ) -> Vec<T> {
+        sorted.par_iter().with_min_len(256).map(|&(f, uv)| keep(&self.eval(f, uv, second))).collect()
+    }
+}
+
+/// `u` and `v` in `[0, 1]` with [`EDGE_SLACK`] (false for NaN).
+#[inline]
+fn in_square(u: f64, v: f64) -> bool {
+    let unit = 0.0..=1.0 + EDGE_SLACK;
+    unit.contains(&u) && unit.contains(&v)
 }
 
 /// The sample at a corner of the region's quad when the point `st` is

@@ -41,11 +41,13 @@
 //! infinitely sharp ones are stationary, and a face touching them stops by
 //! rule 1 as soon as its corners are regular.
 
+use super::Sample;
 use super::extraordinary::Extraordinary;
+use super::finish::{Affine, finish};
 use super::level1::walk;
+use super::loop_surface::{near_vertex, rotation};
 use super::patch::{self, BoxSpline, SUPPORT};
 use super::sector::{at_corner, finite_normal, stationary, vertex_limit};
-use super::{Affine, Sample, finish, near_vertex, rotation};
 use crate::mesh::sharpness::{INFINITE, Sharpness};
 use crate::mesh::{CornerTable, Mesh, n, p};
 use crate::subdiv::rules::features::with_boundary_corners;

@@ -1,6 +1,7 @@
 //! Internal checks of the evaluation: the power-table path against direct
 //! subdivision of the same patch, and the parameter maps.
 
+use super::loop_surface::{child_of, level_of, rotation, scale2};
 use super::*;
 use crate::mesh::shapes;
 
