@@ -15,7 +15,7 @@ use subdiv::{Mesh, Options, Scheme, subdivide};
 /// `control` refined by `scheme` to `level`, picked along a ray.
 fn pick_on(control: &Mesh, scheme: Scheme, level: u32, origin: Vec3, dir: Vec3) -> (Mesh, Option<Pick>) {
     let (drawn, _) = subdivide(control, scheme, level, &Options::default()).expect("subdivides");
-    let lv = Level { control, drawn: &drawn, scheme, level };
+    let lv = Level { control, drawn: &drawn, scheme, level, precise: None };
     let picked = pick(&lv, &Options::default(), origin, dir.normalize()).expect("the level matches");
     (drawn, picked)
 }
@@ -113,7 +113,7 @@ fn the_limit_at_the_reported_point_lies_near_the_hit() {
         for level in [2, 4] {
             let (drawn, _) = subdivide(control, Scheme::Loop, level, &Options::default()).unwrap();
             let bound = level_to_limit(control, &drawn, level);
-            let lv = Level { control, drawn: &drawn, scheme: Scheme::Loop, level };
+            let lv = Level { control, drawn: &drawn, scheme: Scheme::Loop, level, precise: None };
             let mut worst = 0.0f64;
             let mut hits = 0;
             for _ in 0..40 {
@@ -250,7 +250,7 @@ fn a_faces_neighbourhood_has_the_same_limit_as_the_whole_mesh() {
 fn a_drawn_mesh_of_another_level_is_refused() {
     let ico = icosahedron();
     let (drawn, _) = subdivide(&ico, Scheme::Loop, 2, &Options::default()).unwrap();
-    let lv = Level { control: &ico, drawn: &drawn, scheme: Scheme::Loop, level: 3 };
+    let lv = Level { control: &ico, drawn: &drawn, scheme: Scheme::Loop, level: 3, precise: None };
     assert!(pick(&lv, &Options::default(), Vec3::Z * 5.0, -Vec3::Z).is_err());
 }
 
@@ -287,7 +287,7 @@ fn time_a_ray_against_a_million_triangles() {
         hits += usize::from(nearest_hit(&drawn, origin, -Vec3::Z).is_some());
     }
     let ms = t0.elapsed().as_secs_f64() * 1e3 / 20.0;
-    let lv = Level { control: &torus, drawn: &drawn, scheme: Scheme::Loop, level };
+    let lv = Level { control: &torus, drawn: &drawn, scheme: Scheme::Loop, level, precise: None };
     let origin =
         (0..20).map(|i| Vec3::new(0.05 * i as f32, 0.3, 10.0)).find(|&o| nearest_hit(&drawn, o, -Vec3::Z).is_some());
     let t1 = std::time::Instant::now();
@@ -300,7 +300,7 @@ fn time_a_ray_against_a_million_triangles() {
         p.map(|p| p.limit)
     );
     // the same million triangles as a control mesh: the limit needs its evaluator
-    let lv = Level { control: &drawn, drawn: &drawn, scheme: Scheme::Loop, level: 0 };
+    let lv = Level { control: &drawn, drawn: &drawn, scheme: Scheme::Loop, level: 0, precise: None };
     let t2 = std::time::Instant::now();
     let p = pick(&lv, &Options::default(), origin.expect("a ray hits"), -Vec3::Z).unwrap();
     println!(

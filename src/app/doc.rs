@@ -250,6 +250,7 @@ impl Doc {
         m.raw = (*m.control).clone();
         m.attrs.refined = m.attrs.file.clone();
         m.original = None;
+        m.precise = None;
         m.picked.set(None);
         m.probe = None;
         m.proxy = None;
@@ -561,6 +562,7 @@ impl Doc {
                 self.adopt_file_options(o.attrs.options);
                 self.model.attrs.file = o.attrs;
                 self.adopt(o.path, o.mesh, o.paths);
+                self.model.precise = o.precise.map(|p| (self.model.control.mesh.clone(), Arc::new(p)));
                 self.look_for_recovery();
             }
             Err(e) => {

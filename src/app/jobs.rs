@@ -71,6 +71,9 @@ pub(crate) struct Opened {
     pub(crate) report: Option<String>,
     /// Its colours and texture coordinates.
     pub(crate) attrs: Attributes,
+    /// Its points in f64 as the file wrote them (where the format keeps
+    /// more digits than f32 and the mesh was not repaired).
+    pub(crate) precise: Option<Vec<glam::DVec3>>,
 }
 
 /// A finished subdivision.
@@ -444,7 +447,7 @@ pub(crate) fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened>
         None => None,
     };
     let report = (!notes.is_empty()).then(|| notes.join("; "));
-    Ok(Opened { path: path.to_path_buf(), mesh, paths, report, attrs: loaded.attributes })
+    Ok(Opened { path: path.to_path_buf(), mesh, paths, report, attrs: loaded.attributes, precise: loaded.precise })
 }
 
 /// The highest level below `level` with at most [`PROXY_FACES`] triangles,

@@ -221,9 +221,20 @@ pub(crate) struct Model {
     pub(crate) curve: Versioned<Option<Curve>>,
     /// The last curvature colouring's values (see [`Curvatures`]).
     pub(crate) curvatures: Option<Curvatures>,
+    /// The control points in f64 as the file wrote them, and the control
+    /// mesh they belong to (see [`Model::precise_control`]).
+    pub(crate) precise: Option<(Arc<Mesh>, Arc<Vec<glam::DVec3>>)>,
 }
 
 impl Model {
+    /// The control points in f64 as the file wrote them, while the control
+    /// mesh is the one read: an edit makes a new control mesh, whose f32
+    /// points are then all there is.
+    pub(crate) fn precise_control(&self) -> Option<&[glam::DVec3]> {
+        let (of, points) = self.precise.as_ref()?;
+        Arc::ptr_eq(of, &self.control.mesh).then_some(points.as_slice())
+    }
+
     /// A model of `mesh` at level 0, shown plainly.
     pub(crate) fn new(name: String, mesh: Mesh) -> Model {
         let shown = Shown::new(Arc::new(mesh));
@@ -241,6 +252,7 @@ impl Model {
             probe: None,
             curve: Versioned::new(None),
             curvatures: None,
+            precise: None,
         }
     }
 

@@ -68,7 +68,7 @@ impl Doc {
             Target::Control => (control, 0),
             Target::Result => (&*m.result.shown.mesh, m.made.level),
         };
-        let level = Level { control, drawn, scheme: m.made.scheme, level };
+        let level = Level { control, drawn, scheme: m.made.scheme, level, precise: m.precise_control() };
         pick(&level, &m.made.opts, ray.origin, ray.dir)
     }
 

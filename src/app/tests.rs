@@ -838,6 +838,48 @@ fn a_click_picks_a_point_of_the_surface_and_escape_or_empty_space_clears_it() {
 }
 
 #[test]
+fn a_pick_far_from_the_origin_is_evaluated_from_the_files_own_digits() {
+    use crate::subdiv::pick::Limit;
+    use glam::DVec3;
+    // an octahedron far out, its points with more digits than f32 keeps
+    // there (its spacing is 1/128 at 1e5)
+    let at = DVec3::new(1.0e5 + 0.123_456_789, -2.0e5 + 0.987_654_321, 1.5e5 + 0.000_5);
+    let unit =
+        [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+    let exact: Vec<DVec3> = unit.iter().map(|u| at + DVec3::from_array(*u) * 5.0).collect();
+    let faces = "f 1 3 5\nf 3 2 5\nf 2 4 5\nf 4 1 5\nf 3 1 6\nf 2 3 6\nf 4 2 6\nf 1 4 6\n";
+    let text: String =
+        exact.iter().map(|p| format!("v {:.9} {:.9} {:.9}\n", p.x, p.y, p.z)).collect::<String>() + faces;
+    let path = common::scratch_dir("far-pick").join("far.obj");
+    std::fs::write(&path, text).unwrap();
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    v.apply(Command::Open(path));
+    settle(&mut v);
+    assert_eq!(v.doc.model.precise_control(), Some(&exact[..]), "the file's digits are kept");
+    subdivide(&mut v, Scheme::Loop, 2);
+    settle(&mut v);
+    frame(&ctx, &mut v, vec![]);
+    let at = v.view.scene_rect.center() + egui::vec2(4.0, -3.0);
+    click(&ctx, &mut v, at);
+    let p = v.doc.model.probe.clone().expect("a click on the surface picks it").pick;
+    let crate::subdiv::pick::ControlFace::Triangle { face, u, v: w } = p.face else { panic!("Loop names a triangle") };
+    let Limit::Exact(s) = &p.limit else { panic!("{:?}", p.limit) };
+    // the limit from the file's digits, in f64 throughout
+    let control = &v.doc.model.control.mesh;
+    let ev = crate::Evaluator::new_f64(control, &exact, Scheme::Loop, &Default::default()).unwrap();
+    let want = ev.eval(face as usize, u, w).unwrap();
+    assert!((s.position - want.position).length() < 1e-9, "{} against {}", s.position, want.position);
+    // from the f32 points the limit is off by what f32 loses out there
+    let rounded = crate::Evaluator::new(control, Scheme::Loop, &Default::default()).unwrap();
+    let off = (rounded.eval(face as usize, u, w).unwrap().position - want.position).length();
+    assert!(off > 1e-3, "f32 points would be {off} off: the test means something");
+    // a moved vertex makes a new control mesh: its f32 points are the truth then
+    v.doc.model.control.set(crate::app::model::Shown::new(std::sync::Arc::new((**control).clone())));
+    assert!(v.doc.model.precise_control().is_none());
+}
+
+#[test]
 fn side_by_side_the_left_viewport_picks_the_control_mesh() {
     use crate::app::probe::Target;
     let ctx = egui::Context::default();

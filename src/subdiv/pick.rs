@@ -17,14 +17,15 @@
 //! Where the evaluator has nothing exact (another scheme, a face at an
 //! interior vertex of valence 2), [`Limit::Unavailable`] says why.
 
-use super::eval::{Evaluator, Sample, evaluate_one};
+use super::eval::{Evaluator, Sample, evaluate_one_f64};
 use super::{Options, Scheme};
 use crate::mesh::lineage::{QUAD_CORNERS, barycentric, quad_parent, quad_point, triangle_origin};
 use crate::mesh::pick::{Hit, nearest_hit};
 use crate::mesh::poly::PolyTable;
 use crate::mesh::{CornerTable, Mesh, n, p};
 use crate::{Error, Result};
-use glam::Vec3;
+use glam::{DVec3, Vec3};
+use std::borrow::Cow;
 
 /// A drawn level of a subdivision: what a ray is cast against.
 #[derive(Clone, Copy)]
@@ -38,6 +39,10 @@ pub struct Level<'a> {
     pub scheme: Scheme,
     /// Its level (0: `drawn` has `control`'s triangles).
     pub level: u32,
+    /// `control`'s points in f64 (say the file's own digits), one per
+    /// vertex: the limit at a pick is evaluated from them. `None` (or
+    /// another count): from `control`'s f32 points, widened.
+    pub precise: Option<&'a [DVec3]>,
 }
 
 /// The control face a pick lies in.
@@ -127,7 +132,7 @@ pub fn pick(level: &Level, opts: &Options, origin: Vec3, dir: Vec3) -> Result<Op
         return Ok(None);
     };
     let (face, vertex) = trace(level, &hit)?;
-    let limit = limit_at(level.control, level.scheme, opts, &face);
+    let limit = limit_at((level.control, level.precise), level.scheme, opts, &face);
     let (point, distance, triangle) = (hit.point, hit.t, hit.triangle);
     Ok(Some(Pick { point, distance, triangle, level: level.level, scheme: level.scheme, face, vertex, limit }))
 }
@@ -226,14 +231,26 @@ fn polygon_of(pt: &PolyTable, ct: &CornerTable, f: u32) -> Option<u32> {
 }
 
 /// The exact limit of `control` under `scheme` at a pick's face, or why
-/// there is none (the scheme, or what the face touches).
-pub(crate) fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &ControlFace) -> Limit {
+/// there is none (the scheme, or what the face touches): from the f64
+/// points `precise` when given (one per vertex), else from the f32 ones.
+pub(crate) fn limit_at(
+    (control, precise): (&Mesh, Option<&[DVec3]>),
+    scheme: Scheme,
+    opts: &Options,
+    face: &ControlFace,
+) -> Limit {
     let why = |s: String| Limit::Unavailable(s);
     let exact = |r: Result<Sample>| r.map_or_else(|e| why(e.to_string()), |s| Limit::Exact(Box::new(s)));
+    let points = || -> Cow<'_, [DVec3]> {
+        match precise.filter(|p| p.len() == control.positions.len()) {
+            Some(p) => Cow::Borrowed(p),
+            None => Cow::Owned(control.positions.iter().map(|p| p.as_dvec3()).collect()),
+        }
+    };
     let (face, u, v) = match (scheme, *face) {
         (Scheme::Loop, ControlFace::Triangle { face, u, v }) => (face, u, v),
         (Scheme::CatmullClark, ControlFace::Polygon { ptex: Some((p, u, v)), .. }) => {
-            return exact(evaluate_one(control, scheme, opts, (p as usize, u, v)));
+            return exact(evaluate_one_f64(control, &points(), scheme, opts, (p as usize, u, v)));
         }
         (Scheme::CatmullClark, _) => return why(format!("{scheme}: a polygon drawn unrefined (subdivide once)")),
         (s, _) if s.is_interpolating() => {
@@ -241,16 +258,19 @@ pub(crate) fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &Co
         }
         _ => return why(format!("{scheme}: exact evaluation exists for Loop and Catmull-Clark")),
     };
-    let sample = match neighbourhood(control, face).filter(|_| !touches_feature(&control.ct, face)) {
+    let sample = match local_mesh(control, face).filter(|_| !touches_feature(&control.ct, face)) {
         // the face's own neighbourhood: the same limit at a cost that does not grow with the mesh
-        Some(local) => Evaluator::new(&local, scheme, opts).and_then(|ev| ev.eval(0, u, v)),
+        Some((local, ids)) => {
+            let at: Vec<DVec3> = match precise.filter(|p| p.len() == control.positions.len()) {
+                Some(p) => ids.iter().map(|&i| p[i as usize]).collect(),
+                None => local.positions.iter().map(|p| p.as_dvec3()).collect(),
+            };
+            Evaluator::new_f64(&local, &at, scheme, opts).and_then(|ev| ev.eval(0, u, v))
+        }
         // a border or sharp feature: local subdivision from this face alone
-        None => evaluate_one(control, scheme, opts, (face as usize, u, v)),
+        None => evaluate_one_f64(control, &points(), scheme, opts, (face as usize, u, v)),
     };
-    match sample {
-        Ok(s) => Limit::Exact(Box::new(s)),
-        Err(e) => why(e.to_string()),
-    }
+    exact(sample)
 }
 
 /// Control triangle `f` with every triangle at one of its vertices, as a
@@ -263,6 +283,11 @@ pub(crate) fn limit_at(control: &Mesh, scheme: Scheme, opts: &Options, face: &Co
 /// triangles). `None` when the piece is not a valid mesh by itself (a ring
 /// vertex whose faces here fall in two fans): then the whole mesh is used.
 pub fn neighbourhood(control: &Mesh, f: u32) -> Option<Mesh> {
+    local_mesh(control, f).map(|(mesh, _)| mesh)
+}
+
+/// [`neighbourhood`], with the control vertex each of its vertices is.
+fn local_mesh(control: &Mesh, f: u32) -> Option<(Mesh, Vec<u32>)> {
     let ct = &control.ct;
     let mut faces = vec![f];
     for k in 0..3 {
@@ -287,13 +312,13 @@ pub fn neighbourhood(control: &Mesh, f: u32) -> Option<Mesh> {
             tris.push(local as u32);
         }
     }
-    Mesh::from_triangles(positions, &tris).ok()
+    Mesh::from_triangles(positions, &tris).ok().map(|mesh| (mesh, ids))
 }
 
 /// Whether a vertex of control triangle `f` is on the boundary, at a sharp
 /// edge or sharp itself: its limit depends on more than [`neighbourhood`]
 /// keeps (the sharpness, the rings beyond a border), and
-/// [`evaluate_one`] evaluates it from the whole mesh without preparing it.
+/// `evaluate_one` evaluates it from the whole mesh without preparing it.
 fn touches_feature(ct: &CornerTable, f: u32) -> bool {
     let sharp_vertex =
         |v: u32| ct.sharpness().is_some_and(|s| s.sharp_vertices().iter().any(|&(x, s)| x == v && s > 0.0));
