@@ -60,7 +60,8 @@ pub(crate) fn subdivide_mesh(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Op
 
 /// [`subdivide`] calling `progress(level_done, levels)` after each level; if
 /// it returns `false` the work stops and `Ok` holds the last finished level:
-/// a [`Refiner`]'s finest level (its stencils never recorded).
+/// the finest of the levels a [`Refiner`] is made of (its stencils never
+/// recorded, its cage table never made).
 ///
 /// # Errors
 /// See [`subdivide`].
@@ -71,7 +72,7 @@ pub(crate) fn subdivide_with_progress(
     opts: &Options,
     mut progress: impl FnMut(u32, u32) -> bool,
 ) -> Result<(Mesh, Stats)> {
-    Ok(Refiner::with_progress(mesh, (scheme, levels, opts), &mut progress)?.into_mesh())
+    Ok(refine_kept(mesh, (scheme, levels, opts), &mut progress)?.into_mesh())
 }
 
 /// Every level of a refinement, as the one-shot passes made them and a
@@ -88,6 +89,32 @@ pub struct Levels<P = glam::Vec3> {
     pub(crate) fine_poly: Option<crate::mesh::poly::PolyTable>,
     pub(crate) points: Vec<Vec<P>>,
     pub(crate) stats: Stats,
+}
+
+impl Levels {
+    /// The finest level as a mesh (a polygon scheme's fanned), and what
+    /// refining took.
+    fn into_mesh(mut self) -> (Mesh, Stats) {
+        let positions = self.points.pop().unwrap_or_default();
+        let ct = match (self.fine, &self.fine_poly) {
+            (Some(ct), _) => ct,
+            (None, Some(pt)) => pt.triangulated(),
+            (None, None) => CornerTable::default(),
+        };
+        (Mesh { ct, positions }, self.stats)
+    }
+
+    /// A polygon scheme's finest level as polygons, and what refining took.
+    ///
+    /// # Errors
+    /// [`crate::Error::Usage`] for a triangle scheme's levels.
+    fn into_poly(mut self) -> Result<(PolyMesh, Stats)> {
+        let positions = self.points.pop().unwrap_or_default();
+        match self.fine_poly {
+            Some(pt) => Ok((PolyMesh { pt, positions }, self.stats)),
+            None => Err(crate::Error::Usage("a triangle scheme makes triangles, not polygons".into())),
+        }
+    }
 }
 
 /// The levels of `scheme` on `mesh` (a polygon scheme on the polygons it
@@ -311,7 +338,7 @@ pub(crate) fn subdivide_poly_with_progress(
     opts: &Options,
     mut progress: impl FnMut(u32, u32) -> bool,
 ) -> Result<(PolyMesh, Stats)> {
-    Refiner::with_progress(mesh, (scheme, levels, opts), &mut progress)?.into_poly()
+    poly_kept((&mesh.pt, &mesh.positions), (scheme, levels, opts), &mut progress)?.into_poly()
 }
 
 /// [`subdivide_poly_faces`] with every vertex id `j` of the quads written

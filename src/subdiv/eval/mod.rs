@@ -102,7 +102,8 @@ impl Sample {
     };
 }
 
-/// Evaluates the Loop limit surface of one control mesh at any point.
+/// Evaluates the Loop or Catmull-Clark limit surface of one control mesh at
+/// any point (Loop: control triangles; Catmull-Clark: ptex faces).
 pub struct Evaluator {
     surface: Surface,
 }
@@ -197,9 +198,9 @@ pub(crate) fn evaluate_one_f64(
 }
 
 impl Evaluator {
-    /// Prepares `mesh` for evaluation under `scheme` and `opts` (only
-    /// [`Scheme::Loop`] has an exact evaluation here; `opts.loop_beta`
-    /// chooses its weights).
+    /// Prepares `mesh` for evaluation under `scheme` and `opts`
+    /// ([`Scheme::Loop`], `opts.loop_beta` choosing its weights, or
+    /// [`Scheme::CatmullClark`] on the polygons the mesh stands for).
     ///
     /// # Errors
     /// [`Error::Usage`] naming a scheme without an exact evaluation.

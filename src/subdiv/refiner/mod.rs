@@ -26,7 +26,6 @@ mod topology;
 
 use super::tables::{LevelPlan, StencilPlan};
 use super::{Levels, Options, Scheme, Stats};
-use crate::mesh::poly::PolyMesh;
 use crate::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
 use crate::{CornerTable, Error, Mesh, Result};
 use glam::{Vec3, Vec3A};
@@ -237,25 +236,6 @@ impl Refiner {
             from_polygons: false,
             face_varying: Default::default(),
             stats: levels.stats,
-        }
-    }
-
-    /// The finest level as a mesh, and what refining took (the refiner
-    /// taken apart: nothing is copied).
-    pub(crate) fn into_mesh(mut self) -> (Mesh, Stats) {
-        let positions = self.points.pop().unwrap_or_default();
-        (Mesh { ct: self.topo.into_fine(), positions }, self.stats)
-    }
-
-    /// A polygon scheme's finest level as polygons, and what refining took.
-    ///
-    /// # Errors
-    /// [`Error::Usage`] for a triangle scheme's refiner.
-    pub(crate) fn into_poly(mut self) -> Result<(PolyMesh, Stats)> {
-        let positions = self.points.pop().unwrap_or_default();
-        match self.topo.fine_poly.take() {
-            Some(pt) => Ok((PolyMesh { pt, positions }, self.stats)),
-            None => Err(Error::Usage(format!("{} makes triangles, not polygons", self.topo.scheme))),
         }
     }
 

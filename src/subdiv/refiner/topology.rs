@@ -59,12 +59,6 @@ impl Topology {
         self.fine.get_or_init(|| self.fine_poly.as_ref().map(PolyTable::triangulated).unwrap_or_default())
     }
 
-    /// The finest triangles, taken.
-    pub(super) fn into_fine(mut self) -> CornerTable {
-        self.fine();
-        self.fine.take().unwrap_or_default()
-    }
-
     /// The f32 stencils, recorded on first use.
     pub(super) fn plan(&self) -> &StencilPlan {
         self.plan.get_or_init(|| {
