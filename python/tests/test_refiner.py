@@ -20,13 +20,16 @@ def test_a_move_equals_subdividing_the_moved_mesh(scheme, V, F):
     V0, F0 = subdiv.subdivide(V, F, levels=3, scheme=scheme)
     np.testing.assert_array_equal(r.faces, F0)
     np.testing.assert_allclose(r.vertices, V0, atol=1e-12)
+    first = r.vertices
     moved = V.copy()
     moved[[1, 3]] += [[0.25, -0.5, 0.125], [0.0, 0.3, 0.0]]
     V1 = r.move([1, 3], moved[[1, 3]])
     np.testing.assert_allclose(V1, subdiv.subdivide(moved, F, levels=3, scheme=scheme)[0], atol=1e-12)
     assert V1.dtype == np.float64
     assert r.undo()
-    np.testing.assert_array_equal(r.vertices, V0)
+    # the same bits as before the move (subdivide's one-shot passes may sum
+    # in another order than the refiner's rows, within rounding)
+    np.testing.assert_array_equal(r.vertices, first)
     assert r.redo()
     np.testing.assert_array_equal(r.vertices, V1)
     assert not r.redo()
