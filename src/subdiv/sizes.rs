@@ -128,11 +128,12 @@ impl ControlCounts {
     /// # Errors
     /// [`crate::Error::TooLarge`] naming the first level that does not fit.
     pub(crate) fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
+        use super::refine::{TriangleCounts, check_fit, poly::PolygonCounts};
         if scheme.is_polygonal() {
             let (h, ne, nf) = (self.polygon_corners(), self.edges - self.diagonals, self.polygons());
-            super::refine::poly::check_counts_fit(h, self.vertices, ne, nf, 0, levels, limit)
+            check_fit(PolygonCounts { h, nv: self.vertices, ne, nf }, 0, levels, limit)
         } else {
-            super::refine::check_counts_fit(self.triangles, self.vertices, self.edges, 0, levels, limit)
+            check_fit(TriangleCounts { nt: self.triangles, nv: self.vertices, ne: self.edges }, 0, levels, limit)
         }
     }
 }

@@ -41,31 +41,60 @@ pub(crate) fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
 pub(crate) fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
     let nt = ct.num_triangles() as u64;
     let ne = (3 * nt + ct.num_border_edges() as u64) / 2;
-    check_counts_fit(nt, ct.num_vertices() as u64, ne, done, more, limit)
+    check_fit(TriangleCounts { nt, nv: ct.num_vertices() as u64, ne }, done, more, limit)
 }
 
-/// [`check_levels_fit`] for a table of `nt` triangles, `nv` vertices and
-/// `ne` edges.
+/// A level's counts as a budget check walks them, for either kind of
+/// table: what refining it once costs, and what it becomes.
+pub(crate) trait LevelCounts: Copy {
+    /// Predicted peak bytes of refining the level once.
+    fn bytes(&self) -> u64;
+    /// Whether the refined level's ids would not fit in 32 bits.
+    fn ids_overflow(&self) -> bool;
+    /// The faces the refinement makes.
+    fn faces_after(&self) -> u64;
+    /// The counts after one refinement.
+    fn next(self) -> Self;
+}
+
+/// A triangle table's counts: triangles, vertices, edges.
+#[derive(Clone, Copy)]
+pub(crate) struct TriangleCounts {
+    pub(crate) nt: u64,
+    pub(crate) nv: u64,
+    pub(crate) ne: u64,
+}
+
+impl LevelCounts for TriangleCounts {
+    fn bytes(&self) -> u64 {
+        predict_level_bytes(self.nt, self.nv, self.ne)
+    }
+    fn ids_overflow(&self) -> bool {
+        12 * self.nt >= u64::from(u32::MAX) || self.nv + self.ne >= u64::from(u32::MAX)
+    }
+    fn faces_after(&self) -> u64 {
+        4 * self.nt
+    }
+    fn next(self) -> Self {
+        TriangleCounts { nt: 4 * self.nt, nv: self.nv + self.ne, ne: 2 * self.ne + 3 * self.nt }
+    }
+}
+
+/// Checks that `more` levels after `counts` (a table already `done` levels
+/// deep) fit in `limit` bytes and 32-bit ids: the one budget walk of both
+/// kinds of table.
 ///
 /// # Errors
-/// As [`check_levels_fit`].
-pub(crate) fn check_counts_fit(
-    mut nt: u64,
-    mut nv: u64,
-    mut ne: u64,
-    done: u32,
-    more: u32,
-    limit: Option<u64>,
-) -> Result<()> {
+/// [`Error::TooLarge`] naming the first level that does not fit.
+pub(crate) fn check_fit<C: LevelCounts>(mut counts: C, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
     let limit_bytes = limit.unwrap_or(u64::MAX);
     for level in done + 1..=done + more {
-        let bytes = predict_level_bytes(nt, nv, ne);
-        let faces = 4 * nt;
-        if 12 * nt >= u64::from(u32::MAX) || nv + ne >= u64::from(u32::MAX) || bytes > limit_bytes {
+        let bytes = counts.bytes();
+        if counts.ids_overflow() || bytes > limit_bytes {
             let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
-            return Err(Error::TooLarge { level, faces, bytes, limit });
+            return Err(Error::TooLarge { level, faces: counts.faces_after(), bytes, limit });
         }
-        (nt, nv, ne) = (4 * nt, nv + ne, 2 * ne + 3 * nt);
+        counts = counts.next();
     }
     Ok(())
 }

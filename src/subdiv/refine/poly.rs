@@ -10,13 +10,13 @@
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules, smooth_triangle_edge};
 use super::super::rules::features::Features;
 use super::super::rules::{Coord, scatter_parts};
+use crate::Result;
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::sharpness::Sharpness;
 use crate::mesh::split::{EdgeIds, Owners};
 use crate::mesh::{BORDER, BoundaryInterpolation, Creasing};
 use crate::mesh::{Faces, VertexId};
 use crate::subdiv::scheme::{Stats, ms};
-use crate::{Error, Result};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -248,34 +248,34 @@ pub(crate) fn with_boundary_corners(pt: &PolyTable, boundary: BoundaryInterpolat
 pub(crate) fn check_levels_fit(pt: &PolyTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
     let (h, nv, ne, nf) =
         (pt.num_corners() as u64, pt.num_vertices() as u64, pt.num_edges() as u64, pt.num_faces() as u64);
-    check_counts_fit(h, nv, ne, nf, done, more, limit)
+    super::check_fit(PolygonCounts { h, nv, ne, nf }, done, more, limit)
 }
 
-/// [`check_levels_fit`] for a table of `h` corners, `nv` vertices, `ne`
-/// edges and `nf` faces.
-///
-/// # Errors
-/// As [`check_levels_fit`].
-pub(crate) fn check_counts_fit(
-    mut h: u64,
-    mut nv: u64,
-    mut ne: u64,
-    mut nf: u64,
-    done: u32,
-    more: u32,
-    limit: Option<u64>,
-) -> Result<()> {
-    let limit_bytes = limit.unwrap_or(u64::MAX);
-    for level in done + 1..=done + more {
+/// A polygon table's counts: corners, vertices, edges, faces.
+#[derive(Clone, Copy)]
+pub(crate) struct PolygonCounts {
+    pub(crate) h: u64,
+    pub(crate) nv: u64,
+    pub(crate) ne: u64,
+    pub(crate) nf: u64,
+}
+
+impl super::LevelCounts for PolygonCounts {
+    fn bytes(&self) -> u64 {
+        let Self { h, nv, ne, nf } = *self;
         // new V and T (8 bytes a corner), positions, C and valences (20 a
         // vertex), the old level alive, and the new level drawn as
         // triangles (2h of them: V, O and a generation, 27 bytes each)
-        let bytes = 4 * h * 8 + (nv + ne + nf) * 20 + h * 8 + nv * 20 + 2 * h * 27;
-        if 4 * h + 4 >= u64::from(u32::MAX) || nv + ne + nf >= u64::from(u32::MAX) || bytes > limit_bytes {
-            let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
-            return Err(Error::TooLarge { level, faces: h, bytes, limit });
-        }
-        (nv, ne, nf, h) = (nv + ne + nf, 2 * ne + h, h, 4 * h);
+        4 * h * 8 + (nv + ne + nf) * 20 + h * 8 + nv * 20 + 2 * h * 27
     }
-    Ok(())
+    fn ids_overflow(&self) -> bool {
+        4 * self.h + 4 >= u64::from(u32::MAX) || self.nv + self.ne + self.nf >= u64::from(u32::MAX)
+    }
+    fn faces_after(&self) -> u64 {
+        self.h
+    }
+    fn next(self) -> Self {
+        let Self { h, nv, ne, nf } = self;
+        PolygonCounts { h: 4 * h, nv: nv + ne + nf, ne: 2 * ne + h, nf: h }
+    }
 }
