@@ -241,11 +241,9 @@ pub(crate) fn limit_at(
 ) -> Limit {
     let why = |s: String| Limit::Unavailable(s);
     let exact = |r: Result<Sample>| r.map_or_else(|e| why(e.to_string()), |s| Limit::Exact(Box::new(s)));
+    let precise = precise.filter(|p| p.len() == control.positions.len());
     let points = || -> Cow<'_, [DVec3]> {
-        match precise.filter(|p| p.len() == control.positions.len()) {
-            Some(p) => Cow::Borrowed(p),
-            None => Cow::Owned(control.positions.iter().map(|p| p.as_dvec3()).collect()),
-        }
+        precise.map_or_else(|| Cow::Owned(control.positions.iter().map(|p| p.as_dvec3()).collect()), Cow::Borrowed)
     };
     let (face, u, v) = match (scheme, *face) {
         (Scheme::Loop, ControlFace::Triangle { face, u, v }) => (face, u, v),
@@ -261,7 +259,7 @@ pub(crate) fn limit_at(
     let sample = match local_mesh(control, face).filter(|_| !touches_feature(&control.ct, face)) {
         // the face's own neighbourhood: the same limit at a cost that does not grow with the mesh
         Some((local, ids)) => {
-            let at: Vec<DVec3> = match precise.filter(|p| p.len() == control.positions.len()) {
+            let at: Vec<DVec3> = match precise {
                 Some(p) => ids.iter().map(|&i| p[i as usize]).collect(),
                 None => local.positions.iter().map(|p| p.as_dvec3()).collect(),
             };

@@ -145,9 +145,9 @@ struct History {
     undone: Vec<Step>,
 }
 
-/// A control mesh refined `levels` times with one scheme: the topology of
-/// every level recorded once, the points of every level kept, any data
-/// refined on demand, edits applied where they reach. See the module's
+/// A control mesh refined `levels` times with one scheme: every level's
+/// table and points kept, its stencils recorded from them on first need,
+/// any data refined on demand, edits applied where they reach. See the module's
 /// documentation.
 ///
 /// ```
