@@ -63,56 +63,13 @@ impl CornerTable {
                 return Err(MeshError::DegenerateFace { face: f, vertex: tri[1] });
             }
         }
-        // drop unreferenced vertices
-        let mut new_id = vec![BORDER; nv];
-        for &i in tris {
-            new_id[i as usize] = 0;
-        }
-        let mut kept = Vec::new();
-        let mut report = BuildReport::default();
-        for (i, id) in new_id.iter_mut().enumerate() {
-            if *id == 0 {
-                *id = kept.len() as u32;
-                kept.push(i as u32);
-            } else {
-                report.unreferenced += 1;
-                if report.unreferenced_examples.len() < 10 {
-                    report.unreferenced_examples.push(i as u32);
-                }
-            }
-        }
-        if let Some(pos) = positions {
-            for &k in &kept {
-                if !pos[k as usize].is_finite() {
-                    return Err(MeshError::NonFinite { vertex: k as usize });
-                }
-            }
-        }
-        let (v, kept) = if report.unreferenced == 0 {
-            (tris.to_vec(), None)
-        } else {
-            (tris.iter().map(|&i| new_id[i as usize]).collect(), Some(kept))
-        };
-        let orig = |x: u32| kept.as_ref().map_or(x, |k| k[x as usize]);
+        let (v, kept, report) = compact(tris, nv, positions)?;
         let nvk = kept.as_ref().map_or(nv, Vec::len);
-        let o_table = build_o(&v, nvk).map_err(|e| match e {
-            MeshError::NonManifoldEdge { v0, v1, faces, examples } => {
-                MeshError::NonManifoldEdge { v0: orig(v0), v1: orig(v1), faces, examples }
-            }
-            MeshError::InconsistentOrientation { v0, v1, f0, f1 } => {
-                MeshError::InconsistentOrientation { v0: orig(v0), v1: orig(v1), f0, f1 }
-            }
-            other => other,
-        })?;
+        let o_table = build_o(&v, nvk).map_err(|e| input_ids(e, kept.as_deref()))?;
         // build_o pairs every corner with the one corner of the reversed
         // half-edge or refuses the mesh, and V was checked above: the checks
         // of from_vo would find nothing
-        let ct = CornerTable::with_fans(v, o_table, nvk).map_err(|e| match e {
-            MeshError::NonManifoldVertex { vertex, fans } => {
-                MeshError::NonManifoldVertex { vertex: orig(vertex), fans }
-            }
-            other => other,
-        })?;
+        let ct = CornerTable::with_fans(v, o_table, nvk).map_err(|e| input_ids(e, kept.as_deref()))?;
         Ok((ct, report, kept))
     }
 
@@ -290,6 +247,64 @@ fn first_error(nc: usize, check: impl Fn(u32) -> Result<(), MeshError> + Sync) -
 }
 
 /// Builds O from V with a counting sort of half-edges by start vertex.
+/// What both tables' builds do first: the corners renumbered without the
+/// vertices no face uses, the kept vertices' input ids (when any was
+/// dropped), and the report of the dropped ones; every used position must
+/// be finite.
+///
+/// # Errors
+/// [`MeshError::NonFinite`] naming the first used vertex (input id) whose
+/// position is not finite.
+#[allow(clippy::type_complexity, reason = "the three results of one pass")]
+pub(super) fn compact(
+    corners: &[u32],
+    nv: usize,
+    positions: Option<&[Vec3]>,
+) -> Result<(Vec<u32>, Option<Vec<u32>>, BuildReport), MeshError> {
+    let mut new_id = vec![BORDER; nv];
+    for &i in corners {
+        new_id[i as usize] = 0;
+    }
+    let mut kept = Vec::new();
+    let mut report = BuildReport::default();
+    for (i, id) in new_id.iter_mut().enumerate() {
+        if *id == 0 {
+            *id = kept.len() as u32;
+            kept.push(i as u32);
+        } else {
+            report.unreferenced += 1;
+            if report.unreferenced_examples.len() < 10 {
+                report.unreferenced_examples.push(i as u32);
+            }
+        }
+    }
+    if let Some(pos) = positions
+        && let Some(&k) = kept.iter().find(|&&k| !pos[k as usize].is_finite())
+    {
+        return Err(MeshError::NonFinite { vertex: k as usize });
+    }
+    if report.unreferenced == 0 {
+        return Ok((corners.to_vec(), None, report));
+    }
+    Ok((corners.iter().map(|&i| new_id[i as usize]).collect(), Some(kept), report))
+}
+
+/// `e` with the compacted vertex ids it names turned back into the input's
+/// (`kept` maps one to the other; `None` when nothing was dropped).
+pub(super) fn input_ids(e: MeshError, kept: Option<&[u32]>) -> MeshError {
+    let orig = |x: u32| kept.map_or(x, |k| k[x as usize]);
+    match e {
+        MeshError::NonManifoldEdge { v0, v1, faces, examples } => {
+            MeshError::NonManifoldEdge { v0: orig(v0), v1: orig(v1), faces, examples }
+        }
+        MeshError::InconsistentOrientation { v0, v1, f0, f1 } => {
+            MeshError::InconsistentOrientation { v0: orig(v0), v1: orig(v1), f0, f1 }
+        }
+        MeshError::NonManifoldVertex { vertex, fans } => MeshError::NonManifoldVertex { vertex: orig(vertex), fans },
+        other => other,
+    }
+}
+
 fn build_o(v: &[u32], nv: usize) -> Result<Vec<u32>, MeshError> {
     use rayon::prelude::*;
     let nc = v.len();

@@ -181,7 +181,7 @@ pub(crate) fn poly_kept<P: rules::Coord>(
     let t0 = Instant::now();
     refine::poly::check_levels_fit(pt, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
     let mut stats = Stats::default();
-    let mut cur = refine::poly::with_boundary_corners(pt, opts.boundary).unwrap_or_else(|| pt.clone());
+    let mut cur = features::boundary_tagged(pt, opts.boundary).unwrap_or_else(|| pt.clone());
     let (mut kept, mut points) = (Vec::with_capacity(levels as usize), Vec::with_capacity(levels as usize + 1));
     points.push(control.to_vec());
     for level in 1..=levels {

@@ -93,7 +93,7 @@ fn level_tables(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Res
     if scheme.is_polygonal() {
         let control = PolyTable::from_corner_table(&mesh.ct);
         super::refine::poly::check_levels_fit(&control, 0, levels, limit)?;
-        let mut cur = super::refine::poly::with_boundary_corners(&control, opts.boundary).unwrap_or(control);
+        let mut cur = super::rules::features::boundary_tagged(&control, opts.boundary).unwrap_or(control);
         for l in 0..levels {
             let next = (l + 1 < levels).then(|| poly_split::split(&cur, opts.creasing).0);
             out.push(LevelTable::Polygons(cur));

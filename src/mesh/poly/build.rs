@@ -45,9 +45,9 @@ impl PolyTable {
             return Err(MeshError::TooManyElements { what: format!("{nf} faces, {nc} corners, {nv} vertices") });
         }
         check_faces(face_starts, corners, nv)?;
-        let (v, kept, report) = compact(corners, nv, positions)?;
+        let (v, kept, found) = crate::mesh::build::compact(corners, nv, positions)?;
+        let report = PolyBuildReport { unreferenced: found.unreferenced };
         let nvk = kept.as_ref().map_or(nv, Vec::len);
-        let orig = |x: u32| kept.as_ref().map_or(x, |k| k[x as usize]);
         let all_quads = face_starts.windows(2).all(|w| w[1] - w[0] == 4);
         let faces = (!all_quads).then(|| {
             let mut face = vec![0u32; nc];
@@ -57,21 +57,9 @@ impl PolyTable {
             Faces { starts: face_starts.to_vec(), face }
         });
         let mut pt = PolyTable { faces, v, ..PolyTable::default() };
-        pt.t = twins(&pt, nvk).map_err(|e| match e {
-            MeshError::NonManifoldEdge { v0, v1, faces, examples } => {
-                MeshError::NonManifoldEdge { v0: orig(v0), v1: orig(v1), faces, examples }
-            }
-            MeshError::InconsistentOrientation { v0, v1, f0, f1 } => {
-                MeshError::InconsistentOrientation { v0: orig(v0), v1: orig(v1), f0, f1 }
-            }
-            other => other,
-        })?;
-        pt.fill_fans(nvk).map_err(|e| match e {
-            MeshError::NonManifoldVertex { vertex, fans } => {
-                MeshError::NonManifoldVertex { vertex: orig(vertex), fans }
-            }
-            other => other,
-        })?;
+        let input_ids = |e| crate::mesh::build::input_ids(e, kept.as_deref());
+        pt.t = twins(&pt, nvk).map_err(input_ids)?;
+        pt.fill_fans(nvk).map_err(input_ids)?;
         Ok((pt, report, kept))
     }
 
@@ -154,40 +142,6 @@ fn check_faces(face_starts: &[u32], corners: &[u32], nv: usize) -> Result<(), Me
         }
     }
     Ok(())
-}
-
-/// The corners renumbered without the unused vertices, the kept vertices'
-/// input ids (when any was dropped), and the report; used positions must
-/// be finite.
-#[allow(clippy::type_complexity)]
-fn compact(
-    corners: &[u32],
-    nv: usize,
-    positions: Option<&[Vec3]>,
-) -> Result<(Vec<u32>, Option<Vec<u32>>, PolyBuildReport), MeshError> {
-    let mut new_id = vec![BORDER; nv];
-    for &i in corners {
-        new_id[i as usize] = 0;
-    }
-    let mut kept = Vec::new();
-    let mut report = PolyBuildReport::default();
-    for (i, id) in new_id.iter_mut().enumerate() {
-        if *id == 0 {
-            *id = kept.len() as u32;
-            kept.push(i as u32);
-        } else {
-            report.unreferenced += 1;
-        }
-    }
-    if let Some(pos) = positions
-        && let Some(&k) = kept.iter().find(|&&k| !pos[k as usize].is_finite())
-    {
-        return Err(MeshError::NonFinite { vertex: k as usize });
-    }
-    if report.unreferenced == 0 {
-        return Ok((corners.to_vec(), None, report));
-    }
-    Ok((corners.iter().map(|&i| new_id[i as usize]).collect(), Some(kept), report))
 }
 
 /// The twin of every corner (see the module docs).

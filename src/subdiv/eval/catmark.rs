@@ -44,7 +44,7 @@ use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::INFINITE;
 use crate::subdiv::Options;
-use crate::subdiv::refine::poly::with_boundary_corners;
+use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::tables::poly_plan::record_one_catmark_level;
 use crate::{Error, Result};
 use glam::DVec3;
@@ -78,7 +78,7 @@ impl Poly {
     /// `mesh` with its boundary corners tagged as `opts` asks, the control
     /// positions `pos` (f64, one per vertex).
     pub(crate) fn new(mesh: &PolyMesh, pos: Vec<DVec3>, opts: &Options) -> Poly {
-        let pt = with_boundary_corners(&mesh.pt, opts.boundary).unwrap_or_else(|| mesh.pt.clone());
+        let pt = boundary_tagged(&mesh.pt, opts.boundary).unwrap_or_else(|| mesh.pt.clone());
         let ptex = ptex_faces(&pt);
         Poly { pt, pos, opts: *opts, ptex }
     }

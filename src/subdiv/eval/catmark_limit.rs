@@ -44,7 +44,7 @@ use crate::mesh::Creasing;
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::INFINITE;
-use crate::subdiv::refine::poly::with_boundary_corners;
+use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::rules::features::{Features, Mask, Rule};
 use crate::subdiv::{Options, Scheme, subdivide_poly};
 use crate::{Error, Result};
@@ -86,7 +86,7 @@ pub fn limit_frames(mesh: &PolyMesh, opts: &Options) -> Result<Vec<LimitFrame>> 
         Some((m, _)) => frames_at(&m.pt, &m.positions, opts.creasing),
         None => {
             // the control level itself: its one-face corners as the option says
-            let pt = with_boundary_corners(&mesh.pt, opts.boundary);
+            let pt = boundary_tagged(&mesh.pt, opts.boundary);
             frames_at(pt.as_ref().unwrap_or(&mesh.pt), &mesh.positions, opts.creasing)
         }
     };
@@ -110,7 +110,7 @@ pub fn limit_positions_f64(mesh: &PolyMesh, control: &[DVec3], opts: &Options) -
     let masks = match &refined {
         Some((m, pos)) => masks_at(&m.pt, opts.creasing, &|i| pos[i as usize]),
         None => {
-            let pt = with_boundary_corners(&mesh.pt, opts.boundary);
+            let pt = boundary_tagged(&mesh.pt, opts.boundary);
             masks_at(pt.as_ref().unwrap_or(&mesh.pt), opts.creasing, &|i| control[i as usize])
         }
     };

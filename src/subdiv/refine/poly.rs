@@ -12,9 +12,8 @@ use super::super::rules::features::Features;
 use super::super::rules::{Coord, scatter_parts};
 use crate::Result;
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
-use crate::mesh::sharpness::Sharpness;
 use crate::mesh::split::{EdgeIds, Owners};
-use crate::mesh::{BORDER, BoundaryInterpolation, Creasing};
+use crate::mesh::{BORDER, Creasing};
 use crate::mesh::{Faces, VertexId};
 use crate::subdiv::scheme::{Stats, ms};
 use rayon::prelude::*;
@@ -199,45 +198,6 @@ fn vertex_points<R: PolyRules, P: Coord>(lv: &PolyLevel, pos: &[P], fp: &[P], ou
         let sum = extra.iter().fold(*q, |s, e| s + e[v]);
         *q = p.times((n - 2.0) / n) + sum.over(n * n);
     });
-}
-
-/// `pt` with the holes [`BoundaryInterpolation::None`] adds: the faces at a
-/// boundary vertex with a border edge not tagged infinitely sharp (as
-/// OpenSubdiv does before it sharpens the border); `None` when there are
-/// none.
-fn boundary_holes(pt: &PolyTable) -> Option<PolyTable> {
-    let tagged = |c: u32| pt.sharpness().map_or(0.0, |s| s.corner(c));
-    let mut holes: Vec<u32> = pt.holes().to_vec();
-    let before = holes.len();
-    for v in 0..pt.num_vertices() as u32 {
-        // the border edges at v: leaving its first corner, entering its last
-        let first = pt.corner_of(v);
-        if pt.twin(first).is_some() {
-            continue;
-        }
-        let last = pt.fan(v).last().unwrap_or(first);
-        if tagged(first) < crate::mesh::sharpness::INFINITE || tagged(pt.prev(last)) < crate::mesh::sharpness::INFINITE
-        {
-            holes.extend(pt.fan(v).map(|c| pt.face(c)));
-        }
-    }
-    (holes.len() > before).then(|| pt.clone().with_holes(holes))
-}
-
-/// The table the schemes see for the control level with `boundary`: with
-/// [`BoundaryInterpolation::EdgeAndCorner`] every boundary vertex with a
-/// single face is an infinitely sharp corner (as OpenSubdiv does).
-pub(crate) fn with_boundary_corners(pt: &PolyTable, boundary: BoundaryInterpolation) -> Option<PolyTable> {
-    if boundary == BoundaryInterpolation::None {
-        return boundary_holes(pt);
-    }
-    // the triangle table's rule: a boundary vertex of valence 2 (one face)
-    let corners = crate::subdiv::rules::features::boundary_corners(pt, boundary);
-    if corners.is_empty() {
-        return None;
-    }
-    let s = Sharpness::with_corners(pt.sharpness().cloned(), &corners);
-    Some(pt.clone().with_sharpness(s))
 }
 
 /// Checks that `more` levels of the polygon table `pt` (already `done`

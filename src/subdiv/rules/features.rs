@@ -35,7 +35,7 @@
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::PolyTable;
 use crate::mesh::sharpness::{BoundaryInterpolation, EdgeDecay, INFINITE, Sharpness, decrement};
-use crate::mesh::{BORDER, CornerTable, Creasing, n, owns_edge, p};
+use crate::mesh::{BORDER, CornerTable, Creasing, owns_edge};
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -295,38 +295,84 @@ fn edge_weight<T: EdgeTable>(ct: &T, decay: &EdgeDecay, c: u32) -> f32 {
 /// single face becomes an infinitely sharp corner (OpenSubdiv's
 /// `TopologyRefinerFactory` does the same before refining); otherwise `ct`.
 pub fn with_boundary_corners(ct: &CornerTable, boundary: BoundaryInterpolation) -> Cow<'_, CornerTable> {
-    if boundary == BoundaryInterpolation::None {
-        let holes = boundary_holes(ct);
-        if holes.is_empty() {
-            return Cow::Borrowed(ct);
-        }
-        let all = ct.holes().iter().copied().chain(holes).collect();
-        return Cow::Owned(ct.clone().with_holes(all));
-    }
-    let corners = boundary_corners(ct, boundary);
-    if corners.is_empty() {
-        return Cow::Borrowed(ct);
-    }
-    let sharp = Sharpness::with_corners(ct.sharpness().cloned(), &corners);
-    Cow::Owned(ct.clone().with_sharpness(sharp))
+    boundary_tagged(ct, boundary).map_or(Cow::Borrowed(ct), Cow::Owned)
 }
 
-/// The triangles [`BoundaryInterpolation::None`] leaves out: those at a
-/// boundary vertex with a border edge not tagged infinitely sharp
-/// (OpenSubdiv's `TopologyRefinerFactory`, before it sharpens the border).
-fn boundary_holes(ct: &CornerTable) -> Vec<u32> {
-    let tagged = |c: u32| ct.sharpness().map_or(0.0, |s| s.corner(c));
+/// A table of either kind as the boundary options change it: its holes,
+/// the faces around a vertex, and copies with more holes or corners.
+pub(crate) trait BoundaryTags: EdgeTable + Clone {
+    /// The faces tagged as holes.
+    fn hole_faces(&self) -> &[u32];
+    /// Calls `f` with every face around `v`.
+    fn each_face_at(&self, v: u32, f: &mut dyn FnMut(u32));
+    /// The table with `holes` as its holes.
+    fn holed(self, holes: Vec<u32>) -> Self;
+    /// The table with `s` as its sharp features.
+    fn sharpened(self, s: Option<Sharpness>) -> Self;
+}
+
+impl BoundaryTags for CornerTable {
+    fn hole_faces(&self) -> &[u32] {
+        self.holes()
+    }
+    fn each_face_at(&self, v: u32, f: &mut dyn FnMut(u32)) {
+        self.fan(v).for_each(|c| f(c / 3));
+    }
+    fn holed(self, holes: Vec<u32>) -> Self {
+        self.with_holes(holes)
+    }
+    fn sharpened(self, s: Option<Sharpness>) -> Self {
+        self.with_sharpness(s)
+    }
+}
+
+impl BoundaryTags for PolyTable {
+    fn hole_faces(&self) -> &[u32] {
+        self.holes()
+    }
+    fn each_face_at(&self, v: u32, f: &mut dyn FnMut(u32)) {
+        self.fan(v).for_each(|c| f(self.face(c)));
+    }
+    fn holed(self, holes: Vec<u32>) -> Self {
+        self.with_holes(holes)
+    }
+    fn sharpened(self, s: Option<Sharpness>) -> Self {
+        self.with_sharpness(s)
+    }
+}
+
+/// `t` as the schemes see it for the control level with `boundary`, or
+/// `None` when the option changes nothing: with
+/// [`BoundaryInterpolation::EdgeAndCorner`] every boundary vertex with a
+/// single face is an infinitely sharp corner; with
+/// [`BoundaryInterpolation::None`] the faces at a boundary vertex with a
+/// border edge not tagged infinitely sharp are holes (both as OpenSubdiv's
+/// `TopologyRefinerFactory` does before it sharpens the border).
+pub(crate) fn boundary_tagged<T: BoundaryTags>(t: &T, boundary: BoundaryInterpolation) -> Option<T> {
+    if boundary == BoundaryInterpolation::None {
+        let holes = boundary_holes(t);
+        return (!holes.is_empty()).then(|| {
+            let all = t.hole_faces().iter().copied().chain(holes).collect();
+            t.clone().holed(all)
+        });
+    }
+    let corners = boundary_corners(t, boundary);
+    (!corners.is_empty()).then(|| t.clone().sharpened(Sharpness::with_corners(t.sharpness().cloned(), &corners)))
+}
+
+/// The faces [`BoundaryInterpolation::None`] leaves out: those at a
+/// boundary vertex with a border edge not tagged infinitely sharp.
+fn boundary_holes<T: BoundaryTags>(t: &T) -> Vec<u32> {
+    let tagged = |c: u32| t.sharpness().map_or(0.0, |s| s.corner(c));
     let mut out = Vec::new();
-    for v in 0..ct.num_vertices() as u32 {
-        if !ct.is_boundary_vertex(v) {
+    for v in 0..t.num_vertices() as u32 {
+        if !t.is_boundary_vertex(v) {
             continue;
         }
-        // the border edges at v: the first corner's leading edge, the last
-        // corner's trailing one
-        let first = ct.corner_of(v);
-        let last = ct.fan(v).last().unwrap_or(first);
-        if tagged(p(first)) < INFINITE || tagged(n(last)) < INFINITE {
-            out.extend(ct.fan(v).map(|c| c / 3));
+        let mut soft = false;
+        t.each_edge_at(v, &mut |c, _| soft |= t.twin_entry(c) == BORDER && tagged(c) < INFINITE);
+        if soft {
+            t.each_face_at(v, &mut |f| out.push(f));
         }
     }
     out

@@ -11,10 +11,11 @@ use super::rows::LevelPlan;
 use crate::Result;
 use crate::mesh::poly::{PolyTable, split};
 use crate::mesh::{CornerTable, Creasing};
-use crate::subdiv::refine::poly::{check_levels_fit, with_boundary_corners};
+use crate::subdiv::refine::poly::check_levels_fit;
 use crate::subdiv::rules::catmull_clark::{Bilinear, CatmullClark, PolyLevel, PolyOn, PolyRules, face_point};
 use crate::subdiv::rules::crease::{edge_stencil, vertex_stencil};
 use crate::subdiv::rules::features::Features;
+use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::rules::{Record, Weight};
 use crate::subdiv::{Options, Scheme};
 
@@ -33,7 +34,7 @@ pub(super) fn record<W: Weight + std::ops::AddAssign>(
     let control = PolyTable::from_corner_table(ct);
     let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
     check_levels_fit(&control, 0, levels, limit)?;
-    let mut cur = with_boundary_corners(&control, opts.boundary).unwrap_or(control);
+    let mut cur = boundary_tagged(&control, opts.boundary).unwrap_or(control);
     let mut plans = Vec::with_capacity(levels as usize);
     for _ in 1..=levels {
         plans.push(record_poly_level(&cur, scheme, opts, None));
