@@ -101,12 +101,10 @@ pub mod pick {
 pub mod rules {
     //! The rules made visible: the stencil plan's levels and rows, one
     //! vertex's stencil, the sharp features a mesh carries, the level each
-    //! vertex was made at, the predicted sizes, and attributes refined along
-    //! their own topology (texture coordinates on their charts, materials by
-    //! lineage; colours, which need the rows, come from
-    //! [`crate::Refiner::attributes`]).
+    //! vertex was made at and the predicted sizes. (Attributes, texture
+    //! coordinates, colours and materials, come from
+    //! [`crate::Refiner::attributes`].)
     pub use crate::subdiv::inspect::{creation_levels, displacement};
-    pub use crate::subdiv::refine_attributes;
     pub use crate::subdiv::rules::features::{Summary, poly_summary, summary, with_boundary_corners};
     pub use crate::subdiv::sizes::ControlCounts;
     pub use crate::subdiv::stencil::{Stencil, stencil};

@@ -322,3 +322,32 @@ fn f32_data_after_a_sharpness_edit_follows_the_new_tags() {
         assert!(data.len() == r.positions().len() && worst < 1e-5, "{name}: f32 data after the edit ({worst})");
     }
 }
+
+/// The memory budget counts the levels a refiner keeps: at the smallest
+/// budget the last level alone fits in (`subdivide_faces`, which keeps no
+/// earlier level), a refiner of the same levels is refused, naming its last
+/// level; with the earlier levels' room added it is built.
+#[test]
+fn the_budget_counts_the_levels_a_refiner_keeps() {
+    let cage = icosphere(2);
+    let levels = 4;
+    let fits = |bytes: u64| {
+        let opts = Options { max_memory: Some(bytes), ..Options::default() };
+        subdiv::subdivide_faces(&cage, Scheme::Loop, levels, &opts, |j| j).is_ok()
+    };
+    // the smallest budget the faces alone fit in (the check is monotone)
+    let (mut lo, mut hi) = (1u64, 1u64 << 40);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if fits(mid) { hi = mid } else { lo = mid + 1 }
+    }
+    assert!(fits(lo) && !fits(lo - 1), "the faces alone fit from {lo} bytes");
+    let tight = Options { max_memory: Some(lo), ..Options::default() };
+    match Refiner::new(&cage, Scheme::Loop, levels, &tight) {
+        Err(subdiv::Error::TooLarge { level, .. }) => assert_eq!(level, levels, "the last level is the one refused"),
+        other => panic!("a refiner keeping {levels} levels in {lo} bytes: {:?}", other.map(|r| r.levels())),
+    }
+    let roomy = Options { max_memory: Some(lo + lo / 2), ..Options::default() };
+    let r = Refiner::new(&cage, Scheme::Loop, levels, &roomy).expect("the earlier levels are a third of the last");
+    assert_eq!(r.levels(), levels);
+}

@@ -270,7 +270,7 @@ mod gpu {
     /// over `control` (a curvature's with `isolines` per side of zero, over
     /// the range `range` or the default), and a curvature's legend; the
     /// file's attributes through `refiner`, the refiner `fine` came from
-    /// (none: no levels).
+    /// (none: no levels, or no attributes).
     fn paint(
         (coloring, isolines, range): (Coloring, u8, Option<HalfWidth>),
         (control, fine): (&Mesh, &Mesh),
@@ -278,11 +278,11 @@ mod gpu {
         refiner: Option<&subdiv::Refiner>,
         (scheme, levels, opts): (Scheme, u32, &subdiv::Options),
     ) -> Result<(Paint, Option<Legend>)> {
-        // colours through the rows of the refiner that made the level; the
-        // rest along their own topology
+        // the attributes through the refiner that made the level (none: no
+        // levels, or no attributes to carry)
         let refined = |a: Attributes| match refiner {
             Some(r) => r.attributes(&a),
-            None => subdiv::rules::refine_attributes(control, &a, scheme, levels, opts),
+            None => Ok(a),
         };
         let missing = |what: &str| Error::Usage(format!("--color {what}: the model has no {what}"));
         let paint = match coloring {
@@ -333,9 +333,8 @@ mod gpu {
         let s = &a.sub.scheme.over(attrs.options);
         let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
-        // the file's colours need the rows: they ride on the refiner that makes the level
-        let with_colors = matches!(coloring, Coloring::File);
-        let (fine, refiner) = match with_colors && levels > 0 {
+        // the file's attributes ride on the refiner that makes the level
+        let (fine, refiner) = match !attrs.is_empty() && levels > 0 {
             true => {
                 let r = subdiv::Refiner::new(&mesh, s.scheme(), levels, &s.options())?;
                 (r.mesh(), Some(r))

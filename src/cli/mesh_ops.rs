@@ -111,8 +111,10 @@ fn subdivide_triangles(
     attrs: Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
     let levels = a.sub.levels_or(1);
-    if levels > 0 && attrs.colors.is_some() {
-        // colours need the rows: the level and every attribute from one refiner
+    if levels > 0 && !attrs.is_empty() {
+        // the attributes ride on the refinement that makes the level: colours
+        // through its rows, texture coordinates and materials through its
+        // kept tables
         let t0 = Instant::now();
         let r = subdiv::Refiner::new(mesh, s.scheme(), levels, &s.options())?;
         let (fine, fine_attrs) = (r.mesh(), r.attributes(&attrs)?);
@@ -122,27 +124,19 @@ fn subdivide_triangles(
         let written = fine.ct.num_triangles() - fine.ct.holes().len();
         return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
     }
-    // texture coordinates and materials along their own topology (the UV
-    // charts, the faces' lineage)
-    let fine_attrs = |attrs: Attributes| match attrs.is_empty() {
-        true => Ok(attrs),
-        false => subdiv::rules::refine_attributes(mesh, &attrs, s.scheme(), levels, &s.options()),
-    };
     // OBJ writes the sharp features of the result, the boundary's corners too
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     // a mesh with holes goes the whole way: its attributes follow the faces left out
     let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options(), |j| j)?;
-        let fine_attrs = fine_attrs(attrs)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(&a.output, &fine, &attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(mesh, s.scheme(), levels, &s.options())?;
-    let fine_attrs = fine_attrs(attrs)?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &fine_attrs)?;
+    io::save_with(&a.output, &fine, &attrs)?;
     let written = fine.ct.num_triangles() - if levels > 0 { fine.ct.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -158,8 +152,8 @@ fn subdivide_polygons(
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
     let levels = a.sub.levels_or(1);
     let (control, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-    if levels > 0 && pattrs.colors.is_some() {
-        // colours need the rows: the level and every attribute from one refiner
+    if levels > 0 && !pattrs.is_empty() {
+        // as for the triangle schemes: the attributes ride on the refinement
         let t0 = Instant::now();
         let r = subdiv::Refiner::new(&control, s.scheme(), levels, &s.options())?;
         let fine = refined_polygons(&r, r.positions().to_vec());
@@ -170,24 +164,18 @@ fn subdivide_polygons(
         let written = fine.pt.num_faces() - fine.pt.holes().len();
         return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
     }
-    let fine_attrs = |pattrs: Attributes| match pattrs.is_empty() {
-        true => Ok(pattrs),
-        false => subdiv::rules::refine_attributes(&control, &pattrs, s.scheme(), levels, &s.options()),
-    };
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
     if levels > 0 && !holes && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(&control, s.scheme(), levels, &s.options(), |j| j)?;
-        let fine_attrs = fine_attrs(pattrs)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(&a.output, &fine, &pattrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(&control, s.scheme(), levels, &s.options())?;
-    let fine_attrs = fine_attrs(pattrs)?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &fine_attrs)?;
+    io::save_with(&a.output, &fine, &pattrs)?;
     let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -211,16 +199,12 @@ fn subdivide_precise(
     let keep_holes = levels == 0;
     let (vertices, faces, write): (usize, usize, Box<dyn FnOnce() -> Result<()>>) = if s.scheme().is_polygonal() {
         let (pm, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-        let (fine, pos, fa) = match pattrs.colors.is_none() {
+        let (fine, pos, fa) = match pattrs.is_empty() || levels == 0 {
             true => {
                 let (fine, pos) = subdiv::subdivide_f64(&pm, &control, s.scheme(), levels, &opts)?;
-                let fa = match pattrs.is_empty() {
-                    true => pattrs,
-                    false => subdiv::rules::refine_attributes(&pm, &pattrs, s.scheme(), levels, &opts)?,
-                };
-                (fine, pos, fa)
+                (fine, pos, pattrs)
             }
-            // colours need the rows: on the same refinement as the f64 points
+            // the attributes ride on the same refinement as the f64 points
             false => {
                 let r = subdiv::Refiner::new(&pm, s.scheme(), levels, &opts)?;
                 let pos = refined_f64(&r, &control)?;
@@ -231,14 +215,10 @@ fn subdivide_precise(
         let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
         (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
     } else {
-        let (fine, pos, fa) = match attrs.colors.is_none() {
+        let (fine, pos, fa) = match attrs.is_empty() || levels == 0 {
             true => {
                 let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
-                let fa = match attrs.is_empty() {
-                    true => attrs.clone(),
-                    false => subdiv::rules::refine_attributes(mesh, attrs, s.scheme(), levels, &opts)?,
-                };
-                (fine, pos, fa)
+                (fine, pos, attrs.clone())
             }
             false => {
                 let r = subdiv::Refiner::new(mesh, s.scheme(), levels, &opts)?;

@@ -6,7 +6,7 @@
 use super::{Options, Scheme, Stats};
 use crate::Result;
 use crate::mesh::poly::PolyMesh;
-use crate::mesh::{Attributes, Faces, Mesh, VertexId};
+use crate::mesh::{Faces, Mesh, VertexId};
 use glam::DVec3;
 
 mod sealed {
@@ -56,13 +56,6 @@ pub trait Cage: sealed::Sealed + Sized {
         how: (Scheme, u32, &Options),
         id: impl Fn(u32) -> I + Sync,
     ) -> Result<(Faces<I, DVec3>, Stats)>;
-    /// The cage's attributes along their own topology; see
-    /// [`refine_attributes`].
-    ///
-    /// # Errors
-    /// As [`refine_attributes`].
-    #[doc(hidden)]
-    fn refined_attributes(&self, attrs: &Attributes, how: (Scheme, u32, &Options)) -> Result<Attributes>;
     /// The cage as the triangle table the refiner records on (a polygon
     /// table fanned, its diagonals hidden) and whether it is polygons.
     #[doc(hidden)]
@@ -108,13 +101,6 @@ impl Cage for Mesh {
         id: impl Fn(u32) -> I + Sync,
     ) -> Result<(Faces<I, DVec3>, Stats)> {
         super::subdivide_mesh_faces_f64(self, control, how, id)
-    }
-    fn refined_attributes(
-        &self,
-        attrs: &Attributes,
-        (scheme, levels, opts): (Scheme, u32, &Options),
-    ) -> Result<Attributes> {
-        super::tables::attributes::refine(&self.ct, attrs, scheme, levels, opts)
     }
     fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
         (std::borrow::Cow::Borrowed(self), false)
@@ -163,13 +149,6 @@ impl Cage for PolyMesh {
         let corners = fine.pt.v_table().iter().map(|&j| id(j)).collect();
         let faces = Faces { positions, corners, sides: 4 }.without(fine.pt.holes());
         Ok((faces, Stats::default()))
-    }
-    fn refined_attributes(
-        &self,
-        attrs: &Attributes,
-        (scheme, levels, opts): (Scheme, u32, &Options),
-    ) -> Result<Attributes> {
-        super::tables::attributes::refine_poly(self, attrs, scheme, levels, opts)
     }
     fn as_triangles(&self) -> (std::borrow::Cow<'_, Mesh>, bool) {
         (std::borrow::Cow::Owned(self.triangulated()), true)
@@ -251,26 +230,4 @@ pub fn subdivide_faces_f64<C: Cage, I: VertexId>(
     id: impl Fn(u32) -> I + Sync,
 ) -> Result<(Faces<I, DVec3>, Stats)> {
     cage.refined_faces_f64(control, (scheme, levels, opts), id)
-}
-
-/// The attributes of `cage` (texture coordinates per corner: of a triangle
-/// for a [`Mesh`], of a polygon for a [`PolyMesh`]; colours per vertex; a
-/// material per face) after `levels` levels of `scheme`, along their own
-/// topology: texture coordinates on their charts (every face-varying mode
-/// of [`Options::uv`]) or linearly in each face, materials by lineage,
-/// colours with the scheme's weights (recorded for them: where the levels
-/// are wanted too, [`crate::Refiner::attributes`] serves every attribute
-/// from the one refinement).
-///
-/// # Errors
-/// A level that does not fit in memory; a triangle scheme on a
-/// [`PolyMesh`].
-pub fn refine_attributes<C: Cage>(
-    cage: &C,
-    attrs: &Attributes,
-    scheme: Scheme,
-    levels: u32,
-    opts: &Options,
-) -> Result<Attributes> {
-    cage.refined_attributes(attrs, (scheme, levels, opts))
 }

@@ -41,7 +41,7 @@ use rules::{catmull_clark, features, loop_};
 use std::borrow::Cow;
 use std::time::Instant;
 
-pub use cage::{Cage, refine_attributes, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
+pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
@@ -132,7 +132,7 @@ pub(crate) fn refine_kept(
         return poly_kept((&poly.pt, &poly.positions), (scheme, levels, opts), progress);
     }
     let t0 = Instant::now();
-    check_levels_fit(&mesh.ct, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
+    check_levels_fit(&mesh.ct, levels, opts.max_memory.or_else(default_memory_limit), true)?;
     let mut stats = Stats::default();
     let mut cur = features::with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
     let mut points = vec![mesh.positions.clone()];
@@ -179,7 +179,7 @@ pub(crate) fn poly_kept<P: rules::Coord>(
         return Err(crate::Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
     }
     let t0 = Instant::now();
-    refine::poly::check_levels_fit(pt, 0, levels, opts.max_memory.or_else(default_memory_limit))?;
+    refine::poly::check_levels_fit(pt, levels, opts.max_memory.or_else(default_memory_limit), true)?;
     let mut stats = Stats::default();
     let mut cur = features::boundary_tagged(pt, opts.boundary).unwrap_or_else(|| pt.clone());
     let (mut kept, mut points) = (Vec::with_capacity(levels as usize), Vec::with_capacity(levels as usize + 1));
@@ -266,7 +266,7 @@ pub(crate) fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync, P: rules::Coord
     let t0 = Instant::now();
     let limit = opts.max_memory.or_else(default_memory_limit);
     let mut stats = Stats::default();
-    check_levels_fit(&mesh.ct, 0, levels, limit)?;
+    check_levels_fit(&mesh.ct, levels, limit, false)?;
     let mut cur: Option<(CornerTable, Vec<P>)> = None;
     let mut boundary: Option<Vec<bool>> = None;
     let mut base = Some(features::with_boundary_corners(&mesh.ct, opts.boundary));
@@ -357,7 +357,7 @@ pub(crate) fn subdivide_poly_faces_as<I: VertexId>(
         return Err(crate::Error::Usage("faces alone come from at least one level (quads after it)".into()));
     }
     let limit = opts.max_memory.or_else(default_memory_limit);
-    refine::poly::check_levels_fit(&mesh.pt, 0, levels, limit)?;
+    refine::poly::check_levels_fit(&mesh.pt, levels, limit, false)?;
     // the levels before the last (none: the control mesh, its boundary's
     // corners tagged as subdivide_poly tags them), then the last one
     let (before, mut stats) = subdivide_poly(mesh, scheme, levels - 1, opts)?;

@@ -123,7 +123,8 @@ impl ControlCounts {
     }
 
     /// Checks that `levels` levels of `scheme` fit in `limit` bytes and in
-    /// 32-bit ids at every level.
+    /// 32-bit ids at every level, each level kept as a [`crate::Refiner`]
+    /// keeps them.
     ///
     /// # Errors
     /// [`crate::Error::TooLarge`] naming the first level that does not fit.
@@ -131,9 +132,9 @@ impl ControlCounts {
         use super::refine::{TriangleCounts, check_fit, poly::PolygonCounts};
         if scheme.is_polygonal() {
             let (h, ne, nf) = (self.polygon_corners(), self.edges - self.diagonals, self.polygons());
-            check_fit(PolygonCounts { h, nv: self.vertices, ne, nf }, 0, levels, limit)
+            check_fit(PolygonCounts { h, nv: self.vertices, ne, nf }, levels, limit, true)
         } else {
-            check_fit(TriangleCounts { nt: self.triangles, nv: self.vertices, ne: self.edges }, 0, levels, limit)
+            check_fit(TriangleCounts { nt: self.triangles, nv: self.vertices, ne: self.edges }, levels, limit, true)
         }
     }
 }

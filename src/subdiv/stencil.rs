@@ -92,7 +92,7 @@ fn level_tables(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Res
     let mut out = Vec::with_capacity(levels as usize);
     if scheme.is_polygonal() {
         let control = PolyTable::from_corner_table(&mesh.ct);
-        super::refine::poly::check_levels_fit(&control, 0, levels, limit)?;
+        super::refine::poly::check_levels_fit(&control, levels, limit, false)?;
         let mut cur = super::rules::features::boundary_tagged(&control, opts.boundary).unwrap_or(control);
         for l in 0..levels {
             let next = (l + 1 < levels).then(|| poly_split::split(&cur, opts.creasing).0);
@@ -101,7 +101,7 @@ fn level_tables(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Res
             cur = next;
         }
     } else {
-        super::check_levels_fit(&mesh.ct, 0, levels, limit)?;
+        super::check_levels_fit(&mesh.ct, levels, limit, false)?;
         let mut cur = with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
         for _ in 0..levels {
             let (next, edges) = split_with(&cur, opts.creasing);

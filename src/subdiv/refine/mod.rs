@@ -32,16 +32,17 @@ pub(crate) fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
     new + scratch + old
 }
 
-/// Checks, before any work, that refining `ct` (already at level `done`)
-/// `more` more times fits in `limit` bytes and in 32-bit ids at every level.
-/// Counts are predicted exactly: `F' = 4F`, `E' = 2E + 3F`, `V' = V + E`.
+/// Checks, before any work, that refining `ct` `levels` times fits in
+/// `limit` bytes and in 32-bit ids at every level, the earlier levels held
+/// too when they are `kept`. Counts are predicted exactly: `F' = 4F`,
+/// `E' = 2E + 3F`, `V' = V + E`.
 ///
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
-pub(crate) fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
+pub(crate) fn check_levels_fit(ct: &CornerTable, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
     let nt = ct.num_triangles() as u64;
     let ne = (3 * nt + ct.num_border_edges() as u64) / 2;
-    check_fit(TriangleCounts { nt, nv: ct.num_vertices() as u64, ne }, done, more, limit)
+    check_fit(TriangleCounts { nt, nv: ct.num_vertices() as u64, ne }, levels, limit, kept)
 }
 
 /// A level's counts as a budget check walks them, for either kind of
@@ -49,6 +50,9 @@ pub(crate) fn check_levels_fit(ct: &CornerTable, done: u32, more: u32, limit: Op
 pub(crate) trait LevelCounts: Copy {
     /// Predicted peak bytes of refining the level once.
     fn bytes(&self) -> u64;
+    /// Bytes of the level itself (its table and points), held while later
+    /// levels are made when the levels are kept.
+    fn held_bytes(&self) -> u64;
     /// Whether the refined level's ids would not fit in 32 bits.
     fn ids_overflow(&self) -> bool;
     /// The faces the refinement makes.
@@ -69,6 +73,10 @@ impl LevelCounts for TriangleCounts {
     fn bytes(&self) -> u64 {
         predict_level_bytes(self.nt, self.nv, self.ne)
     }
+    fn held_bytes(&self) -> u64 {
+        // V and O (8 bytes a corner), positions, C and valences (20 a vertex)
+        3 * self.nt * 8 + self.nv * 20
+    }
     fn ids_overflow(&self) -> bool {
         12 * self.nt >= u64::from(u32::MAX) || self.nv + self.ne >= u64::from(u32::MAX)
     }
@@ -80,19 +88,24 @@ impl LevelCounts for TriangleCounts {
     }
 }
 
-/// Checks that `more` levels after `counts` (a table already `done` levels
-/// deep) fit in `limit` bytes and 32-bit ids: the one budget walk of both
-/// kinds of table.
+/// Checks that `levels` levels of a table of `counts` fit in `limit` bytes
+/// and 32-bit ids, each level's peak with the levels before it that are
+/// `kept` (all but the one it splits, which the peak counts): the one
+/// budget walk of both kinds of table.
 ///
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
-pub(crate) fn check_fit<C: LevelCounts>(mut counts: C, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
+pub(crate) fn check_fit<C: LevelCounts>(mut counts: C, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
     let limit_bytes = limit.unwrap_or(u64::MAX);
-    for level in done + 1..=done + more {
-        let bytes = counts.bytes();
+    let mut held = 0u64;
+    for level in 1..=levels {
+        let bytes = counts.bytes().saturating_add(held);
         if counts.ids_overflow() || bytes > limit_bytes {
             let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
             return Err(Error::TooLarge { level, faces: counts.faces_after(), bytes, limit });
+        }
+        if kept {
+            held = held.saturating_add(counts.held_bytes());
         }
         counts = counts.next();
     }

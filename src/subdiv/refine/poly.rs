@@ -200,15 +200,15 @@ fn vertex_points<R: PolyRules, P: Coord>(lv: &PolyLevel, pos: &[P], fp: &[P], ou
     });
 }
 
-/// Checks that `more` levels of the polygon table `pt` (already `done`
-/// levels deep) fit in `limit` bytes and 32-bit ids.
+/// Checks that `levels` levels of the polygon table `pt` fit in `limit`
+/// bytes and 32-bit ids, the earlier levels held too when they are `kept`.
 ///
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
-pub(crate) fn check_levels_fit(pt: &PolyTable, done: u32, more: u32, limit: Option<u64>) -> Result<()> {
+pub(crate) fn check_levels_fit(pt: &PolyTable, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
     let (h, nv, ne, nf) =
         (pt.num_corners() as u64, pt.num_vertices() as u64, pt.num_edges() as u64, pt.num_faces() as u64);
-    super::check_fit(PolygonCounts { h, nv, ne, nf }, done, more, limit)
+    super::check_fit(PolygonCounts { h, nv, ne, nf }, levels, limit, kept)
 }
 
 /// A polygon table's counts: corners, vertices, edges, faces.
@@ -227,6 +227,10 @@ impl super::LevelCounts for PolygonCounts {
         // vertex), the old level alive, and the new level drawn as
         // triangles (2h of them: V, O and a generation, 27 bytes each)
         4 * h * 8 + (nv + ne + nf) * 20 + h * 8 + nv * 20 + 2 * h * 27
+    }
+    fn held_bytes(&self) -> u64 {
+        // V and T (8 bytes a corner), positions, C and valences (20 a vertex)
+        self.h * 8 + self.nv * 20
     }
     fn ids_overflow(&self) -> bool {
         4 * self.h + 4 >= u64::from(u32::MAX) || self.nv + self.ne + self.nf >= u64::from(u32::MAX)

@@ -15,56 +15,13 @@
 //! vertex. Both tables split their faces the same way (child face `c` of
 //! corner `c`), so fine corner `c` of one is fine corner `c` of the other.
 
-use crate::Result;
 use crate::mesh::BoundaryInterpolation;
 use crate::mesh::CornerTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::Sharpness;
-use crate::subdiv::{Options, Scheme, subdivide_poly};
+use crate::subdiv::Options;
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
-
-/// Texture coordinates per corner of `pt` (one per polygon corner) after
-/// `levels` levels of `scheme` on the UV charts; `None` where the charts do
-/// not form a manifold table of their own (the caller then interpolates
-/// linearly).
-///
-/// # Errors
-/// A level that does not fit in memory.
-pub(crate) fn smooth_uvs(
-    pt: &PolyTable,
-    uv: &[Vec2],
-    scheme: Scheme,
-    levels: u32,
-    opts: &Options,
-) -> Result<Option<Vec<Vec2>>> {
-    let Some(charts) = charts(pt, uv, opts) else { return Ok(None) };
-    let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..*opts };
-    let (fine, _) = subdivide_poly(&charts, scheme, levels, &opts)?;
-    let out = (0..fine.pt.num_corners() as u32).map(|c| fine.positions[fine.pt.vtx(c) as usize].truncate()).collect();
-    Ok(Some(out))
-}
-
-/// Texture coordinates per triangle corner of `ct` (one per corner) after
-/// `levels` levels of Loop on the UV charts, as [`smooth_uvs`] for the
-/// polygon schemes: the triangles taken as polygons of three corners (the
-/// same corners), their charts refined by Loop, whose split numbers the
-/// children of a triangle alike in both tables.
-///
-/// # Errors
-/// A level that does not fit in memory.
-pub(crate) fn smooth_triangle_uvs(
-    ct: &CornerTable,
-    uv: &[Vec2],
-    levels: u32,
-    opts: &Options,
-) -> Result<Option<Vec<Vec2>>> {
-    let Some(charts) = charts(&triangles_as_polygons(ct), uv, opts) else { return Ok(None) };
-    let opts = Options { boundary: BoundaryInterpolation::EdgeOnly, ..*opts };
-    let mesh = crate::Mesh { ct: charts.pt.triangulated(), positions: charts.positions };
-    let (fine, _) = crate::subdiv::subdivide(&mesh, Scheme::Loop, levels, &opts)?;
-    Ok(Some(fine.ct.v_table().iter().map(|&v| fine.positions[v as usize].truncate()).collect()))
-}
 
 /// The triangles of `ct` as polygons of three corners (the same corners):
 /// a table with hidden diagonals stands for polygons, not its triangles'.

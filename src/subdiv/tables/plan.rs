@@ -240,7 +240,7 @@ impl StencilPlan {
             return Ok((plans, poly.triangulated(), Some(poly)));
         }
         let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
-        check_levels_fit(ct, 0, levels, limit)?;
+        check_levels_fit(ct, levels, limit, false)?;
         let mut cur = with_boundary_corners(ct, opts.boundary).into_owned();
         let mut plans = Vec::with_capacity(levels as usize);
         for _ in 1..=levels {

@@ -33,7 +33,7 @@ pub(super) fn record<W: Weight + std::ops::AddAssign>(
 ) -> Result<(Vec<LevelPlan<W>>, PolyTable)> {
     let control = PolyTable::from_corner_table(ct);
     let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
-    check_levels_fit(&control, 0, levels, limit)?;
+    check_levels_fit(&control, levels, limit, false)?;
     let mut cur = boundary_tagged(&control, opts.boundary).unwrap_or(control);
     let mut plans = Vec::with_capacity(levels as usize);
     for _ in 1..=levels {
