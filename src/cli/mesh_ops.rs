@@ -250,10 +250,9 @@ fn refined_f64(r: &subdiv::Refiner, control: &[glam::DVec3]) -> Result<Vec<glam:
     Ok(r.refine(&flat, 3)?.chunks_exact(3).map(glam::DVec3::from_slice).collect())
 }
 
-/// The stats of a refiner's levels built since `t0`.
+/// The stats of a refiner's levels, its attributes too: the time since `t0`.
 fn refiner_stats(r: &subdiv::Refiner, t0: Instant) -> subdiv::Stats {
-    let faces = r.polygons().map_or(r.topology().num_triangles(), |p| p.num_faces());
-    subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, faces_per_level: vec![faces], ..Default::default() }
+    subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, ..r.stats().clone() }
 }
 
 /// What `subdivide` prints: `--stats`, `--json` or a line.

@@ -239,8 +239,10 @@ impl Refiner {
         }
     }
 
-    /// What the one-shot refinement took.
-    pub(crate) fn stats(&self) -> &Stats {
+    /// What building the levels took, phase by phase, as
+    /// [`crate::subdivide`] reports it (the stencils, recorded on first
+    /// need, are not in it).
+    pub fn stats(&self) -> &Stats {
         &self.stats
     }
 
