@@ -132,6 +132,23 @@ fn subdivide_command_carries_attributes_into_obj() {
     let (mesh, attrs) = load_with_attributes(&output);
     assert_eq!(mesh.ct.num_triangles(), 2 * 16);
     assert_eq!(attrs.uv.unwrap().len(), 3 * 32);
-    assert_eq!(attrs.colors.unwrap().len(), mesh.positions.len());
+    let colors = attrs.colors.unwrap();
+    assert_eq!(colors.len(), mesh.positions.len());
+    // PLY keeps the colours, not the texture coordinates: those are dropped,
+    // with a note, and the colours are the OBJ's, point for point
+    let ply = dir.join("quad2.ply");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_subdiv"))
+        .args(["subdivide", input.to_str().unwrap(), ply.to_str().unwrap(), "-s", "loop", "-n", "2"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("keeps no texture coordinates") && !err.contains("colours"), "{err}");
+    let (from_ply, ply_attrs) = load_with_attributes(&ply);
+    assert!(ply_attrs.uv.is_none());
+    assert_eq!(from_ply.positions, mesh.positions, "the same refinement");
+    let ply_colors = ply_attrs.colors.expect("PLY keeps the colours");
+    let off = ply_colors.iter().zip(&colors).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max);
+    assert!(off <= 1.0 / 255.0, "PLY's colours are the OBJ's within a byte's step: {off}");
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -363,7 +363,9 @@ fn unknown_output_extensions_list_every_writer() {
     for ext in io::write_extensions() {
         assert!(e.contains(&format!(".{ext}")), "{e}");
     }
-    assert!(
-        io::keeps_attributes(std::path::Path::new("a.glb")) && !io::keeps_attributes(std::path::Path::new("a.stl"))
-    );
+    let keeps = |name: &str| io::keeps(std::path::Path::new(name));
+    assert!(keeps("a.glb").uv && keeps("a.glb").colors && !keeps("a.glb").materials);
+    assert_eq!(keeps("a.stl"), io::Keeps::default(), "STL keeps no attribute");
+    assert!(keeps("a.ply").colors && !keeps("a.ply").uv, "PLY keeps colours, not texture coordinates");
+    assert!(keeps("a.obj").uv && keeps("a.obj").colors && keeps("a.obj").materials);
 }

@@ -72,14 +72,7 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
     let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
-    let attrs = if attrs.is_empty() || io::keeps_attributes(&a.output) {
-        attrs
-    } else {
-        if logging::warnings_shown() {
-            eprintln!("subdiv: note: {} keeps no texture coordinates or colours", a.output.display());
-        }
-        Attributes { options: attrs.options, ..Default::default() }
-    };
+    let attrs = kept_by_output(&a.output, attrs);
     let (vertices, out_faces, st, save_ms) = if a.precision == Precision::F64 {
         subdivide_precise(a, s, &mesh, precise, &attrs)?
     } else if s.scheme().is_polygonal() {
@@ -95,6 +88,31 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
         false => mesh.ct.num_triangles(),
     };
     report((a, s), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
+}
+
+/// The attributes `output`'s format keeps, the others dropped (with a
+/// note) before any is refined.
+fn kept_by_output(output: &std::path::Path, attrs: Attributes) -> Attributes {
+    let keeps = io::keeps(output);
+    let mut dropped = Vec::new();
+    let mut keep = |kept: bool, what: &'static str, has: bool| {
+        if has && !kept {
+            dropped.push(what);
+        }
+        kept
+    };
+    let uv = keep(keeps.uv, "texture coordinates", attrs.uv.is_some());
+    let colors = keep(keeps.colors, "colours", attrs.colors.is_some());
+    let materials = keep(keeps.materials, "materials", attrs.materials.is_some());
+    if !dropped.is_empty() && logging::warnings_shown() {
+        eprintln!("subdiv: note: {} keeps no {}", output.display(), dropped.join(" or "));
+    }
+    Attributes {
+        uv: attrs.uv.filter(|_| uv),
+        colors: attrs.colors.filter(|_| colors),
+        materials: attrs.materials.filter(|_| materials),
+        options: attrs.options,
+    }
 }
 
 /// A triangle scheme's subdivision, written: the output's vertices, faces,

@@ -431,10 +431,10 @@ pub fn save(path: &Path, mesh: &impl Save) -> Result<()> {
     mesh.save_to(path, &Attributes::default())
 }
 
-/// Whether [`save_with`] writes texture coordinates or colours to `path`'s
-/// format.
-pub fn keeps_attributes(path: &Path) -> bool {
-    Format::for_output(path).is_some_and(|f| f.keeps.uv || f.keeps.colors)
+/// What [`save_with`] writes of a mesh's attributes to `path`'s format
+/// (nothing for an unknown extension): a caller refines only those.
+pub fn keeps(path: &Path) -> Keeps {
+    Format::for_output(path).map_or_else(Keeps::default, |f| f.keeps)
 }
 
 /// [`save`] with the mesh's attributes where the format keeps them (see

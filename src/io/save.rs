@@ -70,7 +70,7 @@ impl Save for Faces {
 }
 
 /// Saves `mesh` by extension with its attributes: texture coordinates and
-/// colours where the format keeps them ([`super::keeps_attributes`]),
+/// colours where the format keeps them ([`super::keeps`]),
 /// materials and sharpness tags likewise. A [`Mesh`] that stands for
 /// polygons (fanned faces, its diagonals hidden) is written as polygons by
 /// the formats that keep them (OBJ, PLY, OFF, `.ct`); a [`PolyMesh`] is
