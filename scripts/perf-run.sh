@@ -35,7 +35,7 @@ fan="$tmp/fandisk40.obj"; quads="$tmp/spot_q70k.obj"
 "$bin" -q subdivide "$models/spot.obj" "$quads" -s catmull-clark --levels 2 >/dev/null
 field() { grep -o "$1=[0-9.]*" | head -1 | cut -d= -f2; }
 stats() { sort -g | awk '{a[NR]=$1} END {printf "min %7.1f  median %7.1f  max/min %.2f", a[1], a[int((NR+1)/2)], a[NR]/a[1]}'; }
-ours() { "$bin" "$@" --stats | field subdivide_ms; }
+ours() { "$bin" -q "$@" --stats | field subdivide_ms; }
 osd() { local o; o="$("$peers/osd_bench" "$@")"; echo "$(echo "$o" | field refine_ms) + $(echo "$o" | field interpolate_ms)" | bc; }
 echo "load before: $(cut -d' ' -f1-3 /proc/loadavg)  cores: $(nproc)"
 declare -A t
