@@ -333,8 +333,10 @@ mod gpu {
         let s = &a.sub.scheme.over(attrs.options);
         let coloring = Coloring::initial(asked, attrs.materials.is_some());
         let mesh = s.features.apply(mesh);
-        // the file's attributes ride on the refiner that makes the level
-        let (fine, refiner) = match !attrs.is_empty() && levels > 0 {
+        // the file's attributes, where the paint draws them, ride on the
+        // refiner that makes the level
+        let painted = matches!(coloring, Coloring::File | Coloring::Checker | Coloring::Material);
+        let (fine, refiner) = match painted && !attrs.is_empty() && levels > 0 {
             true => {
                 let r = subdiv::Refiner::new(&mesh, s.scheme(), levels, &s.options())?;
                 (r.mesh(), Some(r))
