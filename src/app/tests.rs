@@ -7,9 +7,15 @@
 mod common {
     use std::path::PathBuf;
 
-    /// A fresh directory for one test's files.
+    /// A fresh directory for one test's files: the process id and the time
+    /// the process first asked keep runs apart (a process id alone comes
+    /// back in a later run, with that run's files still there).
     pub(crate) fn scratch_dir(name: &str) -> PathBuf {
-        let d = std::env::temp_dir().join(format!("subdiv-{name}-{}", std::process::id()));
+        static RUN: std::sync::OnceLock<u128> = std::sync::OnceLock::new();
+        let run = RUN.get_or_init(|| {
+            std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos())
+        });
+        let d = std::env::temp_dir().join(format!("subdiv-{name}-{}-{run}", std::process::id()));
         std::fs::create_dir_all(&d).expect("temporary directory");
         d
     }

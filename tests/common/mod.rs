@@ -6,10 +6,14 @@ use glam::Vec3;
 use std::path::PathBuf;
 use subdiv::Mesh;
 
-/// A fresh directory for one test's files (`name` and the process id keep
-/// tests and runs apart).
+/// A fresh directory for one test's files: `name`, the process id and the
+/// time the process first asked keep tests and runs apart (a process id
+/// alone comes back in a later run, with that run's files still there).
 pub fn scratch_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("subdiv-{name}-{}", std::process::id()));
+    static RUN: std::sync::OnceLock<u128> = std::sync::OnceLock::new();
+    let run = RUN
+        .get_or_init(|| std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_nanos()));
+    let d = std::env::temp_dir().join(format!("subdiv-{name}-{}-{run}", std::process::id()));
     std::fs::create_dir_all(&d).expect("temporary directory");
     d
 }
