@@ -94,23 +94,21 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
 /// note) before any is refined.
 fn kept_by_output(output: &std::path::Path, attrs: Attributes) -> Attributes {
     let keeps = io::keeps(output);
-    let mut dropped = Vec::new();
-    let mut keep = |kept: bool, what: &'static str, has: bool| {
-        if has && !kept {
-            dropped.push(what);
-        }
-        kept
-    };
-    let uv = keep(keeps.uv, "texture coordinates", attrs.uv.is_some());
-    let colors = keep(keeps.colors, "colours", attrs.colors.is_some());
-    let materials = keep(keeps.materials, "materials", attrs.materials.is_some());
+    let dropped: Vec<&str> = [
+        (attrs.uv.is_some() && !keeps.uv, "texture coordinates"),
+        (attrs.colors.is_some() && !keeps.colors, "colours"),
+        (attrs.materials.is_some() && !keeps.materials, "materials"),
+    ]
+    .into_iter()
+    .filter_map(|(dropped, what)| dropped.then_some(what))
+    .collect();
     if !dropped.is_empty() && logging::warnings_shown() {
         eprintln!("subdiv: note: {} keeps no {}", output.display(), dropped.join(" or "));
     }
     Attributes {
-        uv: attrs.uv.filter(|_| uv),
-        colors: attrs.colors.filter(|_| colors),
-        materials: attrs.materials.filter(|_| materials),
+        uv: attrs.uv.filter(|_| keeps.uv),
+        colors: attrs.colors.filter(|_| keeps.colors),
+        materials: attrs.materials.filter(|_| keeps.materials),
         options: attrs.options,
     }
 }

@@ -48,7 +48,6 @@ use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::tables::poly_plan::record_one_catmark_level;
 use crate::{Error, Result};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// Ptex faces: `(face, corner)`, the corner [`QUAD`] for a quad.
 pub const QUAD: u32 = u32::MAX;
@@ -170,20 +169,11 @@ impl Limit for Poly {
         if !in_square(u, v) {
             return Err(Error::Usage(format!("({u}, {v}) is not in the unit square")));
         }
-        Ok((u.min(1.0), v.min(1.0)))
+        Ok(self.onto_domain(u, v))
     }
 
     fn eval_checked(&self, f: usize, uv: (f64, f64), second: bool) -> Sample {
         self.eval(f, uv, second)
-    }
-
-    fn eval_sorted<T: Send>(
-        &self,
-        sorted: &[(usize, (f64, f64))],
-        second: bool,
-        keep: impl Fn(&Sample) -> T + Sync,
-    ) -> Vec<T> {
-        sorted.par_iter().with_min_len(256).map(|&(f, uv)| keep(&self.eval(f, uv, second))).collect()
     }
 }
 

@@ -141,13 +141,16 @@ trait Limit: Sync {
 
     /// The points `sorted` (grouped by face, each passed by
     /// [`Limit::check`]) in parallel, each sample mapped by `keep`, in the
-    /// order of `sorted`.
+    /// order of `sorted` (by default each point on its own; a scheme may
+    /// share work between consecutive points of a face).
     fn eval_sorted<T: Send>(
         &self,
         sorted: &[(usize, (f64, f64))],
         second: bool,
         keep: impl Fn(&Sample) -> T + Sync,
-    ) -> Vec<T>;
+    ) -> Vec<T> {
+        sorted.par_iter().with_min_len(256).map(|&(f, uv)| keep(&self.eval_checked(f, uv, second))).collect()
+    }
 }
 
 /// Refuses a scheme without an exact evaluation, naming it.
