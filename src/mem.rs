@@ -3,31 +3,33 @@
 //! A subdivision level writes hundreds of megabytes into fresh memory, and
 //! with 4 KiB pages the first touch of every page (a fault plus the kernel
 //! zeroing it) costs more than the arithmetic. Arrays are therefore taken
-//! from `calloc` (fresh zero pages, no user-space memset).
+//! from `calloc` (fresh zero pages, no user-space memset) and, by default,
+//! given 2 MiB pages (`MADV_HUGEPAGE`, 512 times fewer faults) and
+//! pre-faulted at allocation (`MADV_POPULATE_WRITE`), in 2 MiB pieces
+//! spread over rayon's threads: the kernel fills the page tables in one call
+//! per piece instead of taking one fault per page inside the passes that
+//! write the array (which fault in scattered order where they write through
+//! `O`).
 //!
-//! By default every large array is pre-faulted at allocation
-//! (`MADV_POPULATE_WRITE`), in 1 MiB pieces spread over rayon's threads:
-//! the kernel fills the page tables in one call per piece instead of taking
-//! one fault per page inside the passes that write the array (which fault
-//! in scattered order where they write through `O`). Measured in cold runs
-//! (one process each, as a user runs a command; docs/performance.md, "Page
-//! policy"), interleaved, on 2 threads: bunny Loop L3 median 117 against
-//! 119 ms without advice (21 runs each), nefertiti L4 575-636 against
-//! 665-669 ms, with fewer slow outliers. Pre-faulting in one call on one
-//! thread, as an earlier version did, was slower than no advice.
-//! `MADV_HUGEPAGE` gives the fastest single runs and the slowest ones (runs
-//! vary 2x to 4x: bunny Loop L3 83-166 ms, nefertiti L4 405-1664 ms); the
-//! first run is the one a user sees, so steadiness wins.
-//! `SUBDIV_MEM=plain|huge|populate|huge-populate` selects a policy for such
-//! measurements (`plain`: no advice); anything else means `populate`.
-//!
-//! Why huge pages are unsteady here: the machines we measure on are virtual
-//! machines whose balloon device reports free memory to the host in 2 MiB
-//! blocks (virtio-balloon free page reporting, `page_reporting_order` 9);
-//! the host discards them, so the first touch of a reported block faults on
-//! the host as well. A huge page is always such a block (`scripts/page-cost.c`): 256 MiB of huge
+//! Huge pages are not always cheap. On a virtual machine whose balloon
+//! device reports free memory to the host in 2 MiB blocks (virtio-balloon
+//! free page reporting, `page_reporting_order` 9), a host that discards the
+//! reported blocks makes the first touch of one fault on the host as well,
+//! and a huge page is always such a block: on one such host 256 MiB of huge
 //! pages took 25 ms to touch right after a previous run and 540-670 ms after
-//! six idle seconds, while 4 KiB pages took 100-110 ms either way.
+//! six idle seconds, while 4 KiB pages took 100-110 ms either way
+//! (`scripts/page-cost.c`). A kernel short of free 2 MiB blocks compacts
+//! memory in the fault, which is slow too. So every whole 2 MiB piece is
+//! timed as it is faulted in, and the first one slower than
+//! `SlowHugePages::LIMIT` turns the rest of the process to 4 KiB pages,
+//! still pre-faulted (`huge_pages` tells which are in use). Measured in
+//! cold runs, interleaved (docs/performance.md, "Page policy"): bunny Loop L3
+//! on one thread 70.8 against 84.4 ms with 4 KiB pages pre-faulted.
+//!
+//! `SUBDIV_MEM=plain|huge|populate|huge-populate` selects a fixed policy for
+//! measuring (`plain`: no advice; `populate`: 4 KiB pages pre-faulted in
+//! 1 MiB pieces; `huge-populate`: both, untimed); anything else means the
+//! default.
 //!
 //! Within one process the cheapest page is one already faulted in:
 //! [`keep_freed_memory`] lets glibc hand the arrays a level frees (the level
@@ -89,10 +91,13 @@ enum Policy {
     Plain,
     /// `MADV_HUGEPAGE`.
     Huge,
-    /// `MADV_POPULATE_WRITE`: every page faulted in one call, up front.
+    /// `MADV_POPULATE_WRITE`: every page faulted in up front.
     Populate,
     /// Both.
     HugePopulate,
+    /// Both while huge pages come cheap, then 4 KiB pages pre-faulted
+    /// (the default; [`SlowHugePages`]).
+    Adaptive,
 }
 
 fn policy() -> Policy {
@@ -100,10 +105,61 @@ fn policy() -> Policy {
     *P.get_or_init(|| match std::env::var("SUBDIV_MEM").as_deref() {
         Ok("huge") => Policy::Huge,
         Ok("plain") => Policy::Plain,
+        Ok("populate") => Policy::Populate,
         Ok("huge-populate") => Policy::HugePopulate,
-        _ => Policy::Populate,
+        _ => Policy::Adaptive,
     })
 }
+
+/// Whether the large arrays this process allocates now get huge pages: by
+/// the policy, and for the default one, while no slow huge page was met.
+pub(crate) fn huge_pages() -> bool {
+    #[cfg(target_os = "linux")]
+    return match policy() {
+        Policy::Huge | Policy::HugePopulate => true,
+        Policy::Adaptive => !SlowHugePages::met(),
+        Policy::Plain | Policy::Populate => false,
+    };
+    #[cfg(not(target_os = "linux"))]
+    false
+}
+
+/// Whether this process has met a slow huge page: one 2 MiB block whose
+/// pre-faulting took longer than [`SlowHugePages::LIMIT`]. A fresh huge page
+/// costs the kernel's zeroing of 2 MiB (0.2-0.35 ms on the machines we
+/// measure on); one the hypervisor took back (free page reporting) costs
+/// 4-5 ms, a fault on the host too, and so does one the kernel had to
+/// compact memory for. After the first such block every later array of the
+/// process gets 4 KiB pages.
+#[cfg(target_os = "linux")]
+struct SlowHugePages;
+
+#[cfg(target_os = "linux")]
+impl SlowHugePages {
+    /// Five times a fresh block's cost, a third of a reclaimed one's; a
+    /// block of 4 KiB pages pre-faulted takes 0.6-0.8 ms.
+    const LIMIT: std::time::Duration = std::time::Duration::from_micros(1500);
+
+    fn flag() -> &'static std::sync::atomic::AtomicBool {
+        static SLOW: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+        &SLOW
+    }
+
+    fn met() -> bool {
+        Self::flag().load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    /// Records the time a whole 2 MiB block took to fault in.
+    fn record(took: std::time::Duration) {
+        if took > Self::LIMIT {
+            Self::flag().store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+    }
+}
+
+/// 2 MiB: the huge page size, and the piece the adaptive policy times.
+#[cfg(target_os = "linux")]
+const HP: usize = 2 << 20;
 
 #[cfg(target_os = "linux")]
 fn advise(ptr: *mut u8, len: usize) {
@@ -111,35 +167,59 @@ fn advise(ptr: *mut u8, len: usize) {
         return;
     }
     // only whole 2 MiB-aligned stretches can become huge pages
-    const HP: usize = 2 << 20;
     let start = (ptr as usize).div_ceil(HP) * HP;
     let end = (ptr as usize + len) / HP * HP;
     let p = policy();
-    if end > start && matches!(p, Policy::Huge | Policy::HugePopulate) {
+    let huge = huge_pages();
+    if end > start && huge {
         // SAFETY: [start, end) lies inside the allocation just made; madvise
         // with MADV_HUGEPAGE changes no contents, only how pages are backed.
         unsafe {
             libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
         }
     }
-    if matches!(p, Policy::Populate | Policy::HugePopulate) {
-        const PAGE: usize = 4096;
-        let start = (ptr as usize).div_ceil(PAGE) * PAGE;
-        let end = (ptr as usize + len) / PAGE * PAGE;
-        if end > start {
-            use rayon::prelude::*;
-            const STEP: usize = 1 << 20;
-            (start..end).into_par_iter().step_by(STEP).for_each(|a| {
-                let b = (a + STEP).min(end);
-                // SAFETY: [a, b) lies inside the allocation just made and
-                // owned by the caller; MADV_POPULATE_WRITE only faults its pages
-                // in (writable, still zero), changing no contents.
-                unsafe {
-                    libc::madvise(a as *mut libc::c_void, b - a, libc::MADV_POPULATE_WRITE);
-                }
-            });
-        }
+    if p != Policy::Plain && p != Policy::Huge {
+        populate(ptr as usize, len, huge, p == Policy::Adaptive);
     }
+}
+
+/// Faults in the pages of `[ptr, ptr + len)` with `MADV_POPULATE_WRITE`,
+/// in pieces spread over rayon's threads: 1 MiB pieces of 4 KiB pages, or
+/// 2 MiB-aligned pieces where the range was advised `huge`. With `timed`,
+/// each whole 2 MiB piece is timed ([`SlowHugePages`]), and once a slow one
+/// is met the pieces not yet faulted are advised back to 4 KiB pages.
+#[cfg(target_os = "linux")]
+fn populate(ptr: usize, len: usize, huge: bool, timed: bool) {
+    use rayon::prelude::*;
+    const PAGE: usize = 4096;
+    let start = ptr.div_ceil(PAGE) * PAGE;
+    let end = (ptr + len) / PAGE * PAGE;
+    if end <= start {
+        return;
+    }
+    let step = if huge { HP } else { 1 << 20 };
+    let first = start / step * step;
+    (first..end).into_par_iter().step_by(step).for_each(|a| {
+        let (a, b) = (a.max(start), (a + step).min(end));
+        let whole = huge && b - a == HP;
+        if timed && whole && SlowHugePages::met() {
+            // SAFETY: [a, b) lies inside the allocation just made and owned
+            // by the caller; MADV_NOHUGEPAGE changes no contents.
+            unsafe {
+                libc::madvise(a as *mut libc::c_void, b - a, libc::MADV_NOHUGEPAGE);
+            }
+        }
+        let t0 = std::time::Instant::now();
+        // SAFETY: [a, b) lies inside the allocation just made and owned by
+        // the caller; MADV_POPULATE_WRITE only faults its pages in
+        // (writable, still zero), changing no contents.
+        unsafe {
+            libc::madvise(a as *mut libc::c_void, b - a, libc::MADV_POPULATE_WRITE);
+        }
+        if timed && whole {
+            SlowHugePages::record(t0.elapsed());
+        }
+    });
 }
 
 #[cfg(not(target_os = "linux"))]
@@ -190,5 +270,19 @@ mod tests {
         }
         let p: Vec<glam::Vec3> = super::zeroed(5 << 20);
         assert!(p.iter().all(|x| *x == glam::Vec3::ZERO));
+    }
+
+    /// Once a slow huge page is met, later arrays are advised back to
+    /// 4 KiB pages piece by piece, and still come zeroed and writable.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_slow_huge_page_turns_later_arrays_to_small_pages() {
+        use super::SlowHugePages;
+        SlowHugePages::record(SlowHugePages::LIMIT * 2);
+        assert!(SlowHugePages::met());
+        let mut v: Vec<u64> = super::zeroed(3 << 20);
+        assert!(v.iter().all(|&x| x == 0));
+        v[(3 << 20) - 1] = 9;
+        assert_eq!(v.iter().sum::<u64>(), 9);
     }
 }

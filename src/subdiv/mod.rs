@@ -158,7 +158,7 @@ pub(crate) fn refine_kept(
             break;
         }
     }
-    stats.total_ms = ms(t0.elapsed());
+    stats.finish(t0);
     // no level: the control table itself, without the boundary's corner tags
     let fine = if kept.is_empty() { mesh.ct.clone() } else { cur };
     let tables = tables::plan::LevelTables::Triangles(kept);
@@ -197,7 +197,7 @@ pub(crate) fn poly_kept<P: rules::Coord>(
             break;
         }
     }
-    stats.total_ms = ms(t0.elapsed());
+    stats.finish(t0);
     let tables = tables::plan::LevelTables::Polygons(kept);
     Ok(Levels { tables, fine: None, fine_poly: Some(cur), points, stats })
 }
@@ -296,7 +296,7 @@ pub(crate) fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync, P: rules::Coord
             }
             Refined::Faces(t) => {
                 stats.faces_per_level.push(t.num_faces());
-                stats.total_ms = ms(t0.elapsed());
+                stats.finish(t0);
                 return Ok((Refined::Faces(t), stats));
             }
         }
@@ -304,7 +304,7 @@ pub(crate) fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync, P: rules::Coord
             break;
         }
     }
-    stats.total_ms = ms(t0.elapsed());
+    stats.finish(t0);
     let (ct, positions) = cur.unwrap_or_else(|| (mesh.ct.clone(), control.to_vec()));
     Ok((Refined::Table(ct, positions, None, Vec::new()), stats))
 }
@@ -373,5 +373,6 @@ pub(crate) fn subdivide_poly_faces_as<I: VertexId>(
     };
     stats.faces_per_level.push(fine.num_faces());
     stats.total_ms += ms(t0.elapsed());
+    stats.huge_pages = crate::mem::huge_pages();
     Ok((fine, stats))
 }

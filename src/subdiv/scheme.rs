@@ -142,6 +142,17 @@ pub struct Stats {
     pub total_ms: f64,
     /// Faces after each level.
     pub faces_per_level: Vec<usize>,
+    /// Whether the large arrays were given 2 MiB pages (the page policy:
+    /// by default while the host gives them cheaply, then 4 KiB pages).
+    pub huge_pages: bool,
+}
+
+impl Stats {
+    /// Closes the record of a call begun at `t0`.
+    pub(crate) fn finish(&mut self, t0: std::time::Instant) {
+        self.total_ms = ms(t0.elapsed());
+        self.huge_pages = crate::mem::huge_pages();
+    }
 }
 
 pub(crate) fn ms(d: std::time::Duration) -> f64 {
