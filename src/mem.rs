@@ -20,7 +20,7 @@
 //! six idle seconds, while 4 KiB pages took 100-110 ms either way
 //! (`scripts/page-cost.c`). A kernel short of free 2 MiB blocks compacts
 //! memory in the fault, which is slow too. So every whole 2 MiB piece is
-//! timed as it is faulted in, and the first one slower than
+//! timed as it is faulted in, and the second one slower than
 //! `SlowHugePages::LIMIT` turns the rest of the process to 4 KiB pages,
 //! still pre-faulted (`huge_pages` tells which are in use). Measured in
 //! cold runs, interleaved (docs/performance.md, "Page policy"): bunny Loop L3
@@ -124,13 +124,14 @@ pub(crate) fn huge_pages() -> bool {
     false
 }
 
-/// Whether this process has met a slow huge page: one 2 MiB block whose
-/// pre-faulting took longer than [`SlowHugePages::LIMIT`]. A fresh huge page
-/// costs the kernel's zeroing of 2 MiB (0.2-0.35 ms on the machines we
+/// Whether this process has met slow huge pages: two 2 MiB blocks whose
+/// pre-faulting took longer than [`SlowHugePages::LIMIT`] each. A fresh huge
+/// page costs the kernel's zeroing of 2 MiB (0.2-0.35 ms on the machines we
 /// measure on); one the hypervisor took back (free page reporting) costs
 /// 4-5 ms, a fault on the host too, and so does one the kernel had to
-/// compact memory for. After the first such block every later array of the
-/// process gets 4 KiB pages.
+/// compact memory for. Two, not one, so that a single block whose thread
+/// was descheduled on a busy host does not decide for the whole process;
+/// after the second every later array of the process gets 4 KiB pages.
 #[cfg(target_os = "linux")]
 struct SlowHugePages;
 
@@ -139,20 +140,22 @@ impl SlowHugePages {
     /// Five times a fresh block's cost, a third of a reclaimed one's; a
     /// block of 4 KiB pages pre-faulted takes 0.6-0.8 ms.
     const LIMIT: std::time::Duration = std::time::Duration::from_micros(1500);
+    /// Slow blocks that turn the process to 4 KiB pages.
+    const TRIP: u32 = 2;
 
-    fn flag() -> &'static std::sync::atomic::AtomicBool {
-        static SLOW: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    fn count() -> &'static std::sync::atomic::AtomicU32 {
+        static SLOW: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
         &SLOW
     }
 
     fn met() -> bool {
-        Self::flag().load(std::sync::atomic::Ordering::Relaxed)
+        Self::count().load(std::sync::atomic::Ordering::Relaxed) >= Self::TRIP
     }
 
     /// Records the time a whole 2 MiB block took to fault in.
     fn record(took: std::time::Duration) {
         if took > Self::LIMIT {
-            Self::flag().store(true, std::sync::atomic::Ordering::Relaxed);
+            Self::count().fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         }
     }
 }
@@ -186,8 +189,8 @@ fn advise(ptr: *mut u8, len: usize) {
 /// Faults in the pages of `[ptr, ptr + len)` with `MADV_POPULATE_WRITE`,
 /// in pieces spread over rayon's threads: 1 MiB pieces of 4 KiB pages, or
 /// 2 MiB-aligned pieces where the range was advised `huge`. With `timed`,
-/// each whole 2 MiB piece is timed ([`SlowHugePages`]), and once a slow one
-/// is met the pieces not yet faulted are advised back to 4 KiB pages.
+/// each whole 2 MiB piece is timed ([`SlowHugePages`]), and once slow ones
+/// are met the pieces not yet faulted are advised back to 4 KiB pages.
 #[cfg(target_os = "linux")]
 fn populate(ptr: usize, len: usize, huge: bool, timed: bool) {
     use rayon::prelude::*;
@@ -272,13 +275,15 @@ mod tests {
         assert!(p.iter().all(|x| *x == glam::Vec3::ZERO));
     }
 
-    /// Once a slow huge page is met, later arrays are advised back to
+    /// Once slow huge pages are met, later arrays are advised back to
     /// 4 KiB pages piece by piece, and still come zeroed and writable.
     #[cfg(target_os = "linux")]
     #[test]
-    fn a_slow_huge_page_turns_later_arrays_to_small_pages() {
+    fn slow_huge_pages_turn_later_arrays_to_small_pages() {
         use super::SlowHugePages;
-        SlowHugePages::record(SlowHugePages::LIMIT * 2);
+        for _ in 0..SlowHugePages::TRIP {
+            SlowHugePages::record(SlowHugePages::LIMIT * 2);
+        }
         assert!(SlowHugePages::met());
         let mut v: Vec<u64> = super::zeroed(3 << 20);
         assert!(v.iter().all(|&x| x == 0));
