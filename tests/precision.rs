@@ -186,12 +186,14 @@ fn the_double_precision_levels_are_the_single_precision_levels_in_f64() {
 }
 
 /// The `v` records of an OBJ in f64.
+#[cfg(feature = "cli")]
 fn obj_points(text: &str) -> Vec<DVec3> {
     let num = |l: &str| -> Vec<f64> { l.split_whitespace().map(|x| x.parse().unwrap()).collect() };
     text.lines().filter_map(|l| l.strip_prefix("v ")).map(|l| DVec3::from_slice(&num(l))).collect()
 }
 
 /// The vertices of a binary little-endian PLY whose x, y, z are doubles.
+#[cfg(feature = "cli")]
 fn ply_points(bytes: &[u8]) -> Vec<DVec3> {
     let end = bytes.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
     let header = std::str::from_utf8(&bytes[..end]).unwrap();

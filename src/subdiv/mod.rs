@@ -31,6 +31,7 @@ pub(crate) mod tables;
 
 use crate::Result;
 pub(crate) use crate::mem::default_memory_limit;
+#[cfg(feature = "viewer")]
 pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
 use crate::mesh::{CornerTable, Faces, Mesh, VertexId};
@@ -47,6 +48,7 @@ pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
 pub use scheme::{Options, Scheme, Stats};
 pub(crate) use scheme::{RulesFn, ms, with_rules};
+#[cfg(feature = "viewer")]
 pub(crate) use sizes::ControlCounts;
 
 /// Refines `mesh` `levels` times with `scheme`.
