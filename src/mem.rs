@@ -126,9 +126,9 @@ pub(crate) fn huge_pages() -> bool {
 
 /// Whether this process has met slow huge pages: two 2 MiB blocks whose
 /// pre-faulting took longer than [`SlowHugePages::LIMIT`] each. A fresh huge
-/// page costs the kernel's zeroing of 2 MiB (0.2-0.35 ms on the machines we
+/// page costs the kernel's zeroing of 2 MiB (0.2-0.46 ms on the machines we
 /// measure on); one the hypervisor took back (free page reporting) costs
-/// 4-5 ms, a fault on the host too, and so does one the kernel had to
+/// 4-5.5 ms, a fault on the host too, and so does one the kernel had to
 /// compact memory for. Two, not one, so that a single block whose thread
 /// was descheduled on a busy host does not decide for the whole process;
 /// after the second every later array of the process gets 4 KiB pages.
@@ -137,8 +137,8 @@ struct SlowHugePages;
 
 #[cfg(target_os = "linux")]
 impl SlowHugePages {
-    /// Five times a fresh block's cost, a third of a reclaimed one's; a
-    /// block of 4 KiB pages pre-faulted takes 0.6-0.8 ms.
+    /// Three to seven times a fresh block's cost, a third of a reclaimed
+    /// one's; a block of 4 KiB pages pre-faulted takes 0.7-0.9 ms.
     const LIMIT: std::time::Duration = std::time::Duration::from_micros(1500);
     /// Slow blocks that turn the process to 4 KiB pages.
     const TRIP: u32 = 2;
@@ -174,14 +174,22 @@ fn advise(ptr: *mut u8, len: usize) {
     let end = (ptr as usize + len) / HP * HP;
     let p = policy();
     let huge = huge_pages();
-    if end > start && huge {
+    // after slow huge pages, the default policy says so explicitly: with
+    // transparent huge pages `always`, no advice would still mean huge ones
+    let advice = match (huge, p) {
+        (true, _) => Some(libc::MADV_HUGEPAGE),
+        (false, Policy::Adaptive) => Some(libc::MADV_NOHUGEPAGE),
+        (false, _) => None,
+    };
+    if let Some(advice) = advice.filter(|_| end > start) {
         // SAFETY: [start, end) lies inside the allocation just made; madvise
-        // with MADV_HUGEPAGE changes no contents, only how pages are backed.
+        // with MADV_(NO)HUGEPAGE changes no contents, only how pages are
+        // backed.
         unsafe {
-            libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE);
+            libc::madvise(start as *mut libc::c_void, end - start, advice);
         }
     }
-    if p != Policy::Plain && p != Policy::Huge {
+    if matches!(p, Policy::Populate | Policy::HugePopulate | Policy::Adaptive) {
         populate(ptr as usize, len, huge, p == Policy::Adaptive);
     }
 }
@@ -275,19 +283,55 @@ mod tests {
         assert!(p.iter().all(|x| *x == glam::Vec3::ZERO));
     }
 
-    /// Once slow huge pages are met, later arrays are advised back to
-    /// 4 KiB pages piece by piece, and still come zeroed and writable.
+    /// The mappings of this process wholly inside `[a, b)`, from
+    /// `/proc/self/smaps`: each one's `VmFlags` and `AnonHugePages` (kB).
+    #[cfg(target_os = "linux")]
+    fn mappings_within(a: usize, b: usize) -> Vec<(String, u64)> {
+        let smaps = std::fs::read_to_string("/proc/self/smaps").expect("smaps");
+        let mut out = Vec::new();
+        let mut inside = false;
+        let mut huge_kb = 0;
+        for line in smaps.lines() {
+            let first = line.split_whitespace().next().unwrap_or("");
+            if let Some((lo, hi)) = first.split_once('-')
+                && let (Ok(lo), Ok(hi)) = (usize::from_str_radix(lo, 16), usize::from_str_radix(hi, 16))
+            {
+                inside = a <= lo && hi <= b;
+            } else if let Some(kb) = line.strip_prefix("AnonHugePages:") {
+                huge_kb = kb.trim().trim_end_matches("kB").trim().parse().unwrap_or(0);
+            } else if let Some(flags) = line.strip_prefix("VmFlags:")
+                && inside
+            {
+                out.push((flags.to_string(), huge_kb));
+            }
+        }
+        out
+    }
+
+    /// Once slow huge pages are met, later arrays are advised 4 KiB pages
+    /// (`MADV_NOHUGEPAGE`, which holds under transparent huge pages
+    /// `always` too) and still come zeroed and writable.
     #[cfg(target_os = "linux")]
     #[test]
     fn slow_huge_pages_turn_later_arrays_to_small_pages() {
-        use super::SlowHugePages;
+        use super::{HP, SlowHugePages};
         for _ in 0..SlowHugePages::TRIP {
             SlowHugePages::record(SlowHugePages::LIMIT * 2);
         }
         assert!(SlowHugePages::met());
-        let mut v: Vec<u64> = super::zeroed(3 << 20);
+        let n = 3 << 20;
+        let mut v: Vec<u64> = super::zeroed(n);
         assert!(v.iter().all(|&x| x == 0));
-        v[(3 << 20) - 1] = 9;
+        v[n - 1] = 9;
         assert_eq!(v.iter().sum::<u64>(), 9);
+        // the whole 2 MiB blocks of the array: advised, and no huge page
+        let p = v.as_ptr() as usize;
+        let (a, b) = (p.div_ceil(HP) * HP, (p + 8 * n) / HP * HP);
+        let maps = mappings_within(a, b);
+        assert!(!maps.is_empty(), "the advice splits the array's blocks into mappings of their own");
+        for (flags, huge_kb) in maps {
+            assert!(flags.split_whitespace().any(|f| f == "nh"), "not advised MADV_NOHUGEPAGE: {flags}");
+            assert_eq!(huge_kb, 0, "huge pages after slow ones");
+        }
     }
 }

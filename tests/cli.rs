@@ -55,6 +55,8 @@ fn subdivide_writes_every_format_with_stats() {
             stdout.lines().find_map(|l| l.strip_prefix("subdivide_ms=")).expect("subdivide_ms line").parse().unwrap();
         assert!(ms >= 0.0);
         assert!(stdout.contains("edge_points_ms=") && stdout.contains("split_and_o_ms="));
+        // the page size the refinement's arrays were given (src/mem.rs)
+        assert!(stdout.contains(" pages=2MiB") || stdout.contains(" pages=4KiB"), "{stdout}");
         if ext != "ply" {
             let m = subdiv::io::load(&out).unwrap();
             assert_eq!(m.ct.num_triangles(), 12 * 16);
@@ -63,6 +65,15 @@ fn subdivide_writes_every_format_with_stats() {
             assert!(bytes.starts_with(b"ply\nformat binary_little_endian 1.0\n"));
         }
     }
+    // the f64 path makes no record of its phases: it names no page size
+    let out = tmp("cube2_f64.ply");
+    let o = bin()
+        .args(["subdivide", input.to_str().unwrap(), out.to_str().unwrap(), "-n", "2", "--precision", "f64", "--stats"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(stdout.contains("subdivide_ms=") && !stdout.contains("pages="), "{stdout}");
     let o = bin().args(["info", model_path("torus.obj").to_str().unwrap()]).output().unwrap();
     let s = String::from_utf8_lossy(&o.stdout);
     assert!(s.contains("genus:           1") && s.contains("6:512"), "{s}");

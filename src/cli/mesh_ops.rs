@@ -283,13 +283,13 @@ fn report(
     if a.stats {
         println!("subdivide_ms={:.3}", st.total_ms);
         println!(
-            "phases: split_and_o_ms={:.3} (edge_numbering_ms={:.3}) edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={load_ms:.3} save_ms={save_ms:.3} threads={} pages={}",
+            "phases: split_and_o_ms={:.3} (edge_numbering_ms={:.3}) edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={load_ms:.3} save_ms={save_ms:.3} threads={}{}",
             st.split_ms,
             st.numbering_ms,
             st.edge_ms,
             st.vertex_ms,
             rayon::current_num_threads(),
-            if st.huge_pages { "2MiB" } else { "4KiB" }
+            st.huge_pages.map_or("", |huge| if huge { " pages=2MiB" } else { " pages=4KiB" })
         );
     }
     if a.json {

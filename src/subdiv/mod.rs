@@ -375,6 +375,6 @@ pub(crate) fn subdivide_poly_faces_as<I: VertexId>(
     };
     stats.faces_per_level.push(fine.num_faces());
     stats.total_ms += ms(t0.elapsed());
-    stats.huge_pages = crate::mem::huge_pages();
+    stats.huge_pages = Some(crate::mem::huge_pages());
     Ok((fine, stats))
 }

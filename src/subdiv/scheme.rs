@@ -143,15 +143,16 @@ pub struct Stats {
     /// Faces after each level.
     pub faces_per_level: Vec<usize>,
     /// Whether the large arrays were given 2 MiB pages (the page policy:
-    /// by default while the host gives them cheaply, then 4 KiB pages).
-    pub huge_pages: bool,
+    /// by default while the host gives them cheaply, then 4 KiB pages);
+    /// `None` in a record not made by a refinement.
+    pub huge_pages: Option<bool>,
 }
 
 impl Stats {
     /// Closes the record of a call begun at `t0`.
     pub(crate) fn finish(&mut self, t0: std::time::Instant) {
         self.total_ms = ms(t0.elapsed());
-        self.huge_pages = crate::mem::huge_pages();
+        self.huge_pages = Some(crate::mem::huge_pages());
     }
 }
 
