@@ -364,7 +364,10 @@ fn unknown_output_extensions_list_every_writer() {
         assert!(e.contains(&format!(".{ext}")), "{e}");
     }
     let keeps = |name: &str| io::keeps(std::path::Path::new(name));
-    assert!(keeps("a.glb").uv && keeps("a.glb").colors && !keeps("a.glb").materials);
+    // glTF keeps the material groups (a stage's prims among them) as meshes, one a group
+    assert!(keeps("a.glb").uv && keeps("a.glb").colors && keeps("a.glb").materials);
+    // only USD keeps a refined level's holes
+    assert!(keeps("a.usda").holes && !keeps("a.obj").holes && !keeps("a.glb").holes);
     assert_eq!(keeps("a.stl"), io::Keeps::default(), "STL keeps no attribute");
     assert!(keeps("a.ply").colors && !keeps("a.ply").uv, "PLY keeps colours, not texture coordinates");
     assert!(keeps("a.obj").uv && keeps("a.obj").colors && keeps("a.obj").materials);

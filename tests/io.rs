@@ -209,7 +209,7 @@ fn parsers_never_panic_on_mutated_input() {
 /// (so that an amplifying mutant is refused quickly) and textures decoded.
 fn fuzz_read(bytes: &[u8], name: &str, topology: Topology) -> subdiv::Result<subdiv::io::Loaded> {
     let limits = subdiv::io::Limits::for_memory(256 << 20);
-    let opts = subdiv::io::ReadOptions { limits, topology, attributes: true, textures: true };
+    let opts = subdiv::io::ReadOptions { limits, topology, attributes: true, textures: true, time: None };
     subdiv::io::read(subdiv::io::Source::Bytes { bytes, name, folder: None }, &opts)
 }
 

@@ -18,8 +18,17 @@ pub struct InputArgs {
     /// instead of refusing it; the repair report goes to stderr.
     #[arg(long)]
     pub repair: bool,
+    /// Read a USD stage's sampled points (and transforms) at time code T
+    /// (default: the stage's startTimeCode, else its first sample).
+    #[arg(long, value_name = "T", allow_hyphen_values = true, value_parser = parse_time)]
+    pub time: Option<f64>,
     #[command(flatten)]
     pub limits: LimitArgs,
+}
+
+/// A finite time code.
+fn parse_time(s: &str) -> std::result::Result<f64, String> {
+    s.parse::<f64>().ok().filter(|t| t.is_finite()).ok_or_else(|| format!("'{s}' is not a finite time code"))
 }
 
 /// The reading budget.
@@ -55,7 +64,7 @@ impl InputArgs {
     /// decoded when `textures`, for drawing).
     pub(crate) fn options(&self, textures: bool) -> Result<ReadOptions> {
         let topology = if self.repair { Topology::Repair } else { Topology::Refuse };
-        Ok(ReadOptions { limits: self.limits.limits()?, topology, attributes: true, textures })
+        Ok(ReadOptions { limits: self.limits.limits()?, topology, attributes: true, textures, time: self.time })
     }
 
     /// Reads the mesh `input` names (a file or `bundled:NAME`), repaired
@@ -159,6 +168,13 @@ impl SchemeArgs {
             FileScheme::Bilinear | FileScheme::None => Scheme::Bilinear,
         });
         self.scheme_flag.or(file).unwrap_or(Scheme::Loop)
+    }
+
+    /// Whether the surface is subdivided: not where the file says
+    /// `subdivisionScheme none` (the cage is the surface) and no
+    /// `--scheme` overrides it.
+    pub(crate) fn subdivides(&self) -> bool {
+        self.scheme_flag.is_some() || self.file_scheme != Some(FileScheme::None)
     }
 
     /// The library's options for these arguments.

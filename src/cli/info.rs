@@ -83,6 +83,81 @@ struct MeshInfo {
     /// The fanned triangles, when the file has polygons.
     #[serde(skip_serializing_if = "Option::is_none")]
     triangulated: Option<Counts>,
+    /// What a USD stage says of its prims, units and time.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stage: Option<StageInfo>,
+}
+
+/// `info` of a stage: its prims, units and time.
+#[derive(Serialize)]
+struct StageInfo {
+    prims: Vec<PrimInfo>,
+    up_axis: Option<&'static str>,
+    meters_per_unit: Option<f64>,
+    /// The time code the points were read at (null: default values).
+    time: Option<f64>,
+    /// The time codes the points are sampled at.
+    time_samples: Vec<f64>,
+}
+
+/// One prim of [`StageInfo`].
+#[derive(Serialize)]
+struct PrimInfo {
+    path: String,
+    /// `subdivisionScheme`.
+    scheme: &'static str,
+    /// Whether it is subdivided (`none` is not: the cage is its surface).
+    subdivided: bool,
+    faces: usize,
+}
+
+impl StageInfo {
+    /// What `attrs`' scene says, the faces of each prim counted on `mesh`'s polygons.
+    fn of(mesh: &Mesh, attrs: &subdiv::mesh::Attributes) -> Option<StageInfo> {
+        let scene = attrs.scene()?;
+        let (_, pattrs) = PolyMesh::from_mesh_with_attributes(mesh, attrs);
+        let mut faces = vec![0usize; scene.prims.len()];
+        for &g in pattrs.materials.iter().flat_map(|m| &m.face) {
+            if let Some(n) = scene.prim_of.get(g as usize).and_then(|&p| faces.get_mut(p as usize)) {
+                *n += 1;
+            }
+        }
+        let prims = scene
+            .prims
+            .iter()
+            .zip(faces)
+            .map(|(p, faces)| {
+                let scheme = p.options.scheme.unwrap_or_default();
+                let subdivided = scheme != subdiv::mesh::FileScheme::None;
+                PrimInfo { path: p.path.clone(), scheme: scheme.token(), subdivided, faces }
+            })
+            .collect();
+        let up_axis = scene.up_axis.map(|u| if u == subdiv::mesh::UpAxis::Z { "Z" } else { "Y" });
+        let (meters_per_unit, time, time_samples) = (scene.meters_per_unit, scene.time, scene.times.clone());
+        Some(StageInfo { prims, up_axis, meters_per_unit, time, time_samples })
+    }
+
+    /// The lines `info` prints.
+    fn print(&self) {
+        for p in &self.prims {
+            let what = match p.subdivided {
+                true => format!("subdivisionScheme {}", p.scheme),
+                false => "subdivisionScheme none: not subdivided, the cage is its surface at every level".into(),
+            };
+            println!("prim:            {} ({} faces; {what})", p.path, p.faces);
+        }
+        if self.up_axis.is_some() || self.meters_per_unit.is_some() {
+            let up = self.up_axis.map_or(String::new(), |u| format!("upAxis {u}"));
+            let m = self.meters_per_unit.map_or(String::new(), |m| format!(" metersPerUnit {m}"));
+            println!("stage:           {}", format!("{up}{m}").trim());
+        }
+        if let Some(t) = self.time {
+            let n = self.time_samples.len();
+            let (first, last) =
+                (self.time_samples.first().copied().unwrap_or(t), self.time_samples.last().copied().unwrap_or(t));
+            println!("time:            points at time {t} ({n} samples, {first} to {last}; --time T reads another)");
+        }
+    }
 }
 
 /// Edges, faces and the valence histogram (valence -> vertices) of a mesh.
@@ -229,7 +304,8 @@ fn unused_subdivision_option(a: &InfoArgs) -> Option<&'static str> {
 /// is invalid (or with `--repair`), analysed and repaired.
 fn load(a: &InfoArgs, input: &Path) -> Result<subdiv::io::Loaded> {
     let read = |topology| {
-        let opts = ReadOptions { topology, attributes: false, ..a.from.options(false)? };
+        // the attributes: a stage's prims ride on them
+        let opts = ReadOptions { topology, attributes: true, ..a.from.options(false)? };
         bundled::read(input, &opts)
     };
     match if a.from.repair { None } else { Some(read(Topology::Refuse)) } {
@@ -258,6 +334,7 @@ pub(crate) fn info(a: &InfoArgs) -> Result<()> {
         notes.face_sizes.iter().enumerate().filter(|&(_, &c)| c > 0).map(|(k, &c)| (k, c)).collect();
     let sub = SubdivArgs { scheme: a.sub.scheme.over(loaded.attributes.options), ..a.sub.clone() };
     let mesh = sub.scheme.features.apply(mesh);
+    let stage = StageInfo::of(&mesh, &loaded.attributes);
     if let Some(c) = a.corner {
         return super::inspect::corner(input, &mesh, c, a.json);
     }
@@ -294,6 +371,7 @@ pub(crate) fn info(a: &InfoArgs) -> Result<()> {
             sharp: SharpInfo::of(&sharp),
             valence: own.valence,
             triangulated,
+            stage,
         });
     }
     println!("file:            {}", input.display());
@@ -329,6 +407,9 @@ pub(crate) fn info(a: &InfoArgs) -> Result<()> {
     println!("valence:         {}", hist.join(" "));
     let (lo, hi) = mesh.bounds();
     println!("bounds:          [{:.4} {:.4} {:.4}] .. [{:.4} {:.4} {:.4}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+    if let Some(s) = &stage {
+        s.print();
+    }
     if let Some(r) = &report {
         print!("{r}");
     }

@@ -56,29 +56,28 @@ const BIG_FACES: u64 = 1 << 20;
 
 /// `subdiv subdivide`.
 pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
-    let levels = a.sub.levels_or(1);
     let t0 = Instant::now();
     let loaded = a.from.read(&a.input, false)?;
-    let (mesh, mut attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
-    // the file's option tags where no flag is given; the output states the
-    // options it was made with (a refined level's border faces are not
-    // holes any more: boundary none is the control mesh's)
-    let s = &a.sub.scheme.over(attrs.options);
-    attrs.options = s.shape();
-    if levels > 0 && attrs.options.boundary == Some(subdiv::mesh::BoundaryInterpolation::None) {
-        attrs.options.boundary = None;
+    if !loaded.groups.is_empty() {
+        return subdivide_groups(a, loaded, t0);
     }
+    let (mesh, attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
+    // the file's option tags where no flag is given
+    let s = &a.sub.scheme.over(attrs.options);
+    // `subdivisionScheme none`: the cage is the surface at every level
+    let levels = if s.subdivides() { a.sub.levels_or(1) } else { 0 };
+    let attrs = attrs.with_options(written_options(s, levels));
     let mesh = s.features.apply(mesh);
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
     let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
     let attrs = kept_by_output(&a.output, attrs);
     let (vertices, out_faces, st, save_ms) = if a.precision == Precision::F64 {
-        subdivide_precise(a, s, &mesh, precise, &attrs)?
+        subdivide_precise((a, levels), s, &mesh, precise, &attrs)?
     } else if s.scheme().is_polygonal() {
-        subdivide_polygons(a, s, &mesh, &attrs)?
+        subdivide_polygons((a, levels), s, &mesh, &attrs)?
     } else {
-        subdivide_triangles(a, s, &mesh, attrs)?
+        subdivide_triangles((a, levels), s, &mesh, attrs)?
     };
     if let Some(pb) = spin {
         pb.finish_and_clear();
@@ -87,7 +86,64 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
         true => subdiv::mesh::PolyMesh::from_mesh(&mesh).pt.num_faces(),
         false => mesh.ct.num_triangles(),
     };
-    report((a, s), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
+    let what = match s.subdivides() {
+        true => s.scheme().to_string(),
+        false => "none (subdivisionScheme none: the cage as it is)".into(),
+    };
+    report((a, levels, &what), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
+}
+
+/// The options a level made with `s` states: the scheme and options it
+/// was made with (a refined level's border faces are not holes any more:
+/// boundary none is the control mesh's).
+fn written_options(s: &SchemeArgs, levels: u32) -> subdiv::mesh::ShapeOptions {
+    let mut o = s.shape();
+    if levels > 0 && o.boundary == Some(subdiv::mesh::BoundaryInterpolation::None) {
+        o.boundary = None;
+    }
+    o
+}
+
+/// `subdivide` of a scene whose prims state different options (a USD
+/// stage of a Loop prim and a Catmull-Clark one, or one that says
+/// `subdivisionScheme none`): each set of prims refined by its own
+/// options under the flags, joined into one output whose faces keep their
+/// prims (USD prims, OBJ objects, glTF meshes).
+fn subdivide_groups(a: &SubdivideArgs, loaded: io::Loaded, t0: Instant) -> Result<()> {
+    if a.precision == Precision::F64 {
+        return Err(Error::Usage(format!(
+            "{}: its prims state different schemes or options, which --precision f64 does not refine apart: give one --scheme",
+            a.input.display()
+        )));
+    }
+    let mut groups = Vec::with_capacity(loaded.groups.len());
+    for g in loaded.groups {
+        let s = a.sub.scheme.over(g.attributes.options);
+        let levels = if s.subdivides() { a.sub.levels_or(1) } else { 0 };
+        let attrs = kept_by_output(&a.output, g.attributes).with_options(written_options(&s, levels));
+        groups.push((s.features.apply(g.mesh), attrs, s, levels));
+    }
+    let load_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let parts: Vec<subdiv::Part> = groups
+        .iter()
+        .map(|(mesh, attrs, s, levels)| subdiv::Part {
+            mesh,
+            attrs,
+            scheme: s.subdivides().then(|| s.scheme()),
+            levels: *levels,
+            opts: s.options(),
+        })
+        .collect();
+    let (fine, attrs, st) = subdiv::subdivide_parts(&parts, io::keeps(&a.output).holes)?;
+    let t1 = Instant::now();
+    io::save_with(&a.output, &fine, &attrs)?;
+    let save_ms = t1.elapsed().as_secs_f64() * 1e3;
+    let cage = (loaded.mesh.positions.len(), subdiv::mesh::PolyMesh::from_mesh(&loaded.mesh).pt.num_faces());
+    let schemes: Vec<String> =
+        groups.iter().map(|(_, _, s, _)| if s.subdivides() { s.scheme().to_string() } else { "none".into() }).collect();
+    let what = format!("{} (by prim)", schemes.join(" and "));
+    let levels = a.sub.levels_or(1);
+    report((a, levels, &what), cage, (fine.positions.len(), fine.pt.num_faces()), &st, (load_ms, save_ms))
 }
 
 /// The attributes `output`'s format keeps, the others dropped (with a
@@ -121,12 +177,11 @@ fn kept_by_output(output: &std::path::Path, attrs: Attributes) -> Attributes {
 /// At level 0 a mesh that stands for polygons is written as polygons, which
 /// takes the mesh.
 fn subdivide_triangles(
-    a: &SubdivideArgs,
+    (a, levels): (&SubdivideArgs, u32),
     s: &SchemeArgs,
     mesh: &Mesh,
     attrs: Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    let levels = a.sub.levels_or(1);
     if levels > 0 && !attrs.is_empty() {
         // the attributes ride on the refinement that makes the level: colours
         // through its rows, texture coordinates and materials through its
@@ -161,12 +216,11 @@ fn subdivide_triangles(
 /// the file, their attributes per corner), written as polygons: the
 /// output's vertices, faces, the stats and the milliseconds of the save.
 fn subdivide_polygons(
-    a: &SubdivideArgs,
+    (a, levels): (&SubdivideArgs, u32),
     s: &SchemeArgs,
     mesh: &Mesh,
     attrs: &subdiv::mesh::Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    let levels = a.sub.levels_or(1);
     let (control, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
     if levels > 0 && !pattrs.is_empty() {
         // as for the triangle schemes: the attributes ride on the refinement
@@ -202,13 +256,13 @@ fn subdivide_polygons(
 /// shortest f64 digits, PLY's `double` properties): the output's vertices,
 /// faces, the stats and the milliseconds of the save.
 fn subdivide_precise(
-    a: &SubdivideArgs,
+    (a, levels): (&SubdivideArgs, u32),
     s: &SchemeArgs,
     mesh: &Mesh,
     precise: Option<Vec<glam::DVec3>>,
     attrs: &Attributes,
 ) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    let (levels, opts) = (a.sub.levels_or(1), s.options());
+    let opts = s.options();
     let control = precise.unwrap_or_else(|| mesh.positions.iter().map(|p| p.as_dvec3()).collect());
     let t0 = Instant::now();
     // a control mesh keeps its holes as tags (OBJ); a refined level leaves them out
@@ -273,13 +327,12 @@ fn refiner_stats(r: &subdiv::Refiner, t0: Instant) -> subdiv::Stats {
 
 /// What `subdivide` prints: `--stats`, `--json` or a line.
 fn report(
-    (a, s): (&SubdivideArgs, &SchemeArgs),
+    (a, levels, scheme): (&SubdivideArgs, u32, &str),
     (in_vertices, in_faces): (usize, usize),
     (vertices, faces): (usize, usize),
     st: &subdiv::Stats,
     (load_ms, save_ms): (f64, f64),
 ) -> Result<()> {
-    let levels = a.sub.levels_or(1);
     if a.stats {
         println!("subdivide_ms={:.3}", st.total_ms);
         println!(
@@ -297,7 +350,7 @@ fn report(
         print_json(&Summary {
             input: &input,
             output: &output,
-            scheme: s.scheme().to_string(),
+            scheme: scheme.to_string(),
             levels,
             input_vertices: in_vertices,
             input_faces: in_faces,
@@ -316,7 +369,7 @@ fn report(
             a.input.display(),
             a.output.display(),
             levels,
-            s.scheme(),
+            scheme,
             vertices,
             faces
         );
@@ -463,7 +516,7 @@ pub(crate) fn limit(a: &LimitCmdArgs) -> Result<()> {
 
 /// `subdiv repair` (always repairs).
 pub(crate) fn repair(a: &RepairArgs) -> Result<()> {
-    let from = InputArgs { repair: true, limits: a.limits.clone() };
+    let from = InputArgs { repair: true, limits: a.limits.clone(), time: None };
     let loaded = bundled::read(&a.input, &from.options(false)?)?;
     let mesh = loaded.mesh;
     io::save(&a.output, &mesh)?;

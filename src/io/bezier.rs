@@ -224,7 +224,7 @@ pub const BEZ_FORMAT: Format = Format {
     written_as: &[],
     poly_writer: None,
     faces_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false, holes: false },
 };
 
 /// The `.bzc` row of [`super::FORMATS`]: a curve, not a mesh (the viewer
@@ -238,7 +238,7 @@ pub const BZC_FORMAT: Format = Format {
     written_as: &[],
     poly_writer: None,
     faces_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false, holes: false },
 };
 
 /// Samples per patch side when a `.bez` file is opened as a mesh.

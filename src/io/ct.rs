@@ -77,7 +77,7 @@ pub(crate) const FORMAT: Format = Format {
     written_as: &["ct"],
     poly_writer: Some(|path, mesh, _| save_poly(path, mesh)),
     faces_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false, creases: true },
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: true, holes: false },
 };
 
 /// Reads `.ct` text into a [`RawMesh`] with its stored opposite table and

@@ -44,7 +44,7 @@ pub(crate) const FORMAT: Format = Format {
     written_as: &[],
     poly_writer: None,
     faces_writer: None,
-    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false, holes: false },
 };
 
 /// Reads a COLLADA file.

@@ -42,7 +42,8 @@ pub(crate) const FORMAT: Format = Format {
     written_as: &["glb"],
     poly_writer: None,
     faces_writer: Some(|path, positions, corners, _, attrs| save_faces(path, positions, corners, attrs)),
-    keeps: Keeps { uv: true, colors: true, materials: false, creases: false },
+    // material groups (a stage's prims among them) as meshes, one a group
+    keeps: Keeps { uv: true, colors: true, materials: true, creases: false, holes: false },
 };
 
 /// Reads a `.gltf` or `.glb` file; buffers and images it names are found
@@ -386,7 +387,9 @@ fn base64(s: &str) -> Option<Vec<u8>> {
 /// indices), its bytes, its element count, glTF type and component type,
 /// and extra accessor JSON (bounds).
 struct View<'a> {
+    /// The attribute; `None`: the indices of the mesh called `mesh`.
     name: Option<&'static str>,
+    mesh: String,
     bytes: Cow<'a, [u8]>,
     count: usize,
     ty: &'static str,
@@ -442,7 +445,8 @@ pub(crate) fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Att
     let (lo, hi) = crate::mesh::bounds_of(positions);
     let minmax = format!(",\"min\":[{},{},{}],\"max\":[{},{},{}]", lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
     let n = if uv.is_some() { v.len() } else { positions.len() };
-    let view = |name, bytes, count, ty, ctype, extra| View { name, bytes, count, ty, ctype, extra };
+    let view =
+        |name, bytes, count, ty, ctype, extra| View { name, bytes, count, ty, ctype, extra, mesh: String::new() };
     let mut views = vec![
         view(Some("POSITION"), points(positions, per_corner), n, "VEC3", 5126, minmax),
         view(Some("NORMAL"), points(&normals, per_corner), n, "VEC3", 5126, String::new()),
@@ -454,11 +458,26 @@ pub(crate) fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Att
     if let Some(c) = colors {
         views.push(view(Some("COLOR_0"), points(c, per_corner), n, "VEC3", 5126, String::new()));
     }
-    let indices = match uv {
-        Some(_) => Cow::Owned((0..v.len() as u32).into_par_iter().flat_map_iter(u32::to_le_bytes).collect()),
-        None => le_bytes(v, |i: &u32| i.to_le_bytes().to_vec()),
-    };
-    views.push(view(None, indices, v.len(), "SCALAR", 5125, String::new()));
+    match meshes(v.len() / 3, attrs) {
+        None => {
+            let indices = match uv {
+                Some(_) => Cow::Owned((0..v.len() as u32).into_par_iter().flat_map_iter(u32::to_le_bytes).collect()),
+                None => le_bytes(v, |i: &u32| i.to_le_bytes().to_vec()),
+            };
+            views.push(view(None, indices, v.len(), "SCALAR", 5125, String::new()));
+        }
+        Some(groups) => {
+            // one mesh a group, each with the indices of its triangles
+            for (name, tris) in groups {
+                let index = |c: u32| if uv.is_some() { c } else { v[c as usize] };
+                let bytes: Vec<u8> =
+                    tris.iter().flat_map(|&t| (3 * t..3 * t + 3).flat_map(|c| index(c).to_le_bytes())).collect();
+                let mut w = view(None, Cow::Owned(bytes), 3 * tris.len(), "SCALAR", 5125, String::new());
+                w.mesh = name;
+                views.push(w);
+            }
+        }
+    }
     let (head, offsets) = glb_head(&views, path)?;
     // pieces: the head, then every array in slices of about 1 MB
     const SLICE: usize = 1 << 20;
@@ -469,11 +488,47 @@ pub(crate) fn save_faces(path: &Path, positions: &[Vec3], v: &[u32], attrs: &Att
     super::atomic_write_pieces(path, pieces.len(), |k| (pieces[k].0, Cow::Borrowed(pieces[k].1)))
 }
 
+/// The meshes of triangles to write, when the material groups make more
+/// than one: a scene's prims (named by their paths), else the groups
+/// (named by their materials), each with its triangles.
+fn meshes(nt: usize, attrs: &Attributes) -> Option<Vec<(String, Vec<u32>)>> {
+    let m = attrs.materials.as_ref().filter(|m| m.face.len() == nt)?;
+    let scene = m.scene.as_deref().filter(|s| s.prim_of.len() == m.list.len());
+    let (names, of): (Vec<String>, Box<dyn Fn(u32) -> usize>) = match scene {
+        Some(s) => (s.prims.iter().map(|p| p.path.clone()).collect(), Box::new(|g| s.prim_of[g as usize] as usize)),
+        None => (m.list.iter().map(|x| x.name.clone()).collect(), Box::new(|g| g as usize)),
+    };
+    let mut out: Vec<(String, Vec<u32>)> = names.into_iter().map(|n| (n, Vec::new())).collect();
+    for (t, &g) in m.face.iter().enumerate() {
+        if let Some(x) = out.get_mut(of(g)) {
+            x.1.push(t as u32);
+        }
+    }
+    out.retain(|x| !x.1.is_empty());
+    (out.len() > 1).then_some(out)
+}
+
+/// A JSON string literal of `s`.
+fn json_string(s: &str) -> String {
+    let mut out = String::from("\"");
+    for c in s.chars() {
+        match c {
+            '"' => out.push_str("\\\""),
+            '\\' => out.push_str("\\\\"),
+            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
+}
+
 /// The `.glb` header, JSON chunk and binary chunk header for `views` laid
 /// out one after the other (each a multiple of 4 bytes), and each view's
 /// offset in the binary chunk.
 fn glb_head(views: &[View], path: &Path) -> Result<(Vec<u8>, Vec<usize>)> {
     let (mut json_views, mut accessors, mut attributes, mut offsets) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut indices = Vec::new();
     let mut offset = 0usize;
     for (i, w) in views.iter().enumerate() {
         let (len, target) = (w.bytes.len(), if w.name.is_some() { 34962 } else { 34963 });
@@ -482,16 +537,32 @@ fn glb_head(views: &[View], path: &Path) -> Result<(Vec<u8>, Vec<usize>)> {
             "{{\"bufferView\":{i},\"componentType\":{},\"count\":{},\"type\":\"{}\"{}}}",
             w.ctype, w.count, w.ty, w.extra
         ));
-        if let Some(name) = w.name {
-            attributes.push(format!("\"{name}\":{i}"));
+        match w.name {
+            Some(name) => attributes.push(format!("\"{name}\":{i}")),
+            None => indices.push((i, w.mesh.as_str())),
         }
         offsets.push(offset);
         offset += len;
     }
+    let attributes = attributes.join(",");
+    let named = |name: &str| if name.is_empty() { String::new() } else { format!("\"name\":{},", json_string(name)) };
+    let meshes: Vec<String> = indices
+        .iter()
+        .map(|(i, name)| {
+            format!(
+                "{{{}\"primitives\":[{{\"attributes\":{{{attributes}}},\"indices\":{i},\"mode\":4}}]}}",
+                named(name)
+            )
+        })
+        .collect();
+    let nodes: Vec<String> =
+        indices.iter().enumerate().map(|(k, (_, name))| format!("{{{}\"mesh\":{k}}}", named(name))).collect();
+    let roots: Vec<String> = (0..nodes.len()).map(|k| k.to_string()).collect();
     let json = format!(
-        "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"subdiv\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[0]}}],\"nodes\":[{{\"mesh\":0}}],\"meshes\":[{{\"primitives\":[{{\"attributes\":{{{}}},\"indices\":{},\"mode\":4}}]}}],\"buffers\":[{{\"byteLength\":{offset}}}],\"bufferViews\":[{}],\"accessors\":[{}]}}",
-        attributes.join(","),
-        accessors.len() - 1,
+        "{{\"asset\":{{\"version\":\"2.0\",\"generator\":\"subdiv\"}},\"scene\":0,\"scenes\":[{{\"nodes\":[{}]}}],\"nodes\":[{}],\"meshes\":[{}],\"buffers\":[{{\"byteLength\":{offset}}}],\"bufferViews\":[{}],\"accessors\":[{}]}}",
+        roots.join(","),
+        nodes.join(","),
+        meshes.join(","),
         json_views.join(","),
         accessors.join(",")
     );

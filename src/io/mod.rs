@@ -105,6 +105,9 @@ pub struct Keeps {
     pub materials: bool,
     /// Sharp edges and vertices (creases and corners).
     pub creases: bool,
+    /// The holes of a refined level (USD's `holeIndices`; elsewhere a
+    /// refined level's holes are left out).
+    pub holes: bool,
 }
 
 impl std::fmt::Debug for Format {
@@ -182,6 +185,9 @@ pub struct Input<'a> {
     pub warnings: &'a Warnings,
     /// Whether material textures are decoded.
     pub textures: bool,
+    /// The time code to read a stage's sampled points at (`None`: where
+    /// the stage opens).
+    pub time: Option<f64>,
 }
 
 impl Input<'_> {
@@ -288,13 +294,23 @@ pub struct ReadOptions {
     pub attributes: bool,
     /// Whether material textures are decoded (for drawing).
     pub textures: bool,
+    /// The time code a stage's sampled points are read at (`None`: its
+    /// `startTimeCode`, else its first sample; unsampled values are read
+    /// whatever the time).
+    pub time: Option<f64>,
 }
 
 impl Default for ReadOptions {
     /// The default budget, refusing invalid topology, with attributes and
     /// without decoding textures.
     fn default() -> ReadOptions {
-        ReadOptions { limits: Limits::default(), topology: Topology::Refuse, attributes: true, textures: false }
+        ReadOptions {
+            limits: Limits::default(),
+            topology: Topology::Refuse,
+            attributes: true,
+            textures: false,
+            time: None,
+        }
     }
 }
 
@@ -316,6 +332,23 @@ pub struct Loaded {
     /// PLY's `double` properties) and no repair renumbered them; `None`:
     /// `mesh.positions` are what the file holds.
     pub precise: Option<Vec<glam::DVec3>>,
+    /// Where the file's prims state different subdivision options (a USD
+    /// stage of a Loop prim and a Catmull-Clark one): one mesh per set of
+    /// options, each refined by its own; empty otherwise (then `mesh` is
+    /// refined as one).
+    pub groups: Vec<Group>,
+}
+
+/// The prims of a file that state one set of options, as a mesh of their
+/// own (see [`Loaded::groups`]): its attributes' options are theirs.
+#[derive(Clone, Debug)]
+pub struct Group {
+    /// Their faces, on their own vertices.
+    pub mesh: Mesh,
+    /// Their attributes (material groups and scene too).
+    pub attributes: Attributes,
+    /// Their positions in f64, as [`Loaded::precise`].
+    pub precise: Option<Vec<glam::DVec3>>,
 }
 
 /// Reads a mesh from `source` as `opts` say: the one way in. The stages
@@ -329,11 +362,22 @@ pub struct Loaded {
 pub fn read(source: Source, opts: &ReadOptions) -> Result<Loaded> {
     let Raw { raw, format, file, warnings } = read_raw(source, opts)?;
     let precise = raw.kept_precise(opts.topology);
+    // a repair renumbers and drops the attributes, and the prims with them
+    let split = opts.topology == Topology::Refuse && opts.attributes;
+    let groups = if split { raw.by_options() } else { Vec::new() };
     let (mesh, attributes, notes) = raw.build(&file, opts.topology, opts.attributes)?;
+    let groups = groups
+        .into_iter()
+        .map(|g| {
+            let precise = g.kept_precise(opts.topology);
+            let (mesh, attributes, _) = g.build(&file, opts.topology, true)?;
+            Ok(Group { mesh, attributes, precise })
+        })
+        .collect::<Result<Vec<_>>>()?;
     for w in &warnings {
         log::warn!("{w}");
     }
-    Ok(Loaded { mesh, attributes, format, notes, warnings, precise })
+    Ok(Loaded { mesh, attributes, format, notes, warnings, precise, groups })
 }
 
 /// What [`read_raw`] gives back: the polygons as read, before the build.
@@ -372,8 +416,15 @@ pub fn read_raw(source: Source, opts: &ReadOptions) -> Result<Raw> {
     let reader = format.reader.ok_or_else(|| Error::NotAMesh { file: file.clone(), what: format.name })?;
     let refs = Resolver::new(&file, folder, &budget);
     let warnings = Warnings::new(&file, opts.limits.message_chars);
-    let input =
-        Input { bytes, file: &file, budget: &budget, refs: &refs, warnings: &warnings, textures: opts.textures };
+    let input = Input {
+        bytes,
+        file: &file,
+        budget: &budget,
+        refs: &refs,
+        warnings: &warnings,
+        textures: opts.textures,
+        time: opts.time,
+    };
     let raw = reader(&input)?;
     Ok(Raw { raw, format, file, warnings: warnings.finish() })
 }

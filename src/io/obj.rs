@@ -17,6 +17,7 @@ use super::resolve::Scope;
 use super::text::{self, Line};
 use super::{Format, Input, Keeps, atomic_write};
 use crate::mesh::Mesh;
+use crate::mesh::attributes::weld_uvs;
 use crate::mesh::attributes::{Attributes, Material};
 use crate::mesh::options::{ShapeOptions, TriangleSubdivision};
 use crate::mesh::sharpness::Creasing;
@@ -36,7 +37,7 @@ pub(crate) const FORMAT: Format = Format {
     written_as: &["obj"],
     poly_writer: Some(save_poly),
     faces_writer: Some(save_faces),
-    keeps: Keeps { uv: true, colors: true, materials: true, creases: true },
+    keeps: Keeps { uv: true, colors: true, materials: true, creases: true, holes: false },
 };
 
 /// A corner without a texture coordinate.
@@ -821,8 +822,9 @@ fn write_records(
     for lib in mats.map(|m| m.libraries.as_slice()).unwrap_or_default() {
         record(&mut out, &mut |o| o.extend_from_slice(format!("mtllib {lib}\n").as_bytes()))?;
     }
-    let uv = attrs.uv.as_ref().filter(|u| u.len() == faces.corners.len());
-    for t in uv.into_iter().flatten() {
+    // one vt per vertex and coordinate: the seams stay seams, the rest is shared
+    let uv = attrs.uv.as_ref().filter(|u| u.len() == faces.corners.len()).map(|u| weld_uvs(faces.corners, u));
+    for t in uv.iter().flat_map(|(values, _)| values) {
         record(&mut out, &mut |o| {
             o.extend_from_slice(b"vt");
             for x in [t.x, t.y] {
@@ -832,24 +834,35 @@ fn write_records(
             o.push(b'\n');
         })?;
     }
-    let mut current = u32::MAX;
+    // a scene's prims are objects (`o`), other groups materials (`usemtl`)
+    let scene = mats.and_then(|m| m.scene.as_deref()).filter(|s| mats.is_some_and(|m| s.prim_of.len() == m.list.len()));
+    let (mut current, mut prim) = (u32::MAX, u32::MAX);
     for f in 0..faces.count {
         if let Some(m) = mats
             && m.face[f] != current
         {
             current = m.face[f];
-            let name = m.list.get(current as usize).map_or("default", |x| x.name.as_str());
-            record(&mut out, &mut |o| o.extend_from_slice(format!("usemtl {name}\n").as_bytes()))?;
+            match scene {
+                Some(s) if s.prim_of[current as usize] != prim => {
+                    prim = s.prim_of[current as usize];
+                    let name = s.prims.get(prim as usize).map_or("/Mesh", |p| p.path.as_str());
+                    record(&mut out, &mut |o| o.extend_from_slice(format!("o {name}\n").as_bytes()))?;
+                }
+                Some(_) => {}
+                None => {
+                    let name = m.list.get(current as usize).map_or("default", |x| x.name.as_str());
+                    record(&mut out, &mut |o| o.extend_from_slice(format!("usemtl {name}\n").as_bytes()))?;
+                }
+            }
         }
         record(&mut out, &mut |o| {
             o.push(b'f');
             for c in (faces.face)(f) {
                 o.push(b' ');
                 o.extend_from_slice(ib.format(faces.corners[c] + 1).as_bytes());
-                if uv.is_some() {
-                    // one vt per corner, in corner order
+                if let Some((_, index)) = &uv {
                     o.push(b'/');
-                    o.extend_from_slice(ib.format(c + 1).as_bytes());
+                    o.extend_from_slice(ib.format(index[c] + 1).as_bytes());
                 }
             }
             o.push(b'\n');

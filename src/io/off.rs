@@ -39,7 +39,7 @@ pub(crate) const FORMAT: Format = Format {
     faces_writer: Some(|path, positions, corners, sides, attrs| {
         save_faces(path, positions, (corners, sides), attrs.colors.as_deref())
     }),
-    keeps: Keeps { uv: false, colors: true, materials: false, creases: false },
+    keeps: Keeps { uv: false, colors: true, materials: false, creases: false, holes: false },
 };
 
 /// What the header's keyword says each vertex line holds besides `x y z`

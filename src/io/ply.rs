@@ -134,7 +134,7 @@ pub(crate) const FORMAT: Format = Format {
     faces_writer: Some(|path, positions, corners, sides, attrs| {
         write(path, positions, attrs.colors.as_deref(), &Faces::Fixed(corners, sides))
     }),
-    keeps: Keeps { uv: false, colors: true, materials: false, creases: false },
+    keeps: Keeps { uv: false, colors: true, materials: false, creases: false, holes: false },
 };
 
 /// The header: lines up to the first line that is `end_header` (a comment

@@ -55,6 +55,9 @@ pub struct RawMesh {
     pub twins: Option<Vec<u32>>,
     /// Where the records are in the file, for messages.
     pub sources: Sources,
+    /// The prims the material groups stand for, with their own options
+    /// and transforms, and the stage's metadata (USD).
+    pub scene: Option<crate::mesh::Scene>,
 }
 
 /// Where the records of a [`RawMesh`] are in their file, for messages: the
@@ -270,7 +273,7 @@ impl RawMesh {
             while list.len() < n {
                 list.push(Material::named(&format!("material {}", list.len())));
             }
-            MaterialGroups { face, list, libraries: self.libraries }
+            MaterialGroups { face, list, libraries: self.libraries, scene: self.scene.map(std::sync::Arc::new) }
         });
         Ok((mesh, Attributes { uv, colors, materials, options: self.options }, notes))
     }
@@ -335,6 +338,95 @@ impl RawMesh {
         merge(&mut self.colors, other.colors, nv0, other.positions.len(), Vec3::ONE);
         merge(&mut self.materials, other.materials, nf0, other.face_starts.len().saturating_sub(1), 0);
         self.positions.extend(other.positions);
+    }
+}
+
+impl RawMesh {
+    /// The prims of a scene whose prims state different options, as one
+    /// mesh per set of options (in order of first use; each holding its
+    /// prims' faces, vertices, attributes, tags and holes, renumbered, and
+    /// its options); empty when every prim states the same ones.
+    pub(crate) fn by_options(&self) -> Vec<RawMesh> {
+        let Some(scene) = self.scene.as_ref().filter(|s| s.mixed()) else { return Vec::new() };
+        let Some(groups_of_face) = self.materials.as_ref().filter(|m| m.len() == self.num_faces()) else {
+            return Vec::new();
+        };
+        scene
+            .groups()
+            .into_iter()
+            .map(|(options, prims)| {
+                // the material groups of these prims, in order, and their new ids
+                let groups: Vec<u32> =
+                    (0..scene.prim_of.len() as u32).filter(|&g| prims.contains(&scene.prim_of[g as usize])).collect();
+                let mut new_group = vec![u32::MAX; scene.prim_of.len()];
+                for (k, &g) in groups.iter().enumerate() {
+                    new_group[g as usize] = k as u32;
+                }
+                let group = |f: usize| new_group.get(groups_of_face[f] as usize).copied().unwrap_or(u32::MAX);
+                let faces: Vec<usize> = (0..self.num_faces()).filter(|&f| group(f) != u32::MAX).collect();
+                let mut part = self.faces_only(&faces);
+                part.materials = Some(faces.iter().map(|&f| group(f)).collect());
+                part.options = options;
+                part.material_list =
+                    groups.iter().filter_map(|&g| self.material_list.get(g as usize).cloned()).collect();
+                part.libraries = self.libraries.clone();
+                part.scene = Some(scene.restricted(&prims, &groups));
+                part
+            })
+            .collect()
+    }
+
+    /// The faces `faces` (ids, ascending) on the vertices they use
+    /// (renumbered in order), with their texture coordinates, colours,
+    /// tags and holes.
+    fn faces_only(&self, faces: &[usize]) -> RawMesh {
+        let mut new_id = vec![u32::MAX; self.positions.len()];
+        let mut kept = Vec::new();
+        for &f in faces {
+            for &v in self.face(f) {
+                if let Some(slot) = new_id.get_mut(v as usize).filter(|s| **s == u32::MAX) {
+                    *slot = kept.len() as u32;
+                    kept.push(v as usize);
+                }
+            }
+        }
+        let mut out = RawMesh { positions: kept.iter().map(|&v| self.positions[v]).collect(), ..Default::default() };
+        let mut corner_ids = Vec::new();
+        for &f in faces {
+            let c = self.face_starts[f] as usize..self.face_starts[f + 1] as usize;
+            out.push_face(&self.corners[c.clone()].iter().map(|&v| new_id[v as usize]).collect::<Vec<_>>());
+            corner_ids.extend(c);
+        }
+        if self.precise.len() == self.positions.len() {
+            out.precise = kept.iter().map(|&v| self.precise[v]).collect();
+        }
+        out.uv = self
+            .uv
+            .as_ref()
+            .filter(|u| u.len() == self.corners.len())
+            .map(|u| corner_ids.iter().map(|&c| u[c]).collect());
+        out.colors = self
+            .colors
+            .as_ref()
+            .filter(|c| c.len() == self.positions.len())
+            .map(|c| kept.iter().map(|&v| c[v]).collect());
+        let id = |v: u32| new_id.get(v as usize).copied().filter(|&n| n != u32::MAX);
+        for c in &self.tags.creases {
+            if let (Some(v0), Some(v1)) = (id(c.v0), id(c.v1)) {
+                out.tags.creases.push(CreaseTag { v0, v1, ..*c });
+            }
+        }
+        for c in &self.tags.corners {
+            if let Some(vertex) = id(c.vertex) {
+                out.tags.corners.push(CornerTag { vertex, ..*c });
+            }
+        }
+        for &(h, line) in &self.holes {
+            if let Ok(k) = faces.binary_search(&(h as usize)) {
+                out.holes.push((k as u32, line));
+            }
+        }
+        out
     }
 }
 

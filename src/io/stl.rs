@@ -26,7 +26,7 @@ pub(crate) const FORMAT: Format = Format {
     written_as: &["stl"],
     poly_writer: None,
     faces_writer: Some(|path, positions, corners, _, _| save_faces(path, positions, corners)),
-    keeps: Keeps { uv: false, colors: false, materials: false, creases: false },
+    keeps: Keeps { uv: false, colors: false, materials: false, creases: false, holes: false },
 };
 
 /// Whether `bytes` are a binary STL file (its size matches its triangle count).

@@ -112,6 +112,46 @@ impl Attributes {
     pub fn is_empty(&self) -> bool {
         self.uv.is_none() && self.colors.is_none() && self.materials.is_none()
     }
+
+    /// These attributes stating `options`, for the whole mesh and for every
+    /// prim of its scene (what a writer writes of a refined level: the
+    /// options it was made with).
+    pub fn with_options(mut self, options: crate::mesh::options::ShapeOptions) -> Attributes {
+        self.options = options;
+        if let Some(scene) = self.materials.as_mut().and_then(|m| m.scene.as_mut()) {
+            for p in &mut std::sync::Arc::make_mut(scene).prims {
+                p.options = options;
+            }
+        }
+        self
+    }
+
+    /// The scene whose prims the material groups belong to (a USD stage's).
+    pub fn scene(&self) -> Option<&crate::mesh::Scene> {
+        self.materials.as_ref().and_then(|m| m.scene.as_deref())
+    }
+}
+
+/// Texture coordinates per corner as shared values: one value per vertex
+/// and coordinate (the same bits), in order of first use, and the value of
+/// every corner. This is the face-varying topology the schemes refine (a
+/// seam is a vertex whose corners hold different values), and what the
+/// writers that share coordinates between corners keep (USD's
+/// `primvars:st:indices`, OBJ's `vt` records).
+pub(crate) fn weld_uvs(corner_vertex: &[u32], uv: &[Vec2]) -> (Vec<Vec2>, Vec<u32>) {
+    let mut ids = std::collections::HashMap::with_capacity(uv.len() / 2);
+    let mut values = Vec::new();
+    let index = corner_vertex
+        .iter()
+        .zip(uv)
+        .map(|(&v, &t)| {
+            *ids.entry((v, t.x.to_bits(), t.y.to_bits())).or_insert_with(|| {
+                values.push(t);
+                values.len() as u32 - 1
+            })
+        })
+        .collect();
+    (values, index)
 }
 
 /// One material (an OBJ's MTL entry, a glTF material): what is drawn of it.
@@ -179,6 +219,10 @@ pub struct MaterialGroups {
     pub list: Vec<Material>,
     /// The `mtllib` names, as in the file.
     pub libraries: Vec<String>,
+    /// The scene whose prims the groups belong to (a USD stage's Mesh
+    /// prims: [`crate::mesh::Scene::prim_of`] names each group's), so
+    /// every face knows its prim at every level.
+    pub scene: Option<std::sync::Arc<crate::mesh::Scene>>,
 }
 
 /// Per-triangle ids after `levels` 1-to-4 splits: every child triangle

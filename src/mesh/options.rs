@@ -48,7 +48,7 @@ pub enum FileScheme {
 
 impl FileScheme {
     /// USD's token for it.
-    pub(crate) fn token(self) -> &'static str {
+    pub fn token(self) -> &'static str {
         match self {
             FileScheme::CatmullClark => "catmullClark",
             FileScheme::Loop => "loop",

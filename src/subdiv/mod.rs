@@ -19,6 +19,7 @@
 mod cage;
 pub(crate) mod eval;
 pub(crate) mod inspect;
+mod parts;
 pub(crate) mod pick;
 mod precise;
 pub(crate) mod refine;
@@ -44,6 +45,7 @@ use std::time::Instant;
 
 pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;
+pub use parts::{Part, subdivide_parts};
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
 pub use scheme::{Options, Scheme, Stats};

@@ -2,20 +2,29 @@
 //! `.usdz`), through the `openusd` crate (pure Rust, no C++).
 //!
 //! Read: every Mesh prim of the composed stage (sublayers, references and
-//! payloads followed, inside the stage's folder only) with its parent
-//! transforms applied, joined into one [`RawMesh`] whose material groups
-//! are the prims (named by their paths, so the writer puts each face back
-//! in its prim at every level); `leftHanded` prims and mirroring
-//! transforms have their faces reversed. The first prim's
-//! `subdivisionScheme`, `interpolateBoundary`,
-//! `faceVaryingLinearInterpolation` and `triangleSubdivisionRule` are the
-//! options (USD's defaults where unauthored; a prim whose attributes differ
-//! is a warning); creases, corners, holes, `primvars:st` (per corner) and
-//! `primvars:displayColor` (per vertex) come along.
+//! payloads followed, inside the stage's folder only; instanceable prims
+//! expanded under their own paths; a PointInstancer refused by name) with
+//! its parent transforms applied, joined into one [`RawMesh`] whose
+//! material groups are the prims: a [`crate::mesh::Scene`] holds each
+//! prim's path, transform and options (`subdivisionScheme`,
+//! `interpolateBoundary`, `faceVaryingLinearInterpolation`,
+//! `triangleSubdivisionRule`; USD's defaults where unauthored), so every
+//! face keeps its prim at every level and prims that state different
+//! options are refined apart ([`crate::io::Loaded::groups`]). Points are
+//! read at the time asked for, else the stage's `startTimeCode`, else
+//! their first sample; the stage's `upAxis` and `metersPerUnit` are kept.
+//! `leftHanded` prims and mirroring transforms have their faces reversed.
+//! Creases, corners, holes, `primvars:st` (per corner) and
+//! `primvars:displayColor` (per vertex, or per face as the groups'
+//! colours) come along.
 //!
-//! Written: one Mesh per prim (one `/Mesh` for a mesh from another format)
-//! with the topology, the options, creases and corners at the output's
-//! level (decayed), holes, `st` (faceVarying) and `displayColor` (vertex).
+//! Written: one Mesh per prim (one `/Mesh` for a mesh from another format),
+//! its points in its own space under its transform (`xformOp:transform`),
+//! with the topology, its options, creases and corners at the output's
+//! level (decayed), holes, `st` (faceVarying, indexed: one value per
+//! vertex and coordinate, so the seams are the ones refined) and
+//! `displayColor` (vertex, or uniform); the stage's `upAxis` and
+//! `metersPerUnit`.
 
 mod read;
 mod stage;
@@ -35,7 +44,7 @@ pub(crate) const FORMAT: Format = Format {
     written_as: &["usda", "usdc", "usdz"],
     poly_writer: Some(write::save_poly),
     faces_writer: None,
-    keeps: Keeps { uv: true, colors: true, materials: true, creases: true },
+    keeps: Keeps { uv: true, colors: true, materials: true, creases: true, holes: true },
 };
 
 /// Reads every Mesh prim of the stage.

@@ -1,15 +1,17 @@
 //! Reading a stage's Mesh prims into one [`RawMesh`]: each prim's points
-//! through its world transform, its faces (reversed for `leftHanded`, and
-//! for a mirroring transform), creases, corners, holes, `st` per corner and
-//! `displayColor` per vertex; the prims' paths become the material groups
-//! (so every level keeps which prim a face came from) and the first prim's
-//! subdivision attributes the options.
+//! (at the time read) through its world transform, its faces (reversed for
+//! `leftHanded`, and for a mirroring transform), creases, corners, holes,
+//! `st` per corner and `displayColor` per vertex or face; each prim one
+//! material group (one per colour where its colours are per face) and one
+//! prim of the [`Scene`] with its own options and transform, the first
+//! prim's options the mesh's.
 
 use super::stage::{Confined, guarded};
 use crate::io::Input;
 use crate::io::raw::{RawMesh, format_err};
 use crate::mesh::attributes::{Material, UvInterpolation};
 use crate::mesh::options::{FileScheme, ShapeOptions, TriangleSubdivision};
+use crate::mesh::scene::{self, Scene, UpAxis};
 use crate::mesh::sharpness::{BoundaryInterpolation, CornerTag, CreaseTag};
 use crate::{Error, Result};
 use glam::{DMat4, DVec3, Vec2, Vec3};
@@ -51,40 +53,111 @@ pub(super) fn read(input: &Input, folder: Option<&std::path::Path>) -> Result<Ra
     outcome.map_err(|e| refs.refusal().unwrap_or(e))
 }
 
-/// Every Mesh prim of `stage`, in namespace order, joined.
+/// Every Mesh prim of `stage` (instances expanded), in namespace order,
+/// joined, with the scene: each prim's options and transform, the stage's
+/// units and axis, the time the points were read at and the times they
+/// are sampled at.
 fn meshes(stage: &Stage, input: &Input) -> Result<RawMesh> {
     let file = input.file;
     let usd = |e: anyhow::Error| format_err(file, "stage", format!("{e:#}"));
     let mut paths = Vec::new();
     let mut visits = 0u64;
+    // instance proxies: an instanceable prim's meshes are read under its own path
     stage
-        .traverse(PrimPredicate::DEFAULT, |p| {
+        .traverse(PrimPredicate::DEFAULT_PROXIES, |p| {
             visits += 1;
             paths.push(p.clone());
         })
         .map_err(usd)?;
     input.budget.check("node-visits", visits, file, "prims")?;
-    let mut raw = RawMesh::default();
-    let mut first: Option<(ShapeOptions, String)> = None;
+    let mut found = Vec::new();
     for path in paths {
-        let Some(mesh) = geom::Mesh::get(stage, path.clone()).map_err(usd)? else { continue };
-        let at = format!("prim {}", crate::error::clean(path.as_str(), 80));
-        let options = Prim { mesh: &mesh, stage, file, at: &at }.append(&mut raw, input)?;
-        match &first {
-            None => first = Some((options, at.clone())),
-            Some((o, by)) if *o != options => input.warnings.warn(
-                "prims whose subdivision attributes differ",
-                format!("{file}: {at}: its subdivision attributes differ from {by}'s, whose are used"),
-            ),
-            Some(_) => {}
+        if geom::PointInstancer::get(stage, path.clone()).map_err(usd)?.is_some() {
+            let at = crate::error::clean(path.as_str(), 80);
+            return Err(format_err(
+                file,
+                &format!("prim {at}"),
+                "is a PointInstancer, whose instances are not read (expand them into meshes, or leave the prim out)",
+            ));
         }
-        raw.material_list.push(Material::named(path.as_str()));
+        if let Some(mesh) = geom::Mesh::get(stage, path.clone()).map_err(usd)? {
+            found.push((path, mesh));
+        }
     }
-    let Some((options, _)) = first else {
+    if found.is_empty() {
         return Err(format_err(file, "stage", "no Mesh prim"));
-    };
-    raw.options = options;
+    }
+    let times = sample_times(&found, input)?;
+    let time = input.time.or_else(|| (!times.is_empty()).then(|| first_frame(stage, &times)));
+    let mut raw = RawMesh::default();
+    let mut scene = Scene { time, times, ..Default::default() };
+    for (path, mesh) in &found {
+        let at = format!("prim {}", crate::error::clean(path.as_str(), 80));
+        let prim = Prim { mesh, stage, file, at: &at, time, start: stage.start_time_code() };
+        let read = prim.append(&mut raw, input)?;
+        let id = scene.prims.len() as u32;
+        let groups = read.groups.len();
+        for (k, c) in read.groups.into_iter().enumerate() {
+            let mut m = Material::named(path.as_str());
+            if let Some(c) = c {
+                m.diffuse = c;
+                if groups > 1 {
+                    m.name = format!("{} color {k}", path.as_str());
+                }
+            }
+            raw.material_list.push(m);
+            scene.prim_of.push(id);
+        }
+        scene.prims.push(read.prim);
+    }
+    raw.options = scene.prims[0].options;
+    (scene.up_axis, scene.meters_per_unit) = stage_units(stage, file)?;
+    raw.scene = Some(scene);
     Ok(raw)
+}
+
+/// The time codes at which any prim's points are sampled, sorted.
+fn sample_times(found: &[(openusd::sdf::Path, geom::Mesh)], input: &Input) -> Result<Vec<f64>> {
+    let mut times = Vec::new();
+    for (path, mesh) in found {
+        let t = mesh.attribute("points").time_sample_times();
+        let t = t.map_err(|e| format_err(input.file, &format!("prim {}", path.as_str()), format!("points: {e:#}")))?;
+        times.extend(t.into_iter().filter(|t| t.is_finite()));
+        input.budget.check("node-visits", times.len() as u64, input.file, "time samples")?;
+    }
+    times.sort_by(f64::total_cmp);
+    times.dedup();
+    Ok(times)
+}
+
+/// The frame a stage opens at: its `startTimeCode` where the stage
+/// states a time range, else its first sample (as usdview does).
+fn first_frame(stage: &Stage, times: &[f64]) -> f64 {
+    match stage.has_authored_time_code_range() {
+        true => stage.start_time_code(),
+        false => times[0],
+    }
+}
+
+/// The stage's `upAxis` and `metersPerUnit`, where stated.
+fn stage_units(stage: &Stage, file: &str) -> Result<(Option<UpAxis>, Option<f64>)> {
+    let meta = |name: &str| stage.stage_metadata(name).map_err(|e| format_err(file, "stage", format!("{name}: {e:#}")));
+    let up = match meta("upAxis")? {
+        Some(Value::Token(t)) if t.as_str() == "Y" => Some(UpAxis::Y),
+        Some(Value::Token(t)) if t.as_str() == "Z" => Some(UpAxis::Z),
+        Some(Value::String(t)) if t == "Y" => Some(UpAxis::Y),
+        Some(Value::String(t)) if t == "Z" => Some(UpAxis::Z),
+        None => None,
+        Some(other) => return Err(format_err(file, "stage", format!("upAxis {other:?} is neither Y nor Z"))),
+    };
+    let meters = match meta("metersPerUnit")? {
+        None => None,
+        Some(v) => match v.try_as_double() {
+            Some(m) if m.is_finite() && m > 0.0 => Some(m),
+            _ => return Err(format_err(file, "stage", "metersPerUnit is not a positive number")),
+        },
+    };
+    Ok((up, meters))
 }
 
 /// One Mesh prim being read.
@@ -93,12 +166,32 @@ struct Prim<'a> {
     stage: &'a Stage,
     file: &'a str,
     at: &'a str,
+    /// The time code the points are read at (`None`: default values).
+    time: Option<f64>,
+    /// The stage's start time, where transforms are read without a time.
+    start: f64,
+}
+
+/// What one prim adds to the scene: the prim, and its material groups'
+/// colours (one group without a colour, or one per face colour).
+struct Read {
+    prim: scene::Prim,
+    groups: Vec<Option<Vec3>>,
 }
 
 impl Prim<'_> {
     /// The composed default value of `name`, if authored.
     fn value(&self, name: &str) -> Result<Option<Value>> {
         self.mesh.attribute(name).get::<Value>().map_err(|e| self.err(format!("{name}: {e:#}")))
+    }
+
+    /// The value of `name` at the time being read (its default value
+    /// when nothing is sampled, or where it is not).
+    fn value_now(&self, name: &str) -> Result<Option<Value>> {
+        let Some(t) = self.time else { return self.value(name) };
+        let attr = self.mesh.attribute(name);
+        let at = attr.get_at::<Value>(openusd::usd::TimeCode::new(t));
+        at.map_err(|e| self.err(format!("{name} at time {t}: {e:#}")))
     }
 
     /// The `interpolation` metadata of the primvar `name`.
@@ -142,8 +235,10 @@ impl Prim<'_> {
         format_err(self.file, self.at, msg)
     }
 
-    /// Appends this prim to `raw` and gives its subdivision options.
-    fn append(&self, raw: &mut RawMesh, input: &Input) -> Result<ShapeOptions> {
+    /// Appends this prim to `raw`: its points, faces, texture
+    /// coordinates, colours, tags and material groups (one, or one per
+    /// face colour); gives the prim and its groups' colours.
+    fn append(&self, raw: &mut RawMesh, input: &Input) -> Result<Read> {
         let points = self.points()?;
         let counts = self.ints("faceVertexCounts")?;
         let indices = self.ints("faceVertexIndices")?;
@@ -172,22 +267,38 @@ impl Prim<'_> {
         } else if let Some(all) = &mut raw.uv {
             all.resize(raw.corners.len(), Vec2::ZERO);
         }
-        if let Some(c) = self.colors(points.len())? {
+        let colors = self.colors(points.len(), counts.len(), input)?;
+        if let Colors::Vertex(c) = &colors {
             raw.colors.get_or_insert_with(|| vec![Vec3::splat(0.8); nv0]).extend(c);
         } else if let Some(all) = &mut raw.colors {
             all.resize(raw.positions.len(), Vec3::splat(0.8));
         }
         self.tags(raw, (v0, f0), points.len(), counts.len())?;
-        let id = raw.material_list.len() as u32;
-        let nf = raw.num_faces();
-        raw.materials.get_or_insert_with(Vec::new).resize(nf, id);
-        self.options()
+        let (id, nf) = (raw.material_list.len() as u32, raw.num_faces());
+        let groups = raw.materials.get_or_insert_with(Vec::new);
+        let (face_colors, colours) = match colors {
+            Colors::Face(palette, of) => {
+                groups.extend(of.iter().map(|&k| id + k));
+                (true, palette.into_iter().map(Some).collect())
+            }
+            _ => {
+                groups.resize(nf, id);
+                (false, vec![None])
+            }
+        };
+        let prim = scene::Prim {
+            path: self.mesh.path().as_str().to_string(),
+            options: self.options()?,
+            transform: world.to_cols_array(),
+            face_colors,
+        };
+        Ok(Read { prim, groups: colours })
     }
 
     /// The `points`, in double precision.
     fn points(&self) -> Result<Vec<DVec3>> {
         let v3 = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
-        match self.value("points")? {
+        match self.value_now("points")? {
             Some(Value::Vec3fVec(p)) => Ok(p.iter().map(|p| v3(p.x as f64, p.y as f64, p.z as f64)).collect()),
             Some(Value::Vec3dVec(p)) => Ok(p.iter().map(|p| v3(p.x, p.y, p.z)).collect()),
             Some(Value::Vec3hVec(p)) => Ok(p.iter().map(|p| v3(p.x.to_f64(), p.y.to_f64(), p.z.to_f64())).collect()),
@@ -228,11 +339,12 @@ impl Prim<'_> {
         let usd = |e: anyhow::Error| self.err(format!("xformOps: {e:#}"));
         let mut m = DMat4::IDENTITY;
         let mut path = Some(self.mesh.path().clone());
+        let t = openusd::usd::TimeCode::new(self.time.unwrap_or(self.start));
         while let Some(p) = path {
             let (local, resets) = if let Some(x) = geom::Xform::get(self.stage, p.clone()).map_err(usd)? {
-                (x.local_to_parent_transform(0.0f32).map_err(usd)?, x.resets_xform_stack().map_err(usd)?)
+                (x.local_to_parent_transform(t).map_err(usd)?, x.resets_xform_stack().map_err(usd)?)
             } else if let Some(x) = geom::Mesh::get(self.stage, p.clone()).map_err(usd)? {
-                (x.local_to_parent_transform(0.0f32).map_err(usd)?, x.resets_xform_stack().map_err(usd)?)
+                (x.local_to_parent_transform(t).map_err(usd)?, x.resets_xform_stack().map_err(usd)?)
             } else {
                 (openusd::gf::Matrix4d::IDENTITY, false)
             };
@@ -274,24 +386,54 @@ impl Prim<'_> {
         }
     }
 
-    /// `primvars:displayColor` per vertex (vertex, varying or constant).
-    fn colors(&self, nv: usize) -> Result<Option<Vec<Vec3>>> {
+    /// `primvars:displayColor` (indexed or not): per vertex (vertex,
+    /// varying, or one constant colour for every vertex) or per face
+    /// (uniform: a palette and each face's entry); per corner is left out
+    /// with a warning.
+    fn colors(&self, nv: usize, nf: usize, input: &Input) -> Result<Colors> {
         let name = "primvars:displayColor";
         let values: Vec<Vec3> = match self.value(name)? {
-            None => return Ok(None),
+            None => return Ok(Colors::None),
             Some(Value::Vec3fVec(v)) => v.iter().map(|c| Vec3::new(c.x, c.y, c.z)).collect(),
             Some(Value::Vec3dVec(v)) => v.iter().map(|c| Vec3::new(c.x as f32, c.y as f32, c.z as f32)).collect(),
             Some(_) => return Err(self.err(format!("{name} is not a color3f[]"))),
         };
         let values: Vec<Vec3> = values.into_iter().map(|c| c.clamp(Vec3::ZERO, Vec3::ONE)).collect();
-        match (self.interpolation(name).as_deref().unwrap_or("constant"), values.len()) {
-            ("vertex" | "varying", n) if n == nv => Ok(Some(values)),
-            ("constant", 1) => Ok(Some(vec![values[0]; nv])),
-            (other, n) => {
-                // colours per face or corner are not kept per vertex: left out
-                let _ = (other, n);
-                Ok(None)
+        let indices = self.ints("primvars:displayColor:indices")?;
+        let n = if indices.is_empty() { values.len() } else { indices.len() };
+        // element k's value
+        let at = |k: usize| -> Result<usize> {
+            let i = if indices.is_empty() { Some(k) } else { indices.get(k).and_then(|&i| usize::try_from(i).ok()) };
+            i.filter(|&i| i < values.len()).ok_or_else(|| self.err(format!("{name}: element {k} has no value")))
+        };
+        match (self.interpolation(name).as_deref().unwrap_or("constant"), n) {
+            ("vertex" | "varying", n) if n == nv => {
+                Ok(Colors::Vertex((0..nv).map(|k| Ok(values[at(k)?])).collect::<Result<_>>()?))
             }
+            ("constant", 1) => Ok(Colors::Vertex(vec![values[at(0)?]; nv])),
+            ("uniform", n) if n == nf => {
+                // the palette: each distinct colour once, in order of first use
+                let mut palette: Vec<Vec3> = Vec::new();
+                let mut of = Vec::with_capacity(nf);
+                for f in 0..nf {
+                    let c = values[at(f)?];
+                    let k = palette.iter().position(|&p| p == c).unwrap_or_else(|| {
+                        palette.push(c);
+                        palette.len() - 1
+                    });
+                    of.push(k as u32);
+                }
+                input.budget.check("materials", palette.len() as u64, self.file, self.at)?;
+                Ok(Colors::Face(palette, of))
+            }
+            ("faceVarying", n) if n == self.ints("faceVertexIndices")?.len() => {
+                input.warnings.warn(
+                    "colours per face corner",
+                    format!("{}: {}: {name} per face corner is not kept", self.file, self.at),
+                );
+                Ok(Colors::None)
+            }
+            (other, n) => Err(self.err(format!("{name}: {n} values do not fit {other} interpolation"))),
         }
     }
 
@@ -377,6 +519,15 @@ impl Prim<'_> {
             scheme: Some(scheme),
         })
     }
+}
+
+/// A prim's `displayColor`.
+enum Colors {
+    None,
+    /// One per vertex.
+    Vertex(Vec<Vec3>),
+    /// A palette and each face's entry.
+    Face(Vec<Vec3>, Vec<u32>),
 }
 
 /// USD's `faceVaryingLinearInterpolation` tokens and our modes.

@@ -9,12 +9,12 @@
 use crate::io::atomic_write;
 use crate::mesh::Mesh;
 use crate::mesh::attributes::Attributes;
-use crate::mesh::options::FileScheme;
-use crate::mesh::options::TriangleSubdivision;
+use crate::mesh::options::{FileScheme, ShapeOptions, TriangleSubdivision};
 use crate::mesh::poly::PolyMesh;
+use crate::mesh::scene::{Prim, UpAxis};
 use crate::mesh::sharpness::{BoundaryInterpolation, Tags};
 use crate::{Error, Result};
-use glam::{Vec2, Vec3};
+use glam::{DMat4, Vec2, Vec3};
 use openusd::gf;
 use openusd::sdf::{self, ChildrenKey, FieldKey, SpecType, Specifier, Value, Variability};
 use std::path::Path;
@@ -93,22 +93,38 @@ fn package(bytes: &[u8]) -> anyhow::Result<Vec<u8>> {
     Ok(w.finish()?.into_inner())
 }
 
-/// The prims to write: (path, the faces of each).
-fn prims(faces: &Faces, attrs: &Attributes) -> Vec<(String, Vec<usize>)> {
+/// One prim to write: its path, its faces and what the scene says of it
+/// (its options, transform and colours; a mesh from another format has
+/// none: then the mesh's options, no transform).
+struct Written<'a> {
+    path: String,
+    faces: Vec<usize>,
+    prim: Option<&'a Prim>,
+}
+
+/// The prims to write: the scene's (each face's by its material group),
+/// else one per group named by a prim path (a stage written before scenes
+/// were kept), else one `/Mesh`.
+fn prims<'a>(faces: &Faces, attrs: &'a Attributes) -> Vec<Written<'a>> {
     let nf = faces.starts.len() - 1;
-    let groups = attrs.materials.as_ref().filter(|m| {
-        m.face.len() == nf
-            && !m.list.is_empty()
-            && m.list.iter().all(|x| x.name.starts_with('/') && sdf::path(&x.name).is_ok())
-    });
-    let Some(m) = groups else { return vec![("/Mesh".to_string(), (0..nf).collect())] };
-    let mut out: Vec<(String, Vec<usize>)> = m.list.iter().map(|x| (x.name.clone(), Vec::new())).collect();
+    let groups = attrs.materials.as_ref().filter(|m| m.face.len() == nf && !m.list.is_empty());
+    let whole = || vec![Written { path: "/Mesh".to_string(), faces: (0..nf).collect(), prim: None }];
+    let Some(m) = groups else { return whole() };
+    let scene = m.scene.as_deref().filter(|s| s.prim_of.len() == m.list.len());
+    let mut out: Vec<Written> = match scene {
+        Some(s) => s.prims.iter().map(|p| Written { path: p.path.clone(), faces: Vec::new(), prim: Some(p) }).collect(),
+        None if m.list.iter().all(|x| x.name.starts_with('/') && sdf::path(&x.name).is_ok()) => {
+            m.list.iter().map(|x| Written { path: x.name.clone(), faces: Vec::new(), prim: None }).collect()
+        }
+        None => return whole(),
+    };
     for (f, &g) in m.face.iter().enumerate() {
-        if let Some(p) = out.get_mut(g as usize) {
-            p.1.push(f);
+        let k = scene.map_or(g, |s| s.prim_of[g as usize]);
+        if let Some(p) = out.get_mut(k as usize) {
+            p.faces.push(f);
         }
     }
-    out.retain(|p| !p.1.is_empty());
+    out.retain(|p| !p.faces.is_empty() && sdf::path(&p.path).is_ok());
     out
 }
 
@@ -118,16 +134,25 @@ fn layer(faces: &Faces, attrs: &Attributes) -> anyhow::Result<sdf::Data> {
     let root = sdf::Path::abs_root();
     data.create_spec(root.clone(), SpecType::PseudoRoot);
     let prims = prims(faces, attrs);
-    for (k, (name, fs)) in prims.iter().enumerate() {
-        let path = sdf::path(name)?;
+    for (k, w) in prims.iter().enumerate() {
+        let path = sdf::path(&w.path)?;
         define(&mut data, &path, "Mesh")?;
         if k == 0 {
-            let top = name.trim_start_matches('/').split('/').next().unwrap_or("Mesh").to_string();
+            let top = w.path.trim_start_matches('/').split('/').next().unwrap_or("Mesh").to_string();
             if let Some(s) = data.spec_mut(&root) {
                 s.add(FieldKey::DefaultPrim, Value::Token(top.into()));
             }
         }
-        mesh(&mut data, &path, faces, fs, attrs)?;
+        mesh(&mut data, &path, faces, w, attrs)?;
+    }
+    let scene = attrs.materials.as_ref().and_then(|m| m.scene.as_deref());
+    if let (Some(s), Some(spec)) = (scene, data.spec_mut(&root)) {
+        if let Some(up) = s.up_axis {
+            spec.add("upAxis", Value::Token(if up == UpAxis::Z { "Z" } else { "Y" }.into()));
+        }
+        if let Some(m) = s.meters_per_unit {
+            spec.add("metersPerUnit", Value::Double(m));
+        }
     }
     Ok(data)
 }
@@ -196,47 +221,70 @@ fn add_attribute(
     Ok(())
 }
 
-/// The Mesh at `prim`: the faces `fs` of `faces` on their own vertices.
-fn mesh(data: &mut sdf::Data, prim: &sdf::Path, faces: &Faces, fs: &[usize], attrs: &Attributes) -> anyhow::Result<()> {
+/// The Mesh at `prim`: the faces of `w` on their own vertices, in the
+/// prim's own space under its transform.
+fn mesh(data: &mut sdf::Data, prim: &sdf::Path, faces: &Faces, w: &Written, attrs: &Attributes) -> anyhow::Result<()> {
+    let fs = &w.faces[..];
     // the prim's vertices in their order in the mesh
-    let mut local = vec![u32::MAX; faces.positions.len()];
+    let mut local_ids = vec![u32::MAX; faces.positions.len()];
     for &f in fs {
         for &v in &faces.corners[faces.starts[f]..faces.starts[f + 1]] {
-            local[v as usize] = 0;
+            local_ids[v as usize] = 0;
         }
     }
     let mut used = Vec::new();
-    for (v, l) in local.iter_mut().enumerate() {
+    for (v, l) in local_ids.iter_mut().enumerate() {
         if *l == 0 {
             *l = used.len() as u32;
             used.push(v);
         }
     }
     let v3 = |p: Vec3| gf::Vec3f { x: p.x, y: p.y, z: p.z };
-    let points = used.iter().map(|&v| v3(faces.positions[v])).collect();
+    let world = w.prim.map_or(DMat4::IDENTITY, |p| DMat4::from_cols_array(&p.transform));
+    let local = world.inverse();
+    let moved = world != DMat4::IDENTITY && local.is_finite();
+    let point = |p: Vec3| if moved { local.transform_point3(p.as_dvec3()).as_vec3() } else { p };
+    let points = used.iter().map(|&v| v3(point(faces.positions[v]))).collect();
     let counts = fs.iter().map(|&f| (faces.starts[f + 1] - faces.starts[f]) as i32).collect();
     let corner_ids: Vec<usize> = fs.iter().flat_map(|&f| faces.starts[f]..faces.starts[f + 1]).collect();
-    let indices = corner_ids.iter().map(|&c| local[faces.corners[c] as usize] as i32).collect();
+    let indices = corner_ids.iter().map(|&c| local_ids[faces.corners[c] as usize] as i32).collect();
     attribute(data, prim, "points", "point3f[]", Value::Vec3fVec(points), false)?;
     attribute(data, prim, "faceVertexCounts", "int[]", Value::IntVec(counts), false)?;
     attribute(data, prim, "faceVertexIndices", "int[]", Value::IntVec(indices), false)?;
-    options(data, prim, attrs)?;
-    sharp(data, prim, faces, fs, &local, attrs)?;
+    if moved {
+        let m = Value::Matrix4d(gf::Matrix4d(world.to_cols_array()));
+        attribute(data, prim, "xformOp:transform", "matrix4d", m, false)?;
+        let order = Value::TokenVec(vec!["xformOp:transform".into()]);
+        attribute(data, prim, "xformOpOrder", "token[]", order, true)?;
+    }
+    let options_of = w.prim.map_or(attrs.options, |p| p.options);
+    options(data, prim, options_of)?;
+    sharp(data, prim, faces, fs, &local_ids, options_of)?;
     if let Some(uv) = attrs.uv.as_ref().filter(|u| u.len() == faces.corners.len()) {
-        let st = corner_ids.iter().map(|&c| uv[c]).map(|t: Vec2| gf::Vec2f { x: t.x, y: t.y }).collect();
+        // one value per vertex and texture coordinate: the seams the
+        // surface was refined with (see weld_uvs)
+        let corner_vertex: Vec<u32> = corner_ids.iter().map(|&c| faces.corners[c]).collect();
+        let corner_uv: Vec<Vec2> = corner_ids.iter().map(|&c| uv[c]).collect();
+        let (values, index) = crate::mesh::attributes::weld_uvs(&corner_vertex, &corner_uv);
+        let st = values.iter().map(|t| gf::Vec2f { x: t.x, y: t.y }).collect();
         add_attribute(data, prim, "primvars:st", "texCoord2f[]", Value::Vec2fVec(st), false, Some("faceVarying"))?;
+        let index = index.into_iter().map(|i| i as i32).collect();
+        attribute(data, prim, "primvars:st:indices", "int[]", Value::IntVec(index), false)?;
     }
     if let Some(c) = attrs.colors.as_ref().filter(|c| c.len() == faces.positions.len()) {
         let col = used.iter().map(|&v| v3(c[v])).collect();
         add_attribute(data, prim, "primvars:displayColor", "color3f[]", Value::Vec3fVec(col), false, Some("vertex"))?;
+    } else if let Some(m) = attrs.materials.as_ref().filter(|_| w.prim.is_some_and(|p| p.face_colors)) {
+        let col =
+            fs.iter().map(|&f| v3(m.list.get(m.face[f] as usize).map_or(Vec3::splat(0.8), |x| x.diffuse))).collect();
+        add_attribute(data, prim, "primvars:displayColor", "color3f[]", Value::Vec3fVec(col), false, Some("uniform"))?;
     }
     Ok(())
 }
 
 /// The subdivision attributes: every one written, since USD's defaults
 /// (edgeAndCorner, cornersPlus1) are not ours.
-fn options(data: &mut sdf::Data, prim: &sdf::Path, attrs: &Attributes) -> anyhow::Result<()> {
-    let o = attrs.options;
+fn options(data: &mut sdf::Data, prim: &sdf::Path, o: ShapeOptions) -> anyhow::Result<()> {
     let token = |t: &str| Value::Token(t.into());
     let boundary = match o.boundary.unwrap_or_default() {
         BoundaryInterpolation::None => "none",
@@ -264,7 +312,7 @@ fn sharp(
     faces: &Faces,
     fs: &[usize],
     local: &[u32],
-    attrs: &Attributes,
+    options: ShapeOptions,
 ) -> anyhow::Result<()> {
     let id = |v: u32| local.get(v as usize).copied().filter(|&l| l != u32::MAX);
     let mut creases = (Vec::new(), Vec::new());
@@ -281,7 +329,7 @@ fn sharp(
         attribute(data, prim, "creaseSharpnesses", "float[]", Value::FloatVec(creases.1), false)?;
     }
     // edgeAndCorner's own corners (a vertex of one face) are not written: USD adds them
-    let implied = |v: u32| attrs.options.boundary == Some(BoundaryInterpolation::EdgeAndCorner) && faces.one_face(v);
+    let implied = |v: u32| options.boundary == Some(BoundaryInterpolation::EdgeAndCorner) && faces.one_face(v);
     let corners: Vec<(i32, f32)> = faces
         .tags
         .corners

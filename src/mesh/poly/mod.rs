@@ -16,6 +16,7 @@
 //! and nothing else is stored (docs/schemes.md §12.1).
 
 mod build;
+pub(crate) mod join;
 pub(crate) mod split;
 mod triangulate;
 

@@ -17,11 +17,11 @@
 
 use crate::mesh::BoundaryInterpolation;
 use crate::mesh::CornerTable;
+use crate::mesh::attributes::weld_uvs;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::Sharpness;
 use crate::subdiv::Options;
 use glam::{Vec2, Vec3};
-use std::collections::HashMap;
 
 /// The triangles of `ct` as polygons of three corners (the same corners):
 /// a table with hidden diagonals stands for polygons, not its triangles'.
@@ -42,19 +42,12 @@ pub(crate) fn charts(pt: &PolyTable, uv: &[Vec2], opts: &Options) -> Option<Poly
     if uv.len() != pt.num_corners() {
         return None;
     }
-    let mut ids: HashMap<(u32, [u32; 2]), u32> = HashMap::with_capacity(pt.num_vertices());
-    let mut vertex_of = Vec::new();
-    let mut positions = Vec::new();
-    let corners: Vec<u32> = (0..pt.num_corners() as u32)
-        .map(|c| {
-            let (v, t) = (pt.vtx(c), uv[c as usize]);
-            *ids.entry((v, [t.x.to_bits(), t.y.to_bits()])).or_insert_with(|| {
-                vertex_of.push(v);
-                positions.push(Vec3::new(t.x, t.y, 0.0));
-                positions.len() as u32 - 1
-            })
-        })
-        .collect();
+    let (values, corners) = weld_uvs(pt.v_table(), uv);
+    let mut vertex_of = vec![0u32; values.len()];
+    for (c, &u) in corners.iter().enumerate() {
+        vertex_of[u as usize] = pt.vtx(c as u32);
+    }
+    let positions: Vec<Vec3> = values.iter().map(|t| Vec3::new(t.x, t.y, 0.0)).collect();
     let starts: Vec<u32> =
         (0..pt.num_faces() as u32).map(|f| pt.face_corners(f).start).chain([pt.num_corners() as u32]).collect();
     let (table, _, kept) = PolyTable::build(positions.len(), &starts, &corners, Some(&positions)).ok()?;
