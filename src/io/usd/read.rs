@@ -77,7 +77,7 @@ fn meshes(stage: &Stage, input: &Input) -> Result<RawMesh> {
             return Err(format_err(
                 file,
                 &format!("prim {at}"),
-                "is a PointInstancer, whose instances are not read (expand them into meshes, or leave the prim out)",
+                "a PointInstancer, whose instances are not read (expand them into meshes, or leave the prim out)",
             ));
         }
         if let Some(mesh) = geom::Mesh::get(stage, path.clone()).map_err(usd)? {

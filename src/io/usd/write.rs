@@ -4,7 +4,9 @@
 //! `/Mesh`, each with its own vertices, the options as USD's attributes
 //! (written even where they are USD's defaults, since ours differ),
 //! creases and corners at the mesh's level, holes, `primvars:st`
-//! (faceVarying) and `primvars:displayColor` (vertex).
+//! (faceVarying, indexed) and `primvars:displayColor` (vertex, or uniform
+//! where the prim's colours are per face); a scene's prims keep their
+//! paths, options and transforms (see the module above).
 
 use crate::io::atomic_write;
 use crate::mesh::Mesh;
@@ -271,13 +273,14 @@ fn mesh(data: &mut sdf::Data, prim: &sdf::Path, faces: &Faces, w: &Written, attr
         let index = index.into_iter().map(|i| i as i32).collect();
         attribute(data, prim, "primvars:st:indices", "int[]", Value::IntVec(index), false)?;
     }
-    if let Some(c) = attrs.colors.as_ref().filter(|c| c.len() == faces.positions.len()) {
-        let col = used.iter().map(|&v| v3(c[v])).collect();
-        add_attribute(data, prim, "primvars:displayColor", "color3f[]", Value::Vec3fVec(col), false, Some("vertex"))?;
-    } else if let Some(m) = attrs.materials.as_ref().filter(|_| w.prim.is_some_and(|p| p.face_colors)) {
+    // a prim's colours per face are its groups'; the others' per vertex
+    if let Some(m) = attrs.materials.as_ref().filter(|_| w.prim.is_some_and(|p| p.face_colors)) {
         let col =
             fs.iter().map(|&f| v3(m.list.get(m.face[f] as usize).map_or(Vec3::splat(0.8), |x| x.diffuse))).collect();
         add_attribute(data, prim, "primvars:displayColor", "color3f[]", Value::Vec3fVec(col), false, Some("uniform"))?;
+    } else if let Some(c) = attrs.colors.as_ref().filter(|c| c.len() == faces.positions.len()) {
+        let col = used.iter().map(|&v| v3(c[v])).collect();
+        add_attribute(data, prim, "primvars:displayColor", "color3f[]", Value::Vec3fVec(col), false, Some("vertex"))?;
     }
     Ok(())
 }
