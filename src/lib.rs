@@ -63,8 +63,8 @@ pub use mesh::{BORDER, CornerTable, Mesh};
 pub use subdiv::eval::Evaluator;
 pub use subdiv::tables::StencilPlan;
 pub use subdiv::{
-    Cage, LoopBeta, Options, Part, Refiner, Scalar, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces,
-    subdivide_faces_f64, subdivide_parts,
+    Cage, LoopBeta, Options, Part, Refiner, Scalar, Scheme, Stats, parts_by_options, subdivide, subdivide_f64,
+    subdivide_faces, subdivide_faces_f64, subdivide_parts,
 };
 
 #[cfg(feature = "viewer")]

@@ -163,6 +163,19 @@ impl Paths {
         }
         Paths { keys_per_vertex: keys, keys: out }
     }
+
+    /// The frames of a sampled animation (a USD stage's time samples: each
+    /// frame one position per vertex, all of one count) as keys: vertex
+    /// `v`'s key `k` is its position in frame `k`. `None` for fewer than
+    /// two frames or frames of different counts.
+    pub fn of_frames(frames: &[Vec<Vec3>]) -> Option<Paths> {
+        let n = frames.first()?.len();
+        if frames.len() < 2 || frames.iter().any(|f| f.len() != n) {
+            return None;
+        }
+        let keys = (0..n).flat_map(|v| frames.iter().map(move |f| f[v])).collect();
+        Some(Paths { keys_per_vertex: frames.len(), keys })
+    }
 }
 
 #[cfg(test)]

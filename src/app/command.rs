@@ -183,7 +183,9 @@ impl Viewer {
                 doc.model.curve.set(None);
                 view.reset = true;
             }
-            Command::Subdivide(request) => {
+            Command::Subdivide(mut request) => {
+                // a scheme picked in the panel refines every prim with it
+                request.by_file &= request.scheme == doc.request.scheme;
                 doc.request = request;
                 doc.request_subdivision();
             }

@@ -39,6 +39,11 @@ pub(crate) struct Request {
     pub(crate) opts: Options,
     /// Memory limit for levels.
     pub(crate) limit: Option<u64>,
+    /// Whether each prim of the model is refined by the scheme and options
+    /// its file states (a USD stage's `subdivisionScheme`, `none`
+    /// included) rather than by `scheme`: set when a file states a scheme
+    /// and none was pinned, cleared when the panel picks one.
+    pub(crate) by_file: bool,
 }
 
 /// An error shown in the panel, by what the viewer was doing.
@@ -157,6 +162,7 @@ impl Doc {
                 level: 0,
                 opts: Options::default(),
                 limit: default_memory_limit(),
+                by_file: false,
             },
             status: Status::default(),
             repair_on_open: false,
@@ -171,11 +177,12 @@ impl Doc {
     /// it; what the file leaves unsaid stays as it was.
     pub(crate) fn adopt_file_options(&mut self, file: ShapeOptions) {
         let o = file.overridden_by(self.pinned);
-        let opts = &mut self.request.opts;
-        opts.boundary = o.boundary.unwrap_or(opts.boundary);
-        opts.uv = o.fvar.unwrap_or(opts.uv);
-        opts.triangles = o.triangles.unwrap_or(opts.triangles);
-        opts.creasing = o.creasing.unwrap_or(opts.creasing);
+        // a scheme the file states, unless the command line pinned one
+        self.request.by_file = file.scheme.is_some() && self.pinned.scheme.is_none();
+        if let Some(s) = file.scheme.filter(|_| self.request.by_file).and_then(Scheme::of_file) {
+            self.request.scheme = s;
+        }
+        self.request.opts = self.request.opts.with_file(o);
     }
 
     /// Whether any task is running.
@@ -296,9 +303,9 @@ impl Doc {
             self.jobs.cancel_subdivision();
             return;
         }
-        let Request { scheme, level, opts, .. } = self.request;
+        let Request { scheme, level, opts, by_file, .. } = self.request;
         let (control, attrs) = ((*self.model.control).clone(), self.model.attrs.file.clone());
-        self.jobs.subdivide(SubdivisionJob { control, attrs, scheme, level, opts });
+        self.jobs.subdivide(SubdivisionJob { control, attrs, scheme, level, opts, by_file });
     }
 
     /// What an animation of the current model and request is made of.
@@ -562,6 +569,11 @@ impl Doc {
                 self.adopt_file_options(o.attrs.options);
                 self.model.attrs.file = o.attrs;
                 self.adopt(o.path, o.mesh, o.paths);
+                if let Some(n) = o.samples {
+                    // the stage's own animation: its samples as they are
+                    self.anim.paths_source = format!("the stage's {n} time samples");
+                    self.anim.refine = 0;
+                }
                 self.model.precise = o.precise.map(|p| (self.model.control.mesh.clone(), Arc::new(p)));
                 self.look_for_recovery();
             }
@@ -600,7 +612,8 @@ impl Doc {
         m.attrs.refined = s.attrs;
         m.raw = s.shown;
         m.proxy = s.proxy;
-        m.made = Made { level: s.level, scheme: s.scheme, opts: s.opts, stats: Some(s.stats), job_ms: s.ms };
+        let by_prim = s.by_prim;
+        m.made = Made { level: s.level, scheme: s.scheme, opts: s.opts, stats: Some(s.stats), job_ms: s.ms, by_prim };
         self.adopt_refiner(s.refiner);
         self.reshade();
         self.edit_surface();

@@ -74,6 +74,9 @@ pub(crate) struct Opened {
     /// Its points in f64 as the file wrote them (where the format keeps
     /// more digits than f32 and the mesh was not repaired).
     pub(crate) precise: Option<Vec<glam::DVec3>>,
+    /// How many of a stage's time samples `paths` holds (its animation
+    /// plays them).
+    pub(crate) samples: Option<usize>,
 }
 
 /// A finished subdivision.
@@ -97,6 +100,8 @@ pub(crate) struct Subdivided {
     /// The refiner that made the output, and the control mesh it was
     /// built on (none at level 0).
     pub(crate) refiner: Option<(Arc<Mesh>, crate::Refiner)>,
+    /// Whether the prims were refined apart and joined (see [`by_prim`]).
+    pub(crate) by_prim: bool,
 }
 
 /// What a worker sends back.
@@ -137,6 +142,9 @@ pub(crate) struct SubdivisionJob {
     pub(crate) level: u32,
     /// Scheme options.
     pub(crate) opts: Options,
+    /// Whether each prim goes by the scheme and options its file states
+    /// (see [`super::doc::Request::by_file`]).
+    pub(crate) by_file: bool,
 }
 
 /// The inputs of an animation plan (also what an export renders).
@@ -446,8 +454,83 @@ pub(crate) fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened>
         }
         None => None,
     };
+    let (paths, samples) = match paths {
+        Some(p) => (Some(p), None),
+        None => match sampled_frames(path, &opts, &loaded.attributes, mesh.positions.len())? {
+            Some(p) => {
+                let n = p.keys_per_vertex;
+                (Some(p), Some(n))
+            }
+            None => (None, None),
+        },
+    };
     let report = (!notes.is_empty()).then(|| notes.join("; "));
-    Ok(Opened { path: path.to_path_buf(), mesh, paths, report, attrs: loaded.attributes, precise: loaded.precise })
+    let (attrs, precise) = (loaded.attributes, loaded.precise);
+    Ok(Opened { path: path.to_path_buf(), mesh, paths, report, attrs, precise, samples })
+}
+
+/// Most time samples a stage's animation plays.
+const MAX_SAMPLES: usize = 240;
+
+/// A stage's time samples as animation keys (the stage read again at each
+/// sample, at most [`MAX_SAMPLES`] spread over them), when its points are
+/// sampled at two times or more and every read has `vertices` points.
+fn sampled_frames(
+    path: &std::path::Path,
+    opts: &crate::io::ReadOptions,
+    attrs: &Attributes,
+    vertices: usize,
+) -> Result<Option<Paths>> {
+    let Some(times) = attrs.scene().map(|s| &s.times).filter(|t| t.len() > 1) else { return Ok(None) };
+    let step = times.len().div_ceil(MAX_SAMPLES);
+    let mut frames = Vec::new();
+    for &t in times.iter().step_by(step) {
+        let at = crate::io::ReadOptions { time: Some(t), attributes: false, textures: false, ..*opts };
+        let frame = bundled::read(path, &at)?.mesh.positions;
+        if frame.len() != vertices {
+            return Ok(None);
+        }
+        frames.push(frame);
+    }
+    Ok(Paths::of_frames(&frames))
+}
+
+/// The subdivision of a model whose prims go by their file's schemes when
+/// one scheme does not do for all: prims that state different options
+/// (each set refined by its own, joined), or a model whose file says
+/// `subdivisionScheme none` (its cage at every level). `None` otherwise:
+/// one refiner then makes the level. No refiner comes back (an edit
+/// subdivides again).
+fn by_prim(job: &SubdivisionJob, t0: Instant) -> Result<Option<Subdivided>> {
+    if !job.by_file {
+        return Ok(None);
+    }
+    let mesh = &*job.control.mesh;
+    let mut parts = crate::subdiv::parts_by_options(mesh, &job.attrs)?;
+    if parts.is_empty() {
+        if job.attrs.options.scheme != Some(crate::mesh::FileScheme::None) {
+            return Ok(None);
+        }
+        parts.push((mesh.clone(), job.attrs.clone()));
+    }
+    let list: Vec<crate::Part> = parts
+        .iter()
+        .map(|(mesh, attrs)| crate::Part {
+            mesh,
+            attrs,
+            scheme: attrs.options.scheme.map_or(Some(job.scheme), Scheme::of_file),
+            levels: job.level,
+            opts: job.opts.with_file(attrs.options),
+        })
+        .collect();
+    // holes kept (not drawn): the level's faces are the parts' in order
+    let (fine, attrs, stats) = crate::subdiv::subdivide_parts(&list, true)?;
+    let (uv, materials) = crate::subdiv::tables::attributes::onto_fan(&fine.pt, attrs.uv, attrs.materials);
+    let attrs = Attributes { uv, materials, ..attrs };
+    let shown = Shown::new(Arc::new(fine.triangulated()));
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    let (level, scheme, opts) = (job.level, job.scheme, job.opts);
+    Ok(Some(Subdivided { shown, proxy: None, stats, ms, attrs, level, scheme, opts, refiner: None, by_prim: true }))
 }
 
 /// The highest level below `level` with at most [`PROXY_FACES`] triangles,
@@ -465,6 +548,9 @@ fn proxy_level(mesh: &Mesh, scheme: Scheme, level: u32) -> Option<u32> {
 /// result, for the edit mode to take over.
 fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> bool) -> Result<Subdivided> {
     let t0 = Instant::now();
+    if let Some(s) = by_prim(job, t0)? {
+        return Ok(s);
+    }
     let (control, scheme, level, opts) = (&job.control, job.scheme, job.level, job.opts);
     let mut progress = |l: u32, _| {
         done.store(l as usize, Ordering::Relaxed);
@@ -480,5 +566,5 @@ fn run_subdivision(job: &SubdivisionJob, done: &AtomicUsize, live: &dyn Fn() -> 
     let shown = if level == 0 { control.clone() } else { Shown::new(Arc::new(r.mesh())) };
     let refiner = (level > 0).then(|| (control.mesh.clone(), r));
     let ms = t0.elapsed().as_secs_f64() * 1e3;
-    Ok(Subdivided { shown, proxy, stats, ms, attrs, level, scheme, opts, refiner })
+    Ok(Subdivided { shown, proxy, stats, ms, attrs, level, scheme, opts, refiner, by_prim: false })
 }

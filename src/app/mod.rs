@@ -48,6 +48,8 @@ mod edit_tests;
 #[cfg(test)]
 mod inspect_tests;
 #[cfg(test)]
+mod stage_tests;
+#[cfg(test)]
 mod tests;
 
 pub(crate) use command::Command;

@@ -128,6 +128,9 @@ pub(crate) struct Made {
     pub(crate) stats: Option<Stats>,
     /// Wall time of the subdivision job, ms.
     pub(crate) job_ms: f64,
+    /// Whether its prims were refined apart, each by its file's scheme,
+    /// and joined (the output is then no one refinement of the cage).
+    pub(crate) by_prim: bool,
 }
 
 /// What the 3D view shows of the subdivision output.

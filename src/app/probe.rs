@@ -38,6 +38,10 @@ pub(crate) struct Probe {
     pub(crate) ray: Ray,
     /// What it hit.
     pub(crate) pick: Pick,
+    /// The prim hit, when the model is a stage's prims.
+    pub(crate) prim: Option<String>,
+    /// Whether it was traced on the cage (prims refined apart).
+    pub(crate) on_cage: bool,
 }
 
 /// The ray under the point `pos` of the 3D area `rect` (points): in the
@@ -64,12 +68,45 @@ impl Doc {
             return Ok(None);
         }
         let control = &*m.control.mesh;
+        if self.traced_on_cage(ray) {
+            return self.cast_on_cage(ray);
+        }
         let (drawn, level) = match ray.target {
             Target::Control => (control, 0),
             Target::Result => (&*m.result.shown.mesh, m.made.level),
         };
         let level = Level { control, drawn, scheme: m.made.scheme, level, precise: m.precise_control() };
         pick(&level, &m.made.opts, ray.origin, ray.dir)
+    }
+
+    /// Whether a pick is traced on the cage: when the drawn level is a
+    /// stage's prims refined apart (no one refinement of the cage to
+    /// trace it back through).
+    fn traced_on_cage(&self, ray: Ray) -> bool {
+        ray.target == Target::Result && self.model.made.by_prim
+    }
+
+    /// A pick on the cage, with the scheme and options of the prim hit:
+    /// its control face, `(u, v)` and the exact limit of that prim's
+    /// surface there.
+    fn cast_on_cage(&self, ray: Ray) -> crate::Result<Option<Pick>> {
+        let m = &self.model;
+        let control = &*m.control.mesh;
+        let Some(hit) = crate::mesh::pick::nearest_hit(control, ray.origin, ray.dir) else { return Ok(None) };
+        let options = prim_of(&m.attrs.file, hit.triangle).map_or(m.attrs.file.options, |p| p.options);
+        let scheme = options.scheme.map_or(Some(m.made.scheme), crate::Scheme::of_file).unwrap_or(m.made.scheme);
+        let level = Level { control, drawn: control, scheme, level: 0, precise: m.precise_control() };
+        pick(&level, &m.made.opts.with_file(options), ray.origin, ray.dir)
+    }
+
+    /// The path of the prim a pick hit: the group of its drawn triangle.
+    fn prim_hit(&self, ray: Ray, pick: &Pick) -> Option<String> {
+        let m = &self.model;
+        let attrs = match ray.target == Target::Control || self.traced_on_cage(ray) || m.made.level == 0 {
+            true => &m.attrs.file,
+            false => &m.attrs.refined,
+        };
+        prim_of(attrs, pick.triangle).map(|p| p.path.clone())
     }
 
     /// Picks the point under `ray` (a miss clears the pick).
@@ -90,11 +127,20 @@ impl Doc {
 
     fn set_probe(&mut self, ray: Ray) {
         match self.cast(ray) {
-            Ok(pick) => self.model.probe = pick.map(|pick| Probe { ray, pick }),
+            Ok(pick) => {
+                let on_cage = self.traced_on_cage(ray);
+                self.model.probe = pick.map(|pick| Probe { ray, prim: self.prim_hit(ray, &pick), pick, on_cage });
+            }
             Err(e) => {
                 self.model.probe = None;
                 self.fail(e.into());
             }
         }
     }
+}
+
+/// The prim of triangle `t` by its material group, when `attrs` hold a scene.
+fn prim_of(attrs: &crate::mesh::Attributes, t: u32) -> Option<&crate::mesh::Prim> {
+    let m = attrs.materials.as_ref()?;
+    m.scene.as_deref()?.prim_of_group(*m.face.get(t as usize)?)
 }

@@ -4,7 +4,7 @@
 //! (Unit tests of the app, since its internals are not public.)
 
 /// The files the tests use.
-mod common {
+pub(super) mod common {
     use std::path::PathBuf;
 
     /// A fresh directory for one test's files: the process id and the time

@@ -162,11 +162,8 @@ impl SchemeArgs {
     /// The scheme: `--scheme`, else the file's (after [`SchemeArgs::over`]),
     /// else Loop.
     pub(crate) fn scheme(&self) -> Scheme {
-        let file = self.file_scheme.map(|f| match f {
-            FileScheme::CatmullClark => Scheme::CatmullClark,
-            FileScheme::Loop => Scheme::Loop,
-            FileScheme::Bilinear | FileScheme::None => Scheme::Bilinear,
-        });
+        // `none` as bilinear at level 0 (see `subdivides`): the polygons are the surface
+        let file = self.file_scheme.map(|f| Scheme::of_file(f).unwrap_or(Scheme::Bilinear));
         self.scheme_flag.or(file).unwrap_or(Scheme::Loop)
     }
 

@@ -58,10 +58,11 @@ const BIG_FACES: u64 = 1 << 20;
 pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let t0 = Instant::now();
     let loaded = a.from.read(&a.input, false)?;
-    if !loaded.groups.is_empty() {
-        return subdivide_groups(a, loaded, t0);
-    }
     let (mesh, attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
+    let groups = subdiv::parts_by_options(&mesh, &attrs)?;
+    if !groups.is_empty() {
+        return subdivide_groups(a, (&mesh, groups), t0);
+    }
     // the file's option tags where no flag is given
     let s = &a.sub.scheme.over(attrs.options);
     // `subdivisionScheme none`: the cage is the surface at every level
@@ -109,19 +110,19 @@ fn written_options(s: &SchemeArgs, levels: u32) -> subdiv::mesh::ShapeOptions {
 /// `subdivisionScheme none`): each set of prims refined by its own
 /// options under the flags, joined into one output whose faces keep their
 /// prims (USD prims, OBJ objects, glTF meshes).
-fn subdivide_groups(a: &SubdivideArgs, loaded: io::Loaded, t0: Instant) -> Result<()> {
+fn subdivide_groups(a: &SubdivideArgs, (cage, parts): (&Mesh, Vec<(Mesh, Attributes)>), t0: Instant) -> Result<()> {
     if a.precision == Precision::F64 {
         return Err(Error::Usage(format!(
             "{}: its prims state different schemes or options, which --precision f64 does not refine apart: give one --scheme",
             a.input.display()
         )));
     }
-    let mut groups = Vec::with_capacity(loaded.groups.len());
-    for g in loaded.groups {
-        let s = a.sub.scheme.over(g.attributes.options);
+    let mut groups = Vec::with_capacity(parts.len());
+    for (mesh, attrs) in parts {
+        let s = a.sub.scheme.over(attrs.options);
         let levels = if s.subdivides() { a.sub.levels_or(1) } else { 0 };
-        let attrs = kept_by_output(&a.output, g.attributes).with_options(written_options(&s, levels));
-        groups.push((s.features.apply(g.mesh), attrs, s, levels));
+        let attrs = kept_by_output(&a.output, attrs).with_options(written_options(&s, levels));
+        groups.push((s.features.apply(mesh), attrs, s, levels));
     }
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
     let parts: Vec<subdiv::Part> = groups
@@ -138,7 +139,7 @@ fn subdivide_groups(a: &SubdivideArgs, loaded: io::Loaded, t0: Instant) -> Resul
     let t1 = Instant::now();
     io::save_with(&a.output, &fine, &attrs)?;
     let save_ms = t1.elapsed().as_secs_f64() * 1e3;
-    let cage = (loaded.mesh.positions.len(), subdiv::mesh::PolyMesh::from_mesh(&loaded.mesh).pt.num_faces());
+    let cage = (cage.positions.len(), subdiv::mesh::PolyMesh::from_mesh(cage).pt.num_faces());
     let schemes: Vec<String> =
         groups.iter().map(|(_, _, s, _)| if s.subdivides() { s.scheme().to_string() } else { "none".into() }).collect();
     let what = format!("{} (by prim)", schemes.join(" and "));

@@ -51,7 +51,8 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         model: a.model,
         scheme: s.scheme(),
         opts: s.options(),
-        flags: s.shape(),
+        // a scheme given on the command line is pinned; else a file's is adopted
+        flags: subdiv::mesh::ShapeOptions { scheme: s.shape().scheme.filter(|_| s.scheme_flag.is_some()), ..s.shape() },
         level: a.sub.levels_or(0),
         wireframe: a.wireframe,
         frames: a.frames,

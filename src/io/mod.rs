@@ -332,23 +332,6 @@ pub struct Loaded {
     /// PLY's `double` properties) and no repair renumbered them; `None`:
     /// `mesh.positions` are what the file holds.
     pub precise: Option<Vec<glam::DVec3>>,
-    /// Where the file's prims state different subdivision options (a USD
-    /// stage of a Loop prim and a Catmull-Clark one): one mesh per set of
-    /// options, each refined by its own; empty otherwise (then `mesh` is
-    /// refined as one).
-    pub groups: Vec<Group>,
-}
-
-/// The prims of a file that state one set of options, as a mesh of their
-/// own (see [`Loaded::groups`]): its attributes' options are theirs.
-#[derive(Clone, Debug)]
-pub struct Group {
-    /// Their faces, on their own vertices.
-    pub mesh: Mesh,
-    /// Their attributes (material groups and scene too).
-    pub attributes: Attributes,
-    /// Their positions in f64, as [`Loaded::precise`].
-    pub precise: Option<Vec<glam::DVec3>>,
 }
 
 /// Reads a mesh from `source` as `opts` say: the one way in. The stages
@@ -362,22 +345,11 @@ pub struct Group {
 pub fn read(source: Source, opts: &ReadOptions) -> Result<Loaded> {
     let Raw { raw, format, file, warnings } = read_raw(source, opts)?;
     let precise = raw.kept_precise(opts.topology);
-    // a repair renumbers and drops the attributes, and the prims with them
-    let split = opts.topology == Topology::Refuse && opts.attributes;
-    let groups = if split { raw.by_options() } else { Vec::new() };
     let (mesh, attributes, notes) = raw.build(&file, opts.topology, opts.attributes)?;
-    let groups = groups
-        .into_iter()
-        .map(|g| {
-            let precise = g.kept_precise(opts.topology);
-            let (mesh, attributes, _) = g.build(&file, opts.topology, true)?;
-            Ok(Group { mesh, attributes, precise })
-        })
-        .collect::<Result<Vec<_>>>()?;
     for w in &warnings {
         log::warn!("{w}");
     }
-    Ok(Loaded { mesh, attributes, format, notes, warnings, precise, groups })
+    Ok(Loaded { mesh, attributes, format, notes, warnings, precise })
 }
 
 /// What [`read_raw`] gives back: the polygons as read, before the build.

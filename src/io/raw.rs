@@ -342,6 +342,29 @@ impl RawMesh {
 }
 
 impl RawMesh {
+    /// The polygons `mesh` stands for (its fans joined back) with
+    /// `attrs`: texture coordinates per polygon corner, colours, material
+    /// groups and their scene, sharp features, holes and options.
+    pub(crate) fn of_mesh(mesh: &Mesh, attrs: &Attributes) -> RawMesh {
+        let (pm, pa) = crate::mesh::poly::PolyMesh::from_mesh_with_attributes(mesh, attrs);
+        let pt = &pm.pt;
+        let mut raw = RawMesh { positions: pm.positions.clone(), options: attrs.options, ..Default::default() };
+        for f in pm.faces() {
+            raw.push_face(f);
+        }
+        raw.uv = pa.uv.filter(|u| u.len() == pt.num_corners());
+        raw.colors = pa.colors.filter(|c| c.len() == pm.positions.len());
+        if let Some(m) = pa.materials.filter(|m| m.face.len() == pt.num_faces()) {
+            raw.materials = Some(m.face);
+            raw.material_list = m.list;
+            raw.libraries = m.libraries;
+            raw.scene = m.scene.map(|s| (*s).clone());
+        }
+        raw.tags = pt.sharpness().map(|s| s.to_tags(pt)).unwrap_or_default();
+        raw.holes = pt.holes().iter().map(|&h| (h, 0)).collect();
+        raw
+    }
+
     /// The prims of a scene whose prims state different options, as one
     /// mesh per set of options (in order of first use; each holding its
     /// prims' faces, vertices, attributes, tags and holes, renumbered, and

@@ -45,7 +45,7 @@ use std::time::Instant;
 
 pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;
-pub use parts::{Part, subdivide_parts};
+pub use parts::{Part, parts_by_options, subdivide_parts};
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
 pub use scheme::{Options, Scheme, Stats};

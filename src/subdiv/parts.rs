@@ -80,3 +80,25 @@ fn add(a: &mut Stats, b: &Stats) {
     a.vertex_ms += b.vertex_ms;
     a.faces_per_level.extend_from_slice(&b.faces_per_level);
 }
+
+/// The prims of `mesh` (its scene's, in `attrs`) as one mesh for each set
+/// of options they state, in order of first use, each with its attributes
+/// (its options theirs): the parts [`subdivide_parts`] refines apart.
+/// Empty when every prim states the same options (or there is no scene):
+/// then the mesh is refined as one.
+///
+/// # Errors
+/// A part that is not a valid mesh of its own (it is, when `mesh` is).
+pub fn parts_by_options(mesh: &Mesh, attrs: &Attributes) -> Result<Vec<(Mesh, Attributes)>> {
+    if !attrs.scene().is_some_and(|s| s.mixed()) {
+        return Ok(Vec::new());
+    }
+    let raw = crate::io::RawMesh::of_mesh(mesh, attrs);
+    raw.by_options()
+        .into_iter()
+        .map(|part| {
+            let (mesh, attrs, _) = part.build("a prim", crate::io::Topology::Refuse, true)?;
+            Ok((mesh, attrs))
+        })
+        .collect()
+}

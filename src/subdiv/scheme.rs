@@ -31,6 +31,17 @@ pub enum Scheme {
 }
 
 impl Scheme {
+    /// The scheme a file states (USD's `subdivisionScheme`); `None` for
+    /// `none`: the cage is the surface, not subdivided.
+    pub fn of_file(f: crate::mesh::FileScheme) -> Option<Scheme> {
+        match f {
+            crate::mesh::FileScheme::CatmullClark => Some(Scheme::CatmullClark),
+            crate::mesh::FileScheme::Loop => Some(Scheme::Loop),
+            crate::mesh::FileScheme::Bilinear => Some(Scheme::Bilinear),
+            crate::mesh::FileScheme::None => None,
+        }
+    }
+
     /// All schemes, in menu order.
     pub const ALL: [Scheme; 7] = [
         Scheme::Midpoint,
@@ -110,6 +121,20 @@ pub struct Options {
     pub uv: UvInterpolation,
     /// How Catmull-Clark refines triangles.
     pub triangles: TriangleSubdivision,
+}
+
+impl Options {
+    /// These options with the ones a file states (its `t` tags, a USD
+    /// prim's attributes) in their place, where it states them.
+    pub fn with_file(self, file: crate::mesh::ShapeOptions) -> Options {
+        Options {
+            boundary: file.boundary.unwrap_or(self.boundary),
+            uv: file.fvar.unwrap_or(self.uv),
+            triangles: file.triangles.unwrap_or(self.triangles),
+            creasing: file.creasing.unwrap_or(self.creasing),
+            ..self
+        }
+    }
 }
 
 impl Default for Options {

@@ -23,12 +23,16 @@ pub(crate) fn probe_section(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
     };
     let p = &probe.pick;
     egui::Grid::new("probe").num_columns(2).striped(true).show(ui, |ui| {
-        for (name, value) in rows(p, probe.ray.target) {
+        let prim = probe.prim.iter().map(|path| ("Prim", path.clone()));
+        for (name, value) in prim.chain(rows(p, probe.ray.target)) {
             ui.label(name);
             ui.label(RichText::new(value).monospace());
             ui.end_row();
         }
     });
+    if probe.on_cage {
+        ui.label("traced on the cage: the prims were refined apart, each by its own scheme");
+    }
     if let Limit::Unavailable(why) = &p.limit {
         ui.label(format!("limit evaluation: not available for {why}"));
     }
