@@ -180,6 +180,7 @@ fn quads_are_written_as_the_polygon_mesh_is() {
             face: (0..nf as u32).map(|f| f % 2).collect(),
             list: vec![Material::named("a"), Material::named("b")],
             libraries: vec![],
+            scene: None,
         }),
         ..Default::default()
     };

@@ -77,11 +77,13 @@ def _meshes(path):
         counts, idx = list(m.GetFaceVertexCountsAttr().Get()), list(m.GetFaceVertexIndicesAttr().Get())
         left = m.GetOrientationAttr().Get() == "leftHanded"
         pv = UsdGeom.PrimvarsAPI(prim).GetPrimvar("st")
-        st, per_vertex = pv.ComputeFlattened(), pv.GetInterpolation() in ("vertex", "varying")
+        st = pv.ComputeFlattened() if pv.IsDefined() else None
+        per_vertex = pv.IsDefined() and pv.GetInterpolation() in ("vertex", "varying")
         faces, uv, at = [], {}, 0
         for n in counts:
             ids = idx[at:at + n]
-            corners = [(pts[i], _key(st[i] if per_vertex else st[at + k])) for k, i in enumerate(ids)]
+            corners = [(pts[i], None if st is None else _key(st[i] if per_vertex else st[at + k]))
+                       for k, i in enumerate(ids)]
             if left:
                 corners.reverse()
             faces.append(_face([c[0] for c in corners]))
@@ -124,3 +126,66 @@ def test_a_level_0_round_trip_keeps_every_attribute_as_usd_core_reads_it(tmp_pat
     for path in theirs:
         for name, a, b in zip(names, ours[path], theirs[path]):
             assert a == b, f"{ext} {path}: {name}"
+
+
+def _run(*args):
+    import subprocess
+    subprocess.run([_bin(), *args], check=True, capture_output=True)
+
+
+def _obj_faces(path):
+    """The faces of an OBJ (OpenSubdiv's fixtures) as rotated tuples of rounded points."""
+    v, faces = [], []
+    for line in open(path):
+        t = line.split()
+        if t and t[0] == "v":
+            v.append(_key([float(x) for x in t[1:4]]))
+        elif t and t[0] == "f":
+            faces.append(_face([v[int(c.split("/")[0]) - 1] for c in t[1:]]))
+    return sorted(faces)
+
+
+@pytest.mark.parametrize("ext", ["usda", "usdc"])
+def test_each_prim_is_written_with_its_scheme_and_transform_as_opensubdiv_refines_it(tmp_path, ext):
+    out = str(tmp_path / f"two.{ext}")
+    _run("subdivide", os.path.join(FIXTURES, "two.usda"), out, "-n", "2")
+    ours = _meshes(out)
+    assert sorted(ours) == ["/a/loop", "/b/smooth"]
+    assert ours["/a/loop"][4][0] == "loop" and ours["/b/smooth"][4][0] == "catmullClark"
+    assert ours["/b/smooth"][4][3] == "smooth"
+    # in world space (usd-core's transforms), each prim is OpenSubdiv's refinement of it
+    for path, fixture in [("/a/loop", "two.a.L2.osd.obj"), ("/b/smooth", "two.b.L2.osd.obj")]:
+        a, b = ours[path][0], _obj_faces(os.path.join(FIXTURES, fixture))
+        assert [len(f) for f in a] == [len(f) for f in b], path
+        pa, pb = np.array([p for f in a for p in f]), np.array([p for f in b for p in f])
+        near = np.min(np.linalg.norm(pa[:, None, :] - pb[None, :, :], axis=2), axis=1)
+        assert near.max() < 2e-4, path  # the points rounded to 1e-4
+    stage = Usd.Stage.Open(out)
+    smooth = stage.GetPrimAtPath("/b/smooth")
+    assert UsdGeom.Xformable(smooth).GetOrderedXformOps(), "its transform is an xformOp, not baked in"
+
+
+def _st(path, prim):
+    """The st values and indices usd-core reads at `prim`."""
+    stage = Usd.Stage.Open(path)  # held: a prim does not keep its stage alive
+    pv = UsdGeom.PrimvarsAPI(stage.GetPrimAtPath(prim)).GetPrimvar("st")
+    assert pv.GetInterpolation() == "faceVarying"
+    # the indices up to a renumbering: each value by its first use
+    first = {}
+    return len(pv.Get()), [first.setdefault(i, len(first)) for i in pv.GetIndices()]
+
+
+@pytest.mark.parametrize("ext", ["usda", "usdc"])
+def test_uv_seams_survive_writing_as_usd_core_reads_them(tmp_path, ext):
+    for name, prim in [("seams.usdc", "/Box"), ("seams-grid.usda", "/Grid")]:
+        src = os.path.join(FIXTURES, name)
+        out = str(tmp_path / f"{name}.{ext}")
+        _run("subdivide", src, out, "-n", "0")
+        theirs, ours = _st(src, prim), _st(out, prim)
+        assert ours == theirs, name
+    # level 1 of the box: OpenSubdiv's 150 face-varying values, shared
+    out = str(tmp_path / f"seams.L1.{ext}")
+    _run("subdivide", os.path.join(FIXTURES, "seams.usdc"), out, "-n", "1")
+    values, indices = _st(out, "/Box")
+    osd = sum(1 for line in open(os.path.join(FIXTURES, "seams.L1.osd.obj")) if line.startswith("vt "))
+    assert (values, len(indices)) == (osd, 4 * 96)

@@ -107,6 +107,9 @@ pub(crate) struct Doc {
     pub(crate) status: Status,
     /// Repair meshes when opening them (split non-manifold elements, orient, drop degenerate faces).
     pub(crate) repair_on_open: bool,
+    /// The time code a stage's sampled points are read at (the command
+    /// line's `--time`; `None`: where the stage opens).
+    pub(crate) read_time: Option<f64>,
     /// The Inspect mode: picked corner, stencil, split.
     pub(crate) inspect: super::inspect::Inspect,
     /// The shape options the command line gave, which a file's option
@@ -166,6 +169,7 @@ impl Doc {
             },
             status: Status::default(),
             repair_on_open: false,
+            read_time: None,
             inspect: Default::default(),
             pinned: ShapeOptions::default(),
             edit: Default::default(),
@@ -234,14 +238,14 @@ impl Doc {
     /// Opens a model file on a worker thread (repairing it when
     /// [`Doc::repair_on_open`] is set).
     pub(crate) fn open(&mut self, path: PathBuf) {
-        self.jobs.load(path, self.repair_on_open);
+        self.jobs.load(path, self.repair_on_open, self.read_time);
     }
 
     /// Opens a file with repair, forgetting the failure that offered it.
     pub(crate) fn repair_and_open(&mut self, path: PathBuf) {
         self.status.error = None;
         self.status.failed = None;
-        self.jobs.load(path, true);
+        self.jobs.load(path, true, self.read_time);
     }
 
     /// Makes `mesh` (read from `path`) the control mesh, at level 0 until

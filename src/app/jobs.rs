@@ -317,15 +317,16 @@ impl Jobs {
         *alive == 0
     }
 
-    /// Opens a model file (a `.bzc` curve, or a mesh, repaired or not).
-    pub(crate) fn load(&mut self, path: PathBuf, repair: bool) {
+    /// Opens a model file (a `.bzc` curve, or a mesh, repaired or not; a
+    /// stage's sampled points at `time`).
+    pub(crate) fn load(&mut self, path: PathBuf, repair: bool, time: Option<f64>) {
         let ticket = self.next_ticket(Kind::Load);
         self.busy.loading = Some(Busy::new(format!("loading {}", path.display()), 1));
         if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc")) {
             self.spawn(Kind::Load, ticket, move || Some(Finished::Curve(load_curve(&path))));
         } else {
             self.spawn(Kind::Load, ticket, move || {
-                let result = load_model(&path, repair);
+                let result = load_model(&path, repair, time);
                 Some(Finished::Loaded { path, result })
             });
         }
@@ -428,9 +429,9 @@ fn load_curve(path: &std::path::Path) -> Result<Curve> {
 /// A model file (repaired when asked) with its attributes, textures
 /// decoded, and matching paths; the repair report and the read's warnings
 /// become the status notice.
-pub(crate) fn load_model(path: &std::path::Path, repair: bool) -> Result<Opened> {
+pub(crate) fn load_model(path: &std::path::Path, repair: bool, time: Option<f64>) -> Result<Opened> {
     let topology = if repair { crate::io::Topology::Repair } else { crate::io::Topology::Refuse };
-    let opts = crate::io::ReadOptions { topology, textures: true, ..Default::default() };
+    let opts = crate::io::ReadOptions { topology, textures: true, time, ..Default::default() };
     let loaded = bundled::read(path, &opts)?;
     let mut notes: Vec<String> = loaded.warnings;
     if loaded.notes.fanned > 0 {

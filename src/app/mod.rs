@@ -96,6 +96,9 @@ pub struct ViewOptions {
     pub turntable: bool,
     /// Repair the model when opening it.
     pub repair: bool,
+    /// The time code a USD stage's sampled points are read at (`None`:
+    /// where the stage opens).
+    pub time: Option<f64>,
     /// Initial colouring; `None` is auto (see [`Coloring::initial`]).
     pub coloring: Option<Coloring>,
     /// Start with this many isolines per side of zero over a curvature
@@ -153,6 +156,7 @@ pub fn run(opts: ViewOptions) -> Result<()> {
 fn open_initial(viewer: &mut Viewer, opts: &ViewOptions) -> Result<()> {
     if let Some(model) = &opts.model {
         viewer.apply(Command::SetRepairOnOpen(opts.repair));
+        viewer.doc.read_time = opts.time;
         viewer.apply(Command::Open(model.clone()));
         // a read is bounded by its budget: it ends
         while viewer.doc.jobs.busy.loading.is_some() {

@@ -61,6 +61,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         play: a.play,
         turntable: a.turntable,
         repair: a.from.repair,
+        time: a.from.time,
         // auto: the viewer shows a model's materials when it has them; none stays none
         coloring,
         isolines: a.color.isolines(coloring)?,
