@@ -27,7 +27,7 @@ fn bipyramid(path: &str, dx: f32, attributes: &str) -> String {
     format!(
         "def Mesh \"{path}\"\n{{\n    point3f[] points = [{}]\n    int[] faceVertexCounts = [{}]\n    int[] faceVertexIndices = [{}]\n{attributes}\n}}\n",
         points.join(", "),
-        vec!["3"; 10].join(", "),
+        ["3"; 10].join(", "),
         faces.join(", ")
     )
 }

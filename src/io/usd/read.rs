@@ -76,7 +76,7 @@ fn meshes(stage: &Stage, input: &Input) -> Result<RawMesh> {
             let at = crate::error::clean(path.as_str(), 80);
             return Err(format_err(
                 file,
-                &format!("prim {at}"),
+                format!("prim {at}"),
                 "a PointInstancer, whose instances are not read (expand them into meshes, or leave the prim out)",
             ));
         }
@@ -121,7 +121,7 @@ fn sample_times(found: &[(openusd::sdf::Path, geom::Mesh)], input: &Input) -> Re
     let mut times = Vec::new();
     for (path, mesh) in found {
         let t = mesh.attribute("points").time_sample_times();
-        let t = t.map_err(|e| format_err(input.file, &format!("prim {}", path.as_str()), format!("points: {e:#}")))?;
+        let t = t.map_err(|e| format_err(input.file, format!("prim {}", path.as_str()), format!("points: {e:#}")))?;
         times.extend(t.into_iter().filter(|t| t.is_finite()));
         input.budget.check("node-visits", times.len() as u64, input.file, "time samples")?;
     }
