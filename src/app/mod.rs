@@ -49,6 +49,8 @@ mod edit_tests;
 mod inspect_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod upload_tests;
 
 pub(crate) use command::Command;
 pub use display::Coloring;
