@@ -35,25 +35,58 @@ fn bits(m: Option<&GpuMesh>, off: &Offscreen) -> Vec<Vec<[u32; 3]>> {
     [positions, normals, lines].iter().map(|a| a.iter().map(|p| p.to_array().map(f32::to_bits)).collect()).collect()
 }
 
-/// The icosphere of 2,562 vertices, its edge from vertex 0 to its first
-/// ring neighbour infinitely sharp when `creased` (the level is then drawn
-/// cut open along it).
-fn sphere(creased: bool) -> crate::Mesh {
-    let mut mesh = crate::mesh::shapes::icosphere(4);
+/// The icosphere of 2,562 vertices (or, with `quads`, the 10,240 quads of
+/// a smaller one refined once by Catmull-Clark), and the vertex to move:
+/// with quads, one of valence 4 whose quads' far corners have valence 4
+/// too (a point of an edge of the smaller sphere), so that the moved
+/// level's support ends, beyond those corners, at quads of which it holds
+/// one corner only. The edge from that vertex to a neighbour is infinitely
+/// sharp when `creased` (the level is then drawn cut open along it).
+fn sphere(quads: bool, creased: bool) -> (crate::Mesh, u32) {
+    let (mut mesh, moved) = match quads {
+        false => (crate::mesh::shapes::icosphere(4), 0),
+        true => {
+            let ico = crate::mesh::shapes::icosphere(3);
+            let mesh = crate::subdivide(&ico, Scheme::CatmullClark, 1, &Default::default()).expect("quads").0;
+            (mesh, ico.positions.len() as u32)
+        }
+    };
     if creased {
-        let v1 = mesh.ct.ring(0).next().expect("a neighbour");
-        let tags = Tags { creases: vec![CreaseTag { v0: 0, v1, sharpness: 10.0 }], corners: Vec::new() };
+        // an edge of a quad, not its hidden diagonal
+        let ct = &mesh.ct;
+        let c = (0..ct.num_corners() as u32)
+            .find(|&c| ct.vtx(crate::mesh::n(c)) == moved && ct.edge_generation(c) != crate::mesh::Generations::HIDDEN)
+            .expect("an edge at the vertex");
+        let v1 = ct.vtx(crate::mesh::p(c));
+        let tags = Tags { creases: vec![CreaseTag { v0: moved, v1, sharpness: 10.0 }], corners: Vec::new() };
         mesh.ct = mesh.ct.with_tags(&tags).expect("an edge");
     }
-    mesh
+    (mesh, moved)
 }
 
-/// A viewer in the edit mode on `mesh` at Loop level `level`, the normal
+/// A mesh's positions and normals, as bits.
+fn snapshot(shown: &super::model::Shown) -> Vec<[u32; 6]> {
+    let bits = |p: &Vec3| p.to_array().map(f32::to_bits);
+    let (p, n) = (shown.mesh.positions.iter().map(bits), shown.normals.iter().map(bits));
+    p.zip(n).map(|(p, n)| [p[0], p[1], p[2], n[0], n[1], n[2]]).collect()
+}
+
+/// Every vertex of `now` whose position or normal differs from `before`
+/// (same count) is in `rows`.
+fn assert_covers(rows: &[u32], before: &[[u32; 6]], now: &super::model::Shown, what: &str) {
+    let now = snapshot(now);
+    assert_eq!(now.len(), before.len(), "{what}: the same vertices");
+    let missed: Vec<usize> =
+        (0..now.len()).filter(|&i| now[i] != before[i] && rows.binary_search(&(i as u32)).is_err()).collect();
+    assert!(missed.is_empty(), "{what}: vertices {missed:?} changed outside the rows recorded");
+}
+
+/// A viewer in the edit mode on `mesh` at `level` of `scheme`, the normal
 /// segments shown.
-fn editing(mesh: crate::Mesh, level: u32) -> Viewer {
+fn editing(mesh: crate::Mesh, scheme: Scheme, level: u32) -> Viewer {
     let mut v = Viewer::new();
     v.doc.adopt("sphere.obj".into(), mesh, None);
-    subdivide(&mut v, Scheme::Loop, level);
+    subdivide(&mut v, scheme, level);
     settle(&mut v);
     let mut d = v.doc.display;
     d.normals = true;
@@ -66,9 +99,20 @@ fn editing(mesh: crate::Mesh, level: u32) -> Viewer {
 fn a_one_vertex_drag_writes_only_its_rows_and_the_gpu_holds_what_a_whole_upload_holds() {
     let Some(off) = device() else { return };
     let (device, queue) = (&off.gpu.device, &off.gpu.queue);
-    for (level, creased) in [(2, false), (2, true), (0, true)] {
-        let case = format!("level {level}, creased {creased}");
-        let mut v = editing(sphere(creased), level);
+    // a polygon level cut open along a crease: its normals and the cut's
+    // reach differently (over the quads' diagonals)
+    let cases = [
+        (Scheme::Loop, 2, false, false),
+        (Scheme::Loop, 2, false, true),
+        (Scheme::CatmullClark, 2, false, true),
+        (Scheme::CatmullClark, 2, true, true),
+        (Scheme::Loop, 0, false, true),
+        (Scheme::CatmullClark, 0, true, true),
+    ];
+    for (scheme, level, quads, creased) in cases {
+        let case = format!("{scheme} level {level}, quads {quads}, creased {creased}");
+        let (mesh, moved) = sphere(quads, creased);
+        let mut v = editing(mesh, scheme, level);
         assert_eq!(v.doc.model.raw.creased.is_some(), creased, "{case}: drawn cut open along the crease");
         let mut scene = GpuScene::default();
         scene.sync(device, queue, &v.doc, 0.05);
@@ -76,15 +120,24 @@ fn a_one_vertex_drag_writes_only_its_rows_and_the_gpu_holds_what_a_whole_upload_
         // the level's positions and normals alone
         let level_bytes = (nv * 24) as u64;
         assert!(scene.uploaded_bytes >= level_bytes, "{case}: the first upload is whole");
-        // vertex 0 is on the crease: its support reaches the cut's copies
-        v.apply(Command::Edit(EditAction::Select { ids: vec![0], add: false }));
+        // the moved vertex is on the crease: its support reaches the cut's copies
+        v.apply(Command::Edit(EditAction::Select { ids: vec![moved], add: false }));
         v.apply(Command::Edit(EditAction::Grab { anchor: Vec2::ZERO }));
         let steps: [&[f32]; 3] = [&[0.02], &[0.05, 0.08], &[0.1]];
         for (k, moves) in steps.iter().enumerate() {
             // the second step moves twice before the mirror looks
+            let (result, control) = (snapshot(&v.doc.model.result.shown), snapshot(&v.doc.model.control));
+            let seen = (v.doc.model.result.version(), v.doc.model.control.version());
             for &d in *moves {
                 v.apply(Command::Edit(EditAction::GrabTo(Vec3::new(d, -d, 0.5 * d))));
             }
+            // what the document says changed covers what did
+            let model = &v.doc.model;
+            let rows = model.result.rows_since(seen.0).expect("a move changes rows of the result only");
+            assert!(rows.len() < nv / 20, "{case}, step {k}: {} rows of {nv}", rows.len());
+            assert_covers(&rows, &result, &model.result.shown, &format!("{case}, step {k}, the level"));
+            let rows = model.control.rows_since(seen.1).expect("a move changes rows of the cage only");
+            assert_covers(&rows, &control, &model.control, &format!("{case}, step {k}, the cage"));
             let before = scene.uploaded_bytes;
             scene.sync(device, queue, &v.doc, 0.05);
             let sent = scene.uploaded_bytes - before;
