@@ -2,11 +2,14 @@
 //! versions of the document's artefacts with those uploaded last.
 //!
 //! Per frame, [`GpuScene::sync`] re-uploads only an artefact whose version
-//! changed (control mesh, picked edge, result and proxy, curve), uploads the
-//! document's current animation frame (evaluated by the document on the CPU
-//! and copied into the existing vertex buffers, or evaluated here by the
-//! compute passes), and keeps the normal segments built or dropped as the
-//! display asks. It only reads the document: what the document should know
+//! changed (control mesh, picked edge, result and proxy, curve): where every
+//! version since the one it holds changed only some rows of the mesh (a
+//! drag in the edit mode, [`super::model::Versioned::rows_since`]), it
+//! writes those rows into the buffers it has, else it makes them anew. It
+//! uploads the document's current animation frame (evaluated by the
+//! document on the CPU and copied into the existing vertex buffers, or
+//! evaluated here by the compute passes), and keeps the normal segments
+//! built or dropped as the display asks. It only reads the document: what the document should know
 //! (errors, whether the GPU evaluates) comes back as a [`GpuReport`]. [`GpuScene::version`]
 //! changes whenever anything drawn changed, so the window can cache the 3D
 //! image.

@@ -6,7 +6,8 @@
 //! ```
 //! Every artefact the window uploads carries a version ([`Versioned`]),
 //! bumped whenever it is replaced; the window compares the versions with
-//! those it uploaded and uploads only what changed.
+//! those it uploaded and uploads only what changed, and of a mesh that a
+//! drag moved, only the rows the move changed.
 
 use super::display::{Coloring, Display, NormalMode};
 use crate::mesh::attributes::Attributes;
