@@ -9,10 +9,10 @@
 //! uploads the document's current animation frame (evaluated by the
 //! document on the CPU and copied into the existing vertex buffers, or
 //! evaluated here by the compute passes), and keeps the normal segments
-//! built or dropped as the display asks. It only reads the document: what the document should know
-//! (errors, whether the GPU evaluates) comes back as a [`GpuReport`]. [`GpuScene::version`]
-//! changes whenever anything drawn changed, so the window can cache the 3D
-//! image.
+//! built or dropped as the display asks. It only reads the document: what
+//! the document should know (errors, whether the GPU evaluates) comes back
+//! as a [`GpuReport`]. [`GpuScene::version`] changes whenever anything drawn
+//! changed, so the window can cache the 3D image.
 
 use super::command::GpuReport;
 use super::doc::Doc;
