@@ -352,7 +352,13 @@ impl Doc {
     /// A curvature colouring on a scheme without one shows the result
     /// uncoloured, saying why on the status line (a notice, not an error).
     pub(crate) fn reshade(&mut self) {
-        if let Some(e) = self.model.reshade(&self.display) {
+        self.reshade_rows(None);
+    }
+
+    /// [`Doc::reshade`] after the subdivision output changed only at
+    /// `rows` (see [`super::model::Model::reshade`]).
+    pub(crate) fn reshade_rows(&mut self, rows: Option<Arc<[u32]>>) {
+        if let Some(e) = self.model.reshade(&self.display, rows) {
             let curvature = matches!(self.display.coloring, super::display::Coloring::Curvature(_));
             match crate::subdiv::eval::color::check_scheme(self.model.made.scheme) {
                 Err(refusal) if curvature => self.status.notice = Some(refusal.to_string()),

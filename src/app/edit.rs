@@ -229,6 +229,10 @@ pub(crate) struct Edit {
     pub(crate) history: History,
     /// The drawn level's refiner and what it was built for.
     refiner: Option<(RefinerKey, Refiner)>,
+    /// The level that refiner drew last: a move changed only some of its
+    /// rows while it is still the drawn one (weak: a level replaced is not
+    /// kept for this; its address is, so no other mesh is taken for it).
+    drawn: Option<std::sync::Weak<Mesh>>,
     /// Bumped whenever the control mesh's topology or tags change.
     pub(crate) topology: u64,
     /// Where recovery files go (`None`: nowhere).
@@ -260,6 +264,7 @@ impl Default for Edit {
             radius: 0.5,
             history: History::default(),
             refiner: None,
+            drawn: None,
             topology: 0,
             // the unit tests name their own folder: they never write the user's
             recovery_dir: if cfg!(test) { None } else { state_dir().map(|d| d.join("subdiv").join("recovery")) },
@@ -268,6 +273,14 @@ impl Default for Edit {
             pending: None,
         }
     }
+}
+
+/// Vertices `ids` of `ct` and their ring neighbours, sorted, each once.
+fn moved_rows(ct: &crate::CornerTable, ids: &[u32]) -> Arc<[u32]> {
+    let mut rows: Vec<u32> = ids.iter().flat_map(|&v| std::iter::once(v).chain(ct.ring(v))).collect();
+    rows.sort_unstable();
+    rows.dedup();
+    rows.into()
 }
 
 /// The user's state folder: `$XDG_STATE_HOME`, else `~/.local/state`
@@ -293,6 +306,7 @@ impl Edit {
         self.selected.clear();
         self.grab = None;
         self.refiner = None;
+        self.drawn = None;
         self.history = History::default();
         self.topology += 1;
         self.offer = None;
@@ -484,7 +498,8 @@ impl Doc {
     }
 
     /// Moves control vertices (no history): the cage, and the drawn level
-    /// through the refiner.
+    /// through the refiner. Both record the rows they changed, so that the
+    /// GPU mirror writes only those.
     fn place(&mut self, ids: &[u32], to: &[Vec3]) {
         if ids.is_empty() {
             return;
@@ -495,14 +510,19 @@ impl Doc {
             positions[v as usize] = p;
         }
         let mesh = Arc::new(Mesh { ct: control.ct.clone(), positions });
+        // the moved vertices and their ring neighbours: every normal that
+        // changes (a fan normal reads only the triangles around it)
+        let rows = moved_rows(&mesh.ct, ids);
+        // at level 0 the drawn level is the cage: it changed at the same rows
         let m = &mut self.model;
+        let level0 = Arc::ptr_eq(&m.raw.mesh, &m.control.mesh).then(|| rows.clone());
         if m.original.is_none() {
             m.original = Some(m.control.mesh.clone());
         }
-        m.control.set(Shown::new(mesh));
+        m.control.set_rows(Shown::new(mesh), rows.clone());
         m.proxy = None;
-        self.follow_surface(ids, to);
-        self.reshade();
+        let rows = self.follow_surface(ids, to, level0);
+        self.reshade_rows(rows);
     }
 }
 
@@ -513,18 +533,21 @@ impl Doc {
     /// surface the edit started from.
     pub(crate) fn edit_surface(&mut self) {
         if self.edit.on && self.model.made.level > 0 {
-            self.follow_surface(&[], &[]);
+            self.follow_surface(&[], &[], None);
             self.reshade();
         }
     }
 
     /// The drawn level after control vertices `ids` moved to `to`: the
-    /// control mesh itself at level 0, else the refiner of the drawn level
+    /// control mesh itself at level 0 (which changed from the level drawn
+    /// at `cage_rows`, if known), else the refiner of the drawn level
     /// (built on first use, on the cage as it now is) moved locally.
-    fn follow_surface(&mut self, ids: &[u32], to: &[Vec3]) {
+    /// Returns the rows of the level that changed (positions or normals,
+    /// sorted), where only those did.
+    fn follow_surface(&mut self, ids: &[u32], to: &[Vec3], cage_rows: Option<Arc<[u32]>>) -> Option<Arc<[u32]>> {
         if self.model.made.level == 0 {
             self.model.raw = (*self.model.control).clone();
-            return;
+            return cage_rows;
         }
         let key = self.refiner_key();
         let fresh = match self.edit.refiner.take() {
@@ -536,10 +559,21 @@ impl Doc {
         };
         let (r, built) = match fresh {
             Ok(x) => x,
-            Err(e) => return self.fail(Problem::Other(e)),
+            Err(e) => {
+                self.fail(Problem::Other(e));
+                return None;
+            }
         };
         let raw = &self.model.raw;
         let same = !built || r.topology().v_table() == raw.mesh.ct.v_table();
+        // the rows it changed, when the level drawn is the one it drew
+        // last (not the worker's, a retagged one or one just built)
+        let drew = self.edit.drawn.as_ref().is_some_and(|d| std::ptr::eq(d.as_ptr(), Arc::as_ptr(&raw.mesh)));
+        let rows = r.changed_rows().filter(|_| !built && drew).map(|rows| {
+            let mut rows = rows.to_vec();
+            rows.sort_unstable();
+            Arc::<[u32]>::from(rows)
+        });
         let mesh = Arc::new(r.mesh());
         self.model.raw = if same {
             let creased = raw.creased.as_ref().map(|cr| {
@@ -554,6 +588,8 @@ impl Doc {
             Shown::new(mesh)
         };
         self.edit.refiner = Some((key, r));
+        self.edit.drawn = Some(Arc::downgrade(&self.model.raw.mesh));
+        rows
     }
 
     /// Takes over the refiner that made the drawn level, when it was built

@@ -2,14 +2,17 @@
 //! versions of the document's artefacts with those uploaded last.
 //!
 //! Per frame, [`GpuScene::sync`] re-uploads only an artefact whose version
-//! changed (control mesh, picked edge, result and proxy, curve), uploads the
-//! document's current animation frame (evaluated by the document on the CPU
-//! and copied into the existing vertex buffers, or evaluated here by the
-//! compute passes), and keeps the normal segments built or dropped as the
-//! display asks. It only reads the document: what the document should know
-//! (errors, whether the GPU evaluates) comes back as a [`GpuReport`]. [`GpuScene::version`]
-//! changes whenever anything drawn changed, so the window can cache the 3D
-//! image.
+//! changed (control mesh, picked edge, result and proxy, curve): where every
+//! version since the one it holds changed only some rows of the mesh (a
+//! drag in the edit mode, [`super::model::Versioned::rows_since`]), it
+//! writes those rows into the buffers it has, else it makes them anew. It
+//! uploads the document's current animation frame (evaluated by the
+//! document on the CPU and copied into the existing vertex buffers, or
+//! evaluated here by the compute passes), and keeps the normal segments
+//! built or dropped as the display asks. It only reads the document: what
+//! the document should know (errors, whether the GPU evaluates) comes back
+//! as a [`GpuReport`]. [`GpuScene::version`] changes whenever anything drawn
+//! changed, so the window can cache the 3D image.
 
 use super::command::GpuReport;
 use super::doc::Doc;
@@ -33,6 +36,9 @@ struct Seen {
     frame: Option<(u64, usize)>,
     /// The control mesh's buffers hold animated positions.
     control_animated: bool,
+    /// The result's buffers have one vertex per vertex of the level (not
+    /// per corner, as for textures): rows can be written into them.
+    welded: bool,
 }
 
 /// The meshes as drawn.
@@ -55,10 +61,39 @@ pub(crate) struct GpuScene {
     seen: Seen,
     /// Changes whenever anything drawn changed.
     pub(crate) version: u64,
+    /// Bytes sent to the GPU for the document's meshes so far (buffers
+    /// made or written; the animation's frames not counted).
+    pub(crate) uploaded_bytes: u64,
 }
 
 fn upload(device: &wgpu::Device, shown: &Shown) -> Result<GpuMesh> {
     GpuMesh::new(device, &shown.mesh.ct, &shown.mesh.positions, &shown.normals)
+}
+
+/// Rows at most this far apart are written as one range: each write has a
+/// cost of its own, and the rows between go again as they are.
+const ROW_GAP: usize = 32;
+
+/// Sorted rows as ranges, those at most [`ROW_GAP`] apart joined.
+fn row_ranges(rows: &[u32]) -> Vec<std::ops::Range<usize>> {
+    let mut out: Vec<std::ops::Range<usize>> = Vec::new();
+    for r in rows.iter().map(|&r| r as usize) {
+        match out.last_mut() {
+            Some(last) if r <= last.end + ROW_GAP => last.end = last.end.max(r + 1),
+            _ => out.push(r..r + 1),
+        }
+    }
+    out
+}
+
+/// Writes the rows of `shown` changed since the upload into `mesh`'s
+/// buffers, when `rows` says which (and the mesh holds a vertex per row);
+/// the bytes written, or `None` when it must be made whole.
+fn write_rows(queue: &wgpu::Queue, mesh: Option<&mut GpuMesh>, shown: &Shown, rows: Option<Vec<u32>>) -> Option<u64> {
+    let (mesh, rows) = (mesh?, rows?);
+    let (positions, normals) = (&shown.mesh.positions, &shown.normals);
+    (mesh.vertex_count() == positions.len() && normals.len() == positions.len())
+        .then(|| mesh.write_ranges(queue, (positions, normals), &row_ranges(&rows)))
 }
 
 /// The material groups of the shown result, when the colouring is
@@ -108,7 +143,7 @@ impl GpuScene {
     ) -> GpuReport {
         let mut report = GpuReport { compute: supports_compute(device), ..Default::default() };
         report.uploaded =
-            self.sync_control(device, doc, &mut report) | self.sync_result((device, queue), doc, &mut report);
+            self.sync_control((device, queue), doc, &mut report) | self.sync_result((device, queue), doc, &mut report);
         self.sync_highlight(device, doc);
         self.sync_curve(device, doc);
         self.sync_animation(device, queue, doc, &mut report);
@@ -120,13 +155,21 @@ impl GpuScene {
         report
     }
 
-    fn sync_control(&mut self, device: &wgpu::Device, doc: &Doc, report: &mut GpuReport) -> bool {
+    /// The control mesh: the rows an edit moved written into its buffers,
+    /// or made whole.
+    fn sync_control(&mut self, gpu: (&wgpu::Device, &wgpu::Queue), doc: &Doc, report: &mut GpuReport) -> bool {
         let control = &doc.model.control;
         let unanimated = self.seen.control_animated && doc.anim.playback.is_none();
         if control.version() == self.seen.control && !unanimated {
             return false;
         }
-        self.control = upload(device, control).map_err(|e| report.errors.push(e)).ok();
+        let rows = control.rows_since(self.seen.control).filter(|_| !self.seen.control_animated);
+        if let Some(bytes) = write_rows(gpu.1, self.control.as_mut(), control, rows) {
+            self.uploaded_bytes += bytes;
+        } else {
+            self.control = upload(gpu.0, control).map_err(|e| report.errors.push(e)).ok();
+            self.uploaded_bytes += self.control.as_ref().map_or(0, GpuMesh::byte_size);
+        }
         self.seen.control = control.version();
         self.seen.control_animated = false;
         self.seen.picked = 0; // the new buffers have no highlight
@@ -147,10 +190,19 @@ impl GpuScene {
         self.seen.picked = picked.version();
     }
 
+    /// The result and its proxy: the rows an edit moved written into the
+    /// result's buffers (an edit leaves no proxy), or both made whole.
     fn sync_result(&mut self, gpu: (&wgpu::Device, &wgpu::Queue), doc: &Doc, report: &mut GpuReport) -> bool {
         let result = &doc.model.result;
         if result.version() == self.seen.result {
             return false;
+        }
+        let rows = result.rows_since(self.seen.result).filter(|_| self.seen.welded && doc.model.proxy.is_none());
+        if let Some(bytes) = write_rows(gpu.1, self.result.as_mut(), &result.shown, rows) {
+            self.uploaded_bytes += bytes;
+            self.proxy = None;
+            self.seen.result = result.version();
+            return true;
         }
         let (device, queue) = gpu;
         let r = &result.shown;
@@ -170,6 +222,7 @@ impl GpuScene {
             }
             _ => upload(device, r),
         };
+        self.seen.welded = shown_materials(doc).is_none() && !(checker && corner_uv.is_some());
         self.result = mesh.map_err(|e| report.errors.push(e)).ok();
         let materials = self.result.as_ref().is_some_and(|m| m.materials().is_some());
         if let (Some(m), false, false) = (&mut self.result, checker, materials) {
@@ -180,6 +233,8 @@ impl GpuScene {
             }
         }
         self.proxy = doc.model.proxy.as_ref().and_then(|p| upload(device, p).map_err(|e| report.errors.push(e)).ok());
+        let made = [&self.result, &self.proxy].into_iter().flatten();
+        self.uploaded_bytes += made.map(GpuMesh::byte_size).sum::<u64>();
         self.seen.result = result.version();
         true
     }
@@ -265,6 +320,7 @@ impl GpuScene {
         if let Some(m) = self.result.as_mut().filter(|m| !m.has_normal_lines()) {
             let r = &doc.model.result.shown;
             m.set_normal_lines(device, &r.mesh.positions, &r.normals, length);
+            self.uploaded_bytes += (r.mesh.positions.len() * 24) as u64;
             self.version += 1;
         }
         // with normals shown every frame is evaluated on the CPU

@@ -51,6 +51,8 @@ mod inspect_tests;
 mod stage_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod upload_tests;
 
 pub(crate) use command::Command;
 pub use display::Coloring;

@@ -6,7 +6,8 @@
 //! ```
 //! Every artefact the window uploads carries a version ([`Versioned`]),
 //! bumped whenever it is replaced; the window compares the versions with
-//! those it uploaded and uploads only what changed.
+//! those it uploaded and uploads only what changed, and of a mesh that a
+//! drag moved, only the rows the move changed.
 
 use super::display::{Coloring, Display, NormalMode};
 use crate::mesh::attributes::Attributes;
@@ -19,17 +20,26 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 /// A value with a counter bumped on every change, so that a consumer (the
-/// window's GPU copies) can tell whether what it holds is current.
+/// window's GPU copies) can tell whether what it holds is current; and,
+/// for the last few versions that changed only some rows of it (a drag),
+/// which rows, so that the consumer can copy those alone.
 #[derive(Clone, Debug)]
 pub(crate) struct Versioned<T> {
     value: T,
     version: u64,
+    /// The rows each of the latest versions changed from the one before,
+    /// oldest first and ending at `version` (at most [`ROW_STEPS`]);
+    /// emptied by a change of the whole.
+    rows: Vec<Arc<[u32]>>,
 }
+
+/// How many versions back [`Versioned::rows_since`] can answer.
+const ROW_STEPS: usize = 8;
 
 impl<T> Versioned<T> {
     /// A first version (1; a consumer that has seen nothing holds 0).
     pub(crate) fn new(value: T) -> Versioned<T> {
-        Versioned { value, version: 1 }
+        Versioned { value, version: 1, rows: Vec::new() }
     }
     /// The current version.
     pub(crate) fn version(&self) -> u64 {
@@ -39,6 +49,32 @@ impl<T> Versioned<T> {
     pub(crate) fn set(&mut self, value: T) {
         self.value = value;
         self.version += 1;
+        self.rows.clear();
+    }
+    /// Replaces the value by one that differs from it only at `rows`
+    /// (sorted, each once; for a mesh, the vertices whose position or
+    /// normal changed: the counts, the topology and everything else
+    /// the same).
+    pub(crate) fn set_rows(&mut self, value: T, rows: Arc<[u32]>) {
+        self.value = value;
+        self.version += 1;
+        if self.rows.len() == ROW_STEPS {
+            self.rows.remove(0);
+        }
+        self.rows.push(rows);
+    }
+    /// The rows changed since version `seen` (sorted, each once), when
+    /// every version since changed rows only and is still recorded;
+    /// `None` when something else may have changed.
+    pub(crate) fn rows_since(&self, seen: u64) -> Option<Vec<u32>> {
+        let back = usize::try_from(self.version.checked_sub(seen)?).ok()?;
+        let steps = self.rows.get(self.rows.len().checked_sub(back)?..)?;
+        let mut rows: Vec<u32> = steps.iter().flat_map(|r| r.iter().copied()).collect();
+        if steps.len() > 1 {
+            rows.sort_unstable();
+            rows.dedup();
+        }
+        Some(rows)
     }
 }
 
@@ -261,8 +297,11 @@ impl Model {
 
     /// Rebuilds the shown result from the subdivision output and `display`
     /// (limit snapping, normals, colours); an error of the colouring is
-    /// returned (the result is then shown uncoloured).
-    pub(crate) fn reshade(&mut self, display: &Display) -> Option<Error> {
+    /// returned (the result is then shown uncoloured). `rows`: the
+    /// subdivision output differs from the one the result was last shaded
+    /// from only at these vertices (positions and normals; sorted), so a
+    /// result drawn as it is differs at them too (see [`result_rows`]).
+    pub(crate) fn reshade(&mut self, display: &Display, rows: Option<Arc<[u32]>>) -> Option<Error> {
         let creased = self.raw.creased.clone();
         let shown = match creased {
             // the normals are the cut mesh's (creased_view)
@@ -281,7 +320,12 @@ impl Model {
             }
             None => shown,
         };
-        self.result.set(Shaded { shown, colors, values, color_max, scale });
+        let shaded = Shaded { shown, colors, values, color_max, scale };
+        let polygons = self.made.scheme.is_polygonal() && self.made.level > 0;
+        match rows.and_then(|rows| result_rows(rows, creased.as_deref().map(|c| (c, polygons)), display)) {
+            Some(rows) => self.result.set_rows(shaded, rows),
+            None => self.result.set(shaded),
+        }
         error
     }
 
@@ -328,6 +372,36 @@ impl Model {
         }
         [Some(c), ct.o(c)].into_iter().flatten().map(|x| x / 3).find(|&t| ct.is_hole(t))
     }
+}
+
+/// The rows of the shown result that change when the subdivision output
+/// changes at `rows` (positions and normals), where the result shows the
+/// output's points and normals as they are and colours that do not depend
+/// on the points (`None` otherwise: snapped points, limit or butterfly
+/// normals, displacement or curvature colours reach further).
+///
+/// Drawn cut open along creases (`creased`), a vertex's copies change
+/// with it. Their fan normals (of the cut triangles) change with any
+/// corner of their triangles, which `rows` covers (it holds the moved
+/// points' triangle rings) except on a polygon level (`true`), whose own
+/// normals follow rings of edge neighbours and not the quads' diagonals:
+/// there the cut's triangle rings are taken as well.
+fn result_rows(rows: Arc<[u32]>, creased: Option<(&Creased, bool)>, display: &Display) -> Option<Arc<[u32]>> {
+    let colors_move = matches!(display.coloring, Coloring::Displacement | Coloring::Curvature(_));
+    if display.snap_limit || display.normal_mode != NormalMode::FanAverage || colors_move {
+        return None;
+    }
+    let Some((cr, polygons)) = creased else { return Some(rows) };
+    let nv = cr.ct.num_vertices() - cr.copies.len();
+    let copies = cr.copies.iter().enumerate().filter(|(_, v)| rows.binary_search(v).is_ok());
+    let mut out: Vec<u32> = rows.iter().copied().chain(copies.map(|(i, _)| (nv + i) as u32)).collect();
+    if polygons {
+        let ring: Vec<u32> = out.iter().flat_map(|&v| cr.ct.ring(v)).collect();
+        out.extend(ring);
+    }
+    out.sort_unstable();
+    out.dedup();
+    Some(out.into())
 }
 
 /// `raw` with its points moved to the limit when asked, and the normals of

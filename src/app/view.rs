@@ -13,6 +13,8 @@ pub(crate) struct FrameStats {
     pub(crate) frame_ms: f64,
     /// Time of the last GPU upload, ms.
     pub(crate) upload_ms: f64,
+    /// Bytes the last GPU upload sent (buffers made or written).
+    pub(crate) upload_bytes: u64,
     /// CPU time to record the last 3D render, ms.
     pub(crate) encode_ms: f64,
     /// How many times the 3D viewports were rendered (they are cached between changes).

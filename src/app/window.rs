@@ -243,11 +243,12 @@ impl Win {
 
     /// Uploads what changed, advances the animation, reports GPU errors.
     pub(crate) fn sync(&mut self, viewer: &mut Viewer) {
-        let t0 = Instant::now();
+        let (t0, sent) = (Instant::now(), self.scene.uploaded_bytes);
         let normal_length = 0.03 * viewer.view.camera.radius;
         let mut report = self.scene.sync(&self.gpu.device, &self.gpu.queue, &viewer.doc, normal_length);
         if report.uploaded {
             viewer.view.stats.upload_ms = t0.elapsed().as_secs_f64() * 1e3;
+            viewer.view.stats.upload_bytes = self.scene.uploaded_bytes - sent;
         }
         if let Some(e) = self.gpu_error.lock().ok().and_then(|mut slot| slot.take()) {
             report.errors.push(Error::Gpu(e));

@@ -257,6 +257,25 @@ impl GpuMesh {
         }
     }
 
+    /// The bytes of its buffers (what uploading it whole sent; a material
+    /// mesh's textures left out).
+    pub(crate) fn byte_size(&self) -> u64 {
+        let optional = [&self.normal_lines, &self.highlight, &self.sharp];
+        let fixed = [&self.positions, &self.normals, &self.triangles, &self.edges, &self.generations];
+        fixed.iter().map(|b| b.size()).sum::<u64>()
+            + self.colors.as_ref().map_or(0, wgpu::Buffer::size)
+            + optional.iter().filter_map(|b| b.as_ref()).map(|(b, _)| b.size()).sum::<u64>()
+    }
+
+    /// Its normal segments as the GPU holds them (a test's readback).
+    #[cfg(test)]
+    pub(crate) fn read_normal_lines(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Vec<Vec3>> {
+        match &self.normal_lines {
+            Some((buf, count)) => super::gpu_anim::read_vec3(device, queue, buf, *count as usize),
+            None => Ok(Vec::new()),
+        }
+    }
+
     /// Number of vertices.
     pub(crate) fn vertex_count(&self) -> usize {
         self.vertex_count
@@ -280,6 +299,34 @@ impl GpuMesh {
         }
     }
 
+    /// Writes the positions and normals of the vertices in `ranges` (and
+    /// their normal segments) from `positions` and `normals`, the whole
+    /// arrays of the same vertices as drawn (an edit that moved some of
+    /// them): nothing is reallocated, the rest stays. Returns the bytes
+    /// written.
+    pub(crate) fn write_ranges(
+        &mut self,
+        queue: &wgpu::Queue,
+        (positions, normals): (&[Vec3], &[Vec3]),
+        ranges: &[std::ops::Range<usize>],
+    ) -> u64 {
+        let k = self.vertex_count.min(positions.len()).min(normals.len());
+        let lines = self.normal_lines.as_ref().filter(|(_, count)| *count as usize == 2 * k);
+        let mut bytes = 0;
+        for r in ranges.iter().map(|r| r.start.min(k)..r.end.min(k)).filter(|r| !r.is_empty()) {
+            let at = (r.start * 12) as u64;
+            queue.write_buffer(&self.positions, at, bytemuck::cast_slice(&positions[r.clone()]));
+            queue.write_buffer(&self.normals, at, bytemuck::cast_slice(&normals[r.clone()]));
+            bytes += 24 * r.len() as u64;
+            if let Some((buf, _)) = lines {
+                let segs = normal_segments(&positions[r.clone()], &normals[r.clone()], self.normal_length);
+                queue.write_buffer(buf, 2 * at, bytemuck::cast_slice(&segs));
+                bytes += 24 * r.len() as u64;
+            }
+        }
+        bytes
+    }
+
     /// Builds the segments, `length` long, that display the vertex normals.
     pub(crate) fn set_normal_lines(
         &mut self,
@@ -290,7 +337,8 @@ impl GpuMesh {
     ) {
         self.normal_length = length;
         let v = normal_segments(positions, normals, length);
-        let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST;
+        // a copy source for tests' readback
+        let usage = wgpu::BufferUsages::VERTEX | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC;
         self.normal_lines = Some((buffer(device, "normal lines", bytemuck::cast_slice(&v), usage), v.len() as u32));
     }
 

@@ -57,10 +57,11 @@ pub(crate) fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Co
     }
     let st = &view.stats;
     ui.label(format!(
-        "frame {:.1} ms ({:.0} fps), last upload {:.1} ms",
+        "frame {:.1} ms ({:.0} fps), last upload {:.1} ms, {}",
         st.frame_ms,
         1000.0 / st.frame_ms.max(0.01),
-        st.upload_ms
+        st.upload_ms,
+        crate::error::human_bytes(st.upload_bytes)
     ));
     ui.label(RichText::new(format!("{} · 3D renders {}", st.adapter, st.scene_renders)).small().weak());
     status_lines(ui, doc)

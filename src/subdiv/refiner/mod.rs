@@ -127,6 +127,12 @@ impl Touched {
 struct EditTables {
     readers: Vec<Readers>,
     touched: Touched,
+    /// The finest points whose position or normal the last evaluation
+    /// made anew, each once (see [`Refiner::changed_rows`]); `None`: all.
+    changed: Option<Vec<u32>>,
+    /// Every level was evaluated by the rows since the last evaluation
+    /// (the tables were just built): it changed every point.
+    fresh: bool,
 }
 
 /// One change of a [`Refiner`]'s history.
@@ -273,7 +279,8 @@ impl Refiner {
             let control = self.points[0].clone();
             self.set_control(&control);
             let readers = self.topo.plan().levels.par_iter().map(Readers::of).collect();
-            self.edit = Some(EditTables { readers, touched: Touched::sized(&self.level_counts()) });
+            let touched = Touched::sized(&self.level_counts());
+            self.edit = Some(EditTables { readers, touched, changed: None, fresh: true });
         }
         self.edit.get_or_insert_with(EditTables::default)
     }
@@ -402,6 +409,9 @@ impl Refiner {
                 rest[0][r as usize] = sum_row(&row.idx, &row.w, &done[l]);
             }
         }
+        if let Some(edit) = self.edit.as_mut() {
+            edit.changed = None;
+        }
         // every normal made so far, into the buffer already held
         let pos = self.points.last().map_or(&[][..], Vec::as_slice);
         let Some(normals) = self.normals.get_mut() else { return };
@@ -429,7 +439,7 @@ impl Refiner {
     /// `l + 1` and, level by level, the rows that read a marked point.
     fn touch(&mut self, ids: &[u32], seeds: &[Vec<u32>]) {
         self.edit_tables();
-        let Some(EditTables { readers, touched: t }) = self.edit.as_mut() else { return };
+        let Some(EditTables { readers, touched: t, .. }) = self.edit.as_mut() else { return };
         t.begin();
         for &v in ids {
             t.mark(0, v);
@@ -525,25 +535,28 @@ impl Refiner {
         }
         let last = plan.levels.len();
         let changed = std::mem::take(&mut edit.touched.lists[last]);
-        self.update_normals_around(&changed);
+        let around = self.update_normals_around(&changed);
         let count = changed.len();
         if let Some(edit) = self.edit.as_mut() {
+            let fresh = std::mem::take(&mut edit.fresh);
+            edit.changed = around.filter(|_| !fresh);
             edit.touched.lists[last] = changed;
         }
         count
     }
 
-    /// The normals of the changed finest points and their neighbours.
-    fn update_normals_around(&mut self, changed: &[u32]) {
-        if self.normals.get().is_none() {
-            return; // none made yet: all of them made when first asked for
-        }
+    /// The normals of the changed finest points and their neighbours;
+    /// returns the points whose position or normal changed (`None`: every
+    /// normal was made again, or none is made yet).
+    fn update_normals_around(&mut self, changed: &[u32]) -> Option<Vec<u32>> {
+        // none made yet: all of them made when first asked for
+        self.normals.get()?;
         let Some((offsets, ids)) = self.rings.get().and_then(Option::as_ref) else {
-            return self.update_normals(&[]);
+            self.update_normals(&[]);
+            return None;
         };
-        let mut around = Vec::with_capacity(changed.len() * 7);
         let last = self.points.len() - 1;
-        let Some(t) = self.edit.as_mut().map(|e| &mut e.touched) else { return };
+        let t = &mut self.edit.as_mut()?.touched;
         t.begin();
         for &v in changed {
             t.mark(last, v);
@@ -552,8 +565,21 @@ impl Refiner {
                 t.mark(last, w);
             }
         }
-        around.extend_from_slice(&t.lists[last]);
+        let around = std::mem::take(&mut t.lists[last]);
         self.update_normals(&around);
+        Some(around)
+    }
+
+    /// The finest points whose position or normal the last change (a
+    /// move, an undo or redo, a sharpness change recorded locally) made
+    /// anew, each once, in no order: what a copy of the finest level and
+    /// its normals must take again (the viewer's GPU buffers). `None` when
+    /// it may have changed them all: before the normals are made
+    /// ([`Refiner::normals`]), at the first edit (which evaluates every
+    /// level by the rows), after [`Refiner::set_control`] or a sharpness
+    /// change that refined anew.
+    pub(crate) fn changed_rows(&self) -> Option<&[u32]> {
+        self.edit.as_ref()?.changed.as_deref()
     }
 
     /// The normals of the finest points `which` (all of them, without
