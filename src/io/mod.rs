@@ -451,7 +451,7 @@ pub(crate) fn text<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str> {
 /// # Errors
 /// An unknown extension or an I/O error.
 pub fn save(path: &Path, mesh: &impl Save) -> Result<()> {
-    mesh.save_to(path, &Attributes::default())
+    mesh.save_to(save::sealed::Token::NEW, path, &Attributes::default())
 }
 
 /// What [`save_with`] writes of a mesh's attributes to `path`'s format

@@ -2,72 +2,99 @@
 //! ([`Mesh`]), a polygon table ([`PolyMesh`]) or faces alone ([`Faces`],
 //! from [`crate::subdivide_faces`]), in f32 or, for the tables, in f64.
 
-use super::{precise, save_faces, save_mesh, save_poly};
 use crate::mesh::{Attributes, Faces, PolyMesh};
 use crate::{Mesh, Result};
 use glam::DVec3;
 use std::path::Path;
 
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for crate::Mesh {}
-    impl Sealed for crate::mesh::PolyMesh {}
-    impl Sealed for crate::mesh::Faces {}
+/// The writing itself, out of reach of other crates: the methods [`Save`]
+/// and [`SaveF64`] stand for, each taking a [`sealed::Token`] only this
+/// crate makes.
+pub(crate) mod sealed {
+    use super::super::{precise, save_faces, save_mesh, save_poly};
+    use crate::mesh::{Attributes, Faces, PolyMesh};
+    use crate::{Mesh, Result};
+    use glam::DVec3;
+    use std::path::Path;
+
+    /// The argument of every method here: only this crate makes one.
+    pub struct Token(());
+
+    impl Token {
+        pub(crate) const NEW: Token = Token(());
+    }
+
+    /// Writes a mesh with its attributes.
+    pub trait Writes {
+        /// Writes `self` to `path` by its extension, with `attrs`.
+        ///
+        /// # Errors
+        /// As [`super::save_with`].
+        fn save_to(&self, _: Token, path: &Path, attrs: &Attributes) -> Result<()>;
+    }
+
+    /// Writes a table's topology with f64 positions.
+    pub trait WritesF64: Writes {
+        /// Writes `self`'s topology with the f64 `positions` to `path`.
+        ///
+        /// # Errors
+        /// As [`super::save_f64`].
+        fn save_f64_to(
+            &self,
+            _: Token,
+            path: &Path,
+            positions: &[DVec3],
+            attrs: &Attributes,
+            keep_holes: bool,
+        ) -> Result<()>;
+    }
+
+    impl Writes for Mesh {
+        fn save_to(&self, _: Token, path: &Path, attrs: &Attributes) -> Result<()> {
+            save_mesh(path, self, attrs)
+        }
+    }
+
+    impl WritesF64 for Mesh {
+        fn save_f64_to(&self, _: Token, path: &Path, p: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
+            precise::save_mesh_f64(path, self, p, attrs, keep_holes)
+        }
+    }
+
+    impl Writes for PolyMesh {
+        fn save_to(&self, _: Token, path: &Path, attrs: &Attributes) -> Result<()> {
+            save_poly(path, self, attrs)
+        }
+    }
+
+    impl WritesF64 for PolyMesh {
+        fn save_f64_to(&self, _: Token, path: &Path, p: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
+            precise::save_poly_f64(path, self, p, attrs, keep_holes)
+        }
+    }
+
+    impl Writes for Faces {
+        fn save_to(&self, _: Token, path: &Path, attrs: &Attributes) -> Result<()> {
+            save_faces(path, self, attrs)
+        }
+    }
 }
 
 /// What [`super::save`] and [`save_with`] write (sealed): a [`Mesh`], a
 /// [`PolyMesh`] or [`Faces`].
-pub trait Save: sealed::Sealed {
-    /// Writes `self` to `path` by its extension, with `attrs` (call
-    /// [`save_with`]).
-    ///
-    /// # Errors
-    /// As [`save_with`].
-    #[doc(hidden)]
-    fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()>;
-}
+#[allow(private_bounds)]
+pub trait Save: sealed::Writes {}
 
 /// What [`save_f64`] writes (sealed): the tables, [`Mesh`] and [`PolyMesh`]
 /// (faces alone have no f64 path, so the compiler refuses them).
-pub trait SaveF64: Save {
-    /// Writes `self`'s topology with the f64 `positions` to `path` (call
-    /// [`save_f64`]).
-    ///
-    /// # Errors
-    /// As [`save_f64`].
-    #[doc(hidden)]
-    fn save_f64_to(&self, path: &Path, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()>;
-}
+#[allow(private_bounds)]
+pub trait SaveF64: Save + sealed::WritesF64 {}
 
-impl Save for Mesh {
-    fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()> {
-        save_mesh(path, self, attrs)
-    }
-}
-
-impl SaveF64 for Mesh {
-    fn save_f64_to(&self, path: &Path, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
-        precise::save_mesh_f64(path, self, positions, attrs, keep_holes)
-    }
-}
-
-impl Save for PolyMesh {
-    fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()> {
-        save_poly(path, self, attrs)
-    }
-}
-
-impl SaveF64 for PolyMesh {
-    fn save_f64_to(&self, path: &Path, positions: &[DVec3], attrs: &Attributes, keep_holes: bool) -> Result<()> {
-        precise::save_poly_f64(path, self, positions, attrs, keep_holes)
-    }
-}
-
-impl Save for Faces {
-    fn save_to(&self, path: &Path, attrs: &Attributes) -> Result<()> {
-        save_faces(path, self, attrs)
-    }
-}
+impl Save for Mesh {}
+impl SaveF64 for Mesh {}
+impl Save for PolyMesh {}
+impl SaveF64 for PolyMesh {}
+impl Save for Faces {}
 
 /// Saves `mesh` by extension with its attributes: texture coordinates and
 /// colours where the format keeps them ([`super::keeps`]),
@@ -81,7 +108,7 @@ impl Save for Faces {
 /// An unknown extension, faces a format cannot take, or an I/O error, each
 /// naming the file.
 pub fn save_with(path: &Path, mesh: &impl Save, attrs: &Attributes) -> Result<()> {
-    mesh.save_to(path, attrs)
+    mesh.save_to(sealed::Token::NEW, path, attrs)
 }
 
 /// Saves `mesh`'s topology with the f64 `positions` (one per vertex) at
@@ -100,5 +127,5 @@ pub fn save_f64(
     attrs: &Attributes,
     keep_holes: bool,
 ) -> Result<()> {
-    mesh.save_f64_to(path, positions, attrs, keep_holes)
+    mesh.save_f64_to(sealed::Token::NEW, path, positions, attrs, keep_holes)
 }

@@ -16,7 +16,7 @@
 //! level with their exact sizes (`V' = V + E`, `F' = 4F`); the work is spread
 //! over rayon's threads in chunks.
 
-mod cage;
+pub(crate) mod cage;
 pub(crate) mod eval;
 pub(crate) mod inspect;
 mod parts;
@@ -84,8 +84,7 @@ pub(crate) fn subdivide_with_progress(
 /// corners applied, its sharpness that level's; for a triangle scheme with
 /// the owner corners of its edges), the finest level's table, and the
 /// points of every level, the control points first.
-#[doc(hidden)]
-pub struct Levels<P = glam::Vec3> {
+pub(crate) struct Levels<P = glam::Vec3> {
     pub(crate) tables: tables::plan::LevelTables,
     /// The finest triangles (a triangle scheme's).
     pub(crate) fine: Option<CornerTable>,

@@ -217,11 +217,11 @@ impl Refiner {
         (scheme, levels, opts): (Scheme, u32, &Options),
         progress: &mut dyn FnMut(u32, u32) -> bool,
     ) -> Result<Refiner> {
-        let (mesh, polygons) = cage.as_triangles();
+        let (mesh, polygons) = cage.as_triangles(crate::subdiv::cage::sealed::Token::NEW);
         if polygons && !scheme.is_polygonal() {
             return Err(Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
         }
-        let kept = cage.levels_kept((scheme, levels, opts), progress)?;
+        let kept = cage.levels_kept(crate::subdiv::cage::sealed::Token::NEW, (scheme, levels, opts), progress)?;
         let mut r = Self::of_levels(mesh.into_owned().ct, kept, scheme, opts);
         r.from_polygons = polygons;
         Ok(r)
@@ -746,7 +746,7 @@ impl Refiner {
     /// [`Error::Usage`] when `data` is not `channels` values per control
     /// vertex.
     pub fn refine<T: Scalar>(&self, data: &[T], channels: usize) -> Result<Vec<T>> {
-        T::refine_on(self, data, channels)
+        T::refine_on(sealed::Token::NEW, self, data, channels)
     }
 
     /// [`Refiner::refine`] of f32 data.
@@ -838,31 +838,45 @@ where
     out
 }
 
-mod sealed {
-    pub trait Sealed {}
-    impl Sealed for f32 {}
-    impl Sealed for f64 {}
+/// The refinement of data, out of reach of other crates: what [`Scalar`]
+/// stands for, taking a [`sealed::Token`] only this crate makes.
+pub(crate) mod sealed {
+    use super::Refiner;
+    use crate::Result;
+
+    /// The argument of [`Refines::refine_on`]: only this crate makes one.
+    pub struct Token(());
+
+    impl Token {
+        pub(crate) const NEW: Token = Token(());
+    }
+
+    /// Data refined by a refiner in this precision.
+    pub trait Refines: Copy + Sized {
+        /// `data` refined by `refiner` in this precision.
+        ///
+        /// # Errors
+        /// As [`Refiner::refine`].
+        fn refine_on(_: Token, refiner: &Refiner, data: &[Self], channels: usize) -> Result<Vec<Self>>;
+    }
+
+    impl Refines for f32 {
+        fn refine_on(_: Token, refiner: &Refiner, data: &[f32], channels: usize) -> Result<Vec<f32>> {
+            refiner.refine_f32(data, channels)
+        }
+    }
+
+    impl Refines for f64 {
+        fn refine_on(_: Token, refiner: &Refiner, data: &[f64], channels: usize) -> Result<Vec<f64>> {
+            refiner.refine_f64(data, channels)
+        }
+    }
 }
 
 /// The scalar of the data [`Refiner::refine`] refines: `f32` or `f64`
 /// (sealed).
-pub trait Scalar: sealed::Sealed + Copy + Sized {
-    /// `data` refined by `refiner` in this precision.
-    ///
-    /// # Errors
-    /// As [`Refiner::refine`].
-    #[doc(hidden)]
-    fn refine_on(refiner: &Refiner, data: &[Self], channels: usize) -> Result<Vec<Self>>;
-}
+#[allow(private_bounds)]
+pub trait Scalar: sealed::Refines {}
 
-impl Scalar for f32 {
-    fn refine_on(refiner: &Refiner, data: &[f32], channels: usize) -> Result<Vec<f32>> {
-        refiner.refine_f32(data, channels)
-    }
-}
-
-impl Scalar for f64 {
-    fn refine_on(refiner: &Refiner, data: &[f64], channels: usize) -> Result<Vec<f64>> {
-        refiner.refine_f64(data, channels)
-    }
-}
+impl Scalar for f32 {}
+impl Scalar for f64 {}
