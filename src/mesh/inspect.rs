@@ -17,12 +17,11 @@ use glam::Vec3;
 /// Vertex counts `[V_0, V_1, ..., V_levels]` of `levels` 1-to-4 splits of
 /// `ct`, predicted from `V' = V + E`, `E' = 2E + 3F`, `F' = 4F` (saturating).
 pub fn vertex_counts_per_level(ct: &CornerTable, levels: u32) -> Vec<usize> {
-    let (mut nv, mut ne, mut nf) = (ct.num_vertices(), ct.num_edges(), ct.num_triangles());
-    let mut out = vec![nv];
+    let mut c = super::counts::Counts::of_triangles(ct);
+    let mut out = vec![c.vertices as usize];
     for _ in 0..levels {
-        (nv, ne, nf) =
-            (nv.saturating_add(ne), ne.saturating_mul(2).saturating_add(nf.saturating_mul(3)), nf.saturating_mul(4));
-        out.push(nv);
+        c = c.triangle_split();
+        out.push(usize::try_from(c.vertices).unwrap_or(usize::MAX));
     }
     out
 }

@@ -15,6 +15,7 @@
 pub(crate) mod attributes;
 mod build;
 pub(crate) mod coord;
+pub(crate) mod counts;
 pub(crate) mod cut;
 pub(crate) mod draw;
 pub(crate) mod edges;

@@ -11,17 +11,7 @@ use crate::{Error, Mesh, Result};
 /// Vertices after each of `0..=levels` levels of `scheme` on `control`.
 pub(crate) fn vertices_per_level(control: &Mesh, scheme: Scheme, levels: u32) -> Vec<usize> {
     let c = ControlCounts::of(&control.ct);
-    let mut out = vec![c.vertices as usize];
-    if scheme.is_polygonal() {
-        let (mut nv, mut ne, mut nf, mut h) = (c.vertices, c.edges - c.diagonals, c.polygons(), c.polygon_corners());
-        for _ in 0..levels {
-            (nv, ne, nf, h) = (nv + ne + nf, 2 * ne + h, h, h.saturating_mul(4));
-            out.push(nv as usize);
-        }
-    } else {
-        out = crate::mesh::inspect::vertex_counts_per_level(&control.ct, levels);
-    }
-    out
+    (0..=levels).map(|l| usize::try_from(c.vertices_at(scheme, l)).unwrap_or(usize::MAX)).collect()
 }
 
 /// The level that made each of the `nv` vertices of `levels` levels of

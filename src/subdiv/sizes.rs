@@ -11,6 +11,7 @@
 //! face is a quad, drawn as two triangles.)
 
 use crate::mesh::CornerTable;
+use crate::mesh::counts::Counts;
 use crate::mesh::poly::PolyTable;
 use crate::mesh::topology::{Topology, diagonals};
 use crate::{Result, Scheme};
@@ -80,37 +81,32 @@ impl ControlCounts {
     /// Faces after `levels` levels of `scheme`: triangles for a triangle
     /// scheme, polygons (quads from level 1 on) for a polygon scheme.
     pub fn faces_at(&self, scheme: Scheme, levels: u32) -> u64 {
-        let grow = 4u64.saturating_pow(levels.saturating_sub(1));
-        match (scheme.is_polygonal(), levels) {
-            (false, _) => self.triangles.saturating_mul(4u64.saturating_pow(levels)),
-            (true, 0) => self.polygons(),
-            (true, _) => self.polygon_corners().saturating_mul(grow),
-        }
+        self.counts(scheme).after(scheme.is_polygonal(), levels).faces
     }
 
     /// Vertices after `levels` levels of `scheme` (saturating): a triangle
     /// level adds one per edge, a polygon level one per edge and face.
     pub fn vertices_at(&self, scheme: Scheme, levels: u32) -> u64 {
-        let (mut v, mut e) = (self.vertices, self.edges);
-        if scheme.is_polygonal() {
-            let (mut h, mut f) = (self.polygon_corners(), self.polygons());
-            e = e.saturating_sub(self.diagonals);
-            for _ in 0..levels {
-                (v, e, f, h) = (
-                    v.saturating_add(e).saturating_add(f),
-                    e.saturating_mul(2).saturating_add(h),
-                    h,
-                    h.saturating_mul(4),
-                );
-            }
-        } else {
-            let mut t = self.triangles;
-            for _ in 0..levels {
-                (v, e, t) =
-                    (v.saturating_add(e), e.saturating_mul(2).saturating_add(t.saturating_mul(3)), t.saturating_mul(4));
-            }
+        self.counts(scheme).after(scheme.is_polygonal(), levels).vertices
+    }
+
+    /// The counts a level of `scheme` splits: the polygons' (the fans'
+    /// diagonals no edges) or the triangles'.
+    fn counts(&self, scheme: Scheme) -> Counts {
+        match scheme.is_polygonal() {
+            true => Counts {
+                vertices: self.vertices,
+                edges: self.edges - self.diagonals,
+                faces: self.polygons(),
+                corners: self.polygon_corners(),
+            },
+            false => Counts {
+                vertices: self.vertices,
+                edges: self.edges,
+                faces: self.triangles,
+                corners: 3 * self.triangles,
+            },
         }
-        v
     }
 
     /// Triangles drawn after `levels` levels of `scheme` (a quad is two).
@@ -130,11 +126,9 @@ impl ControlCounts {
     /// [`crate::Error::TooLarge`] naming the first level that does not fit.
     pub(crate) fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
         use super::refine::{TriangleCounts, check_fit, poly::PolygonCounts};
-        if scheme.is_polygonal() {
-            let (h, ne, nf) = (self.polygon_corners(), self.edges - self.diagonals, self.polygons());
-            check_fit(PolygonCounts { h, nv: self.vertices, ne, nf }, levels, limit, true)
-        } else {
-            check_fit(TriangleCounts { nt: self.triangles, nv: self.vertices, ne: self.edges }, levels, limit, true)
+        match scheme.is_polygonal() {
+            true => check_fit(PolygonCounts(self.counts(scheme)), levels, limit, true),
+            false => check_fit(TriangleCounts(self.counts(scheme)), levels, limit, true),
         }
     }
 }

@@ -12,6 +12,7 @@ use super::rules::crease::{Blend, OnLevel, edge_stencil, vertex_stencil};
 use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Coord, Level, Rules, boundary_flags};
 use super::scheme::{RulesFn, Stats, ms};
+use crate::mesh::counts::Counts;
 use crate::mesh::split::{self, EdgeIds, Owners};
 use crate::mesh::{CornerTable, Creasing, Faces, VertexId, n, p};
 use crate::{Error, Result};
@@ -34,15 +35,13 @@ pub(crate) fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
 
 /// Checks, before any work, that refining `ct` `levels` times fits in
 /// `limit` bytes and in 32-bit ids at every level, the earlier levels held
-/// too when they are `kept`. Counts are predicted exactly: `F' = 4F`,
-/// `E' = 2E + 3F`, `V' = V + E`.
+/// too when they are `kept`. Counts are predicted exactly
+/// ([`crate::mesh::counts`]).
 ///
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
 pub(crate) fn check_levels_fit(ct: &CornerTable, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
-    let nt = ct.num_triangles() as u64;
-    let ne = (3 * nt + ct.num_border_edges() as u64) / 2;
-    check_fit(TriangleCounts { nt, nv: ct.num_vertices() as u64, ne }, levels, limit, kept)
+    check_fit(TriangleCounts(Counts::of_triangles(ct)), levels, limit, kept)
 }
 
 /// A level's counts as a budget check walks them, for either kind of
@@ -61,30 +60,27 @@ pub(crate) trait LevelCounts: Copy {
     fn next(self) -> Self;
 }
 
-/// A triangle table's counts: triangles, vertices, edges.
+/// A triangle table's counts, as the budget walks them.
 #[derive(Clone, Copy)]
-pub(crate) struct TriangleCounts {
-    pub(crate) nt: u64,
-    pub(crate) nv: u64,
-    pub(crate) ne: u64,
-}
+pub(crate) struct TriangleCounts(pub(crate) Counts);
 
 impl LevelCounts for TriangleCounts {
     fn bytes(&self) -> u64 {
-        predict_level_bytes(self.nt, self.nv, self.ne)
+        let c = &self.0;
+        predict_level_bytes(c.faces, c.vertices, c.edges)
     }
     fn held_bytes(&self) -> u64 {
         // V and O (8 bytes a corner), positions, C and valences (20 a vertex)
-        3 * self.nt * 8 + self.nv * 20
+        self.0.corners * 8 + self.0.vertices * 20
     }
     fn ids_overflow(&self) -> bool {
-        12 * self.nt >= u64::from(u32::MAX) || self.nv + self.ne >= u64::from(u32::MAX)
+        12 * self.0.faces >= u64::from(u32::MAX) || self.0.vertices + self.0.edges >= u64::from(u32::MAX)
     }
     fn faces_after(&self) -> u64 {
-        4 * self.nt
+        4 * self.0.faces
     }
     fn next(self) -> Self {
-        TriangleCounts { nt: 4 * self.nt, nv: self.nv + self.ne, ne: 2 * self.ne + 3 * self.nt }
+        TriangleCounts(self.0.triangle_split())
     }
 }
 

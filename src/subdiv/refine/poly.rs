@@ -206,23 +206,16 @@ fn vertex_points<R: PolyRules, P: Coord>(lv: &PolyLevel, pos: &[P], fp: &[P], ou
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
 pub(crate) fn check_levels_fit(pt: &PolyTable, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
-    let (h, nv, ne, nf) =
-        (pt.num_corners() as u64, pt.num_vertices() as u64, pt.num_edges() as u64, pt.num_faces() as u64);
-    super::check_fit(PolygonCounts { h, nv, ne, nf }, levels, limit, kept)
+    super::check_fit(PolygonCounts(crate::mesh::counts::Counts::of_polygons(pt)), levels, limit, kept)
 }
 
-/// A polygon table's counts: corners, vertices, edges, faces.
+/// A polygon table's counts, as the budget walks them.
 #[derive(Clone, Copy)]
-pub(crate) struct PolygonCounts {
-    pub(crate) h: u64,
-    pub(crate) nv: u64,
-    pub(crate) ne: u64,
-    pub(crate) nf: u64,
-}
+pub(crate) struct PolygonCounts(pub(crate) crate::mesh::counts::Counts);
 
 impl super::LevelCounts for PolygonCounts {
     fn bytes(&self) -> u64 {
-        let Self { h, nv, ne, nf } = *self;
+        let (h, nv, ne, nf) = (self.0.corners, self.0.vertices, self.0.edges, self.0.faces);
         // new V and T (8 bytes a corner), positions, C and valences (20 a
         // vertex), the old level alive, and the new level drawn as
         // triangles (2h of them: V, O and a generation, 27 bytes each)
@@ -230,16 +223,16 @@ impl super::LevelCounts for PolygonCounts {
     }
     fn held_bytes(&self) -> u64 {
         // V and T (8 bytes a corner), positions, C and valences (20 a vertex)
-        self.h * 8 + self.nv * 20
+        self.0.corners * 8 + self.0.vertices * 20
     }
     fn ids_overflow(&self) -> bool {
-        4 * self.h + 4 >= u64::from(u32::MAX) || self.nv + self.ne + self.nf >= u64::from(u32::MAX)
+        let c = &self.0;
+        4 * c.corners + 4 >= u64::from(u32::MAX) || c.vertices + c.edges + c.faces >= u64::from(u32::MAX)
     }
     fn faces_after(&self) -> u64 {
-        self.h
+        self.0.corners
     }
     fn next(self) -> Self {
-        let Self { h, nv, ne, nf } = self;
-        PolygonCounts { h: 4 * h, nv: nv + ne + nf, ne: 2 * ne + h, nf: h }
+        PolygonCounts(self.0.quad_split())
     }
 }
