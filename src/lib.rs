@@ -2,7 +2,7 @@
 //!
 //! The library is four layers, data flowing one way:
 //! [`io`] (OBJ with MTL materials, `.ct`, PLY, STL, OFF, glTF, COLLADA,
-//! `.paths`) → [`mesh`] (Rossignac's corner table: V, O,
+//! USD stages with their prims, `.paths`) → [`mesh`] (Rossignac's corner table: V, O,
 //! one corner per vertex, valences; and its polygon form, faces of any size
 //! then quads, `mesh::poly`) → `subdiv` (the shared 1-to-4 and quad
 //! splits with linear-time O and twin updates, one file of rules per scheme,

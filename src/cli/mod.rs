@@ -1,5 +1,5 @@
-//! The `subdiv` command line: view | animate | subdivide | smooth | limit | eval |
-//! repair | info | render | models | completions. Every command that reads a
+//! The `subdiv` command line: view | animate | subdivide | edit | smooth | limit |
+//! eval | repair | info | render | models | completions. Every command that reads a
 //! model takes a file or `bundled:NAME`, a model compiled into the binary
 //! (`subdiv models` lists them), through `subdiv::bundled`.
 //!

@@ -738,7 +738,7 @@ pub(crate) struct FaceSource<'a> {
 /// there are colours, one `vt` per corner and `f a/ta b/tb c/tc` when there
 /// are texture coordinates, the `mtllib` records and a `usemtl` wherever the
 /// material changes when there are material groups. Without attributes this
-/// is `write_obj`.
+/// is the plain `v`/`f` text.
 ///
 /// # Errors
 /// The first error of `sink`.

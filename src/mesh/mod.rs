@@ -531,9 +531,9 @@ impl Iterator for Ring<'_> {
 /// every corner (counter-clockwise), without the adjacency of a
 /// [`CornerTable`] or a polygon table. What a subdivision gives when its
 /// caller only writes or copies the faces ([`crate::subdiv::subdivide_faces`],
-/// `crate::subdiv::subdivide_poly_faces`): the last level then skips its
+/// `crate::subdiv::subdivide_poly_faces_as`): the last level then skips its
 /// adjacency tables. The vertex ids are the library's `u32` unless the
-/// caller asked for others (`crate::subdiv::subdivide_faces_as`).
+/// caller asked for others (`crate::subdiv::subdivide_mesh_faces_as`).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Faces<I = u32, P = Vec3> {
     /// One position per vertex (f32, or f64 from `subdivide_faces_f64`).

@@ -344,11 +344,12 @@ pub(crate) fn subdivide_poly_with_progress(
     poly_kept((&mesh.pt, &mesh.positions), (scheme, levels, opts), &mut progress)?.into_poly()
 }
 
-/// [`subdivide_poly_faces`] with every vertex id `j` of the quads written
-/// as `id(j)`, in the pass that writes them (see [`subdivide_faces_as`]).
+/// The last level of a polygon scheme's quads alone, every vertex id `j`
+/// written as `id(j)` in the pass that writes them (see
+/// [`subdivide_mesh_faces_as`]).
 ///
 /// # Errors
-/// As [`subdivide_poly_faces`].
+/// As [`subdivide_poly`]; no level.
 pub(crate) fn subdivide_poly_faces_as<I: VertexId>(
     mesh: &PolyMesh,
     scheme: Scheme,

@@ -111,7 +111,7 @@ pub(crate) fn check_fit<C: LevelCounts>(mut counts: C, levels: u32, limit: Optio
 /// One level: split plus the scheme's points. `boundary` holds the input
 /// level's vertex boundary flags when the previous level produced them;
 /// the new level's are made only when another level follows (`last` false).
-/// With `faces_only` (for the last level of [`super::subdivide_faces_as`])
+/// With `faces_only` (for the last level of [`super::subdivide_mesh_faces_as`])
 /// the split writes the new V table alone ([`split::split_faces`]), every
 /// vertex id through that map.
 pub(crate) struct OneLevel<'a, M, P: Coord = Vec3> {
