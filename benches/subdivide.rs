@@ -32,7 +32,7 @@ fn schemes(c: &mut Criterion) {
     // 1280 faces: levels 1..5 give 5k .. 1.3M faces
     per_level(c, "icosphere3", &icosphere(3), &[1, 2, 3, 4, 5]);
     let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/stanford-bunny-compact.obj");
-    if let Ok(m) = subdiv::io::load(&bunny) {
+    if let Ok(m) = subdiv::bundled::load(&bunny) {
         per_level(c, "bunny", &m, &[1, 2, 3]);
     }
 }
@@ -40,10 +40,10 @@ fn schemes(c: &mut Criterion) {
 fn animation(c: &mut Criterion) {
     let mut g = c.benchmark_group("anim_frame");
     g.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(3));
-    let tet = subdiv::io::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/tetrahedron.obj")).unwrap();
+    let tet = subdiv::bundled::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("models/tetrahedron.obj")).unwrap();
     let mut cases = vec![("tetrahedron_L5", tet, 5)];
     let bunny = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/models/stanford-bunny-compact.obj");
-    if let Ok(m) = subdiv::io::load(&bunny) {
+    if let Ok(m) = subdiv::bundled::load(&bunny) {
         cases.push(("bunny_L2", m, 2));
     }
     for (name, mesh, level) in cases {

@@ -15,7 +15,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         return Err("usage: anim_frames MODEL LEVEL [SCHEME]".into());
     };
     let scheme: Scheme = args.get(3).map_or(Ok(Scheme::Loop), |s| s.parse()).map_err(|e: String| e)?;
-    let m = subdiv::io::load(std::path::Path::new(model))?;
+    let m = subdiv::bundled::load(std::path::Path::new(model))?;
     let paths = Paths::generated(&m, 4);
     let mut anim = Animation::new(&m, &paths, Tweak::Jarek, 3, scheme, level.parse()?, &Options::default())?;
     let (mut total, mut stencils, mut normals) = (f64::MAX, f64::MAX, f64::MAX);

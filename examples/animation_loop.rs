@@ -10,7 +10,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 use subdiv::StencilPlan;
 use subdiv::rules::PlanScratch;
-use subdiv::{Options, Scheme, io, subdivide};
+use subdiv::{Options, Scheme, subdivide};
 
 fn main() -> subdiv::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -18,7 +18,7 @@ fn main() -> subdiv::Result<()> {
     let levels: u32 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(5);
     let frames: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(120);
 
-    let mesh = io::load(&input)?;
+    let mesh = subdiv::bundled::load(&input)?;
     let opts = Options::default();
     let t0 = Instant::now();
     let plan = StencilPlan::build(&mesh.ct, Scheme::Loop, levels, &opts)?;

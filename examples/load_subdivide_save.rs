@@ -28,7 +28,7 @@ fn main() -> subdiv::Result<()> {
     io::save_with(&output, &fine, &fine_attrs)?;
 
     // read it back: the same triangles
-    let back = io::load(&output)?;
+    let back = subdiv::bundled::load(&output)?;
     assert_eq!(back.ct.num_triangles(), fine.ct.num_triangles());
     println!(
         "{} -> {}: {levels} levels of {scheme}, {} -> {} triangles in {:.2} ms",

@@ -21,7 +21,7 @@ fn main() {
     // as the command line does: freed levels serve the next allocations, so
     // that repeats after the first measure the work without fresh pages
     subdiv::mem::keep_freed_memory();
-    let mesh = subdiv::io::load(Path::new(model)).unwrap();
+    let mesh = subdiv::bundled::load(Path::new(model)).unwrap();
     let poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
     for s in schemes {
         let mut best = [f64::MAX; 8];

@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 use subdiv::render::{RenderOptions, Shading, save_png};
-use subdiv::{Scheme, io, subdivide};
+use subdiv::{Scheme, subdivide};
 
 fn main() -> subdiv::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -13,7 +13,7 @@ fn main() -> subdiv::Result<()> {
     let output = args.get(1).map_or_else(|| std::env::temp_dir().join("torus.png"), PathBuf::from);
     let levels: u32 = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(2);
 
-    let control = io::load(&input)?;
+    let control = subdiv::bundled::load(&input)?;
     let (fine, _) = subdivide(&control, Scheme::ModifiedButterfly, levels, &Default::default())?;
     let opts = RenderOptions { shading: Shading::PhongWire, width: 640, height: 480, ..Default::default() };
     // the control mesh overlaid, the camera framed on it

@@ -13,7 +13,7 @@ fn main() -> subdiv::Result<()> {
     let model = args.first().map_or("bundled:torus.obj", String::as_str);
     let levels: u32 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(3);
     let frames: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(30);
-    let control = subdiv::io::load(std::path::Path::new(model))?;
+    let control = subdiv::bundled::load(std::path::Path::new(model))?;
     let fine = subdiv::subdivide(&control, Scheme::Loop, levels, &Options::default())?.0;
     let opts = RenderOptions { width: 640, height: 480, ..Default::default() };
     let mut off = Offscreen::new(opts.width, opts.height)?;

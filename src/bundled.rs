@@ -104,6 +104,16 @@ fn check_prefix(arg: &Path) -> Result<()> {
     }
 }
 
+/// The mesh in the file `path`, or the bundled model it names
+/// (`bundled:torus.obj`, as the command line takes it), with the default
+/// [`ReadOptions`]: a shorthand for [`read`].
+///
+/// # Errors
+/// As [`io::read`]; an unknown `bundled:` name.
+pub fn load(path: &Path) -> crate::Result<crate::Mesh> {
+    read(path, &ReadOptions::default()).map(|l| l.mesh)
+}
+
 /// Reads the mesh a model argument names (a bundled model or a file; see
 /// [`io::read`]).
 ///

@@ -85,7 +85,7 @@ fn polygon_schemes_animate_like_a_direct_subdivision() {
         ("ngons.obj", Scheme::Bilinear, 2, Options::default()),
     ];
     for (name, scheme, level, opts) in cases {
-        let m = subdiv::io::load(&dir.join(name)).unwrap();
+        let m = subdiv::bundled::load(&dir.join(name)).unwrap();
         let p = Paths::generated(&m, 4);
         let mut a = Animation::new(&m, &p, Tweak::FourPoint, 2, scheme, level, &opts).unwrap();
         let order = a.plan().order().cloned();

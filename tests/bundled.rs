@@ -151,7 +151,7 @@ mod installed {
                 args.push("--repair");
             }
             bin.ok(&args);
-            let fine = subdiv::io::load(&bin.dir.join(&out)).unwrap();
+            let fine = subdiv::bundled::load(&bin.dir.join(&out)).unwrap();
             assert_eq!(fine.ct.num_triangles(), 4 * triangles, "{name}");
         }
         let o = bin.run(&["info", "bundled:no-such.obj"]);

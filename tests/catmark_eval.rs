@@ -17,7 +17,7 @@ use subdiv::{Mesh, Options, Scheme, subdivide};
 
 fn load(name: &str) -> PolyMesh {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name);
-    PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap_or_else(|e| panic!("{name}: {e}")))
+    PolyMesh::from_mesh(&subdiv::bundled::load(&path).unwrap_or_else(|e| panic!("{name}: {e}")))
 }
 
 /// The fixture meshes (scripts/catmark-fixtures.py): smooth, creased

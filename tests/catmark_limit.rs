@@ -20,7 +20,7 @@ fn fixture(name: &str) -> PathBuf {
 }
 
 fn load(name: &str) -> PolyMesh {
-    PolyMesh::from_mesh(&subdiv::io::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}")))
+    PolyMesh::from_mesh(&subdiv::bundled::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}")))
 }
 
 /// One vertex of a limit fixture: refined position, limit position, tan1,

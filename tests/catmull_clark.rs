@@ -19,7 +19,7 @@ fn fixture(name: &str) -> PathBuf {
 
 /// The polygon mesh of a fixture, with its tags.
 fn load(name: &str) -> PolyMesh {
-    let m = subdiv::io::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let m = subdiv::bundled::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
     PolyMesh::from_mesh(&m)
 }
 
@@ -108,7 +108,7 @@ fn bilinear_points_and_the_numbering_of_new_vertices() {
         assert!(found, "{e}");
     }
     // a polygon mesh through the triangle pipeline gives the same points
-    let mesh = subdiv::io::load(&fixture("ngons.obj")).unwrap();
+    let mesh = subdiv::bundled::load(&fixture("ngons.obj")).unwrap();
     let (tri, _) = subdiv::subdivide(&mesh, Scheme::CatmullClark, 2, &Options::default()).unwrap();
     let (poly, _) = subdivide(&control, Scheme::CatmullClark, 2, &Options::default()).unwrap();
     assert_eq!(tri.positions, poly.positions);
@@ -138,7 +138,7 @@ fn polygon_formats_round_trip() {
         for ext in ["obj", "ply", "off", "ct"] {
             let path = dir.join(format!("{}.{ext}", what.replace(' ', "_")));
             subdiv::io::save_with(&path, mesh, &Default::default()).unwrap();
-            let back = PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap_or_else(|e| panic!("{ext}: {e}")));
+            let back = PolyMesh::from_mesh(&subdiv::bundled::load(&path).unwrap_or_else(|e| panic!("{ext}: {e}")));
             assert_eq!(face_lists(&back), face_lists(mesh), "{what} .{ext}: faces");
             for (a, b) in back.positions.iter().zip(&mesh.positions) {
                 assert!((*a - *b).length() < 1e-6, "{what} .{ext}: {a} against {b}");
@@ -157,7 +157,7 @@ fn ct_polygon_twins_are_checked() {
     let control = load("ngons.obj");
     subdiv::io::save_with(&path, &control, &Default::default()).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
-    assert!(subdiv::io::load(&path).is_ok());
+    assert!(subdiv::bundled::load(&path).is_ok());
     // Swap two twin entries: each row still names corners, but not the ones
     // across the same edge.
     // The twin rows follow the vertex count, the positions, `polygons F`
@@ -176,7 +176,7 @@ fn ct_polygon_twins_are_checked() {
     }
     lines[row] = ids.join(" ");
     std::fs::write(&path, lines.join("\n") + "\n").unwrap();
-    let err = subdiv::io::load(&path).expect_err("a wrong twin is refused").to_string();
+    let err = subdiv::bundled::load(&path).expect_err("a wrong twin is refused").to_string();
     assert!(err.contains(&format!("two.ct:{}:", row + 1)) && err.contains("twin"), "{err}");
 }
 

@@ -58,7 +58,7 @@ fn subdivide_writes_every_format_with_stats() {
         // the page size the refinement's arrays were given (src/mem.rs)
         assert!(stdout.contains(" pages=2MiB") || stdout.contains(" pages=4KiB"), "{stdout}");
         if ext != "ply" {
-            let m = subdiv::io::load(&out).unwrap();
+            let m = subdiv::bundled::load(&out).unwrap();
             assert_eq!(m.ct.num_triangles(), 12 * 16);
         } else {
             let bytes = std::fs::read(&out).unwrap();
@@ -151,7 +151,7 @@ fn non_manifold_models_are_refused_analysed_and_repaired() {
         let o = bin().args(["subdivide", "--repair", p.to_str().unwrap(), out.to_str().unwrap()]).output().unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(String::from_utf8_lossy(&o.stderr).contains("repair:"));
-        let m = subdiv::io::load(&out).expect("the repaired, subdivided output is valid");
+        let m = subdiv::bundled::load(&out).expect("the repaired, subdivided output is valid");
         assert!(m.ct.num_triangles() >= 8, "{f}: {} triangles", m.ct.num_triangles());
     }
 }
@@ -166,7 +166,7 @@ fn repair_command_and_flags() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let s = String::from_utf8_lossy(&o.stdout);
     assert!(s.contains("non-manifold edges cut:         1 (1-2)"), "{s}");
-    let m = subdiv::io::load(&out).unwrap();
+    let m = subdiv::bundled::load(&out).unwrap();
     assert_eq!((m.ct.num_triangles(), m.positions.len(), m.ct.num_border_edges()), (3, 9, 9));
     // info lists the bowtie vertex (1-based) instead of failing
     let o = bin().args(["info", bow.to_str().unwrap()]).output().unwrap();
@@ -196,14 +196,14 @@ fn repair_command_and_flags() {
 #[test]
 fn smooth_and_limit_keep_the_topology() {
     let input = model_path("torus.obj");
-    let before = subdiv::io::load(&input).unwrap();
+    let before = subdiv::bundled::load(&input).unwrap();
     for (cmd, extra) in [("smooth", vec!["-n", "3"]), ("limit", vec![])] {
         let out = tmp(&format!("torus-{cmd}.obj"));
         let mut args = vec![cmd, input.to_str().unwrap(), out.to_str().unwrap()];
         args.extend(extra);
         let o = bin().args(&args).output().unwrap();
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let after = subdiv::io::load(&out).unwrap();
+        let after = subdiv::bundled::load(&out).unwrap();
         assert_eq!(after.ct.v_table(), before.ct.v_table());
         assert!(
             after.positions.iter().zip(&before.positions).any(|(a, b)| (*a - *b).length() > 1e-4),
@@ -227,7 +227,7 @@ fn crease_options_tag_subdivide_and_count() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&out).unwrap();
     assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1/0 ")).count(), 12 * 4, "each edge in 4 pieces");
-    let back = subdiv::io::load(&out).unwrap();
+    let back = subdiv::bundled::load(&out).unwrap();
     for q in &back.positions {
         let on_face = (0..3).any(|k| q[k].abs() < 1e-5 || (q[k] - 1.0).abs() < 1e-5);
         assert!(on_face, "{q} is inside the cube");
@@ -311,7 +311,7 @@ fn every_mesh_command_takes_repair_and_levels_has_its_aliases() {
         let r = bin().args([cmd, f, o, "--repair"]).output().unwrap();
         assert!(r.status.success(), "{cmd} --repair: {}", String::from_utf8_lossy(&r.stderr));
         assert!(String::from_utf8_lossy(&r.stderr).contains("repair:"), "{cmd}: the report on stderr");
-        assert!(subdiv::io::load(&out).is_ok());
+        assert!(subdiv::bundled::load(&out).is_ok());
     }
     // --levels, --level, -n and -l are one option
     let faces = |args: &[&str]| -> u64 {
@@ -339,7 +339,7 @@ fn json_output_is_valid_for_any_file_name() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("info --json is JSON");
     assert_eq!(v["file"].as_str().unwrap(), input.to_str().unwrap());
-    let cube = subdiv::io::load(&model_path("cube.obj")).unwrap();
+    let cube = subdiv::bundled::load(&model_path("cube.obj")).unwrap();
     let hist = subdiv::mesh::topology(&cube.ct).valence_histogram;
     assert_eq!(v["faces"].as_u64(), Some(12));
     for (k, &n) in hist.iter().enumerate().filter(|(_, n)| **n > 0) {
@@ -420,7 +420,7 @@ fn limit_on_catmull_clark_keeps_polygons_and_gives_opensubdivs_limit() {
     let sizes: Vec<usize> =
         text.lines().filter(|l| l.starts_with("f ")).map(|l| l.split_whitespace().count() - 1).collect();
     assert!(sizes.contains(&6) && sizes.contains(&5) && sizes.contains(&3), "polygons kept: {sizes:?}");
-    let after = subdiv::io::load(&out).unwrap();
+    let after = subdiv::bundled::load(&out).unwrap();
     let osd: Vec<glam::Vec3> = std::fs::read_to_string(dir.join("ngons.limit.uniform.L1.osd.txt"))
         .unwrap()
         .lines()
@@ -493,7 +493,7 @@ fn eval_writes_one_line_per_point_and_refuses_bad_points_by_line() {
 fn eval_takes_catmull_clark_ptex_faces_in_the_unit_square() {
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark");
     let model = dir.join("ngons.obj");
-    let mesh = subdiv::mesh::PolyMesh::from_mesh(&subdiv::io::load(&model).unwrap());
+    let mesh = subdiv::mesh::PolyMesh::from_mesh(&subdiv::bundled::load(&model).unwrap());
     let ptex = subdiv::eval::ptex_faces(&mesh.pt).len();
     assert!(ptex > mesh.pt.num_faces(), "the n-gons have a ptex face per corner");
     let out = tmp("eval-cc-out.txt");
@@ -583,7 +583,7 @@ fn listed_values(help: &str) -> Vec<String> {
 #[cfg(feature = "viewer")]
 #[test]
 fn the_help_of_color_lists_every_colouring_it_takes() {
-    use subdiv::app::Coloring;
+    use subdiv::render::Coloring;
     for cmd in ["render", "view"] {
         let help = option_help(cmd, "--color <COLOR>");
         let values = listed_values(&help);
@@ -741,7 +741,7 @@ fn edit_moves_vertices_and_tags_edges_in_a_script() {
         .unwrap();
     assert!(status.success());
     let text = std::fs::read_to_string(&out).unwrap();
-    let edited = subdiv::io::load(&out).unwrap();
+    let edited = subdiv::bundled::load(&out).unwrap();
     assert_eq!(edited.positions[0], glam::Vec3::new(0.0, 0.0, 1.0));
     assert_eq!(edited.positions[4], glam::Vec3::new(2.0, 0.0, -0.5));
     assert_eq!(text.lines().filter(|l| l.starts_with("f ")).count(), 2, "still two quads:\n{text}");
@@ -756,7 +756,7 @@ fn edit_moves_vertices_and_tags_edges_in_a_script() {
     let reference = tmp("edit-reference.obj");
     let args = ["subdivide", moved.to_str().unwrap(), reference.to_str().unwrap(), "-n", "2", "-s", "catmull-clark"];
     assert!(bin().args(args).status().unwrap().success());
-    let (a, b) = (subdiv::io::load(&fine).unwrap(), subdiv::io::load(&reference).unwrap());
+    let (a, b) = (subdiv::bundled::load(&fine).unwrap(), subdiv::bundled::load(&reference).unwrap());
     assert_eq!(a.positions.len(), b.positions.len());
     let d = a.positions.iter().zip(&b.positions).map(|(p, q)| p.distance(*q)).fold(0.0, f32::max);
     assert!(d < 1e-5, "{d}");

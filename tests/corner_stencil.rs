@@ -188,7 +188,7 @@ fn stencils_are_the_subdivision_matrix_applied_to_unit_vectors() {
     let cases: Vec<(Mesh, Options)> = vec![
         (hemisphere(), Options::default()),
         (
-            subdiv::io::load(
+            subdiv::bundled::load(
                 &std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/creases/thresholds.obj"),
             )
             .unwrap(),

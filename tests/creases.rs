@@ -16,7 +16,7 @@ fn fixture(name: &str) -> PathBuf {
 }
 
 fn load(name: &str) -> Mesh {
-    subdiv::io::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+    subdiv::bundled::load(&fixture(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
 }
 
 fn opts(creasing: Creasing, boundary: BoundaryInterpolation) -> Options {
@@ -388,7 +388,7 @@ fn tags_round_trip_through_obj_and_ct() {
     for ext in ["obj", "ct"] {
         let path = dir.join(format!("ico.{ext}"));
         subdiv::io::save(&path, &m).unwrap();
-        let back = subdiv::io::load(&path).unwrap();
+        let back = subdiv::bundled::load(&path).unwrap();
         assert_eq!(back.ct.sharpness(), m.ct.sharpness(), "{ext}");
         let (a, b) = (sub(&m, Scheme::Loop, 2, &Options::default()), sub(&back, Scheme::Loop, 2, &Options::default()));
         assert!(a.positions == b.positions, "{ext}: the reloaded mesh subdivides the same");
@@ -408,7 +408,7 @@ fn bad_tags_are_refused_with_file_and_line() {
     ] {
         let p = dir.join("bad.obj");
         std::fs::write(&p, format!("{head}{tag}\n")).unwrap();
-        let e = subdiv::io::load(&p).unwrap_err().to_string();
+        let e = subdiv::bundled::load(&p).unwrap_err().to_string();
         assert!(e.contains("bad.obj:9"), "{tag}: {e}");
         assert!(e.contains(want), "{tag}: {e}");
     }
@@ -441,7 +441,8 @@ fn the_crease_angle_finds_the_cube_edges_and_info_counts_them() {
     // on polygons, the corners of one polygon: all four of a quad grid's,
     // though its fan gives two of them two triangles
     let quads =
-        subdiv::io::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark/grid.obj")).unwrap();
+        subdiv::bundled::load(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark/grid.obj"))
+            .unwrap();
     let pt = subdiv::mesh::PolyTable::from_corner_table(&quads.ct);
     let (a, b) = (
         subdiv::rules::poly_summary(&pt, BoundaryInterpolation::EdgeOnly),

@@ -129,7 +129,7 @@ fn faces_are_written_as_the_mesh_is() {
 
 fn load_poly(name: &str) -> subdiv::mesh::PolyMesh {
     let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name);
-    subdiv::mesh::PolyMesh::from_mesh(&subdiv::io::load(&path).unwrap())
+    subdiv::mesh::PolyMesh::from_mesh(&subdiv::bundled::load(&path).unwrap())
 }
 
 fn poly_cases() -> Vec<(&'static str, subdiv::mesh::PolyMesh, Options)> {

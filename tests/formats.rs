@@ -34,7 +34,7 @@ fn every_format_round_trips_and_subdivides_like_obj() {
         for ext in OUT {
             let path = dir.join(format!("{name}.{ext}"));
             io::save(&path, &mesh).unwrap();
-            let back = io::load(&path).unwrap_or_else(|e| panic!("{name}.{ext}: {e}"));
+            let back = subdiv::bundled::load(&path).unwrap_or_else(|e| panic!("{name}.{ext}: {e}"));
             let what = format!("{name} via .{ext}");
             assert_eq!(back.ct.num_triangles(), mesh.ct.num_triangles(), "{what}");
             assert_eq!(back.ct.num_border_edges(), mesh.ct.num_border_edges(), "{what}");

@@ -28,15 +28,16 @@ fn tetrahedron() -> (Mesh, Paths) {
 /// A polygon fixture (faces of 3 to 6 corners, or creased quads) with
 /// generated paths.
 fn polygons(name: &str) -> (Mesh, Paths) {
-    let m =
-        subdiv::io::load(&std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name))
-            .unwrap();
+    let m = subdiv::bundled::load(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/catmark").join(name),
+    )
+    .unwrap();
     let p = Paths::generated(&m, 4);
     (m, p)
 }
 
 fn creased() -> (Mesh, Paths) {
-    let m = subdiv::io::load(
+    let m = subdiv::bundled::load(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/creases/ico_crease.obj"),
     )
     .unwrap();

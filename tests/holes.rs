@@ -39,7 +39,7 @@ fn holes_and_boundary_none_equal_opensubdiv() {
     let dir = scratch_dir("holes");
     for (folder, scheme) in [("catmark", Scheme::CatmullClark), ("creases", Scheme::Loop)] {
         let control = fixture(folder, "holes.obj");
-        let mesh = subdiv::io::load(&control).unwrap();
+        let mesh = subdiv::bundled::load(&control).unwrap();
         assert!(!mesh.ct.holes().is_empty(), "{folder}: the hole tags were read");
         for (boundary, name) in [(BoundaryInterpolation::EdgeOnly, "edge"), (BoundaryInterpolation::None, "none")] {
             for level in [1, 2] {
@@ -65,11 +65,11 @@ fn holes_and_boundary_none_equal_opensubdiv() {
 fn hole_tags_round_trip_and_bad_ones_are_refused() {
     let dir = scratch_dir("hole-tags");
     let control = fixture("catmark", "holes.obj");
-    let mesh = subdiv::io::load(&control).unwrap();
+    let mesh = subdiv::bundled::load(&control).unwrap();
     // a control mesh keeps its holes as tags in OBJ
     let out = dir.join("control.obj");
     subdiv::io::save(&out, &mesh).unwrap();
-    let back = subdiv::io::load(&out).unwrap();
+    let back = subdiv::bundled::load(&out).unwrap();
     assert_eq!(back.ct.holes(), mesh.ct.holes());
     let poly = subdiv::mesh::PolyMesh::from_mesh(&back);
     assert_eq!(poly.pt.holes(), [7, 12], "the file's faces");
@@ -83,7 +83,7 @@ fn hole_tags_round_trip_and_bad_ones_are_refused() {
 
 #[test]
 fn holes_are_neither_drawn_nor_picked() {
-    let mesh = subdiv::io::load(&fixture("catmark", "holes.obj")).unwrap();
+    let mesh = subdiv::bundled::load(&fixture("catmark", "holes.obj")).unwrap();
     let opts = Options::default();
     let (fine, _) = subdiv::subdivide(&mesh, Scheme::CatmullClark, 2, &opts).unwrap();
     let filled = subdiv::Mesh { ct: fine.ct.clone().with_holes(Vec::new()), positions: fine.positions.clone() };

@@ -936,7 +936,7 @@ fn a_link_planted_at_the_temporary_name_is_not_followed() {
         }
         for o in [&out, &out2] {
             match std::fs::symlink_metadata(o) {
-                Ok(meta) if meta.file_type().is_file() => match subdiv::io::load(o) {
+                Ok(meta) if meta.file_type().is_file() => match subdiv::bundled::load(o) {
                     Ok(back) if back.ct.num_triangles() == 4 => {}
                     other => failures.push(format!(
                         "{}: reads back as {:?}",

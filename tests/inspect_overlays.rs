@@ -77,7 +77,7 @@ fn a_corner_is_drawn_as_a_dot_with_its_operators_arrows() {
     let Some(plain) = render("tetrahedron.obj", "loop", 1, &[], "plain.png") else { return };
     let c = 4u32;
     let marked = render("tetrahedron.obj", "loop", 1, &["--corner", &c.to_string()], "corner.png").unwrap();
-    let control = subdiv::io::load(&model_path("tetrahedron.obj")).unwrap();
+    let control = subdiv::bundled::load(&model_path("tetrahedron.obj")).unwrap();
     let (fine, _) = subdiv::subdivide(&control, Scheme::Loop, 1, &Options::default()).unwrap();
     let at = |k: u32| triangle_corner_point(fine.ct.v_table(), &fine.positions, k);
     let dot = screen(&fine, at(c));
@@ -120,7 +120,7 @@ fn a_corner_is_drawn_as_a_dot_with_its_operators_arrows() {
 #[test]
 fn a_stencil_is_drawn_as_discs_in_its_weights_colours_at_the_control_vertices() {
     let Some(plain) = render("cube.obj", "butterfly", 1, &["--control"], "cube.png") else { return };
-    let control = subdiv::io::load(&model_path("cube.obj")).unwrap();
+    let control = subdiv::bundled::load(&model_path("cube.obj")).unwrap();
     // an edge point of the 8-point butterfly: weights of both signs
     let (v, opts) = (8 + 3, Options::default());
     let st = subdiv::rules::stencil(&control, Scheme::Butterfly, 1, &opts, v).unwrap();
@@ -177,7 +177,7 @@ fn a_corner_or_vertex_out_of_range_is_refused_in_one_line() {
 fn the_quad_table_corner_is_drawn_for_catmull_clark() {
     let Some(plain) = render("critter.obj", "catmull-clark", 1, &[], "critter.png") else { return };
     let marked = render("critter.obj", "catmull-clark", 1, &["--corner", "1000"], "critter-corner.png").unwrap();
-    let control = subdiv::io::load(&model_path("critter.obj")).unwrap();
+    let control = subdiv::bundled::load(&model_path("critter.obj")).unwrap();
     let (fine, _) = subdiv::subdivide(&control, Scheme::CatmullClark, 1, &Options::default()).unwrap();
     let pm = subdiv::mesh::PolyMesh::from_mesh(&fine);
     let dot = screen(&fine, subdiv::render::polygon_corner_point(&pm.pt, &fine.positions, 1000));

@@ -12,7 +12,7 @@ use subdiv::{Error, MeshError, Scheme};
 fn our_obj_parser_agrees_with_tobj() {
     for name in BUNDLED {
         let path = model_path(name);
-        let m = subdiv::io::load(&path).unwrap();
+        let m = subdiv::bundled::load(&path).unwrap();
         let (tp, tt) = load_tobj(&path);
         let key = |p: glam::Vec3| p.to_array().map(f32::to_bits);
         let mut ours: Vec<_> =
@@ -257,7 +257,7 @@ fn repairing_loaders_repair_topology_but_keep_data_errors() {
     std::fs::write(&obj_path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n").unwrap();
     for (path, base, edge) in [(&ct, 0, "(0-1)"), (&obj_path, 1, "(1-2)")] {
         assert!(matches!(
-            subdiv::io::load(path).unwrap_err(),
+            subdiv::bundled::load(path).unwrap_err(),
             Error::Mesh { source: MeshError::NonManifoldEdge { faces: 3, .. }, .. }
         ));
         let (m, rep) = load_repaired(path).unwrap();

@@ -478,7 +478,7 @@ fn grouped_evaluation_equals_one_point_at_a_time() {
     // icosphere (valences 5 and 6) and the bundled critter (fanned quads:
     // valences 3 to 9, smooth and local faces), many points per face, in
     // random order, a few right at a corner
-    let critter = subdiv::io::load(std::path::Path::new("bundled:critter.obj")).unwrap();
+    let critter = subdiv::bundled::load(std::path::Path::new("bundled:critter.obj")).unwrap();
     for mesh in [icosphere(2), critter] {
         let ev = Evaluator::new(&mesh, Scheme::Loop, &Options::default()).unwrap();
         let faces: Vec<usize> = (0..ev.num_faces()).filter(|&f| ev.accepts(f)).collect();

@@ -362,7 +362,7 @@ fn limit_and_smooth_compute_and_write_in_double_precision() {
         assert!(st.status.success(), "{}", String::from_utf8_lossy(&st.stderr));
         obj_points(&std::fs::read_to_string(&path).unwrap())
     };
-    let mesh = subdiv::io::load(&input).unwrap();
+    let mesh = subdiv::bundled::load(&input).unwrap();
     let poly = subdiv::mesh::PolyMesh::from_mesh(&mesh);
     let limit = subdiv::eval::limit_positions_f64(&poly, &v, &Options::default()).unwrap();
     assert!(worst(&run(&["limit", "-s", "catmull-clark"], "l.obj"), &limit) < 1e-9, "the default limit is f64");

@@ -11,7 +11,7 @@ fn avx2_kernels_equal_the_baseline_bit_for_bit() {
     if !subdiv::cpu::avx2_fma() {
         eprintln!("this CPU has no AVX2 and FMA: only the baseline kernels exist here");
     }
-    let control = subdiv::io::load(std::path::Path::new("bundled:torus.obj")).unwrap();
+    let control = subdiv::bundled::load(std::path::Path::new("bundled:torus.obj")).unwrap();
     let paths = Paths::generated(&control, 4);
     for scheme in [Scheme::Loop, Scheme::ModifiedButterfly] {
         let mut anim = Animation::new(&control, &paths, Tweak::Jarek, 2, scheme, 3, &Options::default()).unwrap();

@@ -55,7 +55,6 @@ mod tests;
 mod upload_tests;
 
 pub(crate) use command::Command;
-pub use display::Coloring;
 pub(crate) use viewer::Viewer;
 
 use crate::render::Camera;
@@ -102,7 +101,7 @@ pub struct ViewOptions {
     /// where the stage opens).
     pub time: Option<f64>,
     /// Initial colouring; `None` is auto (see [`Coloring::initial`]).
-    pub coloring: Option<Coloring>,
+    pub coloring: Option<crate::render::Coloring>,
     /// Start with this many isolines per side of zero over a curvature
     /// colouring (`None`: off).
     pub isolines: Option<u8>,
@@ -311,7 +310,7 @@ impl App {
             return Err(e);
         }
         // a model with MTL materials opens showing them unless a colouring was asked for
-        let coloring = Coloring::initial(opts.coloring, doc.model.attrs.file.materials.is_some());
+        let coloring = crate::render::Coloring::initial(opts.coloring, doc.model.attrs.file.materials.is_some());
         doc.display =
             Display { turntable: opts.turntable, coloring, control: opts.control, ..Display::new(opts.wireframe) };
         if let Some(count) = opts.isolines {

@@ -560,7 +560,7 @@ fn creases_are_tagged_edited_drawn_split_and_saved_from_the_viewer() {
     v.apply(Command::SaveControl(path.clone()));
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.lines().filter(|l| l.starts_with("t crease 2/1/0 ")).count(), 1, "{text}");
-    assert!(crate::io::load(&path).unwrap().ct.sharpness().is_some());
+    assert!(crate::bundled::load(&path).unwrap().ct.sharpness().is_some());
 }
 
 #[test]
@@ -1102,7 +1102,7 @@ fn a_picked_face_is_punched_as_a_hole_and_filled_again() {
     v.apply(Command::SaveControl(path.clone()));
     // (written as the file's quads: one polygon, face 0)
     assert!(std::fs::read_to_string(&path).unwrap().contains("t hole 1/0/0 0\n"));
-    assert_eq!(crate::io::load(&path).unwrap().ct.holes(), v.doc.model.control.mesh.ct.holes());
+    assert_eq!(crate::bundled::load(&path).unwrap().ct.holes(), v.doc.model.control.mesh.ct.holes());
     v.apply(Command::ToggleHolePicked);
     assert!(v.doc.model.control.mesh.ct.holes().is_empty(), "filled again");
     assert_eq!(v.doc.model.control.mesh.positions, critter.positions);

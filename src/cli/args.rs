@@ -342,7 +342,7 @@ impl ColorArgs {
     /// `Coloring::initial`), every other name its colouring (`none` the
     /// plain front colour, even on a model with materials).
     #[cfg(feature = "viewer")]
-    pub(crate) fn asked(&self) -> Result<Option<subdiv::app::Coloring>> {
+    pub(crate) fn asked(&self) -> Result<Option<subdiv::render::Coloring>> {
         match self.color.as_str() {
             "auto" => Ok(None),
             c => c.parse().map(Some).map_err(subdiv::Error::Usage),
@@ -352,8 +352,8 @@ impl ColorArgs {
     /// The isolines asked for, refused unless `coloring` is a curvature
     /// (the lines are contours of its value).
     #[cfg(feature = "viewer")]
-    pub(crate) fn isolines(&self, coloring: Option<subdiv::app::Coloring>) -> Result<Option<u8>> {
-        use subdiv::app::Coloring;
+    pub(crate) fn isolines(&self, coloring: Option<subdiv::render::Coloring>) -> Result<Option<u8>> {
+        use subdiv::render::Coloring;
         let n = self.isolines.as_deref().map(parse_isolines).transpose().map_err(subdiv::Error::Usage)?;
         match (n, coloring) {
             (Some(_), Some(Coloring::Curvature(_))) | (None, _) => Ok(n),
@@ -369,9 +369,9 @@ impl ColorArgs {
     #[cfg(feature = "viewer")]
     pub(crate) fn range(
         &self,
-        coloring: Option<subdiv::app::Coloring>,
+        coloring: Option<subdiv::render::Coloring>,
     ) -> Result<Option<subdiv::eval::color::HalfWidth>> {
-        use subdiv::app::Coloring;
+        use subdiv::render::Coloring;
         let r = self.range.as_deref().map(parse_range).transpose().map_err(subdiv::Error::Usage)?;
         match (r, coloring) {
             (Some(_), Some(Coloring::Curvature(_))) | (None, _) => Ok(r),
@@ -435,7 +435,7 @@ pub(crate) fn parse_bytes(s: &str) -> std::result::Result<u64, String> {
 #[cfg(all(test, feature = "viewer"))]
 mod tests {
     use super::{COLORINGS, CURVATURES, ColorArgs};
-    use subdiv::app::Coloring;
+    use subdiv::render::Coloring;
 
     #[test]
     fn the_help_of_color_names_every_coloring() {

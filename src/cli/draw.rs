@@ -234,13 +234,13 @@ mod gpu {
     use super::super::progress;
     use super::{AnimateArgs, RenderArgs, RenderInspect, animate_stats, animation_of};
     use glam::Vec3;
-    use subdiv::app::Coloring;
     use subdiv::eval::color;
     use subdiv::eval::color::HalfWidth;
     use subdiv::mesh::Attributes;
     use subdiv::mesh::PolyMesh;
     use subdiv::mesh::colormap;
     use subdiv::mesh::{corner_ops, poly_corner_ops};
+    use subdiv::render::Coloring;
     use subdiv::render::Paint;
     use subdiv::render::{
         Overlay, Viewport, paint_overlay, poly_corner_overlay, project_overlay, stencil_overlay,

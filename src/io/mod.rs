@@ -401,16 +401,6 @@ pub fn read_raw(source: Source, opts: &ReadOptions) -> Result<Raw> {
     Ok(Raw { raw, format, file, warnings: warnings.finish() })
 }
 
-/// The mesh in the file `path`, or the bundled model it names
-/// (`bundled:torus.obj`, as the command line takes it), with the default
-/// [`ReadOptions`]: a shorthand for [`read`].
-///
-/// # Errors
-/// As [`read`]; an unknown `bundled:` name.
-pub fn load(path: &Path) -> Result<Mesh> {
-    crate::bundled::read(path, &ReadOptions::default()).map(|l| l.mesh)
-}
-
 /// The bytes of a file the user names besides a model (key paths, a
 /// curve, evaluation points), read as models are: a regular file only,
 /// opened without blocking, within `limits` (`file-bytes`).

@@ -7,6 +7,7 @@
 pub(crate) mod blit;
 pub(crate) mod camera;
 pub(crate) mod colorbar;
+pub(crate) mod coloring;
 pub(crate) mod export;
 pub(crate) mod gpu;
 pub(crate) mod gpu_anim;
@@ -23,6 +24,7 @@ pub(crate) mod textures;
 // What the library's users reach; the modules are the crate's own.
 pub use camera::Camera;
 pub use colorbar::draw as draw_colorbar;
+pub use coloring::Coloring;
 pub use export::{Evaluation, ExportStyle, ExportTarget, export_animation, frame_path, motion_bounds};
 pub use gpu::Gpu;
 pub use gpu_anim::{GpuAnimator, time_frames};

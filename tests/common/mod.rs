@@ -57,7 +57,7 @@ pub fn model_path(name: &str) -> PathBuf {
 }
 
 pub fn bundled(name: &str) -> Mesh {
-    subdiv::io::load(&model_path(name)).expect("bundled model loads")
+    subdiv::bundled::load(&model_path(name)).expect("bundled model loads")
 }
 
 pub const BUNDLED: [&str; 4] = ["tetrahedron.obj", "cube.obj", "torus.obj", "lprism.obj"];

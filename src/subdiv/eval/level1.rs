@@ -403,7 +403,7 @@ mod tests {
 
     #[test]
     fn every_face_reads_through_its_template_what_a_walk_finds() {
-        let critter = crate::io::load(std::path::Path::new("bundled:critter.obj")).expect("bundled");
+        let critter = crate::bundled::load(std::path::Path::new("bundled:critter.obj")).expect("bundled");
         for mesh in [shapes::icosphere(2), shapes::grid(5), tetrahedron(), shapes::icosahedron(), critter] {
             let mut l1 = Level1::new(&mesh, &wide(&mesh), LoopBeta::Loop).expect("small");
             l1.learn_templates(|_| true);
