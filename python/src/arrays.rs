@@ -112,6 +112,20 @@ pub fn creases(edges: &[i64], sharpness: &[f64], nv: usize) -> Result<Vec<(u32, 
     Ok(out)
 }
 
+/// The faces `ids` of `m` faces, the holes: each checked in range.
+///
+/// # Errors
+/// The first id out of range.
+pub fn holes(ids: &[i64], m: usize) -> Result<Vec<u32>, Msg> {
+    ids.iter()
+        .enumerate()
+        .map(|(k, &f)| match u32::try_from(f) {
+            Ok(f) if (f as usize) < m => Ok(f),
+            _ => Err(format!("hole {k} names face {f}, but there are {m} faces")),
+        })
+        .collect()
+}
+
 /// A `(rows, cols)` float64 array owning `flat`.
 ///
 /// # Errors

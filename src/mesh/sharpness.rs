@@ -68,6 +68,16 @@ pub enum Creasing {
     Chaikin,
 }
 
+impl Creasing {
+    /// Its name (`uniform`, `chaikin`), as [`std::str::FromStr`] reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Creasing::Uniform => "uniform",
+            Creasing::Chaikin => "chaikin",
+        }
+    }
+}
+
 impl std::str::FromStr for Creasing {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
@@ -96,6 +106,18 @@ pub enum BoundaryInterpolation {
     /// sharp are holes, left out of the surface; their vertices still
     /// shape the interior.
     None,
+}
+
+impl BoundaryInterpolation {
+    /// Its name (`edge`, `edge-and-corner`, `none`), as
+    /// [`std::str::FromStr`] reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            BoundaryInterpolation::EdgeOnly => "edge",
+            BoundaryInterpolation::EdgeAndCorner => "edge-and-corner",
+            BoundaryInterpolation::None => "none",
+        }
+    }
 }
 
 impl std::str::FromStr for BoundaryInterpolation {

@@ -290,6 +290,15 @@ impl Refiner {
         self.edit.get_or_insert_with(EditTables::default)
     }
 
+    /// Builds now what the first edit would build (the stencils, the
+    /// tables an edit walks, every level evaluated by the rows), so that
+    /// the first move or sharpness change costs what later ones do: an
+    /// editor calls it when it opens. A refiner that only serves data
+    /// never needs it.
+    pub fn prepare_edits(&mut self) {
+        self.edit_tables();
+    }
+
     /// The finest level's rings, made on first use.
     fn rings(&self) -> Option<&(Vec<u32>, Vec<u32>)> {
         self.rings
