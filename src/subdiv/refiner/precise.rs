@@ -120,10 +120,13 @@ fn row_value(level: &LevelPlan<f64>, patch: &HashMap<u32, Row<f64>>, r: u32, inp
     sum
 }
 
+/// Every level's f64 rows, and the rows sharpness edits recorded over them.
+pub(super) type Rows64<'a> = (&'a [LevelPlan<f64>], &'a [HashMap<u32, Row<f64>>]);
+
 /// The rows `touched[l + 1]` of every level `l + 1` evaluated in f64 from
 /// level `l` (an edit's rows, as the f32 ones).
 pub(super) fn evaluate_rows(
-    (plan, patches): (&[LevelPlan<f64>], &[HashMap<u32, Row<f64>>]),
+    (plan, patches): Rows64<'_>,
     touched: &[Vec<u32>],
     levels: &mut [Vec<DVec3>],
 ) {
