@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Loop subdivision from numpy to numpy: subdiv against the Python peers
-that are installed (trimesh, libigl, pymeshlab, Open3D), in one run.
+that are installed (trimesh, libigl, pymeshlab, Open3D), in one run; with
+--edits, the costs of editing through subdiv.Refiner instead.
 
     python3 python/bench.py [MESH] [--levels 3]
+    python3 python/bench.py --edits [MESH] [--levels 2]
 
 MESH defaults to the Stanford bunny of the team's shared models, a checkout
 beside the repository (not part of it). Each
@@ -92,13 +94,88 @@ def timed(fn, v, f, levels):
     return time.perf_counter() - t, out
 
 
+def ms(fn):
+    """`fn()`'s wall time in milliseconds."""
+    t = time.perf_counter()
+    fn()
+    return (time.perf_counter() - t) * 1e3
+
+
+def edits(v, f, levels, rounds=5, later=20):
+    """subdiv.Refiner on (v, f) at `levels`, float64 and float32 input: its
+    construction, and three edits: one vertex moved, 100 vertices moved
+    (the 100 nearest one vertex, a brush), an edge's sharpness set. Each
+    edit is timed first on a fresh refiner, then `later` times again on the
+    same place (a drag: the minimum) and `later` times elsewhere (another
+    vertex, brush or edge each time, spread over the mesh: the median),
+    then undone. Minima over `rounds` rounds, which interleave the dtypes."""
+    rng = np.random.default_rng(1)
+    near = lambda i: np.argsort(np.linalg.norm(v - v[i], axis=1))[:100]
+    spots = rng.choice(len(v), later, replace=False)
+    faces = rng.choice(len(f), later + 1, replace=False)
+    brushes = [near(i) for i in [0, *spots]]
+    edges = [(int(f[k, 0]), int(f[k, 1])) for k in faces]
+    best, spread = {}, {}
+
+    def keep(key, t):
+        best[key] = min(best.get(key, float("inf")), t)
+
+    for _ in range(rounds):
+        for dtype in (np.float64, np.float32):
+            w = v.astype(dtype)
+            name = np.dtype(dtype).name
+            d = lambda k: np.asarray(1e-3 * (k % 7 + 1), dtype)
+            edit = {
+                "one vertex": lambda r, at, k: r.move([[0, *spots][at]], w[[[0, *spots][at]]] + d(k)),
+                "100 vertices": lambda r, at, k: r.move(brushes[at], w[brushes[at]] + d(k)),
+                "sharpness": lambda r, at, k: r.set_sharpness(*edges[at], 1.0 + k % 3),
+            }
+            for what, fn in edit.items():
+                r = None
+
+                def build():
+                    nonlocal r
+                    r = subdiv.Refiner(w, f, levels)
+
+                keep((name, "construction"), ms(build))
+                keep((name, f"{what}, first"), ms(lambda: fn(r, 0, 0)))
+                for k in range(1, later + 1):
+                    keep((name, f"{what}, again"), ms(lambda: fn(r, 0, k)))
+                times = [ms(lambda: fn(r, at, 0)) for at in range(1, later + 1)]
+                keep((name, f"{what}, elsewhere"), float(np.median(times)))
+                keep((name, f"{what}, undo"), ms(r.undo))
+                if what == "one vertex":
+                    best[(name, "rows")] = (len(fn(r, 0, 1)), len(r.vertices))
+    return best
+
+
+def print_edits(path, v, f, levels, best):
+    print(f"{os.path.basename(path)}: {len(v)} vertices, {len(f)} faces, Loop level {levels}; "
+          f"{os.cpu_count()} CPUs, Python {platform.python_version()}, numpy {np.__version__}, "
+          f"load average {os.getloadavg()[0]:.1f}\n")
+    print("| subdiv.Refiner | float64 (ms) | float32 (ms) |")
+    print("|---|---|---|")
+    rows = ["construction"] + [f"{e}, {k}" for e in ("one vertex", "100 vertices", "sharpness")
+                               for k in ("first", "again", "elsewhere", "undo")]
+    for what in rows:
+        print(f"| {what} | {best[('float64', what)]:.2f} | {best[('float32', what)]:.2f} |")
+    n, total = best[("float64", "rows")]
+    print(f"\na one-vertex move re-evaluates {n} of the {total} refined rows (the rows it returns).")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("mesh", nargs="?", default=DEFAULT)
-    ap.add_argument("--levels", type=int, default=3)
+    ap.add_argument("--levels", type=int, default=None, help="default: 3, with --edits 2")
+    ap.add_argument("--edits", action="store_true", help="time subdiv.Refiner's edits instead")
     a = ap.parse_args()
     m = subdiv.load(a.mesh)
     v, f = np.ascontiguousarray(m.vertices), np.ascontiguousarray(m.faces)
+    if a.edits:
+        levels = 2 if a.levels is None else a.levels
+        print_edits(a.mesh, v, f, levels, edits(v, f, levels))
+        return
+    a.levels = 3 if a.levels is None else a.levels
     tools = peers()
     timed(ours, v, f, a.levels)  # warm-up: page faults, thread pool
     load_before = os.getloadavg()[0]

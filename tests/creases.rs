@@ -403,6 +403,8 @@ fn bad_tags_are_refused_with_file_and_line() {
         ("t crease 2/1/0 0 9 1", "vertex"),
         ("t crease 2/1/0 0 1 nan", "sharpness"),
         ("t crease 2/1/0 0 1 -2", "sharpness"),
+        ("t crease 2/1/0 0 1 inf", "sharpness inf: it must be finite and at least 0"),
+        ("t corner 1/1/0 0 -1", "sharpness -1: it must be finite and at least 0"),
         ("t corner 1/1/0 7 1", "vertex"),
         ("t crease 2/1/0 0", "crease"),
     ] {

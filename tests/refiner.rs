@@ -241,6 +241,39 @@ fn bad_moves_are_refused_and_change_nothing() {
 }
 
 #[test]
+fn a_sharpness_that_is_not_finite_and_at_least_0_is_refused_as_subdivide_refuses_it() {
+    let mut r = Refiner::new(&icosphere(1), Scheme::Loop, 2, &Options::default()).unwrap();
+    let ct = r.cage().ct;
+    let c = ct.edge_owners().next().unwrap();
+    let (a, b) = (ct.vtx(subdiv::mesh::n(c)), ct.vtx(subdiv::mesh::p(c)));
+    r.set_edge_sharpness(a, b, 2.0).unwrap();
+    let (before, tags) = (r.positions().to_vec(), r.tags());
+    for bad in [f32::NAN, -1.0, f32::INFINITY, f32::NEG_INFINITY] {
+        // the one validation: the message a file's tag or subdivide gets
+        let why = subdiv::mesh::checked_sharpness(f64::from(bad)).unwrap_err();
+        let e = r.set_edge_sharpness(a, b, bad).unwrap_err();
+        assert!(matches!(e, subdiv::Error::Usage(_)), "{e}");
+        assert_eq!(e.to_string(), format!("edge {a}-{b} has {why}"));
+        let e = r.set_vertex_sharpness(a, bad).unwrap_err();
+        assert_eq!(e.to_string(), format!("vertex {a} has {why}"));
+        let mesh = r.cage();
+        let tag = |sharpness| Tags { creases: vec![CreaseTag { v0: a, v1: b, sharpness }], ..Tags::default() };
+        let e = mesh.ct.clone().with_tags(&tag(bad)).unwrap_err().to_string();
+        assert!(e.contains(&why), "{e}");
+    }
+    assert!(why_nan().contains("NaN") && why_nan().ends_with("it must be finite and at least 0"), "{}", why_nan());
+    assert_eq!(r.positions(), &before[..], "nothing changed");
+    assert_eq!((r.tags(), r.history_len()), (tags, (1, 0)), "the edge kept its sharpness and no step was made");
+    // 10 and more is infinitely sharp, stored as 10
+    r.set_edge_sharpness(a, b, 1e30).unwrap();
+    assert_eq!(r.tags().creases[0].sharpness, subdiv::mesh::INFINITE);
+}
+
+fn why_nan() -> String {
+    subdiv::mesh::checked_sharpness(f64::NAN).unwrap_err()
+}
+
+#[test]
 fn sharpness_edits_recorded_where_they_reach_equal_a_fresh_refiner_bit_for_bit() {
     use subdiv::mesh::{BoundaryInterpolation, Creasing};
     let chaikin = Options { creasing: Creasing::Chaikin, ..Options::default() };
@@ -350,4 +383,104 @@ fn the_budget_counts_the_levels_a_refiner_keeps() {
     let roomy = Options { max_memory: Some(lo + lo / 2), ..Options::default() };
     let r = Refiner::new(&cage, Scheme::Loop, levels, &roomy).expect("the earlier levels are a third of the last");
     assert_eq!(r.levels(), levels);
+}
+
+/// `points` flat.
+fn flat64(points: &[DVec3]) -> Vec<f64> {
+    points.iter().flat_map(|p| p.to_array()).collect()
+}
+
+#[test]
+fn f64_points_kept_through_edits_equal_refining_the_f64_control_points_whole_bit_for_bit() {
+    use subdiv::mesh::BoundaryInterpolation;
+    let no_boundary = Options { boundary: BoundaryInterpolation::None, ..Options::default() };
+    let mut all = cases();
+    all.push(("open catmull-clark, no boundary", common::flat_grid(4), Scheme::CatmullClark, 2));
+    for (name, mesh, scheme, levels) in all {
+        let opts = if name.contains("no boundary") { no_boundary } else { Options::default() };
+        let mut r = Refiner::new(&mesh, scheme, levels, &opts).unwrap();
+        let far: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3() * 3.0 + DVec3::splat(1e6)).collect();
+        r.set_control_f64(&far).unwrap();
+        let whole = |r: &Refiner| r.refine(&flat64(r.control_f64().unwrap()), 3).unwrap();
+        assert_eq!(flat64(r.positions_f64().unwrap()), whole(&r), "{name}: kept = refined whole");
+        let (ptr, ptr64) = (r.positions().as_ptr(), r.positions_f64().unwrap().as_ptr());
+        let v = mesh.ct.v_table();
+        let (a, b) = (v[0], v[1]);
+        // a millimetre a million units out: lost in f32, kept in f64
+        let to = [far[a as usize] + DVec3::new(1e-3, 0.0, 0.0), far[b as usize] - DVec3::new(0.0, 2e-3, 0.0)];
+        let before = flat64(r.positions_f64().unwrap());
+        let n = r.move_vertices_f64(&[a, b], &to).unwrap();
+        assert_eq!(r.control_f64().unwrap()[a as usize], to[0], "{name}: the f64 position as given");
+        assert_eq!(r.control()[a as usize], to[0].as_vec3(), "{name}: the f32 one rounded");
+        assert_eq!(flat64(r.positions_f64().unwrap()), whole(&r), "{name}: after a move");
+        let after = flat64(r.positions_f64().unwrap());
+        let moved: Vec<u32> = (0..after.len() / 3)
+            .filter(|&i| after[3 * i..3 * i + 3] != before[3 * i..3 * i + 3])
+            .map(|i| i as u32)
+            .collect();
+        let listed = r.last_changed().to_vec();
+        assert!(!moved.is_empty() && moved.iter().all(|i| listed.contains(i)), "{name}: every changed row listed");
+        assert_eq!(listed.len(), n, "{name}: the count is the list's");
+        let mut cage = r.cage();
+        cage.positions = r.control().to_vec();
+        let (_, exact) = subdivide_f64(&cage, r.control_f64().unwrap(), scheme, levels, &opts).unwrap();
+        let worst = after.iter().zip(flat64(&exact)).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+        assert!(worst < 1e-8, "{name}: the f64 subdivision of the moved cage ({worst})");
+        r.set_edge_sharpness(a, b, 2.5).unwrap();
+        assert_eq!(flat64(r.positions_f64().unwrap()), whole(&r), "{name}: after a sharpness edit");
+        r.move_vertices(&[b], &[Vec3::new(0.5, 0.25, 2.0)]).unwrap();
+        assert_eq!(r.control_f64().unwrap()[b as usize], DVec3::new(0.5, 0.25, 2.0), "{name}: an f32 move widened");
+        assert_eq!(flat64(r.positions_f64().unwrap()), whole(&r), "{name}: after an f32 move");
+        assert!(r.undo() && r.undo(), "{name}");
+        assert_eq!(flat64(r.positions_f64().unwrap()), after, "{name}: undone to the same bits");
+        assert!(r.undo());
+        assert_eq!(flat64(r.positions_f64().unwrap()), before, "{name}: back to the start");
+        assert!(r.redo() && r.redo() && r.redo());
+        assert_eq!(flat64(r.positions_f64().unwrap()), whole(&r), "{name}: redone");
+        let ptrs = (r.positions().as_ptr(), r.positions_f64().unwrap().as_ptr());
+        assert_eq!(ptrs, (ptr, ptr64), "{name}: the points never left their buffers");
+    }
+}
+
+#[test]
+fn a_sharpness_change_that_refines_anew_keeps_the_points_in_their_buffers() {
+    use subdiv::mesh::BoundaryInterpolation;
+    let opts = Options { boundary: BoundaryInterpolation::None, ..Options::default() };
+    let mesh = common::flat_grid(4);
+    let mut r = Refiner::new(&mesh, Scheme::Loop, 2, &opts).unwrap();
+    r.move_vertices(&[0], &[Vec3::new(0.0, 0.0, 0.5)]).unwrap();
+    let local = r.last_changed().len();
+    let ptr = r.positions().as_ptr();
+    // a border edge infinitely sharp: no longer a hole there
+    let ct = r.cage().ct;
+    let c = (0..ct.num_corners() as u32).find(|&c| ct.o(c).is_none()).unwrap();
+    let (a, b) = (ct.vtx(subdiv::mesh::n(c)), ct.vtx(subdiv::mesh::p(c)));
+    r.set_edge_sharpness(a, b, 10.0).unwrap();
+    assert_eq!(r.positions().as_ptr(), ptr, "the finest points stayed where they were");
+    assert_eq!(r.last_changed().len(), r.positions().len(), "refined anew: every row listed");
+    assert!(local < r.positions().len());
+    let fresh = by_rows(&r.cage(), Scheme::Loop, 2, &opts);
+    assert_eq!(differ(r.positions(), fresh.positions()), None);
+    assert!(r.undo());
+    assert_eq!(r.positions().as_ptr(), ptr);
+}
+
+#[test]
+fn bad_f64_points_are_refused_and_change_nothing() {
+    let mesh = icosphere(1);
+    let mut r = Refiner::new(&mesh, Scheme::Loop, 1, &Options::default()).unwrap();
+    let wide: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+    assert!(r.set_control_f64(&wide[1..]).is_err());
+    let mut bad = wide.clone();
+    bad[3].y = f64::NAN;
+    assert!(r.set_control_f64(&bad).is_err());
+    bad[3].y = 1e300;
+    assert!(r.set_control_f64(&bad).is_err());
+    assert!(r.positions_f64().is_none(), "not kept");
+    r.set_control_f64(&wide).unwrap();
+    let before = flat64(r.positions_f64().unwrap());
+    assert!(r.move_vertices_f64(&[0], &[DVec3::new(f64::INFINITY, 0.0, 0.0)]).is_err());
+    assert!(r.move_vertices_f64(&[999], &[DVec3::ZERO]).is_err());
+    assert_eq!(flat64(r.positions_f64().unwrap()), before);
+    assert_eq!(r.history_len(), (0, 0));
 }

@@ -103,3 +103,30 @@ fn bad_option_tags_are_refused_naming_the_line() {
         assert_eq!(e.lines().count(), 1, "{e}");
     }
 }
+
+/// Every name `name` gives reads back through the one `FromStr`, and an
+/// unknown name's message lists every one of them.
+fn names_read_back<T: std::str::FromStr<Err = String> + PartialEq + std::fmt::Debug + Copy>(
+    all: &[T],
+    name: impl Fn(T) -> &'static str,
+) {
+    let e = "nope".parse::<T>().unwrap_err();
+    assert!(e.contains("'nope'"), "{e}");
+    for &x in all {
+        assert_eq!(name(x).parse::<T>(), Ok(x));
+        assert!(e.contains(name(x)), "{e} lists {}", name(x));
+    }
+}
+
+#[test]
+fn every_option_name_reads_back_and_an_unknown_one_is_refused_listing_them() {
+    use subdiv::{LoopBeta, Scheme};
+    names_read_back(&Scheme::ALL, Scheme::name);
+    names_read_back(&[LoopBeta::Loop, LoopBeta::Warren], LoopBeta::name);
+    let boundaries =
+        [BoundaryInterpolation::EdgeOnly, BoundaryInterpolation::EdgeAndCorner, BoundaryInterpolation::None];
+    names_read_back(&boundaries, BoundaryInterpolation::name);
+    names_read_back(&UvInterpolation::ALL, UvInterpolation::name);
+    names_read_back(&[TriangleSubdivision::Catmark, TriangleSubdivision::Smooth], TriangleSubdivision::name);
+    names_read_back(&[Creasing::Uniform, Creasing::Chaikin], Creasing::name);
+}

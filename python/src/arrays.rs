@@ -106,12 +106,24 @@ pub fn creases(edges: &[i64], sharpness: &[f64], nv: usize) -> Result<Vec<(u32, 
         if e.iter().any(|&i| i < 0 || i as u64 >= nv as u64) {
             return Err(format!("crease {k} names vertex ({}, {}), but there are {nv} vertices", e[0], e[1]));
         }
-        if !(s.is_finite() && s >= 0.0) {
-            return Err(format!("crease {k} has sharpness {s}: it must be finite and at least 0"));
-        }
-        out.push((e[0] as u32, e[1] as u32, s.min(f64::from(f32::MAX)) as f32));
+        let s = subdiv::mesh::checked_sharpness(s).map_err(|e| format!("crease {k} has {e}"))?;
+        out.push((e[0] as u32, e[1] as u32, s));
     }
     Ok(out)
+}
+
+/// The faces `ids` of `m` faces, the holes: each checked in range.
+///
+/// # Errors
+/// The first id out of range.
+pub fn holes(ids: &[i64], m: usize) -> Result<Vec<u32>, Msg> {
+    ids.iter()
+        .enumerate()
+        .map(|(k, &f)| match u32::try_from(f) {
+            Ok(f) if (f as usize) < m => Ok(f),
+            _ => Err(format!("hole {k} names face {f}, but there are {m} faces")),
+        })
+        .collect()
 }
 
 /// A `(rows, cols)` float64 array owning `flat`.

@@ -103,8 +103,25 @@ pub struct Request<'a> {
     pub scheme: Scheme,
     /// Repair instead of refusing a non-manifold mesh.
     pub repair: bool,
-    /// Creases `(v0, v1, sharpness)` in the caller's ids.
-    pub creases: &'a [(u32, u32, f32)],
+    /// Creases `(v0, v1, sharpness)` in the caller's ids, and the faces
+    /// that are holes (the caller's face ids, checked).
+    pub tags: (&'a [(u32, u32, f32)], &'a [u32]),
+}
+
+/// The corners of the faces of `v` (`k` each) that are no holes (`holes`
+/// sorted, as the tables keep them), in the caller's numbering: the
+/// faces the library's faces-only levels give.
+pub fn face_ids(remap: &Remap, v: &[u32], k: usize, holes: &[u32]) -> Vec<i64> {
+    if holes.is_empty() || k == 0 {
+        return remap.ids(v);
+    }
+    let mut out = Vec::with_capacity(v.len());
+    for (f, face) in v.chunks_exact(k).enumerate() {
+        if holes.binary_search(&(f as u32)).is_err() {
+            out.extend(face.iter().map(|&j| remap.id(j)));
+        }
+    }
+    out
 }
 
 /// The validated (or repaired) control mesh and its renumbering.
@@ -120,9 +137,10 @@ pub fn control(req: Request<'_>) -> Result<(Control, Remap), Msg> {
             req.scheme
         ));
     }
+    let (creases, holes) = req.tags;
     if req.repair {
-        if !req.creases.is_empty() {
-            return Err("creases cannot be combined with repair=True (the repair renumbers vertices)".into());
+        if !creases.is_empty() || !holes.is_empty() {
+            return Err("creases and holes cannot be combined with repair=True (the repair renumbers)".into());
         }
         return repaired(req.positions, req.faces, poly);
     }
@@ -130,13 +148,15 @@ pub fn control(req: Request<'_>) -> Result<(Control, Remap), Msg> {
     let (c, kept) = if poly {
         let (pt, _, kept) =
             PolyTable::build(n_input, &req.faces.starts, &req.faces.corners, Some(&req.positions)).map_err(msg)?;
+        let pt = if holes.is_empty() { pt } else { pt.with_holes(holes.to_vec()) };
         (Control::Poly(PolyMesh { pt, positions: kept_positions(req.positions, kept.as_deref()) }), kept)
     } else {
         let (ct, _, kept) = CornerTable::build(n_input, &req.faces.corners, Some(&req.positions)).map_err(msg)?;
+        let ct = if holes.is_empty() { ct } else { ct.with_holes(holes.to_vec()) };
         (Control::Tri(Mesh { ct, positions: kept_positions(req.positions, kept.as_deref()) }), kept)
     };
     let remap = Remap { n_input, kept };
-    let tags = tags(req.creases, &remap)?;
+    let tags = tags(creases, &remap)?;
     let c = if tags.is_empty() {
         c
     } else {

@@ -16,7 +16,7 @@ type Samples<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound
 
 /// The exact limit at control face `face[i]`, parameters `uv[i]`: Loop
 /// on triangles (barycentric), Catmull-Clark on ptex faces (the unit
-/// square); `names` are the scheme, beta and boundary, `creases` as for
+/// square); `names` are the scheme and options, `creases` as for
 /// `subdivide`.
 ///
 /// # Errors
@@ -28,7 +28,7 @@ pub fn evaluate_arrays<'py>(
     py: Python<'py>,
     mesh: MeshArgs<'py>,
     creases: CreaseArgs<'py>,
-    names: (String, String, String),
+    names: crate::options::Names,
     face: PyReadonlyArray1<'py, i64>,
     uv: PyReadonlyArray2<'py, f64>,
     flags: (bool, bool),

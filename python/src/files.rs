@@ -10,20 +10,46 @@ use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use std::path::PathBuf;
 use subdiv::Mesh;
+use subdiv::Scheme;
 use subdiv::io;
 use subdiv::io::{ReadOptions, Source, Topology};
-use subdiv::mesh::Attributes;
 use subdiv::mesh::PolyMesh;
+use subdiv::mesh::{Attributes, FileScheme, ShapeOptions};
 
 /// What a file held, flat: vertices, triangles, per-corner texture
-/// coordinates, per-vertex colours, and the polygons (corners, offsets)
-/// when the file's faces were not all triangles.
-type Read = (Vec<f64>, Vec<i64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<(Vec<i64>, Vec<i64>)>);
+/// coordinates, per-vertex colours, the polygons (corners, offsets) when
+/// the file's faces were not all triangles, and the options it states.
+type Read = (Vec<f64>, Vec<i64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<(Vec<i64>, Vec<i64>)>, Named);
 
-/// The arrays a file holds: `(vertices, faces, uv, colors, polygons)`,
-/// `uv` `(3m, 2)` (one per triangle corner), `colors` `(n, 3)`,
-/// `polygons` `(corners (c, 1), offsets (m + 1, 1))` or `None`; `repair`
-/// mends a non-manifold mesh instead of refusing it.
+/// Options by the names Python's functions take (`scheme`, `boundary`,
+/// `fvar`, `triangles`, `creasing`) and the library's names of their values.
+type Named = Vec<(&'static str, &'static str)>;
+
+/// The options a file states, by name (only those it states).
+fn named_options(o: &ShapeOptions) -> Named {
+    let scheme = o.scheme.map(|s| match s {
+        FileScheme::CatmullClark => Scheme::CatmullClark.name(),
+        FileScheme::Loop => Scheme::Loop.name(),
+        FileScheme::Bilinear => Scheme::Bilinear.name(),
+        FileScheme::None => "none",
+    });
+    [
+        ("scheme", scheme),
+        ("boundary", o.boundary.map(|b| b.name())),
+        ("fvar", o.fvar.map(|f| f.name())),
+        ("triangles", o.triangles.map(|t| t.name())),
+        ("creasing", o.creasing.map(|c| c.name())),
+    ]
+    .into_iter()
+    .filter_map(|(k, v)| v.map(|v| (k, v)))
+    .collect()
+}
+
+/// The arrays a file holds: `(vertices, faces, uv, colors, polygons,
+/// options)`, `uv` `(3m, 2)` (one per triangle corner), `colors` `(n, 3)`,
+/// `polygons` `(corners (c, 1), offsets (m + 1, 1))` or `None`, `options`
+/// `(name, value)` pairs; `repair` mends a non-manifold mesh instead of
+/// refusing it.
 ///
 /// # Errors
 /// `SubdivError` with the reader's message (file, line or element, problem).
@@ -39,15 +65,16 @@ pub fn load_file(
     Option<Bound<'_, PyArray2<f64>>>,
     Option<Bound<'_, PyArray2<f64>>>,
     Option<(Bound<'_, PyArray2<i64>>, Bound<'_, PyArray2<i64>>)>,
+    Named,
 )> {
-    let (v, f, uv, colors, polys) = run(py, None, || read(&path, repair))?;
+    let (v, f, uv, colors, polys, options) = run(py, None, || read(&path, repair))?;
     let uv = uv.map(|u| f64_array(py, u, 2)).transpose()?;
     let colors = colors.map(|c| f64_array(py, c, 3)).transpose()?;
     let polys = match polys {
         Some((c, s)) => Some((i64_array(py, c, 1)?, i64_array(py, s, 1)?)),
         None => None,
     };
-    Ok((f64_array(py, v, 3)?, i64_array(py, f, 3)?, uv, colors, polys))
+    Ok((f64_array(py, v, 3)?, i64_array(py, f, 3)?, uv, colors, polys, options))
 }
 
 /// Reads `path` with the default budget, attributes included (dropped by
@@ -57,7 +84,7 @@ fn read(path: &std::path::Path, repair: bool) -> Result<Read, Msg> {
     let opts = ReadOptions { topology, ..ReadOptions::default() };
     let loaded = io::read(Source::File(path), &opts).map_err(msg)?;
     let mesh = &loaded.mesh;
-    let Attributes { uv, colors, .. } = loaded.attributes;
+    let Attributes { uv, colors, options, .. } = loaded.attributes;
     let uv = uv.map(|u| u.iter().flat_map(|p: &Vec2| [f64::from(p.x), f64::from(p.y)]).collect());
     let colors = colors.map(|c| arrays::flat_f64(&c));
     let polys = PolyMesh::is_polygonal(mesh).then(|| {
@@ -69,7 +96,7 @@ fn read(path: &std::path::Path, repair: bool) -> Result<Read, Msg> {
         (corners, starts)
     });
     let faces = mesh.triangles().iter().map(|&v| i64::from(v)).collect();
-    Ok((arrays::flat_f64(&mesh.positions), faces, uv, colors, polys))
+    Ok((arrays::flat_f64(&mesh.positions), faces, uv, colors, polys, named_options(&options)))
 }
 
 /// Writes the mesh to `path`, the format chosen by the extension; faces

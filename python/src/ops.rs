@@ -26,9 +26,10 @@ pub struct MeshArgs<'py>(
     pub PyReadonlyArray1<'py, i64>,
 );
 
-/// Creases: flat edge vertex pairs (int64) and sharpness (float64).
+/// Creases and holes: flat edge vertex pairs (int64), their sharpness
+/// (float64), and the faces that are holes (int64, the caller's face ids).
 #[derive(FromPyObject)]
-pub struct CreaseArgs<'py>(PyReadonlyArray1<'py, i64>, PyReadonlyArray1<'py, f64>);
+pub struct CreaseArgs<'py>(PyReadonlyArray1<'py, i64>, PyReadonlyArray1<'py, f64>, PyReadonlyArray1<'py, i64>);
 
 /// Flat views of the arrays (no GIL needed to read them).
 pub struct Slices<'a> {
@@ -37,6 +38,7 @@ pub struct Slices<'a> {
     starts: &'a [i64],
     crease_edges: &'a [i64],
     crease_sharpness: &'a [f64],
+    holes: &'a [i64],
 }
 
 impl Slices<'_> {
@@ -63,6 +65,7 @@ impl<'py> MeshArgs<'py> {
             starts: self.2.as_slice().map_err(bad)?,
             crease_edges: c.0.as_slice().map_err(bad)?,
             crease_sharpness: c.1.as_slice().map_err(bad)?,
+            holes: c.2.as_slice().map_err(bad)?,
         })
     }
 }
@@ -73,13 +76,11 @@ pub fn control(s: &Slices<'_>, scheme: Scheme, repair: bool) -> Result<(Control,
     let nv = positions.len();
     let faces = arrays::faces(s.corners, s.starts, nv)?;
     let creases = arrays::creases(s.crease_edges, s.crease_sharpness, nv)?;
-    build::control(Request { positions, faces: &faces, scheme, repair, creases: &creases })
+    let holes = arrays::holes(s.holes, faces.len())?;
+    build::control(Request { positions, faces: &faces, scheme, repair, tags: (&creases, &holes) })
 }
 
-/// The scheme and options named `(scheme, beta, boundary)`.
-pub fn named(names: &(String, String, String)) -> Result<(Scheme, Options), Msg> {
-    Ok((options::scheme(&names.0)?, options::options(&names.1, &names.2)?))
-}
+pub use options::named;
 
 /// Two arrays: float64 points and a second array of `T` (faces, normals).
 type Pair<'py, T> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<T>>);
@@ -96,7 +97,7 @@ pub fn subdivide_arrays<'py>(
     py: Python<'py>,
     mesh: MeshArgs<'py>,
     creases: CreaseArgs<'py>,
-    names: (String, String, String),
+    names: options::Names,
     levels: u32,
     flags: (bool, bool),
     threads: Option<usize>,
@@ -141,7 +142,11 @@ fn refine(
             let (fine, _) = subdivide(&mesh, scheme, levels, opts).map_err(msg)?;
             let k = face_size(&fine.pt)?;
             check_output(remap, fine.positions.len() as u64, fine.pt.num_corners() as u64)?;
-            let out = (remap.positions(&fine.positions, input), remap.ids(fine.pt.v_table()), k);
+            let out = (
+                remap.positions(&fine.positions, input),
+                build::face_ids(remap, fine.pt.v_table(), k, fine.pt.holes()),
+                k,
+            );
             drop_later(fine);
             Ok(out)
         }
@@ -174,7 +179,7 @@ fn refine_f64(
             let control = remap.control_f64(input, &mesh.positions, repaired);
             let (fine, pos) = subdiv::subdivide_f64(&mesh, &control, scheme, levels, opts).map_err(msg)?;
             let k = face_size(&fine.pt)?;
-            Ok((remap.positions(&pos, input), remap.ids(fine.pt.v_table()), k))
+            Ok((remap.positions(&pos, input), build::face_ids(remap, fine.pt.v_table(), k, fine.pt.holes()), k))
         }
     }
 }
@@ -256,7 +261,7 @@ pub fn plan_levels<'py>(
     faces: (PyReadonlyArray1<'py, i64>, PyReadonlyArray1<'py, i64>),
     n_vertices: u64,
     creases: CreaseArgs<'py>,
-    names: (String, String, String),
+    names: options::Names,
     levels: u32,
 ) -> PyResult<(Vec<PyLevel<'py>>, Bound<'py, PyArray2<i64>>, Option<Bound<'py, PyArray1<u32>>>, usize)> {
     let limit = subdiv::mem::default_memory_limit().unwrap_or(u64::MAX);
@@ -306,10 +311,13 @@ fn plan_of(
     };
     let plan = subdiv::rules::plan_f64(&ct, scheme, levels, opts).map_err(msg)?;
     let (faces, k) = match (c, plan.poly.as_ref()) {
-        (Control::Poly(m), _) if levels == 0 => (remap.ids(m.pt.v_table()), face_size(&m.pt)?),
-        (Control::Poly(_), Some(pt)) => (remap.ids(pt.v_table()), 4),
+        (Control::Poly(m), _) if levels == 0 => {
+            let k = face_size(&m.pt)?;
+            (build::face_ids(remap, m.pt.v_table(), k, m.pt.holes()), k)
+        }
+        (Control::Poly(_), Some(pt)) => (build::face_ids(remap, pt.v_table(), 4, pt.holes()), 4),
         (Control::Poly(_), None) => return Err("a polygon plan without polygons (a bug)".into()),
-        (Control::Tri(_), _) => (remap.ids(plan.ct.v_table()), 3),
+        (Control::Tri(_), _) => (build::face_ids(remap, plan.ct.v_table(), 3, plan.ct.holes()), 3),
     };
     Ok((plan, faces, k))
 }
@@ -353,6 +361,7 @@ impl<'py> CreaseArgs<'py> {
     pub fn empty(py: Python<'py>) -> CreaseArgs<'py> {
         let e = PyArray1::<i64>::zeros(py, 0, false).readonly();
         let s = PyArray1::<f64>::zeros(py, 0, false).readonly();
-        CreaseArgs(e, s)
+        let h = PyArray1::<i64>::zeros(py, 0, false).readonly();
+        CreaseArgs(e, s, h)
     }
 }

@@ -52,8 +52,16 @@ def _names(scheme, beta, boundary):
     return (_checks.name(scheme, "scheme"), _checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
 
 
-def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary="edge", creases=None,
-              repair=False, threads=None):
+def _options(scheme="loop", beta="loop", boundary="edge", fvar="corners-only", triangles="catmark",
+             creasing="uniform"):
+    """The scheme and the option names, in the order the native module takes
+    them (the library parses each, as the command line's flags)."""
+    return _names(scheme, beta, boundary) + (_checks.name(fvar, "fvar"), _checks.name(triangles, "triangles"),
+                                             _checks.name(creasing, "creasing"))
+
+
+def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary="edge", fvar="corners-only",
+              triangles="catmark", creasing="uniform", creases=None, holes=None, repair=False, threads=None):
     """Subdivide a mesh ``levels`` times.
 
     Parameters
@@ -67,10 +75,17 @@ def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary
         ``"modified-butterfly"``, ``"jarek"``, ``"catmull-clark"``, ``"bilinear"``.
     beta : ``"loop"`` (Loop's original vertex weights, as trimesh) or
         ``"warren"`` (as libigl and Open3D).
-    boundary : ``"edge"`` or ``"edge-and-corner"`` (boundary vertices with
-        one face stay put).
+    boundary : ``"edge"``, ``"edge-and-corner"`` (boundary vertices with
+        one face stay put) or ``"none"`` (the faces at the border left out,
+        their vertices still shaping the rest).
+    fvar : how texture coordinates are refined (``"none"``, ``"corners-only"``,
+        ``"corners-plus1"``, ``"corners-plus2"``, ``"boundaries"``, ``"all"``);
+        checked, but these arrays carry no texture coordinates.
+    triangles : ``"catmark"`` or ``"smooth"``, Catmull-Clark's rule on triangles.
+    creasing : ``"uniform"`` or ``"chaikin"``, how semi-sharp creases decay.
     creases : None or ``(edges (k, 2) int, sharpness (k,) float)``;
         sharpness 10 or more is infinitely sharp, below decays a level at a time.
+    holes : None or face ids (rows of ``faces``) left out of the surface.
     repair : repair a non-manifold mesh instead of refusing it (the vertex
         order is then the repaired mesh's).
     threads : None (all cores) or the number of threads; the result is the
@@ -101,8 +116,9 @@ def subdivide(vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary
     v, single = _checks.vertices(vertices), _checks.is_float32(vertices)
     corners, starts = _checks.faces(faces)
     mesh = (v, corners, starts)
-    v2, f2 = _subdiv.subdivide_arrays(mesh, _checks.creases(creases), _names(scheme, beta, boundary),
-                                      _checks.levels(levels), (bool(repair), not single), _checks.threads(threads))
+    names = _options(scheme, beta, boundary, fvar, triangles, creasing)
+    v2, f2 = _subdiv.subdivide_arrays(mesh, _checks.tags(creases, holes), names, _checks.levels(levels),
+                                      (bool(repair), not single), _checks.threads(threads))
     # float32 in: computed in float32, handed back as float32 (exactly)
     return (v2.astype(np.float32) if single else v2), f2
 
@@ -111,45 +127,56 @@ class Refiner:
     """A mesh refined ``levels`` times once, then edited: control vertices
     moved, edges creased, steps undone, each edit evaluating again only the
     refined vertices it reaches (OpenSubdiv's ``TopologyRefiner`` with its
-    stencil table, updated locally).
+    stencil table, updated locally), with the GIL released.
 
     Parameters are those of :func:`subdivide` (``repair`` aside: the
-    vertex ids are the caller's). Float32 vertices are refined and returned
-    in float32; float64 ones in float64 (the control rows as given, the
-    rules' float64 weights).
+    vertex ids are the caller's). Float32 vertices are refined in float32;
+    float64 ones in float64 (the control rows as given, the rules' float64
+    weights).
+
+    ``vertices`` is a read-only view that the edits update in place (in
+    the input's dtype, never copied); ``move`` and ``set_sharpness`` return
+    the rows they changed.
 
     >>> import numpy as np, subdiv
     >>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
     >>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
     >>> r = subdiv.Refiner(V, F, levels=2)
-    >>> V2 = r.move([0], [[2.0, 2.0, 2.0]])
-    >>> V2.shape, r.faces.shape
-    ((34, 3), (64, 3))
-    >>> r.undo()
-    True
+    >>> V2 = r.vertices  # a live view
+    >>> before = V2.copy()
+    >>> rows = r.move([0], [[2.0, 2.0, 2.0]])
+    >>> V2.shape, r.faces.shape, bool((V2[rows] != before[rows]).any())
+    ((34, 3), (64, 3), True)
+    >>> r.undo(), bool((V2 == before).all())
+    (True, True)
     """
 
-    def __init__(self, vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary="edge", creases=None):
+    def __init__(self, vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary="edge",
+                 fvar="corners-only", triangles="catmark", creasing="uniform", creases=None, holes=None):
         v, self._single = _checks.vertices(vertices), _checks.is_float32(vertices)
-        self._n = v.shape[0]
         corners, starts = _checks.faces(faces)
-        self._native = _subdiv.NativeRefiner((v, corners, starts), _checks.creases(creases),
-                                             _names(scheme, beta, boundary), _checks.levels(levels))
+        names = _options(scheme, beta, boundary, fvar, triangles, creasing)
+        self._native = _subdiv.NativeRefiner((v, corners, starts), _checks.tags(creases, holes), names,
+                                             _checks.levels(levels), not self._single)
+        self._vertices = self._native.vertices()
 
     @property
     def vertices(self):
-        """The refined vertices ``(n2, 3)``, in the input's dtype."""
-        v = self._native.vertices(not self._single)
-        return v.astype(np.float32) if self._single else v
+        """The refined vertices ``(n2, 3)``, in the input's dtype: a
+        read-only view of the refiner's own points (or, where vertices no
+        face uses are put back, of its copy in your numbering) that every
+        edit updates in place. Take ``.copy()`` to keep a state."""
+        return self._vertices
 
     @property
     def faces(self):
-        """The refined faces: int64 ``(m2, 3)`` or ``(m2, 4)``."""
+        """The refined faces: int64 ``(m2, 3)`` or ``(m2, 4)`` (holes left out)."""
         return self._native.faces()
 
     def move(self, ids, positions):
         """Moves control vertices ``ids`` (k,) to ``positions`` (k, 3); one
-        step of the history. Returns the refined vertices."""
+        step of the history. Returns the rows of :attr:`vertices` it
+        evaluated again (int64, those that changed among them)."""
         ids = np.asarray(ids)
         if ids.dtype.kind not in "iu":
             raise TypeError("ids must be integers")
@@ -157,14 +184,14 @@ class Refiner:
         pos = _checks.vertices(positions)
         if pos.shape[0] != ids.shape[0]:
             raise ValueError(f"{ids.shape[0]} ids but {pos.shape[0]} positions")
-        self._native.move_vertices(ids, pos)
-        return self.vertices
+        return self._native.move_vertices(ids, pos)
 
     def set_sharpness(self, v0, v1, sharpness):
         """The sharpness of the edge ``v0``-``v1`` (0 smooth, 10 or more
-        infinitely sharp); one step of the history. Returns the refined vertices."""
-        self._native.set_sharpness(int(v0), int(v1), float(sharpness))
-        return self.vertices
+        infinitely sharp; NaN, infinities and negative values are refused as
+        :func:`subdivide` refuses them); one step of the history. Returns the
+        rows of :attr:`vertices` it evaluated again."""
+        return self._native.set_sharpness(int(v0), int(v1), float(sharpness))
 
     def undo(self) -> bool:
         """Undoes the last move or sharpness; whether there was one."""
@@ -179,8 +206,8 @@ class Refiner:
         return np.sort(self._native.support(int(vertex)))
 
 
-def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boundary="edge", creases=None,
-           return_faces=False):
+def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boundary="edge", triangles="catmark",
+           creasing="uniform", creases=None, holes=None, return_faces=False):
     """The subdivision matrix ``S`` (scipy.sparse.csr_matrix, (n2, n)):
     ``S @ V`` equals ``subdivide(V, faces, levels, scheme, ...)[0]`` for
     any float64 ``V`` of ``n`` rows (to double precision: the weights are the
@@ -190,7 +217,8 @@ def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boun
 
     Parameters
     ----------
-    faces, levels, scheme, beta, boundary, creases : as :func:`subdivide`.
+    faces, levels, scheme, beta, boundary, triangles, creasing, creases,
+    holes : as :func:`subdivide`.
     n_vertices : the number of control vertices (default: the largest index
         in ``faces`` plus one); vertices no face uses get an identity row.
     return_faces : also return ``F2``, the faces of ``subdivide``.
@@ -215,14 +243,15 @@ def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boun
         n = int(corners.max()) + 1 if corners.size else 0
     else:
         n = _checks.count(n_vertices, "n_vertices")
-    plan = _subdiv.plan_levels((corners, starts), n, _checks.creases(creases), _names(scheme, beta, boundary),
-                               _checks.levels(levels))
+    names = _options(scheme, beta, boundary, triangles=triangles, creasing=creasing)
+    plan = _subdiv.plan_levels((corners, starts), n, _checks.tags(creases, holes), names, _checks.levels(levels))
     s, f2 = compose(*plan)
     return (s, f2) if return_faces else s
 
 
 def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
-    """Loop limit positions and unit limit normals of every vertex.
+    """Loop limit positions and unit limit normals of every vertex
+    (``beta``, ``boundary`` and ``creases`` as for :func:`subdivide`).
 
     Returns
     -------
@@ -243,13 +272,13 @@ def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
     corners, starts = _checks.faces(faces)
     names = (_checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
     single = _checks.is_float32(vertices)
-    p, n = _subdiv.limit_arrays((v, corners, starts), _checks.creases(creases), names, not single)
+    p, n = _subdiv.limit_arrays((v, corners, starts), _checks.tags(creases), names, not single)
     # float64 in: the limit of the rows as given; float32: computed and handed back in float32
     return (p.astype(np.float32), n.astype(np.float32)) if single else (p, n)
 
 
-def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary="edge", creases=None,
-             curvature=False):
+def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary="edge", triangles="catmark",
+             creasing="uniform", creases=None, curvature=False):
     """The exact limit surface at points of the control faces, as ``subdiv
     eval`` computes it.
 
@@ -261,8 +290,8 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
     quad is one, an n-gon n, one per corner, in face order) and ``uv[i]``
     lies in its unit square, corner 0 of a quad at (0, 0), 1 at (1, 0), 2
     at (1, 1). Exact at any point (no fixed-level approximation), borders,
-    creases and corners included (``beta``, ``boundary`` and ``creases`` as
-    for :func:`subdivide`).
+    creases and corners included (``beta``, ``boundary``, ``triangles``,
+    ``creasing`` and ``creases`` as for :func:`subdivide`).
 
     Returns
     -------
@@ -300,8 +329,9 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
     if w.ndim != 2 or w.shape != (f.shape[0], 2):
         raise ValueError(f"uv must have shape ({f.shape[0]}, 2), got shape {w.shape}")
     single = _checks.is_float32(vertices)
-    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.creases(creases),
-                                       _names(scheme, beta, boundary), f, w, (bool(curvature), not single))
+    names = _options(scheme, beta, boundary, triangles=triangles, creasing=creasing)
+    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.tags(creases), names, f, w,
+                                       (bool(curvature), not single))
     # float64 control points are evaluated as given; float32 ones as float32,
     # the results handed back in float32
     dtype = np.float32 if single else np.float64
@@ -323,12 +353,23 @@ class Mesh:
     polygons : the file's polygons when they are not all triangles: an int64
         (m, k) array when all have k corners, else a list of int64 arrays; None
         for a triangle mesh.
+    options : the subdivision options the file states (OBJ's ``t
+        interpolateboundary``, ``t facevaryinginterpolateboundary``, ``t
+        smoothtriangles``, ``t creasemethod``, USD's ``subdivisionScheme``
+        and interpolation attributes), by the names :func:`subdivide` takes
+        (``scheme``, ``boundary``, ``fvar``, ``triangles``, ``creasing``),
+        only those the file states: ``subdivide(m.vertices, m.faces,
+        **m.options)``. A file whose scheme is ``none`` says
+        ``scheme="none"``, which :func:`subdivide` refuses (the cage is the
+        surface). The options of the whole file; a per-part list may come
+        beside it.
     """
 
-    __slots__ = ("vertices", "faces", "uv", "colors", "polygons")
+    __slots__ = ("vertices", "faces", "uv", "colors", "polygons", "options")
 
-    def __init__(self, vertices, faces, uv=None, colors=None, polygons=None):
+    def __init__(self, vertices, faces, uv=None, colors=None, polygons=None, options=None):
         self.vertices, self.faces, self.uv, self.colors, self.polygons = vertices, faces, uv, colors, polygons
+        self.options = {} if options is None else dict(options)
 
     def __repr__(self):
         extra = "".join(f", {k}" for k in ("uv", "colors", "polygons") if getattr(self, k) is not None)
@@ -350,7 +391,7 @@ def load(path, *, repair=False) -> Mesh:
     >>> subdiv.load(p).faces.tolist()
     [[0, 1, 2]]
     """
-    v, f, uv, colors, polys = _subdiv.load_file(path, bool(repair))
+    v, f, uv, colors, polys, options = _subdiv.load_file(path, bool(repair))
     if uv is not None:
         uv = uv.reshape(-1, 3, 2)
     if polys is not None:
@@ -360,7 +401,7 @@ def load(path, *, repair=False) -> Mesh:
             polys = corners.reshape(-1, int(sizes[0]))
         else:
             polys = np.split(corners, starts[1:-1])
-    return Mesh(v, f, uv, colors, polys)
+    return Mesh(v, f, uv, colors, polys, dict(options))
 
 
 def save(path, vertices, faces) -> None:
@@ -399,7 +440,7 @@ def render(vertices, faces, *, size=(640, 480), shading="phong", levels=0, schem
     corners, starts = _checks.faces(faces)
     w, h = _checks.size(size)
     names = _names(scheme, beta, boundary) + (_checks.name(shading, "shading"),)
-    return _subdiv.render_image((v, corners, starts), _checks.creases(creases), names, _checks.levels(levels),
+    return _subdiv.render_image((v, corners, starts), _checks.tags(creases), names, _checks.levels(levels),
                                 (w, h))
 
 

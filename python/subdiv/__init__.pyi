@@ -13,10 +13,14 @@ TriangleScheme = Literal["midpoint", "loop", "butterfly", "modified-butterfly", 
 PolygonScheme = Literal["catmull-clark", "bilinear"]
 Scheme = Union[TriangleScheme, PolygonScheme]
 Beta = Literal["loop", "warren"]
-Boundary = Literal["edge", "edge-and-corner"]
+Boundary = Literal["edge", "edge-and-corner", "none"]
+Fvar = Literal["none", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"]
+Triangles = Literal["catmark", "smooth"]
+Creasing = Literal["uniform", "chaikin"]
 Shading = Literal["phong", "flat", "studio", "wire", "phong+wire"]
 Faces = Union[npt.ArrayLike, Sequence[Sequence[int]]]
 Creases = tuple[npt.ArrayLike, npt.ArrayLike] | None
+Holes = npt.ArrayLike | None
 Path = Union[str, PathLike[str]]
 
 TRIANGLE_SCHEMES: tuple[str, ...]
@@ -30,6 +34,7 @@ class Mesh:
     uv: npt.NDArray[np.float64] | None
     colors: npt.NDArray[np.float64] | None
     polygons: npt.NDArray[np.int64] | list[npt.NDArray[np.int64]] | None
+    options: dict[str, str]
     def __init__(
         self,
         vertices: npt.NDArray[np.float64],
@@ -37,6 +42,7 @@ class Mesh:
         uv: npt.NDArray[np.float64] | None = ...,
         colors: npt.NDArray[np.float64] | None = ...,
         polygons: npt.NDArray[np.int64] | list[npt.NDArray[np.int64]] | None = ...,
+        options: dict[str, str] | None = ...,
     ) -> None: ...
 
 class Refiner:
@@ -47,16 +53,20 @@ class Refiner:
         levels: int = 1,
         scheme: str = "loop",
         *,
-        beta: str = "loop",
-        boundary: str = "edge",
-        creases: tuple[npt.ArrayLike, npt.ArrayLike] | None = None,
+        beta: Beta = "loop",
+        boundary: Boundary = "edge",
+        fvar: Fvar = "corners-only",
+        triangles: Triangles = "catmark",
+        creasing: Creasing = "uniform",
+        creases: Creases = None,
+        holes: Holes = None,
     ) -> None: ...
     @property
     def vertices(self) -> npt.NDArray[np.floating]: ...
     @property
     def faces(self) -> npt.NDArray[np.int64]: ...
-    def move(self, ids: npt.ArrayLike, positions: npt.ArrayLike) -> npt.NDArray[np.floating]: ...
-    def set_sharpness(self, v0: int, v1: int, sharpness: float) -> npt.NDArray[np.floating]: ...
+    def move(self, ids: npt.ArrayLike, positions: npt.ArrayLike) -> npt.NDArray[np.int64]: ...
+    def set_sharpness(self, v0: int, v1: int, sharpness: float) -> npt.NDArray[np.int64]: ...
     def undo(self) -> bool: ...
     def redo(self) -> bool: ...
     def support(self, vertex: int) -> npt.NDArray[np.int64]: ...
@@ -69,7 +79,11 @@ def subdivide(
     *,
     beta: Beta = "loop",
     boundary: Boundary = "edge",
+    fvar: Fvar = "corners-only",
+    triangles: Triangles = "catmark",
+    creasing: Creasing = "uniform",
     creases: Creases = None,
+    holes: Holes = None,
     repair: bool = False,
     threads: int | None = None,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64]]: ...
@@ -81,7 +95,10 @@ def matrix(
     n_vertices: int | None = None,
     beta: Beta = "loop",
     boundary: Boundary = "edge",
+    triangles: Triangles = "catmark",
+    creasing: Creasing = "uniform",
     creases: Creases = None,
+    holes: Holes = None,
     return_faces: bool = False,
 ) -> scipy.sparse.csr_matrix | tuple[scipy.sparse.csr_matrix, npt.NDArray[np.int64]]: ...
 def evaluate(
@@ -91,8 +108,10 @@ def evaluate(
     uv: npt.ArrayLike,
     *,
     scheme: str = "loop",
-    beta: str = "loop",
-    boundary: str = "edge",
+    beta: Beta = "loop",
+    boundary: Boundary = "edge",
+    triangles: Triangles = "catmark",
+    creasing: Creasing = "uniform",
     creases: Creases = None,
     curvature: bool = False,
 ) -> (

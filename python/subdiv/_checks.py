@@ -112,6 +112,20 @@ def creases(c) -> tuple[np.ndarray, np.ndarray]:
     return e.reshape(-1), s
 
 
+def tags(c, holes=None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`creases` of `c`, and `holes` (None or face ids) as flat int64."""
+    if holes is None:
+        h = np.zeros(0, np.int64)
+    else:
+        h = np.asarray(holes)
+        if h.size == 0:
+            h = h.astype(np.int64)
+        if h.ndim > 1:
+            raise ValueError(f"holes must be a list of face ids, got shape {h.shape}")
+        h = _int_array(h.reshape(-1), "holes")
+    return creases(c) + (h,)
+
+
 def levels(n) -> int:
     """A level count: an integer from 0 (refused values: SubdivError)."""
     if isinstance(n, bool) or not isinstance(n, (numbers.Integral, np.integer)):
@@ -137,7 +151,7 @@ def threads(t) -> int | None:
 
 
 def name(value, what: str) -> str:
-    """A scheme, beta, boundary or shading name."""
+    """A scheme, option or shading name (the library checks which)."""
     if not isinstance(value, str):
         raise TypeError(f"{what} must be a string, got {type(value).__name__}")
     return value

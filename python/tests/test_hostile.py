@@ -41,7 +41,19 @@ CASES = [
     ("coordinate past float32", "subdiv.subdivide(bad(1e300), TF)", "SubdivError", r"vertex 2 .*single precision"),
     ("unknown scheme", "subdiv.subdivide(TV, TF, 1, 'sqrt3')", "SubdivError", r"unknown scheme 'sqrt3'"),
     ("unknown beta", "subdiv.subdivide(TV, TF, beta='stam')", "SubdivError", r"unknown beta 'stam'"),
-    ("unknown boundary", "subdiv.subdivide(TV, TF, boundary='none')", "SubdivError", r"unknown boundary 'none'"),
+    ("unknown boundary", "subdiv.subdivide(TV, TF, boundary='nope')", "SubdivError",
+     r"unknown boundary interpolation 'nope' \(expected edge, edge-and-corner or none\)"),
+    ("unknown fvar", "subdiv.subdivide(TV, TF, fvar='nope')", "SubdivError", r"face-varying .*'nope'.*corners-plus1"),
+    ("unknown triangles", "subdiv.subdivide(TV, TF, triangles='nope')", "SubdivError", r"'nope'.*catmark or smooth"),
+    ("unknown creasing", "subdiv.subdivide(TV, TF, creasing='nope')", "SubdivError", r"'nope'.*uniform or chaikin"),
+    ("a name of a megabyte", "subdiv.subdivide(TV, TF, boundary='x' * 10**6)", "SubdivError",
+     r"^unknown boundary interpolation 'x+\.\.\.x+' \(expected edge, edge-and-corner or none\)$"),
+    ("hole out of range", "subdiv.subdivide(TV, TF, holes=[4])", "SubdivError", r"hole 0 names face 4, but there are 4"),
+    ("hole negative", "subdiv.subdivide(TV, TF, holes=[-1])", "SubdivError", r"hole 0 names face -1"),
+    ("float holes", "subdiv.subdivide(TV, TF, holes=[0.5])", "TypeError", r"holes"),
+    ("holes with repair", "subdiv.subdivide(TV, TF, holes=[0], repair=True)", "SubdivError", r"holes .*repair"),
+    ("refiner sharpness NaN", "subdiv.Refiner(TV, TF).set_sharpness(0, 1, np.nan)", "SubdivError",
+     r"edge 0-1 has sharpness NaN: it must be finite and at least 0"),
     ("levels=-1", "subdiv.subdivide(TV, TF, -1)", "SubdivError", r"levels"),
     ("levels=50 within a second",
      "t = time.time()\ntry:\n    subdiv.subdivide(TV, TF, 50)\nfinally:\n    assert time.time() - t < 1.0",
@@ -128,13 +140,15 @@ def test_a_panic_becomes_subdiv_error(threads):
 
 def test_the_native_module_checks_what_it_is_given():
     # a direct caller of the private module, past the Python layer's checks
+    tags = "(np.zeros(0, np.int64), np.zeros(0), np.zeros(0, np.int64))"
+    names = "('loop', 'loop', 'edge', 'corners-only', 'catmark', 'uniform')"
     code = PRELUDE + RUNNER.replace("{body}", "    subdiv._subdiv.subdivide_arrays((np.zeros((6, 2)), np.arange(3), np.array([0, 3])), "
-                                    "(np.zeros(0, np.int64), np.zeros(0)), ('loop', 'loop', 'edge'), 1, (False, True), None)")
+                                    f"{tags}, {names}, 1, (False, True), None)")
     r = run_python(code)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "RAISED TypeError | vertices must have shape (n, 3)" in r.stdout, r.stdout
     code = PRELUDE + RUNNER.replace("{body}", "    subdiv._subdiv.subdivide_arrays((TV, np.array([0, 1, 2]), np.array([0, 7])), "
-                                    "(np.zeros(0, np.int64), np.zeros(0)), ('loop', 'loop', 'edge'), 1, (False, True), None)")
+                                    f"{tags}, {names}, 1, (False, True), None)")
     r = run_python(code)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "RAISED SubdivError | face offsets" in r.stdout, r.stdout

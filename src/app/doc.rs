@@ -460,7 +460,10 @@ impl Doc {
         let (a, b) = (ct.vtx(crate::mesh::n(c)), ct.vtx(crate::mesh::p(c)));
         let mut tags = ct.sharpness().map(|s| s.to_tags(ct)).unwrap_or_default();
         tags.creases.retain(|t| (t.v0.min(t.v1), t.v0.max(t.v1)) != (a.min(b), a.max(b)));
-        let sharpness = if sharpness.is_finite() { sharpness.clamp(0.0, INFINITE) } else { 0.0 };
+        let sharpness = match crate::mesh::checked_sharpness(f64::from(sharpness)) {
+            Ok(s) => s,
+            Err(e) => return self.fail(Problem::Other(Error::Usage(format!("edge {a}-{b} has {e}")))),
+        };
         tags.creases.push(CreaseTag { v0: a, v1: b, sharpness });
         self.set_control_tags(&tags);
     }

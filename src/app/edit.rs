@@ -486,11 +486,17 @@ impl Doc {
             self.status.notice = Some("pick an edge or select vertices to set their sharpness".into());
             return;
         }
+        let s = match crate::mesh::checked_sharpness(f64::from(s)) {
+            Ok(s) => s,
+            Err(e) => {
+                let e = crate::Error::Usage(format!("the selected vertices' {e}"));
+                return self.fail(Problem::Other(e));
+            }
+        };
         let ct = &self.model.control.mesh.ct;
         let mut tags = ct.sharpness().map(|t| t.to_tags(ct)).unwrap_or_default();
         let sel = &self.edit.selected;
         tags.corners.retain(|t| sel.binary_search(&t.vertex).is_err());
-        let s = if s.is_finite() { s.clamp(0.0, crate::mesh::sharpness::INFINITE) } else { 0.0 };
         if s > 0.0 {
             tags.corners.extend(sel.iter().map(|&vertex| crate::mesh::sharpness::CornerTag { vertex, sharpness: s }));
         }

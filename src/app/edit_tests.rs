@@ -238,6 +238,32 @@ fn shift_e_sets_the_sharpness_of_the_selected_vertices_and_undo_clears_it() {
 }
 
 #[test]
+fn a_typed_or_set_sharpness_below_0_or_not_finite_is_refused_and_changes_nothing() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    frame(&ctx, &mut v, vec![key(Key::E)]);
+    v.apply(Command::Edit(EditAction::Select { ids: vec![1, 2], add: false }));
+    let shift = Modifiers::SHIFT;
+    frame_with(&ctx, &mut v, shift, vec![chord(Key::E, shift)]);
+    frame(&ctx, &mut v, vec![Event::Text("-1".into())]);
+    frame(&ctx, &mut v, vec![key(Key::Enter)]);
+    let why = |v: &Viewer| v.doc.status.error.as_ref().map(ToString::to_string).unwrap_or_default();
+    let expected = crate::mesh::checked_sharpness(-1.0).unwrap_err();
+    assert!(why(&v).contains(&format!("the selected vertices' {expected}")), "{}", why(&v));
+    assert!(v.doc.model.control.mesh.ct.sharpness().is_none(), "no corner tagged");
+    assert!(v.doc.edit.history.done.is_empty(), "no step");
+    // an edge's sharpness (the Creases panel's value) goes through the same check
+    v.apply(Command::DismissError);
+    let ct = &v.doc.model.control.mesh.ct;
+    let c = ct.edge_owners().next().unwrap();
+    let (a, b) = (ct.vtx(crate::mesh::n(c)), ct.vtx(crate::mesh::p(c)));
+    v.apply(Command::SetSharpness { corner: c, sharpness: f32::NAN });
+    let expected = crate::mesh::checked_sharpness(f64::NAN).unwrap_err();
+    assert!(why(&v).contains(&format!("edge {a}-{b} has {expected}")), "{}", why(&v));
+    assert!(v.doc.model.control.mesh.ct.sharpness().is_none() && v.doc.edit.history.done.is_empty());
+}
+
+#[test]
 fn keys_typed_within_one_frame_are_taken_in_their_order() {
     // xdotool or a fast typist: `E A G Z 0.5 Return` and a Ctrl+Z whose
     // Ctrl is up again before the frame ends

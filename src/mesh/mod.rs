@@ -55,7 +55,9 @@ pub use poly::{PolyBuildReport, PolyMesh, PolyTable};
 pub use repair::{RepairReport, repair};
 pub use scene::{Prim, Scene, UpAxis};
 pub use shapes::icosphere;
-pub use sharpness::{BoundaryInterpolation, CornerTag, CreaseTag, Creasing, INFINITE, Sharpness, Tags};
+pub use sharpness::{
+    BoundaryInterpolation, CornerTag, CreaseTag, Creasing, INFINITE, Sharpness, Tags, checked_sharpness,
+};
 pub use smooth::{TAUBIN_LAMBDA, TAUBIN_MU, laplacian, smooth_f64, taubin};
 pub use split::{number_edges, refine_linear, split, split_linear};
 pub use topology::{Topology, check_invariants, topology};

@@ -21,6 +21,16 @@ pub enum TriangleSubdivision {
     Smooth,
 }
 
+impl TriangleSubdivision {
+    /// Its name (`catmark`, `smooth`), as [`std::str::FromStr`] reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            TriangleSubdivision::Catmark => "catmark",
+            TriangleSubdivision::Smooth => "smooth",
+        }
+    }
+}
+
 impl std::str::FromStr for TriangleSubdivision {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {

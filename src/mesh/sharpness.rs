@@ -40,6 +40,23 @@ use crate::MeshError;
 /// `SHARPNESS_INFINITE`).
 pub const INFINITE: f32 = 10.0;
 
+/// A sharpness value as every entry takes it (the readers' tags, Python's
+/// crease arrays, the refiner's setters, the viewer's typed value): a
+/// finite number at least 0, anything from [`INFINITE`] on stored as
+/// infinite (the returned value).
+///
+/// # Errors
+/// What is wrong, as a phrase for the caller to put after the element it
+/// names: `sharpness NaN: it must be finite and at least 0` (so `crease 0
+/// has sharpness NaN: ...`).
+pub fn checked_sharpness(s: f64) -> Result<f32, String> {
+    if s.is_finite() && s >= 0.0 {
+        Ok(s.min(f64::from(INFINITE)) as f32)
+    } else {
+        Err(format!("sharpness {s}: it must be finite and at least 0"))
+    }
+}
+
 /// How semi-sharp values decay from level to level (OpenSubdiv's
 /// `Sdc::Options::CreasingMethod`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -49,6 +66,16 @@ pub enum Creasing {
     Uniform,
     /// Chaikin's curve rule on the sharpness along a crease (`CREASE_CHAIKIN`).
     Chaikin,
+}
+
+impl Creasing {
+    /// Its name (`uniform`, `chaikin`), as [`std::str::FromStr`] reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Creasing::Uniform => "uniform",
+            Creasing::Chaikin => "chaikin",
+        }
+    }
 }
 
 impl std::str::FromStr for Creasing {
@@ -79,6 +106,18 @@ pub enum BoundaryInterpolation {
     /// sharp are holes, left out of the surface; their vertices still
     /// shape the interior.
     None,
+}
+
+impl BoundaryInterpolation {
+    /// Its name (`edge`, `edge-and-corner`, `none`), as
+    /// [`std::str::FromStr`] reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            BoundaryInterpolation::EdgeOnly => "edge",
+            BoundaryInterpolation::EdgeAndCorner => "edge-and-corner",
+            BoundaryInterpolation::None => "none",
+        }
+    }
 }
 
 impl std::str::FromStr for BoundaryInterpolation {
@@ -146,11 +185,9 @@ fn tag_error(index: usize, msg: String) -> MeshError {
     MeshError::BadTag { index, msg }
 }
 
-fn check_value(index: usize, s: f32) -> Result<(), MeshError> {
-    if s.is_nan() || s < 0.0 {
-        return Err(tag_error(index, format!("sharpness {s} is not a number >= 0")));
-    }
-    Ok(())
+/// Tag `index`'s sharpness `s`, checked ([`checked_sharpness`]).
+fn check_value(index: usize, s: f32) -> Result<f32, MeshError> {
+    checked_sharpness(f64::from(s)).map_err(|e| tag_error(index, e))
 }
 
 /// `s - 1` with OpenSubdiv's clamps (`Crease::decrementSharpness`).
@@ -177,7 +214,7 @@ impl Sharpness {
         let nv = ct.num_vertices() as u32;
         let mut corners = Vec::new();
         for (i, t) in tags.creases.iter().enumerate() {
-            check_value(i, t.sharpness)?;
+            let s = check_value(i, t.sharpness)?;
             if t.v0 >= nv || t.v1 >= nv {
                 return Err(tag_error(i, format!("edge ({}, {}) names a vertex >= {nv}", t.v0, t.v1)));
             }
@@ -186,7 +223,6 @@ impl Sharpness {
             };
             // a zero is kept until the last tag of each edge has won, so
             // that it clears an earlier tag
-            let s = t.sharpness.min(INFINITE);
             corners.push((c, s));
             let x = ct.twin_entry(c);
             if x != BORDER {
@@ -196,11 +232,11 @@ impl Sharpness {
         let mut vertices = Vec::new();
         for (j, t) in tags.corners.iter().enumerate() {
             let i = tags.creases.len() + j;
-            check_value(i, t.sharpness)?;
+            let s = check_value(i, t.sharpness)?;
             if t.vertex >= nv {
                 return Err(tag_error(i, format!("vertex {} does not exist (there are {nv})", t.vertex)));
             }
-            vertices.push((t.vertex, t.sharpness.min(INFINITE)));
+            vertices.push((t.vertex, s));
         }
         Ok(Self::from_lists(corners, vertices))
     }

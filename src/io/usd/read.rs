@@ -444,9 +444,8 @@ impl Prim<'_> {
             Ok(v) if v < nv => Ok(v0 + v as u32),
             _ => Err(self.err(format!("{name}: {v} names no point (of {nv})"))),
         };
-        let sharp = |name: &str, s: f32| match s {
-            s if s.is_finite() && s >= 0.0 => Ok(s.min(crate::mesh::sharpness::INFINITE)),
-            s => Err(self.err(format!("{name}: sharpness {s}"))),
+        let sharp = |name: &str, s: f32| {
+            crate::mesh::sharpness::checked_sharpness(f64::from(s)).map_err(|e| self.err(format!("{name}: {e}")))
         };
         let (ci, cl, cs) =
             (self.ints("creaseIndices")?, self.ints("creaseLengths")?, self.floats("creaseSharpnesses")?);

@@ -229,7 +229,7 @@ impl PolyTable {
     }
     /// This table with the faces `holes` (ids in range, any order) as its
     /// holes, replacing any it had.
-    pub(crate) fn with_holes(mut self, mut holes: Vec<u32>) -> PolyTable {
+    pub fn with_holes(mut self, mut holes: Vec<u32>) -> PolyTable {
         holes.retain(|&f| (f as usize) < self.num_faces());
         holes.sort_unstable();
         holes.dedup();

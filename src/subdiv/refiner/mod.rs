@@ -21,16 +21,18 @@
 //!   [`Refiner::redo`]) that stores what changed, not the mesh.
 
 mod attributes;
+mod precise;
 mod retag;
 mod topology;
 
 use super::tables::{LevelPlan, StencilPlan};
 use super::{Levels, Options, Scheme, Stats};
-use crate::mesh::sharpness::{CornerTag, CreaseTag, INFINITE, Tags};
+use crate::mesh::sharpness::{CornerTag, CreaseTag, Tags, checked_sharpness};
 use crate::{CornerTable, Error, Mesh, Result};
-use glam::{Vec3, Vec3A};
+use glam::{DVec3, Vec3, Vec3A};
 use rayon::prelude::*;
 use retag::Patches;
+use std::collections::HashMap;
 use std::sync::OnceLock;
 use topology::Topology;
 
@@ -122,7 +124,8 @@ impl Touched {
     }
 }
 
-/// What a local edit walks: each level's readers, and the points touched.
+/// What a local edit walks: each level's readers, and the points touched;
+/// the finest points the last edit evaluated.
 #[derive(Clone, Debug, Default)]
 struct EditTables {
     readers: Vec<Readers>,
@@ -133,16 +136,23 @@ struct EditTables {
     /// Every level was evaluated by the rows since the last evaluation
     /// (the tables were just built): it changed every point.
     fresh: bool,
+    /// The finest points the last evaluation made anew (see
+    /// [`Refiner::last_changed`]).
+    evaluated: Vec<u32>,
 }
 
 /// One change of a [`Refiner`]'s history.
 #[derive(Clone, Debug)]
 enum Step {
-    /// Control vertices moved: their ids, positions before and after.
-    Move { ids: Vec<u32>, before: Vec<Vec3>, after: Vec<Vec3> },
+    /// Control vertices moved: their ids, positions before and after (and
+    /// in f64, where the refiner keeps f64 points).
+    Move { ids: Vec<u32>, before: Vec<Vec3>, after: Vec<Vec3>, precise: Option<Box<Moved64>> },
     /// The sharpness tags before and after.
     Tags { before: Tags, after: Tags },
 }
+
+/// A move's f64 control positions before and after.
+type Moved64 = (Vec<DVec3>, Vec<DVec3>);
 
 /// Undo and redo stacks.
 #[derive(Clone, Debug, Default)]
@@ -173,7 +183,10 @@ pub struct Refiner {
     /// Every level's table, the finest, and the stencils made from them.
     topo: Topology,
     /// Points of every level: `[0]` the control points, last the finest.
+    /// Each buffer is allocated once: edits write into it.
     points: Vec<Vec<Vec3>>,
+    /// The same in f64, kept once asked for ([`Refiner::set_control_f64`]).
+    precise: Option<Vec<Vec<DVec3>>>,
     /// The finest level's normals, made on first use and then kept up to
     /// date by every edit.
     normals: OnceLock<Vec<Vec3>>,
@@ -235,6 +248,7 @@ impl Refiner {
             patches: Patches::sized(topo.levels()),
             topo,
             points: levels.points,
+            precise: None,
             normals: OnceLock::new(),
             rings: OnceLock::new(),
             edit: None,
@@ -276,13 +290,21 @@ impl Refiner {
     /// and a point then equals its row's sum bit for bit whatever moved).
     fn edit_tables(&mut self) -> &mut EditTables {
         if self.edit.is_none() {
-            let control = self.points[0].clone();
-            self.set_control(&control);
+            self.evaluate_all();
             let readers = self.topo.plan().levels.par_iter().map(Readers::of).collect();
             let touched = Touched::sized(&self.level_counts());
-            self.edit = Some(EditTables { readers, touched, changed: None, fresh: true });
+            self.edit = Some(EditTables { readers, touched, changed: None, fresh: true, evaluated: Vec::new() });
         }
         self.edit.get_or_insert_with(EditTables::default)
+    }
+
+    /// Builds now what the first edit would build (the stencils, the
+    /// tables an edit walks, every level evaluated by the rows), so that
+    /// the first move or sharpness change costs what later ones do: an
+    /// editor calls it when it opens. A refiner that only serves data
+    /// never needs it.
+    pub fn prepare_edits(&mut self) {
+        self.edit_tables();
     }
 
     /// The finest level's rings, made on first use.
@@ -333,7 +355,10 @@ impl Refiner {
         &self.points[0]
     }
 
-    /// The finest level's points.
+    /// The finest level's points. They stay in one buffer for the
+    /// refiner's life (every edit, undo, redo and sharpness change writes
+    /// into it, never moves it), so a view of them stays valid as long as
+    /// the refiner.
     pub fn positions(&self) -> &[Vec3] {
         self.points.last().map_or(&[], Vec::as_slice)
     }
@@ -394,13 +419,24 @@ impl Refiner {
     }
 
     /// New control positions, every level evaluated again (into the
-    /// buffers already held) and every normal.
+    /// buffers already held) and every normal; the f64 points, where kept,
+    /// from `control` widened.
     ///
     /// # Panics
     /// If `control` has not one point per control vertex (a caller bug).
     pub fn set_control(&mut self, control: &[Vec3]) {
         assert_eq!(control.len(), self.points[0].len(), "one position per control vertex");
         self.points[0].copy_from_slice(control);
+        self.evaluate_all();
+        if self.precise.is_some() {
+            let wide: Vec<DVec3> = control.iter().map(|p| p.as_dvec3()).collect();
+            self.evaluate_all_f64(Some(&wide));
+        }
+    }
+
+    /// Every level evaluated by its rows from the control points, and
+    /// every normal made so far.
+    fn evaluate_all(&mut self) {
         let plan = self.topo.plan();
         for l in 0..plan.levels.len() {
             let (done, rest) = self.points.split_at_mut(l + 1);
@@ -465,14 +501,14 @@ impl Refiner {
     /// # Errors
     /// As [`Refiner::move_vertices`].
     pub(crate) fn set_vertices(&mut self, ids: &[u32], to: &[Vec3]) -> Result<usize> {
-        self.check_move(ids, to)?;
-        Ok(self.place(ids, to))
+        self.check_move(ids, to.len())?;
+        Ok(self.place(ids, to, None))
     }
 
-    fn check_move(&self, ids: &[u32], to: &[Vec3]) -> Result<()> {
+    fn check_move(&self, ids: &[u32], to: usize) -> Result<()> {
         let n = self.points[0].len();
-        if ids.len() != to.len() {
-            return Err(Error::Usage(format!("{} vertex ids but {} positions", ids.len(), to.len())));
+        if ids.len() != to {
+            return Err(Error::Usage(format!("{} vertex ids but {to} positions", ids.len())));
         }
         if let Some(bad) = ids.iter().find(|&&v| v as usize >= n) {
             return Err(Error::Usage(format!("vertex {bad} is not a control vertex (the cage has {n})")));
@@ -496,17 +532,35 @@ impl Refiner {
     /// [`Error::Usage`] when the lists differ in length or an id is out of
     /// range (nothing is changed then).
     pub fn move_vertices(&mut self, ids: &[u32], to: &[Vec3]) -> Result<usize> {
-        self.check_move(ids, to)?;
-        let before = ids.iter().map(|&v| self.points[0][v as usize]).collect();
-        self.history.done.push(Step::Move { ids: ids.to_vec(), before, after: to.to_vec() });
-        self.history.undone.clear();
-        Ok(self.place(ids, to))
+        self.check_move(ids, to.len())?;
+        let wide = self.precise.as_ref().map(|_| to.iter().map(|p| p.as_dvec3()).collect::<Vec<_>>());
+        self.push_move(ids, to, wide);
+        Ok(self.place(ids, to, None))
     }
 
-    /// Sets control points and re-evaluates their support (no history).
-    fn place(&mut self, ids: &[u32], to: &[Vec3]) -> usize {
+    /// A move's step of the history (`after64`: its f64 positions, where
+    /// the refiner keeps f64 points).
+    fn push_move(&mut self, ids: &[u32], to: &[Vec3], after64: Option<Vec<DVec3>>) {
+        let before = ids.iter().map(|&v| self.points[0][v as usize]).collect();
+        let precise = self
+            .precise
+            .as_ref()
+            .zip(after64)
+            .map(|(levels, after)| Box::new((ids.iter().map(|&v| levels[0][v as usize]).collect(), after)));
+        self.history.done.push(Step::Move { ids: ids.to_vec(), before, after: to.to_vec(), precise });
+        self.history.undone.clear();
+    }
+
+    /// Sets control points (in f64 `to64`, else `to` widened, where f64
+    /// points are kept) and re-evaluates their support (no history).
+    fn place(&mut self, ids: &[u32], to: &[Vec3], to64: Option<&[DVec3]>) -> usize {
         for (&v, &p) in ids.iter().zip(to) {
             self.points[0][v as usize] = p;
+        }
+        if let Some(levels) = self.precise.as_mut() {
+            for (k, &v) in ids.iter().enumerate() {
+                levels[0][v as usize] = to64.map_or_else(|| to[k].as_dvec3(), |t| t[k]);
+            }
         }
         self.touch(ids, &[]);
         self.evaluate_touched()
@@ -533,6 +587,10 @@ impl Refiner {
                 rows.iter().for_each(|&r| out[r as usize] = value(r));
             }
         }
+        if let Some(levels) = self.precise.as_mut() {
+            let f64_rows = (self.topo.plan_f64(), &self.patches.rows_f64[..]);
+            precise::evaluate_rows(f64_rows, &edit.touched.lists, levels);
+        }
         let last = plan.levels.len();
         let changed = std::mem::take(&mut edit.touched.lists[last]);
         let around = self.update_normals_around(&changed);
@@ -540,9 +598,18 @@ impl Refiner {
         if let Some(edit) = self.edit.as_mut() {
             let fresh = std::mem::take(&mut edit.fresh);
             edit.changed = around.filter(|_| !fresh);
+            edit.evaluated.clone_from(&changed);
             edit.touched.lists[last] = changed;
         }
         count
+    }
+
+    /// The finest points the last edit (a move, a sharpness change, an
+    /// undo or redo) evaluated again: those that changed, and perhaps a
+    /// few whose values came out the same. Every point after a sharpness
+    /// change that refined anew (boundary `None`).
+    pub fn last_changed(&self) -> &[u32] {
+        self.edit.as_ref().map_or(&[], |e| &e.evaluated)
     }
 
     /// The normals of the changed finest points and their neighbours;
@@ -614,14 +681,16 @@ impl Refiner {
     /// re-evaluates. One step of the history.
     ///
     /// # Errors
-    /// [`Error::Usage`] when `a`-`b` is not an edge of the cage.
+    /// [`Error::Usage`] when `a`-`b` is not an edge of the cage, or for a
+    /// sharpness that is not finite and at least 0
+    /// ([`crate::mesh::checked_sharpness`]); nothing is changed then.
     pub fn set_edge_sharpness(&mut self, a: u32, b: u32, sharpness: f32) -> Result<()> {
+        let s = checked_sharpness(f64::from(sharpness)).map_err(|e| Error::Usage(format!("edge {a}-{b} has {e}")))?;
         if self.cage.corner_opposite(a, b).is_none() && self.cage.corner_opposite(b, a).is_none() {
             return Err(Error::Usage(format!("{a}-{b} is not an edge of the control mesh")));
         }
         let mut tags = self.tags();
         tags.creases.retain(|t| (t.v0.min(t.v1), t.v0.max(t.v1)) != (a.min(b), a.max(b)));
-        let s = if sharpness.is_finite() { sharpness.clamp(0.0, INFINITE) } else { 0.0 };
         if s > 0.0 {
             tags.creases.push(CreaseTag { v0: a, v1: b, sharpness: s });
         }
@@ -631,14 +700,16 @@ impl Refiner {
     /// Sets the sharpness of control vertex `v` (a corner; 0 smooth).
     ///
     /// # Errors
-    /// [`Error::Usage`] when `v` is not a control vertex.
+    /// [`Error::Usage`] when `v` is not a control vertex, or for a
+    /// sharpness that is not finite and at least 0 (as
+    /// [`Refiner::set_edge_sharpness`]); nothing is changed then.
     pub fn set_vertex_sharpness(&mut self, v: u32, sharpness: f32) -> Result<()> {
+        let s = checked_sharpness(f64::from(sharpness)).map_err(|e| Error::Usage(format!("vertex {v} has {e}")))?;
         if v as usize >= self.points[0].len() {
             return Err(Error::Usage(format!("vertex {v} is not a control vertex")));
         }
         let mut tags = self.tags();
         tags.corners.retain(|t| t.vertex != v);
-        let s = if sharpness.is_finite() { sharpness.clamp(0.0, INFINITE) } else { 0.0 };
         if s > 0.0 {
             tags.corners.push(CornerTag { vertex: v, sharpness: s });
         }
@@ -682,22 +753,43 @@ impl Refiner {
                 self.touch(&[], &redone);
                 self.evaluate_touched();
             }
-            None => {
-                let mut fresh = Refiner::new(
-                    &Mesh { ct: cage, positions: self.control().to_vec() },
-                    self.scheme(),
-                    self.levels(),
-                    self.options(),
-                )?;
-                let history = std::mem::take(&mut self.history);
-                fresh.from_polygons = self.from_polygons;
-                *self = fresh;
-                self.history = history;
-                // evaluated by the rows, as after every edit
-                self.edit_tables();
-            }
+            None => self.rebuild(cage)?,
         }
         self.face_varying = Default::default();
+        Ok(())
+    }
+
+    /// Every level refined anew on `cage` (the same faces, new tags), into
+    /// the buffers already held: the points stay where they are (a view of
+    /// them outlives the change), the f64 ones too, and the history.
+    ///
+    /// # Errors
+    /// As [`Refiner::new`]; [`Error::Usage`] if the levels came out of
+    /// other sizes (tags change no counts: a bug), nothing changed then.
+    fn rebuild(&mut self, cage: CornerTable) -> Result<()> {
+        let control = Mesh { ct: cage, positions: self.control().to_vec() };
+        let mut fresh = Refiner::new(&control, self.scheme(), self.levels(), self.options())?;
+        if fresh.level_counts() != self.level_counts() {
+            return Err(Error::Usage("refined anew, the levels have other sizes (a bug)".into()));
+        }
+        for (old, new) in self.points.iter_mut().zip(&fresh.points) {
+            old.copy_from_slice(new);
+        }
+        fresh.points = std::mem::take(&mut self.points);
+        fresh.history = std::mem::take(&mut self.history);
+        fresh.from_polygons = self.from_polygons;
+        fresh.precise = self.precise.take();
+        *self = fresh;
+        // evaluated by the rows, as after every edit
+        self.edit_tables();
+        if self.precise.is_some() {
+            self.evaluate_all_f64(None);
+        }
+        let n = self.positions().len() as u32;
+        if let Some(edit) = self.edit.as_mut() {
+            edit.evaluated = (0..n).collect();
+            edit.changed = None;
+        }
         Ok(())
     }
 
@@ -719,8 +811,9 @@ impl Refiner {
 
     fn redo_or_undo(&mut self, step: &Step, undo: bool) {
         match step {
-            Step::Move { ids, before, after } => {
-                self.place(ids, if undo { before } else { after });
+            Step::Move { ids, before, after, precise } => {
+                let to64 = precise.as_deref().map(|(b, a)| if undo { &b[..] } else { &a[..] });
+                self.place(ids, if undo { before } else { after }, to64);
             }
             Step::Tags { before, after } => {
                 // the tags were valid when the step was made on this cage
@@ -759,15 +852,7 @@ impl Refiner {
         let mut d = data.to_vec();
         for (level, patch) in self.topo.plan().levels.iter().zip(&self.patches.rows) {
             let mut out = refine_rows(level, &d, channels);
-            // the rows a sharpness edit recorded again, over the plan's
-            for (&r, row) in patch {
-                let o = &mut out[r as usize * channels..(r as usize + 1) * channels];
-                o.fill(0.0);
-                for (&j, &w) in row.idx.iter().zip(&row.w) {
-                    let src = &d[j as usize * channels..(j as usize + 1) * channels];
-                    o.iter_mut().zip(src).for_each(|(o, &s)| *o += s * w);
-                }
-            }
+            patch_rows(&mut out, patch, &d, channels);
             d = out;
         }
         Ok(d)
@@ -780,7 +865,13 @@ impl Refiner {
     /// As [`Refiner::refine`].
     fn refine_f64(&self, data: &[f64], channels: usize) -> Result<Vec<f64>> {
         self.check_width(data.len(), channels)?;
-        Ok(self.topo.plan_f64().iter().fold(data.to_vec(), |d, l| refine_rows(l, &d, channels)))
+        let mut d = data.to_vec();
+        for (level, patch) in self.topo.plan_f64().iter().zip(&self.patches.rows_f64) {
+            let mut out = refine_rows(level, &d, channels);
+            patch_rows(&mut out, patch, &d, channels);
+            d = out;
+        }
+        Ok(d)
     }
 
     fn check_width(&self, len: usize, channels: usize) -> Result<()> {
@@ -818,6 +909,22 @@ fn ring_normal(pos: &[Vec3], v: u32, ring: &[u32]) -> Vec3 {
     let p = pos[v as usize];
     let n: Vec3 = ring.windows(2).map(|w| (pos[w[0] as usize] - p).cross(pos[w[1] as usize] - p)).sum();
     n.try_normalize().unwrap_or(Vec3::Z)
+}
+
+/// The rows a sharpness edit recorded again, over a level's rows applied
+/// to `data` of `channels` values a point (`out`).
+fn patch_rows<W: Copy, T>(out: &mut [T], patch: &HashMap<u32, retag::Row<W>>, data: &[T], channels: usize)
+where
+    T: Copy + Default + std::ops::AddAssign + std::ops::Mul<Output = T> + From<W>,
+{
+    for (&r, row) in patch {
+        let o = &mut out[r as usize * channels..(r as usize + 1) * channels];
+        o.fill(T::default());
+        for (&j, &w) in row.idx.iter().zip(&row.w) {
+            let src = &data[j as usize * channels..(j as usize + 1) * channels];
+            o.iter_mut().zip(src).for_each(|(o, &s)| *o += s * T::from(w));
+        }
+    }
 }
 
 /// One level's rows applied to `data` of `channels` values a point.

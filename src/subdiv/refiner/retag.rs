@@ -13,6 +13,7 @@ use crate::mesh::normals::Fans;
 use crate::mesh::poly::PolyTable;
 use crate::mesh::sharpness::{Sharpness, Tags};
 use crate::mesh::{BoundaryInterpolation, Creasing};
+use crate::subdiv::rules::Weight;
 use crate::subdiv::tables::LevelPlan;
 use crate::subdiv::tables::plan::LevelTables;
 use crate::subdiv::{Options, Scheme};
@@ -21,23 +22,34 @@ use std::collections::HashMap;
 
 /// One recorded row.
 #[derive(Clone, Debug, Default)]
-pub(super) struct Row {
+pub(super) struct Row<W = f32> {
     pub(super) idx: Vec<u32>,
-    pub(super) w: Vec<f32>,
+    pub(super) w: Vec<W>,
 }
 
 /// Rows recorded again after sharpness edits, per level, over the plan's;
 /// and the readers they add (a point a new row reads that its old row did
 /// not).
+///
+/// The same rows with f64 weights are recorded only while the f64 plan
+/// exists (recorded later, it is recorded on the retagged tables): a
+/// row's f64 patch, where there is one, is over the f64 plan's row. The
+/// f32 rows are written into the f32 plan when it is asked for whole
+/// ([`Refiner::plan`]); the f64 ones stay.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Patches {
     pub(super) rows: Vec<HashMap<u32, Row>>,
+    pub(super) rows_f64: Vec<HashMap<u32, Row<f64>>>,
     pub(super) readers: Vec<HashMap<u32, Vec<u32>>>,
 }
 
 impl Patches {
     pub(super) fn sized(levels: usize) -> Patches {
-        Patches { rows: vec![HashMap::new(); levels], readers: vec![HashMap::new(); levels] }
+        Patches {
+            rows: vec![HashMap::new(); levels],
+            rows_f64: vec![HashMap::new(); levels],
+            readers: vec![HashMap::new(); levels],
+        }
     }
 }
 
@@ -102,6 +114,16 @@ impl Refiner {
     }
 
     /// Takes `rows` (recorded anew, row `k` for new vertex `ids[k]`) over
+    /// level `l`'s f64 rows.
+    fn patch_f64(&mut self, l: usize, ids: &[u32], rows: &LevelPlan<f64>) {
+        for (k, &r) in ids.iter().enumerate() {
+            let (a, b) = (rows.offsets[k] as usize, rows.offsets[k + 1] as usize);
+            let row = Row { idx: rows.indices[a..b].to_vec(), w: rows.weights[a..b].to_vec() };
+            self.patches.rows_f64[l].insert(r, row);
+        }
+    }
+
+    /// Takes `rows` (recorded anew, row `k` for new vertex `ids[k]`) over
     /// level `l`'s.
     fn patch(&mut self, l: usize, ids: &[u32], rows: &LevelPlan) {
         for (k, &r) in ids.iter().enumerate() {
@@ -163,6 +185,10 @@ impl Refiner {
             let ids = self.readers_of(l, &near);
             let rows = level.record_rows(self.topo.scheme, &self.topo.opts, &ids);
             self.patch(l, &ids, &rows);
+            if self.topo.has_plan_f64() {
+                let rows = level.record_rows::<f64>(self.topo.scheme, &self.topo.opts, &ids);
+                self.patch_f64(l, &ids, &rows);
+            }
             redone.push(ids);
             sharpness = level.next_sharpness(self.topo.opts.creasing);
         }
@@ -214,7 +240,12 @@ impl Level<'_> {
     }
 
     /// The rows of new vertices `ids`, by the rules of the whole level.
-    fn record_rows(&self, scheme: Scheme, opts: &Options, ids: &[u32]) -> LevelPlan {
+    fn record_rows<W: Weight + std::ops::AddAssign>(
+        &self,
+        scheme: Scheme,
+        opts: &Options,
+        ids: &[u32],
+    ) -> LevelPlan<W> {
         match self {
             Level::Triangles(t, owners) => crate::subdiv::tables::plan::record_rows_of(t, owners, (scheme, opts), ids),
             Level::Polygons(t) => crate::subdiv::tables::poly_plan::record_poly_level(t, scheme, opts, Some(ids)),

@@ -90,14 +90,19 @@ impl Topology {
         }
     }
 
+    /// Whether the f64 rows are recorded (a sharpness edit then records
+    /// the rows it reaches in f64 too, over them).
+    pub(super) fn has_plan_f64(&self) -> bool {
+        self.plan_f64.get().is_some()
+    }
+
     /// The finest level's sharpness after an edit of the tags, wherever
-    /// the finest level is held; the f64 rows forgotten (recorded again,
-    /// on the retagged tables, when next asked for).
+    /// the finest level is held (the rows the edit reaches are recorded
+    /// again over both plans' by the caller).
     pub(super) fn set_fine_sharpness(&mut self, s: Option<Sharpness>) {
         with_fine_sharpness(self.fine.get_mut(), self.fine_poly.as_mut(), s.clone());
         if let Some(plan) = self.plan.get_mut() {
             plan.set_fine_sharpness(s);
         }
-        self.plan_f64 = OnceLock::new();
     }
 }

@@ -38,6 +38,14 @@ pub enum LoopBeta {
 }
 
 impl LoopBeta {
+    /// Its name (`loop`, `warren`), as [`std::str::FromStr`] reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            LoopBeta::Loop => "loop",
+            LoopBeta::Warren => "warren",
+        }
+    }
+
     /// Beta for an interior vertex of valence `k`.
     pub fn beta(self, k: u32) -> f64 {
         let kf = f64::from(k.max(1));
@@ -53,6 +61,17 @@ impl LoopBeta {
                     3.0 / (8.0 * kf)
                 }
             }
+        }
+    }
+}
+
+impl std::str::FromStr for LoopBeta {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "loop" => Ok(LoopBeta::Loop),
+            "warren" => Ok(LoopBeta::Warren),
+            _ => Err(format!("unknown beta '{s}' (expected loop or warren)")),
         }
     }
 }

@@ -79,8 +79,8 @@ impl PlanScratch {
 }
 
 struct RecordLevel<'a, W> {
-    /// The level, owned: it may be cut open along its creases.
-    ct: CornerTable,
+    /// The level, copied only where it is cut open along its creases.
+    ct: std::borrow::Cow<'a, CornerTable>,
     owners: &'a [u32],
     creasing: Creasing,
     weight: std::marker::PhantomData<W>,
@@ -128,12 +128,12 @@ impl<W: Weight> RulesFn<LevelPlan<W>> for RecordLevel<'_, W> {
         let mut table = self.ct;
         let nv = table.num_vertices();
         let ne = self.owners.len();
-        let mut f = Features::of(&table, self.creasing);
+        let mut f = Features::of(&*table, self.creasing);
         // schemes whose stencils reach across edges see a creased level cut
         // open along its creases; the cut's extra vertices map back to theirs
         if let Some(f) = f.as_mut().filter(|_| R::CUT_AT_CREASES) {
             let corners = f.cut_corners(&table);
-            f.set_cut(table.cut_in_place(&corners));
+            f.set_cut(table.to_mut().cut_in_place(&corners));
         }
         let lv = Level::new(&table).with_features(f.as_ref());
         let copies: &[u32] = f.as_ref().map_or(&[], |f| f.copies());
@@ -178,7 +178,8 @@ pub(crate) fn record_level<W: Weight>(
     opts: &Options,
 ) -> LevelPlan<W> {
     let weight = std::marker::PhantomData;
-    let record = RecordLevel { ct: ct.clone(), owners, creasing: opts.creasing, weight, only: None };
+    let ct = std::borrow::Cow::Borrowed(ct);
+    let record = RecordLevel { ct, owners, creasing: opts.creasing, weight, only: None };
     with_rules(scheme, opts, record)
 }
 
@@ -192,7 +193,8 @@ pub(crate) fn record_rows_of<W: Weight>(
     ids: &[u32],
 ) -> LevelPlan<W> {
     let weight = std::marker::PhantomData;
-    let record = RecordLevel { ct: ct.clone(), owners, creasing: opts.creasing, weight, only: Some(ids) };
+    let ct = std::borrow::Cow::Borrowed(ct);
+    let record = RecordLevel { ct, owners, creasing: opts.creasing, weight, only: Some(ids) };
     with_rules(scheme, opts, record)
 }
 
@@ -246,7 +248,8 @@ impl StencilPlan {
         for _ in 1..=levels {
             let (next, edges) = split::split_with(&cur, opts.creasing);
             let weight = std::marker::PhantomData;
-            let record = RecordLevel { ct: cur, owners: &edges.owners, creasing: opts.creasing, weight, only: None };
+            let ct = std::borrow::Cow::Owned(cur);
+            let record = RecordLevel { ct, owners: &edges.owners, creasing: opts.creasing, weight, only: None };
             plans.push(with_rules(scheme, opts, record));
             cur = next;
         }
