@@ -19,7 +19,12 @@ use subdiv::mesh::{Attributes, FileScheme, ShapeOptions};
 /// What a file held, flat: vertices, triangles, per-corner texture
 /// coordinates, per-vertex colours, the polygons (corners, offsets) when
 /// the file's faces were not all triangles, and the options it states.
-type Read = (Vec<f64>, Vec<i64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<(Vec<i64>, Vec<i64>)>, Named);
+type Read = (Vec<f64>, Vec<i64>, Option<Vec<f64>>, Option<Vec<f64>>, Option<(Vec<i64>, Vec<i64>)>, Named, Prims);
+
+/// A stage's prims: path, the options it states, its triangles (ids of the
+/// faces returned) and its local-to-world transform (row-major rows of
+/// column vectors, 16 values).
+type Prims = Vec<(String, Named, Vec<i64>, Vec<f64>)>;
 
 /// Options by the names Python's functions take (`scheme`, `boundary`,
 /// `fvar`, `triangles`, `creasing`) and the library's names of their values.
@@ -48,8 +53,9 @@ fn named_options(o: &ShapeOptions) -> Named {
 /// The arrays a file holds: `(vertices, faces, uv, colors, polygons,
 /// options)`, `uv` `(3m, 2)` (one per triangle corner), `colors` `(n, 3)`,
 /// `polygons` `(corners (c, 1), offsets (m + 1, 1))` or `None`, `options`
-/// `(name, value)` pairs; `repair` mends a non-manifold mesh instead of
-/// refusing it.
+/// `(name, value)` pairs, `prims` a stage's `(path, options, triangles,
+/// transform)`; `repair` mends a non-manifold mesh instead of refusing it;
+/// `time` is the time code a stage's sampled points are read at.
 ///
 /// # Errors
 /// `SubdivError` with the reader's message (file, line or element, problem).
@@ -59,6 +65,7 @@ pub fn load_file(
     py: Python<'_>,
     path: PathBuf,
     repair: bool,
+    time: Option<f64>,
 ) -> PyResult<(
     Bound<'_, PyArray2<f64>>,
     Bound<'_, PyArray2<i64>>,
@@ -66,24 +73,29 @@ pub fn load_file(
     Option<Bound<'_, PyArray2<f64>>>,
     Option<(Bound<'_, PyArray2<i64>>, Bound<'_, PyArray2<i64>>)>,
     Named,
+    Prims,
 )> {
-    let (v, f, uv, colors, polys, options) = run(py, None, || read(&path, repair))?;
+    if time.is_some_and(|t| !t.is_finite()) {
+        return Err(crate::guard::error("time must be a finite time code"));
+    }
+    let (v, f, uv, colors, polys, options, prims) = run(py, None, || read(&path, repair, time))?;
     let uv = uv.map(|u| f64_array(py, u, 2)).transpose()?;
     let colors = colors.map(|c| f64_array(py, c, 3)).transpose()?;
     let polys = match polys {
         Some((c, s)) => Some((i64_array(py, c, 1)?, i64_array(py, s, 1)?)),
         None => None,
     };
-    Ok((f64_array(py, v, 3)?, i64_array(py, f, 3)?, uv, colors, polys, options))
+    Ok((f64_array(py, v, 3)?, i64_array(py, f, 3)?, uv, colors, polys, options, prims))
 }
 
 /// Reads `path` with the default budget, attributes included (dropped by
 /// a repair, which renumbers).
-fn read(path: &std::path::Path, repair: bool) -> Result<Read, Msg> {
+fn read(path: &std::path::Path, repair: bool, time: Option<f64>) -> Result<Read, Msg> {
     let topology = if repair { Topology::Repair } else { Topology::Refuse };
-    let opts = ReadOptions { topology, ..ReadOptions::default() };
+    let opts = ReadOptions { topology, time, ..ReadOptions::default() };
     let loaded = io::read(Source::File(path), &opts).map_err(msg)?;
     let mesh = &loaded.mesh;
+    let prims = prims(&loaded.attributes);
     let Attributes { uv, colors, options, .. } = loaded.attributes;
     let uv = uv.map(|u| u.iter().flat_map(|p: &Vec2| [f64::from(p.x), f64::from(p.y)]).collect());
     let colors = colors.map(|c| arrays::flat_f64(&c));
@@ -96,7 +108,27 @@ fn read(path: &std::path::Path, repair: bool) -> Result<Read, Msg> {
         (corners, starts)
     });
     let faces = mesh.triangles().iter().map(|&v| i64::from(v)).collect();
-    Ok((arrays::flat_f64(&mesh.positions), faces, uv, colors, polys, named_options(&options)))
+    Ok((arrays::flat_f64(&mesh.positions), faces, uv, colors, polys, named_options(&options), prims))
+}
+
+/// The prims of a stage's scene, each with its own options and triangles.
+fn prims(attrs: &Attributes) -> Prims {
+    let (Some(scene), Some(m)) = (attrs.scene(), attrs.materials.as_ref()) else { return Vec::new() };
+    let mut out: Prims = scene
+        .prims
+        .iter()
+        .map(|p| {
+            // glam's column-major array is the row-major rows of column vectors' transpose
+            let t = glam::DMat4::from_cols_array(&p.transform).transpose().to_cols_array().to_vec();
+            (p.path.clone(), named_options(&p.options), Vec::new(), t)
+        })
+        .collect();
+    for (t, &g) in m.face.iter().enumerate() {
+        if let Some(prim) = scene.prim_of.get(g as usize).and_then(|&k| out.get_mut(k as usize)) {
+            prim.2.push(t as i64);
+        }
+    }
+    out
 }
 
 /// Writes the mesh to `path`, the format chosen by the extension; faces

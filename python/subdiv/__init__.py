@@ -29,6 +29,7 @@ __all__ = [
     "SubdivError",
     "evaluate",
     "Mesh",
+    "Prim",
     "Refiner",
     "subdivide",
     "matrix",
@@ -361,26 +362,50 @@ class Mesh:
         only those the file states: ``subdivide(m.vertices, m.faces,
         **m.options)``. A file whose scheme is ``none`` says
         ``scheme="none"``, which :func:`subdivide` refuses (the cage is the
-        surface). The options of the whole file; a per-part list may come
-        beside it.
+        surface). The options of the whole file (a stage's first prim's).
+    prims : a USD stage's Mesh prims, each a :class:`Prim` with its own path,
+        options (the names above), triangles (rows of ``faces``) and 4 x 4
+        local-to-world transform (the vertices are already in world space);
+        empty for other formats. ``subdivide(m.vertices, m.faces[p.faces],
+        **p.options)`` refines one prim by its own rules.
     """
 
-    __slots__ = ("vertices", "faces", "uv", "colors", "polygons", "options")
+    __slots__ = ("vertices", "faces", "uv", "colors", "polygons", "options", "prims")
 
-    def __init__(self, vertices, faces, uv=None, colors=None, polygons=None, options=None):
+    def __init__(self, vertices, faces, uv=None, colors=None, polygons=None, options=None, prims=()):
         self.vertices, self.faces, self.uv, self.colors, self.polygons = vertices, faces, uv, colors, polygons
         self.options = {} if options is None else dict(options)
+        self.prims = list(prims)
 
     def __repr__(self):
         extra = "".join(f", {k}" for k in ("uv", "colors", "polygons") if getattr(self, k) is not None)
         return f"subdiv.Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles{extra})"
 
 
-def load(path, *, repair=False) -> Mesh:
+class Prim:
+    """One Mesh prim of a USD stage (see :attr:`Mesh.prims`): ``path``,
+    ``options`` (a dict by :func:`subdivide`'s names), ``faces`` (int64 ids of
+    the mesh's triangles), ``transform`` (float64 (4, 4), column vectors)."""
+
+    __slots__ = ("path", "options", "faces", "transform")
+
+    def __init__(self, path, options, faces, transform):
+        self.path, self.options = path, dict(options)
+        self.faces = np.asarray(faces, dtype=np.int64)
+        self.transform = np.asarray(transform, dtype=np.float64).reshape(4, 4)
+
+    def __repr__(self):
+        return f"subdiv.Prim({self.path!r}, {len(self.faces)} triangles, {self.options})"
+
+
+def load(path, *, repair=False, time=None) -> Mesh:
     """Read a mesh file (OBJ with MTL, ``.ct``, PLY, STL, OFF, glTF/GLB,
     COLLADA, Bezier patches), the format chosen by the extension, else by
     the content. Vertices no face uses are dropped. ``repair=True`` mends a
     non-manifold mesh (as ``subdivide``'s ``repair``; attributes are then dropped).
+    ``time`` reads a USD stage's sampled points at that time code (default:
+    its ``startTimeCode``, else its first sample). A stage's prims come in
+    :attr:`Mesh.prims`, each with its own options.
 
     Raises :class:`SubdivError` naming the file, the line or element and the
     problem (also for a mesh that is not manifold).
@@ -391,7 +416,8 @@ def load(path, *, repair=False) -> Mesh:
     >>> subdiv.load(p).faces.tolist()
     [[0, 1, 2]]
     """
-    v, f, uv, colors, polys, options = _subdiv.load_file(path, bool(repair))
+    t = None if time is None else float(time)
+    v, f, uv, colors, polys, options, prims = _subdiv.load_file(path, bool(repair), t)
     if uv is not None:
         uv = uv.reshape(-1, 3, 2)
     if polys is not None:
@@ -401,7 +427,7 @@ def load(path, *, repair=False) -> Mesh:
             polys = corners.reshape(-1, int(sizes[0]))
         else:
             polys = np.split(corners, starts[1:-1])
-    return Mesh(v, f, uv, colors, polys, dict(options))
+    return Mesh(v, f, uv, colors, polys, dict(options), [Prim(*p) for p in prims])
 
 
 def save(path, vertices, faces) -> None:

@@ -28,6 +28,13 @@ POLYGON_SCHEMES: tuple[str, ...]
 
 class SubdivError(ValueError): ...
 
+class Prim:
+    path: str
+    options: dict[str, str]
+    faces: npt.NDArray[np.int64]
+    transform: npt.NDArray[np.float64]
+    def __init__(self, path: str, options: dict[str, str], faces: npt.ArrayLike, transform: npt.ArrayLike) -> None: ...
+
 class Mesh:
     vertices: npt.NDArray[np.float64]
     faces: npt.NDArray[np.int64]
@@ -35,6 +42,7 @@ class Mesh:
     colors: npt.NDArray[np.float64] | None
     polygons: npt.NDArray[np.int64] | list[npt.NDArray[np.int64]] | None
     options: dict[str, str]
+    prims: list[Prim]
     def __init__(
         self,
         vertices: npt.NDArray[np.float64],
@@ -43,6 +51,7 @@ class Mesh:
         colors: npt.NDArray[np.float64] | None = ...,
         polygons: npt.NDArray[np.int64] | list[npt.NDArray[np.int64]] | None = ...,
         options: dict[str, str] | None = ...,
+        prims: list[Prim] = ...,
     ) -> None: ...
 
 class Refiner:
@@ -126,7 +135,7 @@ def limit(
     boundary: Boundary = "edge",
     creases: Creases = None,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
-def load(path: Path, *, repair: bool = False) -> Mesh: ...
+def load(path: Path, *, repair: bool = False, time: float | None = None) -> Mesh: ...
 def save(path: Path, vertices: npt.ArrayLike, faces: Faces) -> None: ...
 def render(
     vertices: npt.ArrayLike,

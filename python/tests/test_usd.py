@@ -189,3 +189,32 @@ def test_uv_seams_survive_writing_as_usd_core_reads_them(tmp_path, ext):
     values, indices = _st(out, "/Box")
     osd = sum(1 for line in open(os.path.join(FIXTURES, "seams.L1.osd.obj")) if line.startswith("vt "))
     assert (values, len(indices)) == (osd, 4 * 96)
+
+
+def test_a_stages_prims_load_with_their_own_options_and_refine_as_opensubdiv():
+    m = subdiv.load(os.path.join(FIXTURES, "two.usda"))
+    assert [p.path for p in m.prims] == ["/a/loop", "/b/smooth"]
+    loop, smooth = m.prims
+    assert loop.options["scheme"] == "loop" and smooth.options["scheme"] == "catmull-clark"
+    assert smooth.options["triangles"] == "smooth"
+    assert len(loop.faces) == len(smooth.faces) == 10
+    assert not np.allclose(smooth.transform, np.eye(4)), "the second prim's transform"
+    # each prim refined by its own options is OpenSubdiv's refinement of it
+    for p, fixture in [(loop, "two.a.L2.osd.obj"), (smooth, "two.b.L2.osd.obj")]:
+        faces = m.faces[p.faces]
+        used = np.unique(faces)
+        local = np.searchsorted(used, faces)
+        v2, f2 = subdiv.subdivide(m.vertices[used], local, levels=2, **p.options)
+        theirs = _obj_faces(os.path.join(FIXTURES, fixture))
+        assert len(f2) == len(theirs), p.path
+        pts = np.array([q for f in theirs for q in f])
+        near = np.min(np.linalg.norm(v2[:, None, :] - pts[None, :, :], axis=2), axis=1)
+        assert near.max() < 2e-4, p.path
+
+
+def test_load_reads_a_stage_at_a_time_code():
+    path = os.path.join(FIXTURES, "animated.usda")
+    assert subdiv.load(path).vertices[0][0] == pytest.approx(2.0)  # startTimeCode 1
+    assert subdiv.load(path, time=2.5).vertices[0][0] == pytest.approx(3.5)
+    with pytest.raises(subdiv.SubdivError):
+        subdiv.load(path, time=float("nan"))
