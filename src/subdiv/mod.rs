@@ -37,9 +37,9 @@ pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
 use crate::mesh::{CornerTable, Faces, Mesh, VertexId};
 use glam::DVec3;
-pub(crate) use refine::check_levels_fit;
+use refine::build::{Keep, build};
 use refine::{OneLevel, Refined};
-use rules::{catmull_clark, features, loop_};
+use rules::{catmull_clark, loop_};
 use std::borrow::Cow;
 use std::time::Instant;
 
@@ -134,38 +134,11 @@ pub(crate) fn refine_kept(
         let poly = PolyMesh::from_mesh(mesh);
         return poly_kept((&poly.pt, &poly.positions), (scheme, levels, opts), progress);
     }
-    let t0 = Instant::now();
-    check_levels_fit(&mesh.ct, levels, opts.max_memory.or_else(default_memory_limit), true)?;
-    let mut stats = Stats::default();
-    let mut cur = features::with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
-    let mut points = vec![mesh.positions.clone()];
-    let (mut kept, mut boundary) = (Vec::with_capacity(levels as usize), None);
-    for level in 1..=levels {
-        let one = OneLevel {
-            ct: Cow::Borrowed(&cur),
-            positions: Cow::Borrowed(points.last().map_or(&[][..], Vec::as_slice)),
-            boundary: boundary.take(),
-            last: level == levels,
-            faces_only: None::<&fn(u32) -> u32>,
-            creasing: opts.creasing,
-            stats: &mut stats,
-        };
-        let Refined::Table(next, next_points, next_boundary, owners) = with_rules(scheme, opts, one) else {
-            unreachable!("a level made faces without being asked")
-        };
-        boundary = next_boundary;
-        stats.faces_per_level.push(next.num_triangles());
-        kept.push((std::mem::replace(&mut cur, next), owners));
-        points.push(next_points);
-        if !progress(level, levels) {
-            break;
-        }
-    }
-    stats.finish(t0);
+    let b = build(&mesh.ct, &mesh.positions, (scheme, levels, opts), Keep::Levels, progress)?;
     // no level: the control table itself, without the boundary's corner tags
-    let fine = if kept.is_empty() { mesh.ct.clone() } else { cur };
-    let tables = tables::plan::LevelTables::Triangles(kept);
-    Ok(Levels { tables, fine: Some(fine), fine_poly: None, points, stats })
+    let fine = if b.kept.is_empty() { mesh.ct.clone() } else { b.fine };
+    let tables = refine::build::Table::into_tables(b.kept);
+    Ok(Levels { tables, fine: Some(fine), fine_poly: None, points: b.points, stats: b.stats })
 }
 
 /// [`refine_kept`] of the polygon table `pt` with the points `control`
@@ -181,28 +154,9 @@ pub(crate) fn poly_kept<P: rules::Coord>(
     if !scheme.is_polygonal() {
         return Err(crate::Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
     }
-    let t0 = Instant::now();
-    refine::poly::check_levels_fit(pt, levels, opts.max_memory.or_else(default_memory_limit), true)?;
-    let mut stats = Stats::default();
-    let mut cur = features::boundary_tagged(pt, opts.boundary).unwrap_or_else(|| pt.clone());
-    let (mut kept, mut points) = (Vec::with_capacity(levels as usize), Vec::with_capacity(levels as usize + 1));
-    points.push(control.to_vec());
-    for level in 1..=levels {
-        let from = (&cur, points.last().map_or(&[][..], Vec::as_slice));
-        let (next, next_points) = match scheme {
-            Scheme::Bilinear => refine::poly::level(&catmull_clark::Bilinear, from, opts.creasing, &mut stats),
-            _ => refine::poly::level(&catmull_clark::CatmullClark::new(opts), from, opts.creasing, &mut stats),
-        };
-        stats.faces_per_level.push(next.num_faces());
-        kept.push(std::mem::replace(&mut cur, next));
-        points.push(next_points);
-        if !progress(level, levels) {
-            break;
-        }
-    }
-    stats.finish(t0);
-    let tables = tables::plan::LevelTables::Polygons(kept);
-    Ok(Levels { tables, fine: None, fine_poly: Some(cur), points, stats })
+    let b = build(pt, control, (scheme, levels, opts), Keep::Levels, progress)?;
+    let tables = refine::build::Table::into_tables(b.kept);
+    Ok(Levels { tables, fine: None, fine_poly: Some(b.fine), points: b.points, stats: b.stats })
 }
 
 /// [`subdivide_faces`] with every vertex id `j` of the faces written as
@@ -267,49 +221,32 @@ pub(crate) fn refine_levels<I: VertexId, M: Fn(u32) -> I + Sync, P: rules::Coord
     mut progress: impl FnMut(u32, u32) -> bool,
 ) -> Result<(Refined<I, P>, Stats)> {
     let t0 = Instant::now();
-    let limit = opts.max_memory.or_else(default_memory_limit);
-    let mut stats = Stats::default();
-    check_levels_fit(&mesh.ct, levels, limit, false)?;
-    let mut cur: Option<(CornerTable, Vec<P>)> = None;
-    let mut boundary: Option<Vec<bool>> = None;
-    let mut base = Some(features::with_boundary_corners(&mesh.ct, opts.boundary));
-    for level in 1..=levels {
-        // each level after the first owns (and may cut, see refine::with_features)
-        // the one before it
-        let (ct, positions) = match cur.take() {
-            Some((t, p)) => (Cow::Owned(t), Cow::Owned(p)),
-            None => (base.take().unwrap_or(Cow::Borrowed(&mesh.ct)), Cow::Borrowed(control)),
-        };
-        let last = level == levels;
-        let (boundary_in, creasing) = (boundary.take(), opts.creasing);
-        let one = OneLevel {
-            ct,
-            positions,
-            boundary: boundary_in,
-            last,
-            faces_only: faces_only.filter(|_| last),
-            creasing,
-            stats: &mut stats,
-        };
-        match with_rules(scheme, opts, one) {
-            Refined::Table(next, points, next_boundary, _) => {
-                boundary = next_boundary;
-                stats.faces_per_level.push(next.num_triangles());
-                cur = Some((next, points));
-            }
-            Refined::Faces(t) => {
-                stats.faces_per_level.push(t.num_faces());
-                stats.finish(t0);
-                return Ok((Refined::Faces(t), stats));
-            }
-        }
-        if !progress(level, levels) {
-            break;
-        }
+    let keep = if faces_only.is_some() && levels > 0 { Keep::BeforeFaces } else { Keep::Finest };
+    let mut b = build(&mesh.ct, control, (scheme, levels, opts), keep, &mut progress)?;
+    if levels == 0 {
+        // no level: the control table itself, without the boundary's corner tags
+        return Ok((Refined::Table(mesh.ct.clone(), control.to_vec(), None, Vec::new()), b.stats));
     }
-    stats.finish(t0);
-    let (ct, positions) = cur.unwrap_or_else(|| (mesh.ct.clone(), control.to_vec()));
-    Ok((Refined::Table(ct, positions, None, Vec::new()), stats))
+    let positions = b.points.pop().unwrap_or_default();
+    let (Some(id), true) = (faces_only, b.stats.faces_per_level.len() + 1 == levels as usize) else {
+        return Ok((Refined::Table(b.fine, positions, None, Vec::new()), b.stats));
+    };
+    // the last level as faces alone, its ids through `id`
+    let one = OneLevel {
+        ct: Cow::Owned(b.fine),
+        positions: Cow::Owned(positions),
+        boundary: b.carry,
+        last: true,
+        faces_only: Some(id),
+        creasing: opts.creasing,
+        stats: &mut b.stats,
+    };
+    let fine = with_rules(scheme, opts, one);
+    if let Refined::Faces(f) = &fine {
+        b.stats.faces_per_level.push(f.num_faces());
+    }
+    b.stats.finish(t0);
+    Ok((fine, b.stats))
 }
 
 /// Refines the polygon mesh `mesh` `levels` times with a polygon scheme
@@ -360,11 +297,14 @@ pub(crate) fn subdivide_poly_faces_as<I: VertexId>(
     if levels == 0 {
         return Err(crate::Error::Usage("faces alone come from at least one level (quads after it)".into()));
     }
-    let limit = opts.max_memory.or_else(default_memory_limit);
-    refine::poly::check_levels_fit(&mesh.pt, levels, limit, false)?;
+    if !scheme.is_polygonal() {
+        return Err(crate::Error::Usage(format!("{scheme} subdivides triangles: fan the polygons first")));
+    }
     // the levels before the last (none: the control mesh, its boundary's
-    // corners tagged as subdivide_poly tags them), then the last one
-    let (before, mut stats) = subdivide_poly(mesh, scheme, levels - 1, opts)?;
+    // corners tagged), then the last one as quads alone
+    let mut b = build(&mesh.pt, &mesh.positions, (scheme, levels, opts), Keep::BeforeFaces, &mut |_, _| true)?;
+    let before = PolyMesh { pt: b.fine, positions: b.points.pop().unwrap_or_default() };
+    let mut stats = b.stats;
     let t0 = Instant::now();
     let fine = match scheme {
         Scheme::Bilinear => {

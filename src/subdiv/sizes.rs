@@ -125,11 +125,7 @@ impl ControlCounts {
     /// # Errors
     /// [`crate::Error::TooLarge`] naming the first level that does not fit.
     pub(crate) fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
-        use super::refine::{TriangleCounts, check_fit, poly::PolygonCounts};
-        match scheme.is_polygonal() {
-            true => check_fit(PolygonCounts(self.counts(scheme)), levels, limit, true),
-            false => check_fit(TriangleCounts(self.counts(scheme)), levels, limit, true),
-        }
+        super::refine::build::check(self.counts(scheme), scheme.is_polygonal(), levels, limit, true)
     }
 }
 

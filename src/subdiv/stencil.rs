@@ -17,12 +17,12 @@
 //! ```
 
 use super::Scheme;
-use super::rules::features::{Features, Mask, Rule, with_boundary_corners};
-use super::tables::plan::record_rows_of;
+use super::refine::build::{Table, tables};
+use super::rules::features::{Features, Mask, Rule};
+use super::tables::plan::{LevelTable, LevelTables, record_rows_of};
 use super::tables::poly_plan::record_poly_level;
 use super::tables::rows::LevelPlan;
-use crate::mesh::poly::{PolyTable, split as poly_split};
-use crate::mesh::split::split_with;
+use crate::mesh::poly::PolyTable;
 use crate::mesh::{CornerTable, Mesh};
 use crate::{Error, Options, Result};
 use glam::DVec3;
@@ -46,13 +46,7 @@ pub struct Stencil {
     pub rules: Vec<(u32, String)>,
 }
 
-/// One level as the stencil walks it: its table and its edges' owners.
-enum LevelTable {
-    Triangles(CornerTable, Vec<u32>),
-    Polygons(PolyTable),
-}
-
-impl LevelTable {
+impl LevelTable<'_> {
     fn num_vertices(&self) -> usize {
         match self {
             LevelTable::Triangles(ct, _) => ct.num_vertices(),
@@ -68,7 +62,8 @@ impl LevelTable {
 /// [`Error::Usage`] for a vertex out of range; [`Error::TooLarge`] when the
 /// levels would not fit in memory.
 pub fn stencil(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options, vertex: u32) -> Result<Stencil> {
-    let tables = level_tables(mesh, scheme, levels, opts)?;
+    let held = level_tables(mesh, scheme, levels, opts)?;
+    let tables: Vec<LevelTable> = (0..held.len()).filter_map(|i| held.level(i)).collect();
     let fine = tables.last().map_or(mesh.positions.len(), next_count);
     if vertex as usize >= fine {
         return Err(Error::Usage(format!(
@@ -86,30 +81,13 @@ pub fn stencil(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options, vertex:
 }
 
 /// The tables of levels `0..levels` (the last one's split is the level
-/// asked for), boundary corners applied as `subdivide` applies them.
-fn level_tables(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<Vec<LevelTable>> {
-    let limit = opts.max_memory.or_else(super::default_memory_limit);
-    let mut out = Vec::with_capacity(levels as usize);
-    if scheme.is_polygonal() {
-        let control = PolyTable::from_corner_table(&mesh.ct);
-        super::refine::poly::check_levels_fit(&control, levels, limit, false)?;
-        let mut cur = super::rules::features::boundary_tagged(&control, opts.boundary).unwrap_or(control);
-        for l in 0..levels {
-            let next = (l + 1 < levels).then(|| poly_split::split(&cur, opts.creasing).0);
-            out.push(LevelTable::Polygons(cur));
-            let Some(next) = next else { break };
-            cur = next;
-        }
-    } else {
-        super::check_levels_fit(&mesh.ct, levels, limit, false)?;
-        let mut cur = with_boundary_corners(&mesh.ct, opts.boundary).into_owned();
-        for _ in 0..levels {
-            let (next, edges) = split_with(&cur, opts.creasing);
-            out.push(LevelTable::Triangles(cur, edges.owners));
-            cur = next;
-        }
-    }
-    Ok(out)
+/// asked for), as the level builder makes them for `subdivide`.
+fn level_tables(mesh: &Mesh, scheme: Scheme, levels: u32, opts: &Options) -> Result<LevelTables> {
+    let how = (scheme, levels, opts);
+    Ok(match scheme.is_polygonal() {
+        true => Table::into_tables(tables(&PolyTable::from_corner_table(&mesh.ct), how)?.0),
+        false => Table::into_tables(tables(&mesh.ct, how)?.0),
+    })
 }
 
 /// Vertices of the level split from `t`.
@@ -177,9 +155,9 @@ fn vertex_rule(t: &LevelTable, scheme: Scheme, opts: &Options, v: u32) -> String
         return "kept (the scheme interpolates its vertices)".into();
     }
     let (features, boundary, valence) = match t {
-        LevelTable::Triangles(ct, _) => (Features::of(ct, opts.creasing), ct.is_boundary_vertex(v), ct.valence(v)),
+        LevelTable::Triangles(ct, _) => (Features::of(*ct, opts.creasing), ct.is_boundary_vertex(v), ct.valence(v)),
         LevelTable::Polygons(pt) => {
-            (Features::of(pt, opts.creasing), pt.is_boundary_vertex(v), pt.valences()[v as usize])
+            (Features::of(*pt, opts.creasing), pt.is_boundary_vertex(v), pt.valences()[v as usize])
         }
     };
     if let Some(f) = features.as_ref().and_then(|f| f.vertex(v)).filter(|f| f.parent != Mask::Smooth) {
@@ -233,7 +211,7 @@ fn new_point_rule(t: &LevelTable, scheme: Scheme, opts: &Options, v: u32) -> Str
                 return format!("face point of a {}-gon (the mean of its corners)", pt.face_size(f));
             }
             let c = pt.edge_owners().nth(i).unwrap_or(0);
-            let features = Features::of(pt, opts.creasing);
+            let features = Features::of(*pt, opts.creasing);
             if let Some(w) = features.as_ref().and_then(|f| f.edge(c)) {
                 return crease_edge_name(w, "(1/2, 1/2)");
             }

@@ -17,8 +17,7 @@
 //! The parent level is split again from the control mesh (topology only,
 //! as `subdivide` splits it), on the inspector's worker.
 
-use crate::mesh::poly::{PolyTable, split as poly_split};
-use crate::mesh::split::split_with;
+use crate::mesh::poly::PolyTable;
 use crate::mesh::{CornerTable, Mesh, n, p};
 use crate::render::inspect::{ACCENT, rule_short};
 use crate::render::overlay::{Mark, Overlay};
@@ -98,10 +97,8 @@ pub(crate) fn triangle_split(
 ) -> Result<SplitView> {
     let child = &shown.ct;
     check(level, x, child.num_triangles())?;
-    let mut old = control.ct.clone();
-    for _ in 1..level {
-        old = split_with(&old, opts.creasing).0;
-    }
+    // the parent level, as the level builder makes it (topology only)
+    let old = crate::subdiv::refine::build::tables(&control.ct, (scheme, level - 1, opts))?.1;
     let nt = old.num_triangles() as u32;
     if child.num_triangles() != 4 * nt as usize {
         return Err(not_the_split(child.num_triangles(), 4 * nt as usize));
@@ -205,10 +202,8 @@ pub(crate) fn quad_split(
     x: u32,
 ) -> Result<SplitView> {
     check(level, x, child.num_faces())?;
-    let mut old = PolyTable::from_corner_table(&control.ct);
-    for _ in 1..level {
-        old = poly_split::split(&old, opts.creasing).0;
-    }
+    let cage = PolyTable::from_corner_table(&control.ct);
+    let old = crate::subdiv::refine::build::tables(&cage, (scheme, level - 1, opts))?.1;
     if child.num_faces() != old.num_corners() {
         return Err(not_the_split(child.num_faces(), old.num_corners()));
     }

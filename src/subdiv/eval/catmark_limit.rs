@@ -44,9 +44,8 @@ use crate::mesh::Creasing;
 use crate::mesh::edges::EdgeTable;
 use crate::mesh::poly::{PolyMesh, PolyTable};
 use crate::mesh::sharpness::INFINITE;
-use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::rules::features::{Features, Mask, Rule};
-use crate::subdiv::{Options, Scheme, subdivide_poly};
+use crate::subdiv::{Options, Scheme};
 use crate::{Error, Result};
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
@@ -80,16 +79,10 @@ impl LimitFrame {
 /// None in practice: levels that do not fit are skipped, not refused.
 pub fn limit_frames(mesh: &PolyMesh, opts: &Options) -> Result<Vec<LimitFrame>> {
     let nv = mesh.positions.len();
-    let refined = refined_for_limit(mesh, |levels| subdivide_poly(mesh, Scheme::CatmullClark, levels, opts))?;
-    // old vertices keep their ids through the levels
-    let frames = match &refined {
-        Some((m, _)) => frames_at(&m.pt, &m.positions, opts.creasing),
-        None => {
-            // the control level itself: its one-face corners as the option says
-            let pt = boundary_tagged(&mesh.pt, opts.boundary);
-            frames_at(pt.as_ref().unwrap_or(&mesh.pt), &mesh.positions, opts.creasing)
-        }
-    };
+    // old vertices keep their ids through the levels; with none, the control
+    // level's one-face corners are tagged as the option says
+    let (fine, points) = refined_for_limit(mesh, &mesh.positions, opts)?;
+    let frames = frames_at(&fine, &points, opts.creasing);
     Ok(frames.into_iter().take(nv).collect())
 }
 
@@ -104,35 +97,34 @@ pub fn limit_positions_f64(mesh: &PolyMesh, control: &[DVec3], opts: &Options) -
     if control.len() != nv {
         return Err(Error::Usage(format!("{} control points for {nv} vertices", control.len())));
     }
-    let refined = refined_for_limit(mesh, |levels| {
-        crate::subdiv::subdivide_f64(mesh, control, Scheme::CatmullClark, levels, opts)
-    })?;
-    let masks = match &refined {
-        Some((m, pos)) => masks_at(&m.pt, opts.creasing, &|i| pos[i as usize]),
-        None => {
-            let pt = boundary_tagged(&mesh.pt, opts.boundary);
-            masks_at(pt.as_ref().unwrap_or(&mesh.pt), opts.creasing, &|i| control[i as usize])
-        }
-    };
+    let (fine, pos) = refined_for_limit(mesh, control, opts)?;
+    let masks = masks_at(&fine, opts.creasing, &|i| pos[i as usize]);
     Ok(masks.into_iter().take(nv).map(|m| m.map_or(DVec3::ZERO, |(p, _, _)| p)).collect())
 }
 
 /// The levels the limit masks need on `mesh` (every face a quad, every
-/// semi-sharp feature decayed, at most 8), refined by `refine`, fewer where
-/// they do not fit in memory; `None` for none.
-fn refined_for_limit<T>(mesh: &PolyMesh, refine: impl Fn(u32) -> Result<T>) -> Result<Option<T>> {
+/// semi-sharp feature decayed, at most 8; fewer where they do not fit in
+/// memory), made by the level builder from the points `control`: the
+/// finest table (the tagged control table for none) and its points.
+///
+/// # Errors
+/// As the builder's.
+fn refined_for_limit<P: crate::subdiv::rules::Coord>(
+    mesh: &PolyMesh,
+    control: &[P],
+    opts: &Options,
+) -> Result<(PolyTable, Vec<P>)> {
+    use crate::subdiv::refine::build::{Keep, Table, build, check};
     let mut levels = semi_sharp_levels(&mesh.pt).min(8);
     if !mesh.pt.is_quads() {
         levels = levels.max(1);
     }
-    while levels > 0 {
-        match refine(levels) {
-            Ok(m) => return Ok(Some(m)),
-            Err(Error::TooLarge { .. }) => levels -= 1,
-            Err(e) => return Err(e),
-        }
+    let limit = opts.max_memory.or_else(crate::mem::default_memory_limit);
+    while levels > 0 && check(mesh.pt.counts(), true, levels, limit, false).is_err() {
+        levels -= 1;
     }
-    Ok(None)
+    let mut b = build(&mesh.pt, control, (Scheme::CatmullClark, levels, opts), Keep::Finest, &mut |_, _| true)?;
+    Ok((b.fine, b.points.pop().unwrap_or_default()))
 }
 
 /// Levels until the sharpest semi-sharp edge or vertex has decayed.

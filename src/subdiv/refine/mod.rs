@@ -6,6 +6,7 @@
 //! caller's [`Stats`]; what a level would cost is predicted before it is
 //! allocated.
 
+pub(crate) mod build;
 pub(crate) mod poly;
 
 use super::rules::crease::{Blend, OnLevel, edge_stencil, vertex_stencil};
@@ -31,17 +32,6 @@ pub(crate) fn predict_level_bytes(nt: u64, nv: u64, ne: u64) -> u64 {
     let scratch = 3 * nt * 4 + ne * 4;
     let old = 3 * nt * 8 + nv * 20;
     new + scratch + old
-}
-
-/// Checks, before any work, that refining `ct` `levels` times fits in
-/// `limit` bytes and in 32-bit ids at every level, the earlier levels held
-/// too when they are `kept`. Counts are predicted exactly
-/// ([`crate::mesh::counts`]).
-///
-/// # Errors
-/// [`Error::TooLarge`] naming the first level that does not fit.
-pub(crate) fn check_levels_fit(ct: &CornerTable, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
-    check_fit(TriangleCounts(Counts::of_triangles(ct)), levels, limit, kept)
 }
 
 /// A level's counts as a budget check walks them, for either kind of

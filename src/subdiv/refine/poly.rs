@@ -10,7 +10,7 @@
 use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules, smooth_triangle_edge};
 use super::super::rules::features::Features;
 use super::super::rules::{Coord, scatter_parts};
-use crate::Result;
+
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::split::{EdgeIds, Owners};
 use crate::mesh::{BORDER, Creasing};
@@ -198,15 +198,6 @@ fn vertex_points<R: PolyRules, P: Coord>(lv: &PolyLevel, pos: &[P], fp: &[P], ou
         let sum = extra.iter().fold(*q, |s, e| s + e[v]);
         *q = p.times((n - 2.0) / n) + sum.over(n * n);
     });
-}
-
-/// Checks that `levels` levels of the polygon table `pt` fit in `limit`
-/// bytes and 32-bit ids, the earlier levels held too when they are `kept`.
-///
-/// # Errors
-/// [`Error::TooLarge`] naming the first level that does not fit.
-pub(crate) fn check_levels_fit(pt: &PolyTable, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
-    super::check_fit(PolygonCounts(crate::mesh::counts::Counts::of_polygons(pt)), levels, limit, kept)
 }
 
 /// A polygon table's counts, as the budget walks them.

@@ -6,11 +6,9 @@
 use crate::CornerTable;
 use crate::mesh::Sharpness;
 use crate::mesh::poly::PolyTable;
-use crate::subdiv::tables::plan::{LevelTables, record_level, with_fine_sharpness};
-use crate::subdiv::tables::poly_plan::record_poly_level;
+use crate::subdiv::tables::plan::{LevelTables, record_levels, with_fine_sharpness};
 use crate::subdiv::tables::{LevelPlan, StencilPlan};
 use crate::subdiv::{Levels, Options, Scheme};
-use rayon::prelude::*;
 use std::sync::OnceLock;
 
 /// Every level's table and the finest, and the stencils made from them.
@@ -48,10 +46,7 @@ impl Topology {
 
     /// Levels refined.
     pub(super) fn levels(&self) -> usize {
-        match &self.tables {
-            LevelTables::Triangles(t) => t.len(),
-            LevelTables::Polygons(t) => t.len(),
-        }
+        self.tables.len()
     }
 
     /// The finest triangles.
@@ -81,13 +76,7 @@ impl Topology {
     /// Every level's rows with weights `W`, recorded on the tables kept
     /// (their tags as they now are): the topology is not refined again.
     fn record<W: crate::subdiv::rules::Weight + std::ops::AddAssign>(&self) -> Vec<LevelPlan<W>> {
-        let (scheme, opts) = (self.scheme, &self.opts);
-        match &self.tables {
-            LevelTables::Triangles(t) => {
-                t.par_iter().map(|(ct, owners)| record_level::<W>(ct, owners, scheme, opts)).collect()
-            }
-            LevelTables::Polygons(t) => t.par_iter().map(|pt| record_poly_level::<W>(pt, scheme, opts, None)).collect(),
-        }
+        record_levels(&self.tables, self.scheme, &self.opts)
     }
 
     /// Whether the f64 rows are recorded (a sharpness edit then records

@@ -15,10 +15,11 @@ use crate::Result;
 use crate::mesh::order::Relabel;
 use crate::mesh::split;
 use crate::mesh::{CornerTable, Creasing};
+use crate::subdiv::refine::build::{Table, tables};
 use crate::subdiv::rules::crease::{OnLevel, Unsplit, edge_stencil, vertex_stencil};
-use crate::subdiv::rules::features::{Features, with_boundary_corners};
+use crate::subdiv::rules::features::Features;
 use crate::subdiv::rules::{Level, Record, Rules, Weight};
-use crate::subdiv::{Options, RulesFn, Scheme, check_levels_fit, with_rules};
+use crate::subdiv::{Options, RulesFn, Scheme, with_rules};
 use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
@@ -171,6 +172,48 @@ pub(crate) fn record_one_level(ct: &CornerTable, scheme: Scheme, opts: &Options)
 /// The rows of one level of triangle `scheme` on `ct` (its boundary
 /// corners already applied), `owners` the owner corners of its edges in
 /// the split's order, weights of type `W`.
+/// Every level's rows with weights `W`, recorded on the level tables (as
+/// the builder made them, their tags as they now are): the one recording
+/// of a plan, for [`StencilPlan::build`] and the refiner alike.
+pub(crate) fn record_levels<W: Weight + std::ops::AddAssign>(
+    tables: &LevelTables,
+    scheme: Scheme,
+    opts: &Options,
+) -> Vec<LevelPlan<W>> {
+    match tables {
+        LevelTables::Triangles(t) => t.iter().map(|(ct, owners)| record_level::<W>(ct, owners, scheme, opts)).collect(),
+        LevelTables::Polygons(t) => {
+            t.iter().map(|pt| super::poly_plan::record_poly_level::<W>(pt, scheme, opts, None)).collect()
+        }
+    }
+}
+
+/// One level of a [`LevelTables`], borrowed: its table (and its edges'
+/// owner corners, for the triangle schemes).
+#[derive(Clone, Copy)]
+pub(crate) enum LevelTable<'a> {
+    Triangles(&'a CornerTable, &'a [u32]),
+    Polygons(&'a crate::mesh::poly::PolyTable),
+}
+
+impl LevelTables {
+    /// Levels held.
+    pub(crate) fn len(&self) -> usize {
+        match self {
+            LevelTables::Triangles(t) => t.len(),
+            LevelTables::Polygons(t) => t.len(),
+        }
+    }
+
+    /// Level `i`.
+    pub(crate) fn level(&self, i: usize) -> Option<LevelTable<'_>> {
+        match self {
+            LevelTables::Triangles(t) => t.get(i).map(|(ct, o)| LevelTable::Triangles(ct, o)),
+            LevelTables::Polygons(t) => t.get(i).map(LevelTable::Polygons),
+        }
+    }
+}
+
 pub(crate) fn record_level<W: Weight>(
     ct: &CornerTable,
     owners: &[u32],
@@ -237,23 +280,15 @@ impl StencilPlan {
         levels: u32,
         opts: &Options,
     ) -> Result<Recorded<W>> {
+        let how = (scheme, levels, opts);
         if scheme.is_polygonal() {
-            let (plans, poly) = super::poly_plan::record(ct, scheme, levels, opts)?;
+            // the polygons the table stands for (its hidden diagonals joined)
+            let (kept, poly) = tables(&crate::mesh::poly::PolyTable::from_corner_table(ct), how)?;
+            let plans = record_levels(&Table::into_tables(kept), scheme, opts);
             return Ok((plans, poly.triangulated(), Some(poly)));
         }
-        let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
-        check_levels_fit(ct, levels, limit, false)?;
-        let mut cur = with_boundary_corners(ct, opts.boundary).into_owned();
-        let mut plans = Vec::with_capacity(levels as usize);
-        for _ in 1..=levels {
-            let (next, edges) = split::split_with(&cur, opts.creasing);
-            let weight = std::marker::PhantomData;
-            let ct = std::borrow::Cow::Owned(cur);
-            let record = RecordLevel { ct, owners: &edges.owners, creasing: opts.creasing, weight, only: None };
-            plans.push(with_rules(scheme, opts, record));
-            cur = next;
-        }
-        Ok((plans, cur, None))
+        let (kept, fine) = tables(ct, how)?;
+        Ok((record_levels(&Table::into_tables(kept), scheme, opts), fine, None))
     }
 
     /// A plan of levels recorded elsewhere (the refiner's), packed.

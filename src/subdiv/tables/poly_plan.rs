@@ -8,40 +8,13 @@
 //! regular Catmull-Clark vertex row has 9 entries, not 21.
 
 use super::rows::LevelPlan;
-use crate::Result;
+use crate::mesh::Creasing;
 use crate::mesh::poly::{PolyTable, split};
-use crate::mesh::{CornerTable, Creasing};
-use crate::subdiv::refine::poly::check_levels_fit;
 use crate::subdiv::rules::catmull_clark::{Bilinear, CatmullClark, PolyLevel, PolyOn, PolyRules, face_point};
 use crate::subdiv::rules::crease::{edge_stencil, vertex_stencil};
 use crate::subdiv::rules::features::Features;
-use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::rules::{Record, Weight};
 use crate::subdiv::{Options, Scheme};
-
-/// The levels of polygon scheme `scheme` recorded on the polygons `ct`
-/// stands for (its hidden diagonals joined, [`PolyTable::from_corner_table`]),
-/// and the finest level's quads (vertex ids those of the rows).
-///
-/// # Errors
-/// [`crate::Error::TooLarge`] when a level would not fit in memory.
-pub(super) fn record<W: Weight + std::ops::AddAssign>(
-    ct: &CornerTable,
-    scheme: Scheme,
-    levels: u32,
-    opts: &Options,
-) -> Result<(Vec<LevelPlan<W>>, PolyTable)> {
-    let control = PolyTable::from_corner_table(ct);
-    let limit = opts.max_memory.or_else(crate::subdiv::default_memory_limit);
-    check_levels_fit(&control, levels, limit, false)?;
-    let mut cur = boundary_tagged(&control, opts.boundary).unwrap_or(control);
-    let mut plans = Vec::with_capacity(levels as usize);
-    for _ in 1..=levels {
-        plans.push(record_poly_level(&cur, scheme, opts, None));
-        cur = split::split(&cur, opts.creasing).0;
-    }
-    Ok((plans, cur))
-}
 
 /// One Catmull-Clark level recorded on `pt` as it is (its boundary corners
 /// already applied) and the split table it makes: the local subdivision of
