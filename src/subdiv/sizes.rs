@@ -129,13 +129,42 @@ impl ControlCounts {
     /// # Errors
     /// [`crate::Error::TooLarge`] naming the first level that does not fit.
     pub(crate) fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
-        use super::refine::{TriangleCounts, check_fit, poly::PolygonCounts};
-        if scheme.is_polygonal() {
-            let (h, ne, nf) = (self.polygon_corners(), self.edges - self.diagonals, self.polygons());
-            check_fit(PolygonCounts { h, nv: self.vertices, ne, nf }, levels, limit, true)
-        } else {
-            check_fit(TriangleCounts { nt: self.triangles, nv: self.vertices, ne: self.edges }, levels, limit, true)
+        use super::refine::check_fit;
+        match scheme.is_polygonal() {
+            true => check_fit(self.polygon_level(), levels, limit, true),
+            false => check_fit(self.triangle_level(), levels, limit, true),
         }
+    }
+
+    /// The peak bytes that `levels` levels of `scheme` are predicted to
+    /// need, by the walk that refuses a level over `--max-memory`
+    /// ([`crate::Options::max_memory`]): the largest level's peak, with the
+    /// levels before it held too when they are `kept` (as a
+    /// [`crate::Refiner`] and the refinements that carry attributes keep
+    /// them; a plain [`crate::subdivide`] does not). `u64::MAX` where a
+    /// level's ids would not fit in 32 bits. A caller running many
+    /// refinements at once (`subdiv batch`) admits one when this fits.
+    pub fn peak_bytes(&self, scheme: Scheme, levels: u32, kept: bool) -> u64 {
+        use super::refine::{LevelCounts, level_peaks};
+        fn peak<C: LevelCounts>(counts: C, levels: u32, kept: bool) -> u64 {
+            let peaks = level_peaks(counts, levels, kept);
+            peaks.map(|(_, c, bytes)| if c.ids_overflow() { u64::MAX } else { bytes }).max().unwrap_or(0)
+        }
+        match scheme.is_polygonal() {
+            true => peak(self.polygon_level(), levels, kept),
+            false => peak(self.triangle_level(), levels, kept),
+        }
+    }
+
+    /// The counts the budget walk of the triangle schemes starts from.
+    fn triangle_level(&self) -> super::refine::TriangleCounts {
+        super::refine::TriangleCounts { nt: self.triangles, nv: self.vertices, ne: self.edges }
+    }
+
+    /// The counts the budget walk of the polygon schemes starts from.
+    fn polygon_level(&self) -> super::refine::poly::PolygonCounts {
+        let (h, ne, nf) = (self.polygon_corners(), self.edges - self.diagonals, self.polygons());
+        super::refine::poly::PolygonCounts { h, nv: self.vertices, ne, nf }
     }
 }
 
@@ -167,6 +196,34 @@ mod tests {
         assert!(counts.check(Scheme::CatmullClark, 3, Some(1 << 30)).is_ok());
         assert!(counts.check(Scheme::CatmullClark, 12, Some(1 << 30)).is_err());
         assert_eq!(counts.faces_at(Scheme::Loop, 2), 16 * counts.triangles);
+    }
+
+    /// The predicted peak is the smallest budget the check admits, kept or
+    /// not, for both kinds of table; levels past 32-bit ids need everything.
+    #[test]
+    fn the_peak_is_the_least_budget_that_fits() {
+        use crate::mesh::shapes::{grid, icosphere};
+        use crate::subdiv::{check_levels_fit, refine::poly};
+        for mesh in [icosphere(2), grid(5)] {
+            let counts = ControlCounts::of(&mesh.ct);
+            let pm = PolyMesh::from_mesh(&mesh);
+            for levels in 1..5 {
+                for scheme in [Scheme::Loop, Scheme::CatmullClark] {
+                    let kept = counts.peak_bytes(scheme, levels, true);
+                    assert!(counts.check(scheme, levels, Some(kept)).is_ok(), "{scheme} L{levels}");
+                    assert!(counts.check(scheme, levels, Some(kept - 1)).is_err(), "{scheme} L{levels}");
+                    let plain = counts.peak_bytes(scheme, levels, false);
+                    assert!(plain <= kept && (levels == 1 || plain < kept), "{scheme} L{levels}: {plain} {kept}");
+                    let fits = |limit| match scheme.is_polygonal() {
+                        true => poly::check_levels_fit(&pm.pt, levels, Some(limit), false).is_ok(),
+                        false => check_levels_fit(&mesh.ct, levels, Some(limit), false).is_ok(),
+                    };
+                    assert!(fits(plain) && !fits(plain - 1), "{scheme} L{levels}: not kept");
+                }
+            }
+            assert_eq!(counts.peak_bytes(Scheme::Loop, 0, true), 0);
+            assert_eq!(counts.peak_bytes(Scheme::Loop, 20, false), u64::MAX, "ids overflow");
+        }
     }
 
     /// A closed and an open triangle mesh refined by Loop: the predicted
