@@ -10,8 +10,8 @@ pub(super) struct Item {
     pub(super) output: PathBuf,
 }
 
-/// The models `inputs` name, in order, each with its output in `out` (an
-/// existing folder): a file (or anything that is not a folder: the
+/// The models `inputs` name, in order, each with its output in `out` (the
+/// batch's folder, made later where it is missing): a file (or anything that is not a folder: the
 /// library then says what is wrong with it) as itself, written as
 /// `out/NAME`; a folder walked for the models in it (every extension a
 /// reader takes; hidden entries, links to folders and `out` itself left

@@ -138,9 +138,10 @@ fn run(a: &BatchArgs) -> Result<Tally, Stop> {
     let start = Instant::now();
     let format = output_format(a.format.as_deref())?;
     let shown = |p: &Path| subdiv::clean_error(&p.display().to_string(), 80).into_owned();
+    // the arguments checked before anything is made
+    let items = inputs::gather(&a.inputs, &a.out, format.as_deref()).map_err(Stop::Usage)?;
     std::fs::create_dir_all(&a.out).map_err(|e| Stop::Usage(format!("--out {}: {e}", shown(&a.out))))?;
     let _lock = manifest::Lock::take(&a.out).map_err(Stop::Usage)?;
-    let items = inputs::gather(&a.inputs, &a.out, format.as_deref()).map_err(Stop::Usage)?;
     let options = settings();
     let before = manifest::previous(&a.out);
     let hashes: Vec<Option<String>> = {
@@ -283,10 +284,13 @@ impl Batch<'_> {
             };
             mesh_ops::subdivide_file(&item.input, &item.output, &self.refine, &mut admit).map_err(|e| e.to_string())
         }));
+        // the end is told before the memory is given back (the next file is
+        // admitted after it)
+        let end = self.start.elapsed().as_secs_f64();
         drop(turn);
         drop(held);
         let result = result.unwrap_or_else(|panic| Err(format!("internal error: {}", panic_text(&*panic))));
-        let finished_at = Some(self.start.elapsed().as_secs_f64()).filter(|_| result.is_ok());
+        let finished_at = Some(end).filter(|_| result.is_ok());
         let mut r = record(item, hash.clone(), result, &self.options);
         (r.seconds, r.admitted_at, r.finished_at) = (t0.elapsed().as_secs_f64(), admitted_at, finished_at);
         r
@@ -468,7 +472,7 @@ impl Progress {
                     r.faces.unwrap_or(0),
                     r.seconds
                 ),
-                Some(e) => eprintln!("subdiv: [{n}/{}] failed: {e}", self.todo),
+                Some(e) => eprintln!("subdiv: [{n}/{}] {} failed: {e}", self.todo, r.input),
             }
         }
     }
