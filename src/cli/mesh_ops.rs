@@ -197,7 +197,7 @@ fn subdivide_groups(
     for (mesh, attrs) in parts {
         let s = a.sub.scheme.over(attrs.options);
         let levels = if s.subdivides() { a.sub.levels_or(1) } else { 0 };
-        let attrs = kept_by_output(&a.output, attrs).with_options(written_options(&s, levels));
+        let attrs = kept_by_output(a.output, attrs).with_options(written_options(&s, levels));
         groups.push((s.features.apply(mesh), attrs, s, levels));
     }
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
@@ -213,9 +213,9 @@ fn subdivide_groups(
             opts: s.options(),
         })
         .collect();
-    let (fine, attrs, st) = subdiv::subdivide_parts(&parts, io::keeps(&a.output).holes)?;
+    let (fine, attrs, st) = subdiv::subdivide_parts(&parts, io::keeps(a.output).holes)?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &attrs)?;
+    io::save_with(a.output, &fine, &attrs)?;
     let save_ms = t1.elapsed().as_secs_f64() * 1e3;
     let cage = (cage.positions.len(), subdiv::mesh::PolyMesh::from_mesh(cage).pt.num_faces());
     let schemes: Vec<String> =
@@ -270,7 +270,7 @@ fn subdivide_triangles(
         let (fine, fine_attrs) = (r.mesh(), r.attributes(&attrs)?);
         let st = refiner_stats(&r, t0);
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(a.output, &fine, &fine_attrs)?;
         let written = fine.ct.num_triangles() - fine.ct.holes().len();
         return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
     }
@@ -278,15 +278,15 @@ fn subdivide_triangles(
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     // a mesh with holes goes the whole way: its attributes follow the faces left out
     let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
-    if levels > 0 && !holes && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
+    if levels > 0 && !holes && io::writes_faces(a.output, mesh.ct.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options(), |j| j)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &attrs)?;
+        io::save_with(a.output, &fine, &attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(mesh, s.scheme(), levels, &s.options())?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &attrs)?;
+    io::save_with(a.output, &fine, &attrs)?;
     let written = fine.ct.num_triangles() - if levels > 0 { fine.ct.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -309,22 +309,22 @@ fn subdivide_polygons(
         let fine_attrs = r.attributes(&pattrs)?;
         let st = refiner_stats(&r, t0);
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(a.output, &fine, &fine_attrs)?;
         let written = fine.pt.num_faces() - fine.pt.holes().len();
         return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
     }
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
-    if levels > 0 && !holes && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
+    if levels > 0 && !holes && io::writes_faces(a.output, control.pt.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(&control, s.scheme(), levels, &s.options(), |j| j)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &pattrs)?;
+        io::save_with(a.output, &fine, &pattrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(&control, s.scheme(), levels, &s.options())?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &pattrs)?;
+    io::save_with(a.output, &fine, &pattrs)?;
     let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -362,7 +362,7 @@ fn subdivide_precise(
             }
         };
         let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
-        (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
+        (pos.len(), faces, Box::new(move || io::save_f64(a.output, &fine, &pos, &fa, keep_holes)))
     } else {
         let (fine, pos, fa) = match attrs.is_empty() || levels == 0 {
             true => {
@@ -377,7 +377,7 @@ fn subdivide_precise(
             }
         };
         let faces = fine.ct.num_triangles() - if keep_holes { 0 } else { fine.ct.holes().len() };
-        (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
+        (pos.len(), faces, Box::new(move || io::save_f64(a.output, &fine, &pos, &fa, keep_holes)))
     };
     let st = subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, ..Default::default() };
     let t1 = Instant::now();

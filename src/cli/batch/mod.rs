@@ -96,7 +96,13 @@ enum Stop {
 pub(crate) fn batch(a: &BatchArgs) -> ExitCode {
     match run(a) {
         Ok(t) => {
-            let shown = if a.json { super::print_json(&t).map_err(|e| e.to_string()) } else { Ok(print_tally(&t)) };
+            let shown = match a.json {
+                true => super::print_json(&t),
+                false => {
+                    print_tally(&t);
+                    Ok(())
+                }
+            };
             if let Err(e) = shown {
                 eprintln!("subdiv: error: {e}");
                 return ExitCode::from(1);
