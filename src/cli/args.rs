@@ -107,7 +107,7 @@ pub(crate) fn parse_limit(s: &str) -> std::result::Result<(String, u64), String>
 pub struct SubdivArgs {
     #[command(flatten)]
     pub scheme: SchemeArgs,
-    /// Subdivision levels (default: 1 for subdivide, 0 for render and view, 5 for animate).
+    /// Subdivision levels (default: 1 for subdivide and batch, 0 for render and view, 5 for animate).
     #[arg(long, short = 'n', visible_alias = "level", short_alias = 'l', value_name = "N")]
     pub levels: Option<u32>,
 }

@@ -3,7 +3,7 @@
 use super::args::{InputArgs, LimitArgs, Precision, SchemeArgs, SubdivArgs};
 use super::{logging, print_json, progress};
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 use subdiv::mesh::Attributes;
 use subdiv::{Error, Mesh, Result, bundled, io};
@@ -16,39 +16,91 @@ pub struct SubdivideArgs {
     /// Output mesh (format by extension; written atomically).
     output: PathBuf,
     #[command(flatten)]
-    from: InputArgs,
-    #[command(flatten)]
-    sub: SubdivArgs,
+    refine: RefineArgs,
     /// Print timings: `subdivide_ms=<float>` and per-phase times.
     #[arg(long)]
     stats: bool,
     /// Print the result summary as JSON.
     #[arg(long)]
     json: bool,
+}
+
+/// The options of `subdivide` besides its files, shared with `subdiv
+/// batch`: how a model is read, its subdivision and the precision.
+#[derive(clap::Args, Clone)]
+pub struct RefineArgs {
+    #[command(flatten)]
+    pub(crate) from: InputArgs,
+    #[command(flatten)]
+    pub(crate) sub: SubdivArgs,
     /// Compute in f32 (the default: fast, what the GPU draws) or f64 (from
     /// the file's own digits; written as OBJ's shortest f64 digits or PLY's
     /// double properties).
     #[arg(long, default_value = "f32")]
+    pub(crate) precision: Precision,
+}
+
+/// One file's subdivision: its input, its output and the options.
+struct Job<'a> {
+    input: &'a Path,
+    output: &'a Path,
+    from: &'a InputArgs,
+    sub: &'a SubdivArgs,
     precision: Precision,
 }
 
-/// `subdiv subdivide --json`: one object.
+/// What [`subdivide_file`] did: the line of `subdivide`, its `--json`
+/// object and its `--stats`.
 #[derive(Serialize)]
-struct Summary<'a> {
-    input: &'a str,
-    output: &'a str,
+pub(crate) struct Summary {
+    input: String,
+    output: String,
     scheme: String,
     levels: u32,
-    input_vertices: usize,
-    input_faces: usize,
-    vertices: usize,
-    faces: usize,
+    pub(crate) input_vertices: usize,
+    pub(crate) input_faces: usize,
+    pub(crate) vertices: usize,
+    pub(crate) faces: usize,
     subdivide_ms: f64,
     split_ms: f64,
     edge_ms: f64,
     vertex_ms: f64,
     load_ms: f64,
     save_ms: f64,
+    #[serde(skip)]
+    numbering_ms: f64,
+    #[serde(skip)]
+    huge_pages: Option<bool>,
+}
+
+/// What a file's refinement is predicted to need (the library's
+/// prediction, [`subdiv::rules::ControlCounts::peak_bytes`]), told once the
+/// file is read and before anything is refined.
+pub(crate) struct Demand {
+    /// Peak bytes with every level kept (the most any path takes; twice
+    /// that in f64), the parts of a stage together.
+    pub(crate) peak: u64,
+    /// The largest part's peak bytes without the levels kept, as the
+    /// library's check counts them: over `--max-memory`, the library
+    /// refuses the part before it allocates, whatever its path.
+    pub(crate) least: u64,
+    /// Refinements the file takes (a USD stage of several schemes: one each).
+    pub(crate) parts: usize,
+}
+
+impl Demand {
+    /// The demand of `parts`, each mesh refined by its scheme and levels,
+    /// in `precision` (f64 points take twice the bytes).
+    fn of(parts: &[(&Mesh, subdiv::Scheme, u32)], precision: Precision) -> Demand {
+        let scale = if precision == Precision::F64 { 2 } else { 1 };
+        let (mut peak, mut least) = (0u64, 0u64);
+        for &(mesh, scheme, levels) in parts {
+            let counts = subdiv::rules::ControlCounts::of(&mesh.ct);
+            peak = peak.saturating_add(counts.peak_bytes(scheme, levels, true).saturating_mul(scale));
+            least = least.max(counts.peak_bytes(scheme, levels, false));
+        }
+        Demand { peak, least, parts: parts.len() }
+    }
 }
 
 /// Output faces above which a subdivision shows a spinner.
@@ -56,12 +108,30 @@ const BIG_FACES: u64 = 1 << 20;
 
 /// `subdiv subdivide`.
 pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
+    let summary = subdivide_file(&a.input, &a.output, &a.refine, &mut |_| Ok(()))?;
+    report(&summary, a.stats, a.json)
+}
+
+/// Subdivides the model `input` into `output` as `subdiv subdivide` does
+/// (for `subdivide` and every file of `subdiv batch`): reads it, calls
+/// `admit` with what the refinement will need (it may wait for memory, or
+/// refuse), then refines and writes it.
+///
+/// # Errors
+/// The library's (reading, refining, writing; `admit`'s).
+pub(crate) fn subdivide_file(
+    input: &Path,
+    output: &Path,
+    o: &RefineArgs,
+    admit: &mut dyn FnMut(&Demand) -> Result<()>,
+) -> Result<Summary> {
+    let a = &Job { input, output, from: &o.from, sub: &o.sub, precision: o.precision };
     let t0 = Instant::now();
-    let loaded = a.from.read(&a.input, false)?;
+    let loaded = a.from.read(a.input, false)?;
     let (mesh, attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
     let groups = subdiv::parts_by_options(&mesh, &attrs)?;
     if !groups.is_empty() {
-        return subdivide_groups(a, (&mesh, groups), t0);
+        return subdivide_groups(a, (&mesh, groups), t0, admit);
     }
     // the file's option tags where no flag is given
     let s = &a.sub.scheme.over(attrs.options);
@@ -70,9 +140,10 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
     let attrs = attrs.with_options(written_options(s, levels));
     let mesh = s.features.apply(mesh);
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
+    admit(&Demand::of(&[(&mesh, s.scheme(), levels)], a.precision))?;
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
     let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
-    let attrs = kept_by_output(&a.output, attrs);
+    let attrs = kept_by_output(a.output, attrs);
     let (vertices, out_faces, st, save_ms) = if a.precision == Precision::F64 {
         subdivide_precise((a, levels), s, &mesh, precise, &attrs)?
     } else if s.scheme().is_polygonal() {
@@ -91,7 +162,7 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
         true => s.scheme().to_string(),
         false => "none (subdivisionScheme none: the cage as it is)".into(),
     };
-    report((a, levels, &what), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms))
+    Ok(summary((a, levels, &what), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms)))
 }
 
 /// The options a level made with `s` states: the scheme and options it
@@ -110,7 +181,12 @@ fn written_options(s: &SchemeArgs, levels: u32) -> subdiv::mesh::ShapeOptions {
 /// `subdivisionScheme none`): each set of prims refined by its own
 /// options under the flags, joined into one output whose faces keep their
 /// prims (USD prims, OBJ objects, glTF meshes).
-fn subdivide_groups(a: &SubdivideArgs, (cage, parts): (&Mesh, Vec<(Mesh, Attributes)>), t0: Instant) -> Result<()> {
+fn subdivide_groups(
+    a: &Job,
+    (cage, parts): (&Mesh, Vec<(Mesh, Attributes)>),
+    t0: Instant,
+    admit: &mut dyn FnMut(&Demand) -> Result<()>,
+) -> Result<Summary> {
     if a.precision == Precision::F64 {
         return Err(Error::Usage(format!(
             "{}: its prims state different schemes or options, which --precision f64 does not refine apart: give one --scheme",
@@ -121,10 +197,12 @@ fn subdivide_groups(a: &SubdivideArgs, (cage, parts): (&Mesh, Vec<(Mesh, Attribu
     for (mesh, attrs) in parts {
         let s = a.sub.scheme.over(attrs.options);
         let levels = if s.subdivides() { a.sub.levels_or(1) } else { 0 };
-        let attrs = kept_by_output(&a.output, attrs).with_options(written_options(&s, levels));
+        let attrs = kept_by_output(a.output, attrs).with_options(written_options(&s, levels));
         groups.push((s.features.apply(mesh), attrs, s, levels));
     }
     let load_ms = t0.elapsed().as_secs_f64() * 1e3;
+    let demand: Vec<_> = groups.iter().map(|(mesh, _, s, levels)| (mesh, s.scheme(), *levels)).collect();
+    admit(&Demand::of(&demand, a.precision))?;
     let parts: Vec<subdiv::Part> = groups
         .iter()
         .map(|(mesh, attrs, s, levels)| subdiv::Part {
@@ -135,16 +213,16 @@ fn subdivide_groups(a: &SubdivideArgs, (cage, parts): (&Mesh, Vec<(Mesh, Attribu
             opts: s.options(),
         })
         .collect();
-    let (fine, attrs, st) = subdiv::subdivide_parts(&parts, io::keeps(&a.output).holes)?;
+    let (fine, attrs, st) = subdiv::subdivide_parts(&parts, io::keeps(a.output).holes)?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &attrs)?;
+    io::save_with(a.output, &fine, &attrs)?;
     let save_ms = t1.elapsed().as_secs_f64() * 1e3;
     let cage = (cage.positions.len(), subdiv::mesh::PolyMesh::from_mesh(cage).pt.num_faces());
     let schemes: Vec<String> =
         groups.iter().map(|(_, _, s, _)| if s.subdivides() { s.scheme().to_string() } else { "none".into() }).collect();
     let what = format!("{} (by prim)", schemes.join(" and "));
     let levels = a.sub.levels_or(1);
-    report((a, levels, &what), cage, (fine.positions.len(), fine.pt.num_faces()), &st, (load_ms, save_ms))
+    Ok(summary((a, levels, &what), cage, (fine.positions.len(), fine.pt.num_faces()), &st, (load_ms, save_ms)))
 }
 
 /// The attributes `output`'s format keeps, the others dropped (with a
@@ -178,7 +256,7 @@ fn kept_by_output(output: &std::path::Path, attrs: Attributes) -> Attributes {
 /// At level 0 a mesh that stands for polygons is written as polygons, which
 /// takes the mesh.
 fn subdivide_triangles(
-    (a, levels): (&SubdivideArgs, u32),
+    (a, levels): (&Job, u32),
     s: &SchemeArgs,
     mesh: &Mesh,
     attrs: Attributes,
@@ -192,7 +270,7 @@ fn subdivide_triangles(
         let (fine, fine_attrs) = (r.mesh(), r.attributes(&attrs)?);
         let st = refiner_stats(&r, t0);
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(a.output, &fine, &fine_attrs)?;
         let written = fine.ct.num_triangles() - fine.ct.holes().len();
         return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
     }
@@ -200,15 +278,15 @@ fn subdivide_triangles(
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     // a mesh with holes goes the whole way: its attributes follow the faces left out
     let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
-    if levels > 0 && !holes && io::writes_faces(&a.output, mesh.ct.sharpness().is_some() || corners) {
+    if levels > 0 && !holes && io::writes_faces(a.output, mesh.ct.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options(), |j| j)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &attrs)?;
+        io::save_with(a.output, &fine, &attrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(mesh, s.scheme(), levels, &s.options())?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &attrs)?;
+    io::save_with(a.output, &fine, &attrs)?;
     let written = fine.ct.num_triangles() - if levels > 0 { fine.ct.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -217,7 +295,7 @@ fn subdivide_triangles(
 /// the file, their attributes per corner), written as polygons: the
 /// output's vertices, faces, the stats and the milliseconds of the save.
 fn subdivide_polygons(
-    (a, levels): (&SubdivideArgs, u32),
+    (a, levels): (&Job, u32),
     s: &SchemeArgs,
     mesh: &Mesh,
     attrs: &subdiv::mesh::Attributes,
@@ -231,22 +309,22 @@ fn subdivide_polygons(
         let fine_attrs = r.attributes(&pattrs)?;
         let st = refiner_stats(&r, t0);
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &fine_attrs)?;
+        io::save_with(a.output, &fine, &fine_attrs)?;
         let written = fine.pt.num_faces() - fine.pt.holes().len();
         return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
     }
     // as for the triangle schemes: the quads alone where the file keeps nothing else
     let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
     let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
-    if levels > 0 && !holes && io::writes_faces(&a.output, control.pt.sharpness().is_some() || corners) {
+    if levels > 0 && !holes && io::writes_faces(a.output, control.pt.sharpness().is_some() || corners) {
         let (fine, st) = subdiv::subdivide_faces(&control, s.scheme(), levels, &s.options(), |j| j)?;
         let t1 = Instant::now();
-        io::save_with(&a.output, &fine, &pattrs)?;
+        io::save_with(a.output, &fine, &pattrs)?;
         return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
     }
     let (fine, st) = subdiv::subdivide(&control, s.scheme(), levels, &s.options())?;
     let t1 = Instant::now();
-    io::save_with(&a.output, &fine, &pattrs)?;
+    io::save_with(a.output, &fine, &pattrs)?;
     let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
     Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
 }
@@ -257,7 +335,7 @@ fn subdivide_polygons(
 /// shortest f64 digits, PLY's `double` properties): the output's vertices,
 /// faces, the stats and the milliseconds of the save.
 fn subdivide_precise(
-    (a, levels): (&SubdivideArgs, u32),
+    (a, levels): (&Job, u32),
     s: &SchemeArgs,
     mesh: &Mesh,
     precise: Option<Vec<glam::DVec3>>,
@@ -284,7 +362,7 @@ fn subdivide_precise(
             }
         };
         let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
-        (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
+        (pos.len(), faces, Box::new(move || io::save_f64(a.output, &fine, &pos, &fa, keep_holes)))
     } else {
         let (fine, pos, fa) = match attrs.is_empty() || levels == 0 {
             true => {
@@ -299,7 +377,7 @@ fn subdivide_precise(
             }
         };
         let faces = fine.ct.num_triangles() - if keep_holes { 0 } else { fine.ct.holes().len() };
-        (pos.len(), faces, Box::new(move || io::save_f64(&a.output, &fine, &pos, &fa, keep_holes)))
+        (pos.len(), faces, Box::new(move || io::save_f64(a.output, &fine, &pos, &fa, keep_holes)))
     };
     let st = subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, ..Default::default() };
     let t1 = Instant::now();
@@ -326,53 +404,56 @@ fn refiner_stats(r: &subdiv::Refiner, t0: Instant) -> subdiv::Stats {
     subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, ..r.stats().clone() }
 }
 
-/// What `subdivide` prints: `--stats`, `--json` or a line.
-fn report(
-    (a, levels, scheme): (&SubdivideArgs, u32, &str),
-    (in_vertices, in_faces): (usize, usize),
+/// The summary of a subdivision.
+fn summary(
+    (a, levels, scheme): (&Job, u32, &str),
+    (input_vertices, input_faces): (usize, usize),
     (vertices, faces): (usize, usize),
     st: &subdiv::Stats,
     (load_ms, save_ms): (f64, f64),
-) -> Result<()> {
-    if a.stats {
-        println!("subdivide_ms={:.3}", st.total_ms);
+) -> Summary {
+    Summary {
+        input: a.input.display().to_string(),
+        output: a.output.display().to_string(),
+        scheme: scheme.to_string(),
+        levels,
+        input_vertices,
+        input_faces,
+        vertices,
+        faces,
+        subdivide_ms: st.total_ms,
+        split_ms: st.split_ms,
+        edge_ms: st.edge_ms,
+        vertex_ms: st.vertex_ms,
+        load_ms,
+        save_ms,
+        numbering_ms: st.numbering_ms,
+        huge_pages: st.huge_pages,
+    }
+}
+
+/// What `subdivide` prints: `--stats`, `--json` or a line.
+fn report(s: &Summary, stats: bool, json: bool) -> Result<()> {
+    if stats {
+        println!("subdivide_ms={:.3}", s.subdivide_ms);
         println!(
-            "phases: split_and_o_ms={:.3} (edge_numbering_ms={:.3}) edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={load_ms:.3} save_ms={save_ms:.3} threads={}{}",
-            st.split_ms,
-            st.numbering_ms,
-            st.edge_ms,
-            st.vertex_ms,
+            "phases: split_and_o_ms={:.3} (edge_numbering_ms={:.3}) edge_points_ms={:.3} vertex_points_ms={:.3} load_ms={:.3} save_ms={:.3} threads={}{}",
+            s.split_ms,
+            s.numbering_ms,
+            s.edge_ms,
+            s.vertex_ms,
+            s.load_ms,
+            s.save_ms,
             rayon::current_num_threads(),
-            st.huge_pages.map_or("", |huge| if huge { " pages=2MiB" } else { " pages=4KiB" })
+            s.huge_pages.map_or("", |huge| if huge { " pages=2MiB" } else { " pages=4KiB" })
         );
     }
-    if a.json {
-        let (input, output) = (a.input.display().to_string(), a.output.display().to_string());
-        print_json(&Summary {
-            input: &input,
-            output: &output,
-            scheme: scheme.to_string(),
-            levels,
-            input_vertices: in_vertices,
-            input_faces: in_faces,
-            vertices,
-            faces,
-            subdivide_ms: st.total_ms,
-            split_ms: st.split_ms,
-            edge_ms: st.edge_ms,
-            vertex_ms: st.vertex_ms,
-            load_ms,
-            save_ms,
-        })?;
-    } else if !a.stats {
+    if json {
+        print_json(s)?;
+    } else if !stats {
         println!(
             "{} -> {}: {} levels of {}, {} vertices, {} faces",
-            a.input.display(),
-            a.output.display(),
-            levels,
-            scheme,
-            vertices,
-            faces
+            s.input, s.output, s.levels, s.scheme, s.vertices, s.faces
         );
     }
     Ok(())

@@ -1,6 +1,6 @@
-//! The `subdiv` command line: view | animate | subdivide | edit | smooth | limit |
-//! eval | repair | info | render | models | completions. Every command that reads a
-//! model takes a file or `bundled:NAME`, a model compiled into the binary
+//! The `subdiv` command line: view | animate | subdivide | batch | edit | smooth |
+//! limit | eval | repair | info | render | models | completions. Every command
+//! that reads a model takes a file or `bundled:NAME`, a model compiled into the binary
 //! (`subdiv models` lists them), through `subdiv::bundled`.
 //!
 //! One file per command or group; the option groups every command shares
@@ -8,6 +8,7 @@
 //! [`progress`].
 
 pub(crate) mod args;
+mod batch;
 mod draw;
 mod edit;
 mod eval;
@@ -47,6 +48,11 @@ enum Cmd {
     Animate(draw::AnimateArgs),
     /// Subdivide a mesh and write the result (format by the output's extension).
     Subdivide(mesh_ops::SubdivideArgs),
+    /// Subdivide many models (files, folders, globs) as `subdivide` does each, several at once within the memory budget, into one folder with a manifest.jsonl; run again, it skips what is done.
+    ///
+    /// Exit code 0 when every file is done (or was before), 1 when some
+    /// failed (each named in the manifest), 2 for bad arguments.
+    Batch(batch::BatchArgs),
     /// Taubin lambda/mu smoothing (no shrinkage), or plain Laplacian with --laplacian.
     Smooth(mesh_ops::SmoothArgs),
     /// Move every vertex to its limit position on the Loop or Catmull-Clark surface (after `subdivide`).
@@ -100,7 +106,7 @@ pub(crate) fn main() -> ExitCode {
         return ExitCode::from(2);
     }
     match run(cli.cmd) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => code,
         Err(e) => {
             eprintln!("subdiv: error: {e}");
             ExitCode::FAILURE
@@ -108,12 +114,15 @@ pub(crate) fn main() -> ExitCode {
     }
 }
 
-fn run(cmd: Option<Cmd>) -> Result<()> {
-    match cmd {
+/// Runs `cmd`: its exit code, or its error.
+fn run(cmd: Option<Cmd>) -> Result<ExitCode> {
+    let done = match cmd {
         None => view::first_launch(),
         Some(Cmd::View(args)) => view::view(args),
         Some(Cmd::Animate(args)) => draw::animate(args),
         Some(Cmd::Subdivide(args)) => mesh_ops::subdivide(&args),
+        // its exit code says more than success (its errors are its own lines)
+        Some(Cmd::Batch(args)) => return Ok(batch::batch(&args)),
         Some(Cmd::Repair(args)) => mesh_ops::repair(&args),
         Some(Cmd::Edit(args)) => edit::edit(&args),
         Some(Cmd::Smooth(args)) => mesh_ops::smooth(&args),
@@ -129,7 +138,8 @@ fn run(cmd: Option<Cmd>) -> Result<()> {
             clap_complete::generate(shell, &mut Cli::command(), "subdiv", &mut std::io::stdout());
             Ok(())
         }
-    }
+    };
+    done.map(|()| ExitCode::SUCCESS)
 }
 
 /// Prints `value` as one line of JSON on stdout.

@@ -1,10 +1,12 @@
 //! Writing files safely: every writer goes through [`atomic_write`] or
 //! [`atomic_write_pieces`], so a failure never leaves a truncated file and
-//! a planted link is never followed. The new file is first written under a
-//! fresh name of its own in the output's folder, created exclusively (so no
-//! existing file or link there is opened), made durable, then renamed over
-//! the output. A device or a pipe (`/dev/null`, `/dev/stdout`) is written
-//! into as it is.
+//! a planted link is never followed. The new file is first written in the
+//! output's folder without a name (Linux's `O_TMPFILE`; elsewhere under a
+//! fresh name of its own, created exclusively, so no existing file or link
+//! there is opened), made durable, then linked in at the output's name or
+//! renamed over the output. A process killed mid-write leaves no file
+//! behind on Linux. A device or a pipe (`/dev/null`, `/dev/stdout`) is
+//! written into as it is.
 
 use crate::{Error, Result};
 use std::io::Write;
@@ -200,13 +202,24 @@ fn open_device(path: &Path) -> Result<Option<std::fs::File>> {
 
 /// Writes a temporary file beside `path` with `write`, makes it durable
 /// (`fsync`, so that a crash cannot leave a renamed but empty file) and
-/// renames it over `path`; on an error the temporary file is removed and
-/// `path` left as it was. The temporary file has a short random name (so
-/// an output name as long as the file system allows still works) and is
-/// created exclusively: a file or link planted at that name is never
-/// opened, a new name is drawn instead.
+/// puts it at `path`; on an error `path` is left as it was. On Linux the
+/// temporary file has no name while it is written (`O_TMPFILE`), so a
+/// process killed at any moment (`kill -9`) leaves nothing behind: it is
+/// linked in at `path` when that is free, else under a temporary name
+/// renamed over `path` at once. Elsewhere, or where the file system has no
+/// unnamed files, it is a named file from the start; the name is short and
+/// random (so an output name as long as the file system allows still works)
+/// and the file is created exclusively: a file or link planted at that name
+/// is never opened, a new name is drawn instead.
 fn replace(path: &Path, write: impl FnOnce(&std::fs::File) -> Result<()>) -> Result<()> {
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    #[cfg(target_os = "linux")]
+    if let Some(file) = unnamed::create(dir) {
+        // on an error the file goes with its descriptor
+        write(&file)?;
+        file.sync_all().ok();
+        return unnamed::link(&file, dir, path).map_err(|e| Error::io(path, e));
+    }
     let (tmp, file) = create_temporary(dir).map_err(|e| Error::io(path, e))?;
     let result = (|| {
         write(&file)?;
@@ -219,18 +232,13 @@ fn replace(path: &Path, write: impl FnOnce(&std::fs::File) -> Result<()>) -> Res
     result
 }
 
-/// A new file in `dir` under a random name `.subdiv-<16 hex digits>.tmp`,
-/// created exclusively (`create_new`: never an existing file, never through
-/// a link); a name that exists is drawn again.
+/// A new file in `dir` under a random name ([`temporary_name`]), created
+/// exclusively (`create_new`: never an existing file, never through a
+/// link); a name that exists is drawn again.
 fn create_temporary(dir: &Path) -> std::io::Result<(PathBuf, std::fs::File)> {
-    use std::hash::{BuildHasher, Hasher};
     let mut last = None;
     for attempt in 0u32..16 {
-        // RandomState is seeded from the operating system's randomness
-        let mut h = std::hash::RandomState::new().build_hasher();
-        h.write_u32(std::process::id());
-        h.write_u32(attempt);
-        let tmp = dir.join(format!(".subdiv-{:016x}.tmp", h.finish()));
+        let tmp = temporary_name(dir, attempt);
         match std::fs::OpenOptions::new().write(true).create_new(true).open(&tmp) {
             Ok(f) => return Ok((tmp, f)),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
@@ -238,6 +246,78 @@ fn create_temporary(dir: &Path) -> std::io::Result<(PathBuf, std::fs::File)> {
         }
     }
     Err(last.unwrap_or_else(|| std::io::Error::other("no free temporary name")))
+}
+
+/// A random name in `dir`, `.subdiv-<16 hex digits>.tmp` (`attempt`: the
+/// how-manieth try).
+fn temporary_name(dir: &Path, attempt: u32) -> PathBuf {
+    use std::hash::{BuildHasher, Hasher};
+    // RandomState is seeded from the operating system's randomness
+    let mut h = std::hash::RandomState::new().build_hasher();
+    h.write_u32(std::process::id());
+    h.write_u32(attempt);
+    dir.join(format!(".subdiv-{:016x}.tmp", h.finish()))
+}
+
+/// Files without a name until they are complete (Linux's `O_TMPFILE`),
+/// named through `/proc/self/fd`.
+#[cfg(target_os = "linux")]
+mod unnamed {
+    use std::ffi::CString;
+    use std::fs::File;
+    use std::io::{Error, ErrorKind, Result};
+    use std::os::fd::AsRawFd;
+    use std::os::unix::ffi::OsStrExt;
+    use std::path::Path;
+
+    /// An unnamed file in `dir`, or `None` where there is none to be had
+    /// (a file system or kernel without `O_TMPFILE`, no `/proc`): the
+    /// caller then writes a named one.
+    pub(super) fn create(dir: &Path) -> Option<File> {
+        use std::os::unix::fs::OpenOptionsExt;
+        if !Path::new("/proc/self/fd").is_dir() {
+            return None;
+        }
+        std::fs::OpenOptions::new().write(true).custom_flags(libc::O_TMPFILE).open(dir).ok()
+    }
+
+    /// Gives `file` the name `path`: a link made there when nothing is
+    /// (never through a link planted there), else a link under a temporary
+    /// name in `dir` renamed over `path`.
+    pub(super) fn link(file: &File, dir: &Path, path: &Path) -> Result<()> {
+        let from = CString::new(format!("/proc/self/fd/{}", file.as_raw_fd()))?;
+        match link_at(&from, path) {
+            Err(e) if e.kind() == ErrorKind::AlreadyExists => {}
+            done => return done,
+        }
+        for attempt in 0u32..16 {
+            let tmp = super::temporary_name(dir, attempt);
+            match link_at(&from, &tmp) {
+                Ok(()) => {
+                    let renamed = std::fs::rename(&tmp, path);
+                    if renamed.is_err() {
+                        let _ = std::fs::remove_file(&tmp);
+                    }
+                    return renamed;
+                }
+                Err(e) if e.kind() == ErrorKind::AlreadyExists => {}
+                Err(e) => return Err(e),
+            }
+        }
+        Err(Error::other("no free temporary name"))
+    }
+
+    /// `linkat` of the file named by `from` (a `/proc/self/fd` entry,
+    /// followed) to the new name `to`; `AlreadyExists` when `to` exists.
+    fn link_at(from: &CString, to: &Path) -> Result<()> {
+        let to = CString::new(to.as_os_str().as_bytes())?;
+        // SAFETY: both pointers are to NUL-terminated strings that live
+        // across the call; linkat only reads them and changes no memory.
+        let r = unsafe {
+            libc::linkat(libc::AT_FDCWD, from.as_ptr(), libc::AT_FDCWD, to.as_ptr(), libc::AT_SYMLINK_FOLLOW)
+        };
+        if r == 0 { Ok(()) } else { Err(Error::last_os_error()) }
+    }
 }
 
 #[cfg(test)]
@@ -268,6 +348,30 @@ mod tests {
         assert_eq!(std::fs::read(&out).unwrap(), b"x");
         let left: Vec<_> = std::fs::read_dir(&dir.0).unwrap().collect();
         assert_eq!(left.len(), 1, "no temporary file left behind");
+    }
+
+    /// While a file is written (and once it is written) its folder holds
+    /// no name but the output's: a process killed mid-write leaves nothing.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_file_being_written_has_no_name_in_the_folder() {
+        let dir = crate::io::TestDir::new("unnamed");
+        let out = dir.0.join("out.obj");
+        let names = || -> Vec<String> {
+            let entries = std::fs::read_dir(&dir.0).unwrap();
+            entries.map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect()
+        };
+        for (text, before) in [(&b"first"[..], vec![]), (&b"second"[..], vec!["out.obj".to_string()])] {
+            atomic_write(&out, |w| {
+                w.write_all(text).map_err(|e| Error::io(&out, e))?;
+                w.flush().map_err(|e| Error::io(&out, e))?;
+                assert_eq!(names(), before, "mid-write");
+                Ok(())
+            })
+            .unwrap();
+            assert_eq!(std::fs::read(&out).unwrap(), text);
+            assert_eq!(names(), ["out.obj"]);
+        }
     }
 
     #[test]

@@ -127,6 +127,27 @@ impl ControlCounts {
     pub(crate) fn check(&self, scheme: Scheme, levels: u32, limit: Option<u64>) -> Result<()> {
         super::refine::build::check(self.counts(scheme), scheme.is_polygonal(), levels, limit, true)
     }
+
+    /// The peak bytes that `levels` levels of `scheme` are predicted to
+    /// need, by the walk that refuses a level over `--max-memory`
+    /// ([`crate::Options::max_memory`]): the largest level's peak, with the
+    /// levels before it held too when they are `kept` (as a
+    /// [`crate::Refiner`] and the refinements that carry attributes keep
+    /// them; a plain [`crate::subdivide`] does not). `u64::MAX` where a
+    /// level's ids would not fit in 32 bits. A caller running many
+    /// refinements at once (`subdiv batch`) admits one when this fits.
+    pub fn peak_bytes(&self, scheme: Scheme, levels: u32, kept: bool) -> u64 {
+        use super::refine::{LevelCounts, level_peaks};
+        fn peak<C: LevelCounts>(counts: C, levels: u32, kept: bool) -> u64 {
+            let peaks = level_peaks(counts, levels, kept);
+            peaks.map(|(_, c, bytes)| if c.ids_overflow() { u64::MAX } else { bytes }).max().unwrap_or(0)
+        }
+        let counts = self.counts(scheme);
+        match scheme.is_polygonal() {
+            true => peak(super::refine::poly::PolygonCounts(counts), levels, kept),
+            false => peak(super::refine::TriangleCounts(counts), levels, kept),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -157,6 +178,36 @@ mod tests {
         assert!(counts.check(Scheme::CatmullClark, 3, Some(1 << 30)).is_ok());
         assert!(counts.check(Scheme::CatmullClark, 12, Some(1 << 30)).is_err());
         assert_eq!(counts.faces_at(Scheme::Loop, 2), 16 * counts.triangles);
+    }
+
+    /// The predicted peak is the smallest budget the check admits, kept or
+    /// not, for both kinds of table; levels past 32-bit ids need everything.
+    #[test]
+    fn the_peak_is_the_least_budget_that_fits() {
+        use crate::mesh::counts::Counts;
+        use crate::mesh::shapes::{grid, icosphere};
+        use crate::subdiv::refine::build::check;
+        for mesh in [icosphere(2), grid(5)] {
+            let counts = ControlCounts::of(&mesh.ct);
+            let pm = PolyMesh::from_mesh(&mesh);
+            for levels in 1..5 {
+                for scheme in [Scheme::Loop, Scheme::CatmullClark] {
+                    let kept = counts.peak_bytes(scheme, levels, true);
+                    assert!(counts.check(scheme, levels, Some(kept)).is_ok(), "{scheme} L{levels}");
+                    assert!(counts.check(scheme, levels, Some(kept - 1)).is_err(), "{scheme} L{levels}");
+                    let plain = counts.peak_bytes(scheme, levels, false);
+                    assert!(plain <= kept && (levels == 1 || plain < kept), "{scheme} L{levels}: {plain} {kept}");
+                    // the builder's own check of the tables
+                    let fits = |limit| match scheme.is_polygonal() {
+                        true => check(Counts::of_polygons(&pm.pt), true, levels, Some(limit), false).is_ok(),
+                        false => check(Counts::of_triangles(&mesh.ct), false, levels, Some(limit), false).is_ok(),
+                    };
+                    assert!(fits(plain) && !fits(plain - 1), "{scheme} L{levels}: not kept");
+                }
+            }
+            assert_eq!(counts.peak_bytes(Scheme::Loop, 0, true), 0);
+            assert_eq!(counts.peak_bytes(Scheme::Loop, 20, false), u64::MAX, "ids overflow");
+        }
     }
 
     /// A closed and an open triangle mesh refined by Loop: the predicted

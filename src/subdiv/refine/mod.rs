@@ -77,25 +77,36 @@ impl LevelCounts for TriangleCounts {
 /// Checks that `levels` levels of a table of `counts` fit in `limit` bytes
 /// and 32-bit ids, each level's peak with the levels before it that are
 /// `kept` (all but the one it splits, which the peak counts): the one
-/// budget walk of both kinds of table.
+/// budget walk of both kinds of table ([`level_peaks`]).
 ///
 /// # Errors
 /// [`Error::TooLarge`] naming the first level that does not fit.
-pub(crate) fn check_fit<C: LevelCounts>(mut counts: C, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
+pub(crate) fn check_fit<C: LevelCounts>(counts: C, levels: u32, limit: Option<u64>, kept: bool) -> Result<()> {
     let limit_bytes = limit.unwrap_or(u64::MAX);
-    let mut held = 0u64;
-    for level in 1..=levels {
-        let bytes = counts.bytes().saturating_add(held);
+    for (level, counts, bytes) in level_peaks(counts, levels, kept) {
         if counts.ids_overflow() || bytes > limit_bytes {
             let limit = limit_bytes.min(bytes.min(u64::MAX / 2));
             return Err(Error::TooLarge { level, faces: counts.faces_after(), bytes, limit });
         }
-        if kept {
-            held = held.saturating_add(counts.held_bytes());
-        }
-        counts = counts.next();
     }
     Ok(())
+}
+
+/// The predicted peak bytes of each of `levels` levels of a table of
+/// `counts`, level 1 first: `(level, the counts it splits, its peak with the
+/// levels before it that are kept)`. The walk ends after a level whose ids
+/// overflow (its successors' counts would too).
+pub(crate) fn level_peaks<C: LevelCounts>(counts: C, levels: u32, kept: bool) -> impl Iterator<Item = (u32, C, u64)> {
+    let mut state = Some((counts, 0u64));
+    (1..=levels).map_while(move |level| {
+        let (counts, held) = state.take()?;
+        let bytes = counts.bytes().saturating_add(held);
+        if !counts.ids_overflow() {
+            let held = if kept { held.saturating_add(counts.held_bytes()) } else { held };
+            state = Some((counts.next(), held));
+        }
+        Some((level, counts, bytes))
+    })
 }
 
 /// One level: split plus the scheme's points. `boundary` holds the input
