@@ -100,7 +100,7 @@ pub struct ViewOptions {
     /// The time code a USD stage's sampled points are read at (`None`:
     /// where the stage opens).
     pub time: Option<f64>,
-    /// Initial colouring; `None` is auto (see [`Coloring::initial`]).
+    /// Initial colouring; `None` is auto (see [`crate::render::Coloring::initial`]).
     pub coloring: Option<crate::render::Coloring>,
     /// Start with this many isolines per side of zero over a curvature
     /// colouring (`None`: off).

@@ -31,7 +31,6 @@ pub(crate) mod stencil;
 pub(crate) mod tables;
 
 use crate::Result;
-pub(crate) use crate::mem::default_memory_limit;
 #[cfg(feature = "viewer")]
 pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
