@@ -17,7 +17,7 @@ type Samples<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound
 /// The exact limit at control face `face[i]`, parameters `uv[i]`: Loop
 /// on triangles (barycentric), Catmull-Clark on ptex faces (the unit
 /// square); `names` are the scheme and options, `creases` as for
-/// `subdivide`.
+/// `subdivide`, `threads` the worker threads (`None`: the shared pool).
 ///
 /// # Errors
 /// `SubdivError` for anything the library refuses: a face out of range or
@@ -32,6 +32,7 @@ pub fn evaluate_arrays<'py>(
     face: PyReadonlyArray1<'py, i64>,
     uv: PyReadonlyArray2<'py, f64>,
     flags: (bool, bool),
+    threads: Option<usize>,
 ) -> PyResult<Samples<'py>> {
     // second derivatives asked; float64 control points taken as given
     let (curvature, precise) = flags;
@@ -41,7 +42,7 @@ pub fn evaluate_arrays<'py>(
     }
     let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
     let (face, uv) = (face.as_slice().map_err(bad)?, uv.as_slice().map_err(bad)?);
-    let (p, n, hk) = run(py, None, || {
+    let (p, n, hk) = run(py, threads, || {
         let (scheme, opts) = named(&names)?;
         // float64 vertices: the control points as the caller gave them;
         // float32: as the library rounds them
