@@ -89,13 +89,15 @@ def workloads(tmp):
     scale = iter(np.linspace(1.01, 2, 1000))
     return {
         "subdivide": lambda: subdiv.subdivide(v, f, 8, threads=1),
-        "subdivide catmull-clark": lambda: subdiv.subdivide(v, f, 7, "catmull-clark", threads=1),
+        "subdivide catmull-clark": lambda: subdiv.subdivide(v, f, 8, "catmull-clark", threads=1),
         "evaluate": lambda: subdiv.evaluate(sv, sf, faces, uv, curvature=True),
         "limit": lambda: subdiv.limit(V, F),
-        "matrix": lambda: subdiv.matrix(f, 6),
+        # the native half (scipy composes the levels after it, on its own terms)
+        "matrix": lambda: subdiv._subdiv.plan_levels(subdiv._checks.faces(f), len(v), subdiv._checks.tags(None),
+                                                     subdiv._options(), 8, None),
         "load": lambda: subdiv.load(obj),
         "save": lambda: subdiv.save(str(tmp / "out.obj"), V, F),
-        "Refiner": lambda: subdiv.Refiner(v, f, levels=7),
+        "Refiner": lambda: subdiv.Refiner(v, f, levels=8),
         "Refiner.move": lambda: edited.move(every, v * next(scale)),
         "Refiner.undo+redo": lambda: (edited.undo(), edited.redo()),
         "Refiner.set_sharpness": lambda: (edited.set_sharpness(int(f[0, 0]), int(f[0, 1]), 3.0), edited.undo()),
