@@ -143,7 +143,7 @@ fn prims(attrs: &Attributes) -> Prims {
 #[pyfunction]
 pub fn save_file(py: Python<'_>, path: PathBuf, mesh: MeshArgs<'_>, threads: Option<usize>) -> PyResult<()> {
     let MeshArgs(v, c, s) = &mesh;
-    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous");
+    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned");
     let (v, c, s) = (v.as_slice().map_err(bad)?, c.as_slice().map_err(bad)?, s.as_slice().map_err(bad)?);
     run(py, threads, || write(&path, v, c, s))
 }

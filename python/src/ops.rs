@@ -52,13 +52,13 @@ impl<'py> MeshArgs<'py> {
     /// The arrays' data, with the creases `c`.
     ///
     /// # Errors
-    /// `TypeError` for vertices not `(n, 3)` or arrays not C-contiguous
+    /// `TypeError` for vertices not `(n, 3)` or arrays not C-contiguous and aligned
     /// (the Python layer passes neither; a direct caller might).
     pub fn slices<'a>(&'a self, c: &'a CreaseArgs<'py>) -> PyResult<Slices<'a>> {
         if self.0.shape()[1] != 3 {
             return Err(PyTypeError::new_err("vertices must have shape (n, 3)"));
         }
-        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
+        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned (the Python layer makes them so)");
         Ok(Slices {
             vertices: self.0.as_slice().map_err(bad)?,
             corners: self.1.as_slice().map_err(bad)?,

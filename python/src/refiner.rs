@@ -223,7 +223,7 @@ impl NativeRefiner {
         ids: PyReadonlyArray1<'py, i64>,
         to: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray1<i64>>> {
-        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
+        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned (the Python layer makes them so)");
         let (ids, to) = (ids.as_slice().map_err(bad)?, to.as_slice().map_err(bad)?);
         if to.len() != 3 * ids.len() {
             return Err(PyTypeError::new_err("positions must have shape (k, 3), one row per id"));

@@ -430,7 +430,7 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
         raise ValueError(f"uv must have shape ({f.shape[0]}, 2), got shape {w.shape}")
     single = _checks.is_float32(vertices)
     names = _options(scheme, beta, boundary, triangles=triangles, creasing=creasing)
-    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.tags(creases), names, f, w,
+    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.tags(creases), names, (f, w),
                                        (bool(curvature), not single), _checks.threads(threads))
     # float64 control points are evaluated as given; float32 ones as float32,
     # the results handed back in float32
