@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """Loop subdivision from numpy to numpy: subdiv against the Python peers
 that are installed (trimesh, libigl, pymeshlab, Open3D), in one run; with
---edits, the costs of editing through subdiv.Refiner instead.
+--edits, the costs of editing through subdiv.Refiner instead; with
+--threads, what two threads of a ThreadPoolExecutor do against one.
 
     python3 python/bench.py [MESH] [--levels 3]
     python3 python/bench.py --edits [MESH] [--levels 2]
+    python3 python/bench.py --threads [MESH_OR_FOLDER ...] [--levels 2]
 
 MESH defaults to the Stanford bunny of the team's shared models, a checkout
 beside the repository (not part of it). Each
@@ -17,8 +19,11 @@ machine slows every tool alike. Prints a Markdown table.
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
+import glob
 import os
 import platform
+import tempfile
 import time
 
 import numpy as np
@@ -163,12 +168,99 @@ def print_edits(path, v, f, levels, best):
     print(f"\na one-vertex move re-evaluates {n} of the {total} refined rows (the rows it returns).")
 
 
+def model_files(args):
+    """The mesh files named, those of the folders named (default: the
+    repository's models/ and the shared models), USD and Bezier patches aside."""
+    args = args or [os.path.join(HERE, "..", "models"), os.path.dirname(DEFAULT)]
+    out = []
+    for a in args:
+        found = sorted(glob.glob(os.path.join(a, "*"))) if os.path.isdir(a) else [a]
+        out += [p for p in found if p.endswith((".obj", ".ct", ".ply", ".off", ".stl"))]
+    return out
+
+
+def thread_tasks(paths, levels, out_dir):
+    """name -> the tasks (callables) of one workload over the models, each
+    call on one thread of its own (``threads=1``) but "threads=None" (the
+    shared pool, as a caller who leaves it out)."""
+    meshes = []
+    for p in paths:
+        try:
+            m = subdiv.load(p)
+            meshes.append((p, m.vertices, m.faces))
+        except subdiv.SubdivError:
+            pass
+    rng = np.random.default_rng(3)
+    fine = [subdiv.subdivide(v, f, 1) for _, v, f in meshes]
+    points = [(rng.integers(0, len(f), 20_000), rng.uniform(0, 0.5, (20_000, 2))) for _, _, f in meshes]
+    refiners = [subdiv.Refiner(v, f, levels, threads=1) for _, v, f in meshes]
+    brushes = [rng.choice(len(v), min(100, len(v)), replace=False) for _, v, _ in meshes]
+
+    def pipeline(p, k):
+        m = subdiv.load(p, threads=1)
+        v2, f2 = subdiv.subdivide(m.vertices, m.faces, levels, threads=1)
+        subdiv.save(os.path.join(out_dir, f"{k}.ply"), v2, f2, threads=1)
+
+    def edits(r, v, ids):
+        for k in range(20):
+            r.move(ids, v[ids] + 1e-3 * (k + 1))
+
+    return {
+        f"subdivide, level {levels}": [lambda v=v, f=f: subdiv.subdivide(v, f, levels, threads=1)
+                                       for _, v, f in meshes],
+        f"subdivide, level {levels}, threads=None": [lambda v=v, f=f: subdiv.subdivide(v, f, levels)
+                                                     for _, v, f in meshes],
+        "limit (of level 1)": [lambda v=v, f=f: subdiv.limit(v, f, threads=1) for v, f in fine],
+        "evaluate, 20,000 points": [lambda v=v, f=f, q=q: subdiv.evaluate(v, f, *q, threads=1)
+                                    for (_, v, f), q in zip(meshes, points)],
+        f"load + subdivide level {levels} + save (.ply)": [lambda p=p, k=k: pipeline(p, k)
+                                                           for k, (p, _, _) in enumerate(meshes)],
+        f"Refiner level {levels}: 20 moves of 100 vertices": [
+            lambda r=r, v=v, ids=ids: edits(r, v, ids) for r, (_, v, _), ids in zip(refiners, meshes, brushes)],
+    }, sum(len(f) for _, _, f in meshes)
+
+
+def threads(paths, levels, rounds=5, repeat=3):
+    """Every workload run by a ThreadPoolExecutor of 1 and of 2 threads,
+    the pools and rounds interleaved; the minimum wall time of each."""
+    with tempfile.TemporaryDirectory() as out_dir:
+        tasks, faces = thread_tasks(paths, levels, out_dir)
+        pools = {w: concurrent.futures.ThreadPoolExecutor(max_workers=w) for w in (1, 2)}
+        best = {}
+        for name, work in tasks.items():
+            work = work * repeat
+            for task in work[: len(work) // repeat]:
+                task()  # warm-up: pages, caches, files
+            for _ in range(rounds):
+                for w, pool in pools.items():
+                    t = time.perf_counter()
+                    list(pool.map(lambda task: task(), work))
+                    best[(name, w)] = min(best.get((name, w), float("inf")), time.perf_counter() - t)
+        for pool in pools.values():
+            pool.shutdown()
+    print(f"{len(paths)} models ({faces} faces, each workload {repeat} times over), level {levels}; "
+          f"{os.cpu_count()} CPUs, Python {platform.python_version()}, numpy {np.__version__}, "
+          f"load average {os.getloadavg()[0]:.1f}; minima of {rounds} interleaved rounds\n")
+    print("| ThreadPoolExecutor | 1 thread (s) | 2 threads (s) | speed-up |")
+    print("|---|---|---|---|")
+    for name in tasks:
+        one, two = best[(name, 1)], best[(name, 2)]
+        print(f"| {name} | {one:.3f} | {two:.3f} | {one / two:.2f}x |")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("mesh", nargs="?", default=DEFAULT)
-    ap.add_argument("--levels", type=int, default=None, help="default: 3, with --edits 2")
+    ap.add_argument("mesh", nargs="*", help=f"default: {DEFAULT} (with --threads: models/ and its folder)")
+    ap.add_argument("--levels", type=int, default=None, help="default: 3, with --edits and --threads 2")
     ap.add_argument("--edits", action="store_true", help="time subdiv.Refiner's edits instead")
+    ap.add_argument("--threads", action="store_true", help="1 against 2 threads of a ThreadPoolExecutor")
     a = ap.parse_args()
+    if a.threads:
+        threads(model_files(a.mesh), 2 if a.levels is None else a.levels)
+        return
+    if len(a.mesh) > 1:
+        ap.error("one mesh at a time, but with --threads")
+    a.mesh = a.mesh[0] if a.mesh else DEFAULT
     m = subdiv.load(a.mesh)
     v, f = np.ascontiguousarray(m.vertices), np.ascontiguousarray(m.faces)
     if a.edits:

@@ -14,10 +14,10 @@ use subdiv::Evaluator;
 /// (`(0, 2)` unless `curvature`).
 type Samples<'py> = (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>, Bound<'py, PyArray2<f64>>);
 
-/// The exact limit at control face `face[i]`, parameters `uv[i]`: Loop
-/// on triangles (barycentric), Catmull-Clark on ptex faces (the unit
-/// square); `names` are the scheme and options, `creases` as for
-/// `subdivide`.
+/// The exact limit at control face `face[i]`, parameters `uv[i]`
+/// (`points` is `(face, uv)`): Loop on triangles (barycentric),
+/// Catmull-Clark on ptex faces (the unit square); `names` are the scheme and options, `creases` as for
+/// `subdivide`, `threads` the worker threads (`None`: the shared pool).
 ///
 /// # Errors
 /// `SubdivError` for anything the library refuses: a face out of range or
@@ -29,19 +29,20 @@ pub fn evaluate_arrays<'py>(
     mesh: MeshArgs<'py>,
     creases: CreaseArgs<'py>,
     names: crate::options::Names,
-    face: PyReadonlyArray1<'py, i64>,
-    uv: PyReadonlyArray2<'py, f64>,
+    points: (PyReadonlyArray1<'py, i64>, PyReadonlyArray2<'py, f64>),
     flags: (bool, bool),
+    threads: Option<usize>,
 ) -> PyResult<Samples<'py>> {
     // second derivatives asked; float64 control points taken as given
     let (curvature, precise) = flags;
+    let (face, uv) = points;
     let s = mesh.slices(&creases)?;
     if uv.shape()[1] != 2 || uv.shape()[0] != face.len() {
         return Err(PyTypeError::new_err("uv must have shape (k, 2) with one row per face index"));
     }
-    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
+    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned (the Python layer makes them so)");
     let (face, uv) = (face.as_slice().map_err(bad)?, uv.as_slice().map_err(bad)?);
-    let (p, n, hk) = run(py, None, || {
+    let (p, n, hk) = run(py, threads, || {
         let (scheme, opts) = named(&names)?;
         // float64 vertices: the control points as the caller gave them;
         // float32: as the library rounds them

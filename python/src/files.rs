@@ -55,7 +55,8 @@ fn named_options(o: &ShapeOptions) -> Named {
 /// `polygons` `(corners (c, 1), offsets (m + 1, 1))` or `None`, `options`
 /// `(name, value)` pairs, `prims` a stage's `(path, options, triangles,
 /// transform)`; `repair` mends a non-manifold mesh instead of refusing it;
-/// `time` is the time code a stage's sampled points are read at.
+/// `time` is the time code a stage's sampled points are read at; `threads`
+/// the worker threads (`None`: the shared pool).
 ///
 /// # Errors
 /// `SubdivError` with the reader's message (file, line or element, problem).
@@ -66,6 +67,7 @@ pub fn load_file(
     path: PathBuf,
     repair: bool,
     time: Option<f64>,
+    threads: Option<usize>,
 ) -> PyResult<(
     Bound<'_, PyArray2<f64>>,
     Bound<'_, PyArray2<i64>>,
@@ -78,7 +80,7 @@ pub fn load_file(
     if time.is_some_and(|t| !t.is_finite()) {
         return Err(crate::guard::error("time must be a finite time code"));
     }
-    let (v, f, uv, colors, polys, options, prims) = run(py, None, || read(&path, repair, time))?;
+    let (v, f, uv, colors, polys, options, prims) = run(py, threads, || read(&path, repair, time))?;
     let uv = uv.map(|u| f64_array(py, u, 2)).transpose()?;
     let colors = colors.map(|c| f64_array(py, c, 3)).transpose()?;
     let polys = match polys {
@@ -133,17 +135,17 @@ fn prims(attrs: &Attributes) -> Prims {
 
 /// Writes the mesh to `path`, the format chosen by the extension; faces
 /// that are not all triangles are written as polygons where the format
-/// keeps them.
+/// keeps them; `threads` as for [`load_file`].
 ///
 /// # Errors
 /// `SubdivError` for a mesh the library refuses, an unknown extension or
 /// an I/O error.
 #[pyfunction]
-pub fn save_file(py: Python<'_>, path: PathBuf, mesh: MeshArgs<'_>) -> PyResult<()> {
+pub fn save_file(py: Python<'_>, path: PathBuf, mesh: MeshArgs<'_>, threads: Option<usize>) -> PyResult<()> {
     let MeshArgs(v, c, s) = &mesh;
-    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous");
+    let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned");
     let (v, c, s) = (v.as_slice().map_err(bad)?, c.as_slice().map_err(bad)?, s.as_slice().map_err(bad)?);
-    run(py, None, || write(&path, v, c, s))
+    run(py, threads, || write(&path, v, c, s))
 }
 
 fn write(path: &std::path::Path, v: &[f64], c: &[i64], s: &[i64]) -> Result<(), Msg> {

@@ -35,7 +35,26 @@ pub fn error(m: &str) -> PyErr {
 /// # Errors
 /// `SubdivError` with `f`'s message, or naming the panic.
 pub fn run<T: Send>(py: Python<'_>, threads: Option<usize>, f: impl FnOnce() -> Result<T, Msg> + Send) -> PyResult<T> {
-    let outcome = py.detach(move || catch_unwind(AssertUnwindSafe(|| in_pool(threads, f))));
+    let pool = pool(threads)?;
+    run_on(py, pool.as_ref(), f)
+}
+
+/// [`run`] on a pool made once ([`pool`]; `None`: the shared pool), as a
+/// refiner's edits run on the pool it was built with.
+///
+/// # Errors
+/// As [`run`].
+pub fn run_on<T: Send>(
+    py: Python<'_>,
+    pool: Option<&rayon::ThreadPool>,
+    f: impl FnOnce() -> Result<T, Msg> + Send,
+) -> PyResult<T> {
+    let outcome = py.detach(move || {
+        catch_unwind(AssertUnwindSafe(|| match pool {
+            Some(p) => p.install(f),
+            None => f(),
+        }))
+    });
     match outcome {
         Ok(Ok(value)) => Ok(value),
         Ok(Err(m)) => Err(SubdivError::new_err(m)),
@@ -46,18 +65,20 @@ pub fn run<T: Send>(py: Python<'_>, threads: Option<usize>, f: impl FnOnce() -> 
     }
 }
 
-/// `f` on a pool of `threads` threads, or on the shared pool.
-fn in_pool<T: Send>(threads: Option<usize>, f: impl FnOnce() -> Result<T, Msg> + Send) -> Result<T, Msg> {
+/// A pool of `threads` threads (`None`: none, the shared pool serves).
+///
+/// # Errors
+/// `SubdivError` for a count outside `1..=MAX_THREADS`, or when the
+/// threads cannot be started.
+pub fn pool(threads: Option<usize>) -> PyResult<Option<rayon::ThreadPool>> {
     match threads {
-        None => f(),
-        Some(k) if (1..=MAX_THREADS).contains(&k) => {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(k)
-                .build()
-                .map_err(|e| format!("cannot start {k} threads: {e}"))?;
-            pool.install(f)
-        }
-        Some(k) => Err(format!("threads must be between 1 and {MAX_THREADS}, got {k}")),
+        None => Ok(None),
+        Some(k) if (1..=MAX_THREADS).contains(&k) => rayon::ThreadPoolBuilder::new()
+            .num_threads(k)
+            .build()
+            .map(Some)
+            .map_err(|e| SubdivError::new_err(format!("cannot start {k} threads: {e}"))),
+        Some(k) => Err(SubdivError::new_err(format!("threads must be between 1 and {MAX_THREADS}, got {k}"))),
     }
 }
 

@@ -1,7 +1,7 @@
 //! The native module of the `subdiv` Python package (`subdiv._subdiv`).
 //!
 //! The Python layer (`python/subdiv/__init__.py`) turns array-likes into
-//! C-contiguous float64 and int64 arrays and checks their shapes; this
+//! C-contiguous, aligned float64 and int64 arrays and checks their shapes; this
 //! module checks every value again (indices, coordinates, names, counts),
 //! hands the work to the library with the GIL released, on the requested
 //! threads, every panic caught, and returns numpy arrays it allocated once.

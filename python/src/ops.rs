@@ -52,13 +52,13 @@ impl<'py> MeshArgs<'py> {
     /// The arrays' data, with the creases `c`.
     ///
     /// # Errors
-    /// `TypeError` for vertices not `(n, 3)` or arrays not C-contiguous
+    /// `TypeError` for vertices not `(n, 3)` or arrays not C-contiguous and aligned
     /// (the Python layer passes neither; a direct caller might).
     pub fn slices<'a>(&'a self, c: &'a CreaseArgs<'py>) -> PyResult<Slices<'a>> {
         if self.0.shape()[1] != 3 {
             return Err(PyTypeError::new_err("vertices must have shape (n, 3)"));
         }
-        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
+        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned (the Python layer makes them so)");
         Ok(Slices {
             vertices: self.0.as_slice().map_err(bad)?,
             corners: self.1.as_slice().map_err(bad)?,
@@ -249,7 +249,8 @@ const MATRIX_BYTES_PER_VERTEX: u64 = 64;
 
 /// `subdiv.matrix`'s work: the plan's levels (CSR rows, coarse to fine),
 /// the finest faces in the caller's numbering, the kept vertices (`None`:
-/// all) and the number of control vertices.
+/// all) and the number of control vertices; on `threads` worker threads
+/// (`None`: the shared pool).
 ///
 /// # Errors
 /// `SubdivError` for anything the library refuses, or for `n_vertices`
@@ -263,6 +264,7 @@ pub fn plan_levels<'py>(
     creases: CreaseArgs<'py>,
     names: options::Names,
     levels: u32,
+    threads: Option<usize>,
 ) -> PyResult<(Vec<PyLevel<'py>>, Bound<'py, PyArray2<i64>>, Option<Bound<'py, PyArray1<u32>>>, usize)> {
     let limit = subdiv::mem::default_memory_limit().unwrap_or(u64::MAX);
     if n_vertices >= u64::from(u32::MAX) || n_vertices.saturating_mul(MATRIX_BYTES_PER_VERTEX) > limit {
@@ -273,7 +275,7 @@ pub fn plan_levels<'py>(
     let zeros = numpy::PyArray2::<f64>::zeros(py, [n_vertices as usize, 3], false).readonly();
     let mesh = MeshArgs(zeros, faces.0, faces.1);
     let s = mesh.slices(&creases)?;
-    let (plan, faces, k, remap) = run(py, None, || {
+    let (plan, faces, k, remap) = run(py, threads, || {
         let (scheme, opts) = named(&names)?;
         let (c, remap) = control(&s, scheme, false)?;
         let (plan, faces, k) = plan_of(&c, &remap, scheme, levels, &opts)?;
@@ -323,7 +325,8 @@ fn plan_of(
 }
 
 /// `subdiv.limit`'s work: Loop limit positions and unit normals of every
-/// vertex (a vertex no face uses keeps its position, normal zero).
+/// vertex (a vertex no face uses keeps its position, normal zero), on
+/// `threads` worker threads (`None`: the shared pool).
 ///
 /// # Errors
 /// `SubdivError` for anything the library refuses.
@@ -334,9 +337,10 @@ pub fn limit_arrays<'py>(
     creases: CreaseArgs<'py>,
     names: (String, String),
     precise: bool,
+    threads: Option<usize>,
 ) -> PyResult<Pair<'py, f64>> {
     let s = mesh.slices(&creases)?;
-    let (p, n) = run(py, None, || {
+    let (p, n) = run(py, threads, || {
         let opts = options::options(&names.0, &names.1)?;
         let (c, remap) = control(&s, Scheme::Loop, false)?;
         let Control::Tri(mesh) = c else { return Err("Loop built a polygon table (a bug)".into()) };

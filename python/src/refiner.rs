@@ -15,7 +15,7 @@
 
 use crate::arrays::i64_array;
 use crate::build::{Control, Remap, face_ids};
-use crate::guard::{Msg, error, msg, run};
+use crate::guard::{Msg, error, msg, pool, run_on};
 use crate::ops::{CreaseArgs, MeshArgs, control, face_size};
 use crate::options::{Names, named};
 use glam::DVec3;
@@ -24,6 +24,7 @@ use numpy::{Element, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+use std::sync::Arc;
 
 /// The finest points in the caller's numbering, where the library
 /// renumbers (flat `x y z` rows, allocated once, never reassigned).
@@ -51,6 +52,9 @@ pub struct NativeRefiner {
     mirror: Mirror,
     /// Corners of a finest face (3, or 4 for the polygon schemes).
     sides: usize,
+    /// The pool the construction and every edit run on (`None`: the
+    /// shared pool).
+    pool: Option<Arc<rayon::ThreadPool>>,
 }
 
 impl NativeRefiner {
@@ -132,7 +136,9 @@ unsafe fn view<'py, T: Element>(flat: &[T], owner: Bound<'py, PyAny>) -> PyResul
 impl NativeRefiner {
     /// Builds the refiner: `mesh` and `creases` as for `subdivide`, `names`
     /// the scheme and options; `precise`: float64 input (the refiner
-    /// keeps f64 points). What the first edit would build is built now.
+    /// keeps f64 points); `threads` the worker threads of the construction
+    /// and of every edit (`None`: the shared pool). What the first edit
+    /// would build is built now.
     #[new]
     fn new(
         py: Python<'_>,
@@ -141,9 +147,11 @@ impl NativeRefiner {
         names: Names,
         levels: u32,
         precise: bool,
+        threads: Option<usize>,
     ) -> PyResult<Self> {
         let s = mesh.slices(&creases)?;
-        run(py, None, || {
+        let pool = pool(threads)?.map(Arc::new);
+        run_on(py, pool.clone().as_deref(), || {
             let (scheme, opts) = named(&names)?;
             let (c, remap) = control(&s, scheme, false)?;
             let mesh = match c {
@@ -166,7 +174,7 @@ impl NativeRefiner {
                 (0..remap.n_input as u32).map(|i| inverse(i).unwrap_or(u32::MAX)).collect()
             });
             let mirror = Self::mirror(&inner, &remap, s.vertices(), precise);
-            Ok(NativeRefiner { inner, remap, to_library, precise, mirror, sides })
+            Ok(NativeRefiner { inner, remap, to_library, precise, mirror, sides, pool })
         })
     }
 
@@ -195,7 +203,7 @@ impl NativeRefiner {
 
     /// The finest level's faces `(m2, 3)` or `(m2, 4)`, holes left out.
     fn faces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
-        let f = run(py, None, || {
+        let f = run_on(py, self.pool.clone().as_deref(), || {
             Ok(match self.inner.polygons() {
                 Some(pt) => face_ids(&self.remap, pt.v_table(), self.sides, pt.holes()),
                 None => {
@@ -215,12 +223,12 @@ impl NativeRefiner {
         ids: PyReadonlyArray1<'py, i64>,
         to: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<Bound<'py, PyArray1<i64>>> {
-        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous (the Python layer makes them so)");
+        let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned (the Python layer makes them so)");
         let (ids, to) = (ids.as_slice().map_err(bad)?, to.as_slice().map_err(bad)?);
         if to.len() != 3 * ids.len() {
             return Err(PyTypeError::new_err("positions must have shape (k, 3), one row per id"));
         }
-        let rows = run(py, None, || {
+        let rows = run_on(py, self.pool.clone().as_deref(), || {
             let lib: Vec<u32> = ids.iter().map(|&i| self.library_id(i)).collect::<Result<_, _>>()?;
             let points = crate::arrays::positions(to)?;
             if self.precise {
@@ -245,7 +253,7 @@ impl NativeRefiner {
         sharpness: f64,
     ) -> PyResult<Bound<'py, PyArray1<i64>>> {
         let s = subdiv::mesh::checked_sharpness(sharpness).map_err(|e| error(&format!("edge {a}-{b} has {e}")))?;
-        let rows = run(py, None, || {
+        let rows = run_on(py, self.pool.clone().as_deref(), || {
             let (la, lb) = (self.library_id(a)?, self.library_id(b)?);
             // the library names its own ids
             let caller = |e: subdiv::Error| msg(e).replace(&format!("{la}-{lb}"), &format!("{a}-{b}"));
@@ -257,7 +265,7 @@ impl NativeRefiner {
 
     /// Undoes the last edit; whether there was one.
     fn undo(&mut self, py: Python<'_>) -> PyResult<bool> {
-        run(py, None, || {
+        run_on(py, self.pool.clone().as_deref(), || {
             let done = self.inner.undo();
             if done {
                 self.follow();
@@ -268,7 +276,7 @@ impl NativeRefiner {
 
     /// Redoes the last undone edit; whether there was one.
     fn redo(&mut self, py: Python<'_>) -> PyResult<bool> {
-        run(py, None, || {
+        run_on(py, self.pool.clone().as_deref(), || {
             let done = self.inner.redo();
             if done {
                 self.follow();
@@ -279,7 +287,7 @@ impl NativeRefiner {
 
     /// The finest vertices control vertex `i` influences (caller's ids).
     fn support<'py>(&mut self, py: Python<'py>, i: i64) -> PyResult<Bound<'py, PyArray1<i64>>> {
-        let rows = run(py, None, || {
+        let rows = run_on(py, self.pool.clone().as_deref(), || {
             let v = self.library_id(i)?;
             Ok(self.remap.ids(&self.inner.support(v)))
         })?;

@@ -49,6 +49,27 @@ TRIANGLE_SCHEMES = ("midpoint", "loop", "butterfly", "modified-butterfly", "jare
 POLYGON_SCHEMES = ("catmull-clark", "bilinear")
 
 
+#: The layout of a pickled :class:`Refiner` (another is refused on unpickling).
+_PICKLE_VERSION = 1
+
+
+def _same(a, b) -> bool:
+    """Equal values: arrays of the same dtype and shape, element by element
+    (NaN equal to NaN), lists and tuples item by item, anything else by ``==``."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        if not (isinstance(a, np.ndarray) and isinstance(b, np.ndarray)) or (a.dtype, a.shape) != (b.dtype, b.shape):
+            return False
+        return bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc"))
+    if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
+        return type(a) is type(b) and len(a) == len(b) and all(_same(x, y) for x, y in zip(a, b))
+    return bool(a == b)
+
+
+def _own(arrays, dtypes):
+    """Arrays of `dtypes` as the native module reads them (copies where they were not)."""
+    return tuple(_checks.native(a, d) for a, d in zip(arrays, dtypes))
+
+
 def _names(scheme, beta, boundary):
     return (_checks.name(scheme, "scheme"), _checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
 
@@ -131,13 +152,19 @@ class Refiner:
     stencil table, updated locally), with the GIL released.
 
     Parameters are those of :func:`subdivide` (``repair`` aside: the
-    vertex ids are the caller's). Float32 vertices are refined in float32;
+    vertex ids are the caller's; ``threads`` serves the construction and
+    every edit). Float32 vertices are refined in float32;
     float64 ones in float64 (the control rows as given, the rules' float64
     weights).
 
     ``vertices`` is a read-only view that the edits update in place (in
     the input's dtype, never copied); ``move`` and ``set_sharpness`` return
     the rows they changed.
+
+    A refiner pickles (and ``copy.deepcopy`` copies it) as its arguments and
+    its history: unpickling refines anew and replays the steps, so the copy
+    has the same vertices, faces, undo and redo, and compares equal (``==``:
+    the same arguments, history and vertices).
 
     >>> import numpy as np, subdiv
     >>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
@@ -153,13 +180,76 @@ class Refiner:
     """
 
     def __init__(self, vertices, faces, levels=1, scheme="loop", *, beta="loop", boundary="edge",
-                 fvar="corners-only", triangles="catmark", creasing="uniform", creases=None, holes=None):
-        v, self._single = _checks.vertices(vertices), _checks.is_float32(vertices)
+                 fvar="corners-only", triangles="catmark", creasing="uniform", creases=None, holes=None,
+                 threads=None):
+        single = _checks.is_float32(vertices)
+        v = _checks.vertices(vertices)
         corners, starts = _checks.faces(faces)
         names = _options(scheme, beta, boundary, fvar, triangles, creasing)
-        self._native = _subdiv.NativeRefiner((v, corners, starts), _checks.tags(creases, holes), names,
-                                             _checks.levels(levels), not self._single)
+        tags = _checks.tags(creases, holes)
+        # the arguments as checked, copied (the caller may change its arrays
+        # later): what a pickle holds, with the history
+        own = tuple(np.array(a, copy=True) for a in (v, corners, starts) + tags)
+        self._setup(own[:3], own[3:], names, _checks.levels(levels), single, _checks.threads(threads))
+
+    def _setup(self, mesh, tags, names, levels, single, threads):
+        # as the native module takes them (an unpickled array may come in any layout)
+        mesh, tags = _own(mesh, (np.float64, np.int64, np.int64)), _own(tags, (np.int64, np.float64, np.int64))
+        self._args = (mesh, tags, tuple(names), int(levels), bool(single))
+        self._threads = threads
+        self._native = _subdiv.NativeRefiner(mesh, tags, names, levels, not single, threads)
+        self._single = bool(single)
         self._vertices = self._native.vertices()
+        # the library's history mirrored: the steps done, and those undone
+        # (the next to redo last), each ("move", ids, positions) or
+        # ("sharpness", v0, v1, s) as the library got it
+        self._done, self._undone = [], []
+
+    def _edit(self, step):
+        kind = step[0]
+        if kind == "move":
+            step = ("move",) + _own(step[1:], (np.int64, np.float64))
+            rows = self._native.move_vertices(step[1], step[2])
+        elif kind == "sharpness":
+            rows = self._native.set_sharpness(step[1], step[2], step[3])
+        else:
+            raise ValueError(f"unknown step {kind!r} in a Refiner's history")
+        self._done.append(step)
+        self._undone.clear()
+        return rows
+
+    def __getstate__(self):
+        """What a pickle holds: the constructor's arguments as checked and the
+        history (done and undone steps); unpickling builds the refiner
+        anew and replays it, so vertices, undo and redo are the same."""
+        mesh, tags, names, levels, single = self._args
+        return {"version": _PICKLE_VERSION, "mesh": mesh, "tags": tags, "names": names, "levels": levels,
+                "single": single, "threads": self._threads, "done": list(self._done),
+                "undone": list(self._undone)}
+
+    def __setstate__(self, state):
+        if not isinstance(state, dict) or state.get("version") != _PICKLE_VERSION:
+            raise SubdivError("this pickle of a Refiner comes from another version of subdiv")
+        self._setup(state["mesh"], state["tags"], state["names"], state["levels"], state["single"],
+                    state["threads"])
+        undone = state["undone"]
+        # the undone steps redone in the order redo would take them, then undone
+        for step in list(state["done"]) + undone[::-1]:
+            self._edit(step)
+        for _ in undone:
+            self.undo()
+
+    def __eq__(self, other):
+        """Refiners are equal when built from the same arguments with the same
+        history (done and undone steps) and so the same refined vertices."""
+        if not isinstance(other, Refiner):
+            return NotImplemented
+        a, b = self._args, other._args
+        return (a[2:] == b[2:] and _same(list(a[0] + a[1]), list(b[0] + b[1]))
+                and _same(self._done, other._done) and _same(self._undone, other._undone)
+                and _same(self._vertices, other._vertices))
+
+    __hash__ = None
 
     @property
     def vertices(self):
@@ -181,26 +271,32 @@ class Refiner:
         ids = np.asarray(ids)
         if ids.dtype.kind not in "iu":
             raise TypeError("ids must be integers")
-        ids = np.ascontiguousarray(ids, dtype=np.int64).reshape(-1)
+        ids = _checks.native(ids, np.int64).reshape(-1)
         pos = _checks.vertices(positions)
         if pos.shape[0] != ids.shape[0]:
             raise ValueError(f"{ids.shape[0]} ids but {pos.shape[0]} positions")
-        return self._native.move_vertices(ids, pos)
+        return self._edit(("move", ids.copy(), pos.copy()))
 
     def set_sharpness(self, v0, v1, sharpness):
         """The sharpness of the edge ``v0``-``v1`` (0 smooth, 10 or more
         infinitely sharp; NaN, infinities and negative values are refused as
         :func:`subdivide` refuses them); one step of the history. Returns the
         rows of :attr:`vertices` it evaluated again."""
-        return self._native.set_sharpness(int(v0), int(v1), float(sharpness))
+        return self._edit(("sharpness", int(v0), int(v1), float(sharpness)))
 
     def undo(self) -> bool:
         """Undoes the last move or sharpness; whether there was one."""
-        return self._native.undo()
+        done = self._native.undo()
+        if done:
+            self._undone.append(self._done.pop())
+        return done
 
     def redo(self) -> bool:
         """Redoes the last undone step; whether there was one."""
-        return self._native.redo()
+        done = self._native.redo()
+        if done:
+            self._done.append(self._undone.pop())
+        return done
 
     def support(self, vertex):
         """The refined vertices that control vertex ``vertex`` moves (int64, sorted)."""
@@ -208,7 +304,7 @@ class Refiner:
 
 
 def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boundary="edge", triangles="catmark",
-           creasing="uniform", creases=None, holes=None, return_faces=False):
+           creasing="uniform", creases=None, holes=None, return_faces=False, threads=None):
     """The subdivision matrix ``S`` (scipy.sparse.csr_matrix, (n2, n)):
     ``S @ V`` equals ``subdivide(V, faces, levels, scheme, ...)[0]`` for
     any float64 ``V`` of ``n`` rows (to double precision: the weights are the
@@ -223,6 +319,7 @@ def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boun
     n_vertices : the number of control vertices (default: the largest index
         in ``faces`` plus one); vertices no face uses get an identity row.
     return_faces : also return ``F2``, the faces of ``subdivide``.
+    threads : as for :func:`subdivide` (the plan's threads; scipy composes).
 
     Returns
     -------
@@ -245,14 +342,15 @@ def matrix(faces, levels=1, scheme="loop", *, n_vertices=None, beta="loop", boun
     else:
         n = _checks.count(n_vertices, "n_vertices")
     names = _options(scheme, beta, boundary, triangles=triangles, creasing=creasing)
-    plan = _subdiv.plan_levels((corners, starts), n, _checks.tags(creases, holes), names, _checks.levels(levels))
+    plan = _subdiv.plan_levels((corners, starts), n, _checks.tags(creases, holes), names, _checks.levels(levels),
+                               _checks.threads(threads))
     s, f2 = compose(*plan)
     return (s, f2) if return_faces else s
 
 
-def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
+def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None, threads=None):
     """Loop limit positions and unit limit normals of every vertex
-    (``beta``, ``boundary`` and ``creases`` as for :func:`subdivide`).
+    (``beta``, ``boundary``, ``creases`` and ``threads`` as for :func:`subdivide`).
 
     Returns
     -------
@@ -273,13 +371,14 @@ def limit(vertices, faces, *, beta="loop", boundary="edge", creases=None):
     corners, starts = _checks.faces(faces)
     names = (_checks.name(beta, "beta"), _checks.name(boundary, "boundary"))
     single = _checks.is_float32(vertices)
-    p, n = _subdiv.limit_arrays((v, corners, starts), _checks.tags(creases), names, not single)
+    p, n = _subdiv.limit_arrays((v, corners, starts), _checks.tags(creases), names, not single,
+                                _checks.threads(threads))
     # float64 in: the limit of the rows as given; float32: computed and handed back in float32
     return (p.astype(np.float32), n.astype(np.float32)) if single else (p, n)
 
 
 def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary="edge", triangles="catmark",
-             creasing="uniform", creases=None, curvature=False):
+             creasing="uniform", creases=None, curvature=False, threads=None):
     """The exact limit surface at points of the control faces, as ``subdiv
     eval`` computes it.
 
@@ -292,7 +391,7 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
     lies in its unit square, corner 0 of a quad at (0, 0), 1 at (1, 0), 2
     at (1, 1). Exact at any point (no fixed-level approximation), borders,
     creases and corners included (``beta``, ``boundary``, ``triangles``,
-    ``creasing`` and ``creases`` as for :func:`subdivide`).
+    ``creasing``, ``creases`` and ``threads`` as for :func:`subdivide`).
 
     Returns
     -------
@@ -326,13 +425,13 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
     w = np.asarray(uv)
     if w.dtype.kind not in "fiu":
         raise TypeError(f"uv must be real numbers, got dtype {w.dtype}")
-    w = np.ascontiguousarray(np.atleast_2d(w), dtype=np.float64)
+    w = _checks.native(np.atleast_2d(w), np.float64)
     if w.ndim != 2 or w.shape != (f.shape[0], 2):
         raise ValueError(f"uv must have shape ({f.shape[0]}, 2), got shape {w.shape}")
     single = _checks.is_float32(vertices)
     names = _options(scheme, beta, boundary, triangles=triangles, creasing=creasing)
-    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.tags(creases), names, f, w,
-                                       (bool(curvature), not single))
+    p, n, hk = _subdiv.evaluate_arrays((v, corners, starts), _checks.tags(creases), names, (f, w),
+                                       (bool(curvature), not single), _checks.threads(threads))
     # float64 control points are evaluated as given; float32 ones as float32,
     # the results handed back in float32
     dtype = np.float32 if single else np.float64
@@ -377,6 +476,17 @@ class Mesh:
         self.options = {} if options is None else dict(options)
         self.prims = list(prims)
 
+    def __eq__(self, other):
+        """Equal arrays (dtype, shape, values), options and prims."""
+        if not isinstance(other, Mesh):
+            return NotImplemented
+        return all(_same(getattr(self, k), getattr(other, k)) for k in Mesh.__slots__)
+
+    __hash__ = None
+
+    def __reduce__(self):
+        return (Mesh, tuple(getattr(self, k) for k in Mesh.__slots__))
+
     def __repr__(self):
         extra = "".join(f", {k}" for k in ("uv", "colors", "polygons") if getattr(self, k) is not None)
         return f"subdiv.Mesh({len(self.vertices)} vertices, {len(self.faces)} triangles{extra})"
@@ -394,18 +504,31 @@ class Prim:
         self.faces = np.asarray(faces, dtype=np.int64)
         self.transform = np.asarray(transform, dtype=np.float64).reshape(4, 4)
 
+    def __eq__(self, other):
+        """Equal paths, options, faces and transforms."""
+        if not isinstance(other, Prim):
+            return NotImplemented
+        return all(_same(getattr(self, k), getattr(other, k)) for k in Prim.__slots__)
+
+    __hash__ = None
+
+    def __reduce__(self):
+        return (Prim, tuple(getattr(self, k) for k in Prim.__slots__))
+
     def __repr__(self):
         return f"subdiv.Prim({self.path!r}, {len(self.faces)} triangles, {self.options})"
 
 
-def load(path, *, repair=False, time=None) -> Mesh:
+def load(path, *, repair=False, time=None, threads=None) -> Mesh:
     """Read a mesh file (OBJ with MTL, ``.ct``, PLY, STL, OFF, glTF/GLB,
     COLLADA, Bezier patches), the format chosen by the extension, else by
     the content. Vertices no face uses are dropped. ``repair=True`` mends a
     non-manifold mesh (as ``subdivide``'s ``repair``; attributes are then dropped).
     ``time`` reads a USD stage's sampled points at that time code (default:
     its ``startTimeCode``, else its first sample). A stage's prims come in
-    :attr:`Mesh.prims`, each with its own options.
+    :attr:`Mesh.prims`, each with its own options. ``threads`` as for
+    :func:`subdivide` (one thread per call where a pool of workers reads
+    many files side by side).
 
     Raises :class:`SubdivError` naming the file, the line or element and the
     problem (also for a mesh that is not manifold).
@@ -417,7 +540,7 @@ def load(path, *, repair=False, time=None) -> Mesh:
     [[0, 1, 2]]
     """
     t = None if time is None else float(time)
-    v, f, uv, colors, polys, options, prims = _subdiv.load_file(path, bool(repair), t)
+    v, f, uv, colors, polys, options, prims = _subdiv.load_file(path, bool(repair), t, _checks.threads(threads))
     if uv is not None:
         uv = uv.reshape(-1, 3, 2)
     if polys is not None:
@@ -430,14 +553,15 @@ def load(path, *, repair=False, time=None) -> Mesh:
     return Mesh(v, f, uv, colors, polys, dict(options), [Prim(*p) for p in prims])
 
 
-def save(path, vertices, faces) -> None:
+def save(path, vertices, faces, *, threads=None) -> None:
     """Write a mesh, the format chosen by the extension (``.obj``, ``.ply``,
     ``.off``, ``.stl``, ``.glb``, ``.ct``); polygons (quads, lists) are kept as
     polygons by OBJ, PLY, OFF and ``.ct``. The file is written atomically.
-    The mesh must be manifold (vertices no face uses are dropped)."""
+    The mesh must be manifold (vertices no face uses are dropped).
+    ``threads`` as for :func:`subdivide`."""
     v = _checks.vertices(vertices)
     corners, starts = _checks.faces(faces)
-    _subdiv.save_file(path, (v, corners, starts))
+    _subdiv.save_file(path, (v, corners, starts), _checks.threads(threads))
 
 
 def _viewer():

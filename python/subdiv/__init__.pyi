@@ -69,6 +69,7 @@ class Refiner:
         creasing: Creasing = "uniform",
         creases: Creases = None,
         holes: Holes = None,
+        threads: int | None = None,
     ) -> None: ...
     @property
     def vertices(self) -> npt.NDArray[np.floating]: ...
@@ -109,6 +110,7 @@ def matrix(
     creases: Creases = None,
     holes: Holes = None,
     return_faces: bool = False,
+    threads: int | None = None,
 ) -> scipy.sparse.csr_matrix | tuple[scipy.sparse.csr_matrix, npt.NDArray[np.int64]]: ...
 def evaluate(
     vertices: npt.ArrayLike,
@@ -123,6 +125,7 @@ def evaluate(
     creasing: Creasing = "uniform",
     creases: Creases = None,
     curvature: bool = False,
+    threads: int | None = None,
 ) -> (
     tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]
     | tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]
@@ -134,9 +137,10 @@ def limit(
     beta: Beta = "loop",
     boundary: Boundary = "edge",
     creases: Creases = None,
+    threads: int | None = None,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
-def load(path: Path, *, repair: bool = False, time: float | None = None) -> Mesh: ...
-def save(path: Path, vertices: npt.ArrayLike, faces: Faces) -> None: ...
+def load(path: Path, *, repair: bool = False, time: float | None = None, threads: int | None = None) -> Mesh: ...
+def save(path: Path, vertices: npt.ArrayLike, faces: Faces, *, threads: int | None = None) -> None: ...
 def render(
     vertices: npt.ArrayLike,
     faces: Faces,

@@ -16,6 +16,13 @@ _I64_MAX = np.iinfo(np.int64).max
 _U32_MAX = 2**32 - 1
 
 
+def native(a, dtype=None) -> np.ndarray:
+    """`a` as the native module reads it: C-contiguous and aligned, of
+    `dtype` (a copy where it was not; an unpickled or ``frombuffer`` array
+    may be unaligned)."""
+    return np.require(a, dtype=dtype, requirements=("C", "A"))
+
+
 def vertices(v) -> np.ndarray:
     """`v` as a C-contiguous float64 array of shape (n, 3)."""
     try:
@@ -26,7 +33,7 @@ def vertices(v) -> np.ndarray:
         raise TypeError(f"vertices must be real numbers, got dtype {a.dtype}")
     if a.ndim != 2 or a.shape[1] != 3:
         raise ValueError(f"vertices must have shape (n, 3), got shape {a.shape}")
-    return np.ascontiguousarray(a, dtype=np.float64)
+    return native(a, np.float64)
 
 
 def is_float32(v) -> bool:
@@ -42,7 +49,7 @@ def _int_array(a: np.ndarray, what: str) -> np.ndarray:
         raise TypeError(f"{what} must be integers, got dtype {a.dtype} (float indices are refused, not truncated)")
     if a.dtype.kind == "u" and a.size and int(a.max()) > _I64_MAX:
         raise SubdivError(f"{what}: vertex index {int(a.max())} is out of range")
-    return np.ascontiguousarray(a, dtype=np.int64)
+    return native(a, np.int64)
 
 
 def _polygon(p, f: int) -> np.ndarray:
@@ -85,7 +92,7 @@ def faces(f) -> tuple[np.ndarray, np.ndarray]:
     sizes = np.array([len(p) for p in polys], dtype=np.int64)
     starts = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
     corners = np.concatenate(polys).astype(np.int64) if polys else np.zeros(0, np.int64)
-    return np.ascontiguousarray(corners), starts
+    return native(corners, np.int64), starts
 
 
 def creases(c) -> tuple[np.ndarray, np.ndarray]:
@@ -106,7 +113,7 @@ def creases(c) -> tuple[np.ndarray, np.ndarray]:
     s = np.asarray(sharp)
     if s.dtype.kind not in "fiu":
         raise TypeError(f"crease sharpness must be real numbers, got dtype {s.dtype}")
-    s = np.ascontiguousarray(s, dtype=np.float64).reshape(-1) if s.ndim <= 1 else None
+    s = native(s, np.float64).reshape(-1) if s.ndim <= 1 else None
     if s is None or len(s) != len(e):
         raise ValueError(f"crease sharpness must have shape ({len(e)},), one per edge")
     return e.reshape(-1), s

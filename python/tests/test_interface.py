@@ -164,6 +164,48 @@ def test_threads_give_identical_results():
         assert np.array_equal(a, v2) and np.array_equal(b, f2)
 
 
+def test_every_function_takes_threads_and_gives_the_same_bits(tmp_path):
+    # one thread per call is what a pool of workers asks for; the results
+    # are those of the shared pool
+    v, f = subdiv.subdivide(*icosahedron(), 3)
+    same = lambda a, b: all(np.array_equal(x, y) and x.dtype == y.dtype for x, y in zip(a, b))
+    uv = np.full((len(f), 2), 0.25)
+    for t in (1, 2):
+        assert same(subdiv.limit(v, f, threads=t), subdiv.limit(v, f))
+        assert same(subdiv.evaluate(v, f, np.arange(len(f)), uv, threads=t), subdiv.evaluate(v, f, np.arange(len(f)), uv))
+        assert (subdiv.matrix(f, 2, threads=t) != subdiv.matrix(f, 2)).nnz == 0
+        subdiv.save(tmp_path / f"t{t}.ply", v, f, threads=t)
+        assert subdiv.load(tmp_path / f"t{t}.ply", threads=t) == subdiv.load(tmp_path / f"t{t}.ply")
+        r = subdiv.Refiner(v, f, 2, threads=t)
+        q = subdiv.Refiner(v, f, 2)
+        assert same([r.move([0], v[[0]] + 1)], [q.move([0], v[[0]] + 1)]) and r == q
+    assert (tmp_path / "t1.ply").read_bytes() == (tmp_path / "t2.ply").read_bytes()
+
+
+def unaligned(a):
+    """A copy of `a` whose data starts one byte off its dtype's alignment (as an
+    array unpickled from a network frame or read by ``np.frombuffer`` may)."""
+    raw = bytearray(a.nbytes + 1)
+    out = np.frombuffer(raw, dtype=a.dtype, count=a.size, offset=1).reshape(a.shape)
+    out[...] = a
+    assert not out.flags.aligned
+    return out
+
+
+def test_unaligned_arrays_are_taken():
+    v, f = icosahedron()
+    uv = np.full((len(f), 2), 0.25)
+    want = subdiv.subdivide(v, f, 2)
+    assert all(np.array_equal(x, y) for x, y in zip(subdiv.subdivide(unaligned(v), unaligned(f), 2), want))
+    p, _ = subdiv.evaluate(unaligned(v), f, unaligned(np.arange(len(f))), unaligned(uv))
+    assert np.array_equal(p, subdiv.evaluate(v, f, np.arange(len(f)), uv)[0])
+    assert np.array_equal(subdiv.limit(v, f, creases=(unaligned(f[:2, :2]), unaligned(np.ones(2))))[0],
+                          subdiv.limit(v, f, creases=(f[:2, :2], np.ones(2)))[0])
+    r, q = subdiv.Refiner(unaligned(v), f, 2), subdiv.Refiner(v, f, 2)
+    assert np.array_equal(r.move(unaligned(np.array([1])), unaligned(v[[1]] + 1)), q.move([1], v[[1]] + 1))
+    assert np.array_equal(r.vertices, q.vertices)
+
+
 def test_array_likes_and_dtypes():
     a, fa = subdiv.subdivide(TETRA_V.tolist(), TETRA_F.tolist(), 1)
     b, fb = subdiv.subdivide(TETRA_V.astype(np.float32), TETRA_F.astype(np.uint16), 1)
