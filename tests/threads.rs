@@ -1,10 +1,9 @@
 //! The result must not depend on the thread count: every scheme, on a closed
 //! and an open mesh big enough that every parallel pass really splits its
-//! work (the split's chunks, the ring sums' per-thread accumulators), gives
-//! the same V and O tables, C, valences and (to 1e-6) positions with 1, 2
-//! and 3 threads. (Positions may differ in the last bits: the ring sums add
-//! per-thread partial sums; both meshes fit in the unit cube, so 1e-6 is a
-//! few float ulps.)
+//! work (the split's chunks, the ring sums' and the normals' accumulators),
+//! gives the same V and O tables, C, valences and the same bits of every
+//! position and normal with 1, 2 and 3 threads: a pass that sums in parts
+//! cuts them by the size of its input, never by the threads that run it.
 
 mod common;
 use common::*;
@@ -16,9 +15,11 @@ fn in_pool(threads: usize, m: &Mesh, s: Scheme, levels: u32) -> Mesh {
     pool.install(|| subdivide(m, s, levels, &Options::default()).unwrap().0)
 }
 
-/// The largest coordinate difference between two lists of points.
-fn worst(a: &[Vec3], b: &[Vec3]) -> f32 {
-    a.iter().zip(b).map(|(a, b)| (*a - *b).abs().max_element()).fold(0.0, f32::max)
+/// The first point whose bits differ between two lists, and how many differ.
+fn differ(a: &[Vec3], b: &[Vec3]) -> Option<(usize, usize)> {
+    let bits = |p: &Vec3| p.to_array().map(f32::to_bits);
+    let mut d = a.iter().zip(b).enumerate().filter(|(_, (p, q))| bits(p) != bits(q)).map(|(i, _)| i);
+    d.next().map(|first| (first, 1 + d.count()))
 }
 
 #[test]
@@ -39,8 +40,7 @@ fn same_result_for_any_thread_count() {
                 assert_eq!(one.ct.c_table(), many.ct.c_table(), "C differs: {what}");
                 assert_eq!(one.ct.valences(), many.ct.valences(), "valences differ: {what}");
                 assert_eq!(one.positions.len(), many.positions.len(), "{what}");
-                let worst = worst(&one.positions, &many.positions);
-                assert!(worst <= 1e-6, "positions differ by {worst}: {what}");
+                assert_eq!(differ(&one.positions, &many.positions), None, "positions (first, count) differ: {what}");
             }
         }
     }
@@ -56,8 +56,17 @@ fn vertex_sums_split_over_threads_agree() {
     for threads in [2, 3] {
         let many = in_pool(threads, &m, Scheme::Loop, 3);
         assert_eq!(one.ct.v_table(), many.ct.v_table());
-        let worst = worst(&one.positions, &many.positions);
-        assert!(worst <= 1e-6, "positions differ by {worst} with {threads} threads");
+        let d = differ(&one.positions, &many.positions);
+        assert_eq!(d, None, "positions (first, count) differ with {threads} threads");
+        let normals = |m: &Mesh| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| m.vertex_normals())
+        };
+        let n1 = {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+            pool.install(|| one.vertex_normals())
+        };
+        assert_eq!(differ(&n1, &normals(&many)), None, "normals (first, count) differ with {threads} threads");
     }
 }
 
@@ -66,7 +75,7 @@ fn catmull_clark_is_the_same_on_any_thread_count() {
     // a wavy 120 x 120 grid of quads, and the same grid cut into triangles
     // (the first level's polygon path): level 2 reads 230 k corners (the
     // triangles' level 0 already 86 k), which the vertex points scatter over
-    // up to 4 parts
+    // two parts
     let n = 120u32;
     let positions: Vec<Vec3> = (0..=n)
         .flat_map(|j| (0..=n).map(move |i| Vec3::new(i as f32, j as f32, (0.3 * (i * j) as f32).sin()) / n as f32))
@@ -87,8 +96,8 @@ fn catmull_clark_is_the_same_on_any_thread_count() {
         for threads in [2, 3] {
             let many = run(threads);
             assert_eq!(one.pt.v_table(), many.pt.v_table(), "faces of {k}, {threads} threads");
-            let worst = worst(&one.positions, &many.positions);
-            assert!(worst <= 1e-6, "faces of {k}: positions differ by {worst} with {threads} threads");
+            let d = differ(&one.positions, &many.positions);
+            assert_eq!(d, None, "faces of {k}: positions (first, count) differ with {threads} threads");
         }
     }
 }

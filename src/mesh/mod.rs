@@ -649,6 +649,20 @@ impl Mesh {
     }
 }
 
+/// The most parts a scatter pass is cut into.
+const SCATTER_PARTS: usize = 2;
+
+/// How many parts a scatter pass over `n` items is cut into, at least
+/// `least` items a part: a count of the size alone, never of the threads
+/// that run it, so that the sums (each part's, then the parts added in
+/// order) and with them the bits of every point are the same on any
+/// number of threads. At most [`SCATTER_PARTS`]: one thread then adds a
+/// second accumulator for the largest levels (a pass over points already
+/// read), two run the parts side by side.
+pub(crate) fn scatter_count(n: usize, least: usize) -> usize {
+    n.div_ceil(least.max(1)).clamp(1, SCATTER_PARTS)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -36,7 +36,9 @@ pub(crate) fn vertex_normals(ct: &CornerTable, pos: &[Vec3]) -> Vec<Vec3> {
 /// [`vertex_normals`] of the triangles `tris` (a V table, three vertex
 /// ids a triangle) over the vertices `pos`: the faces alone, no adjacency.
 pub(crate) fn face_vertex_normals(tris: &[u32], pos: &[Vec3]) -> Vec<Vec3> {
-    let threads = rayon::current_num_threads().clamp(1, 16).min(tris.len().div_ceil(3 << 16)).max(1);
+    // parts of the size alone: the bits of every normal are the same on any
+    // number of threads
+    let threads = super::scatter_count(tris.len(), 3 << 16);
     let per = tris.len().div_ceil(3 * threads) * 3;
     let mut sums: Vec<Vec<Vec3>> = (0..threads).map(|_| crate::mem::zeroed(pos.len())).collect();
     sums.par_iter_mut().enumerate().for_each(|(k, acc)| {

@@ -280,10 +280,10 @@ pub(crate) fn ring_sums_map<P: Coord>(
     f: impl Fn(usize, P) -> P + Sync,
 ) {
     let (vt, nc) = (lv.ct.v_table(), lv.ct.num_corners());
-    // a thread takes at least 2^20 corners: below that its accumulator's
+    // a part takes at least 2^20 corners: below that its accumulator's
     // fresh pages and the merge cost more than it saves (fandisk's level 3,
     // 620 k corners scattered: 3.0-3.6 ms on two threads, 1.5-2.0 on one)
-    let threads = rayon::current_num_threads().clamp(1, 16).min(nc.div_ceil(1 << 20)).max(1);
+    let threads = crate::mesh::scatter_count(nc, 1 << 20);
     let per = nc.div_ceil(threads).div_ceil(3) * 3;
     let scatter = |acc: &mut [P], k: usize| {
         for tri in vt[(k * per).min(nc)..((k + 1) * per).min(nc)].chunks_exact(3) {
