@@ -69,8 +69,8 @@ pub use mesh::{BORDER, CornerTable, Mesh};
 pub use subdiv::eval::Evaluator;
 pub use subdiv::tables::StencilPlan;
 pub use subdiv::{
-    Cage, Control, Destination, FacesOnly, LoopBeta, Model, Options, Part, Refinement, Refiner, Scalar,
-    Scheme, Stats, Subdivided, Surface, parts_by_options, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64,
+    Cage, Control, Destination, FacesOnly, LoopBeta, Model, Options, Part, Refinement, Refiner, Scalar, Scheme, Stats,
+    Subdivided, Surface, parts_by_options, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64,
     subdivide_model, subdivide_model_as, subdivide_parts,
 };
 

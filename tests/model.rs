@@ -9,7 +9,7 @@ use common::*;
 use glam::DVec3;
 use subdiv::mesh::{Attributes, BoundaryInterpolation, PolyMesh};
 use subdiv::{
-    Destination, FacesOnly, Mesh, Model, Options, Subdivided, Refinement, Refiner, Scheme, Surface, subdivide,
+    Destination, FacesOnly, Mesh, Model, Options, Refinement, Refiner, Scheme, Subdivided, Surface, subdivide,
     subdivide_f64, subdivide_faces, subdivide_faces_f64, subdivide_model,
 };
 
@@ -130,7 +130,11 @@ fn polygon_scheme_paths_match_their_functions() {
         let pt = r.polygons().expect("refined polygons").clone();
         for faces in [FacesOnly::Never, FacesOnly::Written, FacesOnly::Always] {
             let got = refined(&mesh, &attrs, &control, &how(s, levels, false, faces));
-            assert_polygons(&got, &PolyMesh { pt: pt.clone(), positions: r.positions().to_vec() }, "f32 with attributes");
+            assert_polygons(
+                &got,
+                &PolyMesh { pt: pt.clone(), positions: r.positions().to_vec() },
+                "f32 with attributes",
+            );
             assert_eq!(got.attrs, want_attrs, "f32 attributes");
             let got = refined(&mesh, &attrs, &control, &how(s, levels, true, faces));
             let pos = refiner_f64(&r, &control);

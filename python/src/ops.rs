@@ -145,7 +145,7 @@ fn refine(
     let none = subdiv::mesh::Attributes::default();
     let model = subdiv::Model { control, attrs: &none, precise: precise.as_deref() };
     let dest = subdiv::Destination { faces: subdiv::FacesOnly::Always, ..Default::default() };
-    let how = subdiv::Refinement { scheme, levels, opts: opts.clone(), f64: f64.is_some(), dest };
+    let how = subdiv::Refinement { scheme, levels, opts: *opts, f64: f64.is_some(), dest };
     let fine = subdiv::subdivide_model_as(&model, &how, |j| remap.id(j)).map_err(msg)?;
     hand_over(remap, fine, input)
 }
