@@ -194,7 +194,8 @@ fn faces_only(how: &Refinement, sharp: bool, holes: bool, polygonal: bool) -> bo
     let o = &how.opts;
     match how.dest.faces {
         FacesOnly::Never => false,
-        FacesOnly::Always => !how.f64 && (!polygonal || how.levels > 0) || how.f64 && !polygonal,
+        // a triangle scheme's levels, a polygon scheme's refined ones in f32
+        FacesOnly::Always => !polygonal || (!how.f64 && how.levels > 0),
         FacesOnly::Written => {
             // the format writes the sharp features of the result, the boundary's corners too
             let corners = o.boundary == BoundaryInterpolation::EdgeAndCorner;
