@@ -28,6 +28,12 @@
 //! assert_eq!(stats.faces_per_level, vec![16, 64, 256]);
 //! ```
 //!
+//! [`subdivide_model`] is the one call for a model read from a file: its
+//! mesh, attributes and f64 points, for a destination
+//! ([`io::destination`]); it picks the path (a [`Refiner`] for attributes,
+//! the faces alone, polygons, f64) and [`io::save_refined`] writes what it
+//! made.
+//!
 //! Vocabulary (as OpenSubdiv): a *mask* gives a new vertex in terms of the
 //! previous level, a *stencil* in terms of any earlier level; *even* points
 //! are the old vertices' new positions, *odd* points the new edge vertices.
@@ -63,8 +69,9 @@ pub use mesh::{BORDER, CornerTable, Mesh};
 pub use subdiv::eval::Evaluator;
 pub use subdiv::tables::StencilPlan;
 pub use subdiv::{
-    Cage, LoopBeta, Options, Part, Refiner, Scalar, Scheme, Stats, parts_by_options, subdivide, subdivide_f64,
-    subdivide_faces, subdivide_faces_f64, subdivide_parts,
+    Cage, Control, Destination, FacesOnly, LoopBeta, Model, Options, Part, Refinement, Refiner, Scalar, Scheme, Stats,
+    Subdivided, Surface, parts_by_options, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64,
+    subdivide_model, subdivide_model_as, subdivide_parts,
 };
 
 #[cfg(feature = "viewer")]

@@ -11,11 +11,10 @@ use numpy::{
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use subdiv::eval::{loop_limit_normals, loop_limit_positions_f64, loop_limit_positions_with};
-use subdiv::mesh::Faces;
 use subdiv::rules::ControlCounts;
 use subdiv::rules::PlanF64;
 use subdiv::rules::with_boundary_corners;
-use subdiv::{Mesh, Options, Scheme, subdivide, subdivide_faces};
+use subdiv::{Mesh, Options, Scheme, Surface};
 
 /// The mesh as the Python layer passes it: vertices `(n, 3)` float64,
 /// flat corners and face offsets (int64), all C-contiguous.
@@ -108,80 +107,47 @@ pub fn subdivide_arrays<'py>(
     let (v, f, k) = run(py, threads, || {
         let (scheme, opts) = named(&names)?;
         let (c, remap) = control(&s, scheme, repair)?;
-        match precise {
-            true => refine_f64(c, &remap, (scheme, levels, &opts), s.vertices, repair),
-            false => refine(c, &remap, scheme, levels, &opts, s.vertices),
-        }
+        refine(&c, &remap, (scheme, levels, &opts), s.vertices, precise.then_some(repair))
     })?;
     Ok((f64_array(py, v, 3)?, i64_array(py, f, k)?))
 }
 
-/// Subdivides the control mesh and renumbers the result.
+/// Subdivides the control mesh and renumbers the result: one library call
+/// ([`subdiv::subdivide_model_as`]) that takes the faces alone wherever they
+/// do (the last level skips its adjacency tables and writes the caller's
+/// int64 ids itself), in f32 or, `f64`, from the caller's float64 rows by
+/// the same rules' f64 weights.
 fn refine(
-    c: Control,
-    remap: &Remap,
-    scheme: Scheme,
-    levels: u32,
-    opts: &Options,
-    input: &[f64],
-) -> Result<Refined, Msg> {
-    match c {
-        // the faces alone: the last level skips its adjacency tables and
-        // writes the caller's int64 ids itself
-        Control::Tri(mesh) => {
-            check_predicted(remap, ControlCounts::of(&mesh.ct), (scheme, levels), 3)?;
-            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
-            Ok(hand_over(remap, fine, input))
-        }
-        Control::Poly(mesh) if levels > 0 => {
-            check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?;
-            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
-            Ok(hand_over(remap, fine, input))
-        }
-        Control::Poly(mesh) => {
-            let (fine, _) = subdivide(&mesh, scheme, levels, opts).map_err(msg)?;
-            let k = face_size(&fine.pt)?;
-            check_output(remap, fine.positions.len() as u64, fine.pt.num_corners() as u64)?;
-            let out = (
-                remap.positions(&fine.positions, input),
-                build::face_ids(remap, fine.pt.v_table(), k, fine.pt.holes()),
-                k,
-            );
-            drop_later(fine);
-            Ok(out)
-        }
-    }
-}
-
-/// [`refine`] in double precision: the caller's float64 rows refined by
-/// the same rules' f64 weights ([`subdiv::subdivide_faces_f64`],
-/// [`subdiv::subdivide_f64`]).
-fn refine_f64(
-    c: Control,
+    c: &Control,
     remap: &Remap,
     (scheme, levels, opts): (Scheme, u32, &Options),
     input: &[f64],
-    repaired: bool,
+    f64: Option<bool>,
 ) -> Result<Refined, Msg> {
+    // the arrays refused before the library allocates them (a control
+    // mesh's polygons in f32 are counted once made)
     match c {
-        // the faces alone, as in f32: the caller's int64 ids written by the split
-        Control::Tri(mesh) => {
-            check_predicted(remap, ControlCounts::of(&mesh.ct), (scheme, levels), 3)?;
-            let control = remap.control_f64(input, &mesh.positions, repaired);
-            let id = |j| remap.id(j);
-            let (fine, _) = subdiv::subdivide_faces_f64(&mesh, &control, scheme, levels, opts, id).map_err(msg)?;
-            let v = remap.positions(&fine.positions, input);
-            drop_later(fine.positions);
-            Ok((v, fine.corners, fine.sides))
+        Control::Tri(mesh) => check_predicted(remap, ControlCounts::of(&mesh.ct), (scheme, levels), 3)?,
+        Control::Poly(mesh) if levels > 0 || f64.is_some() => {
+            check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?
         }
-        Control::Poly(mesh) => {
-            check_predicted(remap, ControlCounts::of_poly(&mesh.pt), (scheme, levels), 4)?;
-            let control = remap.control_f64(input, &mesh.positions, repaired);
-            let (fine, pos) = subdiv::subdivide_f64(&mesh, &control, scheme, levels, opts).map_err(msg)?;
-            let k = face_size(&fine.pt)?;
-            Ok((remap.positions(&pos, input), build::face_ids(remap, fine.pt.v_table(), k, fine.pt.holes()), k))
-        }
+        Control::Poly(_) => {}
     }
+    // `f64`: whether the mesh was repaired (its points then its own)
+    let precise = f64.map(|repaired| match c {
+        Control::Tri(mesh) => remap.control_f64(input, &mesh.positions, repaired),
+        Control::Poly(mesh) => remap.control_f64(input, &mesh.positions, repaired),
+    });
+    let control = match c {
+        Control::Tri(mesh) => subdiv::Control::Triangles(mesh),
+        Control::Poly(mesh) => subdiv::Control::Polygons(mesh),
+    };
+    let none = subdiv::mesh::Attributes::default();
+    let model = subdiv::Model { control, attrs: &none, precise: precise.as_deref() };
+    let dest = subdiv::Destination { faces: subdiv::FacesOnly::Always, ..Default::default() };
+    let how = subdiv::Refinement { scheme, levels, opts: *opts, f64: f64.is_some(), dest };
+    let fine = subdiv::subdivide_model_as(&model, &how, |j| remap.id(j)).map_err(msg)?;
+    hand_over(remap, fine, input)
 }
 
 /// [`check_output`] for the arrays `levels` levels of `scheme` will make
@@ -197,12 +163,45 @@ fn check_predicted(
     check_output(remap, counts.vertices_at(scheme, levels), corners)
 }
 
-/// The faces `fine` as the caller gets them: flat float64 positions in its
-/// numbering, its int64 corners as they are, the face size.
-fn hand_over(remap: &Remap, fine: Faces<i64>, input: &[f64]) -> Refined {
-    let v = remap.positions(&fine.positions, input);
-    drop_later(fine.positions);
-    (v, fine.corners, fine.sides)
+/// The refined surface `fine` as the caller gets it: flat float64
+/// positions in its numbering, its int64 corners (the faces alone as they
+/// are; a table's faces that are no holes renumbered), the face size.
+fn hand_over(remap: &Remap, fine: subdiv::Subdivided<i64>, input: &[f64]) -> Result<Refined, Msg> {
+    let pos = fine.positions_f64;
+    match fine.surface {
+        Surface::Faces(f) => {
+            let v = remap.positions(&f.positions, input);
+            drop_later(f.positions);
+            Ok((v, f.corners, f.sides))
+        }
+        Surface::FacesF64(f) => {
+            let v = remap.positions(&f.positions, input);
+            drop_later(f.positions);
+            Ok((v, f.corners, f.sides))
+        }
+        Surface::Polygons(fine) => {
+            let k = face_size(&fine.pt)?;
+            let v = match &pos {
+                Some(pos) => remap.positions(pos, input),
+                None => {
+                    check_output(remap, fine.positions.len() as u64, fine.pt.num_corners() as u64)?;
+                    remap.positions(&fine.positions, input)
+                }
+            };
+            let f = build::face_ids(remap, fine.pt.v_table(), k, fine.pt.holes());
+            drop_later(fine);
+            Ok((v, f, k))
+        }
+        Surface::Triangles(fine) => {
+            let v = match &pos {
+                Some(pos) => remap.positions(pos, input),
+                None => remap.positions(&fine.positions, input),
+            };
+            let f = build::face_ids(remap, fine.ct.v_table(), 3, fine.ct.holes());
+            drop_later(fine);
+            Ok((v, f, 3))
+        }
+    }
 }
 
 /// Refuses output arrays (float64 points, int64 corners) larger than the

@@ -144,13 +144,19 @@ pub(crate) fn subdivide_file(
     let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
     let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
     let attrs = kept_by_output(a.output, attrs);
-    let (vertices, out_faces, st, save_ms) = if a.precision == Precision::F64 {
-        subdivide_precise((a, levels), s, &mesh, precise, &attrs)?
-    } else if s.scheme().is_polygonal() {
-        subdivide_polygons((a, levels), s, &mesh, &attrs)?
-    } else {
-        subdivide_triangles((a, levels), s, &mesh, attrs)?
+    let model = subdiv::Model { precise: precise.as_deref(), ..subdiv::Model::new(&mesh, &attrs) };
+    let how = subdiv::Refinement {
+        scheme: s.scheme(),
+        levels,
+        opts: s.options(),
+        f64: a.precision == Precision::F64,
+        dest: io::destination(a.output),
     };
+    let fine = subdiv::subdivide_model(&model, &how)?;
+    let t1 = Instant::now();
+    io::save_refined(a.output, &fine)?;
+    let save_ms = t1.elapsed().as_secs_f64() * 1e3;
+    let (vertices, out_faces, st) = (fine.num_vertices(), fine.num_faces(), &fine.stats);
     if let Some(pb) = spin {
         pb.finish_and_clear();
     }
@@ -162,7 +168,7 @@ pub(crate) fn subdivide_file(
         true => s.scheme().to_string(),
         false => "none (subdivisionScheme none: the cage as it is)".into(),
     };
-    Ok(summary((a, levels, &what), (mesh.positions.len(), file_faces), (vertices, out_faces), &st, (load_ms, save_ms)))
+    Ok(summary((a, levels, &what), (mesh.positions.len(), file_faces), (vertices, out_faces), st, (load_ms, save_ms)))
 }
 
 /// The options a level made with `s` states: the scheme and options it
@@ -246,162 +252,6 @@ fn kept_by_output(output: &std::path::Path, attrs: Attributes) -> Attributes {
         materials: attrs.materials.filter(|_| keeps.materials),
         options: attrs.options,
     }
-}
-
-/// A triangle scheme's subdivision, written: the output's vertices, faces,
-/// the stats and the milliseconds of the save. Where the file keeps nothing
-/// but the faces (every format but `.ct`, and OBJ unless the mesh is
-/// creased or its boundary's corners sharp), the last level is made as faces alone, without its adjacency
-/// tables (`subdivide_faces`: the same bits, a third less memory written).
-/// At level 0 a mesh that stands for polygons is written as polygons, which
-/// takes the mesh.
-fn subdivide_triangles(
-    (a, levels): (&Job, u32),
-    s: &SchemeArgs,
-    mesh: &Mesh,
-    attrs: Attributes,
-) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    if levels > 0 && !attrs.is_empty() {
-        // the attributes ride on the refinement that makes the level: colours
-        // through its rows, texture coordinates and materials through its
-        // kept tables
-        let t0 = Instant::now();
-        let r = subdiv::Refiner::new(mesh, s.scheme(), levels, &s.options())?;
-        let (fine, fine_attrs) = (r.mesh(), r.attributes(&attrs)?);
-        let st = refiner_stats(&r, t0);
-        let t1 = Instant::now();
-        io::save_with(a.output, &fine, &fine_attrs)?;
-        let written = fine.ct.num_triangles() - fine.ct.holes().len();
-        return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
-    }
-    // OBJ writes the sharp features of the result, the boundary's corners too
-    let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
-    // a mesh with holes goes the whole way: its attributes follow the faces left out
-    let holes = !mesh.ct.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
-    if levels > 0 && !holes && io::writes_faces(a.output, mesh.ct.sharpness().is_some() || corners) {
-        let (fine, st) = subdiv::subdivide_faces(mesh, s.scheme(), levels, &s.options(), |j| j)?;
-        let t1 = Instant::now();
-        io::save_with(a.output, &fine, &attrs)?;
-        return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
-    }
-    let (fine, st) = subdiv::subdivide(mesh, s.scheme(), levels, &s.options())?;
-    let t1 = Instant::now();
-    io::save_with(a.output, &fine, &attrs)?;
-    let written = fine.ct.num_triangles() - if levels > 0 { fine.ct.holes().len() } else { 0 };
-    Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
-}
-
-/// A polygon scheme's subdivision, straight on the polygons (the faces of
-/// the file, their attributes per corner), written as polygons: the
-/// output's vertices, faces, the stats and the milliseconds of the save.
-fn subdivide_polygons(
-    (a, levels): (&Job, u32),
-    s: &SchemeArgs,
-    mesh: &Mesh,
-    attrs: &subdiv::mesh::Attributes,
-) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    let (control, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-    if levels > 0 && !pattrs.is_empty() {
-        // as for the triangle schemes: the attributes ride on the refinement
-        let t0 = Instant::now();
-        let r = subdiv::Refiner::new(&control, s.scheme(), levels, &s.options())?;
-        let fine = refined_polygons(&r, r.positions().to_vec());
-        let fine_attrs = r.attributes(&pattrs)?;
-        let st = refiner_stats(&r, t0);
-        let t1 = Instant::now();
-        io::save_with(a.output, &fine, &fine_attrs)?;
-        let written = fine.pt.num_faces() - fine.pt.holes().len();
-        return Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3));
-    }
-    // as for the triangle schemes: the quads alone where the file keeps nothing else
-    let corners = s.options().boundary == subdiv::mesh::BoundaryInterpolation::EdgeAndCorner;
-    let holes = !control.pt.holes().is_empty() || s.options().boundary == subdiv::mesh::BoundaryInterpolation::None;
-    if levels > 0 && !holes && io::writes_faces(a.output, control.pt.sharpness().is_some() || corners) {
-        let (fine, st) = subdiv::subdivide_faces(&control, s.scheme(), levels, &s.options(), |j| j)?;
-        let t1 = Instant::now();
-        io::save_with(a.output, &fine, &pattrs)?;
-        return Ok((fine.positions.len(), fine.num_faces(), st, t1.elapsed().as_secs_f64() * 1e3));
-    }
-    let (fine, st) = subdiv::subdivide(&control, s.scheme(), levels, &s.options())?;
-    let t1 = Instant::now();
-    io::save_with(a.output, &fine, &pattrs)?;
-    let written = fine.pt.num_faces() - if levels > 0 { fine.pt.holes().len() } else { 0 };
-    Ok((fine.positions.len(), written, st, t1.elapsed().as_secs_f64() * 1e3))
-}
-
-/// `--precision f64`: the levels computed in double precision from the
-/// file's own digits (OBJ's text, PLY's doubles; after `--repair`, or from
-/// a format of f32, the f32 positions), written in double precision (OBJ's
-/// shortest f64 digits, PLY's `double` properties): the output's vertices,
-/// faces, the stats and the milliseconds of the save.
-fn subdivide_precise(
-    (a, levels): (&Job, u32),
-    s: &SchemeArgs,
-    mesh: &Mesh,
-    precise: Option<Vec<glam::DVec3>>,
-    attrs: &Attributes,
-) -> Result<(usize, usize, subdiv::Stats, f64)> {
-    let opts = s.options();
-    let control = precise.unwrap_or_else(|| mesh.positions.iter().map(|p| p.as_dvec3()).collect());
-    let t0 = Instant::now();
-    // a control mesh keeps its holes as tags (OBJ); a refined level leaves them out
-    let keep_holes = levels == 0;
-    let (vertices, faces, write): (usize, usize, Box<dyn FnOnce() -> Result<()>>) = if s.scheme().is_polygonal() {
-        let (pm, pattrs) = subdiv::mesh::PolyMesh::from_mesh_with_attributes(mesh, attrs);
-        let (fine, pos, fa) = match pattrs.is_empty() || levels == 0 {
-            true => {
-                let (fine, pos) = subdiv::subdivide_f64(&pm, &control, s.scheme(), levels, &opts)?;
-                (fine, pos, pattrs)
-            }
-            // the attributes ride on the same refinement as the f64 points
-            false => {
-                let r = subdiv::Refiner::new(&pm, s.scheme(), levels, &opts)?;
-                let pos = refined_f64(&r, &control)?;
-                let rounded = pos.iter().map(|p| p.as_vec3()).collect();
-                (refined_polygons(&r, rounded), pos, r.attributes(&pattrs)?)
-            }
-        };
-        let faces = fine.pt.num_faces() - if keep_holes { 0 } else { fine.pt.holes().len() };
-        (pos.len(), faces, Box::new(move || io::save_f64(a.output, &fine, &pos, &fa, keep_holes)))
-    } else {
-        let (fine, pos, fa) = match attrs.is_empty() || levels == 0 {
-            true => {
-                let (fine, pos) = subdiv::subdivide_f64(mesh, &control, s.scheme(), levels, &opts)?;
-                (fine, pos, attrs.clone())
-            }
-            false => {
-                let r = subdiv::Refiner::new(mesh, s.scheme(), levels, &opts)?;
-                let pos = refined_f64(&r, &control)?;
-                let fine = Mesh { positions: pos.iter().map(|p| p.as_vec3()).collect(), ..r.mesh() };
-                (fine, pos, r.attributes(attrs)?)
-            }
-        };
-        let faces = fine.ct.num_triangles() - if keep_holes { 0 } else { fine.ct.holes().len() };
-        (pos.len(), faces, Box::new(move || io::save_f64(a.output, &fine, &pos, &fa, keep_holes)))
-    };
-    let st = subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, ..Default::default() };
-    let t1 = Instant::now();
-    write()?;
-    Ok((vertices, faces, st, t1.elapsed().as_secs_f64() * 1e3))
-}
-
-/// The refiner's finest polygons with `positions`, or (no levels) its cage.
-fn refined_polygons(r: &subdiv::Refiner, positions: Vec<glam::Vec3>) -> subdiv::mesh::PolyMesh {
-    match r.polygons() {
-        Some(pt) => subdiv::mesh::PolyMesh { pt: pt.clone(), positions },
-        None => subdiv::mesh::PolyMesh::from_mesh(&Mesh { positions, ..r.cage() }),
-    }
-}
-
-/// The refiner's finest points from the f64 control points `control`.
-fn refined_f64(r: &subdiv::Refiner, control: &[glam::DVec3]) -> Result<Vec<glam::DVec3>> {
-    let flat: Vec<f64> = control.iter().flat_map(|p| p.to_array()).collect();
-    Ok(r.refine(&flat, 3)?.chunks_exact(3).map(glam::DVec3::from_slice).collect())
-}
-
-/// The stats of a refiner's levels, its attributes too: the time since `t0`.
-fn refiner_stats(r: &subdiv::Refiner, t0: Instant) -> subdiv::Stats {
-    subdiv::Stats { total_ms: t0.elapsed().as_secs_f64() * 1e3, ..r.stats().clone() }
 }
 
 /// The summary of a subdivision.

@@ -42,7 +42,7 @@ mod write;
 pub use ct::write as write_ct;
 pub use limits::{Budget, LIMIT_NAMES, Limits};
 pub use obj::write_obj_with;
-pub use save::{Save, SaveF64, save_f64, save_with};
+pub use save::{Save, SaveF64, save_f64, save_refined, save_with};
 mod save;
 pub use raw::{BuildNotes, RawMesh, Topology};
 pub use texture::load_file as load_texture;
@@ -525,6 +525,20 @@ fn save_without_holes(path: &Path, mesh: &Mesh, attrs: &Attributes) -> Result<()
 /// ([`crate::subdiv::subdivide_faces`]).
 pub fn writes_faces(path: &Path, sharp: bool) -> bool {
     Format::for_output(path).is_some_and(|f| f.faces_writer.is_some() && !(sharp && f.keeps.creases))
+}
+
+/// What a file of `path`'s format keeps of a refinement, for
+/// [`crate::subdivide_model`]: faces alone where [`writes_faces`] says
+/// they are written as the tables would be, its sharp features and its
+/// refined holes as [`keeps`] says.
+pub fn destination(path: &Path) -> crate::Destination {
+    use crate::subdiv::FacesOnly;
+    let faces = match Format::for_output(path).is_some_and(|f| f.faces_writer.is_some()) {
+        true => FacesOnly::Written,
+        false => FacesOnly::Never,
+    };
+    let keeps = keeps(path);
+    crate::Destination { faces, creases: keeps.creases, holes: keeps.holes }
 }
 
 /// Saves faces alone (triangles or quads, with their attributes) by

@@ -3,6 +3,7 @@
 //! from [`crate::subdivide_faces`]), in f32 or, for the tables, in f64.
 
 use crate::mesh::{Attributes, Faces, PolyMesh};
+use crate::subdiv::{Subdivided, Surface};
 use crate::{Mesh, Result};
 use glam::DVec3;
 use std::path::Path;
@@ -128,4 +129,28 @@ pub fn save_f64(
     keep_holes: bool,
 ) -> Result<()> {
     mesh.save_f64_to(sealed::Token::NEW, path, positions, attrs, keep_holes)
+}
+
+/// Saves what [`crate::subdivide_model`] made by extension, each surface
+/// through its writer: the tables with [`save_with`], or with [`save_f64`]
+/// where the refinement was in f64 (a control mesh's holes kept as the
+/// format keeps them, a refined level's left out), faces alone with
+/// [`save_with`].
+///
+/// # Errors
+/// As [`save_with`] and [`save_f64`]; f64 faces alone, which no format
+/// writes.
+pub fn save_refined(path: &Path, refined: &Subdivided) -> Result<()> {
+    let (attrs, keep_holes) = (&refined.attrs, refined.levels == 0);
+    match (&refined.surface, &refined.positions_f64) {
+        (Surface::Triangles(m), Some(p)) => save_f64(path, m, p, attrs, keep_holes),
+        (Surface::Polygons(m), Some(p)) => save_f64(path, m, p, attrs, keep_holes),
+        (Surface::Triangles(m), None) => save_with(path, m, attrs),
+        (Surface::Polygons(m), None) => save_with(path, m, attrs),
+        (Surface::Faces(f), _) => save_with(path, f, attrs),
+        (Surface::FacesF64(_), _) => Err(crate::Error::Usage(format!(
+            "{}: faces alone in f64 have no writer: refine with FacesOnly::Written or Never",
+            path.display()
+        ))),
+    }
 }

@@ -19,6 +19,7 @@
 pub(crate) mod cage;
 pub(crate) mod eval;
 pub(crate) mod inspect;
+mod model;
 mod parts;
 pub(crate) mod pick;
 mod precise;
@@ -44,6 +45,9 @@ use std::time::Instant;
 
 pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;
+pub use model::{
+    Control, Destination, FacesOnly, Model, Refinement, Subdivided, Surface, subdivide_model, subdivide_model_as,
+};
 pub use parts::{Part, parts_by_options, subdivide_parts};
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
