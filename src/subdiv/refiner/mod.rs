@@ -81,10 +81,9 @@ pub struct Refiner {
     /// The finest level's normals, made on first use and then kept up to
     /// date by every edit.
     normals: OnceLock<Vec<Vec3>>,
-    /// The finest level's one-rings (CSR, a closed ring's first neighbour
-    /// repeated at its end; `None` where a fan does not chain), made with
-    /// the normals.
-    rings: OnceLock<Option<(Vec<u32>, Vec<u32>)>>,
+    /// The finest level's ring polygons ([`normals::Rings`]; `None` where
+    /// a fan does not chain), made with the normals.
+    rings: OnceLock<Option<normals::Rings>>,
     /// The tables an edit walks (built on the first edit: a refiner that
     /// only serves data never pays for them).
     edit: Option<EditTables>,
