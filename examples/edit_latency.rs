@@ -7,7 +7,10 @@
 //!   a random one (smooth falloff);
 //! - `sharpness_ms`: one edge made semi-sharp (2.5), the stencils recorded
 //!   again;
-//! - `full_ms`: every row and normal of every level evaluated again;
+//! - `full_ms`: every row and normal of every level evaluated again
+//!   ([`Refiner::set_control`] once the normals are made);
+//! - `positions_ms`: the same on a refiner whose normals were never asked
+//!   for (the rows alone), and `normals_ms` the difference;
 //! - `build_ms`: `Refiner::new` (the one-shot passes, every level kept);
 //! - `first_ms`: the first move, which records the stencils of every level
 //!   on the kept tables and evaluates every level by them once.
@@ -89,9 +92,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let sharp = min_us(5, |k| r.set_edge_sharpness(a, b, if k % 2 == 0 { 2.5 } else { 0.0 }).expect("an edge")) / 1e3;
     let control = r.control().to_vec();
     let full = min_us(20, |_| r.set_control(&control)) / 1e3;
+    drop(r);
+    // the rows alone: a refiner whose normals were never made
+    let mut bare = Refiner::new(&mesh, scheme, levels.parse()?, &Options::default())?;
+    let positions = min_us(20, |_| bare.set_control(&control)) / 1e3;
+    let r = bare;
     println!(
         "one_vertex_us={one:.1} hundred_us={hundred:.1} sharpness_ms={sharp:.2} full_ms={full:.2} \
-         build_ms={build_ms:.1} first_ms={first_ms:.1} faces={} threads={}",
+         positions_ms={positions:.2} normals_ms={:.2} build_ms={build_ms:.1} first_ms={first_ms:.1} faces={} threads={}",
+        full - positions,
         r.topology().num_triangles(),
         rayon::current_num_threads()
     );

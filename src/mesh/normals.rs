@@ -189,7 +189,7 @@ fn chained_ring<T: Fans + ?Sized>(ct: &T, v: u32, pairs: &mut Vec<(u32, u32)>, r
 }
 
 /// The polygon of `v` (see [`VertexRings`]) from its chained ring.
-fn fan_polygon(v: u32, ring: &mut Vec<u32>) {
+pub(crate) fn fan_polygon(v: u32, ring: &mut Vec<u32>) {
     if ring.len() > 1 && ring.first() == ring.last() {
         ring.pop();
     } else if !ring.is_empty() {
@@ -280,7 +280,27 @@ fn polygon_area2(pos: &[Vec3], poly: &[u32]) -> Vec3A {
     // built from (`new` keeps only ids checked against its vertex count, and
     // the fields are private), and `pos.len()` is that count, asserted by
     // `normals_into`, the only caller of `ring_normals`.
-    let at = |j: u32| load(pos, j as usize);
+    area2_of(|j: u32| load(pos, j as usize), poly)
+}
+
+/// The unit normal of the polygon `poly` of a vertex's ring (see
+/// [`VertexRings`]; [`fan_polygon`] makes it from the chained ring), as
+/// [`VertexRings::normals_into`] makes it bit for bit (`Vec3::Z` without
+/// area), its entries checked: for any caller holding its own rings.
+///
+/// # Panics
+/// If an entry of `poly` is not below `pos.len()` (a caller bug).
+#[inline(always)]
+pub(crate) fn polygon_normal(pos: &[Vec3], poly: &[u32]) -> Vec3 {
+    assert!(poly.iter().all(|&j| (j as usize) < pos.len()), "a ring of these points");
+    // SAFETY: every entry of `poly` is below `pos.len()` (asserted above),
+    // all that `load` needs.
+    area2_of(|j: u32| load(pos, j as usize), poly).try_normalize().map_or(Vec3::Z, Vec3::from)
+}
+
+/// [`polygon_area2`] with the points loaded by `at`.
+#[inline(always)]
+fn area2_of(at: impl Fn(u32) -> Vec3A, poly: &[u32]) -> Vec3A {
     if let Some(&[a, b, c, d, e, f]) = poly.first_chunk::<6>().filter(|_| poly.len() == 6) {
         // the closed valence-6 ring, almost every vertex of a refined mesh:
         // the loop below, unrolled (the same sums in the same order)
