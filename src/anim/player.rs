@@ -16,7 +16,8 @@ use crate::subdiv::tables::{PlanScratch, StencilPlan};
 use crate::{CornerTable, Error, Mesh, Options, Result, Scheme};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::time::{Duration, Instant};
+use crate::clock::Instant;
+use std::time::Duration;
 
 /// Most refined path samples held in memory (frames x control vertices).
 const MAX_SAMPLES: usize = 64 << 20;

@@ -40,7 +40,7 @@ use refine::build::{Keep, build};
 use refine::{OneLevel, Refined};
 use rules::{catmull_clark, loop_};
 use std::borrow::Cow;
-use std::time::Instant;
+use crate::clock::Instant;
 
 pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;

@@ -19,7 +19,7 @@ use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::scheme::{Options, Scheme, Stats, with_rules};
 use crate::subdiv::tables::plan::LevelTables;
 use std::borrow::Cow;
-use std::time::Instant;
+use crate::clock::Instant;
 
 /// What [`build`] keeps of the levels it makes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

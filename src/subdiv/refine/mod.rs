@@ -20,7 +20,7 @@ use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::borrow::Cow;
-use std::time::Instant;
+use crate::clock::Instant;
 
 /// Predicted peak bytes of refining a mesh with `nt` triangles, `nv`
 /// vertices and `ne` edges once (new tables, positions and scratch, plus the

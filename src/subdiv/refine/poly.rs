@@ -17,7 +17,7 @@ use crate::mesh::{BORDER, Creasing};
 use crate::mesh::{Faces, VertexId};
 use crate::subdiv::scheme::{Stats, ms};
 use rayon::prelude::*;
-use std::time::Instant;
+use crate::clock::Instant;
 
 /// One level of `r` on the table `pt` with the points `pos` (f32 or f64:
 /// the same passes, the weights rounded to the points' precision), timed
