@@ -87,6 +87,12 @@ extern "C" {
 /// A library message as the JavaScript `Error` thrown.
 pub(crate) type Msg = String;
 
+/// The `Error` thrown for `m`, the command line's flag named as the option
+/// this package takes.
+pub(crate) fn thrown(m: Msg) -> JsError {
+    JsError::new(&m.replace("--max-memory", "options.maxMemory"))
+}
+
 /// Reports a panic (a bug: every input is checked) on the console before
 /// the module traps; the trap itself reaches JavaScript as a
 /// `WebAssembly.RuntimeError`.
@@ -119,7 +125,7 @@ pub fn subdivide(
     scheme: &str,
     options: Option<SubdivideOptions>,
 ) -> Result<MeshResult, JsError> {
-    let mesh = refine(positions, indices, levels, scheme, options.as_ref()).map_err(|m| JsError::new(&m))?;
+    let mesh = refine(positions, indices, levels, scheme, options.as_ref()).map_err(thrown)?;
     Ok(mesh.to_js().unchecked_into())
 }
 
@@ -198,7 +204,7 @@ pub fn limit(positions: &[f32], indices: &[u32], options: Option<SubdivideOption
         set(&o, "normals", &Float32Array::from(&remap.positions(&normals, &zeros)[..]));
         Ok(o)
     };
-    Ok(run().map_err(|m| JsError::new(&m))?.unchecked_into())
+    Ok(run().map_err(thrown)?.unchecked_into())
 }
 
 /// Reads a mesh file given as bytes, in any format the library reads

@@ -3,7 +3,7 @@
 //! evaluated again, with undo and redo (the library's [`subdiv::Refiner`]).
 
 use crate::input::{Cage, Control, Remap, cage, points};
-use crate::{Msg, SubdivideOptions, names};
+use crate::{Msg, SubdivideOptions, names, thrown};
 use wasm_bindgen::prelude::*;
 
 /// A refined mesh that can be edited.
@@ -56,10 +56,6 @@ impl Refiner {
     fn changed(&self) -> Vec<u32> {
         self.inner.last_changed().iter().map(|&j| self.remap.id(j)).collect()
     }
-}
-
-fn thrown(m: Msg) -> JsError {
-    JsError::new(&m)
 }
 
 #[wasm_bindgen]
