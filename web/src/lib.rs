@@ -59,6 +59,10 @@ export interface Mesh {
 /** What `load` read: the faces as polygons (`indices` + `faceSizes`, when not all triangles) and as triangles. */
 export interface Loaded extends Mesh {
   triangles: Uint32Array;
+  /** The creased edges the file tags, as `subdivide` takes them. */
+  creases?: { edges: Uint32Array; sharpness: Float32Array };
+  /** The faces the file marks as holes (ranks in `faceSizes` when polygonal, else triangles). */
+  holes?: Uint32Array;
   warnings: string[];
 }
 
@@ -224,13 +228,25 @@ pub fn load(bytes: &[u8], #[wasm_bindgen(js_name = fileName)] file_name: &str) -
     let o = Object::new();
     set(&o, "positions", &Float32Array::from(bytemuck_flat(&mesh.positions)));
     set(&o, "triangles", &Uint32Array::from(mesh.triangles()));
-    if PolyMesh::is_polygonal(mesh) {
-        let pm = PolyMesh::from_mesh(mesh);
+    let poly = PolyMesh::is_polygonal(mesh).then(|| PolyMesh::from_mesh(mesh));
+    if let Some(pm) = &poly {
         let sizes: Vec<u32> = (0..pm.pt.num_faces() as u32).map(|f| pm.pt.face_size(f)).collect();
         set(&o, "indices", &Uint32Array::from(pm.pt.v_table()));
         set(&o, "faceSizes", &Uint32Array::from(&sizes[..]));
     } else {
         set(&o, "indices", &Uint32Array::from(mesh.triangles()));
+    }
+    let holes = poly.as_ref().map_or(mesh.ct.holes(), |pm| pm.pt.holes());
+    if !holes.is_empty() {
+        set(&o, "holes", &Uint32Array::from(holes));
+    }
+    if let Some(tags) = mesh.ct.sharpness().map(|s| s.to_tags(&mesh.ct)).filter(|t| !t.creases.is_empty()) {
+        let edges: Vec<u32> = tags.creases.iter().flat_map(|c| [c.v0, c.v1]).collect();
+        let sharpness: Vec<f32> = tags.creases.iter().map(|c| c.sharpness).collect();
+        let c = Object::new();
+        set(&c, "edges", &Uint32Array::from(&edges[..]));
+        set(&c, "sharpness", &Float32Array::from(&sharpness[..]));
+        set(&o, "creases", &c);
     }
     let warnings = js_sys::Array::new();
     for w in &loaded.warnings {
