@@ -3,7 +3,8 @@
 #
 #   bash scripts/web.sh build   target/web/pkg/: subdiv.js, subdiv_bg.wasm,
 #                               subdiv.d.ts, package.json, README.md
-#   bash scripts/web.sh test    the node tests (web/tests/*.mjs) on that package
+#   bash scripts/web.sh test    the node tests (web/tests/*.test.mjs) on that package,
+#                               then its npm tarball installed and imported
 #   bash scripts/web.sh pack    npm pack of target/web/pkg (into target/web/)
 #
 # Installs what it needs when missing: the wasm32-unknown-unknown target and
@@ -64,14 +65,28 @@ JSON
     echo "$pkg: $(wc -c < "$pkg/subdiv_bg.wasm") bytes of wasm ($(gzip -9c "$pkg/subdiv_bg.wasm" | wc -c) gzipped)"
 }
 
+pack() {
+    [ -f "$pkg/subdiv.js" ] || { echo "no $pkg: run bash scripts/web.sh build first" >&2; exit 1; }
+    rm -f target/web/subdiv-*.tgz
+    (cd target/web && npm pack --silent ./pkg >/dev/null)
+    ls target/web/subdiv-*.tgz
+}
+
 run_tests() {
     [ -f "$pkg/subdiv.js" ] || { echo "no $pkg: run bash scripts/web.sh build first" >&2; exit 1; }
     SUBDIV_PKG="$root/$pkg" node --test web/tests/
+    # the tarball npm would publish installs (offline: no dependencies) and imports by name
+    local tgz dir
+    tgz=$(pack)
+    dir=$(mktemp -d)
+    trap 'rm -rf "$dir"' RETURN
+    (cd "$dir" && npm init -y >/dev/null && npm install --offline --no-audit --no-fund --silent "$root/$tgz" \
+        && cp "$root/web/tests/tarball-check.mjs" . && node tarball-check.mjs)
 }
 
 case "${1:-}" in
     build) build ;;
     test) run_tests ;;
-    pack) (cd target/web && npm pack ./pkg) ;;
+    pack) pack ;;
     *) echo "usage: bash scripts/web.sh build|test|pack" >&2; exit 2 ;;
 esac
