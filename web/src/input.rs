@@ -128,10 +128,7 @@ pub fn cage(positions: &[f32], indices: &[u32], s: &Settings) -> Result<Cage, Ms
     };
     let m = starts.len() - 1;
     if !poly && s.face_sizes.as_ref().is_some_and(|k| k.iter().any(|&k| k != 3)) {
-        return Err(format!(
-            "the {} scheme takes triangles; use catmull-clark or bilinear for polygons",
-            s.scheme
-        ));
+        return Err(format!("the {} scheme takes triangles; use catmull-clark or bilinear for polygons", s.scheme));
     }
     if let Some((k, &f)) = s.holes.iter().enumerate().find(|&(_, &f)| f as usize >= m) {
         return Err(format!("hole {k} names face {f}, but there are {m} faces"));
