@@ -2,8 +2,9 @@
 // thread, minima of interleaved runs:
 //   node web/bench.mjs MODEL.obj [runs] [THREE_DIR]
 // MODEL is read by load(); each run times subdivide() at levels 1 and 2 in
-// WebAssembly (performance.now around the call, the copy into JavaScript
-// arrays included), then `subdiv --threads 1 subdivide MODEL out.ply -n L
+// WebAssembly (performance.now around the call: the cage's tables built,
+// the copies in and out included), the library's part alone (_subdivideMs:
+// the span the command line's subdivide_ms times), then `subdiv --threads 1 subdivide MODEL out.ply -n L
 // --stats` (its subdivide_ms, the library's own time), and, with
 // THREE_DIR (a folder where `npm install three three-subdivide` ran),
 // three-subdivide's LoopSubdivision.modify at level 1.
@@ -26,7 +27,8 @@ if (threeDir) {
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.BufferAttribute(m.positions, 3));
   g.setIndex(new THREE.BufferAttribute(m.triangles, 1));
-  three = { g, LoopSubdivision };
+  // its smoothing pass reads triangle soup (what its split pass makes from an indexed geometry)
+  three = { g, soup: g.toNonIndexed(), LoopSubdivision };
 }
 const best = {};
 const keep = (k, ms) => { best[k] = Math.min(best[k] ?? Infinity, ms); };
@@ -34,7 +36,8 @@ for (let r = 0; r < runs; r++) {
   for (const n of [1, 2]) {
     const t0 = performance.now();
     const out = subdiv.subdivide(m.positions, m.triangles, n, 'loop');
-    keep(`wasm L${n}`, performance.now() - t0);
+    keep(`wasm subdivide() L${n}`, performance.now() - t0);
+    keep(`wasm library alone L${n}`, subdiv._subdivideMs(m.positions, m.triangles, n, 'loop'));
     if (r === 0) console.log(`L${n}: ${out.indices.length / 3} triangles`);
     if (bin) {
       const p = spawnSync(bin, ['--threads', '1', 'subdivide', model, join(dir, 'x.ply'), '-n', String(n), '--stats'], { encoding: 'utf8' });
@@ -46,7 +49,7 @@ for (let r = 0; r < runs; r++) {
   if (three) {
     for (const split of [false, true]) {
       const t0 = performance.now();
-      three.LoopSubdivision.modify(three.g, 1, { split });
+      three.LoopSubdivision.modify(split ? three.g : three.soup, 1, { split });
       keep(`three-subdivide L1 split=${split}`, performance.now() - t0);
     }
   }

@@ -86,6 +86,8 @@ extern "C" {
     pub type LimitResult;
     #[wasm_bindgen(js_namespace = console, js_name = error)]
     fn console_error(s: &str);
+    #[wasm_bindgen(js_namespace = performance, js_name = now)]
+    fn performance_now() -> f64;
 }
 
 /// A library message as the JavaScript `Error` thrown.
@@ -259,4 +261,26 @@ pub fn load(bytes: &[u8], #[wasm_bindgen(js_name = fileName)] file_name: &str) -
 /// Points as flat `x y z` values.
 pub(crate) fn bytemuck_flat(points: &[glam::Vec3]) -> &[f32] {
     bytemuck::cast_slice(points)
+}
+
+/// Milliseconds of the library's subdivision alone, as the command line's
+/// `subdivide_ms` times it: the cage built before the clock starts, the
+/// result dropped after it stops, nothing copied to JavaScript. For
+/// `web/bench.mjs`; not in the typings.
+///
+/// # Errors
+/// As [`subdivide`].
+#[wasm_bindgen(js_name = _subdivideMs, skip_typescript)]
+pub fn subdivide_ms(positions: &[f32], indices: &[u32], levels: f64, scheme: &str) -> Result<f64, JsError> {
+    let levels = names::levels(levels).map_err(thrown)?;
+    let s = names::Settings::read(scheme, None).map_err(thrown)?;
+    let Cage { control, .. } = input::cage(positions, indices, &s).map_err(thrown)?;
+    let t0 = performance_now();
+    let fine = match &control {
+        Control::Tri(m) => subdivide_faces(m, s.scheme, levels, &s.opts, |j| j),
+        Control::Poly(m) => subdivide_faces(m, s.scheme, levels, &s.opts, |j| j),
+    };
+    let ms = performance_now() - t0;
+    fine.map_err(|e| thrown(e.to_string()))?;
+    Ok(ms)
 }
