@@ -47,6 +47,7 @@
 
 pub mod anim;
 pub mod bundled;
+pub(crate) mod clock;
 pub mod cpu;
 pub(crate) mod error;
 pub mod io;

@@ -220,7 +220,7 @@ fn populate(ptr: usize, len: usize, huge: bool, timed: bool) {
                 libc::madvise(a as *mut libc::c_void, b - a, libc::MADV_NOHUGEPAGE);
             }
         }
-        let t0 = std::time::Instant::now();
+        let t0 = crate::clock::Instant::now();
         // SAFETY: [a, b) lies inside the allocation just made and owned by
         // the caller; MADV_POPULATE_WRITE only faults its pages in
         // (writable, still zero), changing no contents.

@@ -11,12 +11,13 @@
 
 use super::paths::Paths;
 use super::tweak::{Tweak, refine_closed};
+use crate::clock::Instant;
 use crate::mesh::normals::{VertexFaces, VertexRings, face_normals_into};
 use crate::subdiv::tables::{PlanScratch, StencilPlan};
 use crate::{CornerTable, Error, Mesh, Options, Result, Scheme};
 use glam::Vec3;
 use rayon::prelude::*;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Most refined path samples held in memory (frames x control vertices).
 const MAX_SAMPLES: usize = 64 << 20;

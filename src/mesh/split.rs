@@ -343,9 +343,9 @@ pub(crate) fn split_with_boundary(
         4 * nc < u64::from(BORDER),
         "split: {nc} corners are too many for 32-bit ids after a split (subdivide refuses this level)"
     );
-    let t0 = std::time::Instant::now();
+    let t0 = crate::clock::Instant::now();
     let NewVertexTables { edges, mut vc, mut valence, boundary } = number_edges_and_vertices(old, old_boundary);
-    let t1 = std::time::Instant::now();
+    let t1 = crate::clock::Instant::now();
     let (v2, o2) = rayon::join(|| write_v(old, &edges.ids, &|j| j), || write_o(old));
     carry_old_vertices(old, &mut vc, &mut valence);
     let times = (ms(t1 - t0), ms(t1.elapsed()));

@@ -32,6 +32,7 @@ pub(crate) mod stencil;
 pub(crate) mod tables;
 
 use crate::Result;
+use crate::clock::Instant;
 #[cfg(feature = "viewer")]
 pub(crate) use crate::mesh::attributes::UvInterpolation;
 use crate::mesh::poly::PolyMesh;
@@ -41,7 +42,6 @@ use refine::build::{Keep, build};
 use refine::{OneLevel, Refined};
 use rules::{catmull_clark, loop_};
 use std::borrow::Cow;
-use std::time::Instant;
 
 pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
 pub use loop_::LoopBeta;

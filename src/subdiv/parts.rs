@@ -39,7 +39,7 @@ pub struct Part<'a> {
 /// A part that does not fit in memory (the options' budget), or nothing
 /// left to join.
 pub fn subdivide_parts(parts: &[Part], keep_holes: bool) -> Result<(PolyMesh, Attributes, Stats)> {
-    let t0 = std::time::Instant::now();
+    let t0 = crate::clock::Instant::now();
     let mut stats = Stats::default();
     let mut pieces = Vec::with_capacity(parts.len());
     for p in parts {

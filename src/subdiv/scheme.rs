@@ -175,7 +175,7 @@ pub struct Stats {
 
 impl Stats {
     /// Closes the record of a call begun at `t0`.
-    pub(crate) fn finish(&mut self, t0: std::time::Instant) {
+    pub(crate) fn finish(&mut self, t0: crate::clock::Instant) {
         self.total_ms = ms(t0.elapsed());
         self.huge_pages = Some(crate::mem::huge_pages());
     }

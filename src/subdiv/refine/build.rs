@@ -11,6 +11,7 @@
 
 use super::{Refined, check_fit};
 use crate::Result;
+use crate::clock::Instant;
 use crate::mesh::counts::Counts;
 use crate::mesh::poly::PolyTable;
 use crate::mesh::{BoundaryInterpolation, CornerTable, Creasing};
@@ -19,7 +20,6 @@ use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::scheme::{Options, Scheme, Stats, with_rules};
 use crate::subdiv::tables::plan::LevelTables;
 use std::borrow::Cow;
-use std::time::Instant;
 
 /// What [`build`] keeps of the levels it makes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

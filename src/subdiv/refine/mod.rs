@@ -13,6 +13,7 @@ use super::rules::crease::{Blend, OnLevel, edge_stencil, vertex_stencil};
 use super::rules::features::{Features, Mask};
 use super::rules::{Accumulate, Coord, Level, Rules, boundary_flags};
 use super::scheme::{RulesFn, Stats, ms};
+use crate::clock::Instant;
 use crate::mesh::counts::Counts;
 use crate::mesh::split::{self, EdgeIds, Owners};
 use crate::mesh::{CornerTable, Creasing, Faces, VertexId, n, p};
@@ -20,7 +21,6 @@ use crate::{Error, Result};
 use glam::Vec3;
 use rayon::prelude::*;
 use std::borrow::Cow;
-use std::time::Instant;
 
 /// Predicted peak bytes of refining a mesh with `nt` triangles, `nv`
 /// vertices and `ne` edges once (new tables, positions and scratch, plus the

@@ -11,13 +11,13 @@ use super::super::rules::catmull_clark::{PolyLevel, PolyOn, PolyRules, smooth_tr
 use super::super::rules::features::Features;
 use super::super::rules::{Coord, scatter_parts};
 
+use crate::clock::Instant;
 use crate::mesh::poly::{PolyMesh, PolyTable, split};
 use crate::mesh::split::{EdgeIds, Owners};
 use crate::mesh::{BORDER, Creasing};
 use crate::mesh::{Faces, VertexId};
 use crate::subdiv::scheme::{Stats, ms};
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// One level of `r` on the table `pt` with the points `pos` (f32 or f64:
 /// the same passes, the weights rounded to the points' precision), timed
