@@ -11,7 +11,7 @@ use crate::mesh::poly::PolyMesh;
 use crate::mesh::{BoundaryInterpolation, Faces, Mesh, VertexId};
 use crate::{Error, Result};
 use glam::{DVec3, Vec3};
-use std::time::Instant;
+use crate::clock::Instant;
 
 /// A model's control mesh: triangles (a polygon scheme reads the polygons
 /// their hidden diagonals stand for, as the readers fan them) or polygons.
