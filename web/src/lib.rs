@@ -20,7 +20,6 @@ use input::{Cage, Control};
 use js_sys::{Float32Array, Object, Reflect, Uint32Array};
 use subdiv::io::{ReadOptions, Source, Topology};
 use subdiv::mesh::PolyMesh;
-use subdiv::subdivide_faces;
 use wasm_bindgen::prelude::*;
 
 pub use refiner::Refiner;
@@ -170,21 +169,30 @@ fn refine(
     let levels = names::levels(levels)?;
     let settings = names::Settings::read(scheme, options.map(|o| o.as_ref()))?;
     let Cage { control, remap } = input::cage(positions, indices, &settings)?;
-    let (scheme, opts) = (settings.scheme, &settings.opts);
-    let msg = |e: subdiv::Error| e.to_string();
-    match control {
-        Control::Tri(mesh) => {
-            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
-            let positions = remap.positions(&fine.positions, positions);
-            Ok(Refined { positions, indices: fine.corners, face_sizes: None })
+    // the library chooses the path (faces alone wherever they do), writing
+    // the caller's ids in the split
+    let model = subdiv::Model {
+        control: match &control {
+            Control::Tri(mesh) => subdiv::Control::Triangles(mesh),
+            Control::Poly(mesh) => subdiv::Control::Polygons(mesh),
+        },
+        attrs: &subdiv::mesh::Attributes::default(),
+        precise: None,
+    };
+    let dest = subdiv::Destination { faces: subdiv::FacesOnly::Always, ..Default::default() };
+    let how = subdiv::Refinement { scheme: settings.scheme, levels, opts: settings.opts, f64: false, dest };
+    let fine = subdiv::subdivide_model_as(&model, &how, |j| remap.id(j)).map_err(|e| e.to_string())?;
+    match fine.surface {
+        subdiv::Surface::Faces(f) => {
+            let face_sizes =
+                matches!(control, Control::Poly(_)).then(|| vec![f.sides as u32; f.corners.len() / f.sides.max(1)]);
+            Ok(Refined { positions: remap.positions(&f.positions, positions), indices: f.corners, face_sizes })
         }
-        Control::Poly(mesh) if levels > 0 => {
-            let (fine, _) = subdivide_faces(&mesh, scheme, levels, opts, |j| remap.id(j)).map_err(msg)?;
-            let positions = remap.positions(&fine.positions, positions);
-            let face_sizes = Some(vec![fine.sides as u32; fine.corners.len() / fine.sides.max(1)]);
-            Ok(Refined { positions, indices: fine.corners, face_sizes })
+        // a polygon scheme's control mesh as it is (its faces of any size)
+        subdiv::Surface::Polygons(mesh) => Ok(input::polygons(&mesh, &remap, positions)),
+        subdiv::Surface::Triangles(_) | subdiv::Surface::FacesF64(_) => {
+            Err("internal error: f32 faces were asked for and not given".into())
         }
-        Control::Poly(mesh) => Ok(input::polygons(&mesh, &remap, positions)),
     }
 }
 
@@ -277,8 +285,8 @@ pub fn subdivide_ms(positions: &[f32], indices: &[u32], levels: f64, scheme: &st
     let Cage { control, .. } = input::cage(positions, indices, &s).map_err(thrown)?;
     let t0 = performance_now();
     let fine = match &control {
-        Control::Tri(m) => subdivide_faces(m, s.scheme, levels, &s.opts, |j| j),
-        Control::Poly(m) => subdivide_faces(m, s.scheme, levels, &s.opts, |j| j),
+        Control::Tri(m) => subdiv::subdivide_faces(m, s.scheme, levels, &s.opts, |j| j),
+        Control::Poly(m) => subdiv::subdivide_faces(m, s.scheme, levels, &s.opts, |j| j),
     };
     let ms = performance_now() - t0;
     fine.map_err(|e| thrown(e.to_string()))?;
