@@ -6,12 +6,12 @@
 //! the polygons of a polygon scheme, the f64 passes when asked.
 
 use super::{Options, Refiner, Scheme, Stats, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
+use crate::clock::Instant;
 use crate::mesh::attributes::Attributes;
 use crate::mesh::poly::PolyMesh;
 use crate::mesh::{BoundaryInterpolation, Faces, Mesh, VertexId};
 use crate::{Error, Result};
 use glam::{DVec3, Vec3};
-use crate::clock::Instant;
 
 /// A model's control mesh: triangles (a polygon scheme reads the polygons
 /// their hidden diagonals stand for, as the readers fan them) or polygons.
