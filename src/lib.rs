@@ -71,8 +71,8 @@ pub use subdiv::eval::Evaluator;
 pub use subdiv::tables::StencilPlan;
 pub use subdiv::{
     Cage, Control, Destination, FacesOnly, LoopBeta, Model, Options, Part, Refinement, Refiner, Scalar, Scheme, Stats,
-    Subdivided, Surface, parts_by_options, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64,
-    subdivide_model, subdivide_model_as, subdivide_parts,
+    Subdivided, Surface, Tessellation, TessellationStats, parts_by_options, subdivide, subdivide_f64, subdivide_faces,
+    subdivide_faces_f64, subdivide_model, subdivide_model_as, subdivide_parts, tessellate,
 };
 
 #[cfg(feature = "viewer")]

@@ -1,5 +1,5 @@
 //! The `subdiv` command line: view | animate | subdivide | batch | edit | smooth |
-//! limit | eval | repair | info | render | models | completions. Every command
+//! limit | eval | tessellate | repair | info | render | models | completions. Every command
 //! that reads a model takes a file or `bundled:NAME`, a model compiled into the binary
 //! (`subdiv models` lists them), through `subdiv::bundled`.
 //!
@@ -17,6 +17,7 @@ mod inspect;
 pub(crate) mod logging;
 mod mesh_ops;
 pub(crate) mod progress;
+mod tessellate;
 mod view;
 
 use clap::{CommandFactory, Parser, Subcommand};
@@ -59,6 +60,8 @@ enum Cmd {
     Limit(mesh_ops::LimitCmdArgs),
     /// The exact Loop or Catmull-Clark limit surface at points `f u v`: position and normal (and curvature).
     Eval(eval::EvalArgs),
+    /// The exact Loop or Catmull-Clark limit surface as a crack-free triangle mesh whose every triangle is within a tolerance of it (adaptive: fine only where the surface bends).
+    Tessellate(tessellate::TessellateArgs),
     /// Edit the cage: move control vertices, set edge and vertex sharpness (in order), and write the edited cage (or, with --levels, its refined surface).
     Edit(edit::EditArgs),
     /// Repair a mesh into a valid manifold one and write it (format by extension).
@@ -128,6 +131,7 @@ fn run(cmd: Option<Cmd>) -> Result<ExitCode> {
         Some(Cmd::Smooth(args)) => mesh_ops::smooth(&args),
         Some(Cmd::Limit(args)) => mesh_ops::limit(&args),
         Some(Cmd::Eval(args)) => eval::eval(&args),
+        Some(Cmd::Tessellate(args)) => tessellate::tessellate(&args),
         Some(Cmd::Info(args)) => info::info(&args),
         Some(Cmd::Models) => {
             info::models();

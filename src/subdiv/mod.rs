@@ -30,6 +30,7 @@ mod scheme;
 pub(crate) mod sizes;
 pub(crate) mod stencil;
 pub(crate) mod tables;
+mod tess;
 
 use crate::Result;
 use crate::clock::Instant;
@@ -52,6 +53,7 @@ pub use parts::{Part, parts_by_options, subdivide_parts};
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
 pub use scheme::{Options, Scheme, Stats};
+pub use tess::{Tessellation, TessellationStats, tessellate};
 pub(crate) use scheme::{RulesFn, ms, with_rules};
 #[cfg(feature = "viewer")]
 pub(crate) use sizes::ControlCounts;

@@ -27,6 +27,8 @@ mod vertices;
 pub use points::{Domain, EDGE_SLACK, parse_points_in};
 
 pub use vertices::{poly_vertex_params, vertex_samples};
+#[cfg(test)]
+pub(crate) use vertices::vertex_params;
 
 use crate::mesh::Mesh;
 use crate::subdiv::{Options, Scheme};

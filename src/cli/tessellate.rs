@@ -1,0 +1,125 @@
+//! `subdiv tessellate`: the exact limit surface as a crack-free triangle
+//! mesh within a tolerance (docs/tessellation.md).
+
+use super::args::{InputArgs, Precision, SchemeArgs};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use subdiv::mesh::Faces;
+use subdiv::{Error, Result, Tessellation};
+
+/// `subdiv tessellate` arguments.
+#[derive(clap::Args)]
+#[command(mut_arg("scheme_flag", |a| a.help("Scheme: loop (triangles, the default) or catmull-clark (polygons): the schemes with an exact limit surface")))]
+pub struct TessellateArgs {
+    /// Input model: a mesh file or bundled:NAME (see `subdiv models`).
+    input: PathBuf,
+    /// Output mesh (format by extension).
+    output: PathBuf,
+    /// The largest distance a triangle may be from the limit surface: a
+    /// length in the model's units, or a fraction of the bounding box's
+    /// diagonal with an `x` after it (`1e-4x`).
+    #[arg(long, short = 't', value_name = "T", default_value = "1e-4x", value_parser = parse_tolerance)]
+    tolerance: Tolerance,
+    /// Also write each output vertex's control face and `(u, v)`, one `f u
+    /// v` line per vertex (a points file `subdiv eval` reads: attributes
+    /// evaluated later without refining).
+    #[arg(long, value_name = "FILE")]
+    params: Option<PathBuf>,
+    #[command(flatten)]
+    from: InputArgs,
+    #[command(flatten)]
+    scheme: SchemeArgs,
+    /// Print the triangles, the distance measured, rounds and times on
+    /// stderr.
+    #[arg(long)]
+    stats: bool,
+    /// The control points' precision: f64 (the file's own digits, the
+    /// default) or f32.
+    #[arg(long, default_value = "f64")]
+    precision: Precision,
+}
+
+/// A tolerance as given: absolute, or relative to the bounding box.
+#[derive(Clone, Copy, Debug)]
+enum Tolerance {
+    Absolute(f64),
+    OfDiagonal(f64),
+}
+
+/// `1e-3` or `1e-4x`: a positive finite number.
+fn parse_tolerance(s: &str) -> std::result::Result<Tolerance, String> {
+    let (number, relative) = s.strip_suffix('x').map_or((s, false), |n| (n, true));
+    match number.trim().parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(if relative { Tolerance::OfDiagonal(t) } else { Tolerance::Absolute(t) }),
+        _ => Err(format!("'{s}' is not a positive distance (a number, or a fraction of the diagonal such as 1e-4x)")),
+    }
+}
+
+/// `subdiv tessellate`.
+pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
+    let loaded = a.from.read(&a.input, false)?;
+    let scheme = a.scheme.over(loaded.attributes.options);
+    let mesh = scheme.features.apply(loaded.mesh);
+    let control: Vec<glam::DVec3> = match (a.precision, loaded.precise) {
+        (Precision::F64, Some(p)) => p,
+        _ => mesh.positions.iter().map(|p| p.as_dvec3()).collect(),
+    };
+    let tolerance = match a.tolerance {
+        Tolerance::Absolute(t) => t,
+        Tolerance::OfDiagonal(f) => f * diagonal(&control),
+    };
+    let out = subdiv::tessellate(&mesh, &control, scheme.scheme(), &scheme.options(), tolerance)?;
+    let faces = Faces {
+        positions: out.positions.iter().map(|p| p.as_vec3()).collect(),
+        corners: out.triangles.iter().flatten().copied().collect(),
+        sides: 3,
+    };
+    subdiv::io::save(&a.output, &faces)?;
+    if let Some(path) = &a.params {
+        write_params(path, &out)?;
+    }
+    let s = out.stats;
+    if a.stats {
+        eprintln!(
+            "triangles={} vertices={} tolerance={:e} measured={:e} met={} rounds={} max_rate={} evaluations={} tessellate_ms={:.1} per_triangle_ns={:.0}",
+            out.triangles.len(),
+            out.positions.len(),
+            s.tolerance,
+            s.measured,
+            s.met,
+            s.rounds,
+            s.max_rate,
+            s.evaluations,
+            s.seconds * 1e3,
+            s.seconds * 1e9 / out.triangles.len().max(1) as f64
+        );
+    }
+    if !s.met {
+        log::warn!(
+            "{}: the largest distance measured, {:e}, is over the tolerance {:e} after {} rounds",
+            a.input.display(),
+            s.measured,
+            s.tolerance,
+            s.rounds
+        );
+    }
+    println!("{} -> {} ({} triangles within {:e})", a.input.display(), a.output.display(), out.triangles.len(), s.tolerance);
+    Ok(())
+}
+
+/// The length of the bounding box's diagonal.
+fn diagonal(points: &[glam::DVec3]) -> f64 {
+    let (lo, hi) = points.iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    if points.is_empty() { 0.0 } else { lo.distance(hi) }
+}
+
+/// One `f u v` line per vertex.
+fn write_params(path: &Path, t: &Tessellation) -> Result<()> {
+    let io = |source| Error::Io { path: path.display().to_string(), source };
+    let file = std::fs::File::create(path).map_err(io)?;
+    let mut w = std::io::BufWriter::new(file);
+    for &(f, u, v) in &t.params {
+        writeln!(w, "{f} {u} {v}").map_err(io)?;
+    }
+    w.flush().map_err(io)
+}

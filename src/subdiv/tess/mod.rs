@@ -1,0 +1,270 @@
+//! The limit surface to a tolerance: an adaptive, crack-free triangle mesh
+//! whose vertices lie on the exact limit surface and whose triangles stay
+//! within a distance `T` of it (docs/tessellation.md).
+//!
+//! The domain is the evaluator's (`domain.rs`): Loop's control triangles,
+//! Catmull-Clark's ptex faces. Each patch gets an interior rate `n` and
+//! each edge of the domain a rate of its own, the larger of what the
+//! patches on either side ask for, so that the two sides share its points
+//! (`grid.rs` stitches a patch's inside to whatever its sides hold). The
+//! rates come from the surface itself (`rates.rs`): the patch's second
+//! derivatives, sampled, give the first guess, and then every triangle is
+//! measured against the exact limit at its centre and the midpoints of its
+//! edges; a patch with a triangle over `T` is made finer, until none is.
+//! Every vertex is evaluated once, so shared edges are shared vertices: a
+//! closed cage gives a closed, watertight mesh.
+
+mod domain;
+mod grid;
+mod rates;
+
+use crate::clock::Instant;
+use crate::mesh::Mesh;
+use crate::mesh::poly::PolyMesh;
+use crate::subdiv::eval::Evaluator;
+use crate::subdiv::{Options, Scheme};
+use crate::{Error, Result};
+use domain::Domain;
+use glam::DVec3;
+use grid::Pt;
+use rayon::prelude::*;
+
+/// What [`tessellate`] made.
+#[derive(Clone, Debug)]
+pub struct Tessellation {
+    /// Points on the exact limit surface.
+    pub positions: Vec<DVec3>,
+    /// Triangles, counter-clockwise seen from the front of the control
+    /// faces.
+    pub triangles: Vec<[u32; 3]>,
+    /// Each triangle's control face (Loop: control triangle; Catmull-Clark:
+    /// ptex face).
+    pub faces: Vec<u32>,
+    /// Each vertex's control face and `(u, v)` on it, as
+    /// [`Evaluator::eval`] takes them (Loop: control triangle; Catmull-Clark:
+    /// ptex face), for evaluating attributes later without refining.
+    pub params: Vec<(u32, f64, f64)>,
+    /// How it went.
+    pub stats: TessellationStats,
+}
+
+/// What [`tessellate`] found.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TessellationStats {
+    /// The tolerance asked for (absolute).
+    pub tolerance: f64,
+    /// The largest distance measured between a triangle and the limit
+    /// surface (at its centre and its edges' midpoints, from the same
+    /// `(u, v)`): at most `tolerance` unless `met` is false.
+    pub measured: f64,
+    /// Whether every measured distance is within the tolerance.
+    pub met: bool,
+    /// Rounds of measuring and refining.
+    pub rounds: u32,
+    /// Limit points evaluated, vertices and measurements together.
+    pub evaluations: u64,
+    /// The largest interior rate of a patch.
+    pub max_rate: u32,
+    /// Seconds spent.
+    pub seconds: f64,
+}
+
+/// Rounds of measuring before the result is given as it is (`met` false).
+const MAX_ROUNDS: u32 = 8;
+
+/// The limit surface of `mesh` (control points `control`, f64, one per
+/// vertex) under `scheme` (Loop or Catmull-Clark) and `opts`, tessellated
+/// so that every triangle is within `tolerance` of it (absolute, in the
+/// model's units), within the memory budget (`opts.max_memory`, else 80 %
+/// of the available memory).
+///
+/// # Errors
+/// [`Error::Usage`] for a scheme without an exact evaluation, a tolerance
+/// that is not a positive finite number, a face the evaluator refuses
+/// (naming it), or a tessellation that would need more memory than the
+/// budget.
+pub fn tessellate(mesh: &Mesh, control: &[DVec3], scheme: Scheme, opts: &Options, tolerance: f64) -> Result<Tessellation> {
+    let (built, faces, stats) = run(mesh, control, scheme, opts, tolerance)?;
+    let triangles = built.triangles.iter().map(|(_, t)| t.map(|p| p.id)).collect();
+    Ok(Tessellation { positions: built.positions, triangles, faces, params: built.params, stats })
+}
+
+/// [`tessellate`], the triangles kept with their corners' `(u, v)` on
+/// their patch, and each triangle's control face.
+fn run(
+    mesh: &Mesh,
+    control: &[DVec3],
+    scheme: Scheme,
+    opts: &Options,
+    tolerance: f64,
+) -> Result<(Built, Vec<u32>, TessellationStats)> {
+    let start = Instant::now();
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(Error::Usage(format!("tolerance {tolerance}: a positive distance is needed")));
+    }
+    let ev = Evaluator::new_f64(mesh, control, scheme, opts)?;
+    let domain = match scheme {
+        Scheme::CatmullClark => domain::ptex(&PolyMesh::from_mesh(mesh)),
+        _ => domain::triangles(mesh),
+    };
+    if let Some(p) = domain.patches.iter().find(|p| !ev.accepts(p.face as usize)) {
+        let what = if p.quad { "ptex face" } else { "face" };
+        let why = "it touches an interior vertex of valence 2, which has no limit surface";
+        return Err(Error::Usage(format!("cannot tessellate {what} {}: {why}", p.face)));
+    }
+    let (mut rate, mut evaluations) = rates::initial(&ev, &domain, tolerance)?;
+    let mut stats = TessellationStats { tolerance, ..TessellationStats::default() };
+    loop {
+        stats.rounds += 1;
+        rates::check_budget(&domain, &rate, opts.max_memory, tolerance)?;
+        let built = build(&ev, &domain, &rate)?;
+        let errors = rates::measure(&ev, &domain, &built)?;
+        evaluations += (built.positions.len() + 4 * built.triangles.len()) as u64;
+        stats.measured = errors.iter().copied().fold(0.0, f64::max);
+        stats.met = stats.measured <= tolerance;
+        let over = errors.iter().filter(|&&e| e > tolerance).count();
+        log::debug!(
+            "round {}: {} triangles, largest distance {:e}, {over} patches over {tolerance:e}",
+            stats.rounds,
+            built.triangles.len(),
+            stats.measured
+        );
+        if stats.met || stats.rounds == MAX_ROUNDS {
+            stats.evaluations = evaluations;
+            stats.max_rate = rate.iter().copied().max().unwrap_or(0);
+            stats.seconds = start.elapsed().as_secs_f64();
+            let faces = built.triangles.iter().map(|(p, _)| domain.patches[*p as usize].face).collect();
+            return Ok((built, faces, stats));
+        }
+        rates::refine(&mut rate, &errors, tolerance);
+    }
+}
+
+/// One tessellation at given rates: the points, evaluated, and the
+/// triangles with their corners' `(u, v)` on their patch.
+struct Built {
+    positions: Vec<DVec3>,
+    params: Vec<(u32, f64, f64)>,
+    /// Each triangle's patch and corners.
+    triangles: Vec<(u32, [Pt; 3])>,
+}
+
+/// The points and triangles of `domain` at the patches' rates `rate`.
+fn build(ev: &Evaluator, domain: &Domain, rate: &[u32]) -> Result<Built> {
+    let edge_rate = rates::edge_rates(domain, rate);
+    let mut points = Points { params: Vec::new(), key_id: vec![u32::MAX; domain.num_keys] };
+    // the corners (and the midpoints where a side is two halves)
+    for p in &domain.patches {
+        for k in 0..p.sides() {
+            points.key(p.corners[k], (p.face, p.corner_uv(k)));
+            if p.sides[k].count == 2 {
+                points.key(junction(domain, p, k), (p.face, p.side_uv(k, 0.5)));
+            }
+        }
+    }
+    // the points inside the domain's edges, each evaluated on its owner
+    let mut edge_first = Vec::with_capacity(domain.edges.len());
+    for (e, edge) in domain.edges.iter().enumerate() {
+        edge_first.push(points.params.len() as u32);
+        let (owner, s, part) = edge.owner;
+        let patch = &domain.patches[owner as usize];
+        let side = patch.sides[s as usize];
+        for i in 1..edge_rate[e] {
+            let t = side_fraction(side, part as usize, f64::from(i) / f64::from(edge_rate[e]));
+            points.params.push((patch.face, patch.side_uv(s as usize, t)));
+        }
+    }
+    // the inside of each patch
+    let mut inside_first = Vec::with_capacity(domain.patches.len());
+    for (p, patch) in domain.patches.iter().enumerate() {
+        inside_first.push(points.params.len() as u32);
+        let uniform = rates::is_uniform(patch, rate[p], &edge_rate);
+        for uv in grid::interior(patch.quad, rate[p], uniform) {
+            points.params.push((patch.face, uv));
+        }
+    }
+    if points.params.len() > u32::MAX as usize {
+        return Err(Error::Usage("the tessellation has more than 2^32 vertices: raise the tolerance".into()));
+    }
+    let at: Vec<(usize, f64, f64)> = points.params.iter().map(|&(f, (u, v))| (f as usize, u, v)).collect();
+    let positions = ev.eval_map(&at, false, |s| s.position)?;
+    let sides = Sides { domain, edge_rate: &edge_rate, edge_first: &edge_first, key_id: &points.key_id };
+    let triangles = (0..domain.patches.len())
+        .into_par_iter()
+        .with_min_len(64)
+        .flat_map_iter(|p| {
+            let patch = &domain.patches[p];
+            let lists: Vec<Vec<Pt>> = (0..patch.sides()).map(|s| sides.points(patch, s)).collect();
+            let mut out = Vec::new();
+            grid::triangulate(patch.quad, rate[p], &lists, inside_first[p], &mut out);
+            out.into_iter().map(move |t| (p as u32, t))
+        })
+        .collect();
+    let params = points.params.into_iter().map(|(f, (u, v))| (f, u, v)).collect();
+    Ok(Built { positions, params, triangles })
+}
+
+/// The points made so far, and the vertex of each key.
+struct Points {
+    params: Vec<(u32, (f64, f64))>,
+    key_id: Vec<u32>,
+}
+
+impl Points {
+    /// The vertex of `key`, made at `at` the first time.
+    fn key(&mut self, key: u32, at: (u32, (f64, f64))) {
+        if self.key_id[key as usize] == u32::MAX {
+            self.key_id[key as usize] = self.params.len() as u32;
+            self.params.push(at);
+        }
+    }
+}
+
+/// The key between the two halves of side `s` of `patch`.
+fn junction(domain: &Domain, patch: &domain::Patch, s: usize) -> u32 {
+    let (e, reversed) = patch.sides[s].parts[0];
+    domain.edges[e as usize].ends[usize::from(!reversed)]
+}
+
+/// Where fraction `f` of part `part` (from its `ends[0]`) lies along its
+/// side.
+fn side_fraction(side: domain::Side, part: usize, f: f64) -> f64 {
+    let f = if side.parts[part].1 { 1.0 - f } else { f };
+    (part as f64 + f) / f64::from(side.count)
+}
+
+/// What a patch's sides are made of.
+struct Sides<'a> {
+    domain: &'a Domain,
+    edge_rate: &'a [u32],
+    edge_first: &'a [u32],
+    key_id: &'a [u32],
+}
+
+impl Sides<'_> {
+    /// Side `s` of `patch`: its points from corner `s` to corner `s + 1`.
+    fn points(&self, patch: &domain::Patch, s: usize) -> Vec<Pt> {
+        let side = patch.sides[s];
+        let corner = |k: usize| Pt { id: self.key_id[patch.corners[k % patch.sides()] as usize], uv: patch.corner_uv(k) };
+        let mut out = vec![corner(s)];
+        for part in 0..side.count as usize {
+            if part == 1 {
+                let id = self.key_id[junction(self.domain, patch, s) as usize];
+                out.push(Pt { id, uv: patch.side_uv(s, 0.5) });
+            }
+            let e = side.parts[part].0 as usize;
+            let r = self.edge_rate[e];
+            let from_end = side.parts[part].1;
+            for k in 1..r {
+                let i = if from_end { r - k } else { k };
+                let t = side_fraction(side, part, f64::from(i) / f64::from(r));
+                out.push(Pt { id: self.edge_first[e] + i - 1, uv: patch.side_uv(s, t) });
+            }
+        }
+        out.push(corner(s + 1));
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,161 @@
+//! How finely each patch is cut.
+//!
+//! A flat triangle through three points of a surface `S(u, v)` differs from
+//! `S` at the same `(u, v)` by at most `M R^2 / 2`, where `R` is the radius
+//! of the smallest circle holding the triangle in `(u, v)` and `M` bounds
+//! `|d^2 S / ds^2|` over it along every unit direction `s` of the
+//! parameter plane (the error of linear interpolation: Waldron, "The
+//! error in linear interpolation at the vertices of a simplex", SIAM J.
+//! Numer. Anal. 35, 1998). On the grid of rate `n` every triangle is half
+//! a square of side `1/n`, `R^2 = 1 / (2 n^2)`, so `n = ceil(sqrt(M / 4T))`
+//! keeps it within `T`. [`initial`] takes `M` from the surface's own
+//! second derivatives at a few points of each patch (the largest
+//! eigenvalue of `[[|S_uu|, |S_uv|], [|S_uv|, |S_vv|]]`), which samples
+//! `M` rather than bounds it; [`measure`] then checks every triangle, and
+//! [`refine`] makes finer the patches where one is over `T` (by the
+//! factor the `n^-2` law asks for), until none is.
+
+use super::domain::{Domain, Patch};
+use super::{Built, grid};
+use crate::subdiv::eval::{Evaluator, Sample};
+use crate::{Error, Result};
+
+/// The finest interior rate a patch may take.
+pub(super) const MAX_RATE: u32 = 1 << 12;
+
+/// Where the second derivatives are sampled: on a triangle its centre,
+/// three points towards its corners and its edges' midpoints; on a square
+/// a 3 x 3 grid.
+const TRI_SAMPLES: [(f64, f64); 7] = [
+    (1.0 / 3.0, 1.0 / 3.0),
+    (1.0 / 6.0, 1.0 / 6.0),
+    (2.0 / 3.0, 1.0 / 6.0),
+    (1.0 / 6.0, 2.0 / 3.0),
+    (0.5, 0.0),
+    (0.5, 0.5),
+    (0.0, 0.5),
+];
+const QUAD_SAMPLES: [f64; 3] = [1.0 / 6.0, 0.5, 5.0 / 6.0];
+
+/// The largest second derivative of `s` along a unit direction, bounded by
+/// the matrix of the norms of `S_uu`, `S_uv`, `S_vv` (0 where the surface
+/// has none, at an extraordinary vertex itself).
+fn second(s: &Sample) -> f64 {
+    let (a, b, c) = (s.duu.length(), s.duv.length(), s.dvv.length());
+    let m = 0.5 * (a + c) + (0.25 * (a - c) * (a - c) + b * b).sqrt();
+    if m.is_finite() { m } else { 0.0 }
+}
+
+/// The rate for a second derivative `m` and tolerance `t`.
+fn rate_for(m: f64, t: f64) -> u32 {
+    let n = (m / (4.0 * t)).sqrt().ceil();
+    if n.is_finite() { (n as u32).clamp(1, MAX_RATE) } else { MAX_RATE }
+}
+
+/// The first rates, from the sampled second derivatives, and the points
+/// evaluated for them.
+pub(super) fn initial(ev: &Evaluator, domain: &Domain, t: f64) -> Result<(Vec<u32>, u64)> {
+    let mut at = Vec::new();
+    let mut starts = Vec::with_capacity(domain.patches.len() + 1);
+    for p in &domain.patches {
+        starts.push(at.len());
+        let f = p.face as usize;
+        if p.quad {
+            for &v in &QUAD_SAMPLES {
+                at.extend(QUAD_SAMPLES.iter().map(|&u| (f, u, v)));
+            }
+        } else {
+            at.extend(TRI_SAMPLES.iter().map(|&(u, v)| (f, u, v)));
+        }
+    }
+    starts.push(at.len());
+    let m = ev.eval_map(&at, true, second)?;
+    let rates = starts.windows(2).map(|w| rate_for(m[w[0]..w[1]].iter().copied().fold(0.0, f64::max), t)).collect();
+    Ok((rates, at.len() as u64))
+}
+
+/// Each domain edge's rate: the finest its patches ask for (a half side
+/// half its patch's rate).
+pub(super) fn edge_rates(domain: &Domain, rate: &[u32]) -> Vec<u32> {
+    let mut out = vec![1u32; domain.edges.len()];
+    for (p, patch) in domain.patches.iter().enumerate() {
+        for side in &patch.sides[..patch.sides()] {
+            let want = rate[p].div_ceil(u32::from(side.count)).max(1);
+            for &(e, _) in &side.parts[..side.count as usize] {
+                out[e as usize] = out[e as usize].max(want);
+            }
+        }
+    }
+    out
+}
+
+/// Whether every side of `patch` has `n` equal segments.
+pub(super) fn is_uniform(patch: &Patch, n: u32, edge_rate: &[u32]) -> bool {
+    patch.sides[..patch.sides()].iter().all(|side| {
+        side.parts[..side.count as usize].iter().all(|&(e, _)| edge_rate[e as usize] * u32::from(side.count) == n)
+    })
+}
+
+/// Bytes a triangle of the tessellation holds while it is made and
+/// measured (its corners with their `(u, v)`, its share of the vertices,
+/// their parameters and positions, the measuring points).
+const BYTES_PER_TRIANGLE: u64 = 200;
+
+/// Refuses rates whose triangles (the grids' count; the rings add a
+/// little) would not fit in `max_memory` (`None`: 80 % of the available
+/// memory).
+pub(super) fn check_budget(domain: &Domain, rate: &[u32], max_memory: Option<u64>, t: f64) -> Result<()> {
+    let count: u64 = domain.patches.iter().zip(rate).map(|(p, &n)| u64::from(n).pow(2) * (1 + u64::from(p.quad))).sum();
+    let limit = max_memory.or_else(crate::mem::default_memory_limit).unwrap_or(u64::MAX);
+    let bytes = count.saturating_mul(BYTES_PER_TRIANGLE);
+    if bytes > limit {
+        return Err(Error::Usage(format!(
+            "a tessellation within {t:e} needs about {count} triangles ({} MB), more than the memory limit of {} MB: raise the tolerance or --max-memory",
+            bytes >> 20,
+            limit >> 20
+        )));
+    }
+    Ok(())
+}
+
+/// Triangles measured per batch of evaluations.
+const BATCH: usize = 1 << 16;
+
+/// The largest distance of each patch's triangles from the limit surface:
+/// at each triangle's centre and its edges' midpoints, the flat triangle's
+/// point against the limit at the same `(u, v)`.
+pub(super) fn measure(ev: &Evaluator, domain: &Domain, built: &Built) -> Result<Vec<f64>> {
+    let mut worst = vec![0.0f64; domain.patches.len()];
+    for chunk in built.triangles.chunks(BATCH) {
+        let mut at = Vec::with_capacity(4 * chunk.len());
+        for (p, [a, b, c]) in chunk {
+            let f = domain.patches[*p as usize].face as usize;
+            let mid = |x: (f64, f64), y: (f64, f64)| (f, 0.5 * (x.0 + y.0), 0.5 * (x.1 + y.1));
+            let third = 1.0 / 3.0;
+            at.push((f, (a.uv.0 + b.uv.0 + c.uv.0) * third, (a.uv.1 + b.uv.1 + c.uv.1) * third));
+            at.extend([mid(a.uv, b.uv), mid(b.uv, c.uv), mid(c.uv, a.uv)]);
+        }
+        let s = ev.eval_map(&at, false, |s| s.position)?;
+        for (k, (p, [a, b, c])) in chunk.iter().enumerate() {
+            let x = |pt: &grid::Pt| built.positions[pt.id as usize];
+            let (xa, xb, xc) = (x(a), x(b), x(c));
+            let flat = [(xa + xb + xc) / 3.0, 0.5 * (xa + xb), 0.5 * (xb + xc), 0.5 * (xc + xa)];
+            let e = (0..4).map(|i| flat[i].distance(s[4 * k + i])).fold(0.0, f64::max);
+            let w = &mut worst[*p as usize];
+            *w = w.max(e);
+        }
+    }
+    Ok(worst)
+}
+
+/// Makes finer each patch with a triangle over `t`: by the factor
+/// `sqrt(error / t)` the `n^-2` law asks for, and a little more.
+pub(super) fn refine(rate: &mut [u32], errors: &[f64], t: f64) {
+    for (n, &e) in rate.iter_mut().zip(errors) {
+        if e > t {
+            let grown = (f64::from(*n) * (e / t).sqrt() * 1.1).ceil();
+            let grown = if grown.is_finite() { grown.min(f64::from(MAX_RATE)) as u32 } else { MAX_RATE };
+            *n = grown.max(*n + 1).min(MAX_RATE);
+        }
+    }
+}
