@@ -114,12 +114,15 @@ fn run(
     }
     let (mut rate, mut evaluations) = rates::initial(&ev, &domain, tolerance)?;
     let mut stats = TessellationStats { tolerance, ..TessellationStats::default() };
+    // a patch is measured again only where its rate or a side's changed
+    let (mut errors, mut before) = (vec![0.0; domain.patches.len()], None::<(Vec<u32>, Vec<u32>)>);
     loop {
         stats.rounds += 1;
         rates::check_budget(&domain, &rate, opts.max_memory, tolerance)?;
-        let built = build(&ev, &domain, &rate)?;
-        let errors = rates::measure(&ev, &domain, &built)?;
-        evaluations += (built.positions.len() + 4 * built.triangles.len()) as u64;
+        let edge_rate = rates::edge_rates(&domain, &rate);
+        let dirty = rates::changed(&domain, (&rate, &edge_rate), before.as_ref().map(|(r, e)| (&r[..], &e[..])));
+        let built = build(&ev, &domain, &rate, &edge_rate)?;
+        evaluations += built.positions.len() as u64 + rates::measure(&ev, &domain, &built, &dirty, &mut errors)?;
         stats.measured = errors.iter().copied().fold(0.0, f64::max);
         stats.met = stats.measured <= tolerance;
         let over = errors.iter().filter(|&&e| e > tolerance).count();
@@ -136,6 +139,7 @@ fn run(
             let faces = built.triangles.iter().map(|(p, _)| domain.patches[*p as usize].face).collect();
             return Ok((built, faces, stats));
         }
+        before = Some((rate.clone(), edge_rate));
         rates::refine(&mut rate, &errors, tolerance);
     }
 }
@@ -150,8 +154,7 @@ struct Built {
 }
 
 /// The points and triangles of `domain` at the patches' rates `rate`.
-fn build(ev: &Evaluator, domain: &Domain, rate: &[u32]) -> Result<Built> {
-    let edge_rate = rates::edge_rates(domain, rate);
+fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Result<Built> {
     let mut points = Points { params: Vec::new(), key_id: vec![u32::MAX; domain.num_keys] };
     // the corners (and the midpoints where a side is two halves)
     for p in &domain.patches {
@@ -178,7 +181,7 @@ fn build(ev: &Evaluator, domain: &Domain, rate: &[u32]) -> Result<Built> {
     let mut inside_first = Vec::with_capacity(domain.patches.len());
     for (p, patch) in domain.patches.iter().enumerate() {
         inside_first.push(points.params.len() as u32);
-        let uniform = rates::is_uniform(patch, rate[p], &edge_rate);
+        let uniform = rates::is_uniform(patch, rate[p], edge_rate);
         for uv in grid::interior(patch.quad, rate[p], uniform) {
             points.params.push((patch.face, uv));
         }
@@ -188,7 +191,7 @@ fn build(ev: &Evaluator, domain: &Domain, rate: &[u32]) -> Result<Built> {
     }
     let at: Vec<(usize, f64, f64)> = points.params.iter().map(|&(f, (u, v))| (f as usize, u, v)).collect();
     let positions = ev.eval_map(&at, false, |s| s.position)?;
-    let sides = Sides { domain, edge_rate: &edge_rate, edge_first: &edge_first, key_id: &points.key_id };
+    let sides = Sides { domain, edge_rate, edge_first: &edge_first, key_id: &points.key_id };
     let triangles = (0..domain.patches.len())
         .into_par_iter()
         .with_min_len(64)

@@ -121,14 +121,38 @@ pub(super) fn check_budget(domain: &Domain, rate: &[u32], max_memory: Option<u64
 /// Triangles measured per batch of evaluations.
 const BATCH: usize = 1 << 16;
 
-/// The largest distance of each patch's triangles from the limit surface:
-/// at each triangle's centre and its edges' midpoints, the flat triangle's
-/// point against the limit at the same `(u, v)`.
-pub(super) fn measure(ev: &Evaluator, domain: &Domain, built: &Built) -> Result<Vec<f64>> {
-    let mut worst = vec![0.0f64; domain.patches.len()];
-    for chunk in built.triangles.chunks(BATCH) {
+/// The patches whose triangles differ from the round before's (`before`:
+/// its patch and edge rates; `None`: every patch).
+pub(super) fn changed(domain: &Domain, (rate, edge_rate): (&[u32], &[u32]), before: Option<(&[u32], &[u32])>) -> Vec<bool> {
+    let Some((old_rate, old_edge)) = before else {
+        return vec![true; domain.patches.len()];
+    };
+    let moved = |e: u32| edge_rate[e as usize] != old_edge[e as usize];
+    domain
+        .patches
+        .iter()
+        .enumerate()
+        .map(|(p, patch)| {
+            rate[p] != old_rate[p]
+                || patch.sides[..patch.sides()].iter().any(|s| s.parts[..s.count as usize].iter().any(|&(e, _)| moved(e)))
+        })
+        .collect()
+}
+
+/// The largest distance of each `dirty` patch's triangles from the limit
+/// surface, into `worst`: at each triangle's centre and its edges'
+/// midpoints, the flat triangle's point against the limit at the same
+/// `(u, v)`. Returns the points evaluated.
+pub(super) fn measure(ev: &Evaluator, domain: &Domain, built: &Built, dirty: &[bool], worst: &mut [f64]) -> Result<u64> {
+    for (p, w) in worst.iter_mut().enumerate() {
+        if dirty[p] {
+            *w = 0.0;
+        }
+    }
+    let todo: Vec<&(u32, [grid::Pt; 3])> = built.triangles.iter().filter(|(p, _)| dirty[*p as usize]).collect();
+    for chunk in todo.chunks(BATCH) {
         let mut at = Vec::with_capacity(4 * chunk.len());
-        for (p, [a, b, c]) in chunk {
+        for (p, [a, b, c]) in chunk.iter().copied() {
             let f = domain.patches[*p as usize].face as usize;
             let mid = |x: (f64, f64), y: (f64, f64)| (f, 0.5 * (x.0 + y.0), 0.5 * (x.1 + y.1));
             let third = 1.0 / 3.0;
@@ -136,7 +160,7 @@ pub(super) fn measure(ev: &Evaluator, domain: &Domain, built: &Built) -> Result<
             at.extend([mid(a.uv, b.uv), mid(b.uv, c.uv), mid(c.uv, a.uv)]);
         }
         let s = ev.eval_map(&at, false, |s| s.position)?;
-        for (k, (p, [a, b, c])) in chunk.iter().enumerate() {
+        for (k, (p, [a, b, c])) in chunk.iter().copied().enumerate() {
             let x = |pt: &grid::Pt| built.positions[pt.id as usize];
             let (xa, xb, xc) = (x(a), x(b), x(c));
             let flat = [(xa + xb + xc) / 3.0, 0.5 * (xa + xb), 0.5 * (xb + xc), 0.5 * (xc + xa)];
@@ -145,7 +169,7 @@ pub(super) fn measure(ev: &Evaluator, domain: &Domain, built: &Built) -> Result<
             *w = w.max(e);
         }
     }
-    Ok(worst)
+    Ok(4 * todo.len() as u64)
 }
 
 /// Makes finer each patch with a triangle over `t`: by the factor
