@@ -18,7 +18,7 @@ pub struct TessellateArgs {
     /// The largest distance a triangle may be from the limit surface: a
     /// length in the model's units, or a fraction of the bounding box's
     /// diagonal with an `x` after it (`1e-4x`).
-    #[arg(long, short = 't', value_name = "T", default_value = "1e-4x", value_parser = parse_tolerance)]
+    #[arg(long, short = 't', value_name = "T", default_value = "1e-4x", allow_hyphen_values = true, value_parser = parse_tolerance)]
     tolerance: Tolerance,
     /// Also write each output vertex's control face and `(u, v)`, one `f u
     /// v` line per vertex (a points file `subdiv eval` reads: attributes
@@ -50,7 +50,9 @@ enum Tolerance {
 fn parse_tolerance(s: &str) -> std::result::Result<Tolerance, String> {
     let (number, relative) = s.strip_suffix('x').map_or((s, false), |n| (n, true));
     match number.trim().parse::<f64>() {
-        Ok(t) if t.is_finite() && t > 0.0 => Ok(if relative { Tolerance::OfDiagonal(t) } else { Tolerance::Absolute(t) }),
+        Ok(t) if t.is_finite() && t > 0.0 => {
+            Ok(if relative { Tolerance::OfDiagonal(t) } else { Tolerance::Absolute(t) })
+        }
         _ => Err(format!("'{s}' is not a positive distance (a number, or a fraction of the diagonal such as 1e-4x)")),
     }
 }
@@ -103,13 +105,20 @@ pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
             s.rounds
         );
     }
-    println!("{} -> {} ({} triangles within {:e})", a.input.display(), a.output.display(), out.triangles.len(), s.tolerance);
+    println!(
+        "{} -> {} ({} triangles within {:e})",
+        a.input.display(),
+        a.output.display(),
+        out.triangles.len(),
+        s.tolerance
+    );
     Ok(())
 }
 
 /// The length of the bounding box's diagonal.
 fn diagonal(points: &[glam::DVec3]) -> f64 {
-    let (lo, hi) = points.iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let (lo, hi) =
+        points.iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
     if points.is_empty() { 0.0 } else { lo.distance(hi) }
 }
 

@@ -53,10 +53,10 @@ pub use parts::{Part, parts_by_options, subdivide_parts};
 pub use precise::{PlanF64, plan_f64};
 pub use refiner::{Refiner, Scalar};
 pub use scheme::{Options, Scheme, Stats};
-pub use tess::{Tessellation, TessellationStats, tessellate};
 pub(crate) use scheme::{RulesFn, ms, with_rules};
 #[cfg(feature = "viewer")]
 pub(crate) use sizes::ControlCounts;
+pub use tess::{Tessellation, TessellationStats, tessellate};
 
 /// Refines `mesh` `levels` times with `scheme`.
 ///

@@ -26,9 +26,9 @@ mod vertices;
 
 pub use points::{Domain, EDGE_SLACK, parse_points_in};
 
-pub use vertices::{poly_vertex_params, vertex_samples};
 #[cfg(test)]
 pub(crate) use vertices::vertex_params;
+pub use vertices::{poly_vertex_params, vertex_samples};
 
 use crate::mesh::Mesh;
 use crate::subdiv::{Options, Scheme};

@@ -154,7 +154,8 @@ pub(super) fn ptex(mesh: &PolyMesh) -> Domain {
             }
         }
     }
-    let mut b = PtexBuilder { pt, number: &number, halved: &halved, nv, ne, edges: Edges::default(), patches: Vec::new() };
+    let mut b =
+        PtexBuilder { pt, number: &number, halved: &halved, nv, ne, edges: Edges::default(), patches: Vec::new() };
     for (p, &(f, corner)) in ptex_faces(pt).iter().enumerate() {
         if !pt.is_hole(f) {
             b.patch(p as u32, f, corner);

@@ -83,7 +83,13 @@ const MAX_ROUNDS: u32 = 8;
 /// that is not a positive finite number, a face the evaluator refuses
 /// (naming it), or a tessellation that would need more memory than the
 /// budget.
-pub fn tessellate(mesh: &Mesh, control: &[DVec3], scheme: Scheme, opts: &Options, tolerance: f64) -> Result<Tessellation> {
+pub fn tessellate(
+    mesh: &Mesh,
+    control: &[DVec3],
+    scheme: Scheme,
+    opts: &Options,
+    tolerance: f64,
+) -> Result<Tessellation> {
     let (built, faces, stats) = run(mesh, control, scheme, opts, tolerance)?;
     let triangles = built.triangles.iter().map(|(_, t)| t.map(|p| p.id)).collect();
     Ok(Tessellation { positions: built.positions, triangles, faces, params: built.params, stats })
@@ -248,7 +254,8 @@ impl Sides<'_> {
     /// Side `s` of `patch`: its points from corner `s` to corner `s + 1`.
     fn points(&self, patch: &domain::Patch, s: usize) -> Vec<Pt> {
         let side = patch.sides[s];
-        let corner = |k: usize| Pt { id: self.key_id[patch.corners[k % patch.sides()] as usize], uv: patch.corner_uv(k) };
+        let corner =
+            |k: usize| Pt { id: self.key_id[patch.corners[k % patch.sides()] as usize], uv: patch.corner_uv(k) };
         let mut out = vec![corner(s)];
         for part in 0..side.count as usize {
             if part == 1 {

@@ -123,7 +123,11 @@ const BATCH: usize = 1 << 16;
 
 /// The patches whose triangles differ from the round before's (`before`:
 /// its patch and edge rates; `None`: every patch).
-pub(super) fn changed(domain: &Domain, (rate, edge_rate): (&[u32], &[u32]), before: Option<(&[u32], &[u32])>) -> Vec<bool> {
+pub(super) fn changed(
+    domain: &Domain,
+    (rate, edge_rate): (&[u32], &[u32]),
+    before: Option<(&[u32], &[u32])>,
+) -> Vec<bool> {
     let Some((old_rate, old_edge)) = before else {
         return vec![true; domain.patches.len()];
     };
@@ -134,7 +138,9 @@ pub(super) fn changed(domain: &Domain, (rate, edge_rate): (&[u32], &[u32]), befo
         .enumerate()
         .map(|(p, patch)| {
             rate[p] != old_rate[p]
-                || patch.sides[..patch.sides()].iter().any(|s| s.parts[..s.count as usize].iter().any(|&(e, _)| moved(e)))
+                || patch.sides[..patch.sides()]
+                    .iter()
+                    .any(|s| s.parts[..s.count as usize].iter().any(|&(e, _)| moved(e)))
         })
         .collect()
 }
@@ -143,7 +149,13 @@ pub(super) fn changed(domain: &Domain, (rate, edge_rate): (&[u32], &[u32]), befo
 /// surface, into `worst`: at each triangle's centre and its edges'
 /// midpoints, the flat triangle's point against the limit at the same
 /// `(u, v)`. Returns the points evaluated.
-pub(super) fn measure(ev: &Evaluator, domain: &Domain, built: &Built, dirty: &[bool], worst: &mut [f64]) -> Result<u64> {
+pub(super) fn measure(
+    ev: &Evaluator,
+    domain: &Domain,
+    built: &Built,
+    dirty: &[bool],
+    worst: &mut [f64],
+) -> Result<u64> {
     for (p, w) in worst.iter_mut().enumerate() {
         if dirty[p] {
             *w = 0.0;
