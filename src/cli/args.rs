@@ -486,3 +486,32 @@ pub enum Precision {
     /// Double precision.
     F64,
 }
+
+/// A model read for its exact limit surface (`eval`, `tessellate`): the
+/// mesh with the sharp features the flags and the file state, the scheme
+/// and options over the file's, and the control points in `precision`
+/// (f64: the file's own digits where it has them).
+pub(crate) struct LimitInput {
+    pub mesh: Mesh,
+    pub scheme: SchemeArgs,
+    pub control: Vec<glam::DVec3>,
+}
+
+impl LimitInput {
+    /// Reads `input` as `from` and `scheme` say.
+    pub(crate) fn read(
+        input: &Path,
+        from: &InputArgs,
+        scheme: &SchemeArgs,
+        precision: Precision,
+    ) -> Result<LimitInput> {
+        let loaded = from.read(input, false)?;
+        let scheme = scheme.over(loaded.attributes.options);
+        let mesh = scheme.features.apply(loaded.mesh);
+        let control = match (precision, loaded.precise) {
+            (Precision::F64, Some(p)) => p,
+            _ => mesh.positions.iter().map(|p| p.as_dvec3()).collect(),
+        };
+        Ok(LimitInput { mesh, scheme, control })
+    }
+}

@@ -1,7 +1,7 @@
 //! `subdiv eval`: the exact Loop or Catmull-Clark limit surface at given
 //! parameter points.
 
-use super::args::{InputArgs, Precision, SchemeArgs};
+use super::args::{InputArgs, LimitInput, Precision, SchemeArgs};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 use subdiv::Evaluator;
@@ -46,13 +46,7 @@ pub struct EvalArgs {
 
 /// `subdiv eval`.
 pub(crate) fn eval(a: &EvalArgs) -> Result<()> {
-    let loaded = a.from.read(&a.input, false)?;
-    let scheme = a.scheme.over(loaded.attributes.options);
-    let mesh = scheme.features.apply(loaded.mesh);
-    let control: Vec<glam::DVec3> = match (a.precision, loaded.precise) {
-        (Precision::F64, Some(p)) => p,
-        _ => mesh.positions.iter().map(|p| p.as_dvec3()).collect(),
-    };
+    let LimitInput { mesh, scheme, control } = LimitInput::read(&a.input, &a.from, &a.scheme, a.precision)?;
     let limits = a.from.limits.limits()?;
     let max_points = limits.get("vertices").unwrap_or(u64::MAX);
     let shown = a.points.display().to_string();

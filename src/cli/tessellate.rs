@@ -1,7 +1,7 @@
 //! `subdiv tessellate`: the exact limit surface as a crack-free triangle
 //! mesh within a tolerance (docs/tessellation.md).
 
-use super::args::{InputArgs, Precision, SchemeArgs};
+use super::args::{InputArgs, LimitInput, Precision, SchemeArgs};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use subdiv::mesh::Faces;
@@ -59,13 +59,7 @@ fn parse_tolerance(s: &str) -> std::result::Result<Tolerance, String> {
 
 /// `subdiv tessellate`.
 pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
-    let loaded = a.from.read(&a.input, false)?;
-    let scheme = a.scheme.over(loaded.attributes.options);
-    let mesh = scheme.features.apply(loaded.mesh);
-    let control: Vec<glam::DVec3> = match (a.precision, loaded.precise) {
-        (Precision::F64, Some(p)) => p,
-        _ => mesh.positions.iter().map(|p| p.as_dvec3()).collect(),
-    };
+    let LimitInput { mesh, scheme, control } = LimitInput::read(&a.input, &a.from, &a.scheme, a.precision)?;
     let tolerance = match a.tolerance {
         Tolerance::Absolute(t) => t,
         Tolerance::OfDiagonal(f) => f * diagonal(&control),
