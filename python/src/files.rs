@@ -169,9 +169,9 @@ pub type FileNames = (Option<String>, String, Option<String>, Option<String>, Op
 /// output's vertices and faces, the bytes written and the seconds taken.
 type FileDone = (String, u32, usize, usize, usize, usize, Option<u64>, f64);
 
-/// `subdiv.subdivide_file`'s work: `input` read, refined `levels` times by
-/// the options it states under the `names` given, written to `output` (by
-/// extension, atomically), as `subdiv subdivide` and every file of
+/// `subdiv.subdivide_file`'s work: `files` `(input, output)`, `input`
+/// read, refined `levels` times by the options it states under the
+/// `names` given, written to `output` (by extension, atomically), as `subdiv subdivide` and every file of
 /// `subdiv batch` do: the library's one call, [`subdiv::subdivide_file`],
 /// with the GIL released. `flags` are `(repair, f64)`; `time` and
 /// `threads` as for [`load_file`].
@@ -182,8 +182,7 @@ type FileDone = (String, u32, usize, usize, usize, usize, Option<u64>, f64);
 #[pyfunction]
 pub fn subdivide_file(
     py: Python<'_>,
-    input: PathBuf,
-    output: PathBuf,
+    files: (PathBuf, PathBuf),
     levels: u32,
     names: FileNames,
     flags: (bool, bool),
@@ -194,6 +193,7 @@ pub fn subdivide_file(
         return Err(crate::guard::error("time must be a finite time code"));
     }
     let job = file_job(&names, levels, flags, time).map_err(|m| crate::guard::error(&m))?;
+    let (input, output) = files;
     run(py, threads, || {
         let t0 = std::time::Instant::now();
         let s = subdiv::subdivide_file(&input, &output, &job, &mut |_| Ok(())).map_err(|e| naming(&input, &e))?;
@@ -204,7 +204,12 @@ pub fn subdivide_file(
 }
 
 /// The library's job for these names, levels and flags (`(repair, f64)`).
-fn file_job(names: &FileNames, levels: u32, (repair, f64): (bool, bool), time: Option<f64>) -> Result<subdiv::FileJob, Msg> {
+fn file_job(
+    names: &FileNames,
+    levels: u32,
+    (repair, f64): (bool, bool),
+    time: Option<f64>,
+) -> Result<subdiv::FileJob, Msg> {
     use crate::options::parse;
     let (scheme, beta, boundary, fvar, triangles, creasing) = names;
     let flags = subdiv::Flags {

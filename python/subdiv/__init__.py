@@ -629,7 +629,7 @@ def subdivide_file(input, output, levels=1, scheme=None, *, beta="loop", boundar
     t = None if time is None else float(time)
     in_path, out_path = os.fspath(input), os.fspath(output)
     scheme_done, levels_done, nv, nf, v2, f2, size, seconds = _subdiv.subdivide_file(
-        in_path, out_path, _checks.levels(levels), names, (bool(repair), precision == "f64"), t,
+        (in_path, out_path), _checks.levels(levels), names, (bool(repair), precision == "f64"), t,
         _checks.threads(threads))
     return {"input": in_path, "output": out_path, "status": "done", "scheme": scheme_done, "levels": levels_done,
             "input_vertices": nv, "input_faces": nf, "vertices": v2, "faces": f2, "output_bytes": size,

@@ -24,13 +24,13 @@ mod inputs;
 mod manifest;
 
 use super::mesh_ops::{self, RefineArgs, Summary};
-use subdiv::Demand;
 use manifest::{Manifest, Record, Status};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 use std::time::Instant;
+use subdiv::Demand;
 
 /// Bytes reserved for reading a model, per byte of the file (an OBJ's
 /// faces take about 5 bytes of tables per byte of text; 8 for headroom).
