@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""A folder of models refined to level 2 and written, eight ways: a serial
+"""A folder of models refined to level 2 and written, nine ways: a serial
 Python loop of load, subdivide and save, the same in a ThreadPoolExecutor of
 2 threads, a serial loop and a ThreadPoolExecutor(2) of the one native call
 `subdivide_file`, Dask's LocalCluster of 2 worker processes a task per file
 (load, subdivide, save) and by docs/dask.md's recipe (subdivide_file, tasks of
 several files), a loop of `subdiv subdivide` processes, and `subdiv batch`
-where the binary has it.
+on 1 thread and on all cores where the binary has it.
 
     python3 python/bench_folder.py make DIR [--count 300]
     python3 python/bench_folder.py run DIR [--levels 2] [--rounds 3] [--cli PATH]
@@ -202,9 +202,10 @@ def way(name, folder, out_dir, levels, cli):
             r = subprocess.run([cli, "subdivide", p, out, "-n", str(levels), "--json"], capture_output=True, text=True)
             done.append((json.loads(r.stdout).get("faces", 0) if r.returncode == 0 and r.stdout.strip() else 0,
                          None if r.returncode == 0 else r.stderr))
-    elif name == "subdiv batch":
+    elif name.startswith("subdiv batch"):
+        threads = ["--threads", "1"] if name.endswith("(1 thread)") else []
         t = time.perf_counter()
-        r = subprocess.run([cli, "batch", folder, "--out", out_dir, "-n", str(levels), "--format", "ply", "--json"],
+        r = subprocess.run([cli, *threads, "batch", folder, "--out", out_dir, "-n", str(levels), "--format", "ply", "--json"],
                            capture_output=True, text=True)
         seconds = time.perf_counter() - t
         summary = json.loads(r.stdout) if r.stdout.strip().startswith("{") else {}
@@ -222,7 +223,7 @@ def run(folder, levels, rounds, cli):
     if cli:
         ways.append("subdiv subdivide loop")
         if subprocess.run([cli, "batch", "--help"], capture_output=True).returncode == 0:
-            ways.append("subdiv batch")
+            ways += ["subdiv batch (1 thread)", "subdiv batch"]
     paths = models(folder)
     best = {}
     for _ in range(rounds):
