@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""A folder of models refined to level 2 and written, nine ways: a serial
+"""A folder of models refined to level 2 and written, ten ways: a serial
 Python loop of load, subdivide and save, the same in a ThreadPoolExecutor of
 2 threads, a serial loop and a ThreadPoolExecutor(2) of the one native call
 `subdivide_file`, Dask's LocalCluster of 2 worker processes a task per file
-(load, subdivide, save) and by docs/dask.md's recipe (subdivide_file, tasks of
-several files), a loop of `subdiv subdivide` processes, and `subdiv batch`
+(load, subdivide and save; subdivide_file) and by docs/dask.md's recipe
+(subdivide_file, tasks of several files), a loop of `subdiv subdivide` processes, and `subdiv batch`
 on 1 thread and on all cores where the binary has it.
 
     python3 python/bench_folder.py make DIR [--count 300]
@@ -157,6 +157,8 @@ def dask_way(name, paths, out_dir, levels):
         t = time.perf_counter()
         if name == "Dask, a task per file (arrays)":
             done = client.gather(client.map(refine_to, paths, out_dir=out_dir, levels=levels))
+        elif name == "Dask, a task per file (subdivide_file)":
+            done = client.gather(client.map(native_one, paths, out_dir=out_dir, levels=levels))
         else:
             chunks = client.gather(client.map(refine_files, tasks(paths), out_dir=out_dir, levels=levels))
             done = [(line.get("faces", 0), line.get("error")) for chunk in chunks for line in chunk]
@@ -219,7 +221,8 @@ def way(name, folder, out_dir, levels, cli):
 
 def run(folder, levels, rounds, cli):
     ways = ["serial loop", "ThreadPoolExecutor(2)", "serial subdivide_file", "ThreadPoolExecutor(2) subdivide_file",
-            "Dask, a task per file (arrays)", "Dask, the recipe (subdivide_file, tasks of 2 MB)"]
+            "Dask, a task per file (arrays)", "Dask, a task per file (subdivide_file)",
+            "Dask, the recipe (subdivide_file, tasks of 2 MB)"]
     if cli:
         ways.append("subdiv subdivide loop")
         if subprocess.run([cli, "batch", "--help"], capture_output=True).returncode == 0:
