@@ -1,8 +1,9 @@
 //! `subdiv batch`: every model of folders, files and globs refined as
 //! `subdiv subdivide` refines one (the same function,
-//! [`mesh_ops::subdivide_file`]), several at once within the memory
-//! budget, each result a line of the manifest ([`manifest`]) that a run
-//! started again resumes from.
+//! [`mesh_ops::subdivide_file`], over the library's
+//! [`subdiv::subdivide_file`]), several at once within the memory budget,
+//! each result a line of the manifest ([`manifest`]) that a run started
+//! again resumes from.
 //!
 //! The scheduler: `--threads` workers (default: one per core) take the
 //! files in order. Taking a file is a turn, held by one worker at a time:
