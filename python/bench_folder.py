@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
-"""A folder of models refined to level 2 and written, five ways: a serial
-Python loop, a ThreadPoolExecutor of 2 threads, Dask's LocalCluster of 2
-worker processes (docs/dask.md), a loop of `subdiv subdivide` processes, and
-`subdiv batch` where the binary has it.
+"""A folder of models refined to level 2 and written, ten ways: a serial
+Python loop of load, subdivide and save, the same in a ThreadPoolExecutor of
+2 threads, a serial loop and a ThreadPoolExecutor(2) of the one native call
+`subdivide_file`, Dask's LocalCluster of 2 worker processes a task per file
+(load, subdivide and save; subdivide_file) and by docs/dask.md's recipe
+(subdivide_file, tasks of several files), a loop of `subdiv subdivide` processes, and `subdiv batch`
+on 1 thread and on all cores where the binary has it.
 
     python3 python/bench_folder.py make DIR [--count 300]
     python3 python/bench_folder.py run DIR [--levels 2] [--rounds 3] [--cli PATH]
@@ -105,6 +108,64 @@ def refine_to(path, out_dir, levels=2, threads=1):
         return 0, str(e)
 
 
+def refine_files(paths, out_dir, levels=2):
+    """docs/dask.md's function: each file of `paths` refined by the options
+    it states and written into `out_dir` as PLY, one native call each: its
+    line, or its error."""
+    lines = []
+    for path in paths:
+        out = os.path.join(out_dir, os.path.basename(path) + ".ply")
+        try:
+            lines.append(subdiv.subdivide_file(path, out, levels, threads=1))
+        except subdiv.SubdivError as e:
+            lines.append({"input": path, "output": out, "status": "failed", "error": str(e)})
+    return lines
+
+
+def tasks(paths, task_bytes=2 << 20):
+    """docs/dask.md's chunks: consecutive files of about `task_bytes` bytes
+    together (a larger file alone), so that each task runs long against
+    Dask's own work per task."""
+    out, size = [], task_bytes
+    for p in paths:
+        n = os.path.getsize(p)
+        if size + n > task_bytes:
+            out.append([])
+            size = 0
+        out[-1].append(p)
+        size += n
+    return out
+
+
+def native_one(path, out_dir, levels):
+    """One file by the native call: (faces, error)."""
+    line = refine_files([path], out_dir, levels)[0]
+    return line.get("faces", 0), line.get("error")
+
+
+def dask_way(name, paths, out_dir, levels):
+    """A Dask way: its seconds, the cluster's start and (faces, error) per file."""
+    import logging
+
+    from dask.distributed import Client, LocalCluster
+
+    t0 = time.perf_counter()
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                      silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
+        client.wait_for_workers(2)
+        start = time.perf_counter() - t0
+        t = time.perf_counter()
+        if name == "Dask, a task per file (arrays)":
+            done = client.gather(client.map(refine_to, paths, out_dir=out_dir, levels=levels))
+        elif name == "Dask, a task per file (subdivide_file)":
+            done = client.gather(client.map(native_one, paths, out_dir=out_dir, levels=levels))
+        else:
+            chunks = client.gather(client.map(refine_files, tasks(paths), out_dir=out_dir, levels=levels))
+            done = [(line.get("faces", 0), line.get("error")) for chunk in chunks for line in chunk]
+        seconds = time.perf_counter() - t
+    return seconds, start, done
+
+
 def models(folder):
     return sorted(p for p in glob.glob(os.path.join(folder, "*")) if p.endswith(KINDS))
 
@@ -122,19 +183,17 @@ def way(name, folder, out_dir, levels, cli):
         with concurrent.futures.ThreadPoolExecutor(2) as pool:
             t = time.perf_counter()
             done = list(pool.map(lambda p: refine_to(p, out_dir, levels), paths))
-    elif name == "Dask LocalCluster(2)":
-        import logging
+    elif name == "serial subdivide_file":
+        t = time.perf_counter()
+        done = [native_one(p, out_dir, levels) for p in paths]
+    elif name == "ThreadPoolExecutor(2) subdivide_file":
+        import concurrent.futures
 
-        from dask.distributed import Client, LocalCluster
-
-        t0 = time.perf_counter()
-        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                          silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
-            client.wait_for_workers(2)
-            start = time.perf_counter() - t0
+        with concurrent.futures.ThreadPoolExecutor(2) as pool:
             t = time.perf_counter()
-            done = client.gather(client.map(refine_to, paths, out_dir=out_dir, levels=levels))
-            seconds = time.perf_counter() - t
+            done = list(pool.map(lambda p: native_one(p, out_dir, levels), paths))
+    elif name.startswith("Dask"):
+        seconds, start, done = dask_way(name, paths, out_dir, levels)
         return {"seconds": seconds, "start": start, "faces": sum(f for f, _ in done),
                 "failed": sum(e is not None for _, e in done)}
     elif name == "subdiv subdivide loop":
@@ -145,9 +204,10 @@ def way(name, folder, out_dir, levels, cli):
             r = subprocess.run([cli, "subdivide", p, out, "-n", str(levels), "--json"], capture_output=True, text=True)
             done.append((json.loads(r.stdout).get("faces", 0) if r.returncode == 0 and r.stdout.strip() else 0,
                          None if r.returncode == 0 else r.stderr))
-    elif name == "subdiv batch":
+    elif name.startswith("subdiv batch"):
+        threads = ["--threads", "1"] if name.endswith("(1 thread)") else []
         t = time.perf_counter()
-        r = subprocess.run([cli, "batch", folder, "--out", out_dir, "-n", str(levels), "--format", "ply", "--json"],
+        r = subprocess.run([cli, *threads, "batch", folder, "--out", out_dir, "-n", str(levels), "--format", "ply", "--json"],
                            capture_output=True, text=True)
         seconds = time.perf_counter() - t
         summary = json.loads(r.stdout) if r.stdout.strip().startswith("{") else {}
@@ -160,11 +220,13 @@ def way(name, folder, out_dir, levels, cli):
 
 
 def run(folder, levels, rounds, cli):
-    ways = ["serial loop", "ThreadPoolExecutor(2)", "Dask LocalCluster(2)"]
+    ways = ["serial loop", "ThreadPoolExecutor(2)", "serial subdivide_file", "ThreadPoolExecutor(2) subdivide_file",
+            "Dask, a task per file (arrays)", "Dask, a task per file (subdivide_file)",
+            "Dask, the recipe (subdivide_file, tasks of 2 MB)"]
     if cli:
         ways.append("subdiv subdivide loop")
         if subprocess.run([cli, "batch", "--help"], capture_output=True).returncode == 0:
-            ways.append("subdiv batch")
+            ways += ["subdiv batch (1 thread)", "subdiv batch"]
     paths = models(folder)
     best = {}
     for _ in range(rounds):

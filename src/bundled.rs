@@ -115,16 +115,30 @@ pub fn load(path: &Path) -> crate::Result<crate::Mesh> {
 }
 
 /// Reads the mesh a model argument names (a bundled model or a file; see
-/// [`io::read`]).
+/// [`io::read`]), telling the log (at info) what it read.
 ///
 /// # Errors
 /// As [`io::read`]; an unknown `bundled:` name.
 pub fn read(arg: &Path, opts: &ReadOptions) -> Result<Loaded> {
-    if let Some(m) = from_arg(arg) {
-        return m.read(opts);
-    }
-    check_prefix(arg)?;
-    io::read(io::Source::File(arg), opts)
+    let loaded = match from_arg(arg) {
+        Some(m) => m.read(opts)?,
+        None => {
+            check_prefix(arg)?;
+            io::read(io::Source::File(arg), opts)?
+        }
+    };
+    let (m, a) = (&loaded.mesh, &loaded.attributes);
+    log::info!(
+        "read {} ({}): {} vertices, {} triangles{}{}{}",
+        arg.display(),
+        loaded.format.name,
+        m.positions.len(),
+        m.ct.num_triangles(),
+        if loaded.notes.fanned > 0 { format!(" ({} polygons fanned)", loaded.notes.fanned) } else { String::new() },
+        if a.uv.is_some() { ", texture coordinates" } else { "" },
+        if a.colors.is_some() { ", colours" } else { "" }
+    );
+    Ok(loaded)
 }
 
 /// Loads the `.bzc` curve a model argument names (a file within `limits`).

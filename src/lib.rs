@@ -32,7 +32,8 @@
 //! mesh, attributes and f64 points, for a destination
 //! ([`io::destination`]); it picks the path (a [`Refiner`] for attributes,
 //! the faces alone, polygons, f64) and [`io::save_refined`] writes what it
-//! made.
+//! made; [`subdivide_file`] reads a file, refines it so and writes it (the
+//! command line's `subdivide` and `batch`, Python's `subdivide_file`).
 //!
 //! Vocabulary (as OpenSubdiv): a *mask* gives a new vertex in terms of the
 //! previous level, a *stencil* in terms of any earlier level; *even* points
@@ -70,9 +71,10 @@ pub use mesh::{BORDER, CornerTable, Mesh};
 pub use subdiv::eval::Evaluator;
 pub use subdiv::tables::StencilPlan;
 pub use subdiv::{
-    Cage, Control, Destination, FacesOnly, LoopBeta, Model, Options, Part, Refinement, Refiner, Scalar, Scheme, Stats,
-    Subdivided, Surface, Tessellation, TessellationStats, parts_by_options, subdivide, subdivide_f64, subdivide_faces,
-    subdivide_faces_f64, subdivide_model, subdivide_model_as, subdivide_parts, tessellate,
+    Cage, Control, Demand, Destination, FacesOnly, FileJob, FileSummary, Flags, LoopBeta, Model, Options, Part,
+    Refinement, Refiner, Scalar, Scheme, Stats, Subdivided, Surface, Tessellation, TessellationStats, parts_by_options,
+    subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64, subdivide_file, subdivide_model,
+    subdivide_model_as, subdivide_parts, tessellate,
 };
 
 #[cfg(feature = "viewer")]

@@ -384,7 +384,7 @@ fn quiet_and_verbose_set_what_stderr_shows() {
     let quiet = stderr(&["-q"]);
     assert!(quiet.is_empty(), "-q: {quiet}");
     let verbose = stderr(&["-v"]);
-    assert!(verbose.contains("subdiv: info: [subdiv::cli::args] read ") && verbose.contains("9 vertices"), "{verbose}");
+    assert!(verbose.contains("subdiv: info: [subdiv::bundled] read ") && verbose.contains("9 vertices"), "{verbose}");
     // errors are printed whatever the level
     let o = bin().args(["-q", "subdivide", "/nonexistent.obj", out.to_str().unwrap()]).output().unwrap();
     assert!(String::from_utf8_lossy(&o.stderr).contains("No such file"));

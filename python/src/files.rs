@@ -159,3 +159,79 @@ fn write(path: &std::path::Path, v: &[f64], c: &[i64], s: &[i64]) -> Result<(), 
         io::save_with(path, &pm, &Attributes::default()).map_err(msg)
     }
 }
+
+/// The option names of [`subdivide_file`]: scheme, beta, boundary, fvar,
+/// triangles, creasing (`None`: the file's tag, else the default).
+pub type FileNames = (Option<String>, String, Option<String>, Option<String>, Option<String>, Option<String>);
+
+/// What [`subdivide_file`] did: the scheme refined by (as `subdiv
+/// subdivide` says it), the levels, the input's vertices and faces, the
+/// output's vertices and faces, the bytes written and the seconds taken.
+type FileDone = (String, u32, usize, usize, usize, usize, Option<u64>, f64);
+
+/// `subdiv.subdivide_file`'s work: `files` `(input, output)`, `input`
+/// read, refined `levels` times by the options it states under the
+/// `names` given, written to `output` (by extension, atomically), as `subdiv subdivide` and every file of
+/// `subdiv batch` do: the library's one call, [`subdiv::subdivide_file`],
+/// with the GIL released. `flags` are `(repair, f64)`; `time` and
+/// `threads` as for [`load_file`].
+///
+/// # Errors
+/// `SubdivError` with the library's message, naming `input` (prefixed
+/// where the library's message names only the output or nothing).
+#[pyfunction]
+pub fn subdivide_file(
+    py: Python<'_>,
+    files: (PathBuf, PathBuf),
+    levels: u32,
+    names: FileNames,
+    flags: (bool, bool),
+    time: Option<f64>,
+    threads: Option<usize>,
+) -> PyResult<FileDone> {
+    if time.is_some_and(|t| !t.is_finite()) {
+        return Err(crate::guard::error("time must be a finite time code"));
+    }
+    let job = file_job(&names, levels, flags, time).map_err(|m| crate::guard::error(&m))?;
+    let (input, output) = files;
+    run(py, threads, || {
+        let t0 = std::time::Instant::now();
+        let s = subdiv::subdivide_file(&input, &output, &job, &mut |_| Ok(())).map_err(|e| naming(&input, &e))?;
+        let bytes = std::fs::metadata(&output).ok().map(|m| m.len());
+        let seconds = t0.elapsed().as_secs_f64();
+        Ok((s.scheme, s.levels, s.input_vertices, s.input_faces, s.vertices, s.faces, bytes, seconds))
+    })
+}
+
+/// The library's job for these names, levels and flags (`(repair, f64)`).
+fn file_job(
+    names: &FileNames,
+    levels: u32,
+    (repair, f64): (bool, bool),
+    time: Option<f64>,
+) -> Result<subdiv::FileJob, Msg> {
+    use crate::options::parse;
+    let (scheme, beta, boundary, fvar, triangles, creasing) = names;
+    let flags = subdiv::Flags {
+        scheme: scheme.as_deref().map(parse).transpose()?,
+        loop_beta: parse(beta)?,
+        boundary: boundary.as_deref().map(parse).transpose()?,
+        uv: fvar.as_deref().map(parse).transpose()?,
+        triangles: triangles.as_deref().map(parse).transpose()?,
+        creasing: creasing.as_deref().map(parse).transpose()?,
+        ..subdiv::Flags::default()
+    };
+    let topology = if repair { Topology::Repair } else { Topology::Refuse };
+    let read = ReadOptions { topology, time, ..ReadOptions::default() };
+    Ok(subdiv::FileJob { read, flags, levels, f64 })
+}
+
+/// The library's message `e`, naming `input` first where it does not.
+fn naming(input: &std::path::Path, e: &subdiv::Error) -> Msg {
+    let m = e.to_string();
+    let shown = input.display().to_string();
+    match m.contains(&shown) {
+        true => m,
+        false => format!("{}: {m}", subdiv::clean_error(&shown, 200)),
+    }
+}

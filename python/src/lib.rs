@@ -33,6 +33,7 @@ fn _subdiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(files::load_file, m)?)?;
     m.add_class::<refiner::NativeRefiner>()?;
     m.add_function(wrap_pyfunction!(files::save_file, m)?)?;
+    m.add_function(wrap_pyfunction!(files::subdivide_file, m)?)?;
     #[cfg(feature = "viewer")]
     {
         m.add_function(wrap_pyfunction!(view::render_image, m)?)?;

@@ -18,6 +18,8 @@ raise :class:`SubdivError`.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from . import _checks, _subdiv
@@ -36,6 +38,7 @@ __all__ = [
     "limit",
     "load",
     "save",
+    "subdivide_file",
     "render",
     "view",
     "TRIANGLE_SCHEMES",
@@ -562,6 +565,75 @@ def save(path, vertices, faces, *, threads=None) -> None:
     v = _checks.vertices(vertices)
     corners, starts = _checks.faces(faces)
     _subdiv.save_file(path, (v, corners, starts), _checks.threads(threads))
+
+
+def subdivide_file(input, output, levels=1, scheme=None, *, beta="loop", boundary=None, fvar=None, triangles=None,
+                   creasing=None, repair=False, precision="f32", time=None, threads=None) -> dict:
+    """Read the model ``input``, refine it ``levels`` times and write it to
+    ``output`` (the format by its extension, written atomically: no partial
+    file is ever left), in one native call with the GIL released: exactly
+    what ``subdiv subdivide INPUT OUTPUT`` writes, and what ``subdiv batch``
+    writes for each file (the library's one call, ``subdiv::subdivide_file``).
+
+    Nothing is copied into Python: the refinement's own tables are written
+    (the texture coordinates, colours and materials too where the format
+    keeps them), which makes a folder of files a loop of these calls
+    (docs/dask.md).
+
+    Parameters
+    ----------
+    input : a mesh file (every format :func:`load` reads) or ``"bundled:NAME"``.
+    output : the file written (``.obj``, ``.ply``, ``.off``, ``.stl``, ``.glb``,
+        ``.ct``, ``.usda``, ...); its folder must exist.
+    levels : int, 0 or more (a file that says ``subdivisionScheme none`` gets none).
+    scheme : None (the file's ``subdivisionScheme``, else ``"loop"``) or a
+        scheme name as for :func:`subdivide`.
+    beta : ``"loop"`` or ``"warren"``, as for :func:`subdivide`.
+    boundary, fvar, triangles, creasing : None (the option the file states,
+        else the default) or a name as for :func:`subdivide`, taking the
+        place of the file's.
+    repair : mend a non-manifold mesh instead of refusing it.
+    precision : ``"f32"`` (the default, as the command line) or ``"f64"``
+        (from the file's own digits, written at full precision by OBJ and PLY).
+    time : the time code a USD stage's sampled points are read at.
+    threads : as for :func:`subdivide` (``1`` where a pool of workers runs
+        many files side by side).
+
+    Returns
+    -------
+    dict : what a line of ``subdiv batch``'s manifest says of the file:
+        ``input``, ``output``, ``status`` (``"done"``), ``scheme``,
+        ``levels``, ``input_vertices``, ``input_faces``, ``vertices``,
+        ``faces``, ``output_bytes`` and ``seconds``.
+
+    Raises
+    ------
+    SubdivError : the library's one-line message, naming ``input``: a file
+        that cannot be read or is not manifold, an unknown name, a level
+        count that does not fit in memory, an output that cannot be written.
+
+    Examples
+    --------
+    >>> import subdiv, tempfile, os
+    >>> d = tempfile.mkdtemp()
+    >>> subdiv.save(os.path.join(d, "t.obj"), [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    >>> r = subdiv.subdivide_file(os.path.join(d, "t.obj"), os.path.join(d, "t2.ply"), levels=2)
+    >>> r["status"], r["faces"], subdiv.load(os.path.join(d, "t2.ply")).faces.shape
+    ('done', 16, (16, 3))
+    """
+    names = (None if scheme is None else _checks.name(scheme, "scheme"), _checks.name(beta, "beta"))
+    names += tuple(None if x is None else _checks.name(x, w) for x, w in
+                   ((boundary, "boundary"), (fvar, "fvar"), (triangles, "triangles"), (creasing, "creasing")))
+    if precision not in ("f32", "f64"):
+        raise SubdivError(f"precision must be 'f32' or 'f64', got {precision!r}")
+    t = None if time is None else float(time)
+    in_path, out_path = os.fspath(input), os.fspath(output)
+    scheme_done, levels_done, nv, nf, v2, f2, size, seconds = _subdiv.subdivide_file(
+        (in_path, out_path), _checks.levels(levels), names, (bool(repair), precision == "f64"), t,
+        _checks.threads(threads))
+    return {"input": in_path, "output": out_path, "status": "done", "scheme": scheme_done, "levels": levels_done,
+            "input_vertices": nv, "input_faces": nf, "vertices": v2, "faces": f2, "output_bytes": size,
+            "seconds": seconds}
 
 
 def _viewer():

@@ -1,7 +1,7 @@
 """Type stubs of the subdiv package."""
 
 from os import PathLike
-from typing import Literal, Sequence, Union
+from typing import Literal, Sequence, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -27,6 +27,21 @@ TRIANGLE_SCHEMES: tuple[str, ...]
 POLYGON_SCHEMES: tuple[str, ...]
 
 class SubdivError(ValueError): ...
+
+class FileResult(TypedDict):
+    """What :func:`subdivide_file` did (a line of ``subdiv batch``'s manifest)."""
+
+    input: str
+    output: str
+    status: Literal["done"]
+    scheme: str
+    levels: int
+    input_vertices: int
+    input_faces: int
+    vertices: int
+    faces: int
+    output_bytes: int | None
+    seconds: float
 
 class Prim:
     path: str
@@ -141,6 +156,22 @@ def limit(
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
 def load(path: Path, *, repair: bool = False, time: float | None = None, threads: int | None = None) -> Mesh: ...
 def save(path: Path, vertices: npt.ArrayLike, faces: Faces, *, threads: int | None = None) -> None: ...
+def subdivide_file(
+    input: Path,
+    output: Path,
+    levels: int = 1,
+    scheme: Scheme | None = None,
+    *,
+    beta: Beta = "loop",
+    boundary: Boundary | None = None,
+    fvar: Fvar | None = None,
+    triangles: Triangles | None = None,
+    creasing: Creasing | None = None,
+    repair: bool = False,
+    precision: Literal["f32", "f64"] = "f32",
+    time: float | None = None,
+    threads: int | None = None,
+) -> FileResult: ...
 def render(
     vertices: npt.ArrayLike,
     faces: Faces,

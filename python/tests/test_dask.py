@@ -1,7 +1,9 @@
 """The recipe of docs/dask.md: a folder of models refined on a Dask
-LocalCluster of worker processes (client.map over the files, the results
-gathered) gives exactly the serial results, a bad file its own error, and
-Meshes and Refiners travel between processes. Skipped only without dask."""
+LocalCluster of worker processes (client.map over tasks of several files,
+each file one subdivide_file call, the lines gathered) writes exactly the
+files of the serial run and the same lines, a bad file its own error; the
+arrays' variant gives the serial arrays byte for byte; Meshes and Refiners
+travel between processes. Skipped only without dask."""
 
 import logging
 import os
@@ -16,9 +18,28 @@ import subdiv
 distributed = pytest.importorskip("dask.distributed")
 
 
+def refine_files(paths, out_dir, levels=2):
+    """docs/dask.md's function: each file of `paths` refined by the options
+    it states and written into `out_dir`, its line or its error (one bad
+    file never stops the others)."""
+    lines = []
+    for path in paths:
+        out = os.path.join(out_dir, os.path.basename(path) + ".ply")
+        try:
+            lines.append(subdiv.subdivide_file(path, out, levels, threads=1))
+        except subdiv.SubdivError as e:
+            lines.append({"input": path, "output": out, "status": "failed", "error": str(e)})
+    return lines
+
+
+def tasks(paths, files_per_task):
+    """docs/dask.md's chunks: `paths` in lists of `files_per_task`."""
+    return [paths[i:i + files_per_task] for i in range(0, len(paths), files_per_task)]
+
+
 def refine(path, levels=2):
-    """docs/dask.md's function: one file refined by the options it states,
-    or its error (one bad file never stops the others)."""
+    """docs/dask.md's variant that ships the arrays back: one file refined
+    by the options it states, or its error."""
     try:
         m = subdiv.load(path)
         polygonal = m.options.get("scheme") in subdiv.POLYGON_SCHEMES and m.polygons is not None
@@ -51,6 +72,32 @@ def client():
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
                                   silence_logs=logging.ERROR) as cluster, distributed.Client(cluster) as c:
         yield c
+
+
+def test_the_recipe_writes_the_files_of_the_serial_run(client, tmp_path):
+    (tmp_path / "in").mkdir()
+    paths = folder(tmp_path / "in")
+    serial_dir, dask_dir = tmp_path / "serial", tmp_path / "dask"
+    serial_dir.mkdir()
+    dask_dir.mkdir()
+    serial = refine_files(paths, str(serial_dir))
+    chunks = tasks(paths, 4)
+    assert len(chunks) >= 6
+    done = client.gather(client.map(lambda c: (os.getpid(), refine_files(c, str(dask_dir))), chunks))
+    gathered = [line for _, lines in done for line in lines]
+    assert os.getpid() not in {pid for pid, _ in done}, "the work was done in the worker processes"
+    assert [d["input"] for d in gathered] == paths
+    drop = ("seconds", "output")
+    for s, d in zip(serial, gathered):
+        assert {k: v for k, v in s.items() if k not in drop} == {k: v for k, v in d.items() if k not in drop}
+    written = sorted(os.listdir(serial_dir))
+    assert written == sorted(os.listdir(dask_dir)) and len(written) == len(paths) - 1
+    for name in written:
+        assert (serial_dir / name).read_bytes() == (dask_dir / name).read_bytes(), name
+    failed = [d for d in gathered if d["status"] == "failed"]
+    assert [os.path.basename(d["input"]) for d in failed] == ["broken.obj"]
+    assert "broken.obj" in failed[0]["error"], "the error names the file"
+    assert sum(d["faces"] for d in gathered if d["status"] == "done") > 10_000
 
 
 def test_a_folder_through_dask_equals_the_serial_run(client, tmp_path):

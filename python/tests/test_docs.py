@@ -12,5 +12,5 @@ def test_docstring_examples():
 
 
 def test_every_public_function_has_an_example():
-    for name in ("subdivide", "matrix", "limit", "load", "render"):
+    for name in ("subdivide", "matrix", "limit", "load", "subdivide_file", "render"):
         assert ">>>" in getattr(subdiv, name).__doc__, name

@@ -97,6 +97,7 @@ def workloads(tmp):
                                                      subdiv._options(), 8, None),
         "load": lambda: subdiv.load(obj),
         "save": lambda: subdiv.save(str(tmp / "out.obj"), V, F),
+        "subdivide_file": lambda: subdiv.subdivide_file(obj, str(tmp / "fine.ply"), 1, threads=1),
         "Refiner": lambda: subdiv.Refiner(v, f, levels=8),
         "Refiner.move": lambda: edited.move(every, v * next(scale)),
         "Refiner.undo+redo": lambda: (edited.undo(), edited.redo()),
@@ -104,8 +105,8 @@ def workloads(tmp):
     }
 
 
-NAMES = ["subdivide", "subdivide catmull-clark", "evaluate", "limit", "matrix", "load", "save", "Refiner",
-         "Refiner.move", "Refiner.undo+redo", "Refiner.set_sharpness"]
+NAMES = ["subdivide", "subdivide catmull-clark", "evaluate", "limit", "matrix", "load", "save", "subdivide_file",
+         "Refiner", "Refiner.move", "Refiner.undo+redo", "Refiner.set_sharpness"]
 
 
 @pytest.fixture(scope="module")

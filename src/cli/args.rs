@@ -76,17 +76,6 @@ impl InputArgs {
         {
             eprint!("{report}");
         }
-        let (m, a) = (&loaded.mesh, &loaded.attributes);
-        log::info!(
-            "read {} ({}): {} vertices, {} triangles{}{}{}",
-            input.display(),
-            loaded.format.name,
-            m.positions.len(),
-            m.ct.num_triangles(),
-            if loaded.notes.fanned > 0 { format!(" ({} polygons fanned)", loaded.notes.fanned) } else { String::new() },
-            if a.uv.is_some() { ", texture coordinates" } else { "" },
-            if a.colors.is_some() { ", colours" } else { "" }
-        );
         Ok(loaded)
     }
 }
@@ -159,68 +148,61 @@ fn scheme_help() -> String {
 }
 
 impl SchemeArgs {
-    /// The scheme: `--scheme`, else the file's (after [`SchemeArgs::over`]),
-    /// else Loop.
-    pub(crate) fn scheme(&self) -> Scheme {
-        // `none` as bilinear at level 0 (see `subdivides`): the polygons are the surface
-        let file = self.file_scheme.map(|f| Scheme::of_file(f).unwrap_or(Scheme::Bilinear));
-        self.scheme_flag.or(file).unwrap_or(Scheme::Loop)
+    /// These flags as the library takes them, over a file's options.
+    pub(crate) fn flags(&self) -> subdiv::Flags {
+        subdiv::Flags {
+            scheme: self.scheme_flag,
+            loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
+            tension: self.tension,
+            max_memory: self.max_memory,
+            uv: self.uv,
+            triangles: self.triangles,
+            boundary: self.features.sharp.boundary,
+            creasing: self.features.creasing,
+            crease_angle: self.features.sharp.crease_angle,
+            file_scheme: self.file_scheme,
+        }
     }
 
-    /// Whether the surface is subdivided: not where the file says
-    /// `subdivisionScheme none` (the cage is the surface) and no
-    /// `--scheme` overrides it.
-    pub(crate) fn subdivides(&self) -> bool {
-        self.scheme_flag.is_some() || self.file_scheme != Some(FileScheme::None)
+    /// The arguments that stand for the library's `flags`.
+    fn of_flags(f: subdiv::Flags) -> SchemeArgs {
+        SchemeArgs {
+            scheme_flag: f.scheme,
+            warren: f.loop_beta == LoopBeta::Warren,
+            tension: f.tension,
+            max_memory: f.max_memory,
+            uv: f.uv,
+            triangles: f.triangles,
+            features: FeatureArgs {
+                sharp: SharpArgs { crease_angle: f.crease_angle, boundary: f.boundary },
+                creasing: f.creasing,
+            },
+            file_scheme: f.file_scheme,
+        }
+    }
+
+    /// The scheme: `--scheme`, else the file's (after [`SchemeArgs::over`]),
+    /// else Loop ([`subdiv::Flags::scheme`]).
+    pub(crate) fn scheme(&self) -> Scheme {
+        self.flags().scheme()
     }
 
     /// The library's options for these arguments.
     pub(crate) fn options(&self) -> Options {
-        Options {
-            loop_beta: if self.warren { LoopBeta::Warren } else { LoopBeta::Loop },
-            tension: self.tension,
-            max_memory: self.max_memory,
-            creasing: self.features.creasing.unwrap_or_default(),
-            boundary: self.features.sharp.boundary.unwrap_or_default(),
-            uv: self.uv.unwrap_or_default(),
-            triangles: self.triangles.unwrap_or_default(),
-        }
+        self.flags().options()
     }
 
     /// The shape options these flags state (`None` where a flag is absent).
     pub(crate) fn shape(&self) -> ShapeOptions {
-        ShapeOptions {
-            boundary: self.features.sharp.boundary,
-            fvar: self.uv,
-            triangles: self.triangles,
-            creasing: self.features.creasing,
-            scheme: Some(self.file_scheme.filter(|_| self.scheme() == Scheme::Bilinear).unwrap_or(
-                match self.scheme() {
-                    Scheme::CatmullClark => FileScheme::CatmullClark,
-                    Scheme::Bilinear => FileScheme::Bilinear,
-                    Scheme::Loop => FileScheme::Loop,
-                    // the refined triangles are the surface: USD has no other scheme
-                    _ => FileScheme::None,
-                },
-            )),
-        }
+        self.flags().shape()
     }
 
     /// These arguments with the options a file states where no flag does
-    /// (flags override the file's tags).
+    /// (flags override the file's tags; [`subdiv::Flags::over`]).
     /// A file's scheme (USD's `subdivisionScheme`) applies where `--scheme`
     /// is left at its default (`none` as bilinear: the polygons are the surface).
     pub(crate) fn over(&self, file: ShapeOptions) -> SchemeArgs {
-        let o = file.overridden_by(ShapeOptions { scheme: None, ..self.shape() });
-        // the file's scheme counts where no flag chose one
-        let file_scheme = file.scheme.filter(|_| self.scheme_flag.is_none());
-        SchemeArgs {
-            file_scheme,
-            uv: o.fvar,
-            triangles: o.triangles,
-            features: self.features.over(file),
-            ..self.clone()
-        }
+        SchemeArgs::of_flags(self.flags().over(file))
     }
 }
 
@@ -245,10 +227,7 @@ impl FeatureArgs {
     /// These arguments with the boundary and creasing a file states where
     /// no flag does.
     pub(crate) fn over(&self, file: ShapeOptions) -> FeatureArgs {
-        let mut f = self.clone();
-        f.sharp.boundary = self.sharp.boundary.or(file.boundary);
-        f.creasing = self.creasing.or(file.creasing);
-        f
+        SchemeArgs { features: self.clone(), ..SchemeArgs::default() }.over(file).features
     }
 }
 
@@ -268,9 +247,7 @@ pub struct SharpArgs {
 impl SharpArgs {
     /// `mesh` with the edges sharper than `--crease-angle` tagged.
     pub(crate) fn apply(&self, mesh: Mesh) -> Mesh {
-        let Some(deg) = self.crease_angle else { return mesh };
-        let Mesh { ct, positions } = mesh;
-        Mesh { ct: ct.with_angle_creases(&positions, deg), positions }
+        subdiv::Flags { crease_angle: self.crease_angle, ..subdiv::Flags::default() }.apply(mesh)
     }
 }
 

@@ -1,12 +1,11 @@
 //! The commands that read a mesh and write one: subdivide, smooth, limit, repair.
 
-use super::args::{InputArgs, LimitArgs, Precision, SchemeArgs, SubdivArgs};
+use super::args::{InputArgs, LimitArgs, Precision, SubdivArgs};
 use super::{logging, print_json, progress};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 use subdiv::mesh::Attributes;
-use subdiv::{Error, Mesh, Result, bundled, io};
+use subdiv::{Demand, Error, Mesh, Result, bundled, io};
 
 /// `subdiv subdivide` arguments.
 #[derive(clap::Args)]
@@ -40,15 +39,6 @@ pub struct RefineArgs {
     pub(crate) precision: Precision,
 }
 
-/// One file's subdivision: its input, its output and the options.
-struct Job<'a> {
-    input: &'a Path,
-    output: &'a Path,
-    from: &'a InputArgs,
-    sub: &'a SubdivArgs,
-    precision: Precision,
-}
-
 /// What [`subdivide_file`] did: the line of `subdivide`, its `--json`
 /// object and its `--stats`.
 #[derive(Serialize)]
@@ -73,36 +63,6 @@ pub(crate) struct Summary {
     huge_pages: Option<bool>,
 }
 
-/// What a file's refinement is predicted to need (the library's
-/// prediction, [`subdiv::rules::ControlCounts::peak_bytes`]), told once the
-/// file is read and before anything is refined.
-pub(crate) struct Demand {
-    /// Peak bytes with every level kept (the most any path takes; twice
-    /// that in f64), the parts of a stage together.
-    pub(crate) peak: u64,
-    /// The largest part's peak bytes without the levels kept, as the
-    /// library's check counts them: over `--max-memory`, the library
-    /// refuses the part before it allocates, whatever its path.
-    pub(crate) least: u64,
-    /// Refinements the file takes (a USD stage of several schemes: one each).
-    pub(crate) parts: usize,
-}
-
-impl Demand {
-    /// The demand of `parts`, each mesh refined by its scheme and levels,
-    /// in `precision` (f64 points take twice the bytes).
-    fn of(parts: &[(&Mesh, subdiv::Scheme, u32)], precision: Precision) -> Demand {
-        let scale = if precision == Precision::F64 { 2 } else { 1 };
-        let (mut peak, mut least) = (0u64, 0u64);
-        for &(mesh, scheme, levels) in parts {
-            let counts = subdiv::rules::ControlCounts::of(&mesh.ct);
-            peak = peak.saturating_add(counts.peak_bytes(scheme, levels, true).saturating_mul(scale));
-            least = least.max(counts.peak_bytes(scheme, levels, false));
-        }
-        Demand { peak, least, parts: parts.len() }
-    }
-}
-
 /// Output faces above which a subdivision shows a spinner.
 const BIG_FACES: u64 = 1 << 20;
 
@@ -113,9 +73,11 @@ pub(crate) fn subdivide(a: &SubdivideArgs) -> Result<()> {
 }
 
 /// Subdivides the model `input` into `output` as `subdiv subdivide` does
-/// (for `subdivide` and every file of `subdiv batch`): reads it, calls
-/// `admit` with what the refinement will need (it may wait for memory, or
-/// refuse), then refines and writes it.
+/// (for `subdivide` and every file of `subdiv batch`): the library's
+/// [`subdiv::subdivide_file`] with these arguments, `admit` told what the
+/// refinement will need (it may wait for memory, or refuse), a spinner
+/// for a large one, the repair's report and the attributes the output
+/// keeps not on stderr (unless `-q`).
 ///
 /// # Errors
 /// The library's (reading, refining, writing; `admit`'s).
@@ -125,161 +87,52 @@ pub(crate) fn subdivide_file(
     o: &RefineArgs,
     admit: &mut dyn FnMut(&Demand) -> Result<()>,
 ) -> Result<Summary> {
-    let a = &Job { input, output, from: &o.from, sub: &o.sub, precision: o.precision };
-    let t0 = Instant::now();
-    let loaded = a.from.read(a.input, false)?;
-    let (mesh, attrs, precise) = (loaded.mesh, loaded.attributes, loaded.precise);
-    let groups = subdiv::parts_by_options(&mesh, &attrs)?;
-    if !groups.is_empty() {
-        return subdivide_groups(a, (&mesh, groups), t0, admit);
-    }
-    // the file's option tags where no flag is given
-    let s = &a.sub.scheme.over(attrs.options);
-    // `subdivisionScheme none`: the cage is the surface at every level
-    let levels = if s.subdivides() { a.sub.levels_or(1) } else { 0 };
-    let attrs = attrs.with_options(written_options(s, levels));
-    let mesh = s.features.apply(mesh);
-    let load_ms = t0.elapsed().as_secs_f64() * 1e3;
-    admit(&Demand::of(&[(&mesh, s.scheme(), levels)], a.precision))?;
-    let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
-    let spin = (faces > BIG_FACES).then(|| progress::spinner(&format!("subdividing to {faces} faces")));
-    let attrs = kept_by_output(a.output, attrs);
-    let model = subdiv::Model { precise: precise.as_deref(), ..subdiv::Model::new(&mesh, &attrs) };
-    let how = subdiv::Refinement {
-        scheme: s.scheme(),
-        levels,
-        opts: s.options(),
-        f64: a.precision == Precision::F64,
-        dest: io::destination(a.output),
+    let job = subdiv::FileJob {
+        read: o.from.options(false)?,
+        flags: o.sub.scheme.flags(),
+        levels: o.sub.levels_or(1),
+        f64: o.precision == Precision::F64,
     };
-    let fine = subdiv::subdivide_model(&model, &how)?;
-    let t1 = Instant::now();
-    io::save_refined(a.output, &fine)?;
-    let save_ms = t1.elapsed().as_secs_f64() * 1e3;
-    let (vertices, out_faces, st) = (fine.num_vertices(), fine.num_faces(), &fine.stats);
+    let mut spin = None;
+    let mut admitted = |d: &Demand| {
+        admit(d)?;
+        if d.faces > BIG_FACES {
+            spin = Some(progress::spinner(&format!("subdividing to {} faces", d.faces)));
+        }
+        Ok(())
+    };
+    let done = subdiv::subdivide_file(input, output, &job, &mut admitted);
     if let Some(pb) = spin {
         pb.finish_and_clear();
     }
-    let file_faces = match subdiv::mesh::PolyMesh::is_polygonal(&mesh) {
-        true => subdiv::mesh::PolyMesh::from_mesh(&mesh).pt.num_faces(),
-        false => mesh.ct.num_triangles(),
-    };
-    let what = match s.subdivides() {
-        true => s.scheme().to_string(),
-        false => "none (subdivisionScheme none: the cage as it is)".into(),
-    };
-    Ok(summary((a, levels, &what), (mesh.positions.len(), file_faces), (vertices, out_faces), st, (load_ms, save_ms)))
-}
-
-/// The options a level made with `s` states: the scheme and options it
-/// was made with (a refined level's border faces are not holes any more:
-/// boundary none is the control mesh's).
-fn written_options(s: &SchemeArgs, levels: u32) -> subdiv::mesh::ShapeOptions {
-    let mut o = s.shape();
-    if levels > 0 && o.boundary == Some(subdiv::mesh::BoundaryInterpolation::None) {
-        o.boundary = None;
+    let s = done?;
+    if logging::warnings_shown() {
+        if let Some(report) = &s.repair {
+            eprint!("{report}");
+        }
+        if !s.dropped.is_empty() {
+            eprintln!("subdiv: note: {} keeps no {}", output.display(), s.dropped.join(" or "));
+        }
     }
-    o
-}
-
-/// `subdivide` of a scene whose prims state different options (a USD
-/// stage of a Loop prim and a Catmull-Clark one, or one that says
-/// `subdivisionScheme none`): each set of prims refined by its own
-/// options under the flags, joined into one output whose faces keep their
-/// prims (USD prims, OBJ objects, glTF meshes).
-fn subdivide_groups(
-    a: &Job,
-    (cage, parts): (&Mesh, Vec<(Mesh, Attributes)>),
-    t0: Instant,
-    admit: &mut dyn FnMut(&Demand) -> Result<()>,
-) -> Result<Summary> {
-    if a.precision == Precision::F64 {
-        return Err(Error::Usage(format!(
-            "{}: its prims state different schemes or options, which --precision f64 does not refine apart: give one --scheme",
-            a.input.display()
-        )));
-    }
-    let mut groups = Vec::with_capacity(parts.len());
-    for (mesh, attrs) in parts {
-        let s = a.sub.scheme.over(attrs.options);
-        let levels = if s.subdivides() { a.sub.levels_or(1) } else { 0 };
-        let attrs = kept_by_output(a.output, attrs).with_options(written_options(&s, levels));
-        groups.push((s.features.apply(mesh), attrs, s, levels));
-    }
-    let load_ms = t0.elapsed().as_secs_f64() * 1e3;
-    let demand: Vec<_> = groups.iter().map(|(mesh, _, s, levels)| (mesh, s.scheme(), *levels)).collect();
-    admit(&Demand::of(&demand, a.precision))?;
-    let parts: Vec<subdiv::Part> = groups
-        .iter()
-        .map(|(mesh, attrs, s, levels)| subdiv::Part {
-            mesh,
-            attrs,
-            scheme: s.subdivides().then(|| s.scheme()),
-            levels: *levels,
-            opts: s.options(),
-        })
-        .collect();
-    let (fine, attrs, st) = subdiv::subdivide_parts(&parts, io::keeps(a.output).holes)?;
-    let t1 = Instant::now();
-    io::save_with(a.output, &fine, &attrs)?;
-    let save_ms = t1.elapsed().as_secs_f64() * 1e3;
-    let cage = (cage.positions.len(), subdiv::mesh::PolyMesh::from_mesh(cage).pt.num_faces());
-    let schemes: Vec<String> =
-        groups.iter().map(|(_, _, s, _)| if s.subdivides() { s.scheme().to_string() } else { "none".into() }).collect();
-    let what = format!("{} (by prim)", schemes.join(" and "));
-    let levels = a.sub.levels_or(1);
-    Ok(summary((a, levels, &what), cage, (fine.positions.len(), fine.pt.num_faces()), &st, (load_ms, save_ms)))
-}
-
-/// The attributes `output`'s format keeps, the others dropped (with a
-/// note) before any is refined.
-fn kept_by_output(output: &std::path::Path, attrs: Attributes) -> Attributes {
-    let keeps = io::keeps(output);
-    let dropped: Vec<&str> = [
-        (attrs.uv.is_some() && !keeps.uv, "texture coordinates"),
-        (attrs.colors.is_some() && !keeps.colors, "colours"),
-        (attrs.materials.is_some() && !keeps.materials, "materials"),
-    ]
-    .into_iter()
-    .filter_map(|(dropped, what)| dropped.then_some(what))
-    .collect();
-    if !dropped.is_empty() && logging::warnings_shown() {
-        eprintln!("subdiv: note: {} keeps no {}", output.display(), dropped.join(" or "));
-    }
-    Attributes {
-        uv: attrs.uv.filter(|_| keeps.uv),
-        colors: attrs.colors.filter(|_| keeps.colors),
-        materials: attrs.materials.filter(|_| keeps.materials),
-        options: attrs.options,
-    }
-}
-
-/// The summary of a subdivision.
-fn summary(
-    (a, levels, scheme): (&Job, u32, &str),
-    (input_vertices, input_faces): (usize, usize),
-    (vertices, faces): (usize, usize),
-    st: &subdiv::Stats,
-    (load_ms, save_ms): (f64, f64),
-) -> Summary {
-    Summary {
-        input: a.input.display().to_string(),
-        output: a.output.display().to_string(),
-        scheme: scheme.to_string(),
-        levels,
-        input_vertices,
-        input_faces,
-        vertices,
-        faces,
+    let st = &s.stats;
+    Ok(Summary {
+        input: input.display().to_string(),
+        output: output.display().to_string(),
+        scheme: s.scheme,
+        levels: s.levels,
+        input_vertices: s.input_vertices,
+        input_faces: s.input_faces,
+        vertices: s.vertices,
+        faces: s.faces,
         subdivide_ms: st.total_ms,
         split_ms: st.split_ms,
         edge_ms: st.edge_ms,
         vertex_ms: st.vertex_ms,
-        load_ms,
-        save_ms,
+        load_ms: s.load_ms,
+        save_ms: s.save_ms,
         numbering_ms: st.numbering_ms,
         huge_pages: st.huge_pages,
-    }
+    })
 }
 
 /// What `subdivide` prints: `--stats`, `--json` or a line.

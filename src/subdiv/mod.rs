@@ -18,6 +18,7 @@
 
 pub(crate) mod cage;
 pub(crate) mod eval;
+mod file;
 pub(crate) mod inspect;
 mod model;
 mod parts;
@@ -45,6 +46,7 @@ use rules::{catmull_clark, loop_};
 use std::borrow::Cow;
 
 pub use cage::{Cage, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64};
+pub use file::{Demand, FileJob, FileSummary, Flags, subdivide_file};
 pub use loop_::LoopBeta;
 pub use model::{
     Control, Destination, FacesOnly, Model, Refinement, Subdivided, Surface, subdivide_model, subdivide_model_as,

@@ -1,14 +1,15 @@
 //! `subdiv batch`: every model of folders, files and globs refined as
 //! `subdiv subdivide` refines one (the same function,
-//! [`mesh_ops::subdivide_file`]), several at once within the memory
-//! budget, each result a line of the manifest ([`manifest`]) that a run
-//! started again resumes from.
+//! [`mesh_ops::subdivide_file`], over the library's
+//! [`subdiv::subdivide_file`]), several at once within the memory budget,
+//! each result a line of the manifest ([`manifest`]) that a run started
+//! again resumes from.
 //!
 //! The scheduler: `--threads` workers (default: one per core) take the
 //! files in order. Taking a file is a turn, held by one worker at a time:
 //! it reserves what reading the file is expected to take
 //! ([`LOAD_FACTOR`] times its bytes), reads it, is told by the library what
-//! the refinement will need ([`mesh_ops::Demand`], from
+//! the refinement will need ([`subdiv::Demand`], from
 //! `ControlCounts::peak_bytes`: every level kept, plus [`WRITE_BYTES`] for
 //! the writer), trades the first reservation for that one, waiting until it
 //! fits beside the files in flight, and only then gives the turn up to
@@ -23,13 +24,14 @@
 mod inputs;
 mod manifest;
 
-use super::mesh_ops::{self, Demand, RefineArgs, Summary};
+use super::mesh_ops::{self, RefineArgs, Summary};
 use manifest::{Manifest, Record, Status};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 use std::time::Instant;
+use subdiv::Demand;
 
 /// Bytes reserved for reading a model, per byte of the file (an OBJ's
 /// faces take about 5 bytes of tables per byte of text; 8 for headroom).
@@ -526,7 +528,7 @@ mod tests {
     /// its kept peak and the writer's share.
     #[test]
     fn admission_follows_the_librarys_prediction() {
-        let d = |peak, least, parts| Demand { peak, least, parts };
+        let d = |peak, least, parts| Demand { peak, least, parts, faces: 0 };
         assert_eq!(admitted(&d(900, 300, 1), 200), 0, "refused by the library at once");
         assert_eq!(admitted(&d(900, 300, 2), 200), 900 + WRITE_BYTES, "a stage's parts wait for the whole budget");
         assert_eq!(admitted(&d(150, 100, 1), 200), 150 + WRITE_BYTES);
