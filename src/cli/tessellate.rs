@@ -2,10 +2,9 @@
 //! mesh within a tolerance (docs/tessellation.md).
 
 use super::args::{InputArgs, LimitInput, Precision, SchemeArgs};
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+use subdiv::Result;
 use subdiv::mesh::Faces;
-use subdiv::{Error, Result, Tessellation};
 
 /// `subdiv tessellate` arguments.
 #[derive(clap::Args)]
@@ -72,7 +71,7 @@ pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
     };
     subdiv::io::save(&a.output, &faces)?;
     if let Some(path) = &a.params {
-        write_params(path, &out)?;
+        subdiv::io::write_points(path, &out.params)?;
     }
     let s = out.stats;
     if a.stats {
@@ -114,15 +113,4 @@ fn diagonal(points: &[glam::DVec3]) -> f64 {
     let (lo, hi) =
         points.iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
     if points.is_empty() { 0.0 } else { lo.distance(hi) }
-}
-
-/// One `f u v` line per vertex.
-fn write_params(path: &Path, t: &Tessellation) -> Result<()> {
-    let io = |source| Error::Io { path: path.display().to_string(), source };
-    let file = std::fs::File::create(path).map_err(io)?;
-    let mut w = std::io::BufWriter::new(file);
-    for &(f, u, v) in &t.params {
-        writeln!(w, "{f} {u} {v}").map_err(io)?;
-    }
-    w.flush().map_err(io)
 }

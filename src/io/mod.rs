@@ -47,8 +47,8 @@ mod save;
 pub use raw::{BuildNotes, RawMesh, Topology};
 pub use texture::load_file as load_texture;
 pub(crate) use write::atomic_write;
-pub use write::write_rows;
 pub(crate) use write::{atomic_write_pieces, write_formatted};
+pub use write::{write_points, write_rows};
 
 use crate::mesh::Mesh;
 use crate::mesh::attributes::Attributes;

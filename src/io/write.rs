@@ -75,6 +75,21 @@ pub fn write_rows<const N: usize>(path: &Path, rows: &[[f64; N]]) -> Result<()> 
     })
 }
 
+/// Writes parameter points (atomically), one `f u v` line each: the points
+/// file `subdiv eval` reads ([`crate::eval::parse_points_in`]), `u` and `v`
+/// the shortest decimals that read back as the same doubles.
+///
+/// # Errors
+/// I/O errors naming `path`.
+pub fn write_points(path: &Path, points: &[(u32, f64, f64)]) -> Result<()> {
+    atomic_write(path, |w| {
+        for &(f, u, v) in points {
+            writeln!(w, "{f} {u} {v}").map_err(|e| Error::io(path, e))?;
+        }
+        Ok(())
+    })
+}
+
 /// A file that asks the kernel to start writing back every 16 MiB as soon
 /// as it is written (`sync_file_range`, Linux), so that the disk works while
 /// the rest is formatted and the final `fsync` waits for the tail only.

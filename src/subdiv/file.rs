@@ -10,7 +10,6 @@ use super::{LoopBeta, Model, Options, Part, Refinement, Scheme, Stats};
 use crate::clock::Instant;
 use crate::io::{self, ReadOptions};
 use crate::mesh::attributes::Attributes;
-use crate::mesh::poly::PolyMesh;
 use crate::mesh::{
     BoundaryInterpolation, Creasing, FileScheme, Mesh, ShapeOptions, TriangleSubdivision, UvInterpolation,
 };
@@ -154,8 +153,7 @@ pub struct Demand {
     pub least: u64,
     /// Refinements the file takes (a USD stage of several schemes: one each).
     pub parts: usize,
-    /// Triangles the finest level is predicted to have (at most; a polygon
-    /// scheme makes fewer quads).
+    /// Triangles the finest level is predicted to have (a quad two).
     pub faces: u64,
 }
 
@@ -169,8 +167,7 @@ impl Demand {
             let counts = super::sizes::ControlCounts::of(&mesh.ct);
             d.peak = d.peak.saturating_add(counts.peak_bytes(scheme, levels, true).saturating_mul(scale));
             d.least = d.least.max(counts.peak_bytes(scheme, levels, false));
-            let faces = (mesh.ct.num_triangles() as u64).saturating_mul(1u64 << (2 * levels.min(30)));
-            d.faces = d.faces.saturating_add(faces);
+            d.faces = d.faces.saturating_add(counts.triangles_at(scheme, levels));
         }
         d
     }
@@ -243,10 +240,7 @@ pub fn subdivide_file(
     let fine = super::subdivide_model(&model, &how)?;
     let t1 = Instant::now();
     io::save_refined(output, &fine)?;
-    let input_faces = match PolyMesh::is_polygonal(&mesh) {
-        true => PolyMesh::from_mesh(&mesh).pt.num_faces(),
-        false => mesh.ct.num_triangles(),
-    };
+    let input_faces = super::sizes::ControlCounts::of(&mesh.ct).polygons() as usize;
     Ok(FileSummary {
         scheme: match s.subdivides() {
             true => s.scheme().to_string(),
@@ -330,7 +324,7 @@ fn subdivide_groups(
         scheme: format!("{} (by prim)", schemes.join(" and ")),
         levels: job.levels,
         input_vertices: cage.positions.len(),
-        input_faces: PolyMesh::from_mesh(cage).pt.num_faces(),
+        input_faces: super::sizes::ControlCounts::of(&cage.ct).polygons() as usize,
         vertices: fine.positions.len(),
         faces: fine.pt.num_faces(),
         stats,

@@ -51,17 +51,6 @@ pub(super) fn interior(quad: bool, n: u32, uniform: bool) -> Vec<(f64, f64)> {
     out
 }
 
-/// Whether every side has `n` equal segments (the regular grid fits).
-pub(super) fn is_uniform(n: u32, sides: &[Vec<Pt>], corners: &[(f64, f64)]) -> bool {
-    sides.iter().enumerate().all(|(s, pts)| {
-        pts.len() == n as usize + 1
-            && pts.iter().enumerate().all(|(k, p)| {
-                let t = along(corners[s], corners[(s + 1) % corners.len()], p.uv);
-                (t - k as f64 / f64::from(n)).abs() < 1e-9
-            })
-    })
-}
-
 /// The fraction of the way from `a` to `b` that `p` lies at.
 fn along(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> f64 {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
@@ -70,11 +59,15 @@ fn along(a: (f64, f64), b: (f64, f64), p: (f64, f64)) -> f64 {
 
 /// The triangles of a patch (counter-clockwise in `(u, v)`): `sides[s]`
 /// lists side `s`'s points from corner `s` to corner `s + 1`, both
-/// included; the inside points are those of [`interior`], numbered from
-/// `first`.
-pub(super) fn triangulate(quad: bool, n: u32, sides: &[Vec<Pt>], first: u32, out: &mut Vec<[Pt; 3]>) {
-    let corners: &[(f64, f64)] = if quad { &CORNERS_QUAD } else { &CORNERS_TRI };
-    let uniform = is_uniform(n, sides, corners);
+/// included, `n + 1` equally spaced where `uniform`; the inside points are
+/// those of [`interior`] (with the same `uniform`), numbered from `first`.
+pub(super) fn triangulate(
+    quad: bool,
+    (n, uniform): (u32, bool),
+    sides: &[Vec<Pt>],
+    first: u32,
+    out: &mut Vec<[Pt; 3]>,
+) {
     let inside = interior(quad, n, uniform);
     let lattice = Lattice { quad, n, first, sides, uniform };
     if uniform {

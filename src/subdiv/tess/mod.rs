@@ -162,12 +162,14 @@ struct Built {
 /// The points and triangles of `domain` at the patches' rates `rate`.
 fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Result<Built> {
     let mut points = Points { params: Vec::new(), key_id: vec![u32::MAX; domain.num_keys] };
+    let uniform: Vec<bool> =
+        (0..domain.patches.len()).map(|p| rates::is_uniform(&domain.patches[p], rate[p], edge_rate)).collect();
     // the corners (and the midpoints where a side is two halves)
     for p in &domain.patches {
         for k in 0..p.sides() {
-            points.key(p.corners[k], (p.face, p.corner_uv(k)));
+            points.key(p.corners[k], p.face, p.corner_uv(k));
             if p.sides[k].count == 2 {
-                points.key(junction(domain, p, k), (p.face, p.side_uv(k, 0.5)));
+                points.key(junction(domain, p, k), p.face, p.side_uv(k, 0.5));
             }
         }
     }
@@ -180,22 +182,22 @@ fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Re
         let side = patch.sides[s as usize];
         for i in 1..edge_rate[e] {
             let t = side_fraction(side, part as usize, f64::from(i) / f64::from(edge_rate[e]));
-            points.params.push((patch.face, patch.side_uv(s as usize, t)));
+            let (u, v) = patch.side_uv(s as usize, t);
+            points.params.push((patch.face, u, v));
         }
     }
     // the inside of each patch
     let mut inside_first = Vec::with_capacity(domain.patches.len());
     for (p, patch) in domain.patches.iter().enumerate() {
         inside_first.push(points.params.len() as u32);
-        let uniform = rates::is_uniform(patch, rate[p], edge_rate);
-        for uv in grid::interior(patch.quad, rate[p], uniform) {
-            points.params.push((patch.face, uv));
+        for (u, v) in grid::interior(patch.quad, rate[p], uniform[p]) {
+            points.params.push((patch.face, u, v));
         }
     }
     if points.params.len() > u32::MAX as usize {
         return Err(Error::Usage("the tessellation has more than 2^32 vertices: raise the tolerance".into()));
     }
-    let at: Vec<(usize, f64, f64)> = points.params.iter().map(|&(f, (u, v))| (f as usize, u, v)).collect();
+    let at: Vec<(usize, f64, f64)> = points.params.iter().map(|&(f, u, v)| (f as usize, u, v)).collect();
     let positions = ev.eval_map(&at, false, |s| s.position)?;
     let sides = Sides { domain, edge_rate, edge_first: &edge_first, key_id: &points.key_id };
     let triangles = (0..domain.patches.len())
@@ -205,26 +207,25 @@ fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Re
             let patch = &domain.patches[p];
             let lists: Vec<Vec<Pt>> = (0..patch.sides()).map(|s| sides.points(patch, s)).collect();
             let mut out = Vec::new();
-            grid::triangulate(patch.quad, rate[p], &lists, inside_first[p], &mut out);
+            grid::triangulate(patch.quad, (rate[p], uniform[p]), &lists, inside_first[p], &mut out);
             out.into_iter().map(move |t| (p as u32, t))
         })
         .collect();
-    let params = points.params.into_iter().map(|(f, (u, v))| (f, u, v)).collect();
-    Ok(Built { positions, params, triangles })
+    Ok(Built { positions, params: points.params, triangles })
 }
 
 /// The points made so far, and the vertex of each key.
 struct Points {
-    params: Vec<(u32, (f64, f64))>,
+    params: Vec<(u32, f64, f64)>,
     key_id: Vec<u32>,
 }
 
 impl Points {
-    /// The vertex of `key`, made at `at` the first time.
-    fn key(&mut self, key: u32, at: (u32, (f64, f64))) {
+    /// The vertex of `key`, made at `(u, v)` of `face` the first time.
+    fn key(&mut self, key: u32, face: u32, (u, v): (f64, f64)) {
         if self.key_id[key as usize] == u32::MAX {
             self.key_id[key as usize] = self.params.len() as u32;
-            self.params.push(at);
+            self.params.push((face, u, v));
         }
     }
 }

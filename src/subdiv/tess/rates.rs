@@ -189,8 +189,8 @@ pub(super) fn measure(
 pub(super) fn refine(rate: &mut [u32], errors: &[f64], t: f64) {
     for (n, &e) in rate.iter_mut().zip(errors) {
         if e > t {
-            let grown = (f64::from(*n) * (e / t).sqrt() * 1.1).ceil();
-            let grown = if grown.is_finite() { grown.min(f64::from(MAX_RATE)) as u32 } else { MAX_RATE };
+            // e > t: the factor is over 1 (infinite for an infinite e: MAX_RATE)
+            let grown = (f64::from(*n) * (e / t).sqrt() * 1.1).ceil().min(f64::from(MAX_RATE)) as u32;
             *n = grown.max(*n + 1).min(MAX_RATE);
         }
     }

@@ -33,7 +33,7 @@ fn every_patch_is_covered_once_with_positive_triangles() {
                 let sides: Vec<Vec<Pt>> =
                     (0..k).map(|s| side(quad, s, &sides_of[(pick + s) % 4], 100 * s as u32)).collect();
                 let mut out = Vec::new();
-                grid::triangulate(quad, n, &sides, 1000, &mut out);
+                grid::triangulate(quad, (n, false), &sides, 1000, &mut out);
                 let total: f64 = out.iter().map(area).sum();
                 assert!((total - whole).abs() < 1e-12, "quad {quad} n {n} sides {pick}: area {total}");
                 assert!(
@@ -52,7 +52,7 @@ fn uniform_sides_give_the_regular_grid() {
         let f: Vec<f64> = (0..=n).map(|i| f64::from(i) / f64::from(n)).collect();
         let sides: Vec<Vec<Pt>> = (0..k).map(|s| side(quad, s, &f, 100 * s as u32)).collect();
         let mut out = Vec::new();
-        grid::triangulate(quad, n, &sides, 1000, &mut out);
+        grid::triangulate(quad, (n, true), &sides, 1000, &mut out);
         assert_eq!(out.len() as u32, n * n * if quad { 2 } else { 1 });
     }
 }
