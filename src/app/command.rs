@@ -21,8 +21,17 @@ pub(crate) enum Command {
     OpenBuiltin,
     /// Open a model or curve file (repaired when repair-on-open is set).
     Open(PathBuf),
-    /// Open a file with repair (after it failed without).
-    RepairAndOpen(PathBuf),
+    /// Open a model given as bytes (a file picked or dropped on the page, a
+    /// fetched URL), `name`'s extension choosing the format.
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code, reason = "the page's way in; tested on the desktop"))]
+    OpenBytes {
+        /// The file's name.
+        name: String,
+        /// Its content.
+        bytes: std::sync::Arc<[u8]>,
+    },
+    /// Open a model with repair (after it failed without).
+    RepairAndOpen(super::jobs::Input),
     /// Repair every file opened from now on.
     SetRepairOnOpen(bool),
     /// New segment count or construction parameter of the shown curve.
@@ -175,8 +184,9 @@ impl Viewer {
         let (doc, view) = (&mut self.doc, &mut self.view);
         match command {
             Command::OpenBuiltin => doc.open_builtin(),
-            Command::Open(path) => doc.open_asking(path),
-            Command::RepairAndOpen(path) => doc.repair_and_open(path),
+            Command::Open(path) => doc.open_asking(path.into()),
+            Command::OpenBytes { name, bytes } => doc.open_asking(super::jobs::Input { path: name.into(), bytes: Some(bytes) }),
+            Command::RepairAndOpen(input) => doc.repair_and_open(input),
             Command::SetRepairOnOpen(on) => doc.repair_on_open = on,
             Command::EditCurve(curve) => doc.model.curve.set(Some(curve)),
             Command::CloseCurve => {

@@ -89,7 +89,7 @@ pub(crate) struct Status {
     /// Last notice (export finished...).
     pub(crate) notice: Option<String>,
     /// The file whose opening failed last (offered for "Repair and open").
-    pub(crate) failed: Option<PathBuf>,
+    pub(crate) failed: Option<super::jobs::Input>,
 }
 
 /// Everything the panel and the renderer read.
@@ -238,15 +238,15 @@ impl Doc {
 
     /// Opens a model file on a worker thread (repairing it when
     /// [`Doc::repair_on_open`] is set).
-    pub(crate) fn open(&mut self, path: PathBuf) {
-        self.jobs.load(path, self.repair_on_open, self.read_time);
+    pub(crate) fn open(&mut self, input: super::jobs::Input) {
+        self.jobs.load(input, self.repair_on_open, self.read_time);
     }
 
     /// Opens a file with repair, forgetting the failure that offered it.
-    pub(crate) fn repair_and_open(&mut self, path: PathBuf) {
+    pub(crate) fn repair_and_open(&mut self, input: super::jobs::Input) {
         self.status.error = None;
         self.status.failed = None;
-        self.jobs.load(path, true, self.read_time);
+        self.jobs.load(input, true, self.read_time);
     }
 
     /// Makes `mesh` (read from `path`) the control mesh, at level 0 until
@@ -552,7 +552,7 @@ impl Doc {
     /// Takes a finished task's result into the document.
     pub(crate) fn adopt_finished(&mut self, finished: Finished) {
         match finished {
-            Finished::Loaded { path, result } => self.adopt_loaded(path, result),
+            Finished::Loaded { input, result } => self.adopt_loaded(input, result),
             Finished::Curve(result) => self.adopt_curve(result),
             Finished::Subdivided(result) => match result {
                 Ok(s) => self.adopt_subdivision(*s),
@@ -575,7 +575,7 @@ impl Doc {
         }
     }
 
-    fn adopt_loaded(&mut self, path: PathBuf, result: crate::Result<Opened>) {
+    fn adopt_loaded(&mut self, input: super::jobs::Input, result: crate::Result<Opened>) {
         match result {
             Ok(o) => {
                 self.status.failed = None;
@@ -593,7 +593,7 @@ impl Doc {
             }
             Err(e) => {
                 // Only a mesh-validity problem can be repaired; parse errors cannot.
-                self.status.failed = matches!(e, Error::Mesh { .. }).then_some(path);
+                self.status.failed = matches!(e, Error::Mesh { .. }).then_some(input);
                 self.fail(Problem::Open(e));
             }
         }

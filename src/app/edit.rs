@@ -12,6 +12,7 @@
 //! once to a recovery file in the user's state folder, which a save or a
 //! discard removes.
 
+use super::recovery::Recovery;
 use super::doc::{Doc, Problem};
 use super::model::Shown;
 use crate::{Mesh, Refiner, Scheme};
@@ -235,10 +236,10 @@ pub(crate) struct Edit {
     drawn: Option<std::sync::Weak<Mesh>>,
     /// Bumped whenever the control mesh's topology or tags change.
     pub(crate) topology: u64,
-    /// Where recovery files go (`None`: nowhere).
-    pub(crate) recovery_dir: Option<PathBuf>,
-    /// A recovery file found for the opened model, offered.
-    pub(crate) offer: Option<PathBuf>,
+    /// Where recovery copies go (`None`: nowhere).
+    pub(crate) recovery: Option<Recovery>,
+    /// A recovery copy was found for the opened model: it is offered.
+    pub(crate) offer: bool,
     /// Save As was asked for (the panel shows its field).
     pub(crate) ask_path: bool,
     /// What waits for an answer about unsaved changes.
@@ -267,8 +268,8 @@ impl Default for Edit {
             drawn: None,
             topology: 0,
             // the unit tests name their own folder: they never write the user's
-            recovery_dir: if cfg!(test) { None } else { state_dir().map(|d| d.join("subdiv").join("recovery")) },
-            offer: None,
+            recovery: if cfg!(test) { None } else { Recovery::for_user() },
+            offer: false,
             ask_path: false,
             pending: None,
         }
@@ -281,15 +282,6 @@ fn moved_rows(ct: &crate::CornerTable, ids: &[u32]) -> Arc<[u32]> {
     rows.sort_unstable();
     rows.dedup();
     rows.into()
-}
-
-/// The user's state folder: `$XDG_STATE_HOME`, else `~/.local/state`
-/// (`%LOCALAPPDATA%` on Windows).
-fn state_dir() -> Option<PathBuf> {
-    let env = |k: &str| std::env::var_os(k).filter(|v| !v.is_empty()).map(PathBuf::from);
-    env("XDG_STATE_HOME")
-        .or_else(|| env("LOCALAPPDATA"))
-        .or_else(|| env("HOME").map(|h| h.join(".local").join("state")))
 }
 
 /// The smooth falloff of proportional editing at distance `d` of radius
@@ -309,7 +301,7 @@ impl Edit {
         self.drawn = None;
         self.history = History::default();
         self.topology += 1;
-        self.offer = None;
+        self.offer = false;
     }
 
     /// The moving vertices of a grab of the selection from `start`, with
@@ -332,27 +324,14 @@ impl Edit {
     }
 }
 
-/// The recovery file of the model at `path` (or the built-in one) in `dir`.
-///
-/// The name is the FNV-1a hash of the model's absolute path, so the same
-/// model finds its file again in any later session.
-pub(crate) fn recovery_file(dir: &Path, model: Option<&Path>) -> PathBuf {
-    let key = match model {
-        Some(p) => std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf()).to_string_lossy().into_owned(),
-        None => super::doc::BUILTIN_NAME.to_string(),
-    };
-    let hash = key.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
-    dir.join(format!("{hash:016x}.obj"))
-}
-
 /// What the panel asks before closing the window or opening another model
 /// with unsaved changes.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum Pending {
     /// Close the window.
     Close,
-    /// Open this file.
-    Open(PathBuf),
+    /// Open this model.
+    Open(super::jobs::Input),
 }
 
 /// The answer to [`Pending`].
@@ -394,8 +373,10 @@ impl Doc {
             EditAction::SaveAs(path) => self.save_as(path),
             EditAction::Recover => self.recover(),
             EditAction::DiscardRecovery => {
-                if let Some(p) = self.edit.offer.take() {
-                    let _ = std::fs::remove_file(p);
+                if std::mem::take(&mut self.edit.offer)
+                    && let Some(store) = &self.edit.recovery
+                {
+                    store.remove(self.model.path.as_deref());
                 }
             }
         }
@@ -685,35 +666,33 @@ impl Doc {
     /// After each change: the recovery file written while the mesh differs
     /// from its file, removed once it does not.
     pub(crate) fn after_change(&mut self) {
-        let Some(dir) = self.edit.recovery_dir.clone() else { return };
-        let file = recovery_file(&dir, self.model.path.as_deref());
+        let Some(store) = self.edit.recovery.clone() else { return };
+        let model = self.model.path.as_deref();
         if !self.edit.history.dirty() {
-            let _ = std::fs::remove_file(&file);
+            store.remove(model);
             return;
         }
-        let written = std::fs::create_dir_all(&dir)
-            .map_err(|e| crate::Error::io(&dir, e))
-            .and_then(|()| crate::io::save_with(&file, &*self.model.control.mesh, &self.model.attrs.file));
-        if let Err(e) = written {
-            self.status.notice = Some(format!("could not write the recovery file: {e}"));
+        if let Err(e) = store.write(model, &self.model.control.mesh, &self.model.attrs.file) {
+            self.status.notice = Some(format!("could not write the recovery copy: {e}"));
         }
     }
 
-    /// Offers the recovery file of the model just opened, if there is one.
+    /// Offers the recovery copy of the model just opened, if there is one.
     pub(crate) fn look_for_recovery(&mut self) {
-        let Some(dir) = &self.edit.recovery_dir else { return };
-        let file = recovery_file(dir, self.model.path.as_deref());
-        self.edit.offer = file.is_file().then_some(file);
+        self.edit.offer = self.edit.recovery.as_ref().is_some_and(|s| s.exists(self.model.path.as_deref()));
     }
 
-    /// Replaces the control mesh by the recovery file's (one step: the
+    /// Replaces the control mesh by the recovery copy's (one step: the
     /// model is then unsaved).
     fn recover(&mut self) {
-        let Some(file) = self.edit.offer.take() else { return };
-        let opts = crate::io::ReadOptions::default();
-        match crate::io::read(crate::io::Source::File(&file), &opts) {
-            Ok(loaded) => self.replace_control("recover unsaved edits", loaded.mesh),
-            Err(e) => self.fail(Problem::Open(e)),
+        if !std::mem::take(&mut self.edit.offer) {
+            return;
+        }
+        let Some(store) = &self.edit.recovery else { return };
+        match store.read(self.model.path.as_deref()) {
+            Some(Ok(mesh)) => self.replace_control("recover unsaved edits", mesh),
+            Some(Err(e)) => self.fail(Problem::Open(e)),
+            None => {}
         }
     }
 
@@ -731,6 +710,12 @@ impl Doc {
 
     /// Saves to the model's file, or asks for a path.
     pub(crate) fn save(&mut self) {
+        // the page saves by download, always as OBJ (it keeps tags, UVs)
+        #[cfg(target_arch = "wasm32")]
+        if let Some(p) = self.model.path.clone() {
+            _ = self.write_to(&p);
+            return;
+        }
         match self.model.path.clone().filter(|p| self.file_holds_it(p)) {
             Some(p) => _ = self.write_to(&p),
             None => self.edit.ask_path = true,
@@ -739,10 +724,10 @@ impl Doc {
 
     /// Saves to `path`, which becomes the model's file.
     fn save_as(&mut self, path: PathBuf) {
-        let old = self.edit.recovery_dir.as_ref().map(|d| recovery_file(d, self.model.path.as_deref()));
+        let old = self.model.path.clone();
         if self.write_to(&path) {
-            if let Some(old) = old {
-                let _ = std::fs::remove_file(old);
+            if let Some(store) = &self.edit.recovery {
+                store.remove(old.as_deref());
             }
             self.model.name = path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
             self.model.path = Some(path);
@@ -753,11 +738,26 @@ impl Doc {
     /// Writes the control mesh (atomically); a failure keeps the edits and
     /// says why. Whether it was written.
     fn write_to(&mut self, path: &Path) -> bool {
-        match crate::io::save_with(path, &*self.model.control.mesh, &self.model.attrs.file) {
+        #[cfg(not(target_arch = "wasm32"))]
+        let written = crate::io::save_with(path, &*self.model.control.mesh, &self.model.attrs.file);
+        #[cfg(target_arch = "wasm32")]
+        let (written, path) = {
+            let name = path.file_stem().map_or_else(|| "model".into(), |s| s.to_string_lossy().into_owned());
+            let name = PathBuf::from(format!("{}.obj", name.trim_start_matches(crate::bundled::PREFIX)));
+            let mut bytes = Vec::new();
+            let obj = crate::io::obj::write_obj_with(&self.model.control.mesh, &self.model.attrs.file, &mut |b| {
+                bytes.extend_from_slice(b);
+                Ok(())
+            });
+            (obj.and_then(|()| super::page::download(&name.to_string_lossy(), &bytes)), name)
+        };
+        #[cfg(target_arch = "wasm32")]
+        let path = path.as_path();
+        match written {
             Ok(()) => {
                 self.edit.history.saved = self.edit.history.top();
-                if let Some(dir) = &self.edit.recovery_dir {
-                    let _ = std::fs::remove_file(recovery_file(dir, Some(path)));
+                if let Some(store) = &self.edit.recovery {
+                    store.remove(Some(path));
                 }
                 self.status.notice = Some(format!("saved {}", path.display()));
                 true
@@ -770,10 +770,10 @@ impl Doc {
     }
 
     /// Opens `path`, or first asks what to do with unsaved changes.
-    pub(crate) fn open_asking(&mut self, path: PathBuf) {
+    pub(crate) fn open_asking(&mut self, input: super::jobs::Input) {
         match self.edit.history.dirty() {
-            true => self.edit.pending = Some(Pending::Open(path)),
-            false => self.open(path),
+            true => self.edit.pending = Some(Pending::Open(input)),
+            false => self.open(input),
         }
     }
 
@@ -786,8 +786,8 @@ impl Doc {
                 !self.edit.history.dirty()
             }
             Answer::Discard => {
-                if let Some(dir) = &self.edit.recovery_dir {
-                    let _ = std::fs::remove_file(recovery_file(dir, self.model.path.as_deref()));
+                if let Some(store) = &self.edit.recovery {
+                    store.remove(self.model.path.as_deref());
                 }
                 true
             }

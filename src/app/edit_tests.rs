@@ -4,7 +4,8 @@
 //! Ctrl+S writes every moved vertex with the faces and tags unchanged, and
 //! the recovery file brings back edits that were never saved.
 
-use super::edit::{Answer, EditAction, Pending, falloff, recovery_file};
+use super::edit::{Answer, EditAction, Pending, falloff};
+use super::recovery::{Recovery, recovery_file};
 use super::tests::{frame, key, settle, subdivide};
 use super::{Command, Viewer};
 use crate::Scheme;
@@ -39,7 +40,7 @@ fn open_cube(dir: &Path) -> (Viewer, PathBuf) {
     let f = "f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n";
     std::fs::write(&path, format!("{v}{f}t crease 2/1/0 0 1 2.5\n")).unwrap();
     let mut v = Viewer::new();
-    v.doc.edit.recovery_dir = Some(dir.join("state"));
+    v.doc.edit.recovery = Some(Recovery::Folder(dir.join("state")));
     v.apply(Command::Open(path.clone()));
     settle(&mut v);
     assert!(v.doc.model.control.mesh.ct.sharpness().is_some(), "the crease tag was read");
@@ -146,21 +147,21 @@ fn unsaved_edits_are_recovered_in_a_new_session_or_discarded() {
     let moved = v.doc.model.control.mesh.positions.clone();
     drop(v); // as if killed: nothing was saved
     let (mut again, _) = reopen(&dir, &path);
-    assert!(again.doc.edit.offer.is_some(), "the recovery file is offered");
+    assert!(again.doc.edit.offer, "the recovery file is offered");
     frame(&ctx, &mut again, vec![key(Key::Enter)]);
     assert_eq!(again.doc.model.control.mesh.positions, moved, "Return recovers the edit");
     assert!(again.doc.edit.history.dirty(), "recovered edits are unsaved");
     drop(again);
     let (mut third, _) = reopen(&dir, &path);
     frame(&ctx, &mut third, vec![key(Key::Escape)]);
-    assert!(third.doc.edit.offer.is_none());
+    assert!(!third.doc.edit.offer);
     assert!(!recovery_file(&dir.join("state"), Some(&path)).exists(), "Esc discards it");
     assert_ne!(third.doc.model.control.mesh.positions, moved);
 }
 
 fn reopen(dir: &Path, path: &Path) -> (Viewer, PathBuf) {
     let mut v = Viewer::new();
-    v.doc.edit.recovery_dir = Some(dir.join("state"));
+    v.doc.edit.recovery = Some(Recovery::Folder(dir.join("state")));
     v.apply(Command::Open(path.to_path_buf()));
     settle(&mut v);
     (v, path.to_path_buf())
@@ -178,7 +179,7 @@ fn a_failed_save_keeps_the_edits_and_says_why() {
     assert!(why.contains("not saved") && why.contains("no such folder"), "{why}");
     // opening another model asks first; Cancel stays, Discard goes on
     v.apply(Command::Open("bundled:torus.obj".into()));
-    assert_eq!(v.doc.edit.pending, Some(Pending::Open("bundled:torus.obj".into())));
+    assert_eq!(v.doc.edit.pending, Some(Pending::Open(PathBuf::from("bundled:torus.obj").into())));
     v.apply(Command::Answer(Answer::Cancel));
     assert!(v.doc.edit.pending.is_none() && v.doc.model.name == "cube.obj");
     v.apply(Command::Open("bundled:torus.obj".into()));

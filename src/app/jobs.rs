@@ -19,11 +19,42 @@ use crate::{Mesh, Options, Result, Scheme, bundled};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
+use crate::clock::Instant;
 use std::sync::{Arc, Condvar, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Largest proxy mesh (see [`super::model::Model::proxy`]).
 pub(crate) const PROXY_FACES: u64 = 150_000;
+
+/// A model to open: a file by its path (a bundled model by its name), or
+/// bytes in memory named `path` (a file picked or dropped on the page, a
+/// fetched URL), its extension choosing the format.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Input {
+    /// The file, or the name of the bytes.
+    pub(crate) path: PathBuf,
+    /// The content, when it is not read from `path`.
+    pub(crate) bytes: Option<Arc<[u8]>>,
+}
+
+impl From<PathBuf> for Input {
+    fn from(path: PathBuf) -> Input {
+        Input { path, bytes: None }
+    }
+}
+
+impl Input {
+    /// Reads the model through the one reading pipeline.
+    fn read(&self, opts: &crate::io::ReadOptions) -> Result<crate::io::Loaded> {
+        match &self.bytes {
+            Some(bytes) => {
+                let name = self.path.to_string_lossy();
+                crate::io::read(crate::io::Source::Bytes { bytes, name: &name, folder: None }, opts)
+            }
+            None => bundled::read(&self.path, opts),
+        }
+    }
+}
 
 /// A running task shown in the panel.
 #[derive(Clone)]
@@ -108,8 +139,8 @@ pub(crate) struct Subdivided {
 pub(crate) enum Finished {
     /// A model file was read (or failed to).
     Loaded {
-        /// The file asked for (offered for repair when it is invalid).
-        path: PathBuf,
+        /// The model asked for (offered for repair when it is invalid).
+        input: Input,
         /// The model.
         result: Result<Opened>,
     },
@@ -192,6 +223,8 @@ struct Message {
 struct Workers {
     alive: Mutex<usize>,
     ended: Condvar,
+    /// Tasks waiting for the next poll (the browser only: see [`Jobs::spawn`]).
+    deferred: Mutex<Vec<Box<dyn FnOnce() + Send>>>,
 }
 
 /// Held by a worker thread; its drop (after the thread's message is sent)
@@ -280,22 +313,41 @@ impl Jobs {
 
     /// Runs `work` on a new thread; its result comes back as a message of
     /// `kind` with `ticket` (`None`: the work decided to send nothing).
+    ///
+    /// In the browser (no threads) the work waits for the next
+    /// [`Jobs::poll`], which runs one such task per frame: the frame that
+    /// asked has shown the task as busy by then.
     fn spawn(&self, kind: Kind, ticket: u64, work: impl FnOnce() -> Option<Finished> + Send + 'static) {
         *self.workers.alive.lock().unwrap_or_else(|e| e.into_inner()) += 1;
         let guard = WorkerGuard(self.workers.clone());
         let tx = self.tx.clone();
-        std::thread::spawn(move || {
+        let task = move || {
             let _guard = guard;
             if let Some(finished) = work() {
                 // The receiver is gone only when the viewer is closing.
                 let _ = tx.send(Message { kind, ticket, finished });
             }
-        });
+        };
+        #[cfg(not(target_arch = "wasm32"))]
+        std::thread::spawn(task);
+        #[cfg(target_arch = "wasm32")]
+        self.workers.deferred.lock().unwrap_or_else(|e| e.into_inner()).push(Box::new(task));
+    }
+
+    /// Runs the oldest deferred task (the browser's stand-in for a worker
+    /// thread); whether there was one.
+    fn run_deferred(&self) -> bool {
+        let next = {
+            let mut queue = self.workers.deferred.lock().unwrap_or_else(|e| e.into_inner());
+            (!queue.is_empty()).then(|| queue.remove(0))
+        };
+        next.map(|task| task()).is_some()
     }
 
     /// The messages of current tasks (superseded ones are dropped), each
     /// clearing its busy slot.
     pub(crate) fn poll(&mut self) -> Vec<Finished> {
+        self.run_deferred();
         let mut out = Vec::new();
         while let Ok(m) = self.rx.try_recv() {
             if self.ticket(m.kind).is_some_and(|t| t.load(Ordering::SeqCst) != m.ticket) {
@@ -311,6 +363,7 @@ impl Jobs {
     /// most `timeout`; whether they all ended. Their messages are then all
     /// in the channel, for [`Jobs::poll`].
     pub(crate) fn wait_for_workers(&self, timeout: Duration) -> bool {
+        while self.run_deferred() {}
         let alive = self.workers.alive.lock().unwrap_or_else(|e| e.into_inner());
         let (alive, _) =
             self.workers.ended.wait_timeout_while(alive, timeout, |n| *n > 0).unwrap_or_else(|e| e.into_inner());
@@ -319,15 +372,15 @@ impl Jobs {
 
     /// Opens a model file (a `.bzc` curve, or a mesh, repaired or not; a
     /// stage's sampled points at `time`).
-    pub(crate) fn load(&mut self, path: PathBuf, repair: bool, time: Option<f64>) {
+    pub(crate) fn load(&mut self, input: Input, repair: bool, time: Option<f64>) {
         let ticket = self.next_ticket(Kind::Load);
-        self.busy.loading = Some(Busy::new(format!("loading {}", path.display()), 1));
-        if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc")) {
-            self.spawn(Kind::Load, ticket, move || Some(Finished::Curve(load_curve(&path))));
+        self.busy.loading = Some(Busy::new(format!("loading {}", input.path.display()), 1));
+        if input.bytes.is_none() && input.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("bzc")) {
+            self.spawn(Kind::Load, ticket, move || Some(Finished::Curve(load_curve(&input.path))));
         } else {
             self.spawn(Kind::Load, ticket, move || {
-                let result = load_model(&path, repair, time);
-                Some(Finished::Loaded { path, result })
+                let result = load_model(&input, repair, time);
+                Some(Finished::Loaded { input, result })
             });
         }
     }
@@ -429,10 +482,11 @@ fn load_curve(path: &std::path::Path) -> Result<Curve> {
 /// A model file (repaired when asked) with its attributes, textures
 /// decoded, and matching paths; the repair report and the read's warnings
 /// become the status notice.
-pub(crate) fn load_model(path: &std::path::Path, repair: bool, time: Option<f64>) -> Result<Opened> {
+pub(crate) fn load_model(input: &Input, repair: bool, time: Option<f64>) -> Result<Opened> {
+    let path = input.path.as_path();
     let topology = if repair { crate::io::Topology::Repair } else { crate::io::Topology::Refuse };
     let opts = crate::io::ReadOptions { topology, textures: true, time, ..Default::default() };
-    let loaded = bundled::read(path, &opts)?;
+    let loaded = input.read(&opts)?;
     let mut notes: Vec<String> = loaded.warnings;
     if loaded.notes.fanned > 0 {
         notes.insert(
@@ -447,7 +501,7 @@ pub(crate) fn load_model(path: &std::path::Path, repair: bool, time: Option<f64>
         notes.insert(0, format!("repaired: {r}"));
     }
     let mesh = loaded.mesh;
-    let paths = match bundled::paths_for(path) {
+    let paths = match input.bytes.is_none().then(|| bundled::paths_for(path)).flatten() {
         Some(p) => {
             let paths = p.load(&opts.limits)?;
             // A .paths for another vertex count is ignored (a generated one is used).
@@ -457,7 +511,7 @@ pub(crate) fn load_model(path: &std::path::Path, repair: bool, time: Option<f64>
     };
     let (paths, samples) = match paths {
         Some(p) => (Some(p), None),
-        None => match sampled_frames(path, &opts, &loaded.attributes, mesh.positions.len())? {
+        None => match sampled_frames(input, &opts, &loaded.attributes, mesh.positions.len())? {
             Some(p) => {
                 let n = p.keys_per_vertex;
                 (Some(p), Some(n))
@@ -477,7 +531,7 @@ const MAX_SAMPLES: usize = 240;
 /// sample, at most [`MAX_SAMPLES`] spread over them), when its points are
 /// sampled at two times or more and every read has `vertices` points.
 fn sampled_frames(
-    path: &std::path::Path,
+    input: &Input,
     opts: &crate::io::ReadOptions,
     attrs: &Attributes,
     vertices: usize,
@@ -487,7 +541,7 @@ fn sampled_frames(
     let mut frames = Vec::new();
     for &t in times.iter().step_by(step) {
         let at = crate::io::ReadOptions { time: Some(t), attributes: false, textures: false, ..*opts };
-        let frame = bundled::read(path, &at)?.mesh.positions;
+        let frame = input.read(&at)?.mesh.positions;
         if frame.len() != vertices {
             return Ok(None);
         }

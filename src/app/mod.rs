@@ -36,8 +36,13 @@ pub(crate) mod inspect;
 pub(crate) mod jobs;
 pub(crate) mod keys;
 pub(crate) mod model;
+#[cfg(target_arch = "wasm32")]
+pub mod page;
+#[cfg(any(target_arch = "wasm32", test))]
+pub(crate) mod page_query;
 pub(crate) mod panel;
 pub(crate) mod probe;
+pub(crate) mod recovery;
 pub(crate) mod surface;
 pub(crate) mod view;
 pub(crate) mod viewer;
@@ -58,14 +63,15 @@ pub(crate) use command::Command;
 pub(crate) use viewer::Viewer;
 
 use crate::render::Camera;
+use crate::clock::Instant;
 use crate::{Error, Result, Scheme};
 use display::Display;
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use window::Win;
 use winit::application::ApplicationHandler;
 use winit::event::WindowEvent;
-use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
+use winit::event_loop::{ActiveEventLoop, ControlFlow};
 use winit::window::WindowId;
 
 /// What `subdiv view` (and `subdiv` with no arguments) was asked to show.
@@ -135,10 +141,11 @@ const SETTLE: Duration = Duration::from_millis(180);
 ///
 /// # Errors
 /// When no window or GPU adapter can be created, or a `--frames` run fails.
+#[cfg(not(target_arch = "wasm32"))]
 pub fn run(opts: ViewOptions) -> Result<()> {
     // The model first: a bad file is reported as such even where no window can open.
     let mut app = App::new(opts)?;
-    let event_loop = EventLoop::new().map_err(|e| {
+    let event_loop = winit::event_loop::EventLoop::new().map_err(|e| {
         Error::Gpu(format!(
             "cannot open a window ({e}); without a display use `subdiv render` or `subdiv animate`, or run under xvfb-run"
         ))
@@ -431,6 +438,10 @@ impl ApplicationHandler for App {
         if self.win.is_some() {
             return;
         }
+        // the page opens its window itself (page.rs: its device comes later)
+        #[cfg(target_arch = "wasm32")]
+        let _ = event_loop;
+        #[cfg(not(target_arch = "wasm32"))]
         match Win::create(event_loop, &mut self.viewer) {
             Ok(win) => {
                 win.window.request_redraw();

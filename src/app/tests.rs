@@ -146,6 +146,28 @@ fn a_big_level_brings_its_proxy_from_the_same_run() {
     assert_eq!(*stats.faces_per_level.last().unwrap(), 4 << 16);
 }
 
+/// The page's way in (a file picked, dropped or fetched): bytes and a
+/// name, through the same reading pipeline as a file; a bad one is an
+/// error naming it, and the model stays.
+#[test]
+fn bytes_open_as_a_file_does_and_a_bad_one_is_named() {
+    let mut v = Viewer::new();
+    let cube = crate::bundled::MODELS.iter().find(|m| m.file_name == "cube.obj").unwrap();
+    v.apply(Command::OpenBytes { name: "dropped.obj".into(), bytes: cube.bytes.into() });
+    settle(&mut v);
+    assert!(v.doc.status.error.is_none(), "{:?}", error_text(&v));
+    assert_eq!(v.doc.model.name, "dropped.obj");
+    assert_eq!(v.doc.model.control.topo.vertices, 8);
+    let bad: std::sync::Arc<[u8]> = b"v 0 0 0\nv 1 0 0\nf 1 2 7\n".as_slice().into();
+    v.apply(Command::OpenBytes { name: "page.obj".into(), bytes: bad });
+    settle(&mut v);
+    let err = error_text(&v).unwrap();
+    assert!(err.contains("page.obj") && err.contains(":3"), "{err}");
+    assert_eq!(v.doc.model.control.topo.vertices, 8, "the cube stays");
+    let offered = v.doc.status.failed.as_ref().expect("offered for repair");
+    assert!(offered.bytes.is_some(), "repair reads the same bytes again");
+}
+
 #[test]
 fn a_bad_file_shows_an_error_and_keeps_the_model() {
     let dir = common::scratch_dir("viewer-test");
@@ -218,9 +240,9 @@ fn a_non_manifold_file_can_be_repaired_from_the_panel() {
     v.apply(Command::Open(fin.clone()));
     settle(&mut v);
     assert!(error_text(&v).is_some_and(|e| e.contains("non-manifold edge")), "{:?}", error_text(&v));
-    assert_eq!(v.doc.status.failed.as_deref(), Some(fin.as_path()), "offered for repair");
+    assert_eq!(v.doc.status.failed.as_ref().map(|i| i.path.as_path()), Some(fin.as_path()), "offered for repair");
     assert_eq!(v.doc.model.control.topo.vertices, 4, "the tetrahedron stays");
-    v.apply(Command::RepairAndOpen(fin));
+    v.apply(Command::RepairAndOpen(fin.into()));
     settle(&mut v);
     assert!(v.doc.status.failed.is_none());
     assert_eq!(v.doc.model.control.topo.faces, 3);

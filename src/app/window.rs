@@ -14,7 +14,9 @@ use crate::render::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
 use crate::render::{Camera, Gpu, Look, Surface};
 use crate::{Error, Result};
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use crate::clock::Instant;
+use std::time::Duration;
+#[cfg(not(target_arch = "wasm32"))]
 use winit::event_loop::ActiveEventLoop;
 use winit::window::Window;
 
@@ -124,6 +126,7 @@ pub(crate) fn title(doc: &super::doc::Doc) -> String {
 /// monitor's `(width, height)` in points where that is smaller, keeping
 /// the aspect (a 1024 x 768 screen gets 921 x 576, never a window that
 /// runs off it).
+#[cfg(not(target_arch = "wasm32"))]
 pub(crate) fn initial_size(monitor: Option<(f64, f64)>) -> (f64, f64) {
     let (w, h) = (1280.0, 800.0);
     let Some((mw, mh)) = monitor.filter(|&(mw, mh)| mw > 0.0 && mh > 0.0) else { return (w, h) };
@@ -131,6 +134,7 @@ pub(crate) fn initial_size(monitor: Option<(f64, f64)>) -> (f64, f64) {
     ((w * k).round().max(320.0), (h * k).round().max(240.0))
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn open_window(event_loop: &ActiveEventLoop) -> Result<Arc<Window>> {
     let monitor = event_loop.primary_monitor().or_else(|| event_loop.available_monitors().next()).map(|m| {
         let (size, scale) = (m.size(), m.scale_factor().max(0.1));
@@ -146,6 +150,7 @@ fn open_window(event_loop: &ActiveEventLoop) -> Result<Arc<Window>> {
 }
 
 /// The device and a surface on `window`.
+#[cfg(not(target_arch = "wasm32"))]
 fn connect(event_loop: &ActiveEventLoop, window: &Arc<Window>) -> Result<(Gpu, SurfaceWrapper)> {
     // wgpu 30: the instance needs the display connection, or GL cannot present.
     let desc =
@@ -190,9 +195,20 @@ impl EguiLayer {
 impl Win {
     /// Opens the window and sets up the GPU; reports the adapter and chooses
     /// the initial MSAA in `viewer`.
+    #[cfg(not(target_arch = "wasm32"))]
     pub(crate) fn create(event_loop: &ActiveEventLoop, viewer: &mut Viewer) -> Result<Win> {
         let window = open_window(event_loop)?;
         let (gpu, surface) = connect(event_loop, &window)?;
+        Win::from_parts(window, gpu, surface, viewer)
+    }
+
+    /// The window's GPU state on `gpu` and the configured `surface`.
+    pub(crate) fn from_parts(
+        window: Arc<Window>,
+        gpu: Gpu,
+        surface: SurfaceWrapper,
+        viewer: &mut Viewer,
+    ) -> Result<Win> {
         let format = surface.format();
         let gpu_error = catch_gpu_errors(&gpu.device);
         let egui = EguiLayer::new(&window, &gpu, format);

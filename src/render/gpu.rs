@@ -24,7 +24,14 @@ impl Gpu {
         let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
         desc.backends = wgpu::Backends::all();
         let instance = wgpu::Instance::new(desc.with_env());
-        pollster::block_on(Self::with_instance(instance, None))
+        #[cfg(not(target_arch = "wasm32"))]
+        return pollster::block_on(Self::with_instance(instance, None));
+        // a page cannot wait: its device comes with the window's surface
+        #[cfg(target_arch = "wasm32")]
+        {
+            drop(instance);
+            Err(Error::Gpu("offscreen rendering needs the desktop (subdiv render)".into()))
+        }
     }
 
     /// Requests an adapter (compatible with `surface` when given) and a device.

@@ -414,13 +414,13 @@ impl AnimatedMesh {
 /// fit on the device.
 pub fn time_frames(anim: &crate::anim::Animation, frames: usize) -> Result<(Vec<f64>, f64, String)> {
     let gpu = Gpu::headless()?;
-    let t0 = std::time::Instant::now();
+    let t0 = crate::clock::Instant::now();
     let animated = AnimatedMesh::on_gpu(&gpu, anim.plan(), anim.control(0))?;
     let upload_ms = t0.elapsed().as_secs_f64() * 1e3;
     let wait = |d: &wgpu::Device| d.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| Error::Gpu(e.to_string()));
     let mut times = Vec::with_capacity(frames);
     for f in 0..frames {
-        let t = std::time::Instant::now();
+        let t = crate::clock::Instant::now();
         animated.evaluate(&gpu.device, &gpu.queue, anim.control(f))?;
         wait(&gpu.device)?;
         times.push(t.elapsed().as_secs_f64() * 1e3);

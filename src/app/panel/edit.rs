@@ -496,7 +496,7 @@ fn save_row(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState) -> Vec<Command
 /// unsaved changes before closing or opening another model.
 pub(crate) fn dialogs(ctx: &egui::Context, doc: &Doc) -> Vec<Command> {
     let mut out = Vec::new();
-    if doc.edit.offer.is_some() {
+    if doc.edit.offer {
         egui::Window::new("Unsaved edits found").collapsible(false).resizable(false).show(ctx, |ui| {
             ui.label(format!("{} has edits from a session that did not end. Recover them?", doc.model.name));
             ui.horizontal(|ui| {
@@ -512,7 +512,7 @@ pub(crate) fn dialogs(ctx: &egui::Context, doc: &Doc) -> Vec<Command> {
     if let Some(p) = &doc.edit.pending {
         let what = match p {
             Pending::Close => "closing".to_string(),
-            Pending::Open(path) => format!("opening {}", path.display()),
+            Pending::Open(input) => format!("opening {}", input.path.display()),
         };
         egui::Window::new("Unsaved changes").collapsible(false).resizable(false).show(ctx, |ui| {
             ui.label(format!("{} has unsaved changes. Save them before {what}?", doc.model.name));

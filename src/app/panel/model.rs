@@ -73,7 +73,7 @@ pub(crate) fn model_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState
         out.push(Command::SetRepairOnOpen(repair));
     }
     if let Some(p) = &doc.status.failed
-        && ui.button("Repair and open").on_hover_text(p.display().to_string()).clicked()
+        && ui.button("Repair and open").on_hover_text(p.path.display().to_string()).clicked()
     {
         out.push(Command::RepairAndOpen(p.clone()));
     }
