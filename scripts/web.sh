@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# The JavaScript package of subdiv (web/, WebAssembly by wasm-bindgen).
+# subdiv in the browser (web/, WebAssembly by wasm-bindgen).
 #
-#   bash scripts/web.sh build   target/web/pkg/: subdiv.js, subdiv_bg.wasm,
-#                               subdiv.d.ts, package.json, README.md
+#   bash scripts/web.sh build   target/web/: index.html and main.js (the page),
+#                               viewer/ (the viewer: subdiv_viewer.js and its wasm),
+#                               pkg/ (the JavaScript package: subdiv.js, subdiv_bg.wasm,
+#                               subdiv.d.ts, package.json, README.md)
+#   bash scripts/web.sh serve [PORT]   serves target/web on 127.0.0.1 (default 8080)
 #   bash scripts/web.sh test    the node tests (web/tests/*.test.mjs) on that package,
 #                               then its npm tarball installed and imported
+#   bash scripts/web.sh browser the page in headless Chromium on WebGPU and WebGL2
+#                               (web/tests/browser; installs playwright-core by npm)
 #   bash scripts/web.sh pack    npm pack of target/web/pkg (into target/web/)
 #
 # Installs what it needs when missing: the wasm32-unknown-unknown target and
@@ -15,6 +20,7 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
 pkg=target/web/pkg
 wasm=target/web-build/wasm32-unknown-unknown/release/subdiv_web.wasm
+viewer=target/web/viewer
 version=$(sed -n 's/^wasm-bindgen = "=\([0-9.]*\)".*/\1/p' web/Cargo.toml)
 [ -n "$version" ] || { echo "web/Cargo.toml pins no wasm-bindgen version (wasm-bindgen = \"=0.2.x\")" >&2; exit 1; }
 crate_version=$(sed -n 's/^version = "\(.*\)"/\1/p' Cargo.toml | head -1)
@@ -31,16 +37,26 @@ install_tools() {
     fi
 }
 
+# wasm-bindgen of the crate built with features $1 into $2 as $3(.js, _bg.wasm)
+bindgen() {
+    cargo build --release --target wasm32-unknown-unknown --manifest-path web/Cargo.toml \
+        --target-dir target/web-build --locked ${1:+--features "$1"}
+    rm -rf "$2.tmp"
+    wasm-bindgen --target web --out-dir "$2.tmp" --out-name "$3" "$wasm"
+    if command -v wasm-opt >/dev/null; then
+        wasm-opt -O3 --all-features "$2.tmp/$3_bg.wasm" -o "$2.tmp/$3_bg.opt.wasm"
+        mv "$2.tmp/$3_bg.opt.wasm" "$2.tmp/$3_bg.wasm"
+    fi
+}
+
 build() {
     install_tools
-    cargo build --release --target wasm32-unknown-unknown --manifest-path web/Cargo.toml \
-        --target-dir target/web-build --locked
-    rm -rf "$pkg.tmp"
-    wasm-bindgen --target web --out-dir "$pkg.tmp" --out-name subdiv "$wasm"
-    if command -v wasm-opt >/dev/null; then
-        wasm-opt -O3 --all-features "$pkg.tmp/subdiv_bg.wasm" -o "$pkg.tmp/subdiv_bg.opt.wasm"
-        mv "$pkg.tmp/subdiv_bg.opt.wasm" "$pkg.tmp/subdiv_bg.wasm"
-    fi
+    # the viewer first: the package's build is then the one the wasm path holds
+    bindgen viewer "$viewer" subdiv_viewer
+    rm -rf "$viewer" && mv "$viewer.tmp" "$viewer"
+    cp web/page/index.html web/page/main.js target/web/
+    echo "$viewer: $(wc -c < "$viewer/subdiv_viewer_bg.wasm") bytes of wasm ($(gzip -9c "$viewer/subdiv_viewer_bg.wasm" | wc -c) gzipped)"
+    bindgen "" "$pkg" subdiv
     cp web/README.md "$pkg.tmp/README.md"
     cp LICENSE-MIT LICENSE-APACHE "$pkg.tmp/"
     cat > "$pkg.tmp/package.json" <<JSON
@@ -74,7 +90,7 @@ pack() {
 
 run_tests() {
     [ -f "$pkg/subdiv.js" ] || { echo "no $pkg: run bash scripts/web.sh build first" >&2; exit 1; }
-    SUBDIV_PKG="$root/$pkg" node --test web/tests/
+    SUBDIV_PKG="$root/$pkg" node --test web/tests/*.test.mjs
     # the tarball npm would publish installs (offline: no dependencies) and imports by name
     local tgz dir
     tgz=$(pack)
@@ -84,9 +100,18 @@ run_tests() {
         && cp "$root/web/tests/tarball-check.mjs" . && node tarball-check.mjs)
 }
 
+browser() {
+    [ -f target/web/index.html ] || { echo "no target/web/index.html: run bash scripts/web.sh build first" >&2; exit 1; }
+    command -v chromium >/dev/null || { echo "no chromium: apt-get install chromium" >&2; exit 1; }
+    (cd web/tests/browser && npm ci --no-audit --no-fund --silent)
+    SUBDIV_WEB="$root/target/web" SUBDIV_MODELS="$root/models" node --test web/tests/browser/
+}
+
 case "${1:-}" in
     build) build ;;
+    serve) exec node web/tests/browser/serve.mjs target/web "${2:-8080}" ;;
     test) run_tests ;;
+    browser) browser ;;
     pack) pack ;;
-    *) echo "usage: bash scripts/web.sh build|test|pack" >&2; exit 2 ;;
+    *) echo "usage: bash scripts/web.sh build|serve [PORT]|test|browser|pack" >&2; exit 2 ;;
 esac

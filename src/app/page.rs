@@ -77,6 +77,41 @@ struct PageApp {
     canvas: web_sys::HtmlCanvasElement,
     webgl2: bool,
     window: Option<Arc<Window>>,
+    /// Frames drawn.
+    frames: u64,
+    /// The loading notice was taken away (the first frame with a device).
+    shown: bool,
+}
+
+impl PageApp {
+    /// What the viewer shows, as the canvas's `data-` attributes, so that
+    /// the page's script and its tests read the state instead of guessing
+    /// it: `frames`, `busy`, `model`, `level`, `triangles`, `adapter`,
+    /// `error`, `unsaved`, `steps` (the undo history's length), `offer` (a
+    /// recovery copy is offered).
+    fn report(&mut self) {
+        let (doc, view) = (&self.app.viewer.doc, &self.app.viewer.view);
+        let error = doc.status.error.as_ref().map(|p| p.to_string()).unwrap_or_default();
+        let pairs = [
+            ("frames", self.frames.to_string()),
+            ("busy", doc.busy().to_string()),
+            ("model", doc.model.name.clone()),
+            ("level", doc.model.made.level.to_string()),
+            ("triangles", doc.model.result.shown.mesh.ct.num_triangles().to_string()),
+            ("adapter", view.stats.adapter.clone()),
+            ("error", error),
+            ("unsaved", doc.edit.history.dirty().to_string()),
+            ("steps", doc.edit.history.done.len().to_string()),
+            ("offer", doc.edit.offer.to_string()),
+        ];
+        for (k, v) in pairs {
+            let _ = self.canvas.set_attribute(&format!("data-{k}"), &v);
+        }
+        if self.app.win.is_some() && !self.shown {
+            self.shown = true;
+            show_in_page("");
+        }
+    }
 }
 
 /// Starts the viewer on `canvas` with what `query` (the page's address
@@ -97,7 +132,7 @@ pub fn run_in_page(canvas: web_sys::HtmlCanvasElement, query: &str) -> Result<()
         .build()
         .map_err(|e| Error::Gpu(format!("no event loop in this page: {e}")))?;
     PROXY.set(Some(event_loop.create_proxy()));
-    event_loop.spawn_app(PageApp { app, canvas, webgl2: q.webgl2, window: None });
+    event_loop.spawn_app(PageApp { app, canvas, webgl2: q.webgl2, window: None, frames: 0, shown: false });
     Ok(())
 }
 
@@ -154,10 +189,20 @@ impl ApplicationHandler<PageEvent> for PageApp {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, id: WindowId, event: WindowEvent) {
-        if let (WindowEvent::RedrawRequested, Some(e)) = (&event, self.app.fatal.take()) {
+        let redraw = matches!(event, WindowEvent::RedrawRequested);
+        if let (true, Some(e)) = (redraw, self.app.fatal.take()) {
             self.app.viewer.doc.fail(e.into());
         }
+        // the canvas's first sizes arrive before its device: follow it here
+        if let (true, Some(win), Some(w)) = (redraw, &mut self.app.win, &self.window) {
+            let size = w.inner_size();
+            win.resize(size.width, size.height);
+        }
         ApplicationHandler::<()>::window_event(&mut self.app, event_loop, id, event);
+        if redraw {
+            self.frames += 1;
+            self.report();
+        }
     }
 
     fn about_to_wait(&mut self, event_loop: &ActiveEventLoop) {
@@ -172,7 +217,9 @@ impl ApplicationHandler<PageEvent> for PageApp {
 /// Puts `message` where the canvas would draw (no device: no panel either),
 /// in the element `#status` when the page has one, and in the console.
 fn show_in_page(message: &str) {
-    web_sys::console::error_1(&message.into());
+    if !message.is_empty() {
+        web_sys::console::error_1(&message.into());
+    }
     let status = web_sys::window().and_then(|w| w.document()).and_then(|d| d.get_element_by_id("status"));
     if let Some(el) = status {
         el.set_text_content(Some(message));

@@ -15,6 +15,8 @@
 mod input;
 mod names;
 mod refiner;
+#[cfg(feature = "viewer")]
+mod viewer;
 
 use input::{Cage, Control};
 use js_sys::{Float32Array, Object, Reflect, Uint32Array};

@@ -1,0 +1,140 @@
+// The page (target/web, built by `bash scripts/web.sh build`) in Debian's
+// headless Chromium, once on WebGPU (SwiftShader) and once on WebGL2: it
+// draws the model, a level change changes the picture, a picked file and a
+// fetched URL open, an edit moves the cage and its undo restores the
+// picture, and unsaved edits survive a reload. The viewer writes its state
+// on the canvas (`data-frames`, `data-busy`, `data-level`, ...): every wait
+// here is for one of those, never for a time.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdtempSync, writeFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+import { chromium } from 'playwright-core';
+import { serve } from './serve.mjs';
+import { decodePng, differing } from './png.mjs';
+
+const root = resolve(process.env.SUBDIV_WEB ?? 'target/web');
+const models = resolve(process.env.SUBDIV_MODELS ?? 'models');
+const shots = process.env.SUBDIV_SHOTS; // a folder to keep the screenshots in, when set
+const chrome = process.env.CHROMIUM ?? '/usr/bin/chromium';
+// --use-angle=swiftshader: without it the WebGPU canvas never reaches the
+// compositor in headless Chromium 156, and screenshots show the page behind it
+const WEBGPU = ['--enable-unsafe-webgpu', '--enable-features=Vulkan', '--use-vulkan=swiftshader', '--use-angle=swiftshader',
+  '--use-webgpu-adapter=swiftshader', '--enable-unsafe-swiftshader'];
+
+let server, browser, base, scratch;
+before(async () => {
+  server = await serve(root);
+  base = `http://127.0.0.1:${server.address().port}/`;
+  browser = await chromium.launch({ executablePath: chrome, headless: true, args: ['--headless=new', ...WEBGPU] });
+  scratch = mkdtempSync(join(tmpdir(), 'subdiv-page-'));
+});
+after(async () => {
+  await browser?.close();
+  server?.close();
+  if (scratch) rmSync(scratch, { recursive: true, force: true });
+});
+
+/** Waits until the canvas says the viewer is idle with `want` (attribute: value) and has drawn since. */
+async function settled(page, want = {}) {
+  await page.waitForFunction((want) => {
+    const c = document.getElementById('view');
+    const d = c.dataset;
+    if (d.busy !== 'false' || Number(d.frames ?? 0) < 2) return false;
+    if (d.error) return true; // an error is a state too: the caller checks it
+    return Object.entries(want).every(([k, v]) => d[k] === String(v));
+  }, want, { timeout: 120_000 });
+  // two more frames after the state arrived: the picture shows it
+  const frames = Number(await page.getAttribute('#view', 'data-frames'));
+  await page.waitForFunction((n) => Number(document.getElementById('view').dataset.frames) >= n, frames + 2);
+  return page.evaluate(() => ({ ...document.getElementById('view').dataset }));
+}
+
+async function shot(page, name) {
+  const png = await page.screenshot();
+  if (shots) writeFileSync(join(shots, `${name}.png`), png);
+  return decodePng(png);
+}
+
+/** Pixels unlike the background colour (the top left corner's) in the middle of the 3D area. */
+function modelPixels(img) {
+  const bg = img.pixels.subarray(0, 3);
+  let n = 0;
+  for (let y = Math.floor(img.height * 0.3); y < img.height * 0.7; y++) {
+    for (let x = Math.floor(img.width * 0.45); x < img.width * 0.85; x++) {
+      const i = (y * img.width + x) * 4;
+      if (Math.abs(img.pixels[i] - bg[0]) + Math.abs(img.pixels[i + 1] - bg[1]) + Math.abs(img.pixels[i + 2] - bg[2]) > 30) n++;
+    }
+  }
+  return n;
+}
+
+async function open(backend, query) {
+  const page = await browser.newPage({ viewport: { width: 1000, height: 640 } });
+  const logs = [];
+  page.on('console', (m) => logs.push(`${m.type()}: ${m.text()}`));
+  page.on('pageerror', (e) => logs.push(`pageerror: ${e.message}`));
+  const q = backend === 'webgl2' ? `${query}&backend=webgl2` : query;
+  await page.goto(`${base}index.html?${q}`);
+  return { page, logs };
+}
+
+for (const backend of ['webgpu', 'webgl2']) {
+  test(`${backend}: draws the model, a level changes the picture, a file and a URL open`, async () => {
+    const { page, logs } = await open(backend, 'model=torus.obj&level=1&scheme=loop');
+    const s = await settled(page, { level: 1, model: 'torus.obj' });
+    assert.equal(s.error ?? '', '', `no error: ${logs.join('\n')}`);
+    assert.match(s.adapter, backend === 'webgpu' ? /WebGpu/i : /Gl/i, `the ${backend} adapter: ${s.adapter}`);
+    assert.equal(await page.textContent('#status'), '', 'the loading notice is gone');
+    assert.equal(Number(s.triangles), 4 * 1024, 'level 1 of the 1024-triangle torus');
+    const one = await shot(page, `${backend}-torus-1`);
+    assert.ok(modelPixels(one) > 0.2 * 0.4 * 0.4 * one.width * one.height, 'the torus covers the middle of the view');
+
+    await page.focus('#view');
+    await page.keyboard.press('Equal');
+    await page.keyboard.press('Equal');
+    const three = await settled(page, { level: 3 });
+    assert.equal(Number(three.triangles), 64 * 1024);
+    const img3 = await shot(page, `${backend}-torus-3`);
+    assert.ok(differing(one, img3) > 500, 'level 3 is drawn, not level 1');
+
+    await page.setInputFiles('#file', join(models, 'cube.obj'));
+    const cube = await settled(page, { model: 'cube.obj' });
+    assert.equal(cube.error ?? '', '');
+    assert.ok(differing(img3, await shot(page, `${backend}-cube`)) > 500, 'the cube replaced the torus');
+
+    const url = await open(backend, `model=${encodeURIComponent(`${base}lprism-copy.obj`)}`);
+    const missing = await settled(url.page);
+    assert.match(missing.error, /lprism-copy\.obj.*404/, 'a failed fetch is said in the panel');
+    await url.page.close();
+    await page.close();
+  });
+
+  test(`${backend}: an edit moves the cage, undo restores the picture, a reload offers the edits`, async () => {
+    const { page, logs } = await open(backend, 'model=cube.obj&level=2&scheme=catmull-clark');
+    await settled(page, { level: 2, model: 'cube.obj' });
+    await page.focus('#view');
+    await page.keyboard.press('e');
+    await page.keyboard.press('a');
+    const before = await shot(page, `${backend}-edit-before`);
+    await page.keyboard.press('g');
+    await page.keyboard.press('z');
+    await page.keyboard.type('0.5');
+    await page.keyboard.press('Enter');
+    const moved = await settled(page, { steps: 1, unsaved: true });
+    assert.equal(moved.error ?? '', '', logs.join('\n'));
+    const after = await shot(page, `${backend}-edit-moved`);
+    assert.ok(differing(before, after) > 500, 'the moved cube is drawn');
+    await page.keyboard.press('Control+z');
+    await settled(page, { steps: 0 });
+    const undone = await shot(page, `${backend}-edit-undone`);
+    assert.ok(differing(before, undone) < 0.001 * before.width * before.height, 'undo restores the picture');
+    await page.keyboard.press('Control+Shift+z');
+    await settled(page, { steps: 1, unsaved: true });
+    await page.reload();
+    const again = await settled(page, { model: 'cube.obj' });
+    assert.equal(again.offer, 'true', 'the unsaved edits are offered after a reload');
+    await page.close();
+  });
+}
