@@ -39,6 +39,7 @@
 use bytemuck::Zeroable;
 
 /// Arrays smaller than this are left to the allocator's defaults (no advice).
+#[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 const HUGE_MIN: usize = 4 << 20;
 
 /// A vector of `n` zeroed elements, backed as the page policy says.
@@ -84,7 +85,9 @@ pub fn keep_freed_memory() {
     }
 }
 
-/// How fresh large arrays are backed (`SUBDIV_MEM`, for measuring).
+/// How fresh large arrays are backed (`SUBDIV_MEM`, for measuring; Linux
+/// only).
+#[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Policy {
     /// No advice: 4 KiB pages faulted on first touch.
@@ -100,6 +103,7 @@ enum Policy {
     Adaptive,
 }
 
+#[cfg_attr(not(target_os = "linux"), allow(dead_code))]
 fn policy() -> Policy {
     static P: std::sync::OnceLock<Policy> = std::sync::OnceLock::new();
     *P.get_or_init(|| match std::env::var("SUBDIV_MEM").as_deref() {

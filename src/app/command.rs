@@ -185,7 +185,9 @@ impl Viewer {
         match command {
             Command::OpenBuiltin => doc.open_builtin(),
             Command::Open(path) => doc.open_asking(path.into()),
-            Command::OpenBytes { name, bytes } => doc.open_asking(super::jobs::Input { path: name.into(), bytes: Some(bytes) }),
+            Command::OpenBytes { name, bytes } => {
+                doc.open_asking(super::jobs::Input { path: name.into(), bytes: Some(bytes) })
+            }
             Command::RepairAndOpen(input) => doc.repair_and_open(input),
             Command::SetRepairOnOpen(on) => doc.repair_on_open = on,
             Command::EditCurve(curve) => doc.model.curve.set(Some(curve)),

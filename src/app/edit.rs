@@ -12,9 +12,9 @@
 //! once to a recovery file in the user's state folder, which a save or a
 //! discard removes.
 
-use super::recovery::Recovery;
 use super::doc::{Doc, Problem};
 use super::model::Shown;
+use super::recovery::Recovery;
 use crate::{Mesh, Refiner, Scheme};
 use glam::Vec3;
 use std::path::{Path, PathBuf};

@@ -12,6 +12,7 @@ use super::model::{Curve, Shown};
 use crate::anim::paths::Paths;
 use crate::anim::player::Animation;
 use crate::anim::tweak::Tweak;
+use crate::clock::Instant;
 use crate::mesh::attributes::Attributes;
 use crate::render::export::{ExportStyle, ExportTarget, export_animation};
 use crate::subdiv::{ControlCounts, Stats};
@@ -19,7 +20,6 @@ use crate::{Mesh, Options, Result, Scheme, bundled};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
-use crate::clock::Instant;
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::Duration;
 

@@ -62,8 +62,8 @@ mod upload_tests;
 pub(crate) use command::Command;
 pub(crate) use viewer::Viewer;
 
-use crate::render::Camera;
 use crate::clock::Instant;
+use crate::render::Camera;
 use crate::{Error, Result, Scheme};
 use display::Display;
 use std::path::PathBuf;
@@ -384,7 +384,14 @@ impl App {
         // The frames-mode exit captures this frame, panel and all; the P key
         // renders the 3D area offscreen, as View::shot says (scale, transparency).
         let finishing = self.run.count(raw_dt, viewer.doc.busy());
-        let shot = self.run.shot_path(finishing, std::mem::take(&mut viewer.view.screenshot));
+        let asked = std::mem::take(&mut viewer.view.screenshot);
+        // a page cannot wait for the GPU's readback, nor write a file
+        #[cfg(target_arch = "wasm32")]
+        let asked = asked && {
+            viewer.doc.status.notice = Some("screenshots need the desktop viewer (or `subdiv render`)".into());
+            false
+        };
+        let shot = self.run.shot_path(finishing, asked);
         let capture = shot.as_ref().filter(|_| finishing).map(|_| win.capture());
         let ppp = egui.pixels_per_point();
         win.composite(&mut encoder, &target, capture.as_ref(), &egui);

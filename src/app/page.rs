@@ -13,9 +13,9 @@
 //! Everything else (the panel, the renderer, the commands, the workers'
 //! tasks, which run one per frame here) is the desktop's code.
 
+use super::page_query::PageQuery;
 use super::surface::SurfaceWrapper;
 use super::window::Win;
-use super::page_query::PageQuery;
 use super::{App, Command};
 use crate::render::{Gpu, Shading};
 use crate::{Error, Result};
@@ -62,6 +62,16 @@ pub fn open_bytes(name: &str, bytes: Vec<u8>) -> Result<()> {
     match send(PageEvent::Open { name: name.to_string(), bytes }) {
         true => Ok(()),
         false => Err(Error::Usage("no viewer runs on this page (start it first)".into())),
+    }
+}
+
+/// Opens the browser's file picker (the page's `<input type="file"
+/// id="file">`, whose change the page's script hands to [`open_bytes`]).
+pub(crate) fn pick_file() {
+    let input = web_sys::window().and_then(|w| w.document()).and_then(|d| d.get_element_by_id("file"));
+    match input.and_then(|i| i.dyn_into::<web_sys::HtmlElement>().ok()) {
+        Some(input) => input.click(),
+        None => report_problem("this page has no file picker (#file)"),
     }
 }
 

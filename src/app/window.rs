@@ -7,6 +7,7 @@ use super::Viewer;
 use super::command::Command;
 use super::gpu_scene::GpuScene;
 use super::surface::SurfaceWrapper;
+use crate::clock::Instant;
 use crate::render::blit::Blit;
 use crate::render::gpu_anim::AnimatedMesh;
 use crate::render::readback::{Readback, capture_texture};
@@ -14,7 +15,6 @@ use crate::render::scene::{GpuMesh, Renderer, Targets, ViewportDraw};
 use crate::render::{Camera, Gpu, Look, Surface};
 use crate::{Error, Result};
 use std::sync::{Arc, Mutex};
-use crate::clock::Instant;
 use std::time::Duration;
 #[cfg(not(target_arch = "wasm32"))]
 use winit::event_loop::ActiveEventLoop;

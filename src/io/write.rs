@@ -34,6 +34,13 @@ pub(crate) fn write_formatted(
     // 40 MB more of fresh pages for the same speed at bunny level 3)
     const BATCH: usize = 4;
     let format = &format;
+    // no threads in the browser: format and write in turn
+    if cfg!(target_arch = "wasm32") {
+        for h in head {
+            sink(h)?;
+        }
+        return (0..jobs).try_for_each(|k| sink(&format(k)));
+    }
     std::thread::scope(|scope| {
         // one batch in flight: the formatter waits while the writer is behind
         let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<Vec<u8>>>(1);

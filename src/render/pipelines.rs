@@ -68,15 +68,12 @@ pub(crate) struct Pipelines {
     pub mesh: [wgpu::RenderPipeline; 3],
     /// Shaded faces, per-vertex colour.
     pub mesh_colored: [wgpu::RenderPipeline; 3],
-    /// Faces with their wireframe, one pass (also wire only: faces that
-    /// only hide the lines behind them), blended over the target.
-    pub wire: [wgpu::RenderPipeline; 3],
-    /// `wire` with per-vertex colours (or texture coordinates) from group 2.
-    pub wire_colored: [wgpu::RenderPipeline; 3],
+    /// The one-pass wireframe, where the device reads storage buffers in
+    /// the vertex stage (not WebGL2: there the wireframe is a line list
+    /// over the faces).
+    pub wires: Option<Wires>,
     /// Shaded faces of one material group, its texture sampled per pixel.
     pub mesh_textured: [wgpu::RenderPipeline; 3],
-    /// `wire` for one material group, its texture sampled per pixel.
-    pub wire_textured: [wgpu::RenderPipeline; 3],
     /// Line lists (wireframe, control mesh, normals, highlights).
     pub lines: wgpu::RenderPipeline,
     /// The viewport's background gradient (one full-viewport triangle).
@@ -91,10 +88,55 @@ pub(crate) struct Pipelines {
     pub view_layout: wgpu::BindGroupLayout,
     /// Group 1 of the line pipeline: the `LineStyle` uniform.
     pub style_layout: wgpu::BindGroupLayout,
-    /// Group 2 of the wire pipeline: the mesh's storage buffers.
-    pub mesh_data_layout: wgpu::BindGroupLayout,
     /// Group 3 of the textured pipelines: a material's texture, sampler and colour.
     pub material_layout: wgpu::BindGroupLayout,
+}
+
+/// The pipelines that draw faces and their wireframe in one pass, from the
+/// mesh's storage buffers (group 2).
+pub(crate) struct Wires {
+    /// Faces with their wireframe, one pass (also wire only: faces that
+    /// only hide the lines behind them), blended over the target.
+    pub wire: [wgpu::RenderPipeline; 3],
+    /// `wire` with per-vertex colours (or texture coordinates) from group 2.
+    pub wire_colored: [wgpu::RenderPipeline; 3],
+    /// `wire` for one material group, its texture sampled per pixel.
+    pub wire_textured: [wgpu::RenderPipeline; 3],
+    /// Group 2: the mesh's storage buffers.
+    pub mesh_data_layout: wgpu::BindGroupLayout,
+}
+
+impl Wires {
+    /// The wire pipelines, where `factory`'s device has the storage
+    /// buffers they read in the vertex stage.
+    fn new(
+        factory: &Factory,
+        view_layout: &wgpu::BindGroupLayout,
+        material_layout: &wgpu::BindGroupLayout,
+    ) -> Option<Wires> {
+        let device = factory.device;
+        if device.limits().max_storage_buffers_per_shader_stage < MESH_DATA_BINDINGS {
+            return None;
+        }
+        let mesh_data_layout = mesh_data_layout(device);
+        let wire_layout = pipeline_layout(device, "wire", &[Some(view_layout), None, Some(&mesh_data_layout)]);
+        let wire_spec = |label, vertex_shader, fragment_shader| Spec {
+            label,
+            layout: &wire_layout,
+            vertex_shader,
+            buffers: &[],
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            fragment_shader,
+            depth_write: true,
+            depth_compare: wgpu::CompareFunction::Less,
+            cull_mode: None,
+            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+        };
+        let wire = factory.per_cull(wire_spec("wire", "vs_wire", "fs_wire"));
+        let wire_colored = factory.per_cull(wire_spec("wire colored", "vs_wire_colored", "fs_wire_colored"));
+        let wire_textured = textured_wire(factory, [view_layout, &mesh_data_layout, material_layout]);
+        Some(Wires { wire, wire_colored, wire_textured, mesh_data_layout })
+    }
 }
 
 /// The storage buffers of the wire pipeline, in binding order (see
@@ -218,17 +260,17 @@ fn lines_and_dots(factory: &Factory, layout: &wgpu::PipelineLayout) -> [wgpu::Re
     [&line_spec, &hidden, &dot_spec, &dots_hidden].map(|spec| factory.build(spec))
 }
 
-/// The textured pipelines, faces then faces with their wire (group 3 the
-/// material; the wire's group 2 its storage buffers).
-fn textured(
-    factory: &Factory,
-    [view, mesh_data, material]: [&wgpu::BindGroupLayout; 3],
-) -> [[wgpu::RenderPipeline; 3]; 2] {
+/// The textured faces' pipelines (group 3 the material).
+fn textured(factory: &Factory, [view, material]: [&wgpu::BindGroupLayout; 2]) -> [wgpu::RenderPipeline; 3] {
     let faces = pipeline_layout(factory.device, "mesh textured", &[Some(view), None, None, Some(material)]);
-    let wire = pipeline_layout(factory.device, "wire textured", &[Some(view), None, Some(mesh_data), Some(material)]);
-    let spec = Spec {
+    factory.per_cull(textured_spec(&faces))
+}
+
+/// The textured faces' pipeline description, on `layout`.
+fn textured_spec(layout: &wgpu::PipelineLayout) -> Spec<'_> {
+    Spec {
         label: "mesh textured",
-        layout: &faces,
+        layout,
         vertex_shader: "vs_mesh_colored",
         buffers: &[Some(POS_LAYOUT), Some(NRM_LAYOUT), Some(COLOR_LAYOUT)],
         topology: wgpu::PrimitiveTopology::TriangleList,
@@ -237,17 +279,24 @@ fn textured(
         depth_compare: wgpu::CompareFunction::Less,
         cull_mode: None,
         blend: None,
-    };
-    let wire_spec = Spec {
+    }
+}
+
+/// The textured faces with their wire (group 3 the material, group 2 the
+/// wire's storage buffers).
+fn textured_wire(
+    factory: &Factory,
+    [view, mesh_data, material]: [&wgpu::BindGroupLayout; 3],
+) -> [wgpu::RenderPipeline; 3] {
+    let wire = pipeline_layout(factory.device, "wire textured", &[Some(view), None, Some(mesh_data), Some(material)]);
+    factory.per_cull(Spec {
         label: "wire textured",
-        layout: &wire,
         vertex_shader: "vs_wire_colored",
         buffers: &[],
         fragment_shader: "fs_wire_textured",
         blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-        ..spec
-    };
-    [factory.per_cull(spec), factory.per_cull(wire_spec)]
+        ..textured_spec(&wire)
+    })
 }
 
 /// A bind group layout with one uniform buffer at binding 0.
@@ -304,8 +353,6 @@ impl Pipelines {
         let style_layout = uniform_layout(device, "line style");
         let mesh_layout = pipeline_layout(device, "mesh", &[Some(&view_layout)]);
         let line_layout = pipeline_layout(device, "lines", &[Some(&view_layout), Some(&style_layout)]);
-        let mesh_data_layout = mesh_data_layout(device);
-        let wire_layout = pipeline_layout(device, "wire", &[Some(&view_layout), None, Some(&mesh_data_layout)]);
         let shaded = [Some(POS_LAYOUT), Some(NRM_LAYOUT)];
         let colored = [Some(POS_LAYOUT), Some(NRM_LAYOUT), Some(COLOR_LAYOUT)];
         let faces = |label, vertex_shader, buffers, fragment_shader| Spec {
@@ -322,17 +369,10 @@ impl Pipelines {
         };
         let mesh = factory.per_cull(faces("mesh", "vs_mesh", &shaded, "fs_mesh"));
         let mesh_colored = factory.per_cull(faces("mesh colored", "vs_mesh_colored", &colored, "fs_mesh"));
-        let wire_spec = |label, vertex_shader, fragment_shader| Spec {
-            layout: &wire_layout,
-            buffers: &[],
-            blend: Some(wgpu::BlendState::ALPHA_BLENDING),
-            ..faces(label, vertex_shader, &[], fragment_shader)
-        };
-        let wire = factory.per_cull(wire_spec("wire", "vs_wire", "fs_wire"));
-        let wire_colored = factory.per_cull(wire_spec("wire colored", "vs_wire_colored", "fs_wire_colored"));
         let [lines, lines_hidden, dots, dots_hidden] = lines_and_dots(&factory, &line_layout);
         let material_layout = super::textures::material_layout(device);
-        let [mesh_textured, wire_textured] = textured(&factory, [&view_layout, &mesh_data_layout, &material_layout]);
+        let mesh_textured = textured(&factory, [&view_layout, &material_layout]);
+        let wires = Wires::new(&factory, &view_layout, &material_layout);
         let background = factory.build(&Spec {
             label: "background",
             layout: &mesh_layout,
@@ -344,10 +384,8 @@ impl Pipelines {
         Pipelines {
             mesh,
             mesh_colored,
-            wire,
-            wire_colored,
+            wires,
             mesh_textured,
-            wire_textured,
             lines,
             background,
             lines_hidden,
@@ -355,7 +393,6 @@ impl Pipelines {
             dots_hidden,
             view_layout,
             style_layout,
-            mesh_data_layout,
             material_layout,
         }
     }

@@ -283,8 +283,10 @@ impl Renderer {
         draws: &[ViewportDraw],
     ) {
         self.write_uniforms(device, queue, draws);
-        for m in draws.iter().filter(|d| d.look.wireframe).filter_map(|d| d.mesh) {
-            m.data_group(device, &self.pipelines.mesh_data_layout);
+        if let Some(wires) = &self.pipelines.wires {
+            for m in draws.iter().filter(|d| d.look.wireframe).filter_map(|d| d.mesh) {
+                m.data_group(device, &wires.mesh_data_layout);
+            }
         }
         for mats in draws.iter().filter_map(|d| d.mesh.and_then(|m| shown_materials(m, d.look))) {
             mats.bind_groups(device, &self.pipelines.material_layout);
@@ -373,20 +375,22 @@ impl Renderer {
             pass.draw(0..3, 0..1);
         }
         if let Some(m) = d.mesh {
-            let wire_group = m.data_group.get().and_then(Option::as_ref).filter(|_| d.look.wireframe);
+            let wires = self.pipelines.wires.as_ref().filter(|_| d.look.wireframe);
+            let wire_group = wires.and_then(|w| Some((w, m.data_group.get()?.as_ref()?)));
             if let Some(mats) = shown_materials(m, d.look) {
                 self.draw_materials(pass, m, mats, d.look, wire_group);
-            } else if let Some(group) = wire_group {
-                let wire =
-                    if shown_colors(m, d.look).is_some() { &self.pipelines.wire_colored } else { &self.pipelines.wire };
+            } else if let Some((wires, group)) = wire_group {
+                let wire = if shown_colors(m, d.look).is_some() { &wires.wire_colored } else { &wires.wire };
                 pass.set_pipeline(&wire[m.cull as usize]);
                 pass.set_bind_group(2, group, &[]);
                 pass.draw(0..m.triangle_indices, 0..1);
             } else {
                 self.draw_faces(pass, m, d.look);
             }
-            if d.look.wireframe && m.triangle_indices == 0 && m.edge_indices > 0 {
-                // a mesh of lines only (a curve): its edges are the wireframe
+            // a mesh of lines only (a curve), or a device without the one-pass
+            // wire (WebGL2): the wireframe is its edges as lines
+            let line_wire = m.triangle_indices == 0 || self.pipelines.wires.is_none();
+            if d.look.wireframe && line_wire && m.edge_indices > 0 {
                 let style = if d.look.surface == Surface::Hidden { STYLE_WIRE_LIGHT } else { STYLE_WIRE_DARK };
                 self.draw_edges(pass, m, style);
             }
@@ -441,12 +445,12 @@ impl Renderer {
         m: &GpuMesh,
         mats: &GpuMaterials,
         look: Look,
-        wire: Option<&wgpu::BindGroup>,
+        wire: Option<(&super::pipelines::Wires, &wgpu::BindGroup)>,
     ) {
         let (Some(groups), Some(uv)) = (mats.made_groups(), &m.colors) else { return };
         let cull = m.cull as usize;
-        if let Some(wire) = wire {
-            pass.set_pipeline(&self.pipelines.wire_textured[cull]);
+        if let Some((wires, wire)) = wire {
+            pass.set_pipeline(&wires.wire_textured[cull]);
             pass.set_bind_group(2, wire, &[]);
         } else {
             if m.triangle_indices == 0 || look.surface == Surface::Hidden {

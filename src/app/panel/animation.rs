@@ -146,6 +146,10 @@ fn clock_rows(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
 /// Where and how big to export, the GIF and PNG buttons, progress and cancel.
 fn export_rows(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, display: &Display) -> Vec<Command> {
     let mut out = Vec::new();
+    if cfg!(target_arch = "wasm32") {
+        ui.label(egui::RichText::new("Export: `subdiv animate` on the desktop writes GIFs and frames").small().weak());
+        return out;
+    }
     ui.horizontal(|ui| {
         ui.label("Export");
         ui.add(egui::TextEdit::singleline(&mut panel.export_path).desired_width(150.0));

@@ -200,6 +200,9 @@ fn wire_edges_row(ui: &mut egui::Ui, doc: &Doc, display: &mut Display) {
 /// The screenshot button with its scale and transparency.
 fn screenshot_row(ui: &mut egui::Ui, view: &View) -> Vec<Command> {
     let mut out = Vec::new();
+    if cfg!(target_arch = "wasm32") {
+        return out; // the page has no screenshots (mod.rs)
+    }
     let mut shot = view.shot;
     ui.horizontal(|ui| {
         if ui.button("Screenshot (P)").on_hover_text("The 3D area, rendered offscreen").clicked() {

@@ -4,8 +4,7 @@
 use super::PanelState;
 use crate::app::command::Command;
 use crate::app::doc::{BUILTIN_NAME, Doc};
-use egui::{Key, RichText};
-use std::path::PathBuf;
+use egui::RichText;
 
 /// The shown Bezier curve's controls (nothing when no curve is shown).
 fn curve_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Command> {
@@ -27,6 +26,45 @@ fn curve_section(ui: &mut egui::Ui, doc: &Doc) -> Option<Command> {
     if back { Some(Command::CloseCurve) } else { changed.then_some(Command::EditCurve(c)) }
 }
 
+/// The Open field and the file browser (the desktop).
+#[cfg(not(target_arch = "wasm32"))]
+fn open_field(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState, out: &mut Vec<Command>) {
+    use egui::Key;
+    use std::path::PathBuf;
+    ui.horizontal(|ui| {
+        let edit = ui
+            .add(egui::TextEdit::singleline(&mut panel.open_path).hint_text("path/to/model.obj").desired_width(170.0));
+        let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
+        if (ui.button("Open").clicked() || enter) && !panel.open_path.trim().is_empty() {
+            out.push(Command::Open(PathBuf::from(panel.open_path.trim())));
+        }
+        if ui.button("Browse…").clicked() {
+            let start = doc.model.path.as_ref().and_then(|p| p.parent().map(|d| d.to_path_buf()));
+            panel.browser = Some(start.or_else(|| std::env::current_dir().ok()).unwrap_or_else(|| PathBuf::from("/")));
+        }
+    });
+    ui.label(
+        RichText::new(
+            "…or drop a file on the window (.obj .ply .stl .off .gltf .glb .dae .ct, .bez patches, .bzc curves)",
+        )
+        .small()
+        .weak(),
+    );
+}
+
+/// The page's file picker (the browser: no paths, no folders).
+#[cfg(target_arch = "wasm32")]
+fn open_field(ui: &mut egui::Ui, _: &Doc, _: &mut PanelState, _: &mut Vec<Command>) {
+    if ui.button("Open a file…").clicked() {
+        crate::app::page::pick_file();
+    }
+    ui.label(
+        RichText::new("…or drop one on the page (.obj .ply .stl .off .gltf .glb .dae .usda .usdc .usdz .ct), or name it by URL: ?model=https://…")
+            .small()
+            .weak(),
+    );
+}
+
 /// Bundled models, the Open field and browser, repair.
 pub(crate) fn model_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState) -> Vec<Command> {
     let mut out: Vec<Command> = curve_section(ui, doc).into_iter().collect();
@@ -43,25 +81,7 @@ pub(crate) fn model_section(ui: &mut egui::Ui, doc: &Doc, panel: &mut PanelState
             }
         }
     });
-    ui.horizontal(|ui| {
-        let edit = ui
-            .add(egui::TextEdit::singleline(&mut panel.open_path).hint_text("path/to/model.obj").desired_width(170.0));
-        let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(Key::Enter));
-        if (ui.button("Open").clicked() || enter) && !panel.open_path.trim().is_empty() {
-            out.push(Command::Open(PathBuf::from(panel.open_path.trim())));
-        }
-        if ui.button("Browse…").clicked() {
-            let start = model.path.as_ref().and_then(|p| p.parent().map(|d| d.to_path_buf()));
-            panel.browser = Some(start.or_else(|| std::env::current_dir().ok()).unwrap_or_else(|| PathBuf::from("/")));
-        }
-    });
-    ui.label(
-        RichText::new(
-            "…or drop a file on the window (.obj .ply .stl .off .gltf .glb .dae .ct, .bez patches, .bzc curves)",
-        )
-        .small()
-        .weak(),
-    );
+    open_field(ui, doc, panel, &mut out);
     let mut repair = doc.repair_on_open;
     if ui
         .checkbox(&mut repair, "Repair on open")
