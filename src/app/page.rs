@@ -98,7 +98,7 @@ impl PageApp {
     /// the page's script and its tests read the state instead of guessing
     /// it: `frames`, `busy`, `model`, `level`, `triangles`, `adapter`,
     /// `error`, `unsaved`, `steps` (the undo history's length), `offer` (a
-    /// recovery copy is offered).
+    /// recovery copy is offered), `playing` (the animation).
     fn report(&mut self) {
         let (doc, view) = (&self.app.viewer.doc, &self.app.viewer.view);
         let error = doc.status.error.as_ref().map(|p| p.to_string()).unwrap_or_default();
@@ -113,6 +113,7 @@ impl PageApp {
             ("unsaved", doc.edit.history.dirty().to_string()),
             ("steps", doc.edit.history.done.len().to_string()),
             ("offer", doc.edit.offer.to_string()),
+            ("playing", doc.anim.playing().to_string()),
         ];
         for (k, v) in pairs {
             let _ = self.canvas.set_attribute(&format!("data-{k}"), &v);

@@ -118,6 +118,27 @@ for (const backend of ['webgpu', 'webgl2']) {
     await page.close();
   });
 
+  test(`${backend}: the address's shading and the animation loop`, async () => {
+    const { page, logs } = await open(backend, 'model=torus.obj&level=1&scheme=loop');
+    await settled(page, { level: 1 });
+    const phong = await shot(page, `${backend}-phong`);
+    const wire = await open(backend, 'model=torus.obj&level=1&scheme=loop&shading=wire');
+    await settled(wire.page, { level: 1 });
+    assert.ok(differing(phong, await shot(wire.page, `${backend}-wire`)) > 2000, 'shading=wire draws the wireframe');
+    await wire.page.close();
+    await page.close();
+
+    const anim = await open(backend, 'model=tetrahedron.obj&level=2&scheme=loop&play=1');
+    const s = await settled(anim.page, { playing: true });
+    assert.equal(s.error ?? '', '', `${anim.logs.join('\n')} ${logs.join('\n')}`);
+    const a = await shot(anim.page, `${backend}-anim-a`);
+    const frames = Number(s.frames);
+    await anim.page.waitForFunction((n) => Number(document.getElementById('view').dataset.frames) > n, frames + 20);
+    const b = await shot(anim.page, `${backend}-anim-b`);
+    assert.ok(differing(a, b, 8, Math.round(0.35 * a.width)) > 200, 'twenty frames later the cage has moved');
+    await anim.page.close();
+  });
+
   test(`${backend}: an edit moves the cage, undo restores the picture, a reload offers the edits`, async () => {
     const { page, logs } = await open(backend, 'model=cube.obj&level=2&scheme=catmull-clark');
     await settled(page, { level: 2, model: 'cube.obj' });
