@@ -104,7 +104,7 @@ browser() {
     [ -f target/web/index.html ] || { echo "no target/web/index.html: run bash scripts/web.sh build first" >&2; exit 1; }
     command -v chromium >/dev/null || { echo "no chromium: apt-get install chromium" >&2; exit 1; }
     (cd web/tests/browser && npm ci --no-audit --no-fund --silent)
-    SUBDIV_WEB="$root/target/web" SUBDIV_MODELS="$root/models" node --test web/tests/browser/
+    SUBDIV_WEB="$root/target/web" SUBDIV_MODELS="$root/models" SUBDIV_FIXTURES="$root/tests/fixtures" node --test web/tests/browser/
 }
 
 case "${1:-}" in

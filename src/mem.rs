@@ -256,9 +256,13 @@ pub fn default_memory_limit() -> Option<u64> {
     }
 }
 
-/// The process's address-space limit (`RLIMIT_AS`), when one is set.
+/// The process's address-space limit (`RLIMIT_AS`), when one is set; on
+/// `wasm32` the 4 GiB a 32-bit linear memory can grow to (a browser's
+/// page or node: past it an allocation traps instead of failing).
 fn address_space_limit() -> Option<u64> {
-    #[cfg(unix)]
+    #[cfg(target_arch = "wasm32")]
+    return Some(4 << 30);
+    #[cfg(all(unix, not(target_arch = "wasm32")))]
     {
         let mut r = libc::rlimit { rlim_cur: 0, rlim_max: 0 };
         // SAFETY: getrlimit writes the limit into the struct we own and
@@ -268,7 +272,7 @@ fn address_space_limit() -> Option<u64> {
         #[allow(clippy::unnecessary_cast)]
         (ok && r.rlim_cur != libc::RLIM_INFINITY).then_some(r.rlim_cur as u64)
     }
-    #[cfg(not(unix))]
+    #[cfg(not(any(unix, target_arch = "wasm32")))]
     None
 }
 

@@ -133,7 +133,15 @@ impl PageApp {
 /// A bad address, a bundled model that cannot be read, no event loop.
 pub fn run_in_page(canvas: web_sys::HtmlCanvasElement, query: &str) -> Result<()> {
     let q = PageQuery::parse(query)?;
-    let mut app = App::new(q.view_options())?;
+    // a level past the memory budget opens the model at level 0 and says why
+    let mut app = match App::new(q.view_options()) {
+        Ok(app) => app,
+        Err(e) => {
+            let mut app = App::new(super::ViewOptions { level: 0, ..q.view_options() })?;
+            app.viewer.doc.fail(e.into());
+            app
+        }
+    };
     if let Some(look) = q.shading.map(Shading::look) {
         app.viewer.doc.display.surface = look.surface;
         app.viewer.doc.display.wireframe = look.wireframe;

@@ -7,7 +7,7 @@
 // here is for one of those, never for a time.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdtempSync, writeFileSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { chromium } from 'playwright-core';
@@ -16,6 +16,7 @@ import { decodePng, differing } from './png.mjs';
 
 const root = resolve(process.env.SUBDIV_WEB ?? 'target/web');
 const models = resolve(process.env.SUBDIV_MODELS ?? 'models');
+const fixtures = resolve(process.env.SUBDIV_FIXTURES ?? 'tests/fixtures');
 const shots = process.env.SUBDIV_SHOTS; // a folder to keep the screenshots in, when set
 const chrome = process.env.CHROMIUM ?? '/usr/bin/chromium';
 // --use-angle=swiftshader: without it the WebGPU canvas never reaches the
@@ -111,10 +112,27 @@ for (const backend of ['webgpu', 'webgl2']) {
     assert.equal(cube.error ?? '', '');
     assert.ok(differing(img3, await shot(page, `${backend}-cube`)) > 500, 'the cube replaced the torus');
 
+    // a file dropped on the page: a USD stage, read from its bytes
+    const usda = readFileSync(join(fixtures, 'usd', 'two.usda'), 'utf8');
+    await page.evaluate((text) => {
+      const dt = new DataTransfer();
+      dt.items.add(new File([text], 'two.usda'));
+      document.body.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+    }, usda);
+    const stage = await settled(page, { model: 'two.usda' });
+    assert.equal(stage.error ?? '', '');
+
     const url = await open(backend, `model=${encodeURIComponent(`${base}lprism-copy.obj`)}`);
     const missing = await settled(url.page);
     assert.match(missing.error, /lprism-copy\.obj.*404/, 'a failed fetch is said in the panel');
     await url.page.close();
+
+    // past the memory budget (2 GiB of the 4 GiB a wasm32 page can have): said, not a trap
+    const big = await open(backend, 'model=torus.obj&level=14&scheme=loop');
+    const refused = await settled(big.page);
+    assert.match(refused.error, /level \d+/, `the refusal names the level: ${refused.error}`);
+    assert.equal(refused.level, '0', 'the model opens at level 0');
+    await big.page.close();
     await page.close();
   });
 
