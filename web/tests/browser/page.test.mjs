@@ -101,6 +101,7 @@ for (const backend of ['webgpu', 'webgl2']) {
 
     await page.focus('#view');
     await key(page, 'Equal');
+    await settled(page, { level: 2 });
     await key(page, 'Equal');
     const three = await settled(page, { level: 3 });
     assert.equal(Number(three.triangles), 64 * 1024);
@@ -145,9 +146,9 @@ for (const backend of ['webgpu', 'webgl2']) {
     assert.equal(s.error ?? '', '', `${anim.logs.join('\n')} ${logs.join('\n')}`);
     const a = await shot(anim.page, `${backend}-anim-a`);
     const frames = Number(s.frames);
-    await anim.page.waitForFunction((n) => Number(document.getElementById('view').dataset.frames) > n, frames + 20);
+    await anim.page.waitForFunction((n) => Number(document.getElementById('view').dataset.frames) > n, frames + 60);
     const b = await shot(anim.page, `${backend}-anim-b`);
-    assert.ok(differing(a, b, 8, Math.round(0.35 * a.width)) > 200, 'twenty frames later the cage has moved');
+    assert.ok(differing(a, b, 8, Math.round(0.35 * a.width)) > 200, 'sixty frames later the cage has moved');
     await anim.page.close();
   });
 
@@ -178,6 +179,21 @@ for (const backend of ['webgpu', 'webgl2']) {
     await page.reload();
     const again = await settled(page, { model: 'cube.obj' });
     assert.equal(again.offer, 'true', 'the unsaved edits are offered after a reload');
+    await page.focus('#view');
+    await key(page, 'Enter');
+    await settled(page, { offer: false, unsaved: true });
+    // Ctrl+S downloads the cage, the recovered move in it
+    const download = page.waitForEvent('download');
+    await key(page, 'Control+s');
+    const file = await download;
+    assert.equal(file.suggestedFilename(), 'cube.obj');
+    const text = readFileSync(await file.path(), 'utf8');
+    const zs = text.split('\n').filter((l) => l.startsWith('v ')).map((l) => Number(l.split(/\s+/)[3]));
+    assert.equal(zs.length, 8);
+    const cube = readFileSync(join(models, 'cube.obj'), 'utf8').split('\n').filter((l) => l.startsWith('v '))
+      .map((l) => Number(l.split(/\s+/)[3]));
+    zs.forEach((z, i) => assert.ok(Math.abs(z - (cube[i] + 0.5)) < 1e-6, `vertex ${i}: z ${z} is ${cube[i]} + 0.5`));
+    await settled(page, { unsaved: false });
     await page.close();
   });
 }
