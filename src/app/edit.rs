@@ -744,12 +744,8 @@ impl Doc {
         let (written, path) = {
             let name = path.file_stem().map_or_else(|| "model".into(), |s| s.to_string_lossy().into_owned());
             let name = PathBuf::from(format!("{}.obj", name.trim_start_matches(crate::bundled::PREFIX)));
-            let mut bytes = Vec::new();
-            let obj = crate::io::obj::write_obj_with(&self.model.control.mesh, &self.model.attrs.file, &mut |b| {
-                bytes.extend_from_slice(b);
-                Ok(())
-            });
-            (obj.and_then(|()| super::page::download(&name.to_string_lossy(), &bytes)), name)
+            let obj = super::recovery::obj_bytes(&self.model.control.mesh, &self.model.attrs.file);
+            (obj.and_then(|bytes| super::page::download(&name.to_string_lossy(), &bytes)), name)
         };
         #[cfg(target_arch = "wasm32")]
         let path = path.as_path();

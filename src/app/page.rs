@@ -133,7 +133,8 @@ impl PageApp {
 /// A bad address, a bundled model that cannot be read, no event loop.
 pub fn run_in_page(canvas: web_sys::HtmlCanvasElement, query: &str) -> Result<()> {
     let q = PageQuery::parse(query)?;
-    // a level past the memory budget opens the model at level 0 and says why
+    // a level the cage refuses (the built-in one past the budget: a file's
+    // model clamps its level to what fits) opens at level 0 and says why
     let mut app = match App::new(q.view_options()) {
         Ok(app) => app,
         Err(e) => {
@@ -142,6 +143,11 @@ pub fn run_in_page(canvas: web_sys::HtmlCanvasElement, query: &str) -> Result<()
             app
         }
     };
+    if let Some(name) = q.unknown_model() {
+        let known: Vec<&str> = crate::bundled::MODELS.iter().map(|m| m.file_name).collect();
+        let why = format!("no bundled model {name} (a URL needs / or a scheme); bundled: {}", known.join(", "));
+        app.viewer.doc.fail(Error::Usage(why).into());
+    }
     if let Some(look) = q.shading.map(Shading::look) {
         app.viewer.doc.display.surface = look.surface;
         app.viewer.doc.display.wireframe = look.wireframe;
@@ -242,7 +248,7 @@ fn show_in_page(message: &str) {
     let status = web_sys::window().and_then(|w| w.document()).and_then(|d| d.get_element_by_id("status"));
     if let Some(el) = status {
         el.set_text_content(Some(message));
-        let _ = el.set_attribute("data-state", "error");
+        let _ = el.set_attribute("data-state", if message.is_empty() { "ready" } else { "error" });
     }
 }
 

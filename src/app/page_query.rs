@@ -42,6 +42,14 @@ impl PageQuery {
         Ok(q)
     }
 
+    /// A `model` that is neither a bundled model nor a URL (the page's
+    /// script fetches what has a `/` or a scheme): said, not ignored.
+    pub(crate) fn unknown_model(&self) -> Option<&str> {
+        let m = self.model.as_deref()?;
+        let url = m.contains('/') || m.contains(':');
+        (!url && !crate::bundled::MODELS.iter().any(|b| b.file_name == m)).then_some(m)
+    }
+
     /// The viewer's opening state: a bundled model by its name (others
     /// arrive as bytes), else the first launch's.
     pub(crate) fn view_options(&self) -> ViewOptions {
@@ -102,5 +110,8 @@ mod tests {
         let url = PageQuery::parse("model=https%3A%2F%2Fexample.org%2Fa.ply").unwrap();
         assert_eq!(url.model.as_deref(), Some("https://example.org/a.ply"));
         assert_eq!(url.view_options().model, None, "a URL arrives as bytes");
+        assert_eq!(url.unknown_model(), None);
+        assert_eq!(q.unknown_model(), None, "torus.obj is bundled");
+        assert_eq!(PageQuery::parse("model=nope.obj").unwrap().unknown_model(), Some("nope.obj"));
     }
 }

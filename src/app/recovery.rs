@@ -36,6 +36,18 @@ pub(crate) fn recovery_file(dir: &Path, model: Option<&Path>) -> PathBuf {
     dir.join(format!("{}.obj", key(model)))
 }
 
+/// The control mesh as OBJ text in memory (the page's store and its
+/// downloads: no files there).
+#[cfg(target_arch = "wasm32")]
+pub(crate) fn obj_bytes(mesh: &Mesh, attrs: &Attributes) -> crate::Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    crate::io::obj::write_obj_with(mesh, attrs, &mut |b| {
+        bytes.extend_from_slice(b);
+        Ok(())
+    })?;
+    Ok(bytes)
+}
+
 impl Recovery {
     /// The user's store: `$XDG_STATE_HOME/subdiv/recovery` (else
     /// `~/.local/state/...`, `%LOCALAPPDATA%` on Windows), or the page's
@@ -64,11 +76,7 @@ impl Recovery {
                 .and_then(|()| crate::io::save_with(&recovery_file(dir, model), mesh, attrs)),
             #[cfg(target_arch = "wasm32")]
             Recovery::Page => {
-                let mut text = Vec::new();
-                crate::io::obj::write_obj_with(mesh, attrs, &mut |b| {
-                    text.extend_from_slice(b);
-                    Ok(())
-                })?;
+                let text = obj_bytes(mesh, attrs)?;
                 let text = String::from_utf8_lossy(&text);
                 super::page::storage_set(&format!("subdiv-recovery-{}", key(model)), &text)
             }

@@ -127,6 +127,9 @@ for (const backend of ['webgpu', 'webgl2']) {
     const missing = await settled(url.page);
     assert.match(missing.error, /lprism-copy\.obj.*404/, 'a failed fetch is said in the panel');
     await url.page.close();
+    const unknown = await open(backend, 'model=nope.obj');
+    assert.match((await settled(unknown.page)).error, /no bundled model nope\.obj/, 'an unknown name is said');
+    await unknown.page.close();
 
     await page.close();
   });
