@@ -463,7 +463,9 @@ impl ApplicationHandler for App {
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
         let Some(win) = &mut self.win else { return };
-        if win.egui_event(&event) {
+        // egui asks a repaint of every redraw it sees; the redraw under way
+        // is that repaint (asking another, the browser draws forever)
+        if win.egui_event(&event) && !matches!(event, WindowEvent::RedrawRequested) {
             win.window.request_redraw();
         }
         let view = &mut self.viewer.view;

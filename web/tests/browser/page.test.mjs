@@ -98,6 +98,12 @@ for (const backend of ['webgpu', 'webgl2']) {
     assert.equal(Number(s.triangles), 4 * 1024, 'level 1 of the 1024-triangle torus');
     const one = await shot(page, `${backend}-torus-1`);
     assert.ok(modelPixels(one) > 0.2 * 0.4 * 0.4 * one.width * one.height, 'the torus covers the middle of the view');
+    // idle, it draws nothing more (a redraw asking for another drew ~6 a second,
+    // 1.5 s each at level 6 on SwiftShader): a window of time is what this checks
+    const idle = Number(await page.getAttribute('#view', 'data-frames'));
+    await page.waitForTimeout(1500);
+    const later = Number(await page.getAttribute('#view', 'data-frames'));
+    assert.ok(later - idle <= 2, `${later - idle} frames drawn in 1.5 s of idling`);
 
     await page.focus('#view');
     await key(page, 'Equal');
