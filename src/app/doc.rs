@@ -278,8 +278,12 @@ impl Doc {
         self.edit.reset();
         self.anim.playback = None;
         self.reshade();
-        // Keep the level when it fits; otherwise the largest that does.
-        self.request.level = self.request.level.min(self.max_level());
+        // Keep the level when it fits; otherwise the largest that does, saying so.
+        let fits = self.max_level();
+        if let (true, Some(why)) = (self.request.level > fits, self.level_refusal(self.request.level)) {
+            self.status.notice = Some(format!("level {} does not fit ({why}): level {fits} shown", self.request.level));
+            self.request.level = fits;
+        }
         if self.request.level > 0 || self.anim.active {
             self.request_subdivision();
         }

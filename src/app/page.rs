@@ -97,7 +97,7 @@ impl PageApp {
     /// What the viewer shows, as the canvas's `data-` attributes, so that
     /// the page's script and its tests read the state instead of guessing
     /// it: `frames`, `busy`, `model`, `level`, `triangles`, `adapter`,
-    /// `error`, `unsaved`, `steps` (the undo history's length), `offer` (a
+    /// `error`, `notice`, `unsaved`, `steps` (the undo history's length), `offer` (a
     /// recovery copy is offered), `playing` (the animation).
     fn report(&mut self) {
         let (doc, view) = (&self.app.viewer.doc, &self.app.viewer.view);
@@ -110,6 +110,7 @@ impl PageApp {
             ("triangles", doc.model.result.shown.mesh.ct.num_triangles().to_string()),
             ("adapter", view.stats.adapter.clone()),
             ("error", error),
+            ("notice", doc.status.notice.clone().unwrap_or_default()),
             ("unsaved", doc.edit.history.dirty().to_string()),
             ("steps", doc.edit.history.done.len().to_string()),
             ("offer", doc.edit.offer.to_string()),

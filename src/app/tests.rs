@@ -212,6 +212,21 @@ fn levels_over_the_memory_limit_are_refused_with_a_reason() {
 }
 
 #[test]
+fn a_model_opened_at_a_level_past_the_limit_says_which_level_it_shows() {
+    let mut v = Viewer::new();
+    v.doc.request.limit = Some(2_000_000);
+    v.doc.request.level = 9;
+    v.apply(Command::Open(common::model_path("torus.obj")));
+    settle(&mut v);
+    let max = v.doc.max_level();
+    assert!((1..9).contains(&max), "max level {max}");
+    assert_eq!(v.doc.model.made.level, max, "the largest level that fits is made");
+    let notice = v.doc.status.notice.clone().unwrap_or_default();
+    assert!(notice.contains("level 9 does not fit") && notice.contains(&format!("level {max} shown")), "{notice}");
+    assert!(notice.contains("limit"), "the reason is given: {notice}");
+}
+
+#[test]
 fn space_plays_the_tetrahedron_animation() {
     let ctx = egui::Context::default();
     let mut v = Viewer::new();
