@@ -35,7 +35,7 @@
 //! (there is no power table for Catmull-Clark yet), bounded by the cap.
 
 use super::finish::{Affine, finish};
-use super::local::{Fans, MAX_LEVELS, apply_rows, fans};
+use super::local::{Fans, MAX_LEVELS, Memo, apply_rows, fans};
 use super::patch::Jet;
 use super::points::EDGE_SLACK;
 use super::sector::{at_corner, finite_normal, stationary, vertex_limit};
@@ -48,6 +48,10 @@ use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::tables::poly_plan::record_one_catmark_level;
 use crate::{Error, Result};
 use glam::DVec3;
+use rayon::prelude::*;
+
+/// Catmull-Clark's local subdivision kept between points.
+pub(crate) type CatmarkMemo = Memo<Region, (PolyTable, Vec<DVec3>)>;
 
 /// Ptex faces: `(face, corner)`, the corner [`QUAD`] for a quad.
 pub const QUAD: u32 = u32::MAX;
@@ -88,8 +92,8 @@ impl Poly {
     }
 
     /// The limit surface at ptex face `p`, `(u, v)` in the unit square
-    /// (checked by the caller).
-    pub(crate) fn eval(&self, p: usize, (u, v): (f64, f64), second: bool) -> Sample {
+    /// (checked by the caller), the levels of its face kept in `memo`.
+    pub(crate) fn eval(&self, p: usize, (u, v): (f64, f64), second: bool, memo: &mut CatmarkMemo) -> Sample {
         let (f, corner) = self.ptex[p];
         let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
         // a quad already regular needs no region
@@ -98,33 +102,41 @@ impl Poly {
         {
             return sample;
         }
-        let Some(mut region) = extract(&self.pt, |x| self.pos[x as usize], DVec3::ZERO, f) else {
-            return Sample::NAN;
-        };
+        if !memo.holds(0, f) {
+            let Some(region) = extract(&self.pt, |x| self.pos[x as usize], DVec3::ZERO, f) else {
+                return Sample::NAN;
+            };
+            memo.set(0, f, region);
+        }
+        // the sub-face of a corner of an n-gon is the corner's quad of the first level
+        let first = usize::from(corner != QUAD);
         if corner != QUAD {
-            // the sub-face is the corner's quad of the first level
-            let (fine, pos) = subdivide(&region, &self.opts);
-            let child = region.pt.face_corners(region.face).start + corner;
-            let Some(next) = extract(&fine, |x| pos[x as usize], region.origin, child) else { return Sample::NAN };
-            region = next;
+            let child = memo.region(0).pt.face_corners(memo.region(0).face).start + corner;
+            if !memo.holds(1, child) {
+                let (r, (fine, pos)) = memo.fine(0, |r| subdivide(r, &self.opts));
+                let Some(next) = extract(fine, |x| pos[x as usize], r.origin, child) else { return Sample::NAN };
+                memo.set(1, child, next);
+            }
         }
         for level in 0..MAX_LEVELS {
+            let (i, region) = (first + level as usize, memo.region(first + level as usize));
             if let Some(sample) = try_patch(&region.pt, &region.pos, (region.face, region.origin), (st, jac), second)
-                .or_else(|| at_sharp_vertex(&region, st, level))
+                .or_else(|| at_sharp_vertex(region, st, level))
             {
                 return sample;
             }
-            let (fine, pos) = subdivide(&region, &self.opts);
             let (k, map) = quadrant(st);
             let child = region.pt.face_corners(region.face).start + k;
             let (s, t) = map.apply(st);
             st = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
             jac = map.after(&Affine { j: jac, b: [0.0; 2] });
-            match extract(&fine, |x| pos[x as usize], region.origin, child) {
-                Some(next) => region = next,
-                None => return Sample::NAN,
+            if !memo.holds(i + 1, child) {
+                let (r, (fine, pos)) = memo.fine(i, |r| subdivide(r, &self.opts));
+                let Some(next) = extract(fine, |x| pos[x as usize], r.origin, child) else { return Sample::NAN };
+                memo.set(i + 1, child, next);
             }
         }
+        let region = memo.region(first + MAX_LEVELS as usize);
         let corners: Vec<DVec3> =
             region.pt.face_corners(region.face).map(|c| region.pos[region.pt.vtx(c) as usize]).collect();
         let (s, t) = st;
@@ -173,7 +185,22 @@ impl Limit for Poly {
     }
 
     fn eval_checked(&self, f: usize, uv: (f64, f64), second: bool) -> Sample {
-        self.eval(f, uv, second)
+        self.eval(f, uv, second, &mut CatmarkMemo::default())
+    }
+
+    /// Each thread keeps a [`CatmarkMemo`]: consecutive points of one face
+    /// share its first levels.
+    fn eval_sorted<T: Send>(
+        &self,
+        sorted: &[(usize, (f64, f64))],
+        second: bool,
+        keep: impl Fn(&Sample) -> T + Sync,
+    ) -> Vec<T> {
+        sorted
+            .par_iter()
+            .with_min_len(256)
+            .map_init(CatmarkMemo::default, |memo, &(f, uv)| keep(&self.eval(f, uv, second, memo)))
+            .collect()
     }
 }
 
@@ -214,7 +241,7 @@ fn quadrant((u, v): (f64, f64)) -> (u32, Affine) {
 }
 
 /// The faces around the point's face, positions relative to `origin`.
-struct Region {
+pub(crate) struct Region {
     pt: PolyTable,
     pos: Vec<DVec3>,
     origin: DVec3,

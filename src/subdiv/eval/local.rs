@@ -92,7 +92,7 @@ pub(crate) struct Tables<'a> {
 }
 
 /// The faces around the point's face `face`, positions relative to `origin`.
-struct Region {
+pub(crate) struct Region {
     ct: CornerTable,
     pos: Vec<DVec3>,
     origin: DVec3,
@@ -372,9 +372,69 @@ fn try_patch<P: Fn(u32) -> DVec3>(
     Some(sample)
 }
 
+/// The local subdivision of the last face evaluated, kept for the next
+/// point (points come sorted by face, and a face's points share its first
+/// levels): level `i` is a region `R` and, once made, its subdivision `F`;
+/// each level's region is the child its predecessor's subdivision gave the
+/// last point, so a point reuses the levels while its children agree with
+/// the last point's. Loop's here, Catmull-Clark's in `catmark.rs`.
+pub(crate) struct Memo<R, F> {
+    levels: Vec<MemoLevel<R, F>>,
+}
+
+struct MemoLevel<R, F> {
+    /// The face the region is cut around (a face of the control mesh at
+    /// level 0, of the subdivision of the level before after it).
+    key: u32,
+    region: R,
+    fine: Option<F>,
+}
+
+impl<R, F> Default for Memo<R, F> {
+    fn default() -> Self {
+        Memo { levels: Vec::new() }
+    }
+}
+
+impl<R, F> Memo<R, F> {
+    /// Whether level `i` is the region cut around `key`.
+    pub(super) fn holds(&self, i: usize, key: u32) -> bool {
+        self.levels.get(i).is_some_and(|l| l.key == key)
+    }
+
+    /// Makes `region` (cut around `key`) level `i`, forgetting the levels
+    /// after it; `i` at most the number of levels held.
+    pub(super) fn set(&mut self, i: usize, key: u32, region: R) {
+        self.levels.truncate(i);
+        self.levels.push(MemoLevel { key, region, fine: None });
+    }
+
+    /// Level `i`'s region (held: [`Memo::set`] made it).
+    pub(super) fn region(&self, i: usize) -> &R {
+        &self.levels[i].region
+    }
+
+    /// Level `i`'s region and its subdivision, made by `subdivide` once.
+    pub(super) fn fine(&mut self, i: usize, subdivide: impl FnOnce(&R) -> F) -> (&R, &F) {
+        let l = &mut self.levels[i];
+        let region = &l.region;
+        (region, l.fine.get_or_insert_with(|| subdivide(region)))
+    }
+}
+
+/// Loop's local subdivision kept between points.
+pub(crate) type LoopMemo = Memo<Region, (CornerTable, Vec<DVec3>)>;
+
 /// The limit surface at `(u, v)` of control face `f` (checked by the
-/// caller) by local subdivision.
-pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), second: bool) -> Sample {
+/// caller) by local subdivision, the levels of `f` kept in `memo`.
+pub(crate) fn eval(
+    base: &Base,
+    tables: &Tables,
+    f: u32,
+    (u, v): (f64, f64),
+    second: bool,
+    memo: &mut LoopMemo,
+) -> Sample {
     let control = |v: u32| base.pos[v as usize];
     let (mut st, mut jac) = ((u, v), Affine::IDENTITY.j);
     // a face already regular needs no region
@@ -382,11 +442,14 @@ pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), sec
     if let Some(sample) = try_patch(&at, st, jac, tables, second).or_else(|| at_sharp_vertex(&at, st, 0)) {
         return sample;
     }
-    let Some(mut region) = extract(&base.ct, control, DVec3::ZERO, f) else { return Sample::NAN };
+    if !memo.holds(0, f) {
+        let Some(region) = extract(&base.ct, control, DVec3::ZERO, f) else { return Sample::NAN };
+        memo.set(0, f, region);
+    }
     for level in 0..=MAX_LEVELS {
+        let (i, r) = (level as usize, memo.region(level as usize));
         if level > 0 {
-            let at =
-                At { ct: &region.ct, pos: |v: u32| region.pos[v as usize], origin: region.origin, face: region.face };
+            let at = At { ct: &r.ct, pos: |v: u32| r.pos[v as usize], origin: r.origin, face: r.face };
             if let Some(sample) = try_patch(&at, st, jac, tables, second).or_else(|| at_sharp_vertex(&at, st, level)) {
                 return sample;
             }
@@ -394,17 +457,18 @@ pub(crate) fn eval(base: &Base, tables: &Tables, f: u32, (u, v): (f64, f64), sec
         if level == MAX_LEVELS {
             break;
         }
-        let (fine, pos) = subdivide(&region, &base.opts);
-        let (child, map) = child_in_split(region.face, region.ct.num_triangles() as u32, st);
+        let (child, map) = child_in_split(r.face, r.ct.num_triangles() as u32, st);
         let (s, t) = map.apply(st);
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
         st = if s + t > 1.0 { (s / (s + t), t / (s + t)) } else { (s, t) };
         jac = map.after(&Affine { j: jac, b: [0.0; 2] });
-        match extract(&fine, |v| pos[v as usize], region.origin, child) {
-            Some(next) => region = next,
-            None => return Sample::NAN,
+        if !memo.holds(i + 1, child) {
+            let (r, (fine, pos)) = memo.fine(i, |r| subdivide(r, &base.opts));
+            let Some(next) = extract(fine, |v| pos[v as usize], r.origin, child) else { return Sample::NAN };
+            memo.set(i + 1, child, next);
         }
     }
+    let region = memo.region(MAX_LEVELS as usize);
     let corner = |i: u32| region.pos[region.ct.vtx(3 * region.face + i) as usize];
     let (a, b, c) = (corner(0), corner(1), corner(2));
     let position = region.origin + a * (1.0 - st.0 - st.1) + b * st.0 + c * st.1;

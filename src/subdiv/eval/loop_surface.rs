@@ -174,7 +174,7 @@ pub(super) fn evaluate_one(mesh: &Mesh, pos: &[DVec3], opts: &Options, (f, u, v)
     }
     let base = local::Base::borrowed(mesh, pos, opts);
     let tables = local::Tables { spline: &spline, valences: &valences };
-    Ok(local::eval(&base, &tables, f as u32, (u, v), true))
+    Ok(local::eval(&base, &tables, f as u32, (u, v), true, &mut local::LoopMemo::default()))
 }
 
 /// The power table of an interior extraordinary valence `k`, once.
@@ -214,7 +214,8 @@ impl LoopSurface {
     fn eval_cached<'a>(&'a self, f: usize, u: f64, v: f64, second: bool, cache: Option<&mut ChildCache<'a>>) -> Sample {
         if let (Path::Local, Some(base)) = (self.path[f], &self.base) {
             let tables = local::Tables { spline: &self.spline, valences: &self.valences };
-            return local::eval(base, &tables, f as u32, (u, v), second);
+            let (mut one, memo) = (local::LoopMemo::default(), cache.map(|c| &mut c.local));
+            return local::eval(base, &tables, f as u32, (u, v), second, memo.unwrap_or(&mut one));
         }
         let (k, map) = child_of((u, v), true);
         let face = 4 * f as u32 + k as u32;
@@ -384,6 +385,8 @@ struct ChildCache<'a> {
     template: Option<&'a Template>,
     block: [DVec3; BLOCK],
     slots: [Child; 4],
+    /// The local subdivision of the last face of [`Path::Local`].
+    local: local::LoopMemo,
 }
 
 impl<'a> ChildCache<'a> {
@@ -393,6 +396,7 @@ impl<'a> ChildCache<'a> {
             template: None,
             block: [DVec3::ZERO; BLOCK],
             slots: [Child::EMPTY, Child::EMPTY, Child::EMPTY, Child::EMPTY],
+            local: local::LoopMemo::default(),
         }
     }
 

@@ -85,3 +85,28 @@ fn a_point_of_a_refined_quad_finds_its_level_one_parameters() {
         }
     }
 }
+
+#[test]
+/// The levels of local subdivision kept from one point to the next (points
+/// of a face share them until their children part) give every point what
+/// it gets evaluated alone, on both schemes' local paths: a bumped grid,
+/// every face near its border.
+fn points_evaluated_together_equal_points_evaluated_alone() {
+    let mut mesh = shapes::grid(4);
+    for p in &mut mesh.positions {
+        p.z = (0.9 * p.x).sin() * (0.7 * p.y).cos();
+    }
+    for scheme in [Scheme::Loop, Scheme::CatmullClark] {
+        let ev = Evaluator::new(&mesh, scheme, &Options::default()).unwrap();
+        let faces = ev.num_faces();
+        // a face's points in an order that leaves its children and comes back
+        let uv = [(0.05, 0.05), (0.6, 0.3), (0.02, 0.9), (0.3, 0.3), (0.051, 0.049), (0.9, 0.05), (0.0, 0.0)];
+        let points: Vec<(usize, f64, f64)> =
+            (0..faces).flat_map(|f| uv.iter().map(move |&(u, v)| (f, u, v * (1.0 - u)))).collect();
+        let together = ev.eval_map(&points, false, |s| s.position).unwrap();
+        for (&(f, u, v), got) in points.iter().zip(&together) {
+            let alone = ev.eval_with(f, u, v, false).unwrap().position;
+            assert_eq!(*got, alone, "{scheme:?} face {f} at ({u}, {v})");
+        }
+    }
+}
