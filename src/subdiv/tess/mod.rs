@@ -121,14 +121,16 @@ fn run(
     let (mut rate, mut evaluations) = rates::initial(&ev, &domain, tolerance)?;
     let mut stats = TessellationStats { tolerance, ..TessellationStats::default() };
     // a patch is measured again only where its rate or a side's changed
-    let (mut errors, mut before) = (vec![0.0; domain.patches.len()], None::<(Vec<u32>, Vec<u32>)>);
+    // (and its points are evaluated again only there)
+    let (mut errors, mut before) = (vec![0.0; domain.patches.len()], None::<Built>);
     loop {
         stats.rounds += 1;
         rates::check_budget(&domain, &rate, opts.max_memory, tolerance)?;
         let edge_rate = rates::edge_rates(&domain, &rate);
-        let dirty = rates::changed(&domain, (&rate, &edge_rate), before.as_ref().map(|(r, e)| (&r[..], &e[..])));
-        let built = build(&ev, &domain, &rate, &edge_rate)?;
-        evaluations += built.positions.len() as u64 + rates::measure(&ev, &domain, &built, &dirty, &mut errors)?;
+        let last = before.as_ref().map(|b| (&b.layout.rate[..], &b.layout.edge_rate[..]));
+        let dirty = rates::changed(&domain, (&rate, &edge_rate), last);
+        let (built, evaluated) = build(&ev, &domain, (&rate, &edge_rate), before.take())?;
+        evaluations += evaluated + rates::measure(&ev, &domain, &built, &dirty, &mut errors)?;
         stats.measured = errors.iter().copied().fold(0.0, f64::max);
         stats.met = stats.measured <= tolerance;
         let over = errors.iter().filter(|&&e| e > tolerance).count();
@@ -145,7 +147,7 @@ fn run(
             let faces = built.triangles.iter().map(|(p, _)| domain.patches[*p as usize].face).collect();
             return Ok((built, faces, stats));
         }
-        before = Some((rate.clone(), edge_rate));
+        before = Some(built);
         rates::refine(&mut rate, &errors, tolerance);
     }
 }
@@ -157,10 +159,69 @@ struct Built {
     params: Vec<(u32, f64, f64)>,
     /// Each triangle's patch and corners.
     triangles: Vec<(u32, [Pt; 3])>,
+    /// Where the points of each part lie in `positions`, and the rates
+    /// they were made at.
+    layout: Layout,
 }
 
-/// The points and triangles of `domain` at the patches' rates `rate`.
-fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Result<Built> {
+/// The order of a tessellation's points: first the keys (the domain's
+/// corners and junctions, in the same order at any rates), then each
+/// edge's inside points, then each patch's.
+struct Layout {
+    keys: usize,
+    edge_first: Vec<u32>,
+    inside_first: Vec<u32>,
+    rate: Vec<u32>,
+    edge_rate: Vec<u32>,
+    uniform: Vec<bool>,
+}
+
+impl Layout {
+    /// The points of edge `e` and of patch `p`'s inside, as ranges of
+    /// `positions` (`total` of them in all).
+    fn edge(&self, e: usize) -> std::ops::Range<usize> {
+        let first = self.edge_first[e] as usize;
+        first..first + self.edge_rate[e].saturating_sub(1) as usize
+    }
+
+    fn inside(&self, p: usize, total: usize) -> std::ops::Range<usize> {
+        let end = self.inside_first.get(p + 1).map_or(total, |&i| i as usize);
+        self.inside_first[p] as usize..end
+    }
+
+    /// For each point of `self` (`total` in all), its index in `before`
+    /// when it is the same point there (its part made at the same rates).
+    fn same_points(&self, before: &Layout, total: usize, before_total: usize) -> Vec<Option<u32>> {
+        let mut out = vec![None; total];
+        let mut copy = |to: std::ops::Range<usize>, from: std::ops::Range<usize>| {
+            for (t, f) in to.zip(from) {
+                out[t] = Some(f as u32);
+            }
+        };
+        copy(0..self.keys, 0..before.keys);
+        for e in 0..self.edge_rate.len() {
+            if self.edge_rate[e] == before.edge_rate[e] {
+                copy(self.edge(e), before.edge(e));
+            }
+        }
+        for p in 0..self.rate.len() {
+            if self.rate[p] == before.rate[p] && self.uniform[p] == before.uniform[p] {
+                copy(self.inside(p, total), before.inside(p, before_total));
+            }
+        }
+        out
+    }
+}
+
+/// The points and triangles of `domain` at the patches' rates `rate` and
+/// the edges' `edge_rate`, and how many points were evaluated: those of
+/// the parts whose rates changed since `before`, the rest copied from it.
+fn build(
+    ev: &Evaluator,
+    domain: &Domain,
+    (rate, edge_rate): (&[u32], &[u32]),
+    before: Option<Built>,
+) -> Result<(Built, u64)> {
     let mut points = Points { params: Vec::new(), key_id: vec![u32::MAX; domain.num_keys] };
     let uniform: Vec<bool> =
         (0..domain.patches.len()).map(|p| rates::is_uniform(&domain.patches[p], rate[p], edge_rate)).collect();
@@ -173,6 +234,7 @@ fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Re
             }
         }
     }
+    let keys = points.params.len();
     // the points inside the domain's edges, each evaluated on its owner
     let mut edge_first = Vec::with_capacity(domain.edges.len());
     for (e, edge) in domain.edges.iter().enumerate() {
@@ -197,9 +259,9 @@ fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Re
     if points.params.len() > u32::MAX as usize {
         return Err(Error::Usage("the tessellation has more than 2^32 vertices: raise the tolerance".into()));
     }
-    let at: Vec<(usize, f64, f64)> = points.params.iter().map(|&(f, u, v)| (f as usize, u, v)).collect();
-    let positions = ev.eval_map(&at, false, |s| s.position)?;
-    let sides = Sides { domain, edge_rate, edge_first: &edge_first, key_id: &points.key_id };
+    let layout = Layout { keys, edge_first, inside_first, rate: rate.to_vec(), edge_rate: edge_rate.to_vec(), uniform };
+    let (positions, evaluated) = evaluate(ev, &points.params, &layout, before)?;
+    let sides = Sides { domain, edge_rate, edge_first: &layout.edge_first, key_id: &points.key_id };
     let triangles = (0..domain.patches.len())
         .into_par_iter()
         .with_min_len(64)
@@ -207,11 +269,36 @@ fn build(ev: &Evaluator, domain: &Domain, rate: &[u32], edge_rate: &[u32]) -> Re
             let patch = &domain.patches[p];
             let lists: Vec<Vec<Pt>> = (0..patch.sides()).map(|s| sides.points(patch, s)).collect();
             let mut out = Vec::new();
-            grid::triangulate(patch.quad, (rate[p], uniform[p]), &lists, inside_first[p], &mut out);
+            grid::triangulate(patch.quad, (rate[p], layout.uniform[p]), &lists, layout.inside_first[p], &mut out);
             out.into_iter().map(move |t| (p as u32, t))
         })
         .collect();
-    Ok(Built { positions, params: points.params, triangles })
+    Ok((Built { positions, params: points.params, triangles, layout }, evaluated))
+}
+
+/// The limit points at `params` (laid out as `layout` says), those that
+/// `before` holds copied from it; how many were evaluated.
+fn evaluate(
+    ev: &Evaluator,
+    params: &[(u32, f64, f64)],
+    layout: &Layout,
+    before: Option<Built>,
+) -> Result<(Vec<DVec3>, u64)> {
+    let same = match &before {
+        Some(b) => layout.same_points(&b.layout, params.len(), b.positions.len()),
+        None => vec![None; params.len()],
+    };
+    let todo: Vec<usize> = (0..params.len()).filter(|&i| same[i].is_none()).collect();
+    let at: Vec<(usize, f64, f64)> = todo.iter().map(|&i| (params[i].0 as usize, params[i].1, params[i].2)).collect();
+    let fresh = ev.eval_map(&at, false, |s| s.position)?;
+    let mut positions: Vec<DVec3> = match &before {
+        Some(b) => same.iter().map(|s| s.map_or(DVec3::NAN, |i| b.positions[i as usize])).collect(),
+        None => vec![DVec3::NAN; params.len()],
+    };
+    for (&i, p) in todo.iter().zip(fresh) {
+        positions[i] = p;
+    }
+    Ok((positions, todo.len() as u64))
 }
 
 /// The points made so far, and the vertex of each key.

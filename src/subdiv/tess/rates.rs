@@ -162,26 +162,37 @@ pub(super) fn measure(
         }
     }
     let todo: Vec<&(u32, [grid::Pt; 3])> = built.triangles.iter().filter(|(p, _)| dirty[*p as usize]).collect();
+    let mut evaluated = 0;
     for chunk in todo.chunks(BATCH) {
-        let mut at = Vec::with_capacity(4 * chunk.len());
+        // an edge inside a patch is measured once for its two triangles
+        let mut at = Vec::with_capacity(3 * chunk.len());
+        let mut mids = rustc_hash::FxHashMap::default();
+        let mut slots = Vec::with_capacity(chunk.len());
         for (p, [a, b, c]) in chunk.iter().copied() {
             let f = domain.patches[*p as usize].face as usize;
-            let mid = |x: (f64, f64), y: (f64, f64)| (f, 0.5 * (x.0 + y.0), 0.5 * (x.1 + y.1));
-            let third = 1.0 / 3.0;
+            let (third, centre) = (1.0 / 3.0, at.len());
             at.push((f, (a.uv.0 + b.uv.0 + c.uv.0) * third, (a.uv.1 + b.uv.1 + c.uv.1) * third));
-            at.extend([mid(a.uv, b.uv), mid(b.uv, c.uv), mid(c.uv, a.uv)]);
+            let mut mid = |x: &grid::Pt, y: &grid::Pt| {
+                *mids.entry((*p, x.id.min(y.id), x.id.max(y.id))).or_insert_with(|| {
+                    at.push((f, 0.5 * (x.uv.0 + y.uv.0), 0.5 * (x.uv.1 + y.uv.1)));
+                    at.len() - 1
+                })
+            };
+            let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+            slots.push([centre, ab, bc, ca]);
         }
         let s = ev.eval_map(&at, false, |s| s.position)?;
-        for (k, (p, [a, b, c])) in chunk.iter().copied().enumerate() {
+        evaluated += at.len() as u64;
+        for ((p, [a, b, c]), slot) in chunk.iter().copied().zip(&slots) {
             let x = |pt: &grid::Pt| built.positions[pt.id as usize];
             let (xa, xb, xc) = (x(a), x(b), x(c));
             let flat = [(xa + xb + xc) / 3.0, 0.5 * (xa + xb), 0.5 * (xb + xc), 0.5 * (xc + xa)];
-            let e = (0..4).map(|i| flat[i].distance(s[4 * k + i])).fold(0.0, f64::max);
+            let e = (0..4).map(|i| flat[i].distance(s[slot[i]])).fold(0.0, f64::max);
             let w = &mut worst[*p as usize];
             *w = w.max(e);
         }
     }
-    Ok(4 * todo.len() as u64)
+    Ok(evaluated)
 }
 
 /// Makes finer each patch with a triangle over `t`: by the factor
