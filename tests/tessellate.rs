@@ -66,3 +66,98 @@ fn bad_tolerances_and_schemes_are_refused_by_name() {
     assert!(!r.status.success());
     assert!(String::from_utf8_lossy(&r.stderr).contains("butterfly"), "{}", String::from_utf8_lossy(&r.stderr));
 }
+
+/// A bumped grid of `n` x `n` quads whose texture coordinates are the
+/// vertices' `(x, y) / n` (one chart, no seam).
+fn uv_grid(n: usize) -> String {
+    let mut obj = String::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f32, j as f32);
+            obj += &format!("v {x} {y} {}\nvt {} {}\n", (0.9 * x).sin() * (0.7 * y).cos(), x / n as f32, y / n as f32);
+        }
+    }
+    let id = |i: usize, j: usize| j * (n + 1) + i + 1;
+    for j in 0..n {
+        for i in 0..n {
+            let [a, b, c, d] = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)];
+            obj += &format!("f {a}/{a} {b}/{b} {c}/{c} {d}/{d}\n");
+        }
+    }
+    obj
+}
+
+#[test]
+fn texture_coordinates_come_along_linear_over_each_control_face_and_colours_at_their_limit() {
+    let dir = scratch_dir("tessellate-uv");
+    let grid = dir.join("grid.obj");
+    std::fs::write(&grid, uv_grid(4)).expect("writes");
+    let read = |p: &Path| subdiv::io::read(subdiv::io::Source::File(p), &Default::default()).expect("reads");
+    let input = read(&grid);
+    let (cage, cage_uv) = (&input.mesh, input.attributes.uv.as_ref().expect("the grid's uv"));
+    let polys = subdiv::mesh::PolyMesh::from_mesh(cage);
+    for scheme in ["loop", "catmull-clark"] {
+        let (out, params) = (dir.join(format!("{scheme}.obj")), dir.join(format!("{scheme}.params")));
+        let r = run(&["tessellate", s(&grid), s(&out), "-s", scheme, "-t", "1e-3x", "--params", s(&params)]);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        let got = read(&out);
+        let uv = got.attributes.uv.as_ref().expect("the output has texture coordinates");
+        assert_eq!(uv.len(), got.mesh.ct.num_corners());
+        // each vertex's (face, u, v), and the chart there from the cage's own corners
+        let rows = std::fs::read_to_string(&params).expect("params written");
+        let at: Vec<(usize, f32, f32)> = rows
+            .lines()
+            .map(|l| {
+                let t: Vec<&str> = l.split_whitespace().collect();
+                (t[0].parse().expect("a face"), t[1].parse().expect("u"), t[2].parse().expect("v"))
+            })
+            .collect();
+        assert_eq!(at.len(), got.mesh.positions.len());
+        let want = |(f, u, v): (usize, f32, f32)| -> glam::Vec2 {
+            if scheme == "loop" {
+                let c = |k: usize| cage_uv[3 * f + k];
+                c(0) * (1.0 - u - v) + c(1) * u + c(2) * v
+            } else {
+                // every face a quad: ptex face f is the quad, corners in face order
+                let corners: Vec<u32> = polys.pt.face_corners(f as u32).collect();
+                let c = |k: usize| xy(&polys.positions[polys.pt.vtx(corners[k]) as usize]) / 4.0;
+                c(0) * ((1.0 - u) * (1.0 - v)) + c(1) * (u * (1.0 - v)) + c(2) * (u * v) + c(3) * ((1.0 - u) * v)
+            }
+        };
+        for c in 0..got.mesh.ct.num_corners() {
+            let vertex = got.mesh.ct.vtx(c as u32) as usize;
+            let w = want(at[vertex]);
+            assert!(
+                (uv[c] - w).length() < 1e-5,
+                "{scheme}: corner {c} (vertex {vertex} at {:?}): {} for {w}",
+                at[vertex],
+                uv[c]
+            );
+        }
+    }
+    // the cube's charts keep their seams: a vertex on one has two coordinates
+    let out = dir.join("cube.obj");
+    let r = run(&["tessellate", "models/cube_uv.obj", s(&out), "-s", "catmull-clark", "-t", "1e-2x"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let got = read(&out);
+    let uv = got.attributes.uv.expect("uv");
+    assert!(uv.iter().all(|t| (-1e-6..=1.0 + 1e-6).contains(&t.x) && (-1e-6..=1.0 + 1e-6).contains(&t.y)));
+    let mut first: HashMap<u32, glam::Vec2> = HashMap::new();
+    let seams = (0..uv.len())
+        .filter(|&c| {
+            let v = got.mesh.ct.vtx(c as u32);
+            (*first.entry(v).or_insert(uv[c]) - uv[c]).length() > 1e-3
+        })
+        .count();
+    assert!(seams > 0, "the charts' seams are kept");
+    // its colours are 0.15 + 0.7 x position at the cage: the limit of
+    // vertex data is affine in it, so the same holds at every output vertex
+    let colors = got.attributes.colors.expect("the output has colours");
+    for (c, p) in colors.iter().zip(&got.mesh.positions) {
+        assert!((*c - (glam::Vec3::splat(0.15) + 0.7 * *p)).abs().max_element() < 1e-5, "{c} at {p}");
+    }
+}
+
+fn xy(p: &glam::Vec3) -> glam::Vec2 {
+    glam::Vec2::new(p.x, p.y)
+}

@@ -472,6 +472,10 @@ pub(crate) struct LimitInput {
     pub mesh: Mesh,
     pub scheme: SchemeArgs,
     pub control: Vec<glam::DVec3>,
+    /// The file's texture coordinates (one per corner), if it has them.
+    pub uv: Option<Vec<glam::Vec2>>,
+    /// The file's colours (one per vertex), if it has them.
+    pub colors: Option<Vec<glam::Vec3>>,
 }
 
 impl LimitInput {
@@ -489,6 +493,7 @@ impl LimitInput {
             (Precision::F64, Some(p)) => p,
             _ => mesh.positions.iter().map(|p| p.as_dvec3()).collect(),
         };
-        Ok(LimitInput { mesh, scheme, control })
+        let (uv, colors) = (loaded.attributes.uv, loaded.attributes.colors);
+        Ok(LimitInput { mesh, scheme, control, uv, colors })
     }
 }

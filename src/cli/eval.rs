@@ -46,7 +46,7 @@ pub struct EvalArgs {
 
 /// `subdiv eval`.
 pub(crate) fn eval(a: &EvalArgs) -> Result<()> {
-    let LimitInput { mesh, scheme, control } = LimitInput::read(&a.input, &a.from, &a.scheme, a.precision)?;
+    let LimitInput { mesh, scheme, control, .. } = LimitInput::read(&a.input, &a.from, &a.scheme, a.precision)?;
     let limits = a.from.limits.limits()?;
     let max_points = limits.get("vertices").unwrap_or(u64::MAX);
     let shown = a.points.display().to_string();

@@ -58,7 +58,7 @@ fn parse_tolerance(s: &str) -> std::result::Result<Tolerance, String> {
 
 /// `subdiv tessellate`.
 pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
-    let LimitInput { mesh, scheme, control } = LimitInput::read(&a.input, &a.from, &a.scheme, a.precision)?;
+    let LimitInput { mesh, scheme, control, uv, colors } = LimitInput::read(&a.input, &a.from, &a.scheme, a.precision)?;
     let tolerance = match a.tolerance {
         Tolerance::Absolute(t) => t,
         Tolerance::OfDiagonal(f) => f * diagonal(&control),
@@ -69,7 +69,24 @@ pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
         corners: out.triangles.iter().flatten().copied().collect(),
         sides: 3,
     };
-    subdiv::io::save(&a.output, &faces)?;
+    // the file's texture coordinates come along (linear over each control face)
+    if uv.is_some() && scheme.options().uv != subdiv::mesh::UvInterpolation::Linear {
+        log::info!(
+            "{}: texture coordinates interpolated linearly over each control face (--fvar all)",
+            a.input.display()
+        );
+    }
+    // and its colours, as the points: their limit at each vertex
+    let colors = colors
+        .map(|c| {
+            let c: Vec<glam::DVec3> = c.iter().map(|c| c.as_dvec3()).collect();
+            let at = out.vertex_values(&mesh, &c)?;
+            Ok::<_, subdiv::Error>(at.iter().map(|c| c.as_vec3().clamp(glam::Vec3::ZERO, glam::Vec3::ONE)).collect())
+        })
+        .transpose()?;
+    let uv = uv.map(|uv| out.uvs(&mesh, &uv)).transpose()?;
+    let attrs = subdiv::mesh::Attributes { uv, colors, ..Default::default() };
+    subdiv::io::save_with(&a.output, &faces, &attrs)?;
     if let Some(path) = &a.params {
         subdiv::io::write_points(path, &out.params)?;
     }

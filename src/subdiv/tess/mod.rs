@@ -46,6 +46,82 @@ pub struct Tessellation {
     pub params: Vec<(u32, f64, f64)>,
     /// How it went.
     pub stats: TessellationStats,
+    /// The scheme, which says what `faces` number, and its options.
+    scheme: Scheme,
+    opts: Options,
+    /// Each triangle's corners' `(u, v)` on its control face.
+    corners: Vec<[(f64, f64); 3]>,
+}
+
+impl Tessellation {
+    /// The limit of data given per control vertex (`values`, one per vertex
+    /// of `mesh`, the mesh tessellated: colours, say) at each output vertex,
+    /// by the same exact evaluation as the positions: vertex-varying data
+    /// subdivide as the points do.
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when `values` has not one value per vertex of `mesh`.
+    pub fn vertex_values(&self, mesh: &Mesh, values: &[DVec3]) -> Result<Vec<DVec3>> {
+        if values.len() != mesh.positions.len() {
+            let vertices = mesh.positions.len();
+            return Err(Error::Usage(format!("{} values for the {vertices} vertices", values.len())));
+        }
+        let ev = Evaluator::new_f64(mesh, values, self.scheme, &self.opts)?;
+        let at: Vec<(usize, f64, f64)> = self.params.iter().map(|&(f, u, v)| (f as usize, u, v)).collect();
+        ev.eval_map(&at, false, |s| s.position)
+    }
+
+    /// Texture coordinates of the output, three per triangle in the order
+    /// of [`Tessellation::triangles`], from the control mesh's `uv` (one
+    /// per corner of `mesh` in V order, as [`crate::Attributes::uv`] holds
+    /// them): interpolated linearly over each control face, as OpenSubdiv's
+    /// face-varying `FVAR_LINEAR_ALL` and Blender's "UV Smooth: None" do, so
+    /// that the seams stay where the file has them and a shared edge gets
+    /// the same values from both sides where the file's agree. A
+    /// Catmull-Clark ptex face of an n-gon's corner reads the first level's
+    /// linear values (the edges' midpoints, the face's average).
+    ///
+    /// # Errors
+    /// [`Error::Usage`] when `uv` has not one value per corner of `mesh`.
+    pub fn uvs(&self, mesh: &Mesh, uv: &[glam::Vec2]) -> Result<Vec<glam::Vec2>> {
+        if uv.len() != mesh.ct.num_corners() {
+            let corners = mesh.ct.num_corners();
+            return Err(Error::Usage(format!("{} texture coordinates for the {corners} corners", uv.len())));
+        }
+        let lerp = |(s, t): (f64, f64), q: &[glam::Vec2; 4]| {
+            let (s, t) = (s as f32, t as f32);
+            q[0] * ((1.0 - s) * (1.0 - t)) + q[1] * (s * (1.0 - t)) + q[2] * (s * t) + q[3] * ((1.0 - s) * t)
+        };
+        let faces = self.faces.iter().zip(&self.corners);
+        if self.scheme != Scheme::CatmullClark {
+            let bary = |f: u32, (s, t): (f64, f64)| {
+                let c = |k: u32| uv[(3 * f + k) as usize];
+                c(0) * (1.0 - s - t) as f32 + c(1) * s as f32 + c(2) * t as f32
+            };
+            return Ok(faces.flat_map(|(&f, corners)| corners.map(|st| bary(f, st))).collect());
+        }
+        let attrs = crate::mesh::Attributes { uv: Some(uv.to_vec()), ..Default::default() };
+        let (pm, attrs) = PolyMesh::from_mesh_with_attributes(mesh, &attrs);
+        let puv = attrs.uv.unwrap_or_default();
+        let ptex = crate::subdiv::eval::catmark::ptex_faces(&pm.pt);
+        let quad = |p: u32| {
+            let (f, corner) = ptex[p as usize];
+            let cs = pm.pt.face_corners(f);
+            let at = |k: u32| puv[(cs.start + k) as usize];
+            if corner == crate::subdiv::eval::catmark::QUAD {
+                return [at(0), at(1), at(2), at(3)];
+            }
+            let (n, k) = (cs.end - cs.start, corner);
+            let centre = (0..n).map(at).sum::<glam::Vec2>() / n as f32;
+            [at(k), 0.5 * (at(k) + at((k + 1) % n)), centre, 0.5 * (at((k + n - 1) % n) + at(k))]
+        };
+        Ok(faces
+            .flat_map(|(&p, corners)| {
+                let q = quad(p);
+                corners.map(|st| lerp(st, &q))
+            })
+            .collect())
+    }
 }
 
 /// What [`tessellate`] found.
@@ -92,7 +168,17 @@ pub fn tessellate(
 ) -> Result<Tessellation> {
     let (built, faces, stats) = run(mesh, control, scheme, opts, tolerance)?;
     let triangles = built.triangles.iter().map(|(_, t)| t.map(|p| p.id)).collect();
-    Ok(Tessellation { positions: built.positions, triangles, faces, params: built.params, stats })
+    let corners = built.triangles.iter().map(|(_, t)| t.map(|p| p.uv)).collect();
+    Ok(Tessellation {
+        positions: built.positions,
+        triangles,
+        faces,
+        params: built.params,
+        stats,
+        scheme,
+        opts: *opts,
+        corners,
+    })
 }
 
 /// [`tessellate`], the triangles kept with their corners' `(u, v)` on
