@@ -124,14 +124,13 @@ fn texture_coordinates_come_along_linear_over_each_control_face_and_colours_at_t
                 c(0) * ((1.0 - u) * (1.0 - v)) + c(1) * (u * (1.0 - v)) + c(2) * (u * v) + c(3) * ((1.0 - u) * v)
             }
         };
-        for c in 0..got.mesh.ct.num_corners() {
+        for (c, t) in uv.iter().enumerate() {
             let vertex = got.mesh.ct.vtx(c as u32) as usize;
             let w = want(at[vertex]);
             assert!(
-                (uv[c] - w).length() < 1e-5,
-                "{scheme}: corner {c} (vertex {vertex} at {:?}): {} for {w}",
-                at[vertex],
-                uv[c]
+                (*t - w).length() < 1e-5,
+                "{scheme}: corner {c} (vertex {vertex} at {:?}): {t} for {w}",
+                at[vertex]
             );
         }
     }
