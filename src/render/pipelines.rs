@@ -72,6 +72,10 @@ pub(crate) struct Pipelines {
     /// the vertex stage (not WebGL2: there the wireframe is a line list
     /// over the faces).
     pub wires: Option<Wires>,
+    /// Where there is no one-pass wireframe: faces that write depth only,
+    /// drawn before the line list of the wire shading so that the faces
+    /// hide the lines behind them.
+    pub hiding: Option<[wgpu::RenderPipeline; 3]>,
     /// Shaded faces of one material group, its texture sampled per pixel.
     pub mesh_textured: [wgpu::RenderPipeline; 3],
     /// Line lists (wireframe, control mesh, normals, highlights).
@@ -186,8 +190,13 @@ struct Factory<'a> {
 
 impl Factory<'_> {
     fn build(&self, spec: &Spec) -> wgpu::RenderPipeline {
+        self.build_writing(spec, wgpu::ColorWrites::ALL)
+    }
+
+    /// [`Factory::build`] writing only the colour channels `write_mask`
+    /// (none: depth only).
+    fn build_writing(&self, spec: &Spec, write_mask: wgpu::ColorWrites) -> wgpu::RenderPipeline {
         let fragment_shader = spec.fragment_shader;
-        let write_mask = wgpu::ColorWrites::ALL;
         self.device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
             label: Some(spec.label),
             layout: Some(spec.layout),
@@ -373,6 +382,10 @@ impl Pipelines {
         let material_layout = super::textures::material_layout(device);
         let mesh_textured = textured(&factory, [&view_layout, &material_layout]);
         let wires = Wires::new(&factory, &view_layout, &material_layout);
+        let hiding = wires.is_none().then(|| {
+            let spec = faces("faces hiding lines", "vs_mesh", &shaded, "fs_mesh");
+            CULLS.map(|cull_mode| factory.build_writing(&Spec { cull_mode, ..spec }, wgpu::ColorWrites::empty()))
+        });
         let background = factory.build(&Spec {
             label: "background",
             layout: &mesh_layout,
@@ -385,6 +398,7 @@ impl Pipelines {
             mesh,
             mesh_colored,
             wires,
+            hiding,
             mesh_textured,
             lines,
             background,

@@ -390,6 +390,14 @@ impl Renderer {
             // a mesh of lines only (a curve), or a device without the one-pass
             // wire (WebGL2): the wireframe is its edges as lines
             let line_wire = m.triangle_indices == 0 || self.pipelines.wires.is_none();
+            if let (true, Surface::Hidden, Some(hiding)) = (d.look.wireframe, d.look.surface, &self.pipelines.hiding) {
+                // the faces in depth only: the lines behind them stay hidden
+                pass.set_pipeline(&hiding[m.cull as usize]);
+                pass.set_vertex_buffer(0, m.positions.slice(..));
+                pass.set_vertex_buffer(1, m.normals.slice(..));
+                pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
+                pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
+            }
             if d.look.wireframe && line_wire && m.edge_indices > 0 {
                 let style = if d.look.surface == Surface::Hidden { STYLE_WIRE_LIGHT } else { STYLE_WIRE_DARK };
                 self.draw_edges(pass, m, style);
