@@ -73,7 +73,7 @@ impl Tessellation {
 
     /// Texture coordinates of the output, three per triangle in the order
     /// of [`Tessellation::triangles`], from the control mesh's `uv` (one
-    /// per corner of `mesh` in V order, as [`crate::Attributes::uv`] holds
+    /// per corner of `mesh` in V order, as [`crate::mesh::Attributes::uv`] holds
     /// them): interpolated linearly over each control face, as OpenSubdiv's
     /// face-varying `FVAR_LINEAR_ALL` and Blender's "UV Smooth: None" do, so
     /// that the seams stay where the file has them and a shared edge gets
