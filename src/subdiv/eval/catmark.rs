@@ -48,7 +48,6 @@ use crate::subdiv::rules::features::boundary_tagged;
 use crate::subdiv::tables::poly_plan::record_one_catmark_level;
 use crate::{Error, Result};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// Catmull-Clark's local subdivision kept between points.
 pub(crate) type CatmarkMemo = Memo<Region, (PolyTable, Vec<DVec3>)>;
@@ -196,11 +195,7 @@ impl Limit for Poly {
         second: bool,
         keep: impl Fn(&Sample) -> T + Sync,
     ) -> Vec<T> {
-        sorted
-            .par_iter()
-            .with_min_len(256)
-            .map_init(CatmarkMemo::default, |memo, &(f, uv)| keep(&self.eval(f, uv, second, memo)))
-            .collect()
+        super::in_parallel(sorted, CatmarkMemo::default, |memo, f, uv| keep(&self.eval(f, uv, second, memo)))
     }
 }
 

@@ -36,7 +36,6 @@ use crate::mesh::{Mesh, n, p};
 use crate::subdiv::Options;
 use crate::{Error, Result};
 use glam::DVec3;
-use rayon::prelude::*;
 
 /// The four children of a triangle (`level1` module docs): child `k` and
 /// the map from the parent's `(u, v)` to the child's.
@@ -340,11 +339,9 @@ impl Limit for LoopSurface {
         second: bool,
         keep: impl Fn(&Sample) -> T + Sync,
     ) -> Vec<T> {
-        sorted
-            .par_iter()
-            .with_min_len(256)
-            .map_init(ChildCache::new, |cache, &(f, (u, v))| keep(&self.eval_cached(f, u, v, second, Some(cache))))
-            .collect()
+        super::in_parallel(sorted, ChildCache::new, |cache, f, (u, v)| {
+            keep(&self.eval_cached(f, u, v, second, Some(cache)))
+        })
     }
 }
 

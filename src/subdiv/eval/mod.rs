@@ -151,8 +151,19 @@ trait Limit: Sync {
         second: bool,
         keep: impl Fn(&Sample) -> T + Sync,
     ) -> Vec<T> {
-        sorted.par_iter().with_min_len(256).map(|&(f, uv)| keep(&self.eval_checked(f, uv, second))).collect()
+        in_parallel(sorted, || (), |_, f, uv| keep(&self.eval_checked(f, uv, second)))
     }
+}
+
+/// `eval` of each point of `sorted` in parallel, in order, each thread
+/// keeping a state made by `init` from one of its points to the next (what
+/// consecutive points of a face share).
+fn in_parallel<C, T: Send>(
+    sorted: &[(usize, (f64, f64))],
+    init: impl Fn() -> C + Sync + Send,
+    eval: impl Fn(&mut C, usize, (f64, f64)) -> T + Sync + Send,
+) -> Vec<T> {
+    sorted.par_iter().with_min_len(256).map_init(init, |state, &(f, uv)| eval(state, f, uv)).collect()
 }
 
 /// Refuses a scheme without an exact evaluation, naming it.
