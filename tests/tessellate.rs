@@ -91,7 +91,8 @@ fn uv_grid(n: usize) -> String {
 fn texture_coordinates_come_along_linear_over_each_control_face_and_colours_at_their_limit() {
     let dir = scratch_dir("tessellate-uv");
     let grid = dir.join("grid.obj");
-    std::fs::write(&grid, uv_grid(4)).expect("writes");
+    let n = 4;
+    std::fs::write(&grid, uv_grid(n)).expect("writes");
     let read = |p: &Path| subdiv::io::read(subdiv::io::Source::File(p), &Default::default()).expect("reads");
     let input = read(&grid);
     let (cage, cage_uv) = (&input.mesh, input.attributes.uv.as_ref().expect("the grid's uv"));
@@ -120,7 +121,7 @@ fn texture_coordinates_come_along_linear_over_each_control_face_and_colours_at_t
             } else {
                 // every face a quad: ptex face f is the quad, corners in face order
                 let corners: Vec<u32> = polys.pt.face_corners(f as u32).collect();
-                let c = |k: usize| xy(&polys.positions[polys.pt.vtx(corners[k]) as usize]) / 4.0;
+                let c = |k: usize| xy(&polys.positions[polys.pt.vtx(corners[k]) as usize]) / n as f32;
                 c(0) * ((1.0 - u) * (1.0 - v)) + c(1) * (u * (1.0 - v)) + c(2) * (u * v) + c(3) * ((1.0 - u) * v)
             }
         };

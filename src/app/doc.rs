@@ -280,8 +280,9 @@ impl Doc {
         self.reshade();
         // Keep the level when it fits; otherwise the largest that does, saying so.
         let fits = self.max_level();
-        if let (true, Some(why)) = (self.request.level > fits, self.level_refusal(self.request.level)) {
-            self.status.notice = Some(format!("level {} does not fit ({why}): level {fits} shown", self.request.level));
+        if self.request.level > fits {
+            let why = self.level_refusal(self.request.level).map_or_else(String::new, |e| format!(" ({e})"));
+            self.status.notice = Some(format!("level {} does not fit{why}: level {fits} shown", self.request.level));
             self.request.level = fits;
         }
         if self.request.level > 0 || self.anim.active {

@@ -47,14 +47,14 @@ impl PageQuery {
     pub(crate) fn unknown_model(&self) -> Option<&str> {
         let m = self.model.as_deref()?;
         let url = m.contains('/') || m.contains(':');
-        (!url && !crate::bundled::MODELS.iter().any(|b| b.file_name == m)).then_some(m)
+        (!url && crate::bundled::model(m).is_none()).then_some(m)
     }
 
     /// The viewer's opening state: a bundled model by its name (others
     /// arrive as bytes), else the first launch's.
     pub(crate) fn view_options(&self) -> ViewOptions {
         let first = ViewOptions::first_launch();
-        let bundled = self.model.as_deref().filter(|m| crate::bundled::MODELS.iter().any(|b| b.file_name == *m));
+        let bundled = self.model.as_deref().filter(|m| crate::bundled::model(m).is_some());
         let control = bundled.is_none() && self.model.is_none();
         ViewOptions {
             model: bundled.map(|m| PathBuf::from(format!("{}{m}", crate::bundled::PREFIX))),

@@ -393,9 +393,7 @@ impl Renderer {
             if let (true, Surface::Hidden, Some(hiding)) = (d.look.wireframe, d.look.surface, &self.pipelines.hiding) {
                 // the faces in depth only: the lines behind them stay hidden
                 pass.set_pipeline(&hiding[m.cull as usize]);
-                pass.set_vertex_buffer(0, m.positions.slice(..));
-                pass.set_vertex_buffer(1, m.normals.slice(..));
-                pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
+                bind_faces(pass, m);
                 pass.draw_indexed(0..m.triangle_indices, 0, 0..1);
             }
             if d.look.wireframe && line_wire && m.edge_indices > 0 {
@@ -432,9 +430,7 @@ impl Renderer {
             return;
         }
         let cull = m.cull as usize;
-        pass.set_vertex_buffer(0, m.positions.slice(..));
-        pass.set_vertex_buffer(1, m.normals.slice(..));
-        pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
+        bind_faces(pass, m);
         if let Some(colors) = shown_colors(m, look) {
             pass.set_pipeline(&self.pipelines.mesh_colored[cull]);
             pass.set_vertex_buffer(2, colors.slice(..));
@@ -544,4 +540,11 @@ fn shown_colors(m: &GpuMesh, look: Look) -> Option<&wgpu::Buffer> {
 /// when it has them and the look shows materials.
 fn shown_materials(m: &GpuMesh, look: Look) -> Option<&GpuMaterials> {
     m.materials.as_ref().filter(|_| look.materials)
+}
+
+/// Binds `m`'s positions, normals and triangles for a draw of its faces.
+fn bind_faces(pass: &mut wgpu::RenderPass, m: &GpuMesh) {
+    pass.set_vertex_buffer(0, m.positions.slice(..));
+    pass.set_vertex_buffer(1, m.normals.slice(..));
+    pass.set_index_buffer(m.triangles.slice(..), wgpu::IndexFormat::Uint32);
 }

@@ -101,20 +101,19 @@ impl Poly {
         {
             return sample;
         }
-        if !memo.holds(0, f) {
-            let Some(region) = extract(&self.pt, |x| self.pos[x as usize], DVec3::ZERO, f) else {
-                return Sample::NAN;
-            };
-            memo.set(0, f, region);
+        let subdivide = |r: &Region| subdivide(r, &self.opts);
+        let cut = |child: u32| {
+            move |r: &Region, (fine, pos): &(PolyTable, Vec<DVec3>)| extract(fine, |x| pos[x as usize], r.origin, child)
+        };
+        if !memo.start(f, || extract(&self.pt, |x| self.pos[x as usize], DVec3::ZERO, f)) {
+            return Sample::NAN;
         }
         // the sub-face of a corner of an n-gon is the corner's quad of the first level
         let first = usize::from(corner != QUAD);
         if corner != QUAD {
             let child = memo.region(0).pt.face_corners(memo.region(0).face).start + corner;
-            if !memo.holds(1, child) {
-                let (r, (fine, pos)) = memo.fine(0, |r| subdivide(r, &self.opts));
-                let Some(next) = extract(fine, |x| pos[x as usize], r.origin, child) else { return Sample::NAN };
-                memo.set(1, child, next);
+            if !memo.descend(0, child, subdivide, cut(child)) {
+                return Sample::NAN;
             }
         }
         for level in 0..MAX_LEVELS {
@@ -129,10 +128,8 @@ impl Poly {
             let (s, t) = map.apply(st);
             st = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
             jac = map.after(&Affine { j: jac, b: [0.0; 2] });
-            if !memo.holds(i + 1, child) {
-                let (r, (fine, pos)) = memo.fine(i, |r| subdivide(r, &self.opts));
-                let Some(next) = extract(fine, |x| pos[x as usize], r.origin, child) else { return Sample::NAN };
-                memo.set(i + 1, child, next);
+            if !memo.descend(i, child, subdivide, cut(child)) {
+                return Sample::NAN;
             }
         }
         let region = memo.region(first + MAX_LEVELS as usize);

@@ -398,13 +398,13 @@ impl<R, F> Default for Memo<R, F> {
 
 impl<R, F> Memo<R, F> {
     /// Whether level `i` is the region cut around `key`.
-    pub(super) fn holds(&self, i: usize, key: u32) -> bool {
+    fn holds(&self, i: usize, key: u32) -> bool {
         self.levels.get(i).is_some_and(|l| l.key == key)
     }
 
     /// Makes `region` (cut around `key`) level `i`, forgetting the levels
     /// after it; `i` at most the number of levels held.
-    pub(super) fn set(&mut self, i: usize, key: u32, region: R) {
+    fn set(&mut self, i: usize, key: u32, region: R) {
         self.levels.truncate(i);
         self.levels.push(MemoLevel { key, region, fine: None });
     }
@@ -414,11 +414,35 @@ impl<R, F> Memo<R, F> {
         &self.levels[i].region
     }
 
-    /// Level `i`'s region and its subdivision, made by `subdivide` once.
-    pub(super) fn fine(&mut self, i: usize, subdivide: impl FnOnce(&R) -> F) -> (&R, &F) {
+    /// Makes level 0 the region `cut` makes around control face `key`,
+    /// unless it is held; false when `cut` cannot.
+    pub(super) fn start(&mut self, key: u32, cut: impl FnOnce() -> Option<R>) -> bool {
+        if self.holds(0, key) {
+            return true;
+        }
+        let Some(region) = cut() else { return false };
+        self.set(0, key, region);
+        true
+    }
+
+    /// Makes level `i + 1` the region `cut` makes around face `child` of
+    /// level `i`'s subdivision (made by `subdivide` once), unless it is
+    /// held; false when `cut` cannot.
+    pub(super) fn descend(
+        &mut self,
+        i: usize,
+        child: u32,
+        subdivide: impl FnOnce(&R) -> F,
+        cut: impl FnOnce(&R, &F) -> Option<R>,
+    ) -> bool {
+        if self.holds(i + 1, child) {
+            return true;
+        }
         let l = &mut self.levels[i];
         let region = &l.region;
-        (region, l.fine.get_or_insert_with(|| subdivide(region)))
+        let Some(next) = cut(region, l.fine.get_or_insert_with(|| subdivide(region))) else { return false };
+        self.set(i + 1, child, next);
+        true
     }
 }
 
@@ -442,9 +466,8 @@ pub(crate) fn eval(
     if let Some(sample) = try_patch(&at, st, jac, tables, second).or_else(|| at_sharp_vertex(&at, st, 0)) {
         return sample;
     }
-    if !memo.holds(0, f) {
-        let Some(region) = extract(&base.ct, control, DVec3::ZERO, f) else { return Sample::NAN };
-        memo.set(0, f, region);
+    if !memo.start(f, || extract(&base.ct, control, DVec3::ZERO, f)) {
+        return Sample::NAN;
     }
     for level in 0..=MAX_LEVELS {
         let (i, r) = (level as usize, memo.region(level as usize));
@@ -462,10 +485,10 @@ pub(crate) fn eval(
         let (s, t) = (s.clamp(0.0, 1.0), t.clamp(0.0, 1.0));
         st = if s + t > 1.0 { (s / (s + t), t / (s + t)) } else { (s, t) };
         jac = map.after(&Affine { j: jac, b: [0.0; 2] });
-        if !memo.holds(i + 1, child) {
-            let (r, (fine, pos)) = memo.fine(i, |r| subdivide(r, &base.opts));
-            let Some(next) = extract(fine, |v| pos[v as usize], r.origin, child) else { return Sample::NAN };
-            memo.set(i + 1, child, next);
+        let cut =
+            |r: &Region, (fine, pos): &(CornerTable, Vec<DVec3>)| extract(fine, |v| pos[v as usize], r.origin, child);
+        if !memo.descend(i, child, |r| subdivide(r, &base.opts), cut) {
+            return Sample::NAN;
         }
     }
     let region = memo.region(MAX_LEVELS as usize);

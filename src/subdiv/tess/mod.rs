@@ -208,14 +208,14 @@ fn run(
     let mut stats = TessellationStats { tolerance, ..TessellationStats::default() };
     // a patch is measured again only where its rate or a side's changed
     // (and its points are evaluated again only there)
-    let (mut errors, mut before) = (vec![0.0; domain.patches.len()], None::<Built>);
+    let (mut errors, mut before) = (vec![0.0; domain.patches.len()], None::<Earlier>);
     loop {
         stats.rounds += 1;
         rates::check_budget(&domain, &rate, opts.max_memory, tolerance)?;
         let edge_rate = rates::edge_rates(&domain, &rate);
         let last = before.as_ref().map(|b| (&b.layout.rate[..], &b.layout.edge_rate[..]));
         let dirty = rates::changed(&domain, (&rate, &edge_rate), last);
-        let (built, evaluated) = build(&ev, &domain, (&rate, &edge_rate), before.take())?;
+        let (built, evaluated) = build(&ev, &domain, (&rate, &edge_rate), before.as_ref())?;
         evaluations += evaluated + rates::measure(&ev, &domain, &built, &dirty, &mut errors)?;
         stats.measured = errors.iter().copied().fold(0.0, f64::max);
         stats.met = stats.measured <= tolerance;
@@ -233,7 +233,8 @@ fn run(
             let faces = built.triangles.iter().map(|(p, _)| domain.patches[*p as usize].face).collect();
             return Ok((built, faces, stats));
         }
-        before = Some(built);
+        // the round's triangles go; its points and their layout stay for the next
+        before = Some(Earlier { layout: built.layout, positions: built.positions });
         rates::refine(&mut rate, &errors, tolerance);
     }
 }
@@ -248,6 +249,12 @@ struct Built {
     /// Where the points of each part lie in `positions`, and the rates
     /// they were made at.
     layout: Layout,
+}
+
+/// What a round keeps of the round before: its points and their layout.
+struct Earlier {
+    layout: Layout,
+    positions: Vec<DVec3>,
 }
 
 /// The order of a tessellation's points: first the keys (the domain's
@@ -275,27 +282,29 @@ impl Layout {
         self.inside_first[p] as usize..end
     }
 
-    /// For each point of `self` (`total` in all), its index in `before`
-    /// when it is the same point there (its part made at the same rates).
-    fn same_points(&self, before: &Layout, total: usize, before_total: usize) -> Vec<Option<u32>> {
-        let mut out = vec![None; total];
+    /// Copies into `positions` (laid out as `self`) the points of `before`
+    /// that are the same here (their part made at the same rates), and
+    /// clears their `fresh` flags.
+    fn copy_same(&self, before: &Earlier, positions: &mut [DVec3], fresh: &mut [bool]) {
+        let (total, before_total) = (positions.len(), before.positions.len());
         let mut copy = |to: std::ops::Range<usize>, from: std::ops::Range<usize>| {
             for (t, f) in to.zip(from) {
-                out[t] = Some(f as u32);
+                positions[t] = before.positions[f];
+                fresh[t] = false;
             }
         };
-        copy(0..self.keys, 0..before.keys);
+        let was = &before.layout;
+        copy(0..self.keys, 0..was.keys);
         for e in 0..self.edge_rate.len() {
-            if self.edge_rate[e] == before.edge_rate[e] {
-                copy(self.edge(e), before.edge(e));
+            if self.edge_rate[e] == was.edge_rate[e] {
+                copy(self.edge(e), was.edge(e));
             }
         }
         for p in 0..self.rate.len() {
-            if self.rate[p] == before.rate[p] && self.uniform[p] == before.uniform[p] {
-                copy(self.inside(p, total), before.inside(p, before_total));
+            if self.rate[p] == was.rate[p] && self.uniform[p] == was.uniform[p] {
+                copy(self.inside(p, total), was.inside(p, before_total));
             }
         }
-        out
     }
 }
 
@@ -306,7 +315,7 @@ fn build(
     ev: &Evaluator,
     domain: &Domain,
     (rate, edge_rate): (&[u32], &[u32]),
-    before: Option<Built>,
+    before: Option<&Earlier>,
 ) -> Result<(Built, u64)> {
     let mut points = Points { params: Vec::new(), key_id: vec![u32::MAX; domain.num_keys] };
     let uniform: Vec<bool> =
@@ -368,20 +377,15 @@ fn evaluate(
     ev: &Evaluator,
     params: &[(u32, f64, f64)],
     layout: &Layout,
-    before: Option<Built>,
+    before: Option<&Earlier>,
 ) -> Result<(Vec<DVec3>, u64)> {
-    let same = match &before {
-        Some(b) => layout.same_points(&b.layout, params.len(), b.positions.len()),
-        None => vec![None; params.len()],
-    };
-    let todo: Vec<usize> = (0..params.len()).filter(|&i| same[i].is_none()).collect();
+    let (mut positions, mut fresh) = (vec![DVec3::NAN; params.len()], vec![true; params.len()]);
+    if let Some(b) = &before {
+        layout.copy_same(b, &mut positions, &mut fresh);
+    }
+    let todo: Vec<usize> = (0..params.len()).filter(|&i| fresh[i]).collect();
     let at: Vec<(usize, f64, f64)> = todo.iter().map(|&i| (params[i].0 as usize, params[i].1, params[i].2)).collect();
-    let fresh = ev.eval_map(&at, false, |s| s.position)?;
-    let mut positions: Vec<DVec3> = match &before {
-        Some(b) => same.iter().map(|s| s.map_or(DVec3::NAN, |i| b.positions[i as usize])).collect(),
-        None => vec![DVec3::NAN; params.len()],
-    };
-    for (&i, p) in todo.iter().zip(fresh) {
+    for (&i, p) in todo.iter().zip(ev.eval_map(&at, false, |s| s.position)?) {
         positions[i] = p;
     }
     Ok((positions, todo.len() as u64))
