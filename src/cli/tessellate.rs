@@ -63,7 +63,13 @@ pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
         Tolerance::Absolute(t) => t,
         Tolerance::OfDiagonal(f) => f * diagonal(&control),
     };
-    let out = subdiv::tessellate(&mesh, &control, scheme.scheme(), &scheme.options(), tolerance)?;
+    let out = subdiv::tessellate(
+        &mesh,
+        &control,
+        scheme.scheme(),
+        &scheme.options(),
+        subdiv::Tolerance::Distance(tolerance),
+    )?;
     let faces = Faces {
         positions: out.positions.iter().map(|p| p.as_vec3()).collect(),
         corners: out.triangles.iter().flatten().copied().collect(),

@@ -17,6 +17,7 @@
 mod domain;
 mod grid;
 mod rates;
+mod view;
 
 use crate::clock::Instant;
 use crate::mesh::Mesh;
@@ -28,6 +29,7 @@ use domain::Domain;
 use glam::DVec3;
 use grid::Pt;
 use rayon::prelude::*;
+pub use view::{ScreenTolerance, Tolerance};
 
 /// What [`tessellate`] made.
 #[derive(Clone, Debug)]
@@ -127,13 +129,19 @@ impl Tessellation {
 /// What [`tessellate`] found.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TessellationStats {
-    /// The tolerance asked for (absolute).
+    /// The tolerance asked for (absolute); with a [`Tolerance::Screen`],
+    /// the smallest of the patches' (the one nearest the eye).
     pub tolerance: f64,
     /// The largest distance measured between a triangle and the limit
     /// surface (at its centre and its edges' midpoints, from the same
-    /// `(u, v)`): at most `tolerance` unless `met` is false.
+    /// `(u, v)`): at most `tolerance` unless `met` is false (with a
+    /// [`Tolerance::Screen`], each patch's within its own).
     pub measured: f64,
-    /// Whether every measured distance is within the tolerance.
+    /// The largest measured distance of a patch over its own tolerance: at
+    /// most 1 when `met` (on screen, times the pixels asked for: the
+    /// largest distance on screen).
+    pub worst: f64,
+    /// Whether every measured distance is within its tolerance.
     pub met: bool,
     /// Rounds of measuring and refining.
     pub rounds: u32,
@@ -150,21 +158,21 @@ const MAX_ROUNDS: u32 = 8;
 
 /// The limit surface of `mesh` (control points `control`, f64, one per
 /// vertex) under `scheme` (Loop or Catmull-Clark) and `opts`, tessellated
-/// so that every triangle is within `tolerance` of it (absolute, in the
-/// model's units), within the memory budget (`opts.max_memory`, else 80 %
-/// of the available memory).
+/// so that every triangle is within `tolerance` of it (a distance in the
+/// model's units, or pixels on the screen of a view), within the memory
+/// budget (`opts.max_memory`, else 80 % of the available memory).
 ///
 /// # Errors
 /// [`Error::Usage`] for a scheme without an exact evaluation, a tolerance
-/// that is not a positive finite number, a face the evaluator refuses
-/// (naming it), or a tessellation that would need more memory than the
-/// budget.
+/// that is not a positive finite number (or a view without pixels or an
+/// inverse), a face the evaluator refuses (naming it), or a tessellation
+/// that would need more memory than the budget.
 pub fn tessellate(
     mesh: &Mesh,
     control: &[DVec3],
     scheme: Scheme,
     opts: &Options,
-    tolerance: f64,
+    tolerance: Tolerance,
 ) -> Result<Tessellation> {
     let (built, faces, stats) = run(mesh, control, scheme, opts, tolerance)?;
     let triangles = built.triangles.iter().map(|(_, t)| t.map(|p| p.id)).collect();
@@ -188,11 +196,13 @@ fn run(
     control: &[DVec3],
     scheme: Scheme,
     opts: &Options,
-    tolerance: f64,
+    tolerance: Tolerance,
 ) -> Result<(Built, Vec<u32>, TessellationStats)> {
     let start = Instant::now();
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(Error::Usage(format!("tolerance {tolerance}: a positive distance is needed")));
+    if let Tolerance::Distance(t) = tolerance
+        && !(t.is_finite() && t > 0.0)
+    {
+        return Err(Error::Usage(format!("tolerance {t}: a positive distance is needed")));
     }
     let ev = Evaluator::new_f64(mesh, control, scheme, opts)?;
     let domain = match scheme {
@@ -204,24 +214,32 @@ fn run(
         let why = "it touches an interior vertex of valence 2, which has no limit surface";
         return Err(Error::Usage(format!("cannot tessellate {what} {}: {why}", p.face)));
     }
-    let (mut rate, mut evaluations) = rates::initial(&ev, &domain, tolerance)?;
-    let mut stats = TessellationStats { tolerance, ..TessellationStats::default() };
+    let (tol, mut evaluations) = view::per_patch(&ev, &domain, &tolerance)?;
+    let (mut rate, sampled) = rates::initial(&ev, &domain, &tol)?;
+    evaluations += sampled;
+    let smallest = tol.iter().copied().fold(f64::INFINITY, f64::min);
+    let scale = match tolerance {
+        Tolerance::Screen(s) => s.pixels,
+        Tolerance::Distance(_) => 1.0,
+    };
+    let mut stats = TessellationStats { tolerance: smallest, ..TessellationStats::default() };
     // a patch is measured again only where its rate or a side's changed
     // (and its points are evaluated again only there)
     let (mut errors, mut before) = (vec![0.0; domain.patches.len()], None::<Earlier>);
     loop {
         stats.rounds += 1;
-        rates::check_budget(&domain, &rate, opts.max_memory, tolerance)?;
+        rates::check_budget(&domain, &rate, opts.max_memory, smallest)?;
         let edge_rate = rates::edge_rates(&domain, &rate);
         let last = before.as_ref().map(|b| (&b.layout.rate[..], &b.layout.edge_rate[..]));
         let dirty = rates::changed(&domain, (&rate, &edge_rate), last);
         let (built, evaluated) = build(&ev, &domain, (&rate, &edge_rate), before.as_ref())?;
         evaluations += evaluated + rates::measure(&ev, &domain, &built, &dirty, &mut errors)?;
         stats.measured = errors.iter().copied().fold(0.0, f64::max);
-        stats.met = stats.measured <= tolerance;
-        let over = errors.iter().filter(|&&e| e > tolerance).count();
+        stats.worst = errors.iter().zip(&tol).map(|(e, t)| e / t).fold(0.0, f64::max) * scale;
+        let over = errors.iter().zip(&tol).filter(|(e, t)| e > t).count();
+        stats.met = over == 0;
         log::debug!(
-            "round {}: {} triangles, largest distance {:e}, {over} patches over {tolerance:e}",
+            "round {}: {} triangles, largest distance {:e}, {over} patches over their tolerance",
             stats.rounds,
             built.triangles.len(),
             stats.measured
@@ -235,7 +253,7 @@ fn run(
         }
         // the round's triangles go; its points and their layout stay for the next
         before = Some(Earlier { layout: built.layout, positions: built.positions });
-        rates::refine(&mut rate, &errors, tolerance);
+        rates::refine(&mut rate, &errors, &tol);
     }
 }
 

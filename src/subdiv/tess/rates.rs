@@ -46,15 +46,19 @@ fn second(s: &Sample) -> f64 {
     if m.is_finite() { m } else { 0.0 }
 }
 
-/// The rate for a second derivative `m` and tolerance `t`.
+/// The rate for a second derivative `m` and tolerance `t` (infinite for
+/// a patch out of the view: rate 1).
 fn rate_for(m: f64, t: f64) -> u32 {
+    if t == f64::INFINITY {
+        return 1;
+    }
     let n = (m / (4.0 * t)).sqrt().ceil();
     if n.is_finite() { (n as u32).clamp(1, MAX_RATE) } else { MAX_RATE }
 }
 
 /// The first rates, from the sampled second derivatives, and the points
 /// evaluated for them.
-pub(super) fn initial(ev: &Evaluator, domain: &Domain, t: f64) -> Result<(Vec<u32>, u64)> {
+pub(super) fn initial(ev: &Evaluator, domain: &Domain, t: &[f64]) -> Result<(Vec<u32>, u64)> {
     let mut at = Vec::new();
     let mut starts = Vec::with_capacity(domain.patches.len() + 1);
     for p in &domain.patches {
@@ -70,7 +74,8 @@ pub(super) fn initial(ev: &Evaluator, domain: &Domain, t: f64) -> Result<(Vec<u3
     }
     starts.push(at.len());
     let m = ev.eval_map(&at, true, second)?;
-    let rates = starts.windows(2).map(|w| rate_for(m[w[0]..w[1]].iter().copied().fold(0.0, f64::max), t)).collect();
+    let largest = |w: &[usize]| m[w[0]..w[1]].iter().copied().fold(0.0, f64::max);
+    let rates = starts.windows(2).zip(t).map(|(w, &t)| rate_for(largest(w), t)).collect();
     Ok((rates, at.len() as u64))
 }
 
@@ -195,10 +200,10 @@ pub(super) fn measure(
     Ok(evaluated)
 }
 
-/// Makes finer each patch with a triangle over `t`: by the factor
-/// `sqrt(error / t)` the `n^-2` law asks for, and a little more.
-pub(super) fn refine(rate: &mut [u32], errors: &[f64], t: f64) {
-    for (n, &e) in rate.iter_mut().zip(errors) {
+/// Makes finer each patch with a triangle over its tolerance `t`: by the
+/// factor `sqrt(error / t)` the `n^-2` law asks for, and a little more.
+pub(super) fn refine(rate: &mut [u32], errors: &[f64], t: &[f64]) {
+    for ((n, &e), &t) in rate.iter_mut().zip(errors).zip(t) {
         if e > t {
             // e > t: the factor is over 1 (infinite for an infinite e: MAX_RATE)
             let grown = (f64::from(*n) * (e / t).sqrt() * 1.1).ceil().min(f64::from(MAX_RATE)) as u32;

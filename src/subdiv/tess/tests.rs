@@ -4,6 +4,7 @@
 
 use super::grid::{self, Pt};
 use super::*;
+use glam::DMat4;
 use std::collections::HashMap;
 
 /// The signed area of a triangle in `(u, v)`.
@@ -73,7 +74,8 @@ fn a_closed_cage_gives_a_watertight_mesh_within_the_tolerance() {
     let mesh = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
     let control: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
     for (scheme, t) in [(Scheme::Loop, 4e-3), (Scheme::CatmullClark, 2e-2), (Scheme::Loop, 1e-3)] {
-        let out = tessellate(&mesh, &control, scheme, &Options::default(), t).expect("tessellates");
+        let out =
+            tessellate(&mesh, &control, scheme, &Options::default(), Tolerance::Distance(t)).expect("tessellates");
         assert!(out.stats.met && out.stats.measured <= t, "{scheme} {t}: {:?}", out.stats);
         assert!(is_watertight(&out.triangles), "{scheme} {t}: cracks");
         assert_eq!(out.params.len(), out.positions.len());
@@ -85,18 +87,23 @@ fn a_bad_tolerance_is_refused() {
     let mesh = crate::bundled::load(std::path::Path::new("bundled:tetrahedron.obj")).expect("bundled");
     let control: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
     for t in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        assert!(tessellate(&mesh, &control, Scheme::Loop, &Options::default(), t).is_err());
+        assert!(tessellate(&mesh, &control, Scheme::Loop, &Options::default(), Tolerance::Distance(t)).is_err());
+        let view = ScreenTolerance { view_proj: DMat4::IDENTITY, width: 100.0, height: 100.0, pixels: t };
+        assert!(tessellate(&mesh, &control, Scheme::Loop, &Options::default(), Tolerance::Screen(view)).is_err());
     }
+    let flat = ScreenTolerance { view_proj: DMat4::ZERO, width: 100.0, height: 100.0, pixels: 0.5 };
+    let e = tessellate(&mesh, &control, Scheme::Loop, &Options::default(), Tolerance::Screen(flat)).unwrap_err();
+    assert!(e.to_string().contains("cannot be inverted"), "{e}");
     let small = Options { max_memory: Some(1 << 20), ..Options::default() };
-    let e = tessellate(&mesh, &control, Scheme::Loop, &small, 1e-9).unwrap_err();
+    let e = tessellate(&mesh, &control, Scheme::Loop, &small, Tolerance::Distance(1e-9)).unwrap_err();
     assert!(e.to_string().contains("raise the tolerance"), "{e}");
 }
 
-/// The largest distance, at every vertex of the level-`levels` uniform
-/// refinement, between the exact limit there (the limit masks on that
-/// level, not the evaluator) and the tessellation's flat triangle over the
-/// same `(u, v)` of the same control face: an independent dense check.
-fn dense_error(mesh: &Mesh, scheme: Scheme, t: f64, levels: u32) -> (f64, usize) {
+/// At every vertex of the level-`levels` uniform refinement, the exact
+/// limit there (the limit masks on that level, not the evaluator) and the
+/// tessellation's flat triangle over the same `(u, v)` of the same control
+/// face: an independent dense check. And the tessellation's triangles.
+fn dense_pairs(mesh: &Mesh, scheme: Scheme, t: Tolerance, levels: u32) -> (Vec<(DVec3, DVec3)>, usize) {
     use crate::subdiv::eval::catmark_limit::limit_positions_f64;
     use crate::subdiv::eval::{poly_vertex_params, vertex_params};
     let opts = Options::default();
@@ -118,7 +125,7 @@ fn dense_error(mesh: &Mesh, scheme: Scheme, t: f64, levels: u32) -> (f64, usize)
     for (k, &f) in faces.iter().enumerate() {
         by_face.entry(f).or_default().push(k);
     }
-    let mut worst: f64 = 0.0;
+    let mut pairs = Vec::with_capacity(limit.len());
     for (x, &(f, u, v)) in limit.iter().zip(&params) {
         let found = by_face[&(f as u32)].iter().find_map(|&k| {
             let [a, b, c] = built.triangles[k].1;
@@ -129,9 +136,9 @@ fn dense_error(mesh: &Mesh, scheme: Scheme, t: f64, levels: u32) -> (f64, usize)
             let p = |q: Pt| built.positions[q.id as usize];
             inside.then(|| p(a) * (1.0 - l1 - l2) + p(b) * l1 + p(c) * l2)
         });
-        worst = worst.max(found.expect("every point of the domain is covered").distance(*x));
+        pairs.push((*x, found.expect("every point of the domain is covered")));
     }
-    (worst, built.triangles.len())
+    (pairs, built.triangles.len())
 }
 
 #[test]
@@ -139,7 +146,8 @@ fn the_tessellation_is_within_the_tolerance_of_a_dense_refinement() {
     let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
     let cube = crate::bundled::load(std::path::Path::new("bundled:cube.obj")).expect("bundled cube");
     for (mesh, scheme, t, levels) in [(&torus, Scheme::Loop, 2e-3, 5), (&cube, Scheme::CatmullClark, 2e-2, 5)] {
-        let (err, triangles) = dense_error(mesh, scheme, t, levels);
+        let (pairs, triangles) = dense_pairs(mesh, scheme, Tolerance::Distance(t), levels);
+        let err = pairs.iter().map(|(x, y)| x.distance(*y)).fold(0.0, f64::max);
         assert!(err <= t * (1.0 + 1e-9), "{scheme}: {err} over {t} ({triangles} triangles)");
         // and not merely by being as fine as the dense level
         assert!(triangles < mesh.ct.num_triangles() << (2 * levels), "{scheme}: {triangles} triangles");
@@ -151,7 +159,8 @@ fn every_corner_is_the_limit_at_its_own_uv() {
     let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
     let control: Vec<DVec3> = torus.positions.iter().map(|p| p.as_dvec3()).collect();
     let ev = Evaluator::new_f64(&torus, &control, Scheme::Loop, &Options::default()).expect("ev");
-    let (built, faces, _) = run(&torus, &control, Scheme::Loop, &Options::default(), 4.04e-4).expect("runs");
+    let (built, faces, _) =
+        run(&torus, &control, Scheme::Loop, &Options::default(), Tolerance::Distance(4.04e-4)).expect("runs");
     for (k, (_, t)) in built.triangles.iter().enumerate() {
         for p in t {
             let s = ev.eval(faces[k] as usize, p.uv.0, p.uv.1).expect("eval");
@@ -159,4 +168,63 @@ fn every_corner_is_the_limit_at_its_own_uv() {
             assert!(d < 1e-9, "triangle {k} of face {}: corner {} at {:?} is {d} away", faces[k], p.id, p.uv);
         }
     }
+}
+
+/// A perspective view of `width` x `height` pixels from `eye` towards the
+/// origin (glam's right-handed projection, depth 0..1, as the viewer's).
+fn view_from(eye: DVec3, width: f64, height: f64, pixels: f64) -> ScreenTolerance {
+    let proj = glam::dcamera::rh::proj::directx::perspective(40f64.to_radians(), width / height, 0.05, 100.0);
+    let view_proj = proj * glam::dcamera::rh::view::look_at_mat4(eye, DVec3::ZERO, DVec3::Y);
+    ScreenTolerance { view_proj, width, height, pixels }
+}
+
+/// Pixel position of `p` in `view` (None behind the eye or off screen).
+fn pixel(view: &ScreenTolerance, p: DVec3) -> Option<(f64, f64)> {
+    let c = view.view_proj * p.extend(1.0);
+    let (x, y) = (c.x / c.w, c.y / c.w);
+    (c.w > 0.0 && x.abs() <= 1.0 && y.abs() <= 1.0).then(|| (0.5 * view.width * x, 0.5 * view.height * y))
+}
+
+#[test]
+fn a_screen_tolerance_keeps_the_dense_limit_within_its_pixels() {
+    let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
+    let cube = crate::bundled::load(std::path::Path::new("bundled:cube.obj")).expect("bundled cube");
+    for (mesh, scheme, eye) in
+        [(&torus, Scheme::Loop, DVec3::new(0.4, 0.9, 1.6)), (&cube, Scheme::CatmullClark, DVec3::new(1.5, 1.2, 2.0))]
+    {
+        let view = view_from(eye, 240.0, 160.0, 0.5);
+        let (pairs, triangles) = dense_pairs(mesh, scheme, Tolerance::Screen(view), 5);
+        let mut seen = 0;
+        let mut worst: f64 = 0.0;
+        for (x, y) in &pairs {
+            if let (Some(a), Some(b)) = (pixel(&view, *x), pixel(&view, *y)) {
+                seen += 1;
+                worst = worst.max(((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt());
+            }
+        }
+        assert!(seen > pairs.len() / 4, "{scheme}: only {seen} of {} points in the view", pairs.len());
+        assert!(worst <= 0.5 * (1.0 + 1e-9), "{scheme}: {worst} pixels off ({triangles} triangles)");
+    }
+}
+
+#[test]
+fn a_nearer_view_is_finer_and_what_is_out_of_it_is_coarse() {
+    let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
+    let control: Vec<DVec3> = torus.positions.iter().map(|p| p.as_dvec3()).collect();
+    let tris = |view: ScreenTolerance| {
+        let out = tessellate(&torus, &control, Scheme::Loop, &Options::default(), Tolerance::Screen(view))
+            .expect("tessellates");
+        assert!(out.stats.met && out.stats.worst <= view.pixels, "{:?}", out.stats);
+        assert!(is_watertight(&out.triangles), "cracks");
+        out.triangles.len()
+    };
+    let near = tris(view_from(DVec3::new(0.0, 1.0, 2.0), 400.0, 300.0, 0.5));
+    let far = tris(view_from(DVec3::new(0.0, 4.0, 8.0), 400.0, 300.0, 0.5));
+    let coarser = tris(view_from(DVec3::new(0.0, 1.0, 2.0), 400.0, 300.0, 4.0));
+    // (about as 1 / T: four times the distance or the pixels, a few times fewer)
+    assert!(far < near / 2 && coarser < near / 4, "near {near}, far {far}, 4 pixels {coarser}");
+    // looking away from it: every patch out of the view, each its control triangle
+    let mut away = view_from(DVec3::new(0.0, 0.0, 5.0), 400.0, 300.0, 0.5);
+    away.view_proj *= DMat4::from_translation(DVec3::new(0.0, 0.0, 10.0));
+    assert_eq!(tris(away), torus.ct.num_triangles());
 }
