@@ -93,6 +93,9 @@ pub(crate) struct Display {
     /// The half-width of the curvature colours' range, set by hand (`None`:
     /// the default percentile, [`crate::subdiv::eval::color::auto_range`]).
     pub(crate) range: Option<HalfWidth>,
+    /// Draw the limit surface tessellated for the view (within half a
+    /// pixel, see [`super::adaptive`]) instead of the uniform level.
+    pub(crate) adaptive: bool,
 }
 
 impl Display {
@@ -117,6 +120,7 @@ impl Display {
             stripes: Stripes::default(),
             isolines: Isolines::default(),
             range: None,
+            adaptive: false,
         }
     }
 
@@ -157,6 +161,7 @@ impl Display {
     pub(crate) fn reshades_result(&self, next: &Display) -> bool {
         let range = matches!(next.coloring, Coloring::Curvature(_)) && self.range != next.range;
         range
+            || self.adaptive != next.adaptive
             || (self.normal_mode, self.snap_limit, self.coloring) != (next.normal_mode, next.snap_limit, next.coloring)
     }
 

@@ -266,6 +266,7 @@ impl Doc {
         m.picked.set(None);
         m.probe = None;
         m.proxy = None;
+        m.adaptive = Default::default();
         m.made = Made { opts: self.request.opts, scheme: m.made.scheme, ..Made::default() };
         match paths {
             Some(p) => {
@@ -577,6 +578,7 @@ impl Doc {
             }
             Finished::Exported(Err(e)) => self.fail(Problem::Export(e)),
             Finished::Inspected { shown, result } => self.adopt_inspected(shown, result),
+            Finished::Tessellated(result) => self.adopt_tessellation(result),
         }
     }
 

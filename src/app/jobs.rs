@@ -88,6 +88,8 @@ pub(crate) struct Slots {
     pub(crate) exporting: Option<Busy>,
     /// Running inspector pick.
     pub(crate) inspecting: Option<Busy>,
+    /// Running tessellation of the adaptive display.
+    pub(crate) tessellating: Option<Busy>,
 }
 
 /// A loaded model.
@@ -159,6 +161,8 @@ pub(crate) enum Finished {
         /// What was found.
         result: Result<super::inspect::Found>,
     },
+    /// A tessellation of the adaptive display finished.
+    Tessellated(Result<Box<super::adaptive::Tessellated>>),
 }
 
 /// The inputs of a subdivision.
@@ -210,6 +214,7 @@ enum Kind {
     Animate,
     Export,
     Inspect,
+    Tessellate,
 }
 
 struct Message {
@@ -247,6 +252,7 @@ pub(crate) struct Jobs {
     subdivide_ticket: Arc<AtomicU64>,
     animate_ticket: Arc<AtomicU64>,
     inspect_ticket: Arc<AtomicU64>,
+    tessellate_ticket: Arc<AtomicU64>,
     export_cancel: Arc<AtomicU64>,
     /// What is running.
     pub(crate) busy: Slots,
@@ -270,6 +276,7 @@ impl Jobs {
             subdivide_ticket: Default::default(),
             animate_ticket: Default::default(),
             inspect_ticket: Default::default(),
+            tessellate_ticket: Default::default(),
             export_cancel: Default::default(),
             busy: Slots::default(),
             workers: Default::default(),
@@ -284,6 +291,7 @@ impl Jobs {
             || b.building.is_some()
             || b.exporting.is_some()
             || b.inspecting.is_some()
+            || b.tessellating.is_some()
     }
 
     fn ticket(&self, kind: Kind) -> Option<&Arc<AtomicU64>> {
@@ -292,6 +300,7 @@ impl Jobs {
             Kind::Subdivide => Some(&self.subdivide_ticket),
             Kind::Animate => Some(&self.animate_ticket),
             Kind::Inspect => Some(&self.inspect_ticket),
+            Kind::Tessellate => Some(&self.tessellate_ticket),
             Kind::Export => None,
         }
     }
@@ -308,6 +317,7 @@ impl Jobs {
             Kind::Animate => &mut self.busy.building,
             Kind::Export => &mut self.busy.exporting,
             Kind::Inspect => &mut self.busy.inspecting,
+            Kind::Tessellate => &mut self.busy.tessellating,
         }
     }
 
@@ -408,6 +418,14 @@ impl Jobs {
             // A superseded run stopped early: its partial mesh is not the level asked for.
             live().then_some(Finished::Subdivided(result))
         });
+    }
+
+    /// Tessellates the limit for the adaptive display on a worker
+    /// (superseding any running tessellation).
+    pub(crate) fn tessellate(&mut self, job: super::adaptive::Job) {
+        let ticket = self.next_ticket(Kind::Tessellate);
+        self.busy.tessellating = Some(Busy::new("tessellating the limit for the view".into(), 1));
+        self.spawn(Kind::Tessellate, ticket, move || Some(Finished::Tessellated(job.run().map(Box::new))));
     }
 
     /// Drops any running subdivision.

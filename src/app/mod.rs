@@ -26,6 +26,7 @@
 //! changed, blit it and draw egui over it, present, save a screenshot
 //! (window.rs). Nothing slow runs on this thread.
 
+pub(crate) mod adaptive;
 pub(crate) mod animation;
 pub(crate) mod command;
 pub(crate) mod display;
@@ -48,6 +49,8 @@ pub(crate) mod view;
 pub(crate) mod viewer;
 mod window;
 
+#[cfg(test)]
+mod adaptive_tests;
 #[cfg(test)]
 mod edit_tests;
 #[cfg(test)]
@@ -374,7 +377,7 @@ impl App {
             viewer.view.camera.yaw += (dt * 0.8) as f32;
         }
         let moving = self.motion.moving(viewer.view.camera, Instant::now());
-        let use_proxy = !viewer.doc.anim.active && win.has_big_result() && moving;
+        let use_proxy = !viewer.doc.anim.active && !viewer.doc.display.adaptive && win.has_big_result() && moving;
         let (mut encoder, user) = win.begin_frame(&egui);
         let t = Instant::now();
         if win.draw_scene(&mut encoder, viewer, egui.pixels_per_point(), use_proxy) {

@@ -263,6 +263,9 @@ pub(crate) struct Model {
     /// The control points in f64 as the file wrote them, and the control
     /// mesh they belong to (see [`Model::precise_control`]).
     pub(crate) precise: Option<(Arc<Mesh>, Arc<Vec<glam::DVec3>>)>,
+    /// The adaptive display's tessellation (drawn instead of `raw` while
+    /// it is on) and what it was last asked for.
+    pub(crate) adaptive: super::adaptive::Adaptive,
 }
 
 impl Model {
@@ -292,6 +295,7 @@ impl Model {
             curve: Versioned::new(None),
             curvatures: None,
             precise: None,
+            adaptive: Default::default(),
         }
     }
 
@@ -302,6 +306,12 @@ impl Model {
     /// from only at these vertices (positions and normals; sorted), so a
     /// result drawn as it is differs at them too (see [`result_rows`]).
     pub(crate) fn reshade(&mut self, display: &Display, rows: Option<Arc<[u32]>>) -> Option<Error> {
+        if let Some(t) = self.adaptive.drawn.as_ref().filter(|_| display.adaptive) {
+            // the limit for the view, with its exact normals, uncoloured
+            let shown = t.shown.clone();
+            self.result.set(Shaded { shown, colors: None, values: None, color_max: 0.0, scale: None });
+            return None;
+        }
         let creased = self.raw.creased.clone();
         let shown = match creased {
             // the normals are the cut mesh's (creased_view)

@@ -57,6 +57,10 @@ impl Viewer {
             self.apply(c);
         }
         self.view.settle_camera(&self.doc);
+        let ppp = ui.ctx().pixels_per_point();
+        if let Some(view) = super::adaptive::screen_tolerance(&self.view, self.doc.display.side_by_side, ppp) {
+            self.doc.request_tessellation(view);
+        }
         rect
     }
 }

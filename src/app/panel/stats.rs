@@ -14,7 +14,10 @@ pub(crate) fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Co
     egui::Grid::new("stats").num_columns(3).striped(true).show(ui, |ui| {
         ui.label("");
         ui.label("control");
-        ui.label(format!("level {}", m.made.level));
+        match doc.adaptive_shown() {
+            Some(_) => ui.label("adaptive"),
+            None => ui.label(format!("level {}", m.made.level)),
+        };
         ui.end_row();
         // a polygon mesh counts its polygons and their edges, not the
         // triangles and diagonals it is drawn with
@@ -45,6 +48,17 @@ pub(crate) fn stats_section(ui: &mut egui::Ui, doc: &Doc, view: &View) -> Vec<Co
             s.edge_ms,
             s.vertex_ms,
             m.made.job_ms
+        ));
+    }
+    if let Some(a) = doc.adaptive_shown() {
+        let s = &a.stats;
+        ui.label(format!(
+            "adaptive: {} triangles within {} px of the limit (largest measured {:.2} px), {} rounds, job {:.0} ms",
+            sep(a.shown.topo.faces as u64),
+            crate::app::adaptive::PIXELS,
+            s.worst,
+            s.rounds,
+            a.ms
         ));
     }
     if let Some(p) = &doc.anim.playback {

@@ -36,6 +36,9 @@ pub use view::{ScreenTolerance, Tolerance};
 pub struct Tessellation {
     /// Points on the exact limit surface.
     pub positions: Vec<DVec3>,
+    /// The limit surface's unit normal at each point, on the side the
+    /// control faces' winding makes their front.
+    pub normals: Vec<DVec3>,
     /// Triangles, counter-clockwise seen from the front of the control
     /// faces.
     pub triangles: Vec<[u32; 3]>,
@@ -179,6 +182,7 @@ pub fn tessellate(
     let corners = built.triangles.iter().map(|(_, t)| t.map(|p| p.uv)).collect();
     Ok(Tessellation {
         positions: built.positions,
+        normals: built.normals,
         triangles,
         faces,
         params: built.params,
@@ -252,7 +256,7 @@ fn run(
             return Ok((built, faces, stats));
         }
         // the round's triangles go; its points and their layout stay for the next
-        before = Some(Earlier { layout: built.layout, positions: built.positions });
+        before = Some(Earlier { layout: built.layout, positions: built.positions, normals: built.normals });
         rates::refine(&mut rate, &errors, &tol);
     }
 }
@@ -261,6 +265,7 @@ fn run(
 /// triangles with their corners' `(u, v)` on their patch.
 struct Built {
     positions: Vec<DVec3>,
+    normals: Vec<DVec3>,
     params: Vec<(u32, f64, f64)>,
     /// Each triangle's patch and corners.
     triangles: Vec<(u32, [Pt; 3])>,
@@ -273,6 +278,7 @@ struct Built {
 struct Earlier {
     layout: Layout,
     positions: Vec<DVec3>,
+    normals: Vec<DVec3>,
 }
 
 /// The order of a tessellation's points: first the keys (the domain's
@@ -300,14 +306,16 @@ impl Layout {
         self.inside_first[p] as usize..end
     }
 
-    /// Copies into `positions` (laid out as `self`) the points of `before`
-    /// that are the same here (their part made at the same rates), and
-    /// clears their `fresh` flags.
-    fn copy_same(&self, before: &Earlier, positions: &mut [DVec3], fresh: &mut [bool]) {
+    /// Copies into `points` (positions and normals, laid out as `self`)
+    /// the points of `before` that are the same here (their part made at
+    /// the same rates), and clears their `fresh` flags.
+    fn copy_same(&self, before: &Earlier, points: (&mut [DVec3], &mut [DVec3]), fresh: &mut [bool]) {
+        let (positions, normals) = points;
         let (total, before_total) = (positions.len(), before.positions.len());
         let mut copy = |to: std::ops::Range<usize>, from: std::ops::Range<usize>| {
             for (t, f) in to.zip(from) {
                 positions[t] = before.positions[f];
+                normals[t] = before.normals[f];
                 fresh[t] = false;
             }
         };
@@ -373,7 +381,7 @@ fn build(
         return Err(Error::Usage("the tessellation has more than 2^32 vertices: raise the tolerance".into()));
     }
     let layout = Layout { keys, edge_first, inside_first, rate: rate.to_vec(), edge_rate: edge_rate.to_vec(), uniform };
-    let (positions, evaluated) = evaluate(ev, &points.params, &layout, before)?;
+    let (positions, normals, evaluated) = evaluate(ev, &points.params, &layout, before)?;
     let sides = Sides { domain, edge_rate, edge_first: &layout.edge_first, key_id: &points.key_id };
     let triangles = (0..domain.patches.len())
         .into_par_iter()
@@ -386,27 +394,29 @@ fn build(
             out.into_iter().map(move |t| (p as u32, t))
         })
         .collect();
-    Ok((Built { positions, params: points.params, triangles, layout }, evaluated))
+    Ok((Built { positions, normals, params: points.params, triangles, layout }, evaluated))
 }
 
-/// The limit points at `params` (laid out as `layout` says), those that
-/// `before` holds copied from it; how many were evaluated.
+/// The limit points and normals at `params` (laid out as `layout` says),
+/// those that `before` holds copied from it; how many were evaluated.
 fn evaluate(
     ev: &Evaluator,
     params: &[(u32, f64, f64)],
     layout: &Layout,
     before: Option<&Earlier>,
-) -> Result<(Vec<DVec3>, u64)> {
+) -> Result<(Vec<DVec3>, Vec<DVec3>, u64)> {
     let (mut positions, mut fresh) = (vec![DVec3::NAN; params.len()], vec![true; params.len()]);
+    let mut normals = vec![DVec3::NAN; params.len()];
     if let Some(b) = &before {
-        layout.copy_same(b, &mut positions, &mut fresh);
+        layout.copy_same(b, (&mut positions, &mut normals), &mut fresh);
     }
     let todo: Vec<usize> = (0..params.len()).filter(|&i| fresh[i]).collect();
     let at: Vec<(usize, f64, f64)> = todo.iter().map(|&i| (params[i].0 as usize, params[i].1, params[i].2)).collect();
-    for (&i, p) in todo.iter().zip(ev.eval_map(&at, false, |s| s.position)?) {
+    for (&i, (p, n)) in todo.iter().zip(ev.eval_map(&at, false, |s| (s.position, s.normal))?) {
         positions[i] = p;
+        normals[i] = n;
     }
-    Ok((positions, todo.len() as u64))
+    Ok((positions, normals, todo.len() as u64))
 }
 
 /// The points made so far, and the vertex of each key.

@@ -155,7 +155,7 @@ fn the_tessellation_is_within_the_tolerance_of_a_dense_refinement() {
 }
 
 #[test]
-fn every_corner_is_the_limit_at_its_own_uv() {
+fn every_corner_is_the_limit_at_its_own_uv_with_its_normal() {
     let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
     let control: Vec<DVec3> = torus.positions.iter().map(|p| p.as_dvec3()).collect();
     let ev = Evaluator::new_f64(&torus, &control, Scheme::Loop, &Options::default()).expect("ev");
@@ -166,6 +166,8 @@ fn every_corner_is_the_limit_at_its_own_uv() {
             let s = ev.eval(faces[k] as usize, p.uv.0, p.uv.1).expect("eval");
             let d = s.position.distance(built.positions[p.id as usize]);
             assert!(d < 1e-9, "triangle {k} of face {}: corner {} at {:?} is {d} away", faces[k], p.id, p.uv);
+            let n = s.normal.distance(built.normals[p.id as usize]);
+            assert!(n < 1e-9, "triangle {k}: corner {}'s normal is {n} off", p.id);
         }
     }
 }
@@ -182,7 +184,7 @@ fn view_from(eye: DVec3, width: f64, height: f64, pixels: f64) -> ScreenToleranc
 fn pixel(view: &ScreenTolerance, p: DVec3) -> Option<(f64, f64)> {
     let c = view.view_proj * p.extend(1.0);
     let (x, y) = (c.x / c.w, c.y / c.w);
-    (c.w > 0.0 && x.abs() <= 1.0 && y.abs() <= 1.0).then(|| (0.5 * view.width * x, 0.5 * view.height * y))
+    (c.w > 0.0 && x.abs() <= 1.0 && y.abs() <= 1.0).then_some((0.5 * view.width * x, 0.5 * view.height * y))
 }
 
 #[test]

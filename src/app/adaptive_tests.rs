@@ -1,0 +1,76 @@
+//! The adaptive display in the viewer without a window: the limit
+//! tessellated for the view on a worker, again when the view or the cage
+//! changes, the uniform level back when it is off or the scheme has no
+//! limit.
+
+use super::tests::{common, frame, settle, subdivide};
+use crate::Scheme;
+use crate::app::{Command, Viewer};
+
+/// Turns the adaptive display on or off.
+fn set_adaptive(v: &mut Viewer, on: bool) {
+    let mut d = v.doc.display;
+    d.adaptive = on;
+    v.apply(Command::SetDisplay(d));
+}
+
+/// A frame (which asks for the view's tessellation) and its worker.
+fn frame_and_wait(ctx: &egui::Context, v: &mut Viewer) -> usize {
+    frame(ctx, v, vec![]);
+    settle(v);
+    let a = v.doc.adaptive_shown().expect("a tessellation is drawn");
+    assert!(a.stats.met && a.stats.worst <= super::adaptive::PIXELS, "{:?}", a.stats);
+    let shown = &v.doc.model.result.shown;
+    assert!(std::sync::Arc::ptr_eq(&shown.mesh, &a.shown.mesh), "the result drawn is the tessellation");
+    assert_eq!(shown.topo.boundary_loops, 0, "a closed cage gives a closed surface");
+    assert_eq!(shown.normals.len(), shown.mesh.positions.len());
+    shown.topo.faces
+}
+
+#[test]
+fn the_adaptive_display_follows_the_view_and_the_cage() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path("torus.obj")));
+    settle(&mut v);
+    subdivide(&mut v, Scheme::Loop, 1);
+    settle(&mut v);
+    let level = v.doc.model.result.shown.topo.faces;
+    frame(&ctx, &mut v, vec![]);
+    set_adaptive(&mut v, true);
+    let fitted = frame_and_wait(&ctx, &mut v);
+    // the same view again asks for nothing
+    frame(&ctx, &mut v, vec![]);
+    assert!(v.doc.jobs.busy.tessellating.is_none(), "an unchanged view is not tessellated again");
+    // nearer: finer
+    v.apply(Command::Zoom { factor: 0.5, cursor: glam::Vec2::ZERO, aspect: 1.0 });
+    let near = frame_and_wait(&ctx, &mut v);
+    assert!(near > fitted, "zoomed in: {near} triangles, fitted {fitted}");
+    // an edit of the cage is tessellated again
+    let before = v.doc.model.result.shown.mesh.clone();
+    v.apply(Command::Smooth(2));
+    settle(&mut v);
+    frame_and_wait(&ctx, &mut v);
+    assert!(!std::sync::Arc::ptr_eq(&before, &v.doc.model.result.shown.mesh), "the edit was tessellated");
+    // off: the uniform level is drawn again
+    set_adaptive(&mut v, false);
+    assert!(v.doc.adaptive_shown().is_none());
+    assert_eq!(v.doc.model.result.shown.topo.faces, level);
+}
+
+#[test]
+fn a_scheme_without_a_limit_shows_its_level_and_says_why() {
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    subdivide(&mut v, Scheme::Butterfly, 2);
+    settle(&mut v);
+    let level = v.doc.model.result.shown.topo.faces;
+    frame(&ctx, &mut v, vec![]);
+    set_adaptive(&mut v, true);
+    frame(&ctx, &mut v, vec![]);
+    settle(&mut v);
+    assert!(v.doc.adaptive_shown().is_none());
+    assert_eq!(v.doc.model.result.shown.topo.faces, level);
+    let notice = v.doc.status.notice.clone().unwrap_or_default();
+    assert!(notice.starts_with("adaptive display:"), "{notice}");
+}
