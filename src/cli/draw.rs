@@ -35,6 +35,12 @@ pub struct RenderArgs {
     /// Overlay the control mesh.
     #[arg(long)]
     control: bool,
+    /// Draw the exact limit surface (Loop or Catmull-Clark), tessellated
+    /// for this view within PX pixels of it (0.5 when no number follows),
+    /// framed as level `-n` is: `subdiv tessellate` with a tolerance on
+    /// the screen.
+    #[arg(long, value_name = "PX", num_args = 0..=1, default_missing_value = "0.5")]
+    adaptive: Option<f64>,
     #[command(flatten)]
     look: RenderLook,
     #[command(flatten)]
@@ -354,7 +360,15 @@ mod gpu {
         let overlay = inspect_overlay(&a.inspect, &mesh, &fine, (s.scheme(), levels, &s.options()))?;
         // a stencil is drawn on the cage: the control mesh is shown with it
         let control = (a.control || a.inspect.stencil.is_some()).then_some(&mesh);
-        let mut img = subdiv::render::render_image_painted(&fine, control, &opts, &paint)?;
+        let mut img = match a.adaptive {
+            Some(_) if !matches!(paint, Paint::Material) || overlay.is_some() => {
+                return Err(Error::Usage(
+                    "--adaptive draws the surface in its material: no --color, --corner or --stencil with it".into(),
+                ));
+            }
+            Some(pixels) => render_adaptive((&mesh, &fine, control), (s.scheme(), &s.options()), pixels, &opts)?,
+            None => subdiv::render::render_image_painted(&fine, control, &opts, &paint)?,
+        };
         if let Some(Legend { kind, scale }) = legend {
             subdiv::render::draw_colorbar(&mut img, scale.half, isolines, &[kind.words().into(), scale.describe()]);
         }
@@ -365,6 +379,46 @@ mod gpu {
             paint_overlay(&mut img, &project_overlay(&overlay, &camera, &vp, 10.0), k);
         }
         subdiv::render::save_png(&img, &a.output)
+    }
+
+    /// The limit surface of `mesh` under `how`, tessellated within `pixels`
+    /// on the screen of the view that frames `fine` (or `control`, drawn
+    /// over it) and drawn with its exact normals.
+    fn render_adaptive(
+        (mesh, fine, control): (&Mesh, &Mesh, Option<&Mesh>),
+        (scheme, options): (Scheme, &subdiv::Options),
+        pixels: f64,
+        opts: &subdiv::render::RenderOptions,
+    ) -> Result<image::RgbaImage> {
+        let camera = subdiv::render::default_camera(control.unwrap_or(fine), opts);
+        let (w, h) = opts.shot.size(opts.width, opts.height);
+        let view_proj = camera.view_proj(opts.width as f32 / opts.height.max(1) as f32).as_dmat4();
+        let view = subdiv::ScreenTolerance { view_proj, width: f64::from(w), height: f64::from(h), pixels };
+        let points: Vec<glam::DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        let t = subdiv::tessellate(mesh, &points, scheme, options, subdiv::Tolerance::Screen(view))?;
+        let s = &t.stats;
+        log::info!(
+            "adaptive: {} triangles, largest distance measured {:.3} px of {pixels} px, {} rounds, {:.1} ms",
+            t.triangles.len(),
+            s.worst,
+            s.rounds,
+            s.seconds * 1e3
+        );
+        let positions = t.positions.iter().map(|p| p.as_vec3()).collect();
+        let corners: Vec<u32> = t.triangles.iter().flatten().copied().collect();
+        let drawn = Mesh::from_triangles(positions, &corners).map_err(|e| Error::Usage(e.to_string()))?;
+        let normals: Vec<Vec3> = t.normals.iter().map(|n| n.as_vec3()).collect();
+        let mut off = subdiv::render::Offscreen::new(w, h)?;
+        off.set_shot(opts.shot);
+        let gm = subdiv::render::GpuMesh::new(&off.gpu.device, &drawn.ct, &drawn.positions, &normals)?;
+        let gc = control.map(|c| off.upload(c)).transpose()?;
+        let look = subdiv::render::Look {
+            control: control.is_some(),
+            wire_edges: opts.wire_edges,
+            stripes: opts.stripes,
+            ..opts.shading.look()
+        };
+        off.render_one(camera, &gm, gc.as_ref(), look)
     }
 
     /// The overlay of `--corner` or `--stencil` on `fine`, level `levels` of

@@ -161,7 +161,7 @@ impl Camera {
         }
     }
     /// World to clip.
-    pub(crate) fn view_proj(&self, aspect: f32) -> Mat4 {
+    pub fn view_proj(&self, aspect: f32) -> Mat4 {
         self.proj(aspect) * self.view()
     }
     /// Normalised device coordinates (x, y in -1..1, y up) of a world point.

@@ -65,7 +65,7 @@ impl Offscreen {
     /// Takes the next images as `shot` says: its scale widens the lines
     /// (the target keeps its size; make it `shot.size(...)`), its
     /// transparency clears the background to alpha 0.
-    pub(crate) fn set_shot(&mut self, shot: super::Shot) {
+    pub fn set_shot(&mut self, shot: super::Shot) {
         self.renderer.pixel_scale = shot.scale.max(1) as f32;
         self.renderer.transparent = shot.transparent;
     }
