@@ -121,6 +121,8 @@ pub struct ViewOptions {
     pub crease_angle: Option<f32>,
     /// Start with the control mesh (the cage) shown.
     pub control: bool,
+    /// Start with the adaptive display (the limit within half a pixel).
+    pub adaptive: bool,
 }
 
 impl ViewOptions {
@@ -321,8 +323,13 @@ impl App {
         }
         // a model with MTL materials opens showing them unless a colouring was asked for
         let coloring = crate::render::Coloring::initial(opts.coloring, doc.model.attrs.file.materials.is_some());
-        doc.display =
-            Display { turntable: opts.turntable, coloring, control: opts.control, ..Display::new(opts.wireframe) };
+        doc.display = Display {
+            turntable: opts.turntable,
+            coloring,
+            control: opts.control,
+            adaptive: opts.adaptive,
+            ..Display::new(opts.wireframe)
+        };
         if let Some(count) = opts.isolines {
             doc.display.isolines = display::Isolines { on: true, count };
         }

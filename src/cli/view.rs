@@ -22,6 +22,10 @@ pub struct ViewArgs {
     /// Start with the control mesh (cage) shown.
     #[arg(long)]
     control: bool,
+    /// Start with the adaptive display: the exact limit tessellated for the
+    /// view, within half a pixel (Loop and Catmull-Clark).
+    #[arg(long)]
+    adaptive: bool,
     /// Render N frames, then exit (for CI).
     #[arg(long)]
     frames: Option<u32>,
@@ -68,6 +72,7 @@ pub(crate) fn view(a: ViewArgs) -> Result<()> {
         range: a.color.range(coloring)?,
         crease_angle: s.features.sharp.crease_angle,
         control: a.control,
+        adaptive: a.adaptive,
     })
 }
 

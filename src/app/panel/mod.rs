@@ -267,6 +267,7 @@ fn display_section(ui: &mut egui::Ui, doc: &Doc, view: &View, display: &mut Disp
                 .on_hover_text("a post-process pass over the frame: cheap anti-aliasing where MSAA is off");
         }
     });
+    tools::adaptive_row(ui, doc, display);
     if display.wireframe {
         wire_edges_row(ui, doc, display);
     }

@@ -62,6 +62,8 @@ fn label(doc: &Doc) -> String {
             ),
             None => "building the animation…".into(),
         }
+    } else if doc.adaptive_shown().is_some() {
+        format!("{} limit, adaptive: within {} px", doc.request.scheme.name(), crate::app::adaptive::PIXELS)
     } else {
         format!("{} level {}", doc.model.made.scheme.name(), doc.model.made.level)
     }

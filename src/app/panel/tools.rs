@@ -22,7 +22,6 @@ pub(crate) fn tools_section(
     ui.checkbox(&mut display.snap_limit, "Snap to limit positions").on_hover_text(
         "move every vertex to its limit point: on the Catmull-Clark surface for Catmull-Clark, else on Loop's",
     );
-    adaptive_row(ui, doc, display);
     // the curvature colourings exist for the schemes with an exact limit
     let refusal = crate::subdiv::eval::color::check_scheme(doc.model.made.scheme).err();
     egui::ComboBox::from_label("Colour").selected_text(display.coloring.name()).show_ui(ui, |ui| {
@@ -212,7 +211,7 @@ fn curvature_bar(
 
 /// The adaptive display's checkbox: for the schemes with an exact limit
 /// surface (Loop, Catmull-Clark).
-fn adaptive_row(ui: &mut egui::Ui, doc: &Doc, display: &mut Display) {
+pub(super) fn adaptive_row(ui: &mut egui::Ui, doc: &Doc, display: &mut Display) {
     let limit = matches!(doc.request.scheme, crate::Scheme::Loop | crate::Scheme::CatmullClark);
     let label = format!("Adaptive: the limit within {} px", crate::app::adaptive::PIXELS);
     let why = "draw the exact limit surface tessellated for the view: fine near the eye, coarse far away, re-tessellated when the view or the cage changes";
