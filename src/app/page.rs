@@ -98,7 +98,8 @@ impl PageApp {
     /// the page's script and its tests read the state instead of guessing
     /// it: `frames`, `busy`, `model`, `level`, `triangles`, `adapter`,
     /// `error`, `notice`, `unsaved`, `steps` (the undo history's length), `offer` (a
-    /// recovery copy is offered), `playing` (the animation).
+    /// recovery copy is offered), `playing` (the animation), `adaptive` (a
+    /// tessellation for the view is drawn).
     fn report(&mut self) {
         let (doc, view) = (&self.app.viewer.doc, &self.app.viewer.view);
         let error = doc.status.error.as_ref().map(|p| p.to_string()).unwrap_or_default();
@@ -115,6 +116,7 @@ impl PageApp {
             ("steps", doc.edit.history.done.len().to_string()),
             ("offer", doc.edit.offer.to_string()),
             ("playing", doc.anim.playing().to_string()),
+            ("adaptive", doc.adaptive_shown().is_some().to_string()),
         ];
         for (k, v) in pairs {
             let _ = self.canvas.set_attribute(&format!("data-{k}"), &v);

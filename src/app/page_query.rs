@@ -1,5 +1,6 @@
 //! The web page's address as the viewer's opening state:
-//! `index.html?model=torus.obj&level=3&scheme=loop&shading=wire&backend=webgl2`.
+//! `index.html?model=torus.obj&level=3&scheme=loop&shading=wire&backend=webgl2` (and
+//! `adaptive=1`, `play=1`).
 
 use super::ViewOptions;
 use crate::render::Shading;
@@ -18,6 +19,8 @@ pub(crate) struct PageQuery {
     pub(crate) webgl2: bool,
     /// Start playing the animation.
     pub(crate) play: bool,
+    /// Start with the adaptive display (the limit within half a pixel).
+    pub(crate) adaptive: bool,
 }
 
 impl PageQuery {
@@ -36,6 +39,7 @@ impl PageQuery {
                 "shading" => q.shading = Some(v.parse().map_err(bad)?),
                 "backend" => q.webgl2 = v.eq_ignore_ascii_case("webgl2") || v.eq_ignore_ascii_case("webgl"),
                 "play" => q.play = v != "0" && v != "false",
+                "adaptive" => q.adaptive = v != "0" && v != "false",
                 _ => {}
             }
         }
@@ -62,6 +66,7 @@ impl PageQuery {
             level: self.level.unwrap_or(if bundled.is_some() { 2 } else { first.level }),
             control: control && first.control,
             play: self.play,
+            adaptive: self.adaptive,
             ..ViewOptions::default()
         }
     }
@@ -113,5 +118,7 @@ mod tests {
         assert_eq!(url.unknown_model(), None);
         assert_eq!(q.unknown_model(), None, "torus.obj is bundled");
         assert_eq!(PageQuery::parse("model=nope.obj").unwrap().unknown_model(), Some("nope.obj"));
+        assert!(PageQuery::parse("adaptive=1").unwrap().view_options().adaptive);
+        assert!(!PageQuery::parse("adaptive=0").unwrap().view_options().adaptive);
     }
 }

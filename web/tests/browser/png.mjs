@@ -47,11 +47,11 @@ export function decodePng(buf) {
 }
 
 /** Pixels whose colour differs from `b`'s by more than `tol` in a channel,
- * in the columns from `x0` on (all: 0). */
-export function differing(a, b, tol = 8, x0 = 0) {
+ * in the columns from `x0` on and the rows from `y0` on (all: 0, 0). */
+export function differing(a, b, tol = 8, x0 = 0, y0 = 0) {
   if (a.width !== b.width || a.height !== b.height) throw new Error('pictures of different sizes');
   let n = 0;
-  for (let i = 0; i < a.pixels.length; i += 4) {
+  for (let i = 4 * y0 * a.width; i < a.pixels.length; i += 4) {
     if ((i / 4) % a.width < x0) continue;
     if (Math.abs(a.pixels[i] - b.pixels[i]) > tol || Math.abs(a.pixels[i + 1] - b.pixels[i + 1]) > tol
       || Math.abs(a.pixels[i + 2] - b.pixels[i + 2]) > tol) n++;
