@@ -46,6 +46,16 @@ pub(crate) struct Adaptive {
     pub(crate) drawn: Option<Arc<Tessellated>>,
     /// What the latest request was for (asked again only when it changes).
     asked: Option<Key>,
+    /// The view of the frame before (see [`Adaptive::still`]).
+    seen: Option<ScreenTolerance>,
+}
+
+impl Adaptive {
+    /// Whether `view` is the view of the frame before (the camera is
+    /// still), noting it for the next frame.
+    pub(crate) fn still(&mut self, view: ScreenTolerance) -> bool {
+        self.seen.replace(view) == Some(view)
+    }
 }
 
 /// What a tessellation job needs.

@@ -59,7 +59,16 @@ impl Viewer {
         self.view.settle_camera(&self.doc);
         let ppp = ui.ctx().pixels_per_point();
         if let Some(view) = super::adaptive::screen_tolerance(&self.view, self.doc.display.side_by_side, ppp) {
-            self.doc.request_tessellation(view);
+            // the page has no worker threads: a tessellation runs in a frame
+            // there, so it waits for the camera to be still for a frame
+            // (and a frame is asked for to see it still), not at every step
+            // of an orbit
+            let still = self.doc.model.adaptive.still(view);
+            if still || !cfg!(target_arch = "wasm32") {
+                self.doc.request_tessellation(view);
+            } else if self.doc.display.adaptive {
+                ui.ctx().request_repaint_after(std::time::Duration::from_millis(100));
+            }
         }
         rect
     }
