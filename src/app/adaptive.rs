@@ -33,6 +33,13 @@ pub(crate) struct Key {
 pub(crate) struct Tessellated {
     /// The triangles on the limit, with its exact normals.
     pub(crate) shown: Shown,
+    /// Each triangle's control face and its corners' `(u, v)` there (what
+    /// a pick on it is traced back with).
+    pub(crate) faces: Vec<u32>,
+    pub(crate) corners: Vec<[(f64, f64); 3]>,
+    /// The scheme and options it was made with.
+    pub(crate) scheme: Scheme,
+    pub(crate) opts: Options,
     /// How it went.
     pub(crate) stats: TessellationStats,
     /// Wall time of the job, ms.
@@ -80,7 +87,8 @@ impl Job {
         // the exact normals, not the triangles' average
         shown.normals = Arc::new(out.normals.iter().map(|n| n.as_vec3()).collect());
         let ms = start.elapsed().as_secs_f64() * 1e3;
-        Ok(Tessellated { shown, stats: out.stats, ms })
+        let (faces, corners) = (out.faces, out.corners);
+        Ok(Tessellated { shown, faces, corners, scheme, opts, stats: out.stats, ms })
     }
 }
 

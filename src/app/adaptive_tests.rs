@@ -3,7 +3,7 @@
 //! changes, the uniform level back when it is off or the scheme has no
 //! limit.
 
-use super::tests::{common, frame, settle, subdivide};
+use super::tests::{common, frame, frame_sized, settle, subdivide};
 use crate::Scheme;
 use crate::app::{Command, Viewer};
 
@@ -16,7 +16,16 @@ fn set_adaptive(v: &mut Viewer, on: bool) {
 
 /// A frame (which asks for the view's tessellation) and its worker.
 fn frame_and_wait(ctx: &egui::Context, v: &mut Viewer) -> usize {
-    frame(ctx, v, vec![]);
+    frame_small(ctx, v, false)
+}
+
+/// [`frame_and_wait`] in the default window, or a small one (720 x 420
+/// points: a 3D area of about 400 x 420 pixels).
+fn frame_small(ctx: &egui::Context, v: &mut Viewer, small: bool) -> usize {
+    match small {
+        true => frame_sized(ctx, v, egui::vec2(720.0, 420.0), vec![]),
+        false => frame(ctx, v, vec![]),
+    }
     settle(v);
     let a = v.doc.adaptive_shown().expect("a tessellation is drawn");
     assert!(a.stats.met && a.stats.worst <= super::adaptive::PIXELS, "{:?}", a.stats);
@@ -73,4 +82,38 @@ fn a_scheme_without_a_limit_shows_its_level_and_says_why() {
     assert_eq!(v.doc.model.result.shown.topo.faces, level);
     let notice = v.doc.status.notice.clone().unwrap_or_default();
     assert!(notice.starts_with("adaptive display:"), "{notice}");
+}
+
+#[test]
+fn a_pick_on_the_adaptive_display_is_the_limit_at_its_own_point() {
+    use crate::app::probe::ray_at;
+    use crate::subdiv::pick::{ControlFace, Limit};
+    for (model, scheme) in [("torus.obj", Scheme::Loop), ("cube.obj", Scheme::CatmullClark)] {
+        let ctx = egui::Context::default();
+        let mut v = Viewer::new();
+        v.apply(Command::Open(common::model_path(model)));
+        settle(&mut v);
+        subdivide(&mut v, scheme, 0);
+        settle(&mut v);
+        // small: the cube's every ptex face has an extraordinary corner, and
+        // one rate per patch makes it fine everywhere (1.9 M triangles at
+        // 956 x 800 pixels)
+        frame_sized(&ctx, &mut v, egui::vec2(720.0, 420.0), vec![]);
+        set_adaptive(&mut v, true);
+        frame_small(&ctx, &mut v, true);
+        let rect = v.view.scene_rect;
+        let at = rect.center() + egui::vec2(rect.width() * 0.12, rect.height() * 0.05);
+        v.apply(Command::PickSurface(ray_at(&v.view.camera, rect, false, at)));
+        let p = v.doc.model.probe.as_ref().expect("the ray hits the surface").pick.clone();
+        let Limit::Exact(s) = &p.limit else { panic!("{model}: no limit: {:?}", p.limit) };
+        // the drawn point lies on a flat triangle within the tolerance of the limit at its (u, v)
+        let tol = v.doc.adaptive_shown().expect("drawn").stats.measured;
+        let d = s.position.distance(p.point.as_dvec3());
+        assert!(d <= 2.0 * tol + 1e-6, "{model}: the hit is {d} from the limit at its point (measured {tol})");
+        let on_face = match p.face {
+            ControlFace::Triangle { .. } => scheme == Scheme::Loop,
+            ControlFace::Polygon { ptex, .. } => scheme == Scheme::CatmullClark && ptex.is_some(),
+        };
+        assert!(on_face, "{model}: {:?}", p.face);
+    }
 }

@@ -7,7 +7,7 @@
 use super::doc::Doc;
 use super::view::{cursor_ndc, viewport_aspect};
 use crate::render::Camera;
-use crate::subdiv::pick::{Level, Pick, pick};
+use crate::subdiv::pick::{Level, Pick, Tessellated, pick, pick_tessellated};
 use glam::Vec3;
 
 /// Which surface a click picks: the result, or the control mesh (the left
@@ -70,6 +70,12 @@ impl Doc {
         let control = &*m.control.mesh;
         if self.traced_on_cage(ray) {
             return self.cast_on_cage(ray);
+        }
+        if let Some(t) = self.adaptive_shown().filter(|_| ray.target == Target::Result) {
+            // the adaptive display: traced back through the tessellation's own faces
+            let drawn = Tessellated { mesh: &t.shown.mesh, faces: &t.faces, corners: &t.corners };
+            let how = (t.scheme, &t.opts);
+            return Ok(pick_tessellated((control, m.precise_control()), how, &drawn, (ray.origin, ray.dir)));
         }
         let (drawn, level) = match ray.target {
             Target::Control => (control, 0),

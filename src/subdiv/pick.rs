@@ -137,6 +137,62 @@ pub fn pick(level: &Level, opts: &Options, origin: Vec3, dir: Vec3) -> Result<Op
     Ok(Some(Pick { point, distance, triangle, level: level.level, scheme: level.scheme, face, vertex, limit }))
 }
 
+/// A tessellation of the limit drawn instead of a level (the viewer's
+/// adaptive display): its triangles, each with its control face (Loop: the
+/// control triangle; Catmull-Clark: the ptex face) and its corners' `(u, v)`
+/// there ([`super::Tessellation::corners`]).
+pub(crate) struct Tessellated<'a> {
+    pub(crate) mesh: &'a Mesh,
+    pub(crate) faces: &'a [u32],
+    pub(crate) corners: &'a [[(f64, f64); 3]],
+}
+
+/// [`pick`] on a tessellation of the limit of `control` under `scheme`
+/// (Loop or Catmull-Clark): the hit's `(u, v)` interpolated from its
+/// triangle's corners, on their control face; `None` when the ray misses
+/// (or the tessellation is of another cage).
+pub(crate) fn pick_tessellated(
+    control: (&Mesh, Option<&[DVec3]>),
+    (scheme, opts): (Scheme, &Options),
+    drawn: &Tessellated,
+    (origin, dir): (Vec3, Vec3),
+) -> Option<Pick> {
+    let hit = nearest_hit(drawn.mesh, origin, dir)?;
+    let k = hit.triangle as usize;
+    let (f, c) = (*drawn.faces.get(k)?, drawn.corners.get(k)?);
+    let (b1, b2) = (f64::from(hit.uv.0), f64::from(hit.uv.1));
+    let w = [1.0 - b1 - b2, b1, b2];
+    let (u, v) = (0..3).fold((0.0, 0.0), |(u, v), i| (u + w[i] * c[i].0, v + w[i] * c[i].1));
+    let ct = &control.0.ct;
+    let (face, id, valence) = if scheme == Scheme::CatmullClark {
+        let pt = PolyTable::from_corner_table(ct);
+        let (polygon, corner) = *super::eval::catmark::ptex_faces(&pt).get(f as usize)?;
+        let r = pt.face_corners(polygon);
+        // a quad's nearest corner is the quarter of its square holding the
+        // hit; an n-gon's ptex face is its corner's quarter
+        let corner = match (corner == super::eval::catmark::QUAD, u >= 0.5, v >= 0.5) {
+            (false, _, _) => corner,
+            (true, false, false) => 0,
+            (true, true, false) => 1,
+            (true, true, true) => 2,
+            (true, false, true) => 3,
+        };
+        let id = pt.vtx(r.start + corner);
+        let size = r.end - r.start;
+        (ControlFace::Polygon { face: polygon, size, corner, ptex: Some((f, u, v)) }, id, pt.valences()[id as usize])
+    } else {
+        let weights = [1.0 - u - v, u, v];
+        let nearest = (0..3).max_by(|&a, &b| weights[a].total_cmp(&weights[b])).unwrap_or(0);
+        let id = *ct.v_table().get(3 * f as usize + nearest)?;
+        (ControlFace::Triangle { face: f, u, v }, id, ct.valence(id))
+    };
+    let position = *control.0.positions.get(id as usize)?;
+    let vertex = ControlVertex { id, valence, boundary: ct.is_boundary_vertex(id), position };
+    let limit = limit_at(control, scheme, opts, &face);
+    let (point, distance, triangle) = (hit.point, hit.t, hit.triangle);
+    Some(Pick { point, distance, triangle, level: 0, scheme, face, vertex, limit })
+}
+
 /// The control face and vertex of a hit on the drawn level.
 ///
 /// # Errors

@@ -24,7 +24,7 @@ pub(crate) fn probe_section(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
     let p = &probe.pick;
     egui::Grid::new("probe").num_columns(2).striped(true).show(ui, |ui| {
         let prim = probe.prim.iter().map(|path| ("Prim", path.clone()));
-        for (name, value) in prim.chain(rows(p, probe.ray.target)) {
+        for (name, value) in prim.chain(rows(p, probe.ray.target, doc.adaptive_shown().is_some())) {
             ui.label(name);
             ui.label(RichText::new(value).monospace());
             ui.end_row();
@@ -48,10 +48,11 @@ pub(crate) fn probe_section(ui: &mut egui::Ui, doc: &Doc) -> Vec<Command> {
 }
 
 /// The label and value of each fact shown.
-fn rows(p: &Pick, target: Target) -> Vec<(&'static str, String)> {
+fn rows(p: &Pick, target: Target, adaptive: bool) -> Vec<(&'static str, String)> {
     let v3 = |v: Vec3| format!("{:.5} {:.5} {:.5}", v.x, v.y, v.z);
     let d3 = |v: DVec3| format!("{:.5} {:.5} {:.5}", v.x, v.y, v.z);
     let surface = match target {
+        Target::Result if adaptive => format!("{} limit, adaptive", p.scheme),
         Target::Result => format!("{} level {}", p.scheme, p.level),
         Target::Control => "control mesh".into(),
     };

@@ -51,11 +51,14 @@ pub struct Tessellation {
     pub params: Vec<(u32, f64, f64)>,
     /// How it went.
     pub stats: TessellationStats,
+    /// Each triangle's corners' `(u, v)` on its control face (`faces`):
+    /// where a point of the triangle lies on the limit's domain (a vertex
+    /// shared by two control faces has one `params` entry but a corner in
+    /// each).
+    pub corners: Vec<[(f64, f64); 3]>,
     /// The scheme, which says what `faces` number, and its options.
     scheme: Scheme,
     opts: Options,
-    /// Each triangle's corners' `(u, v)` on its control face.
-    corners: Vec<[(f64, f64); 3]>,
 }
 
 impl Tessellation {
