@@ -1,7 +1,7 @@
 //! `evaluate`: the exact Loop or Catmull-Clark limit surface at points
 //! `(face, u, v)`, the native half of `subdiv.evaluate` (the library's `subdiv eval`).
 
-use crate::arrays::{columns, f64_array};
+use crate::arrays::{columns, f64_array, i64_array};
 use crate::build::Control;
 use crate::guard::run;
 use crate::ops::{CreaseArgs, MeshArgs, control, named};
@@ -69,4 +69,69 @@ pub fn evaluate_arrays<'py>(
         })
     })?;
     Ok((f64_array(py, p, 3)?, f64_array(py, n, 3)?, f64_array(py, hk, 2)?))
+}
+
+/// Positions `(k, 3)`, unit normals `(k, 3)`, triangles `(t, 3)`, each
+/// vertex's control face `(k, 1)` and `(u, v)` there `(k, 2)`, and the
+/// tolerance, the largest distance measured and whether it is met.
+type Tessellated<'py> = (
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray2<i64>>,
+    Bound<'py, PyArray2<i64>>,
+    Bound<'py, PyArray2<f64>>,
+    (f64, f64, bool),
+);
+
+/// The limit surface within `tolerance` (`(t, false)`: a distance; `(f,
+/// true)`: a fraction of the control points' bounding-box diagonal) as
+/// `subdiv tessellate` makes it; `names`, `creases`, `precise` and
+/// `threads` as for [`evaluate_arrays`].
+///
+/// # Errors
+/// `SubdivError` for what the library refuses (a tolerance that is not a
+/// positive distance, a scheme without an exact limit, a tessellation over
+/// the memory budget, a mesh it does not build).
+#[pyfunction]
+pub fn tessellate_arrays<'py>(
+    py: Python<'py>,
+    mesh: MeshArgs<'py>,
+    creases: CreaseArgs<'py>,
+    names: crate::options::Names,
+    tolerance: (f64, bool),
+    precise: bool,
+    threads: Option<usize>,
+) -> PyResult<Tessellated<'py>> {
+    let s = mesh.slices(&creases)?;
+    let out = run(py, threads, || {
+        let (scheme, opts) = named(&names)?;
+        let (c, remap) = control(&s, scheme, false)?;
+        let mesh = match c {
+            Control::Tri(mesh) => mesh,
+            Control::Poly(mesh) => mesh.triangulated(),
+        };
+        let points64 = remap.control_f64(s.vertices(), &mesh.positions, !precise);
+        let t = match tolerance {
+            (t, false) => t,
+            (fraction, true) => {
+                let lo = points64.iter().copied().fold(glam::DVec3::INFINITY, glam::DVec3::min);
+                let hi = points64.iter().copied().fold(glam::DVec3::NEG_INFINITY, glam::DVec3::max);
+                fraction * lo.distance(hi)
+            }
+        };
+        subdiv::tessellate(&mesh, &points64, scheme, &opts, subdiv::Tolerance::Distance(t)).map_err(|e| e.to_string())
+    })?;
+    let flat = |v: &[glam::DVec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f64>>();
+    let triangles = out.triangles.iter().flatten().map(|&i| i64::from(i)).collect();
+    let face = out.params.iter().map(|p| i64::from(p.0)).collect();
+    let uv = out.params.iter().flat_map(|p| [p.1, p.2]).collect();
+    let s = out.stats;
+    Ok((
+        f64_array(py, flat(&out.positions), 3)?,
+        f64_array(py, flat(&out.normals), 3)?,
+        i64_array(py, triangles, 3)?,
+        i64_array(py, face, 1)?,
+        f64_array(py, uv, 2)?,
+        (s.tolerance, s.measured, s.met),
+    ))
 }

@@ -30,6 +30,7 @@ fn _subdiv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(ops::plan_levels, m)?)?;
     m.add_function(wrap_pyfunction!(ops::limit_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(evaluate::evaluate_arrays, m)?)?;
+    m.add_function(wrap_pyfunction!(evaluate::tessellate_arrays, m)?)?;
     m.add_function(wrap_pyfunction!(files::load_file, m)?)?;
     m.add_class::<refiner::NativeRefiner>()?;
     m.add_function(wrap_pyfunction!(files::save_file, m)?)?;

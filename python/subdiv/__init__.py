@@ -36,6 +36,7 @@ __all__ = [
     "subdivide",
     "matrix",
     "limit",
+    "tessellate",
     "load",
     "save",
     "subdivide_file",
@@ -442,6 +443,65 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
     if curvature:
         return p, n, hk[:, 0].astype(dtype), hk[:, 1].astype(dtype)
     return p, n
+
+
+
+def _tolerance(tolerance):
+    """``1e-3`` (a distance) or ``"1e-4x"`` (a fraction of the diagonal) as ``(value, relative)``."""
+    relative = isinstance(tolerance, str) and tolerance.strip().endswith("x")
+    text = tolerance.strip()[:-1] if relative else tolerance
+    try:
+        t = float(text)
+    except (TypeError, ValueError):
+        raise ValueError(f"tolerance {tolerance!r}: a positive distance, or a fraction of the diagonal such as '1e-4x'") from None
+    if not (np.isfinite(t) and t > 0):
+        raise ValueError(f"tolerance {tolerance!r}: a positive distance, or a fraction of the diagonal such as '1e-4x'")
+    return t, relative
+
+
+def tessellate(vertices, faces, tolerance="1e-4x", *, scheme="loop", beta="loop", boundary="edge",
+               triangles="catmark", creasing="uniform", creases=None, threads=None):
+    """The exact limit surface as a crack-free triangle mesh, fine only where
+    it bends, as ``subdiv tessellate`` makes it: every vertex on the limit,
+    every triangle measured within ``tolerance`` of it (at its centre and its
+    edges' midpoints, against the limit at the same ``(u, v)``).
+
+    ``tolerance`` is a distance in the mesh's units (``1e-3``) or a fraction
+    of the control points' bounding-box diagonal (``"1e-4x"``, the default).
+    ``scheme`` is ``"loop"`` (triangles) or ``"catmull-clark"`` (polygons, as
+    :func:`subdivide` takes them); the other options as for :func:`subdivide`.
+    A warning says when the tolerance was not met within the rounds allowed.
+
+    Returns
+    -------
+    V : (k, 3) float64, points on the limit surface.
+    F : (t, 3) int64, triangles, counter-clockwise seen from the front.
+    N : (k, 3) float64, the limit's unit normals there.
+    face, uv : (k,) int64 and (k, 2) float64, each vertex's control face and
+        ``(u, v)`` on it, the points :func:`evaluate` takes (Loop: control
+        triangle; Catmull-Clark: ptex face): attributes evaluated later
+        without refining.
+
+    Examples
+    --------
+    >>> import numpy as np, subdiv
+    >>> V = np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]], float)
+    >>> F = np.array([[0, 1, 2], [0, 2, 3], [0, 3, 1], [1, 3, 2]])
+    >>> P, T, N, face, uv = subdiv.tessellate(V, F, "1e-3x")
+    >>> bool(np.allclose(subdiv.evaluate(V, F, face, uv)[0], P))
+    True
+    """
+    v = _checks.vertices(vertices)
+    corners, starts = _checks.faces(faces)
+    t = _tolerance(tolerance)
+    names = _options(scheme, beta, boundary, triangles=triangles, creasing=creasing)
+    p, n, tri, face, uv, (asked, measured, met) = _subdiv.tessellate_arrays(
+        (v, corners, starts), _checks.tags(creases), names, t, not _checks.is_float32(vertices),
+        _checks.threads(threads))
+    if not met:
+        import warnings
+        warnings.warn(f"the largest distance measured, {measured:g}, is over the tolerance {asked:g}", stacklevel=2)
+    return p, tri, n, face[:, 0], uv
 
 
 class Mesh:

@@ -154,6 +154,25 @@ def limit(
     creases: Creases = None,
     threads: int | None = None,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]: ...
+def tessellate(
+    vertices: npt.ArrayLike,
+    faces: Faces,
+    tolerance: float | str = "1e-4x",
+    *,
+    scheme: str = "loop",
+    beta: Beta = "loop",
+    boundary: Boundary = "edge",
+    triangles: Triangles = "catmark",
+    creasing: Creasing = "uniform",
+    creases: Creases = None,
+    threads: int | None = None,
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.int64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.int64],
+    npt.NDArray[np.float64],
+]: ...
 def load(path: Path, *, repair: bool = False, time: float | None = None, threads: int | None = None) -> Mesh: ...
 def save(path: Path, vertices: npt.ArrayLike, faces: Faces, *, threads: int | None = None) -> None: ...
 def subdivide_file(
