@@ -240,7 +240,7 @@ fn run(
         let last = before.as_ref().map(|b| (&b.layout.rate[..], &b.layout.edge_rate[..]));
         let dirty = rates::changed(&domain, (&rate, &edge_rate), last);
         let (built, evaluated) = build(&ev, &domain, (&rate, &edge_rate), before.as_ref())?;
-        evaluations += evaluated + rates::measure(&ev, &domain, &built, &dirty, &mut errors)?;
+        evaluations += evaluated + rates::measure(&ev, (&domain, &tol), &built, &dirty, &mut errors)?;
         stats.measured = errors.iter().copied().fold(0.0, f64::max);
         stats.worst = errors.iter().zip(&tol).map(|(e, t)| e / t).fold(0.0, f64::max) * scale;
         let over = errors.iter().zip(&tol).filter(|(e, t)| e > t).count();

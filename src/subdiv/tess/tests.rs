@@ -103,22 +103,24 @@ fn a_bad_tolerance_is_refused() {
 /// limit there (the limit masks on that level, not the evaluator) and the
 /// tessellation's flat triangle over the same `(u, v)` of the same control
 /// face: an independent dense check. And the tessellation's triangles.
-fn dense_pairs(mesh: &Mesh, scheme: Scheme, t: Tolerance, levels: u32) -> (Vec<(DVec3, DVec3)>, usize) {
+fn dense_pairs(mesh: &Mesh, scheme: Scheme, t: Tolerance, levels: u32) -> (Vec<(DVec3, DVec3)>, usize, Dense) {
     use crate::subdiv::eval::catmark_limit::limit_positions_f64;
     use crate::subdiv::eval::{poly_vertex_params, vertex_params};
     let opts = Options::default();
     let control: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
     let (built, faces, stats) = run(mesh, &control, scheme, &opts, t).expect("tessellates");
     assert!(stats.met, "{scheme}: {stats:?}");
-    let (limit, params) = if scheme == Scheme::CatmullClark {
+    let (limit, params, corners) = if scheme == Scheme::CatmullClark {
         let poly = PolyMesh::from_mesh(mesh);
         let (fine, pos) = crate::subdivide_f64(&poly, &control, scheme, levels, &opts).expect("refines");
-        let params = poly_vertex_params(&poly.pt, &fine.pt.triangulated(), levels).expect("params");
-        (limit_positions_f64(&fine, &pos, &opts).expect("limit"), params)
+        let table = fine.pt.triangulated();
+        let params = poly_vertex_params(&poly.pt, &table, levels).expect("params");
+        (limit_positions_f64(&fine, &pos, &opts).expect("limit"), params, table.v_table().to_vec())
     } else {
         let (fine, pos) = crate::subdivide_f64(mesh, &control, scheme, levels, &opts).expect("refines");
         let params = vertex_params(mesh.ct.num_triangles(), &fine.ct, levels).expect("params");
-        (crate::subdiv::rules::limit::loop_limit_positions_f64(&fine, &pos, opts.loop_beta), params)
+        let limit = crate::subdiv::rules::limit::loop_limit_positions_f64(&fine, &pos, opts.loop_beta);
+        (limit, params, fine.ct.v_table().to_vec())
     };
     // each face's triangles, to find the one over a point
     let mut by_face: HashMap<u32, Vec<usize>> = HashMap::new();
@@ -138,17 +140,117 @@ fn dense_pairs(mesh: &Mesh, scheme: Scheme, t: Tolerance, levels: u32) -> (Vec<(
         });
         pairs.push((*x, found.expect("every point of the domain is covered")));
     }
-    (pairs, built.triangles.len())
+    let dense = Dense::new(limit, corners.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect());
+    (pairs, built.triangles.len(), dense)
+}
+
+/// The dense refinement's limit points and its triangles between them (a
+/// surface within a small fraction of the tolerance of the limit), in cells
+/// of about a triangle's size: the nearest of its points to a point.
+struct Dense {
+    points: Vec<DVec3>,
+    triangles: Vec<[u32; 3]>,
+    cell: f64,
+    cells: HashMap<[i64; 3], Vec<u32>>,
+}
+
+impl Dense {
+    fn new(points: Vec<DVec3>, triangles: Vec<[u32; 3]>) -> Dense {
+        let corner = |t: &[u32; 3], k: usize| points[t[k] as usize];
+        let size = |t: &[u32; 3]| corner(t, 0).distance(corner(t, 1)).max(corner(t, 1).distance(corner(t, 2)));
+        let cell = triangles.iter().map(size).sum::<f64>() / triangles.len() as f64;
+        let key = |p: DVec3| (p / cell).floor().as_i64vec3().to_array();
+        let mut cells: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+        for (i, t) in triangles.iter().enumerate() {
+            let (lo, hi) = (0..3)
+                .map(|k| corner(t, k))
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
+            let (a, b) = (key(lo), key(hi));
+            for x in a[0]..=b[0] {
+                for y in a[1]..=b[1] {
+                    for z in a[2]..=b[2] {
+                        cells.entry([x, y, z]).or_default().push(i as u32);
+                    }
+                }
+            }
+        }
+        Dense { points, triangles, cell, cells }
+    }
+
+    /// The point of the dense surface nearest `q` among those within
+    /// `reach` of it (`q` itself when none is).
+    fn nearest(&self, q: DVec3, reach: f64) -> DVec3 {
+        let k = (reach / self.cell).ceil() as i64 + 1;
+        let c = (q / self.cell).floor().as_i64vec3();
+        let mut best = (f64::INFINITY, q);
+        for x in -k..=k {
+            for y in -k..=k {
+                for z in -k..=k {
+                    for &t in self.cells.get(&[c.x + x, c.y + y, c.z + z]).into_iter().flatten() {
+                        let [a, b, c] = self.triangles[t as usize].map(|i| self.points[i as usize]);
+                        let p = closest_on_triangle(q, a, b, c);
+                        if p.distance(q) < best.0 {
+                            best = (p.distance(q), p);
+                        }
+                    }
+                }
+            }
+        }
+        best.1
+    }
+}
+
+/// The point of triangle `abc` nearest `p` (Ericson, Real-Time Collision
+/// Detection, 5.1.5).
+fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (ab, ac, ap) = (b - a, c - a, p - a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = p - b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        return a + ab * (d1 / (d1 - d3));
+    }
+    let cp = p - c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        return a + ac * (d2 / (d2 - d6));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    a + ab * (vb * denom) + ac * (vc * denom)
 }
 
 #[test]
 fn the_tessellation_is_within_the_tolerance_of_a_dense_refinement() {
     let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
     let cube = crate::bundled::load(std::path::Path::new("bundled:cube.obj")).expect("bundled cube");
-    for (mesh, scheme, t, levels) in [(&torus, Scheme::Loop, 2e-3, 5), (&cube, Scheme::CatmullClark, 2e-2, 5)] {
-        let (pairs, triangles) = dense_pairs(mesh, scheme, Tolerance::Distance(t), levels);
-        let err = pairs.iter().map(|(x, y)| x.distance(*y)).fold(0.0, f64::max);
-        assert!(err <= t * (1.0 + 1e-9), "{scheme}: {err} over {t} ({triangles} triangles)");
+    for (mesh, scheme, t, levels) in [(&torus, Scheme::Loop, 2e-3, 5), (&cube, Scheme::CatmullClark, 2e-2, 6)] {
+        let (pairs, triangles, dense) = dense_pairs(mesh, scheme, Tolerance::Distance(t), levels);
+        // the flat point's distance from the limit at its own (u, v), or, where
+        // that is over t (next to an extraordinary vertex, where the parameter
+        // stretches), from the nearest point of the dense surface
+        let distance = |&(x, q): &(DVec3, DVec3)| match x.distance(q) {
+            d if d <= t => d,
+            d => dense.nearest(q, d).distance(q),
+        };
+        let err = pairs.iter().map(distance).fold(0.0, f64::max);
+        // (the dense surface's own flat triangles sag by about h^2 k / 8, with
+        // h their size and k the curvature: below 1 % of t here)
+        assert!(err <= t * 1.01, "{scheme}: {err} over {t} ({triangles} triangles)");
         // and not merely by being as fine as the dense level
         assert!(triangles < mesh.ct.num_triangles() << (2 * levels), "{scheme}: {triangles} triangles");
     }
@@ -191,21 +293,29 @@ fn pixel(view: &ScreenTolerance, p: DVec3) -> Option<(f64, f64)> {
 fn a_screen_tolerance_keeps_the_dense_limit_within_its_pixels() {
     let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
     let cube = crate::bundled::load(std::path::Path::new("bundled:cube.obj")).expect("bundled cube");
-    for (mesh, scheme, eye) in
-        [(&torus, Scheme::Loop, DVec3::new(0.4, 0.9, 1.6)), (&cube, Scheme::CatmullClark, DVec3::new(1.5, 1.2, 2.0))]
-    {
+    for (mesh, scheme, eye, levels) in [
+        (&torus, Scheme::Loop, DVec3::new(0.4, 0.9, 1.6), 5),
+        (&cube, Scheme::CatmullClark, DVec3::new(1.5, 1.2, 2.0), 6),
+    ] {
         let view = view_from(eye, 240.0, 160.0, 0.5);
-        let (pairs, triangles) = dense_pairs(mesh, scheme, Tolerance::Screen(view), 5);
+        let (pairs, triangles, dense) = dense_pairs(mesh, scheme, Tolerance::Screen(view), levels);
+        let apart = |a: (f64, f64), b: (f64, f64)| ((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt();
         let mut seen = 0;
         let mut worst: f64 = 0.0;
-        for (x, y) in &pairs {
-            if let (Some(a), Some(b)) = (pixel(&view, *x), pixel(&view, *y)) {
+        for (x, q) in &pairs {
+            if let (Some(a), Some(b)) = (pixel(&view, *x), pixel(&view, *q)) {
                 seen += 1;
-                worst = worst.max(((a.0 - b.0).powi(2) + (a.1 - b.1).powi(2)).sqrt());
+                // over half a pixel from the limit at its own (u, v): from the
+                // nearest point of the dense surface
+                let off = match apart(a, b) {
+                    d if d <= 0.5 => d,
+                    d => pixel(&view, dense.nearest(*q, x.distance(*q))).map_or(d, |n| apart(n, b)),
+                };
+                worst = worst.max(off);
             }
         }
         assert!(seen > pairs.len() / 4, "{scheme}: only {seen} of {} points in the view", pairs.len());
-        assert!(worst <= 0.5 * (1.0 + 1e-9), "{scheme}: {worst} pixels off ({triangles} triangles)");
+        assert!(worst <= 0.5 * 1.01, "{scheme}: {worst} pixels off ({triangles} triangles)");
     }
 }
 
