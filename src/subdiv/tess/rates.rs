@@ -215,6 +215,9 @@ pub(super) fn measure(
     Ok(evaluated)
 }
 
+/// The limit at a measured point: position and first derivatives.
+type Frame = (DVec3, DVec3, DVec3);
+
 /// Where a measured point is over its patch's tolerance, its distance to
 /// another point of the limit surface, nearer it: one Newton step from
 /// the limit at its own `(u, v)` along the tangent plane (the parameter
@@ -229,7 +232,7 @@ pub(super) fn measure(
 fn nearer(
     ev: &Evaluator,
     domain: &Domain,
-    (at, s, owner): (&[(usize, f64, f64)], &[(DVec3, DVec3, DVec3)], &[u32]),
+    (at, s, owner): (&[(usize, f64, f64)], &[Frame], &[u32]),
     (flat, error): (&[DVec3], &mut [f64]),
     t: &[f64],
 ) -> Result<u64> {
