@@ -215,7 +215,9 @@ pub(super) fn measure(
     Ok(evaluated)
 }
 
-/// The limit at a measured point: position and first derivatives.
+/// A measured point (control face, `u`, `v`) and the limit there: position
+/// and first derivatives.
+type Point = (usize, f64, f64);
 type Frame = (DVec3, DVec3, DVec3);
 
 /// Where a measured point is over its patch's tolerance, its distance to
@@ -232,7 +234,7 @@ type Frame = (DVec3, DVec3, DVec3);
 fn nearer(
     ev: &Evaluator,
     domain: &Domain,
-    (at, s, owner): (&[(usize, f64, f64)], &[Frame], &[u32]),
+    (at, s, owner): (&[Point], &[Frame], &[u32]),
     (flat, error): (&[DVec3], &mut [f64]),
     t: &[f64],
 ) -> Result<u64> {
@@ -252,7 +254,7 @@ fn nearer(
         again.push((f, inside(domain.patches[p].quad, (u + step.0, v + step.1))));
         which.push(i);
     }
-    let at: Vec<(usize, f64, f64)> = again.iter().map(|&(f, (u, v))| (f, u, v)).collect();
+    let at: Vec<Point> = again.iter().map(|&(f, (u, v))| (f, u, v)).collect();
     let moved = ev.eval_map(&at, false, |s| s.position)?;
     for (&i, y) in which.iter().zip(moved) {
         error[i] = error[i].min(flat[i].distance(y));
