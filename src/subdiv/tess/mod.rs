@@ -160,7 +160,7 @@ pub struct TessellationStats {
 }
 
 /// Rounds of measuring before the result is given as it is (`met` false).
-const MAX_ROUNDS: u32 = 8;
+const MAX_ROUNDS: u32 = 16;
 
 /// The limit surface of `mesh` (control points `control`, f64, one per
 /// vertex) under `scheme` (Loop or Catmull-Clark) and `opts`, tessellated

@@ -11,7 +11,10 @@
 //! keeps it within `T`. [`initial`] takes `M` from the surface's own
 //! second derivatives at a few points of each patch (the largest
 //! eigenvalue of `[[|S_uu|, |S_uv|], [|S_uv|, |S_vv|]]`), which samples
-//! `M` rather than bounds it; [`measure`] then checks every triangle, and
+//! `M` rather than bounds it; [`measure`] then checks every triangle
+//! (against the limit at the same `(u, v)`, or, where that is over `T`,
+//! against a nearer point of the limit, [`nearer`]: a distance to a point
+//! of the surface either way, so at least the distance to the surface), and
 //! [`refine`] makes finer the patches where one is over `T` (by the
 //! factor the `n^-2` law asks for), until none is.
 
@@ -280,7 +283,11 @@ pub(super) fn refine(rate: &mut [u32], errors: &[f64], t: &[f64]) {
     for ((n, &e), &t) in rate.iter_mut().zip(errors).zip(t) {
         if e > t {
             // e > t: the factor is over 1 (infinite for an infinite e: MAX_RATE)
-            let grown = (f64::from(*n) * (e / t).sqrt() * 1.1).ceil().min(f64::from(MAX_RATE)) as u32;
+            // and by a quarter at least: a distance measured against the nearer
+            // point need not follow the law, and a patch just over t would
+            // otherwise creep up one step a round
+            let factor = ((e / t).sqrt() * 1.1).max(1.25);
+            let grown = (f64::from(*n) * factor).ceil().min(f64::from(MAX_RATE)) as u32;
             *n = grown.max(*n + 1).min(MAX_RATE);
         }
     }
