@@ -43,15 +43,7 @@ pub fn evaluate_arrays<'py>(
     let bad = |_| PyTypeError::new_err("arrays must be C-contiguous and aligned (the Python layer makes them so)");
     let (face, uv) = (face.as_slice().map_err(bad)?, uv.as_slice().map_err(bad)?);
     let (p, n, hk) = run(py, threads, || {
-        let (scheme, opts) = named(&names)?;
-        // float64 vertices: the control points as the caller gave them;
-        // float32: as the library rounds them
-        let (c, remap) = control(&s, scheme, false)?;
-        let mesh = match c {
-            Control::Tri(mesh) => mesh,
-            Control::Poly(mesh) => mesh.triangulated(),
-        };
-        let points64 = remap.control_f64(s.vertices(), &mesh.positions, !precise);
+        let Limit { mesh, points64, scheme, opts } = limit_control(&s, &names, precise)?;
         let ev = Evaluator::new_f64(&mesh, &points64, scheme, &opts).map_err(|e| e.to_string())?;
         let mut points = Vec::with_capacity(face.len());
         for (i, (&f, w)) in face.iter().zip(uv.chunks_exact(2)).enumerate() {
@@ -71,6 +63,29 @@ pub fn evaluate_arrays<'py>(
     Ok((f64_array(py, p, 3)?, f64_array(py, n, 3)?, f64_array(py, hk, 2)?))
 }
 
+/// What the exact limit is evaluated from: the control mesh as the
+/// evaluator takes it (polygons fanned), its points in f64, the scheme and
+/// its options.
+struct Limit {
+    mesh: subdiv::Mesh,
+    points64: Vec<glam::DVec3>,
+    scheme: subdiv::Scheme,
+    opts: subdiv::Options,
+}
+
+/// The [`Limit`] of the caller's arrays: float64 vertices as the caller
+/// gave them (`precise`), float32 ones as the library rounds them.
+fn limit_control(s: &crate::ops::Slices<'_>, names: &crate::options::Names, precise: bool) -> Result<Limit, String> {
+    let (scheme, opts) = named(names)?;
+    let (c, remap) = control(s, scheme, false)?;
+    let mesh = match c {
+        Control::Tri(mesh) => mesh,
+        Control::Poly(mesh) => mesh.triangulated(),
+    };
+    let points64 = remap.control_f64(s.vertices(), &mesh.positions, !precise);
+    Ok(Limit { mesh, points64, scheme, opts })
+}
+
 /// Positions `(k, 3)`, unit normals `(k, 3)`, triangles `(t, 3)`, each
 /// vertex's control face `(k, 1)` and `(u, v)` there `(k, 2)`, and the
 /// tolerance, the largest distance measured and whether it is met.
@@ -83,10 +98,10 @@ type Tessellated<'py> = (
     (f64, f64, bool),
 );
 
-/// The limit surface within `tolerance` (`(t, false)`: a distance; `(f,
-/// true)`: a fraction of the control points' bounding-box diagonal) as
-/// `subdiv tessellate` makes it; `names`, `creases`, `precise` and
-/// `threads` as for [`evaluate_arrays`].
+/// The limit surface within `tolerance` (`1e-3`: a distance; `1e-4x`: a
+/// fraction of the control points' bounding-box diagonal, as the command
+/// line reads it) as `subdiv tessellate` makes it; `names`, `creases`,
+/// `precise` and `threads` as for [`evaluate_arrays`].
 ///
 /// # Errors
 /// `SubdivError` for what the library refuses (a tolerance that is not a
@@ -98,28 +113,15 @@ pub fn tessellate_arrays<'py>(
     mesh: MeshArgs<'py>,
     creases: CreaseArgs<'py>,
     names: crate::options::Names,
-    tolerance: (f64, bool),
+    tolerance: String,
     precise: bool,
     threads: Option<usize>,
 ) -> PyResult<Tessellated<'py>> {
     let s = mesh.slices(&creases)?;
     let out = run(py, threads, || {
-        let (scheme, opts) = named(&names)?;
-        let (c, remap) = control(&s, scheme, false)?;
-        let mesh = match c {
-            Control::Tri(mesh) => mesh,
-            Control::Poly(mesh) => mesh.triangulated(),
-        };
-        let points64 = remap.control_f64(s.vertices(), &mesh.positions, !precise);
-        let t = match tolerance {
-            (t, false) => t,
-            (fraction, true) => {
-                let lo = points64.iter().copied().fold(glam::DVec3::INFINITY, glam::DVec3::min);
-                let hi = points64.iter().copied().fold(glam::DVec3::NEG_INFINITY, glam::DVec3::max);
-                fraction * lo.distance(hi)
-            }
-        };
-        subdiv::tessellate(&mesh, &points64, scheme, &opts, subdiv::Tolerance::Distance(t)).map_err(|e| e.to_string())
+        let t: subdiv::Tolerance = tolerance.parse().map_err(|e: subdiv::Error| e.to_string())?;
+        let Limit { mesh, points64, scheme, opts } = limit_control(&s, &names, precise)?;
+        subdiv::tessellate(&mesh, &points64, scheme, &opts, t).map_err(|e| e.to_string())
     })?;
     let flat = |v: &[glam::DVec3]| v.iter().flat_map(|p| p.to_array()).collect::<Vec<f64>>();
     let triangles = out.triangles.iter().flatten().map(|&i| i64::from(i)).collect();

@@ -446,19 +446,6 @@ def evaluate(vertices, faces, face, uv, *, scheme="loop", beta="loop", boundary=
 
 
 
-def _tolerance(tolerance):
-    """``1e-3`` (a distance) or ``"1e-4x"`` (a fraction of the diagonal) as ``(value, relative)``."""
-    relative = isinstance(tolerance, str) and tolerance.strip().endswith("x")
-    text = tolerance.strip()[:-1] if relative else tolerance
-    try:
-        t = float(text)
-    except (TypeError, ValueError):
-        raise ValueError(f"tolerance {tolerance!r}: a positive distance, or a fraction of the diagonal such as '1e-4x'") from None
-    if not (np.isfinite(t) and t > 0):
-        raise ValueError(f"tolerance {tolerance!r}: a positive distance, or a fraction of the diagonal such as '1e-4x'")
-    return t, relative
-
-
 def tessellate(vertices, faces, tolerance="1e-4x", *, scheme="loop", beta="loop", boundary="edge",
                triangles="catmark", creasing="uniform", creases=None, threads=None):
     """The exact limit surface as a crack-free triangle mesh, fine only where
@@ -493,7 +480,10 @@ def tessellate(vertices, faces, tolerance="1e-4x", *, scheme="loop", beta="loop"
     """
     v = _checks.vertices(vertices)
     corners, starts = _checks.faces(faces)
-    t = _tolerance(tolerance)
+    if isinstance(tolerance, bool) or not isinstance(tolerance, (str, int, float, np.integer, np.floating)):
+        raise ValueError(f"tolerance {tolerance!r}: a positive distance, or a fraction of the diagonal such as '1e-4x'")
+    # read by the library, as the command line reads it
+    t = tolerance if isinstance(tolerance, str) else repr(float(tolerance))
     names = _options(scheme, beta, boundary, triangles=triangles, creasing=creasing)
     p, n, tri, face, uv, (asked, measured, met) = _subdiv.tessellate_arrays(
         (v, corners, starts), _checks.tags(creases), names, t, not _checks.is_float32(vertices),

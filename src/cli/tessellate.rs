@@ -18,7 +18,7 @@ pub struct TessellateArgs {
     /// length in the model's units, or a fraction of the bounding box's
     /// diagonal with an `x` after it (`1e-4x`).
     #[arg(long, short = 't', value_name = "T", default_value = "1e-4x", allow_hyphen_values = true, value_parser = parse_tolerance)]
-    tolerance: Tolerance,
+    tolerance: subdiv::Tolerance,
     /// Also write each output vertex's control face and `(u, v)`, one `f u
     /// v` line per vertex (a points file `subdiv eval` reads: attributes
     /// evaluated later without refining).
@@ -38,38 +38,15 @@ pub struct TessellateArgs {
     precision: Precision,
 }
 
-/// A tolerance as given: absolute, or relative to the bounding box.
-#[derive(Clone, Copy, Debug)]
-enum Tolerance {
-    Absolute(f64),
-    OfDiagonal(f64),
-}
-
-/// `1e-3` or `1e-4x`: a positive finite number.
-fn parse_tolerance(s: &str) -> std::result::Result<Tolerance, String> {
-    let (number, relative) = s.strip_suffix('x').map_or((s, false), |n| (n, true));
-    match number.trim().parse::<f64>() {
-        Ok(t) if t.is_finite() && t > 0.0 => {
-            Ok(if relative { Tolerance::OfDiagonal(t) } else { Tolerance::Absolute(t) })
-        }
-        _ => Err(format!("'{s}' is not a positive distance (a number, or a fraction of the diagonal such as 1e-4x)")),
-    }
+/// `1e-3` or `1e-4x`, as the library reads it.
+fn parse_tolerance(s: &str) -> std::result::Result<subdiv::Tolerance, String> {
+    s.parse().map_err(|e: subdiv::Error| e.to_string())
 }
 
 /// `subdiv tessellate`.
 pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
     let LimitInput { mesh, scheme, control, uv, colors } = LimitInput::read(&a.input, &a.from, &a.scheme, a.precision)?;
-    let tolerance = match a.tolerance {
-        Tolerance::Absolute(t) => t,
-        Tolerance::OfDiagonal(f) => f * diagonal(&control),
-    };
-    let out = subdiv::tessellate(
-        &mesh,
-        &control,
-        scheme.scheme(),
-        &scheme.options(),
-        subdiv::Tolerance::Distance(tolerance),
-    )?;
+    let out = subdiv::tessellate(&mesh, &control, scheme.scheme(), &scheme.options(), a.tolerance)?;
     let faces = Faces {
         positions: out.positions.iter().map(|p| p.as_vec3()).collect(),
         corners: out.triangles.iter().flatten().copied().collect(),
@@ -129,11 +106,4 @@ pub(crate) fn tessellate(a: &TessellateArgs) -> Result<()> {
         s.tolerance
     );
     Ok(())
-}
-
-/// The length of the bounding box's diagonal.
-fn diagonal(points: &[glam::DVec3]) -> f64 {
-    let (lo, hi) =
-        points.iter().fold((glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-    if points.is_empty() { 0.0 } else { lo.distance(hi) }
 }

@@ -206,11 +206,7 @@ fn run(
     tolerance: Tolerance,
 ) -> Result<(Built, Vec<u32>, TessellationStats)> {
     let start = Instant::now();
-    if let Tolerance::Distance(t) = tolerance
-        && !(t.is_finite() && t > 0.0)
-    {
-        return Err(Error::Usage(format!("tolerance {t}: a positive distance is needed")));
-    }
+    let tolerance = tolerance.resolve(control)?;
     let ev = Evaluator::new_f64(mesh, control, scheme, opts)?;
     let domain = match scheme {
         Scheme::CatmullClark => domain::ptex(&PolyMesh::from_mesh(mesh)),
@@ -227,7 +223,7 @@ fn run(
     let smallest = tol.iter().copied().fold(f64::INFINITY, f64::min);
     let scale = match tolerance {
         Tolerance::Screen(s) => s.pixels,
-        Tolerance::Distance(_) => 1.0,
+        Tolerance::Distance(_) | Tolerance::Fraction(_) => 1.0,
     };
     let mut stats = TessellationStats { tolerance: smallest, ..TessellationStats::default() };
     // a patch is measured again only where its rate or a side's changed

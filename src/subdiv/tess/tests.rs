@@ -340,3 +340,20 @@ fn a_nearer_view_is_finer_and_what_is_out_of_it_is_coarse() {
     away.view_proj *= DMat4::from_translation(DVec3::new(0.0, 0.0, 10.0));
     assert_eq!(tris(away), torus.ct.num_triangles());
 }
+
+#[test]
+fn a_fraction_of_the_diagonal_is_that_distance() {
+    assert_eq!("1e-4x".parse::<Tolerance>().ok(), Some(Tolerance::Fraction(1e-4)));
+    assert_eq!(" 2.5e-3 ".parse::<Tolerance>().ok(), Some(Tolerance::Distance(2.5e-3)));
+    for bad in ["0", "-1x", "nan", "x", "1e-3y", ""] {
+        let e = bad.parse::<Tolerance>().unwrap_err().to_string();
+        assert!(e.contains("positive distance"), "{bad}: {e}");
+    }
+    let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
+    let control: Vec<DVec3> = torus.positions.iter().map(|p| p.as_dvec3()).collect();
+    let (lo, hi) = control.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &p| (l.min(p), h.max(p)));
+    let go = |t| tessellate(&torus, &control, Scheme::Loop, &Options::default(), t).expect("tessellates");
+    let (a, b) = (go(Tolerance::Fraction(2e-3)), go(Tolerance::Distance(2e-3 * lo.distance(hi))));
+    assert_eq!((a.triangles, a.stats.tolerance), (b.triangles, b.stats.tolerance));
+    assert!(tessellate(&torus, &control, Scheme::Loop, &Options::default(), Tolerance::Fraction(-1.0)).is_err());
+}

@@ -27,6 +27,9 @@ use glam::{DMat4, DVec3, DVec4};
 pub enum Tolerance {
     /// At most this distance, in the model's units, everywhere.
     Distance(f64),
+    /// At most this fraction of the diagonal of the control points'
+    /// bounding box, everywhere (`1e-4x` on the command line).
+    Fraction(f64),
     /// At most this many pixels on the screen of a view: finer where the
     /// surface is near the eye, coarse out of the view.
     Screen(ScreenTolerance),
@@ -49,6 +52,53 @@ pub struct ScreenTolerance {
     pub pixels: f64,
 }
 
+impl std::str::FromStr for Tolerance {
+    type Err = Error;
+
+    /// `1e-3` (a distance) or `1e-4x` (a fraction of the diagonal): a
+    /// positive finite number, as the command line and Python take it.
+    fn from_str(s: &str) -> Result<Tolerance> {
+        let (number, fraction) = s.trim().strip_suffix('x').map_or((s.trim(), false), |n| (n, true));
+        let t = number.trim().parse::<f64>().ok().filter(|t| t.is_finite() && *t > 0.0).ok_or_else(|| {
+            Error::Usage(format!(
+                "tolerance '{s}' is not a positive distance (a number, or a fraction of the diagonal such as 1e-4x)"
+            ))
+        })?;
+        Ok(if fraction { Tolerance::Fraction(t) } else { Tolerance::Distance(t) })
+    }
+}
+
+impl Tolerance {
+    /// The tolerance for the control points `control`: a fraction made a
+    /// distance; refused when it is not a positive finite number (or, on
+    /// the screen, without pixels).
+    pub(super) fn resolve(self, control: &[DVec3]) -> Result<Tolerance> {
+        let fine = |x: f64| x.is_finite() && x > 0.0;
+        let distance = |t: f64| match fine(t) {
+            true => Ok(Tolerance::Distance(t)),
+            false => Err(Error::Usage(format!("tolerance {t}: a positive distance is needed"))),
+        };
+        match self {
+            Tolerance::Distance(t) => distance(t),
+            Tolerance::Fraction(f) if fine(f) => distance(f * diagonal(control)),
+            Tolerance::Fraction(f) => Err(Error::Usage(format!("tolerance {f}x: a positive fraction is needed"))),
+            Tolerance::Screen(s) if !fine(s.pixels) => {
+                Err(Error::Usage(format!("tolerance of {} pixels: a positive number is needed", s.pixels)))
+            }
+            Tolerance::Screen(s) if !(fine(s.width) && fine(s.height)) => {
+                Err(Error::Usage(format!("a viewport of {} x {} pixels has no pixels", s.width, s.height)))
+            }
+            Tolerance::Screen(_) => Ok(self),
+        }
+    }
+}
+
+/// The length of the diagonal of the bounding box of `points` (0 for none).
+fn diagonal(points: &[DVec3]) -> f64 {
+    let (lo, hi) = points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    if points.is_empty() { 0.0 } else { lo.distance(hi) }
+}
+
 /// Where each patch's tolerance is sampled: its corners and centre.
 const TRI_AT: [(f64, f64); 4] = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0 / 3.0, 1.0 / 3.0)];
 const QUAD_AT: [(f64, f64); 5] = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0), (0.5, 0.5)];
@@ -58,20 +108,14 @@ const QUAD_AT: [(f64, f64); 5] = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)
 const MARGIN: f64 = 1.25;
 
 /// Each patch's tolerance in the model's units (infinite for a patch out
-/// of the view) and the points evaluated for them.
+/// of the view) and the points evaluated for them, from a tolerance
+/// [`Tolerance::resolve`] checked (a fraction is taken as a distance).
 ///
 /// # Errors
-/// [`Error::Usage`] for a distance or a pixel count that is not a
-/// positive finite number, a viewport without pixels or a matrix that
-/// cannot be inverted.
+/// [`Error::Usage`] for a view's matrix that cannot be inverted.
 pub(super) fn per_patch(ev: &Evaluator, domain: &Domain, tolerance: &Tolerance) -> Result<(Vec<f64>, u64)> {
     let screen = match tolerance {
-        Tolerance::Distance(t) => {
-            if !(t.is_finite() && *t > 0.0) {
-                return Err(Error::Usage(format!("tolerance {t}: a positive distance is needed")));
-            }
-            return Ok((vec![*t; domain.patches.len()], 0));
-        }
+        Tolerance::Distance(t) | Tolerance::Fraction(t) => return Ok((vec![*t; domain.patches.len()], 0)),
         Tolerance::Screen(s) => s,
     };
     let view = View::new(screen)?;
@@ -103,13 +147,6 @@ struct View {
 
 impl View {
     fn new(s: &ScreenTolerance) -> Result<View> {
-        let fine = |x: f64| x.is_finite() && x > 0.0;
-        if !fine(s.pixels) {
-            return Err(Error::Usage(format!("tolerance of {} pixels: a positive number is needed", s.pixels)));
-        }
-        if !(fine(s.width) && fine(s.height)) {
-            return Err(Error::Usage(format!("a viewport of {} x {} pixels has no pixels", s.width, s.height)));
-        }
         let inverse = s.view_proj.inverse();
         // the near plane's centre, back in the world, and its w
         let near = inverse * DVec4::new(0.0, 0.0, 0.0, 1.0);
