@@ -3,7 +3,7 @@
 //! changes, the uniform level back when it is off or the scheme has no
 //! limit.
 
-use super::tests::{common, frame, frame_sized, settle, subdivide};
+use super::tests::{common, frame, settle, subdivide};
 use crate::Scheme;
 use crate::app::{Command, Viewer};
 
@@ -16,16 +16,7 @@ fn set_adaptive(v: &mut Viewer, on: bool) {
 
 /// A frame (which asks for the view's tessellation) and its worker.
 fn frame_and_wait(ctx: &egui::Context, v: &mut Viewer) -> usize {
-    frame_small(ctx, v, false)
-}
-
-/// [`frame_and_wait`] in the default window, or a small one (720 x 420
-/// points: a 3D area of about 400 x 420 pixels).
-fn frame_small(ctx: &egui::Context, v: &mut Viewer, small: bool) -> usize {
-    match small {
-        true => frame_sized(ctx, v, egui::vec2(720.0, 420.0), vec![]),
-        false => frame(ctx, v, vec![]),
-    }
+    frame(ctx, v, vec![]);
     settle(v);
     let a = v.doc.adaptive_shown().expect("a tessellation is drawn");
     assert!(a.stats.met && a.stats.worst <= super::adaptive::PIXELS, "{:?}", a.stats);
@@ -95,12 +86,9 @@ fn a_pick_on_the_adaptive_display_is_the_limit_at_its_own_point() {
         settle(&mut v);
         subdivide(&mut v, scheme, 0);
         settle(&mut v);
-        // small: the cube's every ptex face has an extraordinary corner, and
-        // one rate per patch makes it fine everywhere (1.9 M triangles at
-        // 956 x 800 pixels)
-        frame_sized(&ctx, &mut v, egui::vec2(720.0, 420.0), vec![]);
+        frame(&ctx, &mut v, vec![]);
         set_adaptive(&mut v, true);
-        frame_small(&ctx, &mut v, true);
+        frame_and_wait(&ctx, &mut v);
         let rect = v.view.scene_rect;
         let at = rect.center() + egui::vec2(rect.width() * 0.12, rect.height() * 0.05);
         v.apply(Command::PickSurface(ray_at(&v.view.camera, rect, false, at)));

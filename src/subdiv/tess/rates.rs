@@ -241,7 +241,7 @@ fn nearer(
     (flat, error): (&[DVec3], &mut [f64]),
     t: &[f64],
 ) -> Result<u64> {
-    let (mut again, mut which) = (Vec::new(), Vec::new());
+    let (mut again, mut which): (Vec<Point>, Vec<usize>) = (Vec::new(), Vec::new());
     for (i, &(f, u, v)) in at.iter().enumerate() {
         let p = owner[i] as usize;
         let (x, du, dv) = s[i];
@@ -254,15 +254,15 @@ fn nearer(
         let e = flat[i] - x;
         let (r0, r1) = (e.dot(du), e.dot(dv));
         let step = ((g11 * r0 - g01 * r1) / det, (g00 * r1 - g01 * r0) / det);
-        again.push((f, inside(domain.patches[p].quad, (u + step.0, v + step.1))));
+        let (u, v) = inside(domain.patches[p].quad, (u + step.0, v + step.1));
+        again.push((f, u, v));
         which.push(i);
     }
-    let at: Vec<Point> = again.iter().map(|&(f, (u, v))| (f, u, v)).collect();
-    let moved = ev.eval_map(&at, false, |s| s.position)?;
+    let moved = ev.eval_map(&again, false, |s| s.position)?;
     for (&i, y) in which.iter().zip(moved) {
         error[i] = error[i].min(flat[i].distance(y));
     }
-    Ok(at.len() as u64)
+    Ok(again.len() as u64)
 }
 
 /// The point of a patch's face nearest `(u, v)` in the parameter: the unit
@@ -278,7 +278,8 @@ fn inside(quad: bool, (u, v): (f64, f64)) -> (f64, f64) {
 }
 
 /// Makes finer each patch with a triangle over its tolerance `t`: by the
-/// factor `sqrt(error / t)` the `n^-2` law asks for, and a little more.
+/// factor `sqrt(error / t)` the `n^-2` law asks for, and a little more,
+/// and by a quarter at least.
 pub(super) fn refine(rate: &mut [u32], errors: &[f64], t: &[f64]) {
     for ((n, &e), &t) in rate.iter_mut().zip(errors).zip(t) {
         if e > t {
