@@ -73,8 +73,8 @@ pub use subdiv::tables::StencilPlan;
 pub use subdiv::{
     Cage, Control, Demand, Destination, FacesOnly, FileJob, FileSummary, Flags, LoopBeta, Model, Options, Part,
     Refinement, Refiner, Scalar, Scheme, ScreenTolerance, Stats, Subdivided, Surface, Tessellation, TessellationStats,
-    Tolerance, parts_by_options, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64, subdivide_file,
-    subdivide_model, subdivide_model_as, subdivide_parts, tessellate,
+    Tessellator, Tolerance, parts_by_options, subdivide, subdivide_f64, subdivide_faces, subdivide_faces_f64,
+    subdivide_file, subdivide_model, subdivide_model_as, subdivide_parts, tessellate,
 };
 
 #[cfg(feature = "viewer")]

@@ -4,13 +4,15 @@
 //! coarse far from it, one triangle per control face out of the view, no
 //! cracks). A worker tessellates; the last tessellation stays drawn while
 //! the camera moves or the cage is edited, and the next is asked for as soon
-//! as the worker is free, for the view, cage and scheme of that frame.
+//! as the worker is free, for the view, cage and scheme of that frame. After
+//! an edit in a still view the next is made from the last ([`Tessellator`]):
+//! only the patches the moved points reach are evaluated again.
 
 use super::doc::Doc;
 use super::model::Shown;
 use super::view::{View, viewport_aspect};
 use crate::clock::Instant;
-use crate::{Mesh, Options, Result, Scheme, ScreenTolerance, TessellationStats, Tolerance};
+use crate::{Mesh, Options, Result, Scheme, ScreenTolerance, TessellationStats, Tessellator, Tolerance};
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -44,6 +46,8 @@ pub(crate) struct Tessellated {
     pub(crate) stats: TessellationStats,
     /// Wall time of the job, ms.
     pub(crate) ms: f64,
+    /// What made it, kept for the next (taken back by the model).
+    tessellator: Option<Tessellator>,
 }
 
 /// The adaptive display's state in the model.
@@ -55,6 +59,9 @@ pub(crate) struct Adaptive {
     asked: Option<Key>,
     /// The view of the frame before (see [`Adaptive::still`]).
     seen: Option<ScreenTolerance>,
+    /// The last tessellation's state, for the next after an edit (only the
+    /// patches an edit reaches are made again); `None` while a job holds it.
+    tessellator: Option<Tessellator>,
 }
 
 impl Adaptive {
@@ -72,14 +79,15 @@ pub(crate) struct Job {
     mesh: Arc<Mesh>,
     control: Vec<DVec3>,
     key: Key,
+    tessellator: Tessellator,
 }
 
 impl Job {
     /// Tessellates (on a worker thread).
-    pub(crate) fn run(self) -> Result<Tessellated> {
+    pub(crate) fn run(mut self) -> Result<Tessellated> {
         let start = Instant::now();
         let Key { scheme, opts, view, .. } = self.key;
-        let out = crate::tessellate(&self.mesh, &self.control, scheme, &opts, Tolerance::Screen(view))?;
+        let out = self.tessellator.tessellate(&self.mesh, &self.control, scheme, &opts, Tolerance::Screen(view))?;
         let positions = out.positions.iter().map(|p| p.as_vec3()).collect();
         let corners: Vec<u32> = out.triangles.iter().flatten().copied().collect();
         let mesh = Mesh::from_triangles(positions, &corners).map_err(|e| crate::Error::Usage(e.to_string()))?;
@@ -88,7 +96,8 @@ impl Job {
         shown.normals = Arc::new(out.normals.iter().map(|n| n.as_vec3()).collect());
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let (faces, corners) = (out.faces, out.corners);
-        Ok(Tessellated { shown, faces, corners, scheme, opts, stats: out.stats, ms })
+        let tessellator = Some(self.tessellator);
+        Ok(Tessellated { shown, faces, corners, scheme, opts, stats: out.stats, ms, tessellator })
     }
 }
 
@@ -120,12 +129,10 @@ impl Doc {
             return;
         }
         let mesh = m.control.mesh.clone();
-        let control = match m.precise_control() {
-            Some(points) => points.to_vec(),
-            None => mesh.positions.iter().map(|p| p.as_dvec3()).collect(),
-        };
+        let control = m.control_f64();
         self.model.adaptive.asked = Some(key);
-        self.jobs.tessellate(Job { mesh, control, key });
+        let tessellator = self.model.adaptive.tessellator.take().unwrap_or_default();
+        self.jobs.tessellate(Job { mesh, control, key, tessellator });
     }
 
     /// Takes a finished tessellation: drawn from now on; a refusal (a
@@ -133,7 +140,10 @@ impl Doc {
     /// and the uniform level is drawn.
     pub(crate) fn adopt_tessellation(&mut self, result: Result<Box<Tessellated>>) {
         match result {
-            Ok(t) => self.model.adaptive.drawn = Some(Arc::from(t)),
+            Ok(mut t) => {
+                self.model.adaptive.tessellator = t.tessellator.take();
+                self.model.adaptive.drawn = Some(Arc::from(t));
+            }
             Err(e) => {
                 self.model.adaptive.drawn = None;
                 self.status.notice = Some(format!("adaptive display: {e}"));

@@ -277,6 +277,21 @@ impl Model {
         Arc::ptr_eq(of, &self.control.mesh).then_some(points.as_slice())
     }
 
+    /// The control points in f64: the file's own digits for every vertex
+    /// still where the file put it (its f32 point is the file's, rounded),
+    /// the f32 point for one an edit moved. So after an edit only the moved
+    /// points differ from the last (the adaptive display makes again only
+    /// what they reach).
+    pub(crate) fn control_f64(&self) -> Vec<glam::DVec3> {
+        let mesh = &self.control.mesh;
+        let file = self.precise.as_ref().map(|(_, p)| p.as_slice()).filter(|p| p.len() == mesh.positions.len());
+        let point = |(i, q): (usize, &glam::Vec3)| match file {
+            Some(p) if p[i].as_vec3() == *q => p[i],
+            _ => q.as_dvec3(),
+        };
+        mesh.positions.iter().enumerate().map(point).collect()
+    }
+
     /// A model of `mesh` at level 0, shown plainly.
     pub(crate) fn new(name: String, mesh: Mesh) -> Model {
         let shown = Shown::new(Arc::new(mesh));

@@ -58,7 +58,7 @@ pub use scheme::{Options, Scheme, Stats};
 pub(crate) use scheme::{RulesFn, ms, with_rules};
 #[cfg(feature = "viewer")]
 pub(crate) use sizes::ControlCounts;
-pub use tess::{ScreenTolerance, Tessellation, TessellationStats, Tolerance, tessellate};
+pub use tess::{ScreenTolerance, Tessellation, TessellationStats, Tessellator, Tolerance, tessellate};
 
 /// Refines `mesh` `levels` times with `scheme`.
 ///

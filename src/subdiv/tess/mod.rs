@@ -17,6 +17,7 @@
 mod domain;
 mod grid;
 mod rates;
+mod session;
 mod view;
 
 use crate::clock::Instant;
@@ -29,6 +30,7 @@ use domain::Domain;
 use glam::DVec3;
 use grid::Pt;
 use rayon::prelude::*;
+pub use session::Tessellator;
 pub use view::{ScreenTolerance, Tolerance};
 
 /// What [`tessellate`] made.
@@ -166,7 +168,9 @@ const MAX_ROUNDS: u32 = 16;
 /// vertex) under `scheme` (Loop or Catmull-Clark) and `opts`, tessellated
 /// so that every triangle is within `tolerance` of it (a distance in the
 /// model's units, or pixels on the screen of a view), within the memory
-/// budget (`opts.max_memory`, else 80 % of the available memory).
+/// budget (`opts.max_memory`, else 80 % of the available memory). A
+/// [`Tessellator`] does the same and keeps what it made for the next call
+/// (after an edit, only what the edit reaches is made again).
 ///
 /// # Errors
 /// [`Error::Usage`] for a scheme without an exact evaluation, a tolerance
@@ -180,46 +184,91 @@ pub fn tessellate(
     opts: &Options,
     tolerance: Tolerance,
 ) -> Result<Tessellation> {
-    let (built, faces, stats) = run(mesh, control, scheme, opts, tolerance)?;
-    let triangles = built.triangles.iter().map(|(_, t)| t.map(|p| p.id)).collect();
-    let corners = built.triangles.iter().map(|(_, t)| t.map(|p| p.uv)).collect();
-    Ok(Tessellation {
-        positions: built.positions,
-        normals: built.normals,
-        triangles,
-        faces,
-        params: built.params,
-        stats,
-        scheme,
-        opts: *opts,
-        corners,
-    })
-}
-
-/// [`tessellate`], the triangles kept with their corners' `(u, v)` on
-/// their patch, and each triangle's control face.
-fn run(
-    mesh: &Mesh,
-    control: &[DVec3],
-    scheme: Scheme,
-    opts: &Options,
-    tolerance: Tolerance,
-) -> Result<(Built, Vec<u32>, TessellationStats)> {
     let start = Instant::now();
     let tolerance = tolerance.resolve(control)?;
     let ev = Evaluator::new_f64(mesh, control, scheme, opts)?;
-    let domain = match scheme {
-        Scheme::CatmullClark => domain::ptex(&PolyMesh::from_mesh(mesh)),
-        _ => domain::triangles(mesh),
-    };
-    if let Some(p) = domain.patches.iter().find(|p| !ev.accepts(p.face as usize)) {
-        let what = if p.quad { "ptex face" } else { "face" };
-        let why = "it touches an interior vertex of valence 2, which has no limit surface";
-        return Err(Error::Usage(format!("cannot tessellate {what} {}: {why}", p.face)));
+    let first = Start::cold(&ev, mesh, scheme, &tolerance)?;
+    Ok(run(&ev, first, (opts, &tolerance), start)?.tessellation(scheme, opts).0)
+}
+
+/// What the rounds start from: the domain, each patch's tolerance, rate and
+/// largest measured distance (where it is not `dirty`), and the points of
+/// an earlier tessellation that still hold.
+struct Start {
+    domain: Domain,
+    tol: Vec<f64>,
+    rate: Vec<u32>,
+    errors: Vec<f64>,
+    before: Option<Earlier>,
+    /// Limit points evaluated to get here.
+    evaluations: u64,
+}
+
+impl Start {
+    /// From nothing: the domain of `mesh` under `scheme`, every patch's
+    /// tolerance and first rate.
+    fn cold(ev: &Evaluator, mesh: &Mesh, scheme: Scheme, tolerance: &Tolerance) -> Result<Start> {
+        let domain = match scheme {
+            Scheme::CatmullClark => domain::ptex(&PolyMesh::from_mesh(mesh)),
+            _ => domain::triangles(mesh),
+        };
+        if let Some(p) = domain.patches.iter().find(|p| !ev.accepts(p.face as usize)) {
+            let what = if p.quad { "ptex face" } else { "face" };
+            let why = "it touches an interior vertex of valence 2, which has no limit surface";
+            return Err(Error::Usage(format!("cannot tessellate {what} {}: {why}", p.face)));
+        }
+        let all: Vec<usize> = (0..domain.patches.len()).collect();
+        let (tol, evaluated) = view::per_patch(ev, &domain, tolerance, &all)?;
+        let (rate, sampled) = rates::initial(ev, &domain, &tol, &all)?;
+        let errors = vec![0.0; all.len()];
+        Ok(Start { domain, tol, rate, errors, before: None, evaluations: evaluated + sampled })
     }
-    let (tol, mut evaluations) = view::per_patch(&ev, &domain, &tolerance)?;
-    let (mut rate, sampled) = rates::initial(&ev, &domain, &tol)?;
-    evaluations += sampled;
+}
+
+/// What the rounds made, and what a [`Tessellator`] keeps of it.
+struct Done {
+    built: Built,
+    faces: Vec<u32>,
+    stats: TessellationStats,
+    rounds: Rounds,
+}
+
+/// The state of the last round (with its points' [`Layout`]): what the next
+/// tessellation of the same cage can start from.
+struct Rounds {
+    domain: Domain,
+    tol: Vec<f64>,
+    rate: Vec<u32>,
+    errors: Vec<f64>,
+}
+
+impl Done {
+    /// The tessellation for the caller, the rounds' state and the points'
+    /// layout.
+    fn tessellation(self, scheme: Scheme, opts: &Options) -> (Tessellation, Rounds, Layout) {
+        let Done { built, faces, stats, rounds } = self;
+        let triangles = built.triangles.iter().map(|(_, t)| t.map(|p| p.id)).collect();
+        let corners = built.triangles.iter().map(|(_, t)| t.map(|p| p.uv)).collect();
+        let t = Tessellation {
+            positions: built.positions,
+            normals: built.normals,
+            triangles,
+            faces,
+            params: built.params,
+            stats,
+            scheme,
+            opts: *opts,
+            corners,
+        };
+        (t, rounds, built.layout)
+    }
+}
+
+/// The rounds: measures the tessellation at the current rates, makes finer
+/// the patches over their tolerance, until none is (or [`MAX_ROUNDS`]
+/// rounds), from `first`; `start` is when the call began.
+fn run(ev: &Evaluator, first: Start, (opts, tolerance): (&Options, &Tolerance), start: Instant) -> Result<Done> {
+    let Start { domain, tol, mut rate, mut errors, mut before, mut evaluations } = first;
     let smallest = tol.iter().copied().fold(f64::INFINITY, f64::min);
     let scale = match tolerance {
         Tolerance::Screen(s) => s.pixels,
@@ -228,15 +277,14 @@ fn run(
     let mut stats = TessellationStats { tolerance: smallest, ..TessellationStats::default() };
     // a patch is measured again only where its rate or a side's changed
     // (and its points are evaluated again only there)
-    let (mut errors, mut before) = (vec![0.0; domain.patches.len()], None::<Earlier>);
     loop {
         stats.rounds += 1;
         rates::check_budget(&domain, &rate, opts.max_memory, smallest)?;
         let edge_rate = rates::edge_rates(&domain, &rate);
         let last = before.as_ref().map(|b| (&b.layout.rate[..], &b.layout.edge_rate[..]));
         let dirty = rates::changed(&domain, (&rate, &edge_rate), last);
-        let (built, evaluated) = build(&ev, &domain, (&rate, &edge_rate), before.as_ref())?;
-        evaluations += evaluated + rates::measure(&ev, (&domain, &tol), &built, &dirty, &mut errors)?;
+        let (built, evaluated) = build(ev, &domain, (&rate, &edge_rate), before.as_ref())?;
+        evaluations += evaluated + rates::measure(ev, (&domain, &tol), &built, &dirty, &mut errors)?;
         stats.measured = errors.iter().copied().fold(0.0, f64::max);
         stats.worst = errors.iter().zip(&tol).map(|(e, t)| e / t).fold(0.0, f64::max) * scale;
         let over = errors.iter().zip(&tol).filter(|(e, t)| e > t).count();
@@ -252,10 +300,10 @@ fn run(
             stats.max_rate = rate.iter().copied().max().unwrap_or(0);
             stats.seconds = start.elapsed().as_secs_f64();
             let faces = built.triangles.iter().map(|(p, _)| domain.patches[*p as usize].face).collect();
-            return Ok((built, faces, stats));
+            return Ok(Done { built, faces, stats, rounds: Rounds { domain, tol, rate, errors } });
         }
         // the round's triangles go; its points and their layout stay for the next
-        before = Some(Earlier { layout: built.layout, positions: built.positions, normals: built.normals });
+        before = Some(Earlier::of(built));
         rates::refine(&mut rate, &errors, &tol);
     }
 }
@@ -273,11 +321,51 @@ struct Built {
     layout: Layout,
 }
 
-/// What a round keeps of the round before: its points and their layout.
+/// What a round keeps of the round before: its points and their layout
+/// (and which of its keys no longer hold, after an edit).
 struct Earlier {
     layout: Layout,
     positions: Vec<DVec3>,
     normals: Vec<DVec3>,
+    stale_keys: Vec<bool>,
+}
+
+impl Earlier {
+    /// The points of `built`, all of them holding.
+    fn of(built: Built) -> Earlier {
+        Earlier { layout: built.layout, positions: built.positions, normals: built.normals, stale_keys: Vec::new() }
+    }
+
+    /// Forgets the points that lie on the patches `stale` only (their
+    /// corners, sides and insides, where no other patch holds them): the
+    /// limit there may have moved. A point a patch not `stale` holds stays
+    /// (the surface is one across a side, so it did not move). The
+    /// forgotten parts' rates are set to 0, which no rate equals, so that
+    /// they are evaluated and measured again.
+    fn forget(&mut self, domain: &Domain, stale: &[bool]) {
+        let layout = &mut self.layout;
+        let (mut held_key, mut held_edge) = (vec![false; layout.keys], vec![false; domain.edges.len()]);
+        for (p, patch) in domain.patches.iter().enumerate() {
+            if stale[p] {
+                layout.rate[p] = 0;
+                continue;
+            }
+            for k in 0..patch.sides() {
+                let side = patch.sides[k];
+                held_key[layout.key_id[patch.corners[k] as usize] as usize] = true;
+                if side.count == 2 {
+                    held_key[layout.key_id[junction(domain, patch, k) as usize] as usize] = true;
+                }
+                for &(e, _) in &side.parts[..side.count as usize] {
+                    held_edge[e as usize] = true;
+                }
+            }
+        }
+        for (rate, _) in layout.edge_rate.iter_mut().zip(&held_edge).filter(|(_, held)| !**held) {
+            *rate = 0;
+        }
+        self.stale_keys = held_key.into_iter().map(|held| !held).collect();
+    }
 }
 
 /// The order of a tessellation's points: first the keys (the domain's
@@ -285,6 +373,8 @@ struct Earlier {
 /// edge's inside points, then each patch's.
 struct Layout {
     keys: usize,
+    /// The point of each key of the domain.
+    key_id: Vec<u32>,
     edge_first: Vec<u32>,
     inside_first: Vec<u32>,
     rate: Vec<u32>,
@@ -319,7 +409,10 @@ impl Layout {
             }
         };
         let was = &before.layout;
-        copy(0..self.keys, 0..was.keys);
+        match before.stale_keys.is_empty() {
+            true => copy(0..self.keys, 0..was.keys),
+            false => (0..self.keys).filter(|&k| !before.stale_keys[k]).for_each(|k| copy(k..k + 1, k..k + 1)),
+        }
         for e in 0..self.edge_rate.len() {
             if self.edge_rate[e] == was.edge_rate[e] {
                 copy(self.edge(e), was.edge(e));
@@ -379,9 +472,10 @@ fn build(
     if points.params.len() > u32::MAX as usize {
         return Err(Error::Usage("the tessellation has more than 2^32 vertices: raise the tolerance".into()));
     }
-    let layout = Layout { keys, edge_first, inside_first, rate: rate.to_vec(), edge_rate: edge_rate.to_vec(), uniform };
+    let (rate, edge_rate) = (rate.to_vec(), edge_rate.to_vec());
+    let layout = Layout { keys, key_id: points.key_id, edge_first, inside_first, rate, edge_rate, uniform };
     let (positions, normals, evaluated) = evaluate(ev, &points.params, &layout, before)?;
-    let sides = Sides { domain, edge_rate, edge_first: &layout.edge_first, key_id: &points.key_id };
+    let sides = Sides { domain, edge_rate: &layout.edge_rate, edge_first: &layout.edge_first, key_id: &layout.key_id };
     let triangles = (0..domain.patches.len())
         .into_par_iter()
         .with_min_len(64)
@@ -389,7 +483,13 @@ fn build(
             let patch = &domain.patches[p];
             let lists: Vec<Vec<Pt>> = (0..patch.sides()).map(|s| sides.points(patch, s)).collect();
             let mut out = Vec::new();
-            grid::triangulate(patch.quad, (rate[p], layout.uniform[p]), &lists, layout.inside_first[p], &mut out);
+            grid::triangulate(
+                patch.quad,
+                (layout.rate[p], layout.uniform[p]),
+                &lists,
+                layout.inside_first[p],
+                &mut out,
+            );
             out.into_iter().map(move |t| (p as u32, t))
         })
         .collect();

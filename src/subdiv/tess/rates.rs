@@ -60,12 +60,13 @@ fn rate_for(m: f64, t: f64) -> u32 {
     if n.is_finite() { (n as u32).clamp(1, MAX_RATE) } else { MAX_RATE }
 }
 
-/// The first rates, from the sampled second derivatives, and the points
-/// evaluated for them.
-pub(super) fn initial(ev: &Evaluator, domain: &Domain, t: &[f64]) -> Result<(Vec<u32>, u64)> {
+/// The first rates of the patches `which`, from the sampled second
+/// derivatives and their tolerances `t` (one per patch of `which`), and
+/// the points evaluated for them.
+pub(super) fn initial(ev: &Evaluator, domain: &Domain, t: &[f64], which: &[usize]) -> Result<(Vec<u32>, u64)> {
     let mut at = Vec::new();
-    let mut starts = Vec::with_capacity(domain.patches.len() + 1);
-    for p in &domain.patches {
+    let mut starts = Vec::with_capacity(which.len() + 1);
+    for p in which.iter().map(|&p| &domain.patches[p]) {
         starts.push(at.len());
         let f = p.face as usize;
         if p.quad {

@@ -7,6 +7,22 @@ use super::*;
 use glam::DMat4;
 use std::collections::HashMap;
 
+/// The rounds from nothing, the triangles kept with their corners' `(u, v)`
+/// on their patch, and each triangle's control face.
+fn run(
+    mesh: &Mesh,
+    control: &[DVec3],
+    scheme: Scheme,
+    opts: &Options,
+    tolerance: Tolerance,
+) -> Result<(Built, Vec<u32>, TessellationStats)> {
+    let tolerance = tolerance.resolve(control)?;
+    let ev = Evaluator::new_f64(mesh, control, scheme, opts)?;
+    let first = Start::cold(&ev, mesh, scheme, &tolerance)?;
+    let done = super::run(&ev, first, (opts, &tolerance), Instant::now())?;
+    Ok((done.built, done.faces, done.stats))
+}
+
 /// The signed area of a triangle in `(u, v)`.
 fn area([a, b, c]: &[Pt; 3]) -> f64 {
     0.5 * ((b.uv.0 - a.uv.0) * (c.uv.1 - a.uv.1) - (c.uv.0 - a.uv.0) * (b.uv.1 - a.uv.1))
@@ -356,4 +372,58 @@ fn a_fraction_of_the_diagonal_is_that_distance() {
     let (a, b) = (go(Tolerance::Fraction(2e-3)), go(Tolerance::Distance(2e-3 * lo.distance(hi))));
     assert_eq!((a.triangles, a.stats.tolerance), (b.triangles, b.stats.tolerance));
     assert!(tessellate(&torus, &control, Scheme::Loop, &Options::default(), Tolerance::Fraction(-1.0)).is_err());
+}
+
+#[test]
+fn a_tessellator_makes_again_only_what_a_move_reaches() {
+    let torus = crate::bundled::load(std::path::Path::new("bundled:torus.obj")).expect("bundled torus");
+    let critter = crate::bundled::load(std::path::Path::new("bundled:critter.obj")).expect("bundled critter");
+    // the critter's quads split in two: triangles' ptex faces, halved sides
+    let triangles = Mesh::from_triangles(critter.positions.clone(), critter.ct.v_table()).expect("split");
+    let opts = Options::default();
+    for (mesh, scheme, fraction) in
+        [(&torus, Scheme::Loop, 4e-4), (&critter, Scheme::CatmullClark, 1e-3), (&triangles, Scheme::CatmullClark, 3e-3)]
+    {
+        let control: Vec<DVec3> = mesh.positions.iter().map(|p| p.as_dvec3()).collect();
+        // a distance: a fraction of the diagonal would move with the point
+        let t = fraction * view::diagonal(&control);
+        let mut tessellator = Tessellator::new();
+        let first = tessellator.tessellate(mesh, &control, scheme, &opts, Tolerance::Distance(t)).expect("first");
+        let same = tessellator.tessellate(mesh, &control, scheme, &opts, Tolerance::Distance(t)).expect("same");
+        assert_eq!(same.stats.evaluations, 0, "{scheme}: nothing moved, nothing evaluated");
+        assert_eq!((&same.triangles, &same.positions), (&first.triangles, &first.positions), "{scheme}");
+        // one control point moved by a hundredth of the diagonal (a drag)
+        let mut moved = control.clone();
+        moved[3] += DVec3::splat(0.01 * view::diagonal(&control));
+        let again = tessellator.tessellate(mesh, &moved, scheme, &opts, Tolerance::Distance(t)).expect("again");
+        let fresh = tessellate(mesh, &moved, scheme, &opts, Tolerance::Distance(t)).expect("fresh");
+        assert!(again.stats.met && again.stats.measured <= t, "{scheme}: {:?}", again.stats);
+        assert!(is_watertight(&again.triangles), "{scheme}: cracks after the move");
+        // every vertex on the new limit surface at its own (u, v): none of the
+        // old surface stayed where the move reached
+        let ev = Evaluator::new_f64(mesh, &moved, scheme, &opts).expect("ev");
+        let at: Vec<(usize, f64, f64)> = again.params.iter().map(|&(f, u, v)| (f as usize, u, v)).collect();
+        let limit = ev.eval_map(&at, false, |s| (s.position, s.normal)).expect("eval");
+        let mut off = 0;
+        for (k, (&(f, u, v), s)) in again.params.iter().zip(&limit).enumerate() {
+            assert!(s.0.distance(again.positions[k]) < 1e-9, "{scheme}: vertex {k} on face {f} is off");
+            assert!(s.1.distance(again.normals[k]) < 1e-9, "{scheme}: vertex {k}'s normal is off");
+            off += usize::from(first.params.get(k) == Some(&(f, u, v)) && first.positions[k] != again.positions[k]);
+        }
+        // the move did move the surface, and the rest was not evaluated again
+        assert!(off > 0, "{scheme}: no vertex moved");
+        assert!(
+            again.stats.evaluations * 4 < fresh.stats.evaluations,
+            "{scheme}: {:?} vs {:?}",
+            again.stats,
+            fresh.stats
+        );
+        // another tolerance starts afresh
+        if scheme != Scheme::Loop {
+            continue;
+        }
+        let finer = tessellator.tessellate(mesh, &moved, scheme, &opts, Tolerance::Distance(t / 2.0)).expect("finer");
+        let cold = tessellate(mesh, &moved, scheme, &opts, Tolerance::Distance(t / 2.0)).expect("cold");
+        assert_eq!(finer.stats.evaluations, cold.stats.evaluations, "{scheme}");
+    }
 }

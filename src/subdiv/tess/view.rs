@@ -94,7 +94,7 @@ impl Tolerance {
 }
 
 /// The length of the diagonal of the bounding box of `points` (0 for none).
-fn diagonal(points: &[DVec3]) -> f64 {
+pub(super) fn diagonal(points: &[DVec3]) -> f64 {
     let (lo, hi) = points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
     if points.is_empty() { 0.0 } else { lo.distance(hi) }
 }
@@ -107,28 +107,34 @@ const QUAD_AT: [(f64, f64); 5] = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)
 /// samples.
 const MARGIN: f64 = 1.25;
 
-/// Each patch's tolerance in the model's units (infinite for a patch out
-/// of the view) and the points evaluated for them, from a tolerance
-/// [`Tolerance::resolve`] checked (a fraction is taken as a distance).
+/// The tolerance in the model's units of each patch of `which` (infinite
+/// for a patch out of the view) and the points evaluated for them, from a
+/// tolerance [`Tolerance::resolve`] checked (a fraction is taken as a
+/// distance).
 ///
 /// # Errors
 /// [`Error::Usage`] for a view's matrix that cannot be inverted.
-pub(super) fn per_patch(ev: &Evaluator, domain: &Domain, tolerance: &Tolerance) -> Result<(Vec<f64>, u64)> {
+pub(super) fn per_patch(
+    ev: &Evaluator,
+    domain: &Domain,
+    tolerance: &Tolerance,
+    which: &[usize],
+) -> Result<(Vec<f64>, u64)> {
     let screen = match tolerance {
-        Tolerance::Distance(t) | Tolerance::Fraction(t) => return Ok((vec![*t; domain.patches.len()], 0)),
+        Tolerance::Distance(t) | Tolerance::Fraction(t) => return Ok((vec![*t; which.len()], 0)),
         Tolerance::Screen(s) => s,
     };
     let view = View::new(screen)?;
-    let mut at = Vec::with_capacity(5 * domain.patches.len());
-    for p in &domain.patches {
-        let samples: &[(f64, f64)] = if p.quad { &QUAD_AT } else { &TRI_AT };
-        at.extend(samples.iter().map(|&(u, v)| (p.face as usize, u, v)));
+    let samples = |p: &super::domain::Patch| -> &[(f64, f64)] { if p.quad { &QUAD_AT } else { &TRI_AT } };
+    let mut at = Vec::with_capacity(5 * which.len());
+    for p in which.iter().map(|&p| &domain.patches[p]) {
+        at.extend(samples(p).iter().map(|&(u, v)| (p.face as usize, u, v)));
     }
     let points = ev.eval_map(&at, false, |s| s.position)?;
-    let mut out = Vec::with_capacity(domain.patches.len());
+    let mut out = Vec::with_capacity(which.len());
     let mut next = 0;
-    for p in &domain.patches {
-        let n = if p.quad { QUAD_AT.len() } else { TRI_AT.len() };
+    for p in which.iter().map(|&p| &domain.patches[p]) {
+        let n = samples(p).len();
         out.push(view.tolerance(&points[next..next + n], screen.pixels));
         next += n;
     }
