@@ -12,6 +12,7 @@ use super::doc::Doc;
 use super::model::Shown;
 use super::view::{View, viewport_aspect};
 use crate::clock::Instant;
+use crate::subdiv::eval::color::CurvatureKind;
 use crate::{Mesh, Options, Result, Scheme, ScreenTolerance, TessellationStats, Tessellator, Tolerance};
 use glam::DVec3;
 use std::sync::Arc;
@@ -29,6 +30,8 @@ pub(crate) struct Key {
     opts: Options,
     /// The view and the pixels.
     view: ScreenTolerance,
+    /// The curvature coloured, evaluated at every vertex with the points.
+    curvature: Option<CurvatureKind>,
 }
 
 /// A tessellation of the limit for a view, ready to draw.
@@ -48,6 +51,8 @@ pub(crate) struct Tessellated {
     pub(crate) ms: f64,
     /// What made it, kept for the next (taken back by the model).
     tessellator: Option<Tessellator>,
+    /// The curvature asked for and its exact value at every vertex.
+    pub(crate) curvature: Option<(CurvatureKind, Arc<Vec<f64>>)>,
 }
 
 /// The adaptive display's state in the model.
@@ -86,7 +91,7 @@ impl Job {
     /// Tessellates (on a worker thread).
     pub(crate) fn run(mut self) -> Result<Tessellated> {
         let start = Instant::now();
-        let Key { scheme, opts, view, .. } = self.key;
+        let Key { scheme, opts, view, curvature, .. } = self.key;
         let out = self.tessellator.tessellate(&self.mesh, &self.control, scheme, &opts, Tolerance::Screen(view))?;
         let positions = out.positions.iter().map(|p| p.as_vec3()).collect();
         let corners: Vec<u32> = out.triangles.iter().flatten().copied().collect();
@@ -94,10 +99,18 @@ impl Job {
         let mut shown = Shown::new(Arc::new(mesh));
         // the exact normals, not the triangles' average
         shown.normals = Arc::new(out.normals.iter().map(|n| n.as_vec3()).collect());
+        let curvature = match curvature {
+            Some(kind) => {
+                let ev = crate::Evaluator::new_f64(&self.mesh, &self.control, scheme, &opts)?;
+                let at: Vec<(usize, f64, f64)> = out.params.iter().map(|&(f, u, v)| (f as usize, u, v)).collect();
+                Some((kind, Arc::new(ev.eval_map(&at, true, |s| kind.of(&s))?)))
+            }
+            None => None,
+        };
         let ms = start.elapsed().as_secs_f64() * 1e3;
         let (faces, corners) = (out.faces, out.corners);
         let tessellator = Some(self.tessellator);
-        Ok(Tessellated { shown, faces, corners, scheme, opts, stats: out.stats, ms, tessellator })
+        Ok(Tessellated { shown, faces, corners, scheme, opts, stats: out.stats, ms, tessellator, curvature })
     }
 }
 
@@ -124,7 +137,11 @@ impl Doc {
             return;
         }
         let (scheme, opts) = (self.request.scheme, self.request.opts);
-        let key = Key { control: m.control.version(), scheme, opts, view };
+        let curvature = match self.display.coloring {
+            super::display::Coloring::Curvature(kind) => Some(kind),
+            _ => None,
+        };
+        let key = Key { control: m.control.version(), scheme, opts, view, curvature };
         if m.adaptive.asked == Some(key) {
             return;
         }

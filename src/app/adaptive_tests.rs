@@ -139,3 +139,44 @@ fn an_edit_in_a_still_view_makes_again_only_what_it_reaches() {
     assert!((moved - glam::Vec3::Y * 0.05).length() < 1e-6, "moved by {moved}");
     assert!(!std::sync::Arc::ptr_eq(&drawn, &v.doc.adaptive_shown().expect("drawn").shown.mesh));
 }
+
+#[test]
+fn the_curvature_colouring_is_the_limit_s_own_on_the_adaptive_display() {
+    use crate::app::display::Coloring;
+    use crate::subdiv::eval::color::{CurvatureKind, vertex_areas};
+    let ctx = egui::Context::default();
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path("cube.obj")));
+    settle(&mut v);
+    subdivide(&mut v, Scheme::CatmullClark, 0);
+    settle(&mut v);
+    frame(&ctx, &mut v, vec![]);
+    set_adaptive(&mut v, true);
+    frame_and_wait(&ctx, &mut v);
+    assert!(v.doc.model.result.values.is_none(), "uncoloured");
+    let mut d = v.doc.display;
+    d.coloring = Coloring::Curvature(CurvatureKind::Gaussian);
+    v.apply(Command::SetDisplay(d));
+    frame_and_wait(&ctx, &mut v);
+    let t = v.doc.adaptive_shown().expect("drawn");
+    let (kind, k) = t.curvature.clone().expect("the curvature came with the tessellation");
+    assert_eq!(kind, CurvatureKind::Gaussian);
+    let mesh = &t.shown.mesh;
+    assert_eq!(k.len(), mesh.positions.len());
+    // none at the extraordinary vertices themselves (the cube's triangles'
+    // centres and its corners of valence other than 4: no curvature there)
+    let cage = &v.doc.model.control.mesh;
+    let most = cage.positions.len() + cage.ct.num_triangles();
+    let corners = k.iter().filter(|k| !k.is_finite()).count();
+    assert!(corners <= most, "{corners} vertices without a curvature");
+    // Gauss-Bonnet: a closed surface of genus 0 has total curvature 4 pi
+    let areas = vertex_areas(&mesh.ct, &mesh.positions);
+    let total: f64 = k.iter().zip(areas).filter(|(k, _)| k.is_finite()).map(|(k, a)| k * a).sum();
+    let four_pi = 4.0 * std::f64::consts::PI;
+    assert!((total - four_pi).abs() < 0.05 * four_pi, "total curvature {total}, not 4 pi");
+    // and it is what is drawn: values of its sign (the shader clamps them to the range)
+    let values = v.doc.model.result.values.clone().expect("values drawn");
+    assert_eq!(values.len(), mesh.positions.len());
+    let same = |(t, k): (&f32, &f64)| k.abs() < 1e-9 || (f64::from(*t) > 0.0) == (*k > 0.0);
+    assert!(values.iter().zip(k.iter()).filter(|(_, k)| k.is_finite()).all(same), "the colours are not K's");
+}

@@ -322,9 +322,11 @@ impl Model {
     /// result drawn as it is differs at them too (see [`result_rows`]).
     pub(crate) fn reshade(&mut self, display: &Display, rows: Option<Arc<[u32]>>) -> Option<Error> {
         if let Some(t) = self.adaptive.drawn.as_ref().filter(|_| display.adaptive) {
-            // the limit for the view, with its exact normals, uncoloured
+            // the limit for the view, with its exact normals, and its exact
+            // curvature where that is the colouring (the others are not drawn on it)
             let shown = t.shown.clone();
-            self.result.set(Shaded { shown, colors: None, values: None, color_max: 0.0, scale: None });
+            let p = adaptive_colors(t, display);
+            self.result.set(Shaded { shown, colors: None, values: p.values, color_max: p.max, scale: p.scale });
             return None;
         }
         let creased = self.raw.creased.clone();
@@ -506,6 +508,21 @@ fn creased_view(raw: &Shown, shown: &Shown, cr: &Creased, display: &Display, mad
         NormalMode::Butterfly => butterfly_normals(&mesh),
     };
     Shown { mesh, normals: Arc::new(normals), topo: shown.topo.clone(), creased: None }
+}
+
+/// The adaptive display's colouring: the curvature the tessellation was
+/// evaluated for, where that is the display's colouring (nothing else).
+fn adaptive_colors(t: &super::adaptive::Tessellated, display: &Display) -> Painted {
+    use crate::subdiv::eval::color::{Scale, normalized};
+    match (display.coloring, &t.curvature) {
+        (Coloring::Curvature(kind), Some((made, values))) if kind == *made => {
+            let mesh = &t.shown.mesh;
+            let scale = Scale::choose(display.range, values, &mesh.ct, &mesh.positions);
+            let values = Some(normalized(values, scale.half));
+            Painted { colors: None, values, max: scale.half as f32, scale: Some(scale) }
+        }
+        _ => Painted::default(),
+    }
 }
 
 /// The per-vertex colours (or values) of `mesh` (the shown result of
