@@ -103,7 +103,7 @@ impl Job {
             Some(kind) => {
                 let ev = crate::Evaluator::new_f64(&self.mesh, &self.control, scheme, &opts)?;
                 let at: Vec<(usize, f64, f64)> = out.params.iter().map(|&(f, u, v)| (f as usize, u, v)).collect();
-                Some((kind, Arc::new(ev.eval_map(&at, true, |s| kind.of(&s))?)))
+                Some((kind, Arc::new(ev.eval_map(&at, true, |s| kind.of(s))?)))
             }
             None => None,
         };

@@ -155,10 +155,10 @@ fn two_rings(faces: usize, corners: impl Iterator<Item = (u32, u32)> + Clone, mo
         for (f, v) in corners.clone() {
             let (from, to) = if from_face { (f, v) } else { (v, f) };
             // a vertex past the control points (none in a valid cage) counts as moved
-            if marked.get(from as usize).copied().unwrap_or(true) {
-                if let Some(x) = out.get_mut(to as usize) {
-                    *x = true;
-                }
+            if marked.get(from as usize).copied().unwrap_or(true)
+                && let Some(x) = out.get_mut(to as usize)
+            {
+                *x = true;
             }
         }
         out
