@@ -27,6 +27,20 @@ fn frame_and_wait(ctx: &egui::Context, v: &mut Viewer) -> usize {
     shown.topo.faces
 }
 
+/// A viewer showing the bundled `model` under `scheme` at `level`, with the
+/// adaptive display on and its first tessellation drawn.
+fn adaptive_viewer(ctx: &egui::Context, model: &str, scheme: Scheme, level: u32) -> Viewer {
+    let mut v = Viewer::new();
+    v.apply(Command::Open(common::model_path(model)));
+    settle(&mut v);
+    subdivide(&mut v, scheme, level);
+    settle(&mut v);
+    frame(ctx, &mut v, vec![]);
+    set_adaptive(&mut v, true);
+    frame_and_wait(ctx, &mut v);
+    v
+}
+
 #[test]
 fn the_adaptive_display_follows_the_view_and_the_cage() {
     let ctx = egui::Context::default();
@@ -81,14 +95,7 @@ fn a_pick_on_the_adaptive_display_is_the_limit_at_its_own_point() {
     use crate::subdiv::pick::{ControlFace, Limit};
     for (model, scheme) in [("torus.obj", Scheme::Loop), ("cube.obj", Scheme::CatmullClark)] {
         let ctx = egui::Context::default();
-        let mut v = Viewer::new();
-        v.apply(Command::Open(common::model_path(model)));
-        settle(&mut v);
-        subdivide(&mut v, scheme, 0);
-        settle(&mut v);
-        frame(&ctx, &mut v, vec![]);
-        set_adaptive(&mut v, true);
-        frame_and_wait(&ctx, &mut v);
+        let mut v = adaptive_viewer(&ctx, model, scheme, 0);
         let rect = v.view.scene_rect;
         let at = rect.center() + egui::vec2(rect.width() * 0.12, rect.height() * 0.05);
         v.apply(Command::PickSurface(ray_at(&v.view.camera, rect, false, at)));
@@ -110,14 +117,7 @@ fn a_pick_on_the_adaptive_display_is_the_limit_at_its_own_point() {
 fn an_edit_in_a_still_view_makes_again_only_what_it_reaches() {
     use crate::app::edit::{Axis, EditAction};
     let ctx = egui::Context::default();
-    let mut v = Viewer::new();
-    v.apply(Command::Open(common::model_path("torus.obj")));
-    settle(&mut v);
-    subdivide(&mut v, Scheme::Loop, 1);
-    settle(&mut v);
-    frame(&ctx, &mut v, vec![]);
-    set_adaptive(&mut v, true);
-    frame_and_wait(&ctx, &mut v);
+    let mut v = adaptive_viewer(&ctx, "torus.obj", Scheme::Loop, 1);
     let fresh = v.doc.adaptive_shown().expect("drawn").stats;
     let drawn = v.doc.adaptive_shown().expect("drawn").shown.mesh.clone();
     let start = v.doc.model.control.mesh.positions[7];
@@ -145,14 +145,7 @@ fn the_curvature_colouring_is_the_limit_s_own_on_the_adaptive_display() {
     use crate::app::display::Coloring;
     use crate::subdiv::eval::color::{CurvatureKind, vertex_areas};
     let ctx = egui::Context::default();
-    let mut v = Viewer::new();
-    v.apply(Command::Open(common::model_path("cube.obj")));
-    settle(&mut v);
-    subdivide(&mut v, Scheme::CatmullClark, 0);
-    settle(&mut v);
-    frame(&ctx, &mut v, vec![]);
-    set_adaptive(&mut v, true);
-    frame_and_wait(&ctx, &mut v);
+    let mut v = adaptive_viewer(&ctx, "cube.obj", Scheme::CatmullClark, 0);
     assert!(v.doc.model.result.values.is_none(), "uncoloured");
     let mut d = v.doc.display;
     d.coloring = Coloring::Curvature(CurvatureKind::Gaussian);
