@@ -142,7 +142,8 @@ impl Doc {
             _ => None,
         };
         let key = Key { control: m.control.version(), scheme, opts, view, curvature };
-        if m.adaptive.asked == Some(key) {
+        // the same, or only the curvature turned off (the drawn one has the geometry)
+        if m.adaptive.asked.is_some_and(|a| a == key || (curvature.is_none() && Key { curvature, ..a } == key)) {
             return;
         }
         let mesh = m.control.mesh.clone();

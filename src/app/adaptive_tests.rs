@@ -172,4 +172,11 @@ fn the_curvature_colouring_is_the_limit_s_own_on_the_adaptive_display() {
     assert_eq!(values.len(), mesh.positions.len());
     let same = |(t, k): (&f32, &f64)| k.abs() < 1e-9 || (f64::from(*t) > 0.0) == (*k > 0.0);
     assert!(values.iter().zip(k.iter()).filter(|(_, k)| k.is_finite()).all(same), "the colours are not K's");
+    // the colouring off: the geometry drawn stands, nothing is asked again
+    let mut d = v.doc.display;
+    d.coloring = Coloring::None;
+    v.apply(Command::SetDisplay(d));
+    frame(&ctx, &mut v, vec![]);
+    assert!(v.doc.jobs.busy.tessellating.is_none(), "the same geometry tessellated again");
+    assert!(v.doc.model.result.values.is_none(), "uncoloured again");
 }

@@ -75,7 +75,9 @@ impl Doc {
             // the adaptive display: traced back through the tessellation's own faces
             let drawn = Tessellated { mesh: &t.shown.mesh, faces: &t.faces, corners: &t.corners };
             let how = (t.scheme, &t.opts);
-            return Ok(pick_tessellated((control, m.precise_control()), how, &drawn, (ray.origin, ray.dir)));
+            // the points the tessellation was made from (the file's digits where unmoved)
+            let points = m.control_f64();
+            return Ok(pick_tessellated((control, Some(&points)), how, &drawn, (ray.origin, ray.dir)));
         }
         let (drawn, level) = match ray.target {
             Target::Control => (control, 0),

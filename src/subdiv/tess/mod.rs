@@ -184,11 +184,28 @@ pub fn tessellate(
     opts: &Options,
     tolerance: Tolerance,
 ) -> Result<Tessellation> {
+    Ok(rounds_from(mesh, control, (scheme, opts), tolerance, |_, _| None)?.0)
+}
+
+/// The tessellation, from what `warm` gives for the evaluator and the
+/// resolved tolerance (`None`: from nothing); with the rounds' state, the
+/// points' layout and the resolved tolerance.
+fn rounds_from(
+    mesh: &Mesh,
+    control: &[DVec3],
+    (scheme, opts): (Scheme, &Options),
+    tolerance: Tolerance,
+    warm: impl FnOnce(&Evaluator, &Tolerance) -> Option<Result<Start>>,
+) -> Result<(Tessellation, Rounds, Layout, Tolerance)> {
     let start = Instant::now();
     let tolerance = tolerance.resolve(control)?;
     let ev = Evaluator::new_f64(mesh, control, scheme, opts)?;
-    let first = Start::cold(&ev, mesh, scheme, &tolerance)?;
-    Ok(run(&ev, first, (opts, &tolerance), start)?.tessellation(scheme, opts).0)
+    let first = match warm(&ev, &tolerance) {
+        Some(first) => first?,
+        None => Start::cold(&ev, mesh, scheme, &tolerance)?,
+    };
+    let (out, rounds, layout) = run(&ev, first, (opts, &tolerance), start)?.tessellation(scheme, opts);
+    Ok((out, rounds, layout, tolerance))
 }
 
 /// What the rounds start from: the domain, each patch's tolerance, rate and

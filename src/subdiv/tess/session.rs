@@ -13,9 +13,8 @@
 //! tolerance starts afresh).
 
 use super::domain::Domain;
-use super::{Earlier, Start, Tessellation, Tolerance, rates, run, view};
+use super::{Earlier, Start, Tessellation, Tolerance, rates, rounds_from, view};
 use crate::Result;
-use crate::clock::Instant;
 use crate::mesh::poly::PolyTable;
 use crate::mesh::{CornerTable, Mesh};
 use crate::subdiv::eval::Evaluator;
@@ -78,20 +77,14 @@ impl Tessellator {
         opts: &Options,
         tolerance: Tolerance,
     ) -> Result<Tessellation> {
-        let start = Instant::now();
         let last = self.last.take();
-        let tolerance = tolerance.resolve(control)?;
-        let ev = Evaluator::new_f64(mesh, control, scheme, opts)?;
-        let same = |l: &Last| {
-            (l.scheme, l.opts, l.tolerance) == (scheme, *opts, tolerance)
+        let same = |l: &Last, t: &Tolerance| {
+            (l.scheme, l.opts, l.tolerance) == (scheme, *opts, *t)
                 && l.control.len() == control.len()
                 && l.ct == mesh.ct
         };
-        let first = match last.filter(|l| same(l)) {
-            Some(l) => (*l).warm(&ev, mesh, control, &tolerance)?,
-            None => Start::cold(&ev, mesh, scheme, &tolerance)?,
-        };
-        let (out, rounds, layout) = run(&ev, first, (opts, &tolerance), start)?.tessellation(scheme, opts);
+        let warm = |ev: &Evaluator, t: &Tolerance| last.filter(|l| same(l, t)).map(|l| (*l).warm(ev, mesh, control, t));
+        let (out, rounds, layout, tolerance) = rounds_from(mesh, control, (scheme, opts), tolerance, warm)?;
         let earlier =
             Earlier { layout, positions: out.positions.clone(), normals: out.normals.clone(), stale_keys: Vec::new() };
         self.last = Some(Box::new(Last {
